@@ -1,0 +1,197 @@
+"""Configuration: TOML files over embedded defaults (the seed-000 case).
+
+Every command runs without a file: :data:`SCHEMA` holds each key's default,
+type and admissible values.  A user file overrides any subset of keys; unknown
+keys, wrong types and out-of-range values raise :class:`ConfigError` whose
+message names the offending ``[section] key``.
+
+>>> cfg = load_config()                 # defaults
+>>> cfg = load_config("case.toml")      # file over defaults
+>>> cfg = load_config(overrides={"tether": {"length_m": 3000.0}})
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+
+class ConfigError(ValueError):
+    """A configuration value is unknown, of the wrong type or out of range."""
+
+
+@dataclass(frozen=True)
+class Key:
+    """One configuration key: its default, its type and its admissible values."""
+
+    default: Any
+    doc: str
+    check: Callable[[Any], str | None] = lambda v: None
+
+    @property
+    def kind(self) -> type:
+        return type(self.default)
+
+
+def positive(v):
+    return None if v > 0 else "must be > 0"
+
+
+def non_negative(v):
+    return None if v >= 0 else "must be >= 0"
+
+
+def between(lo, hi, closed=(False, False)):
+    def check(v):
+        ok_lo = v >= lo if closed[0] else v > lo
+        ok_hi = v <= hi if closed[1] else v < hi
+        if ok_lo and ok_hi:
+            return None
+        return f"must be in {'[' if closed[0] else '('}{lo}, {hi}{']' if closed[1] else ')'}"
+    return check
+
+
+def one_of(*choices):
+    def check(v):
+        return None if v in choices else f"must be one of {', '.join(map(repr, choices))}"
+    return check
+
+
+def at_least(n):
+    return lambda v: None if v >= n else f"must be >= {n}"
+
+
+SCHEMA: dict[str, dict[str, Key]] = {
+    "tether": {
+        "length_m": Key(1000.0, "cable length L (per line)", positive),
+        "diameter_m": Key(0.011, "line diameter d", positive),
+        "linear_density_kg_m": Key(0.062, "mass per unit length mu", positive),
+        "lines": Key(2, "number of lines from ground to kite", at_least(1)),
+    },
+    "air": {
+        "model": Key("isa", "'isa' (ISA troposphere) or 'constant'", one_of("isa", "constant")),
+        "density_kg_m3": Key(1.225, "density for model = 'constant'", positive),
+        "viscosity_Pa_s": Key(1.789e-5, "dynamic viscosity for model = 'constant'", positive),
+    },
+    "drag": {
+        "model": Key("cylinder", "'cylinder' (C_d,c(Re)) or 'constant'", one_of("cylinder", "constant")),
+        "cd": Key(1.2, "cross-flow drag coefficient for model = 'constant'", positive),
+    },
+    "wind": {
+        "profile": Key("log", "'log' (De Bilt), 'power' or 'none'", one_of("log", "power", "none")),
+        "season": Key("annual", "De Bilt log-law season", one_of("winter", "summer", "annual")),
+        "reference_speed_ms": Key(9.5, "power law: speed at reference_height_m", non_negative),
+        "reference_height_m": Key(20.0, "power law: reference height", positive),
+        "alpha": Key(0.2, "power law: shear exponent", between(0.0, 1.0, (True, False))),
+    },
+    "kite": {
+        "area_m2": Key(120.0, "kite reference area A", positive),
+        "cl": Key(1.0, "lift coefficient C_l", positive),
+        "efficiency": Key(28.0, "aerodynamic efficiency E = C_l/C_d", positive),
+        "speed_ms": Key(80.0, "crosswind flight speed V_k on the eight", positive),
+        "theta0_deg": Key(45.0, "polar angle of the eight's centre, from the vertical", between(0.0, 90.0)),
+        "eight_width_m": Key(190.0, "crosswind width W of the eight", positive),
+        "eight_height_m": Key(95.0, "height H of the eight", positive),
+        "design_phi_deg": Key(11.0, "azimuth used by the characteristic curves", between(-90.0, 90.0)),
+        "nominal_force_N": Key(300000.0, "nominal traction force (all lines)", positive),
+        "max_reel_out_ms": Key(13.5, "maximum reel-out speed", positive),
+        "air_density_kg_m3": Key(1.0, "density of the characteristic curves (seed: 1 kg/m3)", positive),
+    },
+    "winch": {
+        "mode": Key("tension", "'tension' (winch holds ground_tension_N) or 'prescribed'",
+                    one_of("tension", "prescribed")),
+        "ground_tension_N": Key(150000.0, "tension held by the winch, per line", positive),
+    },
+}
+
+
+def defaults() -> dict[str, dict[str, Any]]:
+    """The embedded default configuration (seed 000's case) as a nested dict."""
+    return {sec: {k: key.default for k, key in keys.items()} for sec, keys in SCHEMA.items()}
+
+
+def _coerce(section: str, name: str, value: Any) -> Any:
+    key = SCHEMA[section][name]
+    where = f"[{section}] {name} = {value!r}"
+    if key.kind is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ConfigError(f"{where}: expected a number")
+        value = float(value)
+        if not math.isfinite(value):
+            raise ConfigError(f"{where}: must be finite")
+    elif key.kind is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ConfigError(f"{where}: expected an integer")
+    elif key.kind is bool:
+        if not isinstance(value, bool):
+            raise ConfigError(f"{where}: expected true or false")
+    elif not isinstance(value, key.kind):
+        raise ConfigError(f"{where}: expected a {key.kind.__name__}")
+    problem = key.check(value)
+    if problem:
+        raise ConfigError(f"{where}: {problem}")
+    return value
+
+
+def merge(base: dict, overrides: dict) -> dict:
+    """Return ``base`` updated by ``overrides`` after validating every override."""
+    out = copy.deepcopy(base)
+    for section, values in overrides.items():
+        if section not in SCHEMA:
+            raise ConfigError(f"[{section}]: unknown section (known: {', '.join(SCHEMA)})")
+        if not isinstance(values, dict):
+            raise ConfigError(f"[{section}]: expected a table of keys")
+        for name, value in values.items():
+            if name not in SCHEMA[section]:
+                raise ConfigError(f"[{section}] {name}: unknown key "
+                                  f"(known: {', '.join(SCHEMA[section])})")
+            out[section][name] = _coerce(section, name, value)
+    return out
+
+
+def load_config(path: str | Path | None = None, overrides: dict | None = None) -> dict:
+    """Defaults, then the TOML file at ``path``, then ``overrides``; validated."""
+    cfg = defaults()
+    if path is not None:
+        cfg = merge(cfg, read_toml(path))
+    if overrides:
+        cfg = merge(cfg, overrides)
+    return cfg
+
+
+def read_toml(path: str | Path) -> dict:
+    """Parse a TOML file, turning I/O and syntax problems into ConfigError."""
+    path = Path(path)
+    try:
+        with path.open("rb") as fh:
+            return tomllib.load(fh)
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: no such file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read: {exc.strerror}") from None
+
+
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return repr(v)
+
+
+def to_toml(cfg: dict) -> str:
+    """Serialise a (flat-table) configuration as TOML text, with each key's doc."""
+    lines = []
+    for section, values in cfg.items():
+        lines.append(f"[{section}]")
+        for name, value in values.items():
+            doc = SCHEMA[section][name].doc if name in SCHEMA.get(section, {}) else ""
+            lines.append(f"{name} = {_toml_value(value)}" + (f"  # {doc}" if doc else ""))
+        lines.append("")
+    return "\n".join(lines)
