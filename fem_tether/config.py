@@ -71,6 +71,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "diameter_m": Key(0.011, "line diameter d", positive),
         "linear_density_kg_m": Key(0.062, "mass per unit length mu", positive),
         "lines": Key(2, "number of lines from ground to kite", at_least(1)),
+        "elasticity": Key("inextensible", "'inextensible' (|r_s| = 1) or 'elastic' (strain = T/EA)",
+                          one_of("inextensible", "elastic")),
+        "axial_stiffness_N": Key(1.4730e7, "EA for elasticity = 'elastic' (SK99 11 mm: 155 GPa)", positive),
+        "damping_time_s": Key(0.0, "Kelvin-Voigt retardation time eta, T = EA (eps + eta deps/dt)",
+                              non_negative),
     },
     "air": {
         "model": Key("isa", "'isa' (ISA troposphere) or 'constant'", one_of("isa", "constant")),
@@ -80,6 +85,7 @@ SCHEMA: dict[str, dict[str, Key]] = {
     "drag": {
         "model": Key("cylinder", "'cylinder' (C_d,c(Re)) or 'constant'", one_of("cylinder", "constant")),
         "cd": Key(1.2, "cross-flow drag coefficient for model = 'constant'", positive),
+        "skin_friction_cf": Key(0.0, "tangential skin-friction coefficient c_f (0: none)", non_negative),
     },
     "wind": {
         "profile": Key("log", "'log' (De Bilt), 'power' or 'none'", one_of("log", "power", "none")),
@@ -100,11 +106,34 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "nominal_force_N": Key(300000.0, "nominal traction force (all lines)", positive),
         "max_reel_out_ms": Key(13.5, "maximum reel-out speed", positive),
         "air_density_kg_m3": Key(1.0, "density of the characteristic curves (seed: 1 kg/m3)", positive),
+        "radius_m": Key(0.0, "kite distance for [winch] mode = 'prescribed' (0: unset)", non_negative),
     },
     "winch": {
         "mode": Key("tension", "'tension' (winch holds ground_tension_N) or 'prescribed'",
                     one_of("tension", "prescribed")),
         "ground_tension_N": Key(150000.0, "tension held by the winch, per line", positive),
+    },
+    "fe": {
+        "mesh": Key("graded", "'uniform', 'graded' or a meshio file of [0, 1] (e.g. meshes/graded_40.vtu)"),
+        "elements": Key(40, "elements of a generated mesh", at_least(1)),
+        "grading": Key(4.0, "first/last element size of a graded mesh (kite end finer)", positive),
+    },
+    "time": {
+        "dt_s": Key(0.05, "time step (rounded down to a whole number of steps per period)", positive),
+        "scheme": Key("generalized-alpha", "'generalized-alpha', 'hht' or 'newmark'",
+                      one_of("generalized-alpha", "hht", "newmark")),
+        "rho_inf": Key(0.8, "generalized-alpha spectral radius at infinity", between(0.0, 1.0, (True, True))),
+        "hht_alpha": Key(-0.1, "HHT alpha", between(-1.0 / 3.0, 0.0, (True, True))),
+        "beta": Key(0.25, "Newmark beta", positive),
+        "gamma": Key(0.5, "Newmark gamma", positive),
+        "spinup_periods": Key(1, "periods of the eight flown before averaging", at_least(0)),
+        "average_periods": Key(2, "whole periods averaged", at_least(1)),
+        "newton_tol": Key(1e-10, "Newton tolerance on residuals scaled by the tension", positive),
+        "max_newton": Key(20, "Newton iterations before a step is halved", at_least(1)),
+        "max_halvings": Key(6, "step halvings before the solve gives up", at_least(0)),
+    },
+    "output": {
+        "every": Key(5, "time steps between stored snapshots of the whole line", at_least(1)),
     },
 }
 

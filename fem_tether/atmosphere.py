@@ -1,0 +1,97 @@
+"""Air density and viscosity against altitude: ISA troposphere or constant air.
+
+The International Standard Atmosphere (ICAO Doc 7488) below the tropopause is
+a linear temperature lapse with hydrostatic pressure and the ideal-gas law;
+the viscosity follows Sutherland's law.  Seed 000 takes rho(z) and mu_air(z)
+from the ISA table (Tab. 4.1), which these formulas reproduce.
+
+>>> air = ISA()
+>>> air.density_kg_m3([0.0, 1000.0])      # ~ [1.225, 1.112]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+SEA_LEVEL_TEMPERATURE_K = 288.15
+SEA_LEVEL_PRESSURE_PA = 101325.0
+LAPSE_RATE_K_M = 0.0065
+STANDARD_GRAVITY_M_S2 = 9.80665
+GAS_CONSTANT_J_KG_K = 287.05287
+SUTHERLAND_BETA = 1.458e-6
+SUTHERLAND_S_K = 110.4
+TROPOPAUSE_M = 11000.0
+
+#: exponent g0 / (R L) of the troposphere pressure law
+PRESSURE_EXPONENT = STANDARD_GRAVITY_M_S2 / (GAS_CONSTANT_J_KG_K * LAPSE_RATE_K_M)
+
+
+def _altitude(z_m) -> np.ndarray:
+    z = np.asarray(z_m, dtype=float)
+    if np.any(z > TROPOPAUSE_M):
+        raise ValueError(f"altitude {np.max(z)} m is above the ISA troposphere "
+                         f"(z <= {TROPOPAUSE_M} m)")
+    return z
+
+
+def temperature_K(z_m):
+    """T = T0 - L z, T0 = 288.15 K, L = 0.0065 K/m (ISA, ICAO Doc 7488)."""
+    return SEA_LEVEL_TEMPERATURE_K - LAPSE_RATE_K_M * _altitude(z_m)
+
+
+def pressure_Pa(z_m):
+    """p = p0 (T/T0)^(g0/(R L)), p0 = 101325 Pa (ISA, ICAO Doc 7488)."""
+    return SEA_LEVEL_PRESSURE_PA * (temperature_K(z_m) / SEA_LEVEL_TEMPERATURE_K) ** PRESSURE_EXPONENT
+
+
+def sutherland_viscosity_Pa_s(temperature):
+    """mu = beta T^1.5 / (T + S), beta = 1.458e-6 kg/(m s K^0.5), S = 110.4 K (ISA)."""
+    t = np.asarray(temperature, dtype=float)
+    return SUTHERLAND_BETA * t**1.5 / (t + SUTHERLAND_S_K)
+
+
+@dataclass(frozen=True)
+class ISA:
+    """ISA troposphere, valid for z <= 11000 m (ValueError above)."""
+
+    def density_kg_m3(self, z_m):
+        """rho = p / (R T) (ideal gas; ISA, ICAO Doc 7488)."""
+        return pressure_Pa(z_m) / (GAS_CONSTANT_J_KG_K * temperature_K(z_m))
+
+    def viscosity_Pa_s(self, z_m):
+        """mu(T(z)) by Sutherland's law."""
+        return sutherland_viscosity_Pa_s(temperature_K(z_m))
+
+    def density_gradient_kg_m4(self, z_m):
+        """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
+        return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * self.density_kg_m3(z_m) / temperature_K(z_m)
+
+
+@dataclass(frozen=True)
+class ConstantAir:
+    """Air of uniform density and viscosity at every altitude."""
+
+    rho_kg_m3: float
+    mu_Pa_s: float
+
+    def density_kg_m3(self, z_m):
+        """rho(z) = rho."""
+        return np.full(np.shape(z_m), self.rho_kg_m3)
+
+    def viscosity_Pa_s(self, z_m):
+        """mu(z) = mu."""
+        return np.full(np.shape(z_m), self.mu_Pa_s)
+
+    def density_gradient_kg_m4(self, z_m):
+        """d rho/dz = 0."""
+        return np.zeros(np.shape(z_m))
+
+
+def from_config(cfg: dict) -> ISA | ConstantAir:
+    """The air model of ``cfg["air"]``: ``model = "isa"`` or ``"constant"``."""
+    air = cfg["air"]
+    if air["model"] == "isa":
+        return ISA()
+    return ConstantAir(air["density_kg_m3"], air["viscosity_Pa_s"])

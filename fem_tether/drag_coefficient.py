@@ -1,0 +1,159 @@
+"""Cross-flow drag coefficient C_d,c(Re) of a smooth infinite circular cylinder.
+
+Seed 000 §4.1 uses two branches, and so does :class:`CylinderDrag`:
+
+* Re < 40, Belan & Tordella (ZAMM 82:219, 2002), seed 000 eqs. 4.4-4.5::
+
+      C_d,c / 2 = 2 (pi/Re)^(1/2) B(Re),   B = 1.16 + 5.1e-3 Re - 1.9e-5 Re^2
+
+  It gives C_d,c = 1.495 at Re = 40 and grows like Re^(-1/2) as Re -> 0
+  (C_d,c = inf at Re = 0 exactly).
+
+* Re >= 40, the classical experimental curve (:data:`EXPERIMENTAL_CURVE`),
+  interpolated linearly in (log Re, log C_d), i.e. a power law
+  C_d = C_i (Re/Re_i)^s_i on each interval; above the last node the last value
+  is held.
+
+>>> CylinderDrag().cd([10.0, 1e3, 5e5])    # ~ [2.79, 0.95, 0.31]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+BELAN_TORDELLA_MAX_RE = 40.0
+
+#: (Re, C_d) of the smooth infinite circular cylinder: approximate readings of
+#: the published plots at round Reynolds numbers, two significant figures (not
+#: exact digitisations; the measurements themselves scatter by a few percent).
+#:
+#: * Re = 40 and 100: Tritton, J. Fluid Mech. 6:547 (1959), about 1.5 and 1.3.
+#:   At Re = 40 steady computations agree (Dennis & Chang, J. Fluid Mech.
+#:   42:471 (1970): 1.522; Fornberg, J. Fluid Mech. 98:819 (1980): 1.498), and
+#:   the Belan-Tordella branch (1.495) joins the curve to within 1 %.
+#: * 200 to 8e5: Wieselsberger, NACA Report 121 (1922), the data behind the
+#:   classical C_D(Re) plot of Schlichting & Gersten, Boundary-Layer Theory,
+#:   Fig. 1.4: minimum 0.89 near Re = 2e3, subcritical maximum 1.18 near
+#:   1.7e5, drag crisis down to 0.31 at 5e5.
+#: * 3.5e6 and 1e7: Roshko, J. Fluid Mech. 10:345 (1961): C_d rises from its
+#:   supercritical value to 0.7 at Re = 3.5e6 and then stays constant (measured
+#:   up to about 1e7).
+EXPERIMENTAL_CURVE = np.array([
+    (40.0, 1.50),
+    (100.0, 1.30),
+    (200.0, 1.26),
+    (500.0, 1.08),
+    (1e3, 0.95),
+    (2e3, 0.89),
+    (5e3, 0.94),
+    (1e4, 1.07),
+    (2e4, 1.15),
+    (1e5, 1.17),
+    (1.7e5, 1.18),
+    (2e5, 1.10),
+    (2.5e5, 0.99),
+    (3e5, 0.89),
+    (3.5e5, 0.77),
+    (4e5, 0.62),
+    (4.5e5, 0.47),
+    (5e5, 0.31),
+    (8e5, 0.35),
+    (3.5e6, 0.70),
+    (1e7, 0.70),
+])
+
+_LOG_RE = np.log(EXPERIMENTAL_CURVE[:, 0])
+_LOG_CD = np.log(EXPERIMENTAL_CURVE[:, 1])
+_SLOPE = np.diff(_LOG_CD) / np.diff(_LOG_RE)
+
+
+def _reynolds(re) -> np.ndarray:
+    re = np.asarray(re, dtype=float)
+    if np.any(re < 0.0):
+        raise ValueError(f"Reynolds number {np.min(re)} is negative")
+    return re
+
+
+def belan_tordella_b(re):
+    """B(Re) = 1.16 + 5.1e-3 Re - 1.9e-5 Re^2 (seed 000 eq. 4.5)."""
+    return 1.16 + 5.1e-3 * re - 1.9e-5 * re**2
+
+
+def belan_tordella_cd(re):
+    """C_d,c = 4 (pi/Re)^(1/2) B(Re) (seed 000 eqs. 4.4-4.5); inf at Re = 0."""
+    re = np.asarray(re, dtype=float)
+    with np.errstate(divide="ignore"):
+        return 4.0 * np.sqrt(np.pi / re) * belan_tordella_b(re)
+
+
+def belan_tordella_dcd_dre(re):
+    """dC_d,c/dRe = 4 (pi/Re)^(1/2) (B'(Re) - B(Re) / (2 Re)), B' = 5.1e-3 - 3.8e-5 Re."""
+    re = np.asarray(re, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return 4.0 * np.sqrt(np.pi / re) * (5.1e-3 - 3.8e-5 * re - belan_tordella_b(re) / (2.0 * re))
+
+
+def _segment(re):
+    """Index i of the interval [Re_i, Re_i+1) holding each Re (clipped to the table)."""
+    return np.clip(np.searchsorted(_LOG_RE, np.log(re), side="right") - 1, 0, len(_SLOPE) - 1)
+
+
+def experimental_cd(re):
+    """C_d = C_i (Re/Re_i)^s_i, s_i = ln(C_i+1/C_i) / ln(Re_i+1/Re_i); last value above 1e7."""
+    log_re = np.minimum(np.log(re), _LOG_RE[-1])
+    i = _segment(re)
+    return np.exp(_LOG_CD[i] + _SLOPE[i] * (log_re - _LOG_RE[i]))
+
+
+def experimental_dcd_dre(re):
+    """dC_d/dRe = s_i C_d / Re on the interval (right-hand slope at the nodes); 0 above 1e7."""
+    slope = np.where(np.log(re) < _LOG_RE[-1], _SLOPE[_segment(re)], 0.0)
+    return slope * experimental_cd(re) / re
+
+
+@dataclass(frozen=True)
+class CylinderDrag:
+    """C_d,c(Re): Belan-Tordella below Re = 40, the experimental curve above."""
+
+    def cd(self, re):
+        """C_d,c(Re) for Re >= 0 (inf at Re = 0)."""
+        re = _reynolds(re)
+        low = re < BELAN_TORDELLA_MAX_RE
+        out = np.empty_like(re)
+        out[low] = belan_tordella_cd(re[low])
+        out[~low] = experimental_cd(re[~low])
+        return out[()]
+
+    def dcd_dre(self, re):
+        """dC_d,c/dRe of the same two branches (-inf at Re = 0)."""
+        re = _reynolds(re)
+        low = re < BELAN_TORDELLA_MAX_RE
+        out = np.empty_like(re)
+        out[low] = belan_tordella_dcd_dre(re[low])
+        out[~low] = experimental_dcd_dre(re[~low])
+        return out[()]
+
+
+@dataclass(frozen=True)
+class ConstantDrag:
+    """C_d,c = value at every Reynolds number."""
+
+    value: float
+
+    def cd(self, re):
+        """C_d,c(Re) = value."""
+        return np.full(np.shape(re), self.value)
+
+    def dcd_dre(self, re):
+        """dC_d,c/dRe = 0."""
+        return np.zeros(np.shape(re))
+
+
+def from_config(cfg: dict) -> CylinderDrag | ConstantDrag:
+    """The drag model of ``cfg["drag"]``: ``model = "cylinder"`` or ``"constant"`` (uses ``cd``)."""
+    drag = cfg["drag"]
+    if drag["model"] == "cylinder":
+        return CylinderDrag()
+    return ConstantDrag(drag["cd"])

@@ -1,0 +1,86 @@
+"""1-D meshes of the unit interval [0, 1]: generated, written and read with meshio.
+
+The solver scales a unit mesh to the cable length, ``s = L xi``; ``xi = 0`` is
+the winch, ``xi = 1`` the kite.  A graded mesh has element sizes in geometric
+progression, shrinking toward the kite where the line bends most, with
+``grading = h_first / h_last``.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import meshio
+import numpy as np
+
+
+class MeshError(ValueError):
+    """A mesh file is unreadable or is not a chain of segments covering [0, 1]."""
+
+
+def unit_nodes(elements: int, grading: float = 1.0) -> np.ndarray:
+    """Nodes of [0, 1] with ``elements`` segments, sizes in geometric progression.
+
+    ``h_i = h_0 q^i`` with ``q = grading^(-1/(n-1))`` so that ``h_0/h_{n-1} = grading``.
+    """
+    if elements < 1:
+        raise MeshError(f"elements = {elements}: must be >= 1")
+    if grading <= 0:
+        raise MeshError(f"grading = {grading}: must be > 0")
+    q = grading ** (-1.0 / (elements - 1)) if elements > 1 else 1.0
+    h = q ** np.arange(elements)
+    nodes = np.concatenate([[0.0], np.cumsum(h)])
+    return nodes / nodes[-1]
+
+
+def write_unit_mesh(path: str | Path, nodes: np.ndarray) -> Path:
+    """Write a unit mesh as a meshio file (format from the suffix), atomically."""
+    path = Path(path)
+    nodes = _validated(np.asarray(nodes, dtype=float), str(path))
+    points = np.column_stack([nodes, np.zeros((nodes.size, 2))])
+    cells = [("line", np.column_stack([np.arange(nodes.size - 1), np.arange(1, nodes.size)]))]
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=path.suffix)
+    os.close(fd)
+    try:
+        meshio.write(tmp, meshio.Mesh(points, cells))
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    return path
+
+
+def read_unit_mesh(path: str | Path) -> np.ndarray:
+    """Read the nodes of a 1-D mesh of [0, 1] from any meshio-readable file."""
+    try:
+        mesh = meshio.read(path)
+    except Exception as exc:  # meshio raises many types for unreadable files
+        raise MeshError(f"{path}: cannot read mesh: {exc}") from None
+    lines = [c.data for c in mesh.cells if c.type == "line"]
+    if not lines:
+        raise MeshError(f"{path}: no 'line' cells")
+    segments = np.concatenate(lines)
+    x = mesh.points[:, 0]
+    if mesh.points.shape[1] > 1 and np.any(np.abs(mesh.points[:, 1:]) > 1e-12):
+        raise MeshError(f"{path}: points must lie on the x axis")
+    used = np.unique(segments)
+    order = np.argsort(x[used])
+    nodes = x[used][order]
+    rank = np.empty(x.size, dtype=int)
+    rank[used[order]] = np.arange(used.size)
+    ends = np.sort(rank[segments], axis=1)
+    if ends.shape[0] != nodes.size - 1 or np.any(ends[:, 1] - ends[:, 0] != 1):
+        raise MeshError(f"{path}: cells must form one chain of consecutive segments")
+    return _validated(nodes, str(path))
+
+
+def _validated(nodes: np.ndarray, where: str) -> np.ndarray:
+    if nodes.ndim != 1 or nodes.size < 2:
+        raise MeshError(f"{where}: need at least one segment")
+    if abs(nodes[0]) > 1e-12 or abs(nodes[-1] - 1.0) > 1e-12:
+        raise MeshError(f"{where}: mesh must span [0, 1], got [{nodes[0]}, {nodes[-1]}]")
+    if np.any(np.diff(nodes) <= 0):
+        raise MeshError(f"{where}: nodes must be strictly increasing")
+    return nodes

@@ -1,0 +1,214 @@
+"""Residual and consistent Jacobian of the discrete tether equations.
+
+Semi-discrete weak form on P1 (r) x P0 (T), :mod:`.spaces`::
+
+    M qdd + D^T (T tau) - Q f_t(r, v) - M g = 0         interior nodes (seed 000 eq. 4.7)
+    |D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e = 0  every element (eq. 4.16)
+
+``tau_e = (D r)_e / |D r|_e``; f_t is the cross-flow drag at the element
+midpoints (:mod:`fem_tether.loads`); EA = inf (``compliance = 0``) and eta = 0
+give the inextensible line.  Both ends are kinematic: r_0 = 0 at the winch and
+r_N = R e(t) at the kite, with e(t) the kite's direction on its trajectory and
+R closed either by the winch tension (T at the winch = T_0) or prescribed.
+
+Unknowns and equations share one interleaved ordering,
+``[r_0, T_0, r_1, T_1, ..., r_N, R]`` (index ``4i + k`` for r_i, ``4e + 3``
+for T_e, ``4N + 3`` for R), so the Jacobian without the R row and column is
+banded with 6 sub- and super-diagonals; the winch condition couples the two
+line ends and is eliminated by a bordered solve.  Kinematic and constraint
+rows are multiplied by ``k = F_ref / h_mean`` so all rows are forces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import solve_banded
+
+from fem_tether.fe.spaces import TetherSpaces
+from fem_tether.loads import CrossflowDrag, crossflow_drag, gravity_N_m
+
+BAND = 6
+
+
+@dataclass(frozen=True)
+class Physics:
+    """Leaf-model objects and tether constants the residual needs."""
+
+    air: object
+    drag: object
+    wind: object
+    diameter_m: float
+    linear_density_kg_m: float
+    compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
+    damping_time_s: float = 0.0        # Kelvin-Voigt retardation time eta
+    skin_friction_cf: float = 0.0
+
+
+@dataclass
+class Evaluation:
+    """Everything one evaluation of the equations produces."""
+
+    residual: np.ndarray               # scaled residual, interleaved ordering
+    k_s: float                         # row scale of kinematic and constraint rows [N/m]
+    tau: np.ndarray                    # (n_el, 3)
+    length_m: np.ndarray               # |D r| per element
+    r_mid: np.ndarray                  # (n_el, 3)
+    load: CrossflowDrag                # drag at the element midpoints
+    ab: np.ndarray | None = None       # banded Jacobian without R row/column
+    r_col: np.ndarray | None = None    # column of R (rows 0..n-2)
+
+
+@dataclass
+class TetherSystem:
+    """Discrete tether on a mesh: evaluates residuals and solves Newton steps."""
+
+    spaces: TetherSpaces
+    physics: Physics
+    tension_mode: bool
+    _idx: dict = field(init=False, repr=False)
+
+    def __post_init__(self):
+        n_el = self.spaces.n_elements
+        self.n = 4 * n_el + 4
+        self.weight = gravity_N_m(self.physics.linear_density_kg_m)
+        self.w_lo = np.asarray(self.spaces.Q[np.arange(n_el), np.arange(n_el)]).ravel()
+        self.w_hi = np.asarray(self.spaces.Q[np.arange(1, n_el + 1), np.arange(n_el)]).ravel()
+        interior = np.zeros(n_el + 1)
+        interior[1:-1] = 1.0
+        self.interior = interior
+        self._idx = self._band_indices()
+
+    # --- layout -----------------------------------------------------------
+    def pack(self, r, T, R):
+        x = np.empty(self.n)
+        x[:-1].reshape(-1, 4)[:, :3] = r
+        x[3:-1:4] = T
+        x[-1] = R
+        return x
+
+    def unpack(self, x):
+        return x[:-1].reshape(-1, 4)[:, :3], x[3:-1:4], x[-1]
+
+    def _flat(self, rows, cols):
+        m = self.n - 1
+        return ((BAND + rows - cols) * m + cols).ravel()
+
+    def _band_indices(self):
+        n_el = self.spaces.n_elements
+        e = np.arange(n_el)
+        k = np.arange(3)
+        node = np.stack([e, e + 1], axis=1)                          # (n_el, 2)
+        # node-node blocks (e, a, b, i, j)
+        rows = 4 * node[:, :, None, None, None] + k[None, None, None, :, None]
+        cols = 4 * node[:, None, :, None, None] + k[None, None, None, None, :]
+        rows, cols = np.broadcast_arrays(rows, cols)
+        # node rows x T column (e, a, i) and T row x node columns (e, b, j)
+        r_nt = 4 * node[:, :, None] + k
+        c_nt = np.broadcast_to((4 * e + 3)[:, None, None], r_nt.shape)
+        diag_nodes = 4 * np.arange(n_el + 1)[:, None] + k          # (n_nodes, 3)
+        diag_t = 4 * e + 3
+        return {
+            "rr": self._flat(rows, cols),
+            "rT": self._flat(r_nt, c_nt),
+            "Tr": self._flat(c_nt, r_nt),
+            "TT": self._flat(diag_t, diag_t),
+            "mass": self._flat(diag_nodes, diag_nodes),
+        }
+
+    # --- equations --------------------------------------------------------
+    def evaluate(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
+                 force_ref_N, c_a=0.0, c_v=0.0, jacobian=True) -> Evaluation:
+        """Scaled residual (and banded Jacobian) at positions r, velocities v.
+
+        ``c_a = dqdd/dr`` and ``c_v = dv/dr`` come from the time integrator
+        (both 0 for a static solve with frozen velocities).
+        """
+        sp, ph = self.spaces, self.physics
+        h = sp.h_m
+        k_s = force_ref_N / h.mean()
+        dr = sp.D @ r
+        length = np.linalg.norm(dr, axis=1)
+        tau = dr / length[:, None]
+        r_mid = 0.5 * (r[1:] + r[:-1])
+        v_mid = 0.5 * (v[1:] + v[:-1])
+        z = r_mid[:, 2]
+        v_rel = ph.wind.velocity_ms(z) - v_mid
+        load = crossflow_drag(v_rel, tau, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
+                              ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
+        force = sp.mass_kg[:, None] * qdd + sp.D.T @ (T[:, None] * tau) \
+            - sp.Q @ (load.force + self.weight)
+        dv = sp.D @ v
+        constraint = length - h * (1.0 + ph.compliance_per_N * T)
+        if ph.damping_time_s:
+            constraint = constraint + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
+
+        node_res = force * self.interior[:, None]
+        node_res[0] = k_s * r[0]
+        node_res[-1] = k_s * (r[-1] - R * kite_dir)
+        res = np.empty(self.n)
+        res[:-1].reshape(-1, 4)[:, :3] = node_res
+        res[3:-1:4] = k_s * constraint
+        res[-1] = (T[0] - ground_tension_N) if self.tension_mode else k_s * (R - radius_m)
+        out = Evaluation(res, k_s, tau, length, r_mid, load)
+        if jacobian:
+            out.ab, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir)
+        return out
+
+    def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir):
+        sp, ph = self.spaces, self.physics
+        n_el = sp.n_elements
+        eye = np.eye(3)
+        sgn = np.array([-1.0, 1.0])
+        proj = eye - np.einsum("ni,nj->nij", tau, tau)
+        # geometric stiffness of D^T (T tau): sgn_a sgn_b T/|dr| (I - tau tau^T)
+        k_geo = (T / length)[:, None, None] * proj
+        # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dV_rel S,
+        # df/dv_b = -1/2 df/dV_rel, with S = dwind/dz e_x e_z^T
+        shear = np.zeros((n_el, 3, 3))
+        shear[:, 0, 2] = ph.wind.shear_per_s(z)
+        d_tau = load.d_dtau @ proj / length[:, None, None]
+        d_mid = 0.5 * load.d_dvrel @ (shear - c_v * eye)
+        w = np.stack([self.w_lo, self.w_hi], axis=1)                  # Q weights (n_el, 2)
+        block = (sgn[None, :, None, None, None] * sgn[None, None, :, None, None]) * k_geo[:, None, None] \
+            - w[:, :, None, None, None] * (sgn[None, None, :, None, None] * d_tau[:, None, None]
+                                           + d_mid[:, None, None])
+        node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
+        block *= self.interior[node][:, :, None, None, None]
+        rT = sgn[None, :, None] * tau[:, None, :] * self.interior[node][:, :, None]
+        # constraint rows: d|dr|/dr_b = sgn_b tau, plus Kelvin-Voigt terms
+        c_row = tau.copy()
+        if ph.damping_time_s:
+            c_row = c_row + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / length[:, None]
+                                                 + c_v * tau)
+        Tr = k_s * sgn[None, :, None] * c_row[:, None, :]
+        TT = np.full(n_el, -k_s * ph.compliance_per_N) * sp.h_m
+        mass = c_a * (sp.mass_kg * self.interior)[:, None] * np.ones(3)
+        mass[0] = k_s
+        mass[-1] = k_s
+        idx = self._idx
+        m = self.n - 1
+        ab = np.bincount(
+            np.concatenate([idx["rr"], idx["rT"].ravel(), idx["Tr"].ravel(), idx["TT"], idx["mass"].ravel()]),
+            weights=np.concatenate([block.ravel(), rT.ravel(), Tr.ravel(), TT, mass.ravel()]),
+            minlength=(2 * BAND + 1) * m,
+        ).reshape(2 * BAND + 1, m)
+        r_col = np.zeros(m)
+        r_col[-3:] = -k_s * kite_dir
+        return ab, r_col
+
+    def newton_step(self, ev: Evaluation) -> np.ndarray:
+        """Solve J dx = -residual by a banded LU bordered with the R row/column.
+
+        The last equation is ``T_0 = T_ground`` (tension mode, row e_3 with no
+        R entry) or ``R = R_prescribed`` (row with only the R entry).
+        """
+        b = -ev.residual
+        y, zc = solve_banded((BAND, BAND), ev.ab, np.column_stack([b[:-1], ev.r_col]),
+                             check_finite=False).T
+        dR = (b[-1] - y[3]) / (-zc[3]) if self.tension_mode else b[-1] / ev.k_s
+        dx = np.empty(self.n)
+        dx[:-1] = y - zc * dR
+        dx[-1] = dR
+        return dx

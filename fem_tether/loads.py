@@ -1,0 +1,101 @@
+"""Distributed loads on a tether per unit length: gravity and cross-flow drag.
+
+Cross-flow principle (seed 000 eqs. 4.9-4.12, REFERENCE "Tether")::
+
+    V_n = V_rel - (V_rel . tau) tau            normal relative air velocity
+    Re  = rho(z) |V_n| d / mu_air(z)           (4.10)
+    f_t = 1/2 rho(z) d C_d,c(Re) |V_n| V_n     (4.9)
+
+with ``V_rel = wind(z) - dr/dt`` and ``tau`` the unit tangent.  An optional
+tangential skin friction adds ``f_s = 1/2 rho pi d c_f |V_tau| V_tau`` with
+``V_tau = (V_rel . tau) tau`` (wetted perimeter pi d; default ``c_f = 0``).
+
+Everything is vectorised over points: arrays of shape ``(n, 3)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+G_MS2 = 9.81
+"""Gravitational acceleration used by seed 000 (REFERENCE "Tether")."""
+
+_TINY_MS = 1e-30
+
+
+def gravity_N_m(linear_density_kg_m: float) -> np.ndarray:
+    """Weight per unit length w = -mu g e_z (seed 000 eq. 4.15)."""
+    return np.array([0.0, 0.0, -linear_density_kg_m * G_MS2])
+
+
+@dataclass
+class CrossflowDrag:
+    """Drag per unit length at a set of points, with what produced it.
+
+    ``force`` is f_t (+ skin friction) [N/m]; ``vn`` the normal relative
+    velocity; ``vn_ms`` its magnitude; ``re`` and ``cd`` the Reynolds number and
+    coefficient.  ``d_dvrel`` and ``d_dtau`` are the Jacobians
+    df/dV_rel and df/dtau, shape ``(n, 3, 3)``, when requested.
+    """
+
+    force: np.ndarray
+    vn: np.ndarray
+    vn_ms: np.ndarray
+    re: np.ndarray
+    cd: np.ndarray
+    d_dvrel: np.ndarray | None = None
+    d_dtau: np.ndarray | None = None
+
+
+def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
+                   skin_friction_cf=0.0, jacobian=False) -> CrossflowDrag:
+    """Cross-flow drag per unit length f_t (seed 000 eqs. 4.9-4.12).
+
+    Parameters
+    ----------
+    v_rel : (n, 3) relative air velocity wind(z) - dr/dt [m/s]
+    tau : (n, 3) unit tangent
+    rho, mu_air : (n,) air density [kg/m3] and dynamic viscosity [Pa s]
+    diameter_m : line diameter d
+    drag_model : object with ``cd(re)`` and ``dcd_dre(re)``
+    skin_friction_cf : tangential friction coefficient c_f (0: none)
+    jacobian : also return df/dV_rel and df/dtau
+
+    With ``c(n) = 1/2 rho d C_d(Re(n)) n`` and ``n = |V_n|`` the Jacobians are
+    ``df/dV_n = c I + c'(n) V_n V_n^T / n`` with ``c' = 1/2 rho d (C_d + Re C_d')``,
+    ``dV_n/dV_rel = I - tau tau^T`` and ``dV_n/dtau = -(tau.V_rel) I - tau V_rel^T``.
+    """
+    v_rel = np.asarray(v_rel, dtype=float)
+    tau = np.asarray(tau, dtype=float)
+    rho = np.asarray(rho, dtype=float)
+    a = np.einsum("ij,ij->i", v_rel, tau)                # V_rel . tau
+    vn = v_rel - a[:, None] * tau
+    n = np.sqrt(np.einsum("ij,ij->i", vn, vn))
+    n_safe = np.maximum(n, _TINY_MS)
+    re = rho * n_safe * diameter_m / np.asarray(mu_air, dtype=float)
+    cd = drag_model.cd(re)
+    c = 0.5 * rho * diameter_m * cd * n_safe
+    force = c[:, None] * vn
+    k_s = 0.5 * rho * np.pi * diameter_m * skin_friction_cf
+    if skin_friction_cf:
+        force = force + (k_s * np.abs(a) * a)[:, None] * tau
+    out = CrossflowDrag(force=force, vn=vn, vn_ms=n, re=re, cd=cd)
+    if not jacobian:
+        return out
+
+    eye = np.eye(3)
+    dc_dn = 0.5 * rho * diameter_m * (cd + re * drag_model.dcd_dre(re))
+    unit = vn / n_safe[:, None]
+    df_dvn = c[:, None, None] * eye + (dc_dn * n)[:, None, None] * np.einsum("ni,nj->nij", unit, unit)
+    proj = eye - np.einsum("ni,nj->nij", tau, tau)
+    dvn_dtau = -a[:, None, None] * eye - np.einsum("ni,nj->nij", tau, v_rel)
+    out.d_dvrel = df_dvn @ proj
+    out.d_dtau = df_dvn @ dvn_dtau
+    if skin_friction_cf:
+        tt = np.einsum("ni,nj->nij", tau, tau)
+        out.d_dvrel = out.d_dvrel + (2 * k_s * np.abs(a))[:, None, None] * tt
+        out.d_dtau = out.d_dtau + (k_s * np.abs(a))[:, None, None] * (
+            2 * np.einsum("ni,nj->nij", tau, v_rel) + a[:, None, None] * eye)
+    return out

@@ -1,0 +1,41 @@
+"""Cable drag lumped into one force at the kite (seed 000 eq. 4.1).
+
+    M_d = int_0^L r(s) x f_t(s) ds = r_k e_r x F_t
+
+The moment of the distributed drag about the ground point equals that of a
+single force ``F_t`` applied at the kite, at distance ``r_k`` from the ground.
+Used identically by the straight-line baseline and by both tether solvers.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def drag_moment_Nm(points_m, force_N_m, weights_m):
+    """M_d = sum_i w_i r_i x f_i: quadrature of eq. 4.1 over the line.
+
+    ``points_m`` (..., n, 3) positions, ``force_N_m`` (..., n, 3) drag per unit
+    length there, ``weights_m`` (n,) quadrature weights in arc length.
+    """
+    return np.einsum("...ij,i->...j", np.cross(points_m, force_N_m), weights_m)
+
+
+def equivalent_force(moment_Nm, kite_position_m, kite_velocity_ms=None):
+    """Equivalent drag force at the kite from its moment (eq. 4.1).
+
+    Returns ``(F_t, F_against)``: ``F_t = |M_d| / r_k`` and, if the kite
+    velocity is given, the component of ``F_perp = (M_d x e_r) / r_k`` that
+    opposes the kite's motion (``-F_perp . v / |v|``), else ``None``.
+    """
+    moment_Nm = np.asarray(moment_Nm, dtype=float)
+    r = np.asarray(kite_position_m, dtype=float)
+    r_k = np.linalg.norm(r, axis=-1)
+    drag_N = np.linalg.norm(moment_Nm, axis=-1) / r_k
+    if kite_velocity_ms is None:
+        return drag_N, None
+    e_r = r / r_k[..., None]
+    f_perp = np.cross(moment_Nm, e_r) / r_k[..., None]
+    v = np.asarray(kite_velocity_ms, dtype=float)
+    v_hat = v / np.linalg.norm(v, axis=-1)[..., None]
+    return drag_N, -np.einsum("...i,...i->...", f_perp, v_hat)

@@ -1,0 +1,97 @@
+"""Straight-line tether drag: the baseline the field uses today (seed 000 §4.1).
+
+The line is a rigid straight rod from the ground to the kite at polar angle
+``theta`` in the (x, z) plane, swept crosswind (+y) with a speed growing
+linearly from 0 at the ground to the kite speed ``V_k`` at ``s = L``.  The
+drag per unit length follows the cross-flow principle (:mod:`fem_tether.loads`,
+eqs. 4.2-4.3 / 4.9-4.10) with rho(z), mu(z), C_d,c(Re) and optionally the wind's
+normal component; its moment about the ground point gives the equivalent force
+at the kite F_t = |M_d| / L (eq. 4.1, :mod:`fem_tether.moment`).
+
+With constant rho and C_d in quiet air the integral has the closed form
+(Houska & Diehl; seed 000 eq. 4.6)::
+
+    F_t = rho C_d,c d L V_k^2 / 8
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.loads import crossflow_drag
+from fem_tether.moment import drag_moment_Nm
+
+
+def closed_form_drag_N(rho_kg_m3, cd, diameter_m, length_m, speed_ms):
+    """F_t = rho C_d,c d L V_k^2 / 8 (seed 000 eq. 4.6)."""
+    return rho_kg_m3 * cd * diameter_m * length_m * speed_ms**2 / 8.0
+
+
+@dataclass(frozen=True)
+class StraightLineDrag:
+    """Result of the integral form: F_t and the flow state at the line's top."""
+
+    drag_N: float
+    length_m: float
+    cd_top: float
+    re_top: float
+    mean_density_kg_m3: float
+
+
+def _gauss_points(length_m, n_panels, order=4):
+    """Composite Gauss-Legendre nodes and weights on [0, L]."""
+    x, w = np.polynomial.legendre.leggauss(order)
+    edges = np.linspace(0.0, length_m, n_panels + 1)
+    half = 0.5 * np.diff(edges)
+    mid = 0.5 * (edges[1:] + edges[:-1])
+    s = (mid[:, None] + half[:, None] * x[None, :]).ravel()
+    return s, (half[:, None] * w[None, :]).ravel()
+
+
+def straight_line_drag(length_m, theta_rad, diameter_m, speed_ms, air, drag,
+                       wind_profile=None, n_panels=2000) -> StraightLineDrag:
+    """Integral form of the straight-line drag (seed 000 eqs. 4.1-4.3).
+
+    ``air`` has ``density_kg_m3(z)`` and ``viscosity_Pa_s(z)``, ``drag`` has
+    ``cd(re)``; ``wind_profile`` (``velocity_ms(z)``) adds the wind's normal
+    component, ``None`` means quiet air.  Composite 4-point Gauss-Legendre
+    quadrature on ``n_panels`` panels (the integrand has kinks where C_d,c's
+    table does).
+    """
+    s, w = _gauss_points(length_m, n_panels)
+    e_r = np.array([np.sin(theta_rad), 0.0, np.cos(theta_rad)])
+    points = s[:, None] * e_r
+    z = points[:, 2]
+    v_line = (speed_ms * s / length_m)[:, None] * np.array([0.0, 1.0, 0.0])
+    v_rel = -v_line if wind_profile is None else wind_profile.velocity_ms(z) - v_line
+    rho = air.density_kg_m3(z)
+    load = crossflow_drag(v_rel, np.broadcast_to(e_r, points.shape), rho,
+                          air.viscosity_Pa_s(z), diameter_m, drag)
+    moment = drag_moment_Nm(points, load.force, w)
+    top = crossflow_drag(-speed_ms * np.array([[0.0, 1.0, 0.0]]), e_r[None, :],
+                         air.density_kg_m3(np.array([length_m * e_r[2]])),
+                         air.viscosity_Pa_s(np.array([length_m * e_r[2]])), diameter_m, drag)
+    return StraightLineDrag(
+        drag_N=float(np.linalg.norm(moment) / length_m),
+        length_m=float(length_m),
+        cd_top=float(top.cd[0]),
+        re_top=float(top.re[0]),
+        mean_density_kg_m3=float(np.sum(rho * w) / length_m),
+    )
+
+
+def from_config(cfg, length_m=None, with_wind=False) -> StraightLineDrag:
+    """Straight-line F_t for a configuration (quiet air unless ``with_wind``)."""
+    kite = cfg["kite"]
+    return straight_line_drag(
+        length_m=cfg["tether"]["length_m"] if length_m is None else length_m,
+        theta_rad=np.radians(kite["theta0_deg"]),
+        diameter_m=cfg["tether"]["diameter_m"],
+        speed_ms=kite["speed_ms"],
+        air=atmosphere.from_config(cfg),
+        drag=drag_coefficient.from_config(cfg),
+        wind_profile=wind.from_config(cfg) if with_wind else None,
+    )

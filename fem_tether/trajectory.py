@@ -1,0 +1,246 @@
+"""The kite's figure-eight: a prescribed path flown at constant speed.
+
+Seed 000 §4.2 lets the kite fly "an eight-shaped trajectory with average polar
+angle ϑ = 45° and width of roughly 190 m, flying at constant transversal
+velocity V_k = 80 m/s"; the tether's upper boundary condition r(L, t) is that
+kite position.  The seed does not give the curve, so this module makes it
+precise (global frame x downwind, z up; REFERENCE "Frames"):
+
+* direction from the polar angle ϑ (from the vertical) and azimuth φ::
+
+      ê(ϑ, φ) = (sinϑ cosφ, sinϑ sinφ, cosϑ)
+
+* a lemniscate of Gerono in the tangent plane at (ϑ0, φ = 0), of width W and
+  height H, u crosswind (along e_φ) and w up (along −e_ϑ)::
+
+      u = (W/2) sin τ,    w = H sin τ cos τ
+
+* mapped on the sphere of nominal radius L (the cable length)::
+
+      φ = u / (L sinϑ0),    ϑ = ϑ0 − w / L
+
+* flown at constant speed V on that sphere, |d(L ê)/dt| = V, starting at the
+  crossing point τ = 0 at t = 0 towards +y.
+
+With this parametrisation the kite climbs through the centre of the eight
+(dw/dτ = H at τ = 0, π) and descends at its edges, as seed 000 §2.2.1.1
+advises to balance the gravity term of the refined crosswind law.
+
+All functions take NumPy arrays of times (or of τ) and broadcast; angles are
+in radians unless the name says otherwise.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import BPoly
+
+#: Subintervals of [0, 2π] on which the arc length s(τ) is tabulated (by
+#: N_GAUSS-point Gauss–Legendre) and interpolated (quintic Hermite: s, g, g'
+#: exact at the knots; between them s, s', s'' within ~1e-13, 1e-10, 1e-7).
+N_INTERVALS = 512
+N_GAUSS = 6
+
+#: Newton steps refining τ(s) after the inverse-interpolant first guess (whose
+#: error ~1e-12 rad is squared by each step).
+N_NEWTON = 1
+
+
+def direction(theta_rad, phi_rad):
+    """Unit vector ê = e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ), shape ϑ.shape + (3,)."""
+    st = np.sin(theta_rad)
+    return np.stack([st * np.cos(phi_rad), st * np.sin(phi_rad), np.cos(theta_rad)], axis=-1)
+
+
+def local_to_global(theta_rad, phi_rad, a_theta, a_phi, a_r):
+    """Global components of a_ϑ e_ϑ + a_φ e_φ + a_r e_r, shape a_ϑ.shape + (3,).
+
+    Local frame of seed 000 eq. 2.3: e_ϑ = (cosϑ cosφ, cosϑ sinφ, −sinϑ),
+    e_φ = (−sinφ, cosφ, 0), e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ).
+    a_ϑ and a_φ carry the shape; a_r may be a scalar.
+    """
+    st, ct = np.sin(theta_rad), np.cos(theta_rad)
+    sp, cp = np.sin(phi_rad), np.cos(phi_rad)
+    horizontal = ct * a_theta + st * a_r
+    return np.stack([cp * horizontal - sp * a_phi,
+                     sp * horizontal + cp * a_phi,
+                     ct * a_r - st * a_theta], axis=-1)
+
+
+def gerono(tau, width_m, height_m):
+    """Lemniscate of Gerono u = (W/2) sin τ, w = H sin τ cos τ with d/dτ, d²/dτ².
+
+    Returns ((u, u', u''), (w, w', w'')) in metres.
+    """
+    s, c = np.sin(tau), np.cos(tau)
+    s2, c2 = 2.0 * s * c, c * c - s * s
+    u = (0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s)
+    w = (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2)
+    return u, w
+
+
+def gauss_legendre_nodes(n_intervals, n_points):
+    """Nodes and weights of composite Gauss–Legendre on [0, 2π].
+
+    Returns (knots, nodes, weights): the n_intervals + 1 knots, and nodes and
+    weights of shape (n_intervals, n_points).
+    """
+    x, wx = np.polynomial.legendre.leggauss(n_points)
+    knots = np.linspace(0.0, 2.0 * np.pi, n_intervals + 1)
+    half = 0.5 * np.diff(knots)[:, None]
+    nodes = 0.5 * (knots[:-1, None] + knots[1:, None]) + half * x
+    return knots, nodes, half * wx
+
+
+def quintic_hermite(x, y, dy, d2y):
+    """Piecewise quintic matching y, y' and y'' at the knots x.
+
+    Bernstein coefficients on [x_k, x_k+1] of width h, from p'(0) = 5(b1 − b0)/h
+    and p''(0) = 20(b2 − 2b1 + b0)/h² and their mirror images at x_k+1:
+    b0 = y_k, b1 = y_k + h y'_k/5, b2 = y_k + 2h y'_k/5 + h² y''_k/20,
+    b3 = y_k+1 − 2h y'_k+1/5 + h² y''_k+1/20, b4 = y_k+1 − h y'_k+1/5, b5 = y_k+1.
+    """
+    h = np.diff(x)
+    y0, hd0, hhc0 = y[:-1], h * dy[:-1], h * h * d2y[:-1]
+    y1, hd1, hhc1 = y[1:], h * dy[1:], h * h * d2y[1:]
+    return BPoly(np.stack([y0, y0 + hd0 / 5, y0 + 2 * hd0 / 5 + hhc0 / 20,
+                           y1 - 2 * hd1 / 5 + hhc1 / 20, y1 - hd1 / 5, y1]), x)
+
+
+def sphere_arc_rate(length_m, theta, phi):
+    """Arc length per unit τ of L ê(ϑ(τ), φ(τ)) and its τ-derivative.
+
+    g = |d(L ê)/dτ| = L √(ϑ'² + sin²ϑ φ'²),
+    g' = L² (ϑ'ϑ'' + sinϑ cosϑ ϑ' φ'² + sin²ϑ φ'φ'') / g,
+    with theta = (ϑ, ϑ', ϑ''), phi = (φ, φ', φ'').
+    """
+    (th, dth, d2th), (_, dph, d2ph) = theta, phi
+    st = np.sin(th)
+    g = length_m * np.sqrt(dth ** 2 + (st * dph) ** 2)
+    dg = length_m ** 2 * (dth * d2th + st * np.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
+    return g, dg
+
+
+@dataclass(frozen=True)
+class FigureEight:
+    """Figure-eight on the sphere of radius L flown at constant speed V.
+
+    This is seed 000 §4.2's eight ("width ≈ 190 m around ϑ = 45°, φ = 0, at
+    80 m/s") made precise as in the module docstring.
+
+    The path parameter τ(t) satisfies s(τ) = V t, with the arc length
+    s(τ) = ∫₀^τ g dτ and g(τ) = |d(L ê)/dτ| = L √(ϑ'² + sin²ϑ φ'²).
+    s is tabulated once at the knots by composite Gauss–Legendre and
+    interpolated by quintic Hermite; τ(t) comes from the interpolant of the
+    inverse τ(s), refined by Newton.
+    """
+
+    length_m: float
+    theta0_rad: float
+    width_m: float
+    height_m: float
+    speed_ms: float
+    _loop_m: float = field(init=False, repr=False, compare=False)
+    _arc_m: BPoly = field(init=False, repr=False, compare=False)
+    _tau_of_arc: BPoly = field(init=False, repr=False, compare=False)
+
+    @classmethod
+    def from_config(cls, cfg, length_m=None):
+        """Eight of ``cfg["kite"]``; L from ``cfg["tether"]["length_m"]`` unless given."""
+        kite = cfg["kite"]
+        return cls(
+            length_m=float(cfg["tether"]["length_m"] if length_m is None else length_m),
+            theta0_rad=float(np.radians(kite["theta0_deg"])),
+            width_m=float(kite["eight_width_m"]),
+            height_m=float(kite["eight_height_m"]),
+            speed_ms=float(kite["speed_ms"]),
+        )
+
+    def __post_init__(self):
+        knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
+        arc_m = np.concatenate([[0.0], np.cumsum((self.arc_rate(nodes)[0] * weights).sum(1))])
+        g, dg = self.arc_rate(knots)
+        set_ = object.__setattr__
+        set_(self, "_loop_m", float(arc_m[-1]))
+        set_(self, "_arc_m", quintic_hermite(knots, arc_m, g, dg))
+        set_(self, "_tau_of_arc", quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3))
+
+    def angle_derivatives(self, tau):
+        """(ϑ, ϑ', ϑ''), (φ, φ', φ'') along the eight, ' = d/dτ.
+
+        ϑ = ϑ0 − w/L,  φ = u / (L sinϑ0).
+        """
+        u, w = gerono(tau, self.width_m, self.height_m)
+        L = self.length_m
+        theta = (self.theta0_rad - w[0] / L, -w[1] / L, -w[2] / L)
+        phi = tuple(ui / (L * np.sin(self.theta0_rad)) for ui in u)
+        return theta, phi
+
+    def arc_rate(self, tau):
+        """g(τ) = ds/dτ on the sphere of radius L and g'(τ); see :func:`sphere_arc_rate`."""
+        return sphere_arc_rate(self.length_m, *self.angle_derivatives(tau))
+
+    @property
+    def period_s(self):
+        """Time of one loop: s(2π) / V."""
+        return self._loop_m / self.speed_ms
+
+    def parameter(self, t_s):
+        """Path parameter τ(t), unwrapped (2π per period), from s(τ) = V t.
+
+        First guess from the interpolant of the inverse τ(s), with
+        dτ/ds = 1/g and d²τ/ds² = −g'/g³, then Newton on s(τ) − V t with the
+        exact slope g(τ).
+        """
+        loops, arc_m = np.divmod(self.speed_ms * np.asarray(t_s, dtype=float), self._loop_m)
+        tau = self._tau_of_arc(arc_m)
+        for _ in range(N_NEWTON):
+            tau = tau - (self._arc_m(tau) - arc_m) / self.arc_rate(tau)[0]
+        return tau + 2.0 * np.pi * loops
+
+    def angles(self, t_s):
+        """Polar angle ϑ and azimuth φ of the kite at times t, in radians."""
+        theta, phi = self.angle_derivatives(self.parameter(t_s))
+        return theta[0], phi[0]
+
+    def state(self, t_s, radius_m=None):
+        """Position, velocity, acceleration of R ê(ϑ(t), φ(t)).
+
+        R = radius_m (default L; scalar or broadcastable with t) scales the
+        nominal path and is held constant in time, so the speed is V R / L.
+        Each array has shape broadcast(t, R).shape + (3,).  With τ̇ = V/g,
+        τ̈ = −V² g'/g³ and, in the local frame (e_ϑ, e_φ, e_r),
+
+            ê'  = ϑ' e_ϑ + sinϑ φ' e_φ,
+            ê'' = (ϑ'' − sinϑ cosϑ φ'²) e_ϑ + (sinϑ φ'' + 2 cosϑ ϑ'φ') e_φ
+                  − (ϑ'² + sin²ϑ φ'²) e_r,
+
+        r = R ê,  ṙ = R τ̇ ê',  r̈ = R (τ̇² ê'' + τ̈ ê').
+        """
+        theta, phi = self.angle_derivatives(self.parameter(t_s))
+        g, dg = sphere_arc_rate(self.length_m, theta, phi)
+        tau_dot = self.speed_ms / g
+        tau_ddot = -self.speed_ms ** 2 * dg / g ** 3
+        (th, dth, d2th), (ph, dph, d2ph) = theta, phi
+        st, ct = np.sin(th), np.cos(th)
+        velocity = local_to_global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0)
+        acceleration = local_to_global(
+            th, ph,
+            tau_dot ** 2 * (d2th - st * ct * dph ** 2) + tau_ddot * dth,
+            tau_dot ** 2 * (st * d2ph + 2.0 * ct * dth * dph) + tau_ddot * st * dph,
+            -tau_dot ** 2 * (dth ** 2 + (st * dph) ** 2))
+        R = np.asarray(self.length_m if radius_m is None else radius_m, dtype=float)[..., None]
+        return R * direction(th, ph), R * velocity, R * acceleration
+
+    def mean_abs_phi_deg(self):
+        """Time average of |φ| over one loop, in degrees.
+
+        At constant speed this is the arc-length average ∫|φ| g dτ / ∫ g dτ;
+        composite Gauss–Legendre with knots at the kinks τ = 0, π of |φ|.
+        """
+        _, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
+        ds = self.arc_rate(nodes)[0] * weights
+        phi = self.angle_derivatives(nodes)[1][0]
+        return float(np.degrees((np.abs(phi) * ds).sum() / ds.sum()))

@@ -1,0 +1,121 @@
+"""Wind speed profiles V_w(z); the wind blows along +x.
+
+Only the mean speed against altitude z is modelled (seed 000 §3): the
+logarithmic law with De Bilt coefficients, the power law, or still air.  Every
+profile offers ``speed_ms(z)``, its analytic shear ``shear_per_s(z) = dV/dz``
+and ``velocity_ms(z)``, the vector (V, 0, 0) with shape ``z.shape + (3,)``.
+
+>>> wind = DE_BILT["winter"]
+>>> wind.speed_ms(27.5)                   # 5.1 m/s at the reference height
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+class _Profile:
+    def velocity_ms(self, z_m):
+        """V_w(z) = V(z) e_x, shape ``z.shape + (3,)``."""
+        speed = np.asarray(self.speed_ms(z_m), dtype=float)
+        velocity = np.zeros(speed.shape + (3,))
+        velocity[..., 0] = speed
+        return velocity
+
+
+@dataclass(frozen=True)
+class LogWind(_Profile):
+    """Logarithmic law V = V0 ln(z/z_r) / ln(z0/z_r) (seed 000 eq. 3.2).
+
+    V0 is the speed at the reference height z0 and z_r the roughness height;
+    the speed is zero at and below z_r.
+    """
+
+    v0_ms: float
+    z0_m: float
+    zr_m: float
+
+    def speed_ms(self, z_m):
+        """V = V0 ln(z/z_r) / ln(z0/z_r) for z > z_r, else 0."""
+        z = np.asarray(z_m, dtype=float)
+        above = z > self.zr_m
+        ratio = np.where(above, z, self.zr_m) / self.zr_m
+        return np.where(above, self.v0_ms * np.log(ratio) / np.log(self.z0_m / self.zr_m), 0.0)
+
+    def shear_per_s(self, z_m):
+        """dV/dz = V0 / (z ln(z0/z_r)) for z > z_r, else 0."""
+        z = np.asarray(z_m, dtype=float)
+        above = z > self.zr_m
+        z_safe = np.where(above, z, self.zr_m)
+        return np.where(above, self.v0_ms / (z_safe * np.log(self.z0_m / self.zr_m)), 0.0)
+
+
+@dataclass(frozen=True)
+class MeanOfProfiles(_Profile):
+    """Pointwise mean of several profiles: V = (1/n) sum_i V_i(z)."""
+
+    profiles: tuple
+
+    def speed_ms(self, z_m):
+        """V = (1/n) sum_i V_i(z)."""
+        return np.mean([p.speed_ms(z_m) for p in self.profiles], axis=0)
+
+    def shear_per_s(self, z_m):
+        """dV/dz = (1/n) sum_i dV_i/dz."""
+        return np.mean([p.shear_per_s(z_m) for p in self.profiles], axis=0)
+
+
+@dataclass(frozen=True)
+class PowerWind(_Profile):
+    """Power law V = V_ref (z/z_ref)^alpha (seed 000 eq. 3.1, seed 003 eq. 3.4); zero for z <= 0."""
+
+    reference_speed_ms: float
+    reference_height_m: float
+    alpha: float
+
+    def speed_ms(self, z_m):
+        """V = V_ref (z/z_ref)^alpha for z > 0, else 0."""
+        z = np.asarray(z_m, dtype=float)
+        above = z > 0.0
+        ratio = np.where(above, z, 1.0) / self.reference_height_m
+        return np.where(above, self.reference_speed_ms * ratio**self.alpha, 0.0)
+
+    def shear_per_s(self, z_m):
+        """dV/dz = alpha V / z for z > 0, else 0."""
+        z = np.asarray(z_m, dtype=float)
+        above = z > 0.0
+        return np.where(above, self.alpha * self.speed_ms(z) / np.where(above, z, 1.0), 0.0)
+
+
+@dataclass(frozen=True)
+class NoWind(_Profile):
+    """Still air: V = 0."""
+
+    def speed_ms(self, z_m):
+        """V = 0."""
+        return np.zeros(np.shape(z_m))
+
+    def shear_per_s(self, z_m):
+        """dV/dz = 0."""
+        return np.zeros(np.shape(z_m))
+
+
+#: De Bilt log-law coefficients fitted by Fagiano (PhD thesis, 2009), seed 000 §3
+DE_BILT = {
+    "winter": LogWind(v0_ms=5.1, z0_m=27.5, zr_m=3.5),
+    "summer": LogWind(v0_ms=4.4, z0_m=27.5, zr_m=2.1),
+}
+
+
+def from_config(cfg: dict) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
+    """The wind profile of ``cfg["wind"]``; the "annual" De Bilt season is the winter/summer mean."""
+    wind = cfg["wind"]
+    if wind["profile"] == "log":
+        if wind["season"] == "annual":
+            return MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
+        return DE_BILT[wind["season"]]
+    if wind["profile"] == "power":
+        return PowerWind(wind["reference_speed_ms"], wind["reference_height_m"], wind["alpha"])
+    return NoWind()

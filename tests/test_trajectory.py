@@ -1,0 +1,124 @@
+"""Figure-eight kite path: constant speed, closure, derivatives, Tab. 5.2."""
+
+import numpy as np
+import pytest
+
+from fem_tether.config import load_config
+from fem_tether.trajectory import FigureEight, direction
+
+#: REFERENCE "Figure-eight and sweep geometry": seed 000 Tab. 5.2, L [m] -> mean |φ| [deg].
+TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.47, 3000: 1.28}
+
+
+@pytest.fixture(scope="module")
+def eight():
+    return FigureEight.from_config(load_config())
+
+
+def one_period(eight, n=4001):
+    return np.linspace(0.0, eight.period_s, n)
+
+
+def test_from_config_reads_kite_and_tether():
+    cfg = load_config(overrides={"tether": {"length_m": 1500.0}})
+    e = FigureEight.from_config(cfg)
+    assert e.length_m == 1500.0
+    assert e.theta0_rad == pytest.approx(np.pi / 4)
+    assert (e.width_m, e.height_m, e.speed_ms) == (190.0, 95.0, 80.0)
+    assert FigureEight.from_config(cfg, length_m=700.0).length_m == 700.0
+
+
+@pytest.mark.parametrize("scale", [1.0, 0.9])
+def test_speed_is_constant(eight, scale):
+    _, v, _ = eight.state(one_period(eight), radius_m=scale * eight.length_m)
+    speed = np.linalg.norm(v, axis=-1)
+    np.testing.assert_allclose(speed, scale * eight.speed_ms, rtol=1e-6)
+
+
+def test_position_stays_on_sphere(eight):
+    t = one_period(eight)
+    radius = np.linspace(0.0, eight.length_m, t.size)
+    for R in (None, 0.9 * eight.length_m, radius):
+        x, _, _ = eight.state(t, radius_m=R)
+        expected = eight.length_m if R is None else R
+        np.testing.assert_allclose(np.linalg.norm(x, axis=-1), expected, rtol=1e-12, atol=1e-9)
+
+
+def test_scalar_time_with_radius_array_broadcasts(eight):
+    radius = np.linspace(0.0, eight.length_m, 7)
+    x, v, a = eight.state(1.3, radius_m=radius)
+    assert x.shape == v.shape == a.shape == (7, 3)
+    x1, v1, a1 = eight.state(1.3)
+    assert x1.shape == (3,)
+    np.testing.assert_allclose(x[-1], x1, rtol=1e-14)
+    np.testing.assert_allclose(a[-1], a1, rtol=1e-14)
+
+
+def test_path_is_closed(eight):
+    t = one_period(eight, 101)
+    for t_shift in (eight.period_s, -3 * eight.period_s):
+        for now, later in zip(eight.state(t), eight.state(t + t_shift)):
+            np.testing.assert_allclose(later, now, rtol=1e-9, atol=1e-9 * np.abs(now).max())
+    np.testing.assert_allclose(eight.parameter(t + eight.period_s) - eight.parameter(t), 2 * np.pi,
+                               rtol=1e-12)
+
+
+def test_period_is_loop_length_over_speed(eight):
+    """Brute-force polyline of 1e5 points on the sphere of radius L."""
+    tau = np.linspace(0.0, 2 * np.pi, 100_001)
+    theta, phi = eight.angle_derivatives(tau)
+    p = eight.length_m * direction(theta[0], phi[0])
+    loop_m = np.linalg.norm(np.diff(p, axis=0), axis=-1).sum()
+    assert eight.period_s == pytest.approx(loop_m / eight.speed_ms, rel=1e-6)
+
+
+def test_parameter_follows_arc_length(eight):
+    """τ(t) increases monotonically and its rate is V/g(τ)."""
+    t = one_period(eight)
+    tau = eight.parameter(t)
+    assert tau[0] == 0.0 and np.all(np.diff(tau) > 0)
+    assert tau[-1] == pytest.approx(2 * np.pi, rel=1e-12)
+    h = 1e-4
+    rate = (eight.parameter(t + h) - eight.parameter(t - h)) / (2 * h)
+    np.testing.assert_allclose(rate, eight.speed_ms / eight.arc_rate(tau)[0], rtol=1e-6)
+
+
+@pytest.mark.parametrize("length_m", [500.0, 1000.0, 3000.0])
+def test_derivatives_match_finite_differences(length_m):
+    e = FigureEight.from_config(load_config(), length_m=length_m)
+    t, h = np.linspace(-e.period_s, 2 * e.period_s, 3001), 3e-4
+    x, v, a = e.state(t, radius_m=0.8 * length_m)
+    xp, vp, _ = e.state(t + h, radius_m=0.8 * length_m)
+    xm, vm, _ = e.state(t - h, radius_m=0.8 * length_m)
+    v_scale, a_scale = np.abs(v).max(), np.abs(a).max()
+    np.testing.assert_allclose((xp - xm) / (2 * h), v, atol=1e-6 * v_scale)
+    np.testing.assert_allclose((vp - vm) / (2 * h), a, atol=5e-6 * a_scale)
+    np.testing.assert_allclose((xp - 2 * x + xm) / h**2, a, atol=5e-6 * a_scale)
+
+
+def test_starts_at_crossing_towards_plus_y(eight):
+    theta, phi = eight.angles(0.0)
+    assert phi == pytest.approx(0.0, abs=1e-15)
+    assert theta == pytest.approx(eight.theta0_rad, abs=1e-15)
+    x, v, _ = eight.state(0.0)
+    np.testing.assert_allclose(x, eight.length_m * direction(eight.theta0_rad, 0.0), rtol=1e-14)
+    assert v[1] > 0
+
+
+def test_eight_has_prescribed_size(eight):
+    """The eight spans W crosswind (u = ±W/2) and H vertically (w = ±H/2)."""
+    theta, phi = eight.angles(one_period(eight, 20_001))
+    L, s0 = eight.length_m, np.sin(eight.theta0_rad)
+    assert np.ptp(phi) * L * s0 == pytest.approx(eight.width_m, rel=1e-6)
+    assert np.ptp(theta) * L == pytest.approx(eight.height_m, rel=1e-6)
+
+
+def test_mean_abs_phi_against_table_5_2():
+    cfg = load_config()
+    mean = {L: FigureEight.from_config(cfg, length_m=L).mean_abs_phi_deg() for L in TABLE_5_2}
+    print("\n  L [m]   mean|phi| [deg]   Tab. 5.2 [deg]   ratio")
+    for L, ref in TABLE_5_2.items():
+        print(f"  {L:5d}   {mean[L]:15.3f}   {ref:14.2f}   {mean[L] / ref:5.3f}")
+    assert mean[500] / mean[3000] == pytest.approx(6.0, rel=0.01)
+    for L, ref in TABLE_5_2.items():
+        assert ref / 1.5 < mean[L] < 1.5 * ref
