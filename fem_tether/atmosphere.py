@@ -68,6 +68,11 @@ class ISA:
         """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
         return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * self.density_kg_m3(z_m) / temperature_K(z_m)
 
+    def viscosity_gradient_Pa_s_m(self, z_m):
+        """d mu/dz = -L mu (1.5/T - 1/(T + S)), differentiating Sutherland's law."""
+        t = temperature_K(z_m)
+        return -LAPSE_RATE_K_M * sutherland_viscosity_Pa_s(t) * (1.5 / t - 1.0 / (t + SUTHERLAND_S_K))
+
 
 @dataclass(frozen=True)
 class ConstantAir:
@@ -86,6 +91,10 @@ class ConstantAir:
 
     def density_gradient_kg_m4(self, z_m):
         """d rho/dz = 0."""
+        return np.zeros(np.shape(z_m))
+
+    def viscosity_gradient_Pa_s_m(self, z_m):
+        """d mu/dz = 0."""
         return np.zeros(np.shape(z_m))
 
 

@@ -37,7 +37,8 @@ class CrossflowDrag:
     ``force`` is f_t (+ skin friction) [N/m]; ``vn`` the normal relative
     velocity; ``vn_ms`` its magnitude; ``re`` and ``cd`` the Reynolds number and
     coefficient.  ``d_dvrel`` and ``d_dtau`` are the Jacobians
-    df/dV_rel and df/dtau, shape ``(n, 3, 3)``, when requested.
+    df/dV_rel and df/dtau, shape ``(n, 3, 3)``, and ``d_drho``, ``d_dmu`` the
+    derivatives df/drho and df/dmu_air, shape ``(n, 3)``, when requested.
     """
 
     force: np.ndarray
@@ -47,6 +48,8 @@ class CrossflowDrag:
     cd: np.ndarray
     d_dvrel: np.ndarray | None = None
     d_dtau: np.ndarray | None = None
+    d_drho: np.ndarray | None = None
+    d_dmu: np.ndarray | None = None
 
 
 def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
@@ -65,7 +68,9 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
 
     With ``c(n) = 1/2 rho d C_d(Re(n)) n`` and ``n = |V_n|`` the Jacobians are
     ``df/dV_n = c I + c'(n) V_n V_n^T / n`` with ``c' = 1/2 rho d (C_d + Re C_d')``,
-    ``dV_n/dV_rel = I - tau tau^T`` and ``dV_n/dtau = -(tau.V_rel) I - tau V_rel^T``.
+    ``dV_n/dV_rel = I - tau tau^T`` and ``dV_n/dtau = -(tau.V_rel) I - tau V_rel^T``;
+    through Re, ``df/drho = f_t (1 + Re C_d'/C_d)/rho`` and
+    ``df/dmu = -f_t Re C_d' / (C_d mu)``.
     """
     v_rel = np.asarray(v_rel, dtype=float)
     tau = np.asarray(tau, dtype=float)
@@ -86,7 +91,11 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
         return out
 
     eye = np.eye(3)
-    dc_dn = 0.5 * rho * diameter_m * (cd + re * drag_model.dcd_dre(re))
+    re_dcd = re * drag_model.dcd_dre(re)
+    dc_dn = 0.5 * rho * diameter_m * (cd + re_dcd)
+    f_t = c[:, None] * vn
+    out.d_drho = f_t * ((1.0 + re_dcd / cd) / rho)[:, None]
+    out.d_dmu = -f_t * (re_dcd / (cd * np.asarray(mu_air, dtype=float)))[:, None]
     unit = vn / n_safe[:, None]
     df_dvn = c[:, None, None] * eye + (dc_dn * n)[:, None, None] * np.einsum("ni,nj->nij", unit, unit)
     proj = eye - np.einsum("ni,nj->nij", tau, tau)
@@ -98,4 +107,5 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
         out.d_dvrel = out.d_dvrel + (2 * k_s * np.abs(a))[:, None, None] * tt
         out.d_dtau = out.d_dtau + (k_s * np.abs(a))[:, None, None] * (
             2 * np.einsum("ni,nj->nij", tau, v_rel) + a[:, None, None] * eye)
+        out.d_drho = out.d_drho + ((k_s / rho) * np.abs(a) * a)[:, None] * tau
     return out

@@ -244,3 +244,24 @@ class FigureEight:
         ds = self.arc_rate(nodes)[0] * weights
         phi = self.angle_derivatives(nodes)[1][0]
         return float(np.degrees((np.abs(phi) * ds).sum() / ds.sum()))
+
+
+@dataclass(frozen=True)
+class Stationary:
+    """A kite end held still in the direction ``direction`` (for tests and statics).
+
+    Same interface as :class:`FigureEight`: ``state(t, R)`` is the point R ê with
+    zero velocity and acceleration; ``period_s`` is the time unit the caller
+    chooses for spin-up and averaging.
+    """
+
+    direction: tuple[float, float, float]
+    period_s: float = 1.0
+
+    def state(self, t_s, radius_m=1.0):
+        e = np.asarray(self.direction, dtype=float)
+        e = e / np.linalg.norm(e)
+        shape = np.broadcast(np.asarray(t_s), np.asarray(radius_m)).shape
+        pos = np.asarray(radius_m, dtype=float)[..., None] * e
+        pos = np.broadcast_to(pos, shape + (3,)).copy()
+        return pos, np.zeros_like(pos), np.zeros_like(pos)

@@ -83,13 +83,13 @@ class TetherSystem:
     # --- layout -----------------------------------------------------------
     def pack(self, r, T, R):
         x = np.empty(self.n)
-        x[:-1].reshape(-1, 4)[:, :3] = r
+        x.reshape(-1, 4)[:, :3] = r
         x[3:-1:4] = T
         x[-1] = R
         return x
 
     def unpack(self, x):
-        return x[:-1].reshape(-1, 4)[:, :3], x[3:-1:4], x[-1]
+        return x.reshape(-1, 4)[:, :3], x[3:-1:4], x[-1]
 
     def _flat(self, rows, cols):
         m = self.n - 1
@@ -148,7 +148,7 @@ class TetherSystem:
         node_res[0] = k_s * r[0]
         node_res[-1] = k_s * (r[-1] - R * kite_dir)
         res = np.empty(self.n)
-        res[:-1].reshape(-1, 4)[:, :3] = node_res
+        res.reshape(-1, 4)[:, :3] = node_res
         res[3:-1:4] = k_s * constraint
         res[-1] = (T[0] - ground_tension_N) if self.tension_mode else k_s * (R - radius_m)
         out = Evaluation(res, k_s, tau, length, r_mid, load)
@@ -164,12 +164,14 @@ class TetherSystem:
         proj = eye - np.einsum("ni,nj->nij", tau, tau)
         # geometric stiffness of D^T (T tau): sgn_a sgn_b T/|dr| (I - tau tau^T)
         k_geo = (T / length)[:, None, None] * proj
-        # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dV_rel S,
-        # df/dv_b = -1/2 df/dV_rel, with S = dwind/dz e_x e_z^T
-        shear = np.zeros((n_el, 3, 3))
-        shear[:, 0, 2] = ph.wind.shear_per_s(z)
+        # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dz_mid,
+        # df/dv_b = -1/2 df/dV_rel; altitude enters through wind(z), rho(z), mu(z)
+        df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
+            + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
+            + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
         d_tau = load.d_dtau @ proj / length[:, None, None]
-        d_mid = 0.5 * load.d_dvrel @ (shear - c_v * eye)
+        d_mid = -0.5 * c_v * load.d_dvrel
+        d_mid[:, :, 2] += 0.5 * df_dz
         w = np.stack([self.w_lo, self.w_hi], axis=1)                  # Q weights (n_el, 2)
         block = (sgn[None, :, None, None, None] * sgn[None, None, :, None, None]) * k_geo[:, None, None] \
             - w[:, :, None, None, None] * (sgn[None, None, :, None, None] * d_tau[:, None, None]

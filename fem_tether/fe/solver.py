@@ -1,0 +1,294 @@
+"""Static equilibrium and time stepping of the FE tether (Newton on r, T, R).
+
+Start (seed 000 eqs. 4.19-4.20 made an equilibrium): the line is solved for
+static equilibrium at the trajectory's starting point under gravity, wind and
+the drag of a frozen rigid-rotation velocity field v(s) = (s/L) v_kite, from an
+analytic guess (straight line in tension mode, catenary in prescribed mode)
+with a backtracking Newton.  Then the generalised-alpha scheme
+(:mod:`.integrator`) advances whole periods of the eight: spin-up, then the
+averaging window.  A step whose Newton iteration fails is halved, up to
+``max_halvings`` times, then :class:`SolverDivergedError` says when, for which
+length, and the residual.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.catenary import Catenary
+from fem_tether.config import ConfigError
+from fem_tether.fe import mesh as fe_mesh
+from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
+from fem_tether.fe.spaces import build_spaces
+from fem_tether.fe.system import Physics, TetherSystem
+from fem_tether.loads import G_MS2
+from fem_tether.moment import drag_moment_Nm, equivalent_force
+from fem_tether.progress import Progress
+from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
+from fem_tether.trajectory import FigureEight
+
+
+class SolverDivergedError(RuntimeError):
+    """Newton did not converge even after the allowed step halvings."""
+
+
+@dataclass
+class FEModel:
+    """A discrete tether, its integrator, its kite-end motion and its controls."""
+
+    system: TetherSystem
+    scheme: Scheme
+    end: object                   # FigureEight or Stationary: state(t, R), period_s
+    length_m: float
+    ground_tension_N: float
+    radius_m: float               # prescribed mode only
+    newton_tol: float = 1e-10
+    max_newton: int = 20
+    max_halvings: int = 6
+
+    @property
+    def tension_mode(self) -> bool:
+        return self.system.tension_mode
+
+
+@dataclass
+class State:
+    """Solution at one instant."""
+
+    t: float
+    kin: Kinematics               # nodal r, v, a, qdd (n_nodes, 3)
+    T: np.ndarray                 # element tensions
+    R: float                      # kite distance
+
+
+def unit_mesh_from_config(cfg) -> np.ndarray:
+    """Unit-interval nodes named by ``[fe] mesh``: generated or read from a file."""
+    fe = cfg["fe"]
+    if fe["mesh"] == "uniform":
+        return fe_mesh.unit_nodes(fe["elements"])
+    if fe["mesh"] == "graded":
+        return fe_mesh.unit_nodes(fe["elements"], fe["grading"])
+    try:
+        return fe_mesh.read_unit_mesh(fe["mesh"])
+    except fe_mesh.MeshError as exc:
+        raise ConfigError(f"[fe] mesh = {fe['mesh']!r}: {exc}") from None
+
+
+def physics_from_config(cfg) -> Physics:
+    tether = cfg["tether"]
+    elastic = tether["elasticity"] == "elastic"
+    return Physics(
+        air=atmosphere.from_config(cfg),
+        drag=drag_coefficient.from_config(cfg),
+        wind=wind.from_config(cfg),
+        diameter_m=tether["diameter_m"],
+        linear_density_kg_m=tether["linear_density_kg_m"],
+        compliance_per_N=1.0 / tether["axial_stiffness_N"] if elastic else 0.0,
+        damping_time_s=tether["damping_time_s"] if elastic else 0.0,
+        skin_friction_cf=cfg["drag"]["skin_friction_cf"],
+    )
+
+
+def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
+    """FE model of the configured case; ``end`` overrides the figure-eight."""
+    length = cfg["tether"]["length_m"] if length_m is None else float(length_m)
+    tension_mode = cfg["winch"]["mode"] == "tension"
+    radius = cfg["kite"]["radius_m"]
+    if not tension_mode:
+        inextensible = cfg["tether"]["elasticity"] == "inextensible"
+        if radius <= 0.0 or (inextensible and radius >= length):
+            raise ConfigError(f"[kite] radius_m = {radius}: [winch] mode = 'prescribed' needs "
+                              f"0 < radius_m < length_m = {length} for an inextensible line")
+    spaces = build_spaces(unit_mesh_from_config(cfg), length, cfg["tether"]["linear_density_kg_m"])
+    t = cfg["time"]
+    return FEModel(
+        system=TetherSystem(spaces, physics or physics_from_config(cfg), tension_mode),
+        scheme=scheme_from_config(cfg),
+        end=end or FigureEight.from_config(cfg, length_m=length),
+        length_m=length,
+        ground_tension_N=cfg["winch"]["ground_tension_N"],
+        radius_m=radius,
+        newton_tol=t["newton_tol"],
+        max_newton=t["max_newton"],
+        max_halvings=t["max_halvings"],
+    )
+
+
+def _force_ref(model: FEModel, T) -> float:
+    weight = model.system.physics.linear_density_kg_m * G_MS2 * model.length_m
+    return model.ground_tension_N if model.tension_mode else max(float(np.max(np.abs(T))), weight, 1.0)
+
+
+def initial_guess(model: FEModel, t=0.0):
+    """Straight line (tension mode) or catenary (prescribed) with its tension."""
+    s = model.system.spaces.s_m
+    e0 = model.end.state(t, 1.0)[0]
+    if model.tension_mode:
+        return s[:, None] * e0, np.full(s.size - 1, model.ground_tension_N), model.length_m
+    w = model.system.physics.linear_density_kg_m * G_MS2
+    cat = Catenary(model.length_m, tuple(model.radius_m * e0), max(w, 1e-12))
+    s_mid = model.system.spaces.s_mid_m
+    return cat.position(s), cat.tension_N(s_mid), model.radius_m
+
+
+def static_equilibrium(model: FEModel, t=0.0, max_iter=100) -> State:
+    """Equilibrium at time ``t`` with the frozen rigid-rotation velocity field.
+
+    Backtracking Newton from :func:`initial_guess`; raises
+    :class:`SolverDivergedError` if the residual does not fall below tolerance.
+    """
+    sys_ = model.system
+    s = sys_.spaces.s_m
+    r, T, R = initial_guess(model, t)
+    e, e_dot, e_ddot = model.end.state(t, 1.0)
+    v = (s / model.length_m)[:, None] * (R * e_dot)
+    acc = (s / model.length_m)[:, None] * (R * e_ddot)
+    zero = np.zeros_like(r)
+    f_ref = _force_ref(model, T)
+    x = sys_.pack(r, T, R)
+
+    def evaluate(x, jacobian=True):
+        r, T, R = sys_.unpack(x)
+        return sys_.evaluate(r, v, zero, T, R, e, model.ground_tension_N, model.radius_m,
+                             f_ref, jacobian=jacobian)
+
+    ev = evaluate(x)
+    norm = np.linalg.norm(ev.residual)
+    for _ in range(max_iter):
+        if np.max(np.abs(ev.residual)) <= model.newton_tol * f_ref:
+            r, T, R = sys_.unpack(x)
+            return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
+        dx = sys_.newton_step(ev)
+        step = 1.0
+        while step > 1e-4:
+            trial = x + step * dx
+            ev_trial = evaluate(trial)
+            norm_trial = np.linalg.norm(ev_trial.residual)
+            if np.isfinite(norm_trial) and norm_trial < (1.0 - 1e-4 * step) * norm:
+                break
+            step *= 0.5
+        x, ev, norm = trial, ev_trial, norm_trial
+    raise SolverDivergedError(
+        f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
+        f"{sys_.spaces.n_elements} elements: residual {np.max(np.abs(ev.residual)) / f_ref:.3e} "
+        f"(scaled) after {max_iter} Newton iterations")
+
+
+class _NotConverged(Exception):
+    def __init__(self, residual):
+        self.residual = residual
+
+
+def _step(model: FEModel, state: State, h: float) -> State:
+    """One generalised-alpha step of size h solved by Newton."""
+    sys_ = model.system
+    t_new = state.t + h
+    e = model.end.state(t_new, 1.0)[0]
+    c_a, c_v = model.scheme.coefficients(h)
+    f_ref = _force_ref(model, state.T)
+    r, T, R = state.kin.predict(h, model.scheme), state.T.copy(), state.R
+    worst = math.inf
+    for _ in range(model.max_newton):
+        kin = state.kin.advance(r, h, model.scheme)
+        ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
+                           f_ref, c_a, c_v)
+        worst = float(np.max(np.abs(ev.residual))) / f_ref
+        if not np.isfinite(worst):
+            break
+        if worst <= model.newton_tol:
+            return State(t_new, kin, T, R)
+        dr, dT, dR = sys_.unpack(sys_.newton_step(ev))
+        r, T, R = r + dr, T + dT, R + dR
+    raise _NotConverged(worst)
+
+
+def _advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
+    """Step of size h, halved recursively when Newton fails."""
+    try:
+        return _step(model, state, h)
+    except _NotConverged as exc:
+        if depth >= model.max_halvings:
+            raise SolverDivergedError(
+                f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
+                f"{depth} halvings), L = {model.length_m:g} m: scaled residual {exc.residual:.3e} "
+                f"after {model.max_newton} Newton iterations") from None
+    half = _advance(model, state, h / 2, depth + 1)
+    return _advance(model, half, h / 2, depth + 1)
+
+
+def line_state(model: FEModel, state: State) -> dict:
+    """Series values and snapshot fields of one solution."""
+    sys_ = model.system
+    r, v = state.kin.q, state.kin.v
+    ev = sys_.evaluate(r, v, state.kin.qdd, state.T, state.R, model.end.state(state.t, 1.0)[0],
+                       model.ground_tension_N, model.radius_m, 1.0, jacobian=False)
+    moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
+    drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
+    return {
+        "ground_tension_N": state.T[0],
+        "kite_tension_N": state.T[-1],
+        "kite_radius_m": float(np.linalg.norm(r[-1])),
+        "drag_N": float(drag),
+        "drag_against_N": float(against) if against is not None else 0.0,
+        "max_strain": float(np.max(np.abs(ev.length_m / sys_.spaces.h_m - 1.0))),
+        "position_m": r.copy(),
+        "velocity_ms": v.copy(),
+        "tension_N": state.T.copy(),
+        "vn_ms": ev.load.vn_ms,
+        "reynolds": ev.load.re,
+        "cd": ev.load.cd,
+        "drag_N_m": ev.load.force,
+    }
+
+
+def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
+        output_every: int = 1, config: dict | None = None, progress: bool = False) -> TetherRun:
+    """Static start, then whole periods of the eight; returns the :class:`TetherRun`."""
+    wall0 = time.perf_counter()
+    period = model.end.period_s
+    steps_per_period = max(1, math.ceil(period / dt_s - 1e-9))
+    h = period / steps_per_period
+    n_steps = (spinup_periods + average_periods) * steps_per_period
+    state = static_equilibrium(model)
+    times, rows, snap_t, snaps = [], [], [], []
+    bar = Progress(n_steps, f"FE L = {model.length_m:g} m", enabled=progress)
+    for i in range(n_steps + 1):
+        if i:
+            state = _advance(model, state, h)
+            state.t = i * h
+            bar.update(i)
+        values = line_state(model, state)
+        times.append(state.t)
+        rows.append([values[k] for k in SERIES])
+        if i % output_every == 0 or i == n_steps:
+            snap_t.append(state.t)
+            snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+    bar.close()
+    series = np.asarray(rows)
+    return TetherRun(
+        solver="fe",
+        length_m=model.length_m,
+        period_s=period,
+        time_s=np.asarray(times),
+        series={k: series[:, j] for j, k in enumerate(SERIES)},
+        s_nodes_m=model.system.spaces.s_m,
+        snapshot_time_s=np.asarray(snap_t),
+        snapshots={k: np.stack([s[k] for s in snaps]) for k in NODE_FIELDS + CELL_FIELDS},
+        average_start_s=spinup_periods * period,
+        config=config or {},
+        wall_s=time.perf_counter() - wall0,
+        extra={"elements": model.system.spaces.n_elements, "dt_s": h},
+    )
+
+
+def simulate(cfg, length_m=None, progress=False) -> TetherRun:
+    """Run the configured case with the FE solver."""
+    model = build_model(cfg, length_m)
+    t = cfg["time"]
+    return run(model, t["dt_s"], t["spinup_periods"], t["average_periods"],
+               cfg["output"]["every"], config=cfg, progress=progress)

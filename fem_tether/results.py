@@ -1,0 +1,69 @@
+"""Tether simulation results, common to the FE and FD solvers.
+
+A :class:`TetherRun` holds time series sampled at every time step, snapshots
+of the whole line every few steps, and period means over the averaging
+window (whole periods of the eight after the spin-up).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+#: Time series every solver records, one value per time step.
+SERIES = (
+    "ground_tension_N",    # tension at the winch, T(0, t)
+    "kite_tension_N",      # tension at the kite end, T(L, t)
+    "kite_radius_m",       # |r(L, t)|
+    "drag_N",              # F_t = |M_d| / |r_kite| (seed 000 eq. 4.1)
+    "drag_against_N",      # component of F_t opposing the kite's velocity
+    "max_strain",          # max over elements of | |r_s| - 1 |
+)
+
+#: Snapshot fields: per node (position, velocity) and per element (the rest).
+NODE_FIELDS = ("position_m", "velocity_ms")
+CELL_FIELDS = ("tension_N", "vn_ms", "reynolds", "cd", "drag_N_m")
+
+
+@dataclass
+class TetherRun:
+    """One tether simulation: series, snapshots, period means."""
+
+    solver: str
+    length_m: float
+    period_s: float
+    time_s: np.ndarray
+    series: dict[str, np.ndarray]
+    s_nodes_m: np.ndarray
+    snapshot_time_s: np.ndarray
+    snapshots: dict[str, np.ndarray]
+    average_start_s: float
+    config: dict
+    wall_s: float = 0.0
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def average_window(self) -> np.ndarray:
+        """Boolean mask of the samples in the averaging window (ends included)."""
+        return self.time_s >= self.average_start_s - 1e-9 * self.period_s
+
+    @property
+    def periods(self) -> int:
+        """Whole periods averaged."""
+        return int(round((self.time_s[-1] - self.average_start_s) / self.period_s))
+
+    def mean(self, name: str) -> float:
+        """Time mean of a series over the averaging window (trapezoidal rule)."""
+        mask = self.average_window
+        return period_mean(self.time_s[mask], self.series[name][mask])
+
+    def means(self) -> dict[str, float]:
+        return {f"mean_{name}": self.mean(name) for name in SERIES}
+
+
+def period_mean(t, y) -> float:
+    """(1/(t_end - t_0)) int y dt by the trapezoidal rule."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / (t[-1] - t[0]))
