@@ -25,9 +25,9 @@ G_MS2 = 9.81
 _TINY_MS = 1e-30
 
 
-def gravity_N_m(linear_density_kg_m: float) -> np.ndarray:
+def gravity_N_m(linear_density_kg_m: float, g_ms2: float = G_MS2) -> np.ndarray:
     """Weight per unit length w = -mu g e_z (seed 000 eq. 4.15)."""
-    return np.array([0.0, 0.0, -linear_density_kg_m * G_MS2])
+    return np.array([0.0, 0.0, -linear_density_kg_m * g_ms2])
 
 
 @dataclass
@@ -69,8 +69,8 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     With ``c(n) = 1/2 rho d C_d(Re(n)) n`` and ``n = |V_n|`` the Jacobians are
     ``df/dV_n = c I + c'(n) V_n V_n^T / n`` with ``c' = 1/2 rho d (C_d + Re C_d')``,
     ``dV_n/dV_rel = I - tau tau^T`` and ``dV_n/dtau = -(tau.V_rel) I - tau V_rel^T``;
-    through Re, ``df/drho = f_t (1 + Re C_d'/C_d)/rho`` and
-    ``df/dmu = -f_t Re C_d' / (C_d mu)``.
+    through Re, ``df/drho = 1/2 d n (C_d + Re C_d') V_n`` and
+    ``df/dmu = -1/2 rho d n Re C_d' V_n / mu``.
     """
     v_rel = np.asarray(v_rel, dtype=float)
     tau = np.asarray(tau, dtype=float)
@@ -93,9 +93,8 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     eye = np.eye(3)
     re_dcd = re * drag_model.dcd_dre(re)
     dc_dn = 0.5 * rho * diameter_m * (cd + re_dcd)
-    f_t = c[:, None] * vn
-    out.d_drho = f_t * ((1.0 + re_dcd / cd) / rho)[:, None]
-    out.d_dmu = -f_t * (re_dcd / (cd * np.asarray(mu_air, dtype=float)))[:, None]
+    out.d_drho = (0.5 * diameter_m * n_safe * (cd + re_dcd))[:, None] * vn
+    out.d_dmu = -(0.5 * rho * diameter_m * n_safe * re_dcd / np.asarray(mu_air, dtype=float))[:, None] * vn
     unit = vn / n_safe[:, None]
     df_dvn = c[:, None, None] * eye + (dc_dn * n)[:, None, None] * np.einsum("ni,nj->nij", unit, unit)
     proj = eye - np.einsum("ni,nj->nij", tau, tau)

@@ -45,6 +45,9 @@ def write_unit_mesh(path: str | Path, nodes: np.ndarray) -> Path:
     os.close(fd)
     try:
         meshio.write(tmp, meshio.Mesh(points, cells))
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

@@ -26,7 +26,6 @@ from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.system import Physics, TetherSystem
-from fem_tether.loads import G_MS2
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
 from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
@@ -99,6 +98,10 @@ def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
     length = cfg["tether"]["length_m"] if length_m is None else float(length_m)
     tension_mode = cfg["winch"]["mode"] == "tension"
     radius = cfg["kite"]["radius_m"]
+    if tension_mode and cfg["tether"]["elasticity"] == "elastic":
+        raise ConfigError("[tether] elasticity = 'elastic': needs [winch] mode = 'prescribed'; a "
+                          "fixed-length elastic line cannot hold the winch tension through the "
+                          "kite's radius (waves take time to cross it), use an inextensible line")
     if not tension_mode:
         inextensible = cfg["tether"]["elasticity"] == "inextensible"
         if radius <= 0.0 or (inextensible and radius >= length):
@@ -120,7 +123,7 @@ def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
 
 
 def _force_ref(model: FEModel, T) -> float:
-    weight = model.system.physics.linear_density_kg_m * G_MS2 * model.length_m
+    weight = model.system.physics.linear_density_kg_m * model.system.physics.gravity_ms2 * model.length_m
     return model.ground_tension_N if model.tension_mode else max(float(np.max(np.abs(T))), weight, 1.0)
 
 
@@ -130,10 +133,14 @@ def initial_guess(model: FEModel, t=0.0):
     e0 = model.end.state(t, 1.0)[0]
     if model.tension_mode:
         return s[:, None] * e0, np.full(s.size - 1, model.ground_tension_N), model.length_m
-    w = model.system.physics.linear_density_kg_m * G_MS2
+    ph = model.system.physics
+    w = ph.linear_density_kg_m * ph.gravity_ms2
+    if model.radius_m >= model.length_m:          # elastic line stretched taut
+        stretch = model.radius_m / model.length_m
+        tension = max((stretch - 1.0) / ph.compliance_per_N, w * model.length_m, 1.0)
+        return stretch * s[:, None] * e0, np.full(s.size - 1, tension), model.radius_m
     cat = Catenary(model.length_m, tuple(model.radius_m * e0), max(w, 1e-12))
-    s_mid = model.system.spaces.s_mid_m
-    return cat.position(s), cat.tension_N(s_mid), model.radius_m
+    return cat.position(s), cat.tension_N(model.system.spaces.s_mid_m), model.radius_m
 
 
 def static_equilibrium(model: FEModel, t=0.0, max_iter=100) -> State:
@@ -172,6 +179,8 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=100) -> State:
             if np.isfinite(norm_trial) and norm_trial < (1.0 - 1e-4 * step) * norm:
                 break
             step *= 0.5
+        if not np.isfinite(norm_trial):
+            break
         x, ev, norm = trial, ev_trial, norm_trial
     raise SolverDivergedError(
         f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
@@ -207,7 +216,7 @@ def _step(model: FEModel, state: State, h: float) -> State:
     raise _NotConverged(worst)
 
 
-def _advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
+def advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
     """Step of size h, halved recursively when Newton fails."""
     try:
         return _step(model, state, h)
@@ -217,8 +226,8 @@ def _advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
                 f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
                 f"{depth} halvings), L = {model.length_m:g} m: scaled residual {exc.residual:.3e} "
                 f"after {model.max_newton} Newton iterations") from None
-    half = _advance(model, state, h / 2, depth + 1)
-    return _advance(model, half, h / 2, depth + 1)
+    half = advance(model, state, h / 2, depth + 1)
+    return advance(model, half, h / 2, depth + 1)
 
 
 def line_state(model: FEModel, state: State) -> dict:
@@ -259,7 +268,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     bar = Progress(n_steps, f"FE L = {model.length_m:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
-            state = _advance(model, state, h)
+            state = advance(model, state, h)
             state.t = i * h
             bar.update(i)
         values = line_state(model, state)

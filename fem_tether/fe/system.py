@@ -27,7 +27,7 @@ import numpy as np
 from scipy.linalg import solve_banded
 
 from fem_tether.fe.spaces import TetherSpaces
-from fem_tether.loads import CrossflowDrag, crossflow_drag, gravity_N_m
+from fem_tether.loads import G_MS2, CrossflowDrag, crossflow_drag, gravity_N_m
 
 BAND = 6
 
@@ -44,6 +44,7 @@ class Physics:
     compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
     damping_time_s: float = 0.0        # Kelvin-Voigt retardation time eta
     skin_friction_cf: float = 0.0
+    gravity_ms2: float = G_MS2
 
 
 @dataclass
@@ -72,7 +73,7 @@ class TetherSystem:
     def __post_init__(self):
         n_el = self.spaces.n_elements
         self.n = 4 * n_el + 4
-        self.weight = gravity_N_m(self.physics.linear_density_kg_m)
+        self.weight = gravity_N_m(self.physics.linear_density_kg_m, self.physics.gravity_ms2)
         self.w_lo = np.asarray(self.spaces.Q[np.arange(n_el), np.arange(n_el)]).ravel()
         self.w_hi = np.asarray(self.spaces.Q[np.arange(1, n_el + 1), np.arange(n_el)]).ravel()
         interior = np.zeros(n_el + 1)

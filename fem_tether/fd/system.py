@@ -1,0 +1,317 @@
+"""Finite-difference tether equations on a uniform grid: residual and banded Jacobian.
+
+Nodes ``r_0 .. r_M`` at ``s_i = i ds`` (``ds = L/M``), tensions on the
+staggered grid ``T_{k+1/2}`` (segment midpoints, ``k = 0 .. M-1``).  Central
+differences in s, drag at the nodes (seed 000 eqs. 4.13-4.16)::
+
+    mu a_i = (F_{i+1/2} - F_{i-1/2}) / ds + w + f_t(r_i, v_i, tau_i)   i = 1 .. M-1
+    F_{k+1/2} = T_{k+1/2} tau_{k+1/2},  tau_{k+1/2} = (r_{k+1} - r_k) / l_k,  l_k = |r_{k+1} - r_k|
+    l_k - ds (1 + T_{k+1/2}/EA) + eta tau_{k+1/2} . (v_{k+1} - v_k) = 0       k = 0 .. M-1
+
+with the nodal tangent ``tau_i = (r_{i+1} - r_{i-1}) / |r_{i+1} - r_{i-1}|``.
+For the inextensible line (EA = inf, eta = 0) ``l_k = ds`` and
+``F_{k+1/2} = T_{k+1/2} (r_{k+1} - r_k)/ds``: the seed's ``(T r_s)_s``.
+
+Ends: ``r_0 = 0``; ``r_M = R e(t)``.  The closing condition is substituted,
+not appended: in tension mode ``T_{1/2} = T_0`` is known and R is an unknown;
+in prescribed mode R is known and ``T_{1/2}`` is an unknown.  Either way the
+unknowns ``[.., T_{k+1/2}, r_{k+1}, ..]`` (+ R) and the equations
+``[g_{k+1/2}, m_{k+1}, ..]`` interleave so the Jacobian is banded
+(7 sub- / 5 super-diagonals, or 6 / 6) and needs no bordering.
+
+Rows are scaled to be dimensionless: momentum rows by ``ds / F_ref`` (nodal
+force over the reference tension), constraint rows by ``1/ds`` (strain).
+
+The full unknown layout (before dropping the known one) has ``4M - 2``
+entries: ``x[4k] = T_{k+1/2}`` (k < M), ``x[4k+1 : 4k+4] = r_{k+1}``
+(k < M-1), ``x[4M-3] = R``; equations: ``g_{k+1/2}`` at row ``4k`` and
+``m_i`` at rows ``4(i-1)+1 .. 4(i-1)+3``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import solve_banded
+
+from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.loads import G_MS2, crossflow_drag
+
+_EYE = np.eye(3)
+
+
+@dataclass(frozen=True)
+class Physics:
+    """Leaf models and tether constants used by the FD equations."""
+
+    air: object
+    drag: object
+    wind: object
+    diameter_m: float
+    linear_density_kg_m: float
+    compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
+    damping_time_s: float = 0.0        # Kelvin-Voigt retardation time
+    skin_friction_cf: float = 0.0
+    gravity: bool = True               # w = -mu g e_z (off: no weight, mass kept)
+    aero: bool = True                  # cross-flow drag (off: none)
+
+    @property
+    def weight_N_m(self) -> np.ndarray:
+        g = G_MS2 if self.gravity else 0.0
+        return np.array([0.0, 0.0, -self.linear_density_kg_m * g])
+
+
+def physics_from_config(cfg, gravity=True, drag=True) -> Physics:
+    """Physics of ``cfg`` (tether, air, drag, wind); ``gravity``/``drag`` switch loads off."""
+    tether = cfg["tether"]
+    elastic = tether["elasticity"] == "elastic"
+    return Physics(
+        air=atmosphere.from_config(cfg),
+        drag=drag_coefficient.from_config(cfg),
+        wind=wind.from_config(cfg),
+        diameter_m=tether["diameter_m"],
+        linear_density_kg_m=tether["linear_density_kg_m"],
+        compliance_per_N=1.0 / tether["axial_stiffness_N"] if elastic else 0.0,
+        damping_time_s=tether["damping_time_s"] if elastic else 0.0,
+        skin_friction_cf=cfg["drag"]["skin_friction_cf"],
+        gravity=bool(gravity),
+        aero=bool(drag),
+    )
+
+
+def _unit(d):
+    n = np.sqrt(np.einsum("ij,ij->i", d, d))
+    return d / n[:, None], n
+
+
+def _outer(a, b):
+    return np.einsum("ni,nj->nij", a, b)
+
+
+@dataclass
+class NodalLoads:
+    """Drag at a set of nodes and what produced it."""
+
+    force: np.ndarray      # (n, 3) N/m
+    vn_ms: np.ndarray
+    re: np.ndarray
+    cd: np.ndarray
+    tangent: np.ndarray
+
+
+class Grid:
+    """Uniform FD grid of a line of length L with M segments, and its band layout."""
+
+    def __init__(self, length_m: float, segments: int, tension_mode: bool):
+        if segments < 2:
+            raise ValueError(f"FD grid needs at least 2 segments, got {segments}")
+        M = int(segments)
+        self.M = M
+        self.length_m = float(length_m)
+        self.ds = self.length_m / M
+        self.s_m = np.linspace(0.0, self.length_m, M + 1)
+        self.tension_mode = bool(tension_mode)
+        self.n_full = 4 * M - 2
+        self.n = 4 * M - 3                       # active unknowns = equations
+        self.trap_weights = np.full(M + 1, self.ds)
+        self.trap_weights[[0, -1]] *= 0.5
+        self._layout()
+
+    # --- index bookkeeping -------------------------------------------------
+    def _node_cols(self):
+        """Full column of node j component c; node 0 -> -1 (fixed); node M -> R."""
+        M = self.M
+        cols = np.empty((M + 1, 3), dtype=np.int64)
+        cols[0] = -1
+        cols[1:M] = 4 * np.arange(M - 1)[:, None] + 1 + np.arange(3)
+        cols[M] = 4 * M - 3
+        return cols
+
+    def _layout(self):
+        M = self.M
+        ncol = self._node_cols()
+        i = np.arange(1, M)                                   # interior nodes
+        rows_m = 4 * (i - 1)[:, None] + 1 + np.arange(3)      # (M-1, 3)
+        k = np.arange(M)
+        rows_g = 4 * k                                        # (M,)
+        rows, cols, kite = [], [], []
+
+        def add(r, c, kite_col):
+            r, c = np.broadcast_arrays(r, c)
+            rows.append(r.ravel())
+            cols.append(c.ravel())
+            kite.append(np.broadcast_to(kite_col, r.shape).ravel())
+
+        # momentum blocks (M-1, 3, 3): self, next, previous node
+        for j in (i, i + 1, i - 1):
+            c = ncol[j][:, None, :]
+            add(rows_m[:, :, None], c, (j == M)[:, None, None] * np.ones((1, 3, 3), bool))
+        # momentum x tension (M-1, 3): T_{i+1/2} (col 4i), T_{i-1/2} (col 4(i-1))
+        add(rows_m, (4 * i)[:, None], False)
+        add(rows_m, (4 * (i - 1))[:, None], False)
+        # constraint x nodes (M, 3): node k+1, node k
+        add(rows_g[:, None], ncol[k + 1], (k + 1 == M)[:, None] * np.ones((1, 3), bool))
+        add(rows_g[:, None], ncol[k], False)
+        # constraint x own tension (M,)
+        add(rows_g, rows_g, False)
+
+        rows = np.concatenate(rows)
+        cols = np.concatenate(cols)
+        self._kite_entry = np.concatenate(kite)
+        # component of each node column (for the e(t) multiplier of the R column)
+        comp = np.concatenate([
+            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
+            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
+            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
+            np.zeros(2 * 3 * (M - 1), dtype=np.int64),
+            np.broadcast_to(np.arange(3), (M, 3)).ravel(),
+            np.broadcast_to(np.arange(3), (M, 3)).ravel(),
+            np.zeros(M, dtype=np.int64),
+        ])
+        self._comp = comp
+        # map full columns to active columns
+        if self.tension_mode:           # T_{1/2} known: drop column 0
+            act = cols - 1
+            act[cols <= 0] = -1
+        else:                           # R known: drop column 4M-3
+            act = cols.copy()
+            act[cols >= 4 * M - 3] = -1
+            act[cols < 0] = -1
+        keep = act >= 0
+        self.lower = int(np.max((rows - act)[keep]))
+        self.upper = int(np.max((act - rows)[keep]))
+        nb = self.lower + self.upper + 1
+        flat = (self.upper + rows - act) * self.n + act
+        self._dump = nb * self.n                               # sink for dropped entries
+        self._flat = np.where(keep, flat, self._dump)
+        self._band_shape = (nb, self.n)
+
+    # --- packing -------------------------------------------------------------
+    def expand(self, dx_active):
+        """Active Newton update -> (dr interior (M-1, 3), dT (M,), dR)."""
+        full = np.zeros(self.n_full)
+        if self.tension_mode:
+            full[1:] = dx_active
+        else:
+            full[:-1] = dx_active
+        body = full[: 4 * self.M - 4].reshape(self.M - 1, 4)
+        dT = np.empty(self.M)
+        dT[:-1] = body[:, 0]
+        dT[-1] = full[4 * self.M - 4]
+        return body[:, 1:], dT, full[-1]
+
+    def assemble(self, values, kite_dir):
+        """Banded matrix (solve_banded storage) from the entry values in layout order."""
+        w = values
+        if self.tension_mode:
+            w = np.where(self._kite_entry, values * np.asarray(kite_dir)[self._comp], values)
+        ab = np.bincount(self._flat, weights=w, minlength=self._dump + 1)[: self._dump]
+        return ab.reshape(self._band_shape)
+
+    def solve(self, ab, rhs):
+        return solve_banded((self.lower, self.upper), ab, rhs, overwrite_ab=True,
+                            check_finite=False)
+
+
+@dataclass
+class Evaluation:
+    residual: np.ndarray          # scaled, rows in layout order (4M-3)
+    tau_seg: np.ndarray           # (M, 3)
+    length_m: np.ndarray          # (M,)
+    ab: np.ndarray | None = None
+
+
+class TetherFD:
+    """The discrete equations of one line: residual, Jacobian, nodal loads."""
+
+    def __init__(self, grid: Grid, physics: Physics):
+        self.grid = grid
+        self.physics = physics
+
+    # --- loads -----------------------------------------------------------------
+    def nodal_drag(self, r, v, tangent, jacobian=False):
+        ph = self.physics
+        z = r[:, 2]
+        v_rel = ph.wind.velocity_ms(z) - v
+        return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
+                              ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
+
+    def line_loads(self, r, v) -> NodalLoads:
+        """Drag at every node 0..M; one-sided tangents at the two ends."""
+        tangent = np.empty_like(r)
+        tangent[1:-1] = r[2:] - r[:-2]
+        tangent[0] = r[1] - r[0]
+        tangent[-1] = r[-1] - r[-2]
+        tangent, _ = _unit(tangent)
+        load = self.nodal_drag(r, v, tangent)
+        force = load.force if self.physics.aero else np.zeros_like(load.force)
+        return NodalLoads(force, load.vn_ms, load.re, load.cd, tangent)
+
+    # --- equations ---------------------------------------------------------------
+    def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
+                 jacobian=True) -> Evaluation:
+        """Scaled residual (and banded Jacobian) at nodal r, v, a (M+1, 3) and tensions T (M,).
+
+        ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for statics).
+        """
+        g, ph = self.grid, self.physics
+        ds, M = g.ds, g.M
+        mu = ph.linear_density_kg_m
+        d = r[1:] - r[:-1]
+        tau, ell = _unit(d)
+        flux = T[:, None] * tau
+        # nodal drag at interior nodes with the central tangent
+        dn = r[2:] - r[:-2]
+        tau_n, dn_len = _unit(dn)
+        if ph.aero:
+            load = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=jacobian)
+            f = load.force
+        else:
+            load, f = None, 0.0
+        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / ds - ph.weight_N_m - f
+        dv = v[1:] - v[:-1]
+        con = ell - ds * (1.0 + ph.compliance_per_N * T)
+        if ph.damping_time_s:
+            con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
+        sm = ds / force_ref_N
+        res = np.empty(g.n)
+        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / ds
+        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm
+        res[4 * M - 4] = con[-1] / ds
+        out = Evaluation(res, tau, ell)
+        if not jacobian:
+            return out
+
+        proj = _EYE - _outer(tau, tau)                         # (M, 3, 3)
+        K = (T / ell)[:, None, None] * proj                    # d F_{k+1/2} / d r_{k+1}
+        A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / ds
+        A_next = -K[1:] / ds
+        A_prev = -K[:-1] / ds
+        if ph.aero:
+            z = r[1:-1, 2]
+            df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
+                + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
+                + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
+            d_self = -c_v * load.d_dvrel
+            d_self[:, :, 2] += df_dz
+            proj_n = _EYE - _outer(tau_n, tau_n)
+            d_next = load.d_dtau @ proj_n / dn_len[:, None, None]
+            A_self = A_self - d_self
+            A_next = A_next - d_next
+            A_prev = A_prev + d_next
+        B_plus = -tau[1:] / ds
+        B_minus = tau[:-1] / ds
+        c_row = tau
+        if ph.damping_time_s:
+            c_row = tau + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None]
+                                               + c_v * tau)
+        D = np.full(M, -ds * ph.compliance_per_N)
+        sg = 1.0 / ds
+        values = np.concatenate([
+            (A_self * sm).ravel(), (A_next * sm).ravel(), (A_prev * sm).ravel(),
+            (B_plus * sm).ravel(), (B_minus * sm).ravel(),
+            (c_row * sg).ravel(), (-c_row * sg).ravel(), D * sg,
+        ])
+        out.ab = g.assemble(values, kite_dir)
+        return out

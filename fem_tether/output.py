@@ -1,0 +1,192 @@
+"""Writing a :class:`~fem_tether.results.TetherRun` to disk: HDF5 and ParaView.
+
+HDF5 (:func:`write_run_hdf5`, read back by :func:`read_run_hdf5`), one file per
+run::
+
+    /                       attributes
+        config_toml           the run's configuration as TOML (config.to_toml)
+        fem_tether_version    package version that wrote the file
+        solver                "fe" or "fd"
+        length_m, period_s, average_start_s, wall_s   floats
+        periods               whole periods averaged (int)
+        created_utc           ISO 8601 time of writing
+        ...                   any ``extra_attrs`` given by the caller
+    /series/time_s          (n_t,)                     every time step
+    /series/<name>          (n_t,)                     one per series (results.SERIES)
+    /means                  attribute mean_<name> per series, over the averaging window
+    /snapshots/time_s       (n_snap,)
+    /snapshots/s_nodes_m    (n_nodes,)                 arc length of the nodes
+    /snapshots/<field>      (n_snap, n_nodes, 3)       node fields (results.NODE_FIELDS)
+                            (n_snap, n_el[, 3])        element fields (results.CELL_FIELDS)
+    /extra                  attributes: solver-specific values (TetherRun.extra)
+
+Datasets under ``series`` and ``snapshots`` carry a ``units`` attribute read off
+their name's suffix (``_N`` -> N, ``_N_m`` -> N/m, ``_m`` -> m, ``_ms`` -> m/s,
+``_s`` -> s, otherwise ""); snapshot fields are chunked and gzip-compressed.
+
+ParaView (:func:`write_paraview`), one directory per run::
+
+    <directory>/<name>.pvd          collection: one DataSet per snapshot, with its time
+    <directory>/<name>_0000.vtu     the line at snapshot 0: points = node positions,
+    ...                             "line" cells, point data velocity_ms and s_m,
+                                    cell data tension_N, vn_ms, reynolds, cd, drag_N_m
+
+Open the ``.pvd`` in ParaView and play the animation to see the tether move.
+
+Both writers are atomic: the output is written beside its target under a
+hidden temporary name and renamed into place only when complete; on any error
+the temporary output is removed and the target is left untouched.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tomllib
+import xml.etree.ElementTree as ET
+from datetime import datetime, timezone
+from pathlib import Path
+
+import h5py
+import meshio
+import numpy as np
+
+from . import __version__
+from .config import to_toml
+from .results import CELL_FIELDS, TetherRun
+
+UNITS = (("_N_m", "N/m"), ("_ms", "m/s"), ("_N", "N"), ("_m", "m"), ("_s", "s"))
+
+
+def units(name: str) -> str:
+    """Units of a quantity named with a unit suffix, e.g. ``"drag_N_m"`` -> ``"N/m"``."""
+    return next((u for suffix, u in UNITS if name.endswith(suffix)), "")
+
+
+def _temporary(path: Path) -> Path:
+    return path.with_name(f".{path.name}.tmp-{os.getpid()}")
+
+
+def write_run_hdf5(run: TetherRun, path, extra_attrs: dict | None = None) -> Path:
+    """Write ``run`` to the HDF5 file ``path`` (layout in the module docstring)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = _temporary(path)
+    try:
+        with h5py.File(tmp, "w", track_order=True) as f:
+            _write_hdf5(f, run, extra_attrs or {})
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _dataset(group, name, data, **kwargs):
+    group.create_dataset(name, data=data, **kwargs).attrs["units"] = units(name)
+
+
+def _write_hdf5(f: h5py.File, run: TetherRun, extra_attrs: dict):
+    f.attrs.update({
+        "config_toml": to_toml(run.config),
+        "fem_tether_version": __version__,
+        "solver": run.solver,
+        "length_m": run.length_m,
+        "period_s": run.period_s,
+        "average_start_s": run.average_start_s,
+        "wall_s": run.wall_s,
+        "periods": run.periods,
+        "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    })
+    clash = set(extra_attrs) & set(f.attrs)
+    if clash:
+        raise ValueError(f"extra_attrs would overwrite {', '.join(sorted(clash))}")
+    f.attrs.update(extra_attrs)
+
+    series = f.create_group("series", track_order=True)
+    _dataset(series, "time_s", run.time_s)
+    for name, values in run.series.items():
+        _dataset(series, name, values)
+
+    f.create_group("means", track_order=True).attrs.update(run.means())
+
+    snapshots = f.create_group("snapshots", track_order=True)
+    _dataset(snapshots, "time_s", run.snapshot_time_s)
+    _dataset(snapshots, "s_nodes_m", run.s_nodes_m)
+    for name, values in run.snapshots.items():
+        _dataset(snapshots, name, values, chunks=True, compression="gzip")
+
+    f.create_group("extra", track_order=True).attrs.update(run.extra)
+
+
+def _python(value):
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def read_run_hdf5(path) -> TetherRun:
+    """Read a run written by :func:`write_run_hdf5` (``extra_attrs`` are not restored)."""
+    with h5py.File(path, "r") as f:
+        snapshots = f["snapshots"]
+        return TetherRun(
+            solver=f.attrs["solver"],
+            length_m=float(f.attrs["length_m"]),
+            period_s=float(f.attrs["period_s"]),
+            time_s=f["series/time_s"][()],
+            series={k: v[()] for k, v in f["series"].items() if k != "time_s"},
+            s_nodes_m=snapshots["s_nodes_m"][()],
+            snapshot_time_s=snapshots["time_s"][()],
+            snapshots={k: v[()] for k, v in snapshots.items() if k not in ("time_s", "s_nodes_m")},
+            average_start_s=float(f.attrs["average_start_s"]),
+            config=tomllib.loads(f.attrs["config_toml"]),
+            wall_s=float(f.attrs["wall_s"]),
+            extra={k: _python(v) for k, v in f["extra"].attrs.items()},
+        )
+
+
+def write_paraview(run: TetherRun, directory, name: str = "tether") -> Path:
+    """Write the snapshots as a ParaView time series in ``directory``; return the ``.pvd``.
+
+    The whole set is written into a temporary directory beside ``directory``
+    and renamed into place.  An existing ``directory`` is replaced: it is first
+    renamed aside, then removed once the new set is in place.
+    """
+    directory = Path(directory)
+    if directory.exists() and not directory.is_dir():
+        raise NotADirectoryError(directory)
+    tmp = _temporary(directory)
+    shutil.rmtree(tmp, ignore_errors=True)  # left over by a killed process
+    tmp.mkdir(parents=True)
+    try:
+        _write_paraview(run, tmp, name)
+        if directory.exists():
+            old = directory.with_name(f".{directory.name}.old-{os.getpid()}")
+            os.replace(directory, old)
+            os.replace(tmp, directory)
+            shutil.rmtree(old)
+        else:
+            os.replace(tmp, directory)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return directory / f"{name}.pvd"
+
+
+def _write_paraview(run: TetherRun, directory: Path, name: str):
+    positions = run.snapshots["position_m"]
+    n_nodes = positions.shape[1]
+    lines = np.column_stack([np.arange(n_nodes - 1), np.arange(1, n_nodes)])
+    collection = ET.Element("Collection")
+    for i, t in enumerate(run.snapshot_time_s):
+        mesh = meshio.Mesh(
+            positions[i],
+            [("line", lines)],
+            point_data={"velocity_ms": run.snapshots["velocity_ms"][i], "s_m": run.s_nodes_m},
+            cell_data={k: [run.snapshots[k][i]] for k in CELL_FIELDS},
+        )
+        file = f"{name}_{i:04d}.vtu"
+        meshio.write(directory / file, mesh)
+        ET.SubElement(collection, "DataSet", timestep=repr(float(t)), file=file)
+    root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
+    root.append(collection)
+    ET.indent(root)
+    ET.ElementTree(root).write(directory / f"{name}.pvd", encoding="utf-8", xml_declaration=True)

@@ -1,0 +1,15 @@
+"""Shared fixtures: small configurations that keep the suite fast."""
+
+import pytest
+
+from fem_tether.config import load_config
+
+QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},
+         "drag": {"model": "constant", "cd": 1.2},
+         "wind": {"profile": "none"}}
+
+
+@pytest.fixture
+def quiet_cfg():
+    """Quiet air, rho = 1.2, C_d = 1.2 (the issue's benchmark physics)."""
+    return load_config(overrides=QUIET)

@@ -1,0 +1,157 @@
+import os
+import xml.etree.ElementTree as ET
+
+import h5py
+import meshio
+import numpy as np
+import pytest
+
+from fem_tether import __version__, output
+from fem_tether.config import load_config
+from fem_tether.fe.solver import simulate
+from fem_tether.output import read_run_hdf5, units, write_paraview, write_run_hdf5
+from fem_tether.results import CELL_FIELDS, SERIES
+
+
+@pytest.fixture(scope="module")
+def cfg():
+    return load_config(overrides={"fe": {"elements": 8}, "time": {"dt_s": 0.2, "average_periods": 1}})
+
+
+@pytest.fixture(scope="module")
+def run(cfg):
+    return simulate(cfg)
+
+
+def hidden(directory):
+    return [p.name for p in directory.iterdir() if p.name.startswith(".")]
+
+
+@pytest.mark.parametrize("name, expected", [
+    ("ground_tension_N", "N"), ("drag_N_m", "N/m"), ("kite_radius_m", "m"),
+    ("velocity_ms", "m/s"), ("time_s", "s"), ("max_strain", ""), ("cd", ""),
+])
+def test_units(name, expected):
+    assert units(name) == expected
+
+
+def test_hdf5_round_trip(run, cfg, tmp_path):
+    path = write_run_hdf5(run, tmp_path / "run.h5")
+    assert path == tmp_path / "run.h5"
+    assert hidden(tmp_path) == []
+    back = read_run_hdf5(path)
+    assert back.config == cfg
+    for name in ("solver", "length_m", "period_s", "average_start_s", "wall_s", "extra"):
+        assert getattr(back, name) == getattr(run, name)
+    np.testing.assert_array_equal(back.time_s, run.time_s)
+    assert list(back.series) == list(run.series)
+    for name in SERIES:
+        np.testing.assert_array_equal(back.series[name], run.series[name])
+    assert back.means() == run.means()
+    np.testing.assert_array_equal(back.s_nodes_m, run.s_nodes_m)
+    np.testing.assert_array_equal(back.snapshot_time_s, run.snapshot_time_s)
+    assert list(back.snapshots) == list(run.snapshots)
+    for name, values in run.snapshots.items():
+        np.testing.assert_array_equal(back.snapshots[name], values)
+
+
+def test_hdf5_attributes(run, tmp_path):
+    path = write_run_hdf5(run, tmp_path / "run.h5", extra_attrs={"case": "L1000"})
+    with h5py.File(path, "r") as f:
+        assert f.attrs["fem_tether_version"] == __version__
+        assert f.attrs["solver"] == "fe"
+        assert f.attrs["periods"] == run.periods == 1
+        assert f.attrs["case"] == "L1000"
+        assert f.attrs["created_utc"].endswith("+00:00")
+        assert "[fe]" in f.attrs["config_toml"]
+        for name in ("length_m", "period_s", "average_start_s", "wall_s"):
+            assert f.attrs[name] == getattr(run, name)
+        assert dict(f["means"].attrs) == run.means()
+        assert f["series/ground_tension_N"].attrs["units"] == "N"
+        assert f["series/max_strain"].attrs["units"] == ""
+        drag = f["snapshots/drag_N_m"]
+        assert drag.attrs["units"] == "N/m"
+        assert drag.compression == "gzip" and drag.chunks is not None
+
+
+def test_hdf5_extra_attrs_cannot_overwrite(run, tmp_path):
+    with pytest.raises(ValueError, match="solver"):
+        write_run_hdf5(run, tmp_path / "run.h5", extra_attrs={"solver": "x"})
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_hdf5_failure_leaves_nothing(run, tmp_path, monkeypatch):
+    path = tmp_path / "run.h5"
+
+    def fail():
+        assert hidden(tmp_path) == [f".run.h5.tmp-{os.getpid()}"]  # mid-write
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(run, "means", fail)
+    with pytest.raises(RuntimeError, match="disk full"):
+        write_run_hdf5(run, path)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_hdf5_failure_keeps_previous_file(run, tmp_path, monkeypatch):
+    path = write_run_hdf5(run, tmp_path / "run.h5")
+    before = path.read_bytes()
+    monkeypatch.setattr(run, "means", lambda: 1 / 0)
+    with pytest.raises(ZeroDivisionError):
+        write_run_hdf5(run, path)
+    assert path.read_bytes() == before
+    assert hidden(tmp_path) == []
+
+
+def test_paraview(run, tmp_path):
+    pvd = write_paraview(run, tmp_path / "vis", name="kite")
+    assert pvd == tmp_path / "vis" / "kite.pvd"
+    root = ET.parse(pvd).getroot()
+    assert root.tag == "VTKFile" and root.get("type") == "Collection"
+    datasets = root.findall("Collection/DataSet")
+    n_snap, n_nodes = run.snapshots["position_m"].shape[:2]
+    assert len(datasets) == n_snap
+    times = np.array([float(d.get("timestep")) for d in datasets])
+    assert np.all(np.diff(times) > 0)
+    np.testing.assert_array_equal(times, run.snapshot_time_s)
+    for i, d in enumerate(datasets):
+        mesh = meshio.read(pvd.parent / d.get("file"))
+        np.testing.assert_allclose(mesh.points, run.snapshots["position_m"][i])
+        assert len(mesh.cells) == 1 and mesh.cells[0].type == "line"
+        np.testing.assert_array_equal(mesh.cells[0].data[:, 1] - mesh.cells[0].data[:, 0], 1)
+        assert len(mesh.cells[0].data) == n_nodes - 1
+        assert mesh.point_data["velocity_ms"].shape == (n_nodes, 3)
+        np.testing.assert_allclose(mesh.point_data["s_m"], run.s_nodes_m)
+        assert set(mesh.cell_data) == set(CELL_FIELDS)
+        for name in CELL_FIELDS:
+            np.testing.assert_allclose(mesh.cell_data[name][0], run.snapshots[name][i])
+    assert sorted(p.name for p in pvd.parent.iterdir()) == ["kite.pvd"] + [d.get("file") for d in datasets]
+    assert hidden(tmp_path) == []
+
+
+def test_paraview_replaces_directory(run, tmp_path):
+    target = tmp_path / "vis"
+    target.mkdir()
+    (target / "stale.vtu").write_text("old")
+    write_paraview(run, target)
+    assert not (target / "stale.vtu").exists()
+    assert (target / "tether.pvd").exists()
+    assert hidden(tmp_path) == []
+
+
+def test_paraview_failure_leaves_nothing(run, tmp_path, monkeypatch):
+    target = tmp_path / "vis"
+    target.mkdir()
+    (target / "old.pvd").write_text("old")
+    write = meshio.write
+
+    def fail_third(path, mesh):
+        if path.name.endswith("_0002.vtu"):
+            raise OSError("disk full")
+        write(path, mesh)
+
+    monkeypatch.setattr(output.meshio, "write", fail_third)
+    with pytest.raises(OSError, match="disk full"):
+        write_paraview(run, target)
+    assert [p.name for p in target.iterdir()] == ["old.pvd"]
+    assert hidden(tmp_path) == []
