@@ -1,0 +1,365 @@
+"""Static start and implicit time stepping of the FD tether (Newton on r, T, R).
+
+The reference scheme of seed 000 §4.2 (central differences in s, implicit
+Euler in t on the first-order system r_t = v, v_t = a) with its weaknesses
+fixed: Newton on the coupled position-tension system instead of Gauss-Seidel
+/ SOR with a curve fit on T, the drag linearised exactly instead of frozen,
+and optionally second-order BDF2 (variable step) instead of implicit Euler::
+
+    v_{n+1} = a0 (r_{n+1} - r_n) + a2 (r_{n-1} - r_n)
+    a_{n+1} = a0 (v_{n+1} - v_n) + a2 (v_{n-1} - v_n)
+
+with ``a0 = (1 + 2w) / ((1 + w) h)``, ``a2 = w^2 / ((1 + w) h)``,
+``w = h_n / h_{n-1}`` (BDF2) or ``a0 = 1/h, a2 = 0`` (implicit Euler, also the
+first step of BDF2).  Both are L-stable, so the constraint's algebraic mode
+(the tension) is damped, not carried as a step-to-step oscillation.
+
+Start: static equilibrium at t = 0 under gravity, wind and the drag of the
+frozen rigid-rotation velocity field v(s) = (s/L) R0 e'(0) (R0 = L in tension
+mode, the prescribed radius otherwise), from a straight line (tension mode) or
+the catenary (prescribed mode), by a backtracking Newton.
+
+Configuration (read with defaults until the schema has them):
+``[fd] segments`` (200) and ``[fd] scheme`` ("bdf2" or "euler").
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether.catenary import Catenary
+from fem_tether.config import ConfigError
+from fem_tether.fd.system import Grid, Physics, TetherFD, physics_from_config
+from fem_tether.loads import G_MS2
+from fem_tether.moment import drag_moment_Nm, equivalent_force
+from fem_tether.progress import Progress
+from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
+from fem_tether.trajectory import FigureEight
+
+SCHEMES = ("bdf2", "euler")
+DEFAULT_SEGMENTS = 200
+DEFAULT_SCHEME = "bdf2"
+
+
+class SolverDivergedError(RuntimeError):
+    """Newton did not converge even after the allowed step halvings."""
+
+
+def fd_settings(cfg) -> dict:
+    """``[fd] segments`` and ``[fd] scheme`` with their defaults, validated."""
+    fd = cfg.get("fd", {}) or {}
+    segments = fd.get("segments", DEFAULT_SEGMENTS)
+    scheme = fd.get("scheme", DEFAULT_SCHEME)
+    if isinstance(segments, bool) or not isinstance(segments, int) or segments < 2:
+        raise ConfigError(f"[fd] segments = {segments!r}: must be an integer >= 2")
+    if scheme not in SCHEMES:
+        raise ConfigError(f"[fd] scheme = {scheme!r}: must be one of "
+                          f"{', '.join(map(repr, SCHEMES))}")
+    return {"segments": segments, "scheme": scheme}
+
+
+@dataclass
+class FDModel:
+    """A discrete line, its time scheme, its kite-end motion and its controls."""
+
+    eq: TetherFD
+    scheme: str                   # "bdf2" or "euler"
+    end: object                   # FigureEight or Stationary: state(t, R), period_s
+    length_m: float
+    ground_tension_N: float
+    radius_m: float               # prescribed mode only
+    newton_tol: float = 1e-10
+    max_newton: int = 20
+    max_halvings: int = 6
+
+    @property
+    def grid(self) -> Grid:
+        return self.eq.grid
+
+    @property
+    def tension_mode(self) -> bool:
+        return self.eq.grid.tension_mode
+
+
+@dataclass
+class State:
+    """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance."""
+
+    t: float
+    r: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    T: np.ndarray
+    R: float
+
+
+def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
+                gravity=True, drag=True, physics: Physics | None = None) -> FDModel:
+    """FD model of the configured case.
+
+    ``end`` overrides the figure-eight (e.g. ``trajectory.Stationary``);
+    ``segments``/``scheme`` override ``[fd]``; ``gravity=False`` /
+    ``drag=False`` switch those loads off (the mass stays).
+    """
+    length = float(cfg["tether"]["length_m"] if length_m is None else length_m)
+    settings = fd_settings(cfg)
+    segments = settings["segments"] if segments is None else int(segments)
+    scheme = settings["scheme"] if scheme is None else scheme
+    if scheme not in SCHEMES:
+        raise ConfigError(f"FD scheme {scheme!r}: must be one of {', '.join(map(repr, SCHEMES))}")
+    tension_mode = cfg["winch"]["mode"] == "tension"
+    radius = cfg["kite"]["radius_m"]
+    if not tension_mode:
+        inextensible = cfg["tether"]["elasticity"] == "inextensible"
+        if radius <= 0.0 or (inextensible and radius >= length):
+            raise ConfigError(f"[kite] radius_m = {radius}: [winch] mode = 'prescribed' needs "
+                              f"0 < radius_m < length_m = {length} for an inextensible line")
+    t = cfg["time"]
+    return FDModel(
+        eq=TetherFD(Grid(length, segments, tension_mode),
+                    physics or physics_from_config(cfg, gravity=gravity, drag=drag)),
+        scheme=scheme,
+        end=end or FigureEight.from_config(cfg, length_m=length),
+        length_m=length,
+        ground_tension_N=cfg["winch"]["ground_tension_N"],
+        radius_m=radius,
+        newton_tol=t["newton_tol"],
+        max_newton=t["max_newton"],
+        max_halvings=t["max_halvings"],
+    )
+
+
+def _force_ref(model: FDModel, T) -> float:
+    if model.tension_mode:
+        return model.ground_tension_N
+    weight = model.eq.physics.linear_density_kg_m * G_MS2 * model.length_m
+    return max(float(np.max(np.abs(T))), weight, 1.0)
+
+
+def _nodes(model: FDModel, r_int, R, e):
+    """All nodes from the interior ones: r_0 = 0, r_M = R e."""
+    r = np.empty((model.grid.M + 1, 3))
+    r[0] = 0.0
+    r[1:-1] = r_int
+    r[-1] = R * e
+    return r
+
+
+def _apply(model: FDModel, dx, r_int, T, R, step=1.0):
+    dr, dT, dR = model.grid.expand(dx)
+    if model.tension_mode:
+        dT[0] = 0.0
+    else:
+        dR = 0.0
+    return r_int + step * dr, T + step * dT, R + step * dR
+
+
+def initial_guess(model: FDModel, t=0.0):
+    """Straight line with T = T_0 (tension mode) or the catenary (prescribed)."""
+    g = model.grid
+    e0 = model.end.state(t, 1.0)[0]
+    if model.tension_mode:
+        return g.s_m[:, None] * e0, np.full(g.M, model.ground_tension_N), model.length_m
+    w = model.eq.physics.weight_N_m[2] * -1.0
+    cat = Catenary(model.length_m, tuple(model.radius_m * e0), max(w, 1e-12))
+    s_mid = 0.5 * (g.s_m[1:] + g.s_m[:-1])
+    return cat.position(g.s_m), cat.tension_N(s_mid), model.radius_m
+
+
+def static_equilibrium(model: FDModel, t=0.0, max_iter=100) -> State:
+    """Equilibrium at time ``t`` with the frozen rigid-rotation velocity field.
+
+    Backtracking Newton from :func:`initial_guess`; raises
+    :class:`SolverDivergedError` if the residual does not fall below tolerance.
+    """
+    g = model.grid
+    r, T, R = initial_guess(model, t)
+    e, e_dot, e_ddot = model.end.state(t, 1.0)
+    frac = (g.s_m / model.length_m)[:, None]
+    v = frac * (R * e_dot)
+    acc = frac * (R * e_ddot)
+    zero = np.zeros_like(r)
+    f_ref = _force_ref(model, T)
+    r_int = r[1:-1].copy()
+
+    def evaluate(r_int, T, R, jacobian=True):
+        return model.eq.evaluate(_nodes(model, r_int, R, e), v, zero, T, e, f_ref,
+                                 jacobian=jacobian)
+
+    ev = evaluate(r_int, T, R)
+    norm = np.linalg.norm(ev.residual)
+    for _ in range(max_iter):
+        if np.max(np.abs(ev.residual)) <= model.newton_tol:
+            return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
+        dx = model.grid.solve(ev.ab, -ev.residual)
+        step = 1.0
+        while True:
+            trial = _apply(model, dx, r_int, T, R, step)
+            ev_trial = evaluate(*trial)
+            norm_trial = np.linalg.norm(ev_trial.residual)
+            if (np.isfinite(norm_trial) and norm_trial < (1.0 - 1e-4 * step) * norm) or step < 1e-4:
+                break
+            step *= 0.5
+        (r_int, T, R), ev, norm = trial, ev_trial, norm_trial
+    raise SolverDivergedError(
+        f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
+        f"scaled residual {np.max(np.abs(ev.residual)):.3e} after {max_iter} Newton iterations")
+
+
+class _NotConverged(Exception):
+    def __init__(self, residual):
+        self.residual = residual
+
+
+def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):
+    """(a0, a2) of the velocity/acceleration formulas for a step h after ``cur``."""
+    if model.scheme == "bdf2" and prev is not None:
+        w = h / (cur.t - prev.t)
+        return (1.0 + 2.0 * w) / ((1.0 + w) * h), w * w / ((1.0 + w) * h)
+    return 1.0 / h, 0.0
+
+
+def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: dict) -> State:
+    """One implicit step of size h solved by Newton."""
+    t_new = cur.t + h
+    e = model.end.state(t_new, 1.0)[0]
+    a0, a2 = _coefficients(model, prev, cur, h)
+    f_ref = _force_ref(model, cur.T)
+    r_int = (cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1]
+    T, R = cur.T.copy(), cur.R
+
+    def kinematics(r):
+        v = a0 * (r - cur.r)
+        if a2:
+            v += a2 * (prev.r - cur.r)
+            acc = a0 * (v - cur.v) + a2 * (prev.v - cur.v)
+        else:
+            acc = a0 * (v - cur.v)
+        return v, acc
+
+    worst = math.inf
+    for _ in range(model.max_newton):
+        r = _nodes(model, r_int, R, e)
+        v, acc = kinematics(r)
+        ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0)
+        stats["newton"] += 1
+        worst = float(np.max(np.abs(ev.residual)))
+        if not np.isfinite(worst):
+            break
+        if worst <= model.newton_tol:
+            return State(t_new, r, v, acc, T, float(R))
+        r_int, T, R = _apply(model, model.grid.solve(ev.ab, -ev.residual), r_int, T, R)
+    raise _NotConverged(worst)
+
+
+def _advance(model: FDModel, prev: State | None, cur: State, h: float, stats: dict,
+             depth: int = 0) -> tuple[State, State]:
+    """Step of size h (halved recursively when Newton fails); returns (previous, new)."""
+    try:
+        return cur, _step(model, prev, cur, h, stats)
+    except _NotConverged as exc:
+        if depth >= model.max_halvings:
+            raise SolverDivergedError(
+                f"FD time step did not converge at t = {cur.t:.4f} s (step {h:.3e} s after "
+                f"{depth} halvings), L = {model.length_m:g} m, {model.grid.M} segments: "
+                f"scaled residual {exc.residual:.3e} after {model.max_newton} Newton "
+                f"iterations") from None
+    stats["halvings"] += 1
+    prev, mid = _advance(model, prev, cur, h / 2, stats, depth + 1)
+    return _advance(model, prev, mid, h / 2, stats, depth + 1)
+
+
+def line_state(model: FDModel, state: State) -> dict:
+    """Series values and snapshot fields of one solution.
+
+    Drag is evaluated at every node (one-sided tangents at the ends); F_t from
+    eq. 4.1 with trapezoidal weights.  Per-segment fields: tension T_{k+1/2};
+    |V_n| and f_t averaged from the two nodes; Re and C_d from that |V_n| at
+    the segment midpoint's altitude.
+    """
+    g, ph = model.grid, model.eq.physics
+    r, v = state.r, state.v
+    loads = model.eq.line_loads(r, v)
+    moment = drag_moment_Nm(r, loads.force, g.trap_weights)
+    drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
+    seg = np.linalg.norm(np.diff(r, axis=0), axis=1)
+    z_mid = 0.5 * (r[1:, 2] + r[:-1, 2])
+    vn_mid = 0.5 * (loads.vn_ms[1:] + loads.vn_ms[:-1])
+    re_mid = ph.air.density_kg_m3(z_mid) * np.maximum(vn_mid, 1e-30) * ph.diameter_m \
+        / ph.air.viscosity_Pa_s(z_mid)
+    return {
+        "ground_tension_N": float(state.T[0]),
+        "kite_tension_N": float(state.T[-1]),
+        "kite_radius_m": float(np.linalg.norm(r[-1])),
+        "drag_N": float(drag),
+        "drag_against_N": float(against) if against is not None else 0.0,
+        "max_strain": float(np.max(np.abs(seg / g.ds - 1.0))),
+        "position_m": r.copy(),
+        "velocity_ms": v.copy(),
+        "tension_N": state.T.copy(),
+        "vn_ms": vn_mid,
+        "reynolds": re_mid,
+        "cd": np.asarray(ph.drag.cd(re_mid), dtype=float),
+        "drag_N_m": 0.5 * (loads.force[1:] + loads.force[:-1]),
+    }
+
+
+def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
+        output_every: int = 1, config: dict | None = None, progress: bool = False,
+        initial: State | None = None) -> TetherRun:
+    """Static start (or ``initial``), then whole periods of the end motion.
+
+    The step is ``period / ceil(period / dt_s)``; series are recorded every
+    step, snapshots every ``output_every`` steps and at the end.
+    """
+    wall0 = time.perf_counter()
+    period = model.end.period_s
+    steps_per_period = max(1, math.ceil(period / dt_s - 1e-9))
+    h = period / steps_per_period
+    n_steps = (spinup_periods + average_periods) * steps_per_period
+    state = initial if initial is not None else static_equilibrium(model)
+    t0 = state.t
+    prev = None
+    stats = {"newton": 0, "halvings": 0}
+    times, rows, snap_t, snaps = [], [], [], []
+    bar = Progress(n_steps, f"FD L = {model.length_m:g} m", enabled=progress)
+    for i in range(n_steps + 1):
+        if i:
+            prev, state = _advance(model, prev, state, h, stats)
+            state.t = t0 + i * h
+            bar.update(i)
+        values = line_state(model, state)
+        times.append(state.t)
+        rows.append([values[k] for k in SERIES])
+        if i % output_every == 0 or i == n_steps:
+            snap_t.append(state.t)
+            snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+    bar.close()
+    series = np.asarray(rows)
+    return TetherRun(
+        solver="fd",
+        length_m=model.length_m,
+        period_s=period,
+        time_s=np.asarray(times),
+        series={k: series[:, j] for j, k in enumerate(SERIES)},
+        s_nodes_m=model.grid.s_m.copy(),
+        snapshot_time_s=np.asarray(snap_t),
+        snapshots={k: np.stack([s[k] for s in snaps]) for k in NODE_FIELDS + CELL_FIELDS},
+        average_start_s=t0 + spinup_periods * period,
+        config=config or {},
+        wall_s=time.perf_counter() - wall0,
+        extra={"segments": model.grid.M, "dt_s": h, "scheme": model.scheme,
+               "newton_iterations": stats["newton"], "halvings": stats["halvings"]},
+    )
+
+
+def simulate(cfg, length_m=None, progress=False) -> TetherRun:
+    """Run the configured case with the FD solver."""
+    model = build_model(cfg, length_m)
+    t = cfg["time"]
+    return run(model, t["dt_s"], t["spinup_periods"], t["average_periods"],
+               cfg["output"]["every"], config=cfg, progress=progress)
