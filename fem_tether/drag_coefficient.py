@@ -33,10 +33,16 @@ BELAN_TORDELLA_MAX_RE = 40.0
 #:   At Re = 40 steady computations agree (Dennis & Chang, J. Fluid Mech.
 #:   42:471 (1970): 1.522; Fornberg, J. Fluid Mech. 98:819 (1980): 1.498), and
 #:   the Belan-Tordella branch (1.495) joins the curve to within 1 %.
-#: * 200 to 8e5: Wieselsberger, NACA Report 121 (1922), the data behind the
-#:   classical C_D(Re) plot of Schlichting & Gersten, Boundary-Layer Theory,
-#:   Fig. 1.4: minimum 0.89 near Re = 2e3, subcritical maximum 1.18 near
-#:   1.7e5, drag crisis down to 0.31 at 5e5.
+#: * 200 to 5e3 and the drag crisis 2e5 to 8e5: Wieselsberger, NACA Report 121
+#:   (1922), the data behind the classical C_D(Re) plot of Schlichting &
+#:   Gersten, Boundary-Layer Theory, Fig. 1.4: minimum 0.89 near Re = 2e3,
+#:   drag crisis down to 0.31 at 5e5.
+#: * 1e4 to 1.7e5, the subcritical plateau: C_d = 1.2, the handbook value of
+#:   the smooth cylinder in low-turbulence flow (Hoerner, Fluid-Dynamic Drag,
+#:   1965, ch. 3; Zdravkovich, Flow Around Circular Cylinders vol. 1, 1997,
+#:   regime TrSL3; REFERENCE.md: "about 1.2 over 1e4-2e5"), reached from the
+#:   minimum through 1.1 at 1e4.  Single wind-tunnel series (Wieselsberger's
+#:   among them) scatter by about +-5 % around it.
 #: * 3.5e6 and 1e7: Roshko, J. Fluid Mech. 10:345 (1961): C_d rises from its
 #:   supercritical value to 0.7 at Re = 3.5e6 and then stays constant (measured
 #:   up to about 1e7).
@@ -48,10 +54,10 @@ EXPERIMENTAL_CURVE = np.array([
     (1e3, 0.95),
     (2e3, 0.89),
     (5e3, 0.94),
-    (1e4, 1.07),
-    (2e4, 1.15),
-    (1e5, 1.17),
-    (1.7e5, 1.18),
+    (1e4, 1.10),
+    (2e4, 1.20),
+    (1e5, 1.20),
+    (1.7e5, 1.20),
     (2e5, 1.10),
     (2.5e5, 0.99),
     (3e5, 0.89),

@@ -34,7 +34,6 @@ import numpy as np
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
 from fem_tether.fd.system import Grid, Physics, TetherFD, physics_from_config
-from fem_tether.loads import G_MS2
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
 from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
@@ -113,6 +112,9 @@ def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
         raise ConfigError(f"FD scheme {scheme!r}: must be one of {', '.join(map(repr, SCHEMES))}")
     tension_mode = cfg["winch"]["mode"] == "tension"
     radius = cfg["kite"]["radius_m"]
+    if tension_mode and cfg["tether"]["elasticity"] == "elastic":
+        raise ConfigError("[tether] elasticity = 'elastic': needs [winch] mode = 'prescribed' "
+                          "(as the FE solver); use an inextensible line in tension mode")
     if not tension_mode:
         inextensible = cfg["tether"]["elasticity"] == "inextensible"
         if radius <= 0.0 or (inextensible and radius >= length):
@@ -136,7 +138,7 @@ def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
 def _force_ref(model: FDModel, T) -> float:
     if model.tension_mode:
         return model.ground_tension_N
-    weight = model.eq.physics.linear_density_kg_m * G_MS2 * model.length_m
+    weight = -model.eq.physics.weight_N_m[2] * model.length_m
     return max(float(np.max(np.abs(T))), weight, 1.0)
 
 
@@ -164,9 +166,14 @@ def initial_guess(model: FDModel, t=0.0):
     e0 = model.end.state(t, 1.0)[0]
     if model.tension_mode:
         return g.s_m[:, None] * e0, np.full(g.M, model.ground_tension_N), model.length_m
-    w = model.eq.physics.weight_N_m[2] * -1.0
-    cat = Catenary(model.length_m, tuple(model.radius_m * e0), max(w, 1e-12))
+    ph = model.eq.physics
+    w = -ph.weight_N_m[2]
     s_mid = 0.5 * (g.s_m[1:] + g.s_m[:-1])
+    if model.radius_m >= model.length_m:          # elastic line stretched taut
+        stretch = model.radius_m / model.length_m
+        tension = max((stretch - 1.0) / ph.compliance_per_N, w * model.length_m, 1.0)
+        return stretch * g.s_m[:, None] * e0, np.full(g.M, tension), model.radius_m
+    cat = Catenary(model.length_m, tuple(model.radius_m * e0), max(w, 1e-12))
     return cat.position(g.s_m), cat.tension_N(s_mid), model.radius_m
 
 

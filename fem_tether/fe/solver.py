@@ -63,6 +63,7 @@ class State:
     kin: Kinematics               # nodal r, v, a, qdd (n_nodes, 3)
     T: np.ndarray                 # element tensions
     R: float                      # kite distance
+    ev: object = None             # the converged evaluation at t, if any
 
 
 def unit_mesh_from_config(cfg) -> np.ndarray:
@@ -188,6 +189,15 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=100) -> State:
         f"(scaled) after {max_iter} Newton iterations")
 
 
+def initial_state(model: FEModel, t=0.0) -> State:
+    """Static equilibrium, then velocities and accelerations made consistent
+    with the constraints (:meth:`TetherSystem.consistent_start`)."""
+    st = static_equilibrium(model, t)
+    v, qdd, T = model.system.consistent_start(st.kin.q, st.kin.v, st.R, model.end.state(t, 1.0),
+                                              model.ground_tension_N)
+    return State(t, Kinematics(st.kin.q, v, qdd, qdd.copy()), T, st.R)
+
+
 class _NotConverged(Exception):
     def __init__(self, residual):
         self.residual = residual
@@ -210,7 +220,7 @@ def _step(model: FEModel, state: State, h: float) -> State:
         if not np.isfinite(worst):
             break
         if worst <= model.newton_tol:
-            return State(t_new, kin, T, R)
+            return State(t_new, kin, T, R, ev)
         dr, dT, dR = sys_.unpack(sys_.newton_step(ev))
         r, T, R = r + dr, T + dT, R + dR
     raise _NotConverged(worst)
@@ -234,8 +244,9 @@ def line_state(model: FEModel, state: State) -> dict:
     """Series values and snapshot fields of one solution."""
     sys_ = model.system
     r, v = state.kin.q, state.kin.v
-    ev = sys_.evaluate(r, v, state.kin.qdd, state.T, state.R, model.end.state(state.t, 1.0)[0],
-                       model.ground_tension_N, model.radius_m, 1.0, jacobian=False)
+    ev = state.ev or sys_.evaluate(r, v, state.kin.qdd, state.T, state.R,
+                                   model.end.state(state.t, 1.0)[0], model.ground_tension_N,
+                                   model.radius_m, 1.0, jacobian=False)
     moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     return {
@@ -263,7 +274,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     steps_per_period = max(1, math.ceil(period / dt_s - 1e-9))
     h = period / steps_per_period
     n_steps = (spinup_periods + average_periods) * steps_per_period
-    state = static_equilibrium(model)
+    state = initial_state(model)
     times, rows, snap_t, snaps = [], [], [], []
     bar = Progress(n_steps, f"FE L = {model.length_m:g} m", enabled=progress)
     for i in range(n_steps + 1):

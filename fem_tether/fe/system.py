@@ -201,6 +201,76 @@ class TetherSystem:
         r_col[-3:] = -k_s * kite_dir
         return ab, r_col
 
+    def consistent_start(self, r, v_guess, R, kite, ground_tension_N):
+        """Velocities and accelerations at rest on the constraint manifold.
+
+        With ``B`` the constraint gradient (rows ``sgn tau_e``) and ``M`` the
+        lumped mass, solves two saddle-point problems on the line ``r``::
+
+            M v + B^T lam = M v_guess,   B v = 0                         (projection)
+            M qdd + B^T T = Q (f_t + w), B qdd = -(|Dv|^2 - (tau.Dv)^2)/|Dr|
+
+        with v_0 = qdd_0 = 0 at the winch and the kite end on its trajectory
+        (``kite = (e, e_dot, e_ddot)``; dR/dt = 0 at the start; d2R/dt2 closed by
+        T_0 = T_ground in tension mode).  Starting an index-3 integration from
+        such consistent data avoids the tension impulse an inconsistent velocity
+        field would cause.  Returns ``(v, qdd, T)``.
+        """
+        sp = self.spaces
+        e, e_dot, e_ddot = kite
+        dr = sp.D @ r
+        length = np.linalg.norm(dr, axis=1)
+        tau = dr / length[:, None]
+        ab = self._saddle(tau)
+        m = sp.mass_kg[:, None] * self.interior[:, None]
+
+        def solve(node_rhs, constraint_rhs, tension_closure):
+            b = np.zeros(self.n)
+            b.reshape(-1, 4)[:, :3] = node_rhs
+            b[3:-1:4] = constraint_rhs
+            r_col = np.zeros(self.n - 1)
+            r_col[-3:] = -e
+            y, zc = solve_banded((BAND, BAND), ab, np.column_stack([b[:-1], r_col]),
+                                 check_finite=False).T
+            if tension_closure:
+                b[-1] = ground_tension_N
+                x_last = (b[-1] - y[3]) / (-zc[3])
+            else:
+                x_last = 0.0
+            return self.unpack(np.append(y - zc * x_last, x_last))
+
+        node = m * v_guess
+        node[0], node[-1] = 0.0, R * e_dot
+        v, _, _ = solve(node, 0.0, False)
+        dv = sp.D @ v
+        curvature = (np.einsum("ij,ij->i", dv, dv) - np.einsum("ij,ij->i", tau, dv) ** 2) / length
+        v_mid = 0.5 * (v[1:] + v[:-1])
+        z = 0.5 * (r[1:, 2] + r[:-1, 2])
+        ph = self.physics
+        load = crossflow_drag(ph.wind.velocity_ms(z) - v_mid, tau, ph.air.density_kg_m3(z),
+                              ph.air.viscosity_Pa_s(z), ph.diameter_m, ph.drag, ph.skin_friction_cf)
+        node = (sp.Q @ (load.force + self.weight)) * self.interior[:, None]
+        node[-1] = R * e_ddot
+        qdd, T, _ = solve(node, -curvature, self.tension_mode)
+        return v, qdd, T
+
+    def _saddle(self, tau):
+        """Banded [M B^T; B 0] with identity rows for the two kinematic end nodes."""
+        n_el = self.spaces.n_elements
+        node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
+        sgn = np.array([-1.0, 1.0])
+        rT = sgn[None, :, None] * tau[:, None, :] * self.interior[node][:, :, None]
+        Tr = sgn[None, :, None] * tau[:, None, :]
+        mass = (self.spaces.mass_kg * self.interior)[:, None] * np.ones(3)
+        mass[0] = mass[-1] = 1.0
+        idx = self._idx
+        m = self.n - 1
+        return np.bincount(
+            np.concatenate([idx["rT"].ravel(), idx["Tr"].ravel(), idx["mass"].ravel()]),
+            weights=np.concatenate([rT.ravel(), Tr.ravel(), mass.ravel()]),
+            minlength=(2 * BAND + 1) * m,
+        ).reshape(2 * BAND + 1, m)
+
     def newton_step(self, ev: Evaluation) -> np.ndarray:
         """Solve J dx = -residual by a banded LU bordered with the R row/column.
 

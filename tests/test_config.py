@@ -1,0 +1,51 @@
+"""Configuration: defaults, TOML round trip, one-line errors naming the key."""
+
+import tomllib
+
+import pytest
+
+from fem_tether.config import ConfigError, defaults, load_config, to_toml
+
+
+def test_defaults_are_the_seed_case():
+    cfg = load_config()
+    assert cfg["tether"]["length_m"] == 1000.0 and cfg["tether"]["diameter_m"] == 0.011
+    assert cfg["tether"]["linear_density_kg_m"] == 0.062 and cfg["tether"]["lines"] == 2
+    assert cfg["winch"] == {"mode": "tension", "ground_tension_N": 150000.0}
+    assert cfg["kite"]["speed_ms"] == 80.0 and cfg["kite"]["efficiency"] == 28.0
+
+
+def test_toml_round_trip(tmp_path):
+    text = to_toml(defaults())
+    assert tomllib.loads(text) == defaults()
+    path = tmp_path / "c.toml"
+    path.write_text('[tether]\nlength_m = 3000\n[wind]\nprofile = "none"\n')
+    cfg = load_config(path)
+    assert cfg["tether"]["length_m"] == 3000.0 and isinstance(cfg["tether"]["length_m"], float)
+    assert cfg["wind"]["profile"] == "none" and cfg["air"]["model"] == "isa"
+
+
+@pytest.mark.parametrize("overrides, match", [
+    ({"tether": {"lenght_m": 1.0}}, r"\[tether\] lenght_m: unknown key"),
+    ({"tehter": {}}, r"\[tehter\]: unknown section"),
+    ({"tether": {"length_m": "long"}}, r"\[tether\] length_m = 'long': expected a number"),
+    ({"tether": {"length_m": -5.0}}, r"\[tether\] length_m = -5.0: must be > 0"),
+    ({"tether": {"lines": 1.5}}, r"\[tether\] lines = 1.5: expected an integer"),
+    ({"tether": {"lines": True}}, r"\[tether\] lines = True: expected an integer"),
+    ({"air": {"model": "mars"}}, r"\[air\] model = 'mars': must be one of 'isa', 'constant'"),
+    ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0.0, 90.0\)"),
+    ({"time": {"rho_inf": 1.5}}, r"\[time\] rho_inf = 1.5"),
+])
+def test_bad_values_name_the_key(overrides, match):
+    with pytest.raises(ConfigError, match=match) as info:
+        load_config(overrides=overrides)
+    assert "\n" not in str(info.value)
+
+
+def test_bad_files(tmp_path):
+    with pytest.raises(ConfigError, match="no such file"):
+        load_config(tmp_path / "missing.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[tether\nlength_m = 1")
+    with pytest.raises(ConfigError, match="invalid TOML"):
+        load_config(bad)

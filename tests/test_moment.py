@@ -1,0 +1,25 @@
+"""Eq. 4.1: the drag moment and its equivalent force at the kite."""
+
+import numpy as np
+import pytest
+
+from fem_tether.moment import drag_moment_Nm, equivalent_force
+
+
+def test_point_force_at_the_kite_is_recovered():
+    r = np.array([[0.0, 0.0, 100.0]])
+    f = np.array([[0.0, 50.0, 0.0]])
+    m = drag_moment_Nm(r, f, np.array([1.0]))
+    drag, against = equivalent_force(m, r[0], np.array([0.0, -10.0, 0.0]))
+    assert drag == pytest.approx(50.0)
+    assert against == pytest.approx(50.0)  # the force points along +y, the kite moves -y
+
+
+def test_uniform_load_on_a_rod_acts_at_half_length_equivalent():
+    s = np.linspace(0, 10, 100001)
+    w = np.full_like(s, s[1])
+    w[[0, -1]] *= 0.5
+    r = s[:, None] * np.array([1.0, 0, 0])
+    f = np.tile([0.0, 2.0, 0.0], (s.size, 1))
+    drag, _ = equivalent_force(drag_moment_Nm(r, f, w), r[-1])
+    assert drag == pytest.approx(2.0 * 10 / 2, rel=1e-8)
