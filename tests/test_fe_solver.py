@@ -158,14 +158,13 @@ def test_compliant_strain_equals_tension_over_EA(quiet_cfg):
 
 
 def test_stiff_undamped_elastic_line_reproduces_inextensible(quiet_cfg):
-    """EA -> inf with no damping gives the inextensible result (1e-6 over the
-    first 20 steps; a nearly taut line with a prescribed end snaps in and out
-    later, and such motion amplifies any difference, so later steps are not
-    compared)."""
-    rigid = _prescribed(quiet_cfg, 499.0)
-    stiff = _prescribed(quiet_cfg, 499.0, elasticity="elastic", axial_stiffness_N=1e18)
+    """EA -> inf with no damping: period means equal the inextensible ones (1e-5).
+
+    (EA = inf is the inextensible code path itself: compliance 0.)"""
+    rigid = _prescribed(quiet_cfg, 480.0)
+    stiff = _prescribed(quiet_cfg, 480.0, elasticity="elastic", axial_stiffness_N=1e18)
     for name in ("drag_N", "kite_tension_N", "ground_tension_N"):
-        assert np.allclose(stiff.series[name][:20], rigid.series[name][:20], rtol=1e-6)
+        assert stiff.mean(name) == pytest.approx(rigid.mean(name), rel=1e-5)
 
 
 def test_kelvin_voigt_damping_dissipates(quiet_cfg):
@@ -214,3 +213,34 @@ def test_divergence_reports_time_length_and_residual(quiet_cfg):
     quiet_cfg["time"].update(max_newton=1, max_halvings=1, dt_s=0.5)
     with pytest.raises(SolverDivergedError, match=r"t = .* s .*L = 1000 m.*residual"):
         simulate(quiet_cfg)
+
+
+# stability and convergence of the dynamic solution ------------------------------------
+def test_no_spurious_tension_oscillation():
+    """P1/P0 is stable: along the line the tension has no element-to-element
+    (checkerboard) mode, and in time no step-to-step flip."""
+    cfg = load_config(overrides={"time": {"average_periods": 1}, "output": {"every": 1}})
+    run = simulate(cfg)
+    T = run.snapshots["tension_N"]
+    wiggle_s = np.max(np.abs(np.diff(T, 2, axis=1))) / np.max(np.ptp(T, axis=1))
+    d2 = np.diff(run.series["kite_tension_N"], 2)
+    flips = np.mean(np.sign(d2[1:]) != np.sign(d2[:-1]))   # 1.0 for a step-to-step flip
+    print(f"\n along s: second difference / range {wiggle_s:.3f}; in time: "
+          f"sign changes of the second difference in {flips:.0%} of steps")
+    assert wiggle_s < 0.05 and flips < 0.4
+
+
+def test_mean_drag_converges_under_mesh_refinement(quiet_cfg):
+    """3000 m, fixed dt: |F_t(n) - F_t(80)| falls ~4x per doubling (printed)."""
+    quiet_cfg["tether"]["length_m"] = 3000.0
+    quiet_cfg["time"].update(dt_s=0.05, average_periods=1)
+    drags = {}
+    for n in (10, 20, 40, 80):
+        quiet_cfg["fe"]["elements"] = n
+        drags[n] = simulate(quiet_cfg).mean("drag_N")
+    errors = np.array([abs(drags[n] / drags[80] - 1) for n in (10, 20, 40)])
+    print("\n elements  mean F_t [N]  |rel. diff to 80|")
+    for n, e in zip((10, 20, 40), errors):
+        print(f" {n:8d}  {drags[n]:11.1f}  {e:.2e}")
+    assert np.all(np.log2(errors[:-1] / errors[1:]) > 1.5)
+    assert errors[-1] < 1e-3

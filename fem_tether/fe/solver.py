@@ -193,8 +193,8 @@ def initial_state(model: FEModel, t=0.0) -> State:
     """Static equilibrium, then velocities and accelerations made consistent
     with the constraints (:meth:`TetherSystem.consistent_start`)."""
     st = static_equilibrium(model, t)
-    v, qdd, T = model.system.consistent_start(st.kin.q, st.kin.v, st.R, model.end.state(t, 1.0),
-                                              model.ground_tension_N)
+    v, qdd, T = model.system.consistent_start(st.kin.q, st.kin.v, st.T, st.R,
+                                              model.end.state(t, 1.0), model.ground_tension_N)
     return State(t, Kinematics(st.kin.q, v, qdd, qdd.copy()), T, st.R)
 
 

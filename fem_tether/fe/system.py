@@ -201,7 +201,7 @@ class TetherSystem:
         r_col[-3:] = -k_s * kite_dir
         return ab, r_col
 
-    def consistent_start(self, r, v_guess, R, kite, ground_tension_N):
+    def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N):
         """Velocities and accelerations at rest on the constraint manifold.
 
         With ``B`` the constraint gradient (rows ``sgn tau_e``) and ``M`` the
@@ -214,7 +214,10 @@ class TetherSystem:
         (``kite = (e, e_dot, e_ddot)``; dR/dt = 0 at the start; d2R/dt2 closed by
         T_0 = T_ground in tension mode).  Starting an index-3 integration from
         such consistent data avoids the tension impulse an inconsistent velocity
-        field would cause.  Returns ``(v, qdd, T)``.
+        field would cause.  An elastic line starts with the same projected
+        velocities (no strain rate) but keeps the tension ``T`` of its strain;
+        its accelerations follow from ``M qdd = Q (f_t + w) - D^T (T tau)``.
+        Returns ``(v, qdd, T)``.
         """
         sp = self.spaces
         e, e_dot, e_ddot = kite
@@ -239,6 +242,7 @@ class TetherSystem:
                 x_last = 0.0
             return self.unpack(np.append(y - zc * x_last, x_last))
 
+        ph = self.physics
         node = m * v_guess
         node[0], node[-1] = 0.0, R * e_dot
         v, _, _ = solve(node, 0.0, False)
@@ -246,10 +250,14 @@ class TetherSystem:
         curvature = (np.einsum("ij,ij->i", dv, dv) - np.einsum("ij,ij->i", tau, dv) ** 2) / length
         v_mid = 0.5 * (v[1:] + v[:-1])
         z = 0.5 * (r[1:, 2] + r[:-1, 2])
-        ph = self.physics
         load = crossflow_drag(ph.wind.velocity_ms(z) - v_mid, tau, ph.air.density_kg_m3(z),
                               ph.air.viscosity_Pa_s(z), ph.diameter_m, ph.drag, ph.skin_friction_cf)
         node = (sp.Q @ (load.force + self.weight)) * self.interior[:, None]
+        if ph.compliance_per_N:
+            qdd = (node - sp.D.T @ (T[:, None] * tau)) * self.interior[:, None]
+            qdd[1:-1] /= sp.mass_kg[1:-1, None]
+            qdd[-1] = R * e_ddot
+            return v, qdd, T
         node[-1] = R * e_ddot
         qdd, T, _ = solve(node, -curvature, self.tension_mode)
         return v, qdd, T
