@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether import __version__, atmosphere, kite
+from fem_tether import __version__, kite
 from fem_tether.config import ConfigError, load_config, to_toml
 from fem_tether.fe.integrator import SchemeError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
@@ -131,45 +131,19 @@ def cmd_curves(args):
     return 0
 
 
-def simulation_summary(run, cfg) -> dict:
-    """Period means, straight-line comparison and G_e of one tether run."""
-    from fem_tether import straight
-
-    means = run.means()
-    kite_z = float(np.mean(run.snapshots["position_m"][:, -1, 2]))
-    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(kite_z)))
-    k = cfg["kite"]
-    ge = kite.global_efficiency(means["mean_drag_N"], rho, k["area_m2"], k["cl"], k["efficiency"],
-                                k["speed_ms"], cfg["tether"]["lines"])
-    return {
-        "solver": run.solver,
-        "length_m": run.length_m,
-        "mean_drag_N": means["mean_drag_N"],
-        "mean_drag_against_N": means["mean_drag_against_N"],
-        "mean_ground_tension_N": means["mean_ground_tension_N"],
-        "mean_kite_tension_N": means["mean_kite_tension_N"],
-        "mean_kite_radius_m": means["mean_kite_radius_m"],
-        "max_strain": float(np.max(run.series["max_strain"])),
-        "straight_drag_N": straight.from_config(cfg, length_m=run.length_m).drag_N,
-        "ge": float(ge),
-        "periods": run.periods,
-        "period_s": run.period_s,
-        "wall_s": run.wall_s,
-        **run.extra,
-    }
-
-
 def cmd_simulate(args):
     from fem_tether.fe.solver import simulate
     from fem_tether.output import write_paraview, write_run_hdf5
+    from fem_tether.summary import run_summary
 
     cfg = _config(args, args.length)
     run = simulate(cfg, progress=not args.json)
-    summary = simulation_summary(run, cfg)
+    summary = run_summary(run, cfg)
     if args.out:
         out = Path(args.out)
         stem = f"fe_L{run.length_m:g}"
-        summary["hdf5"] = str(write_run_hdf5(run, out / f"{stem}.h5"))
+        summary["hdf5"] = str(write_run_hdf5(run, out / f"{stem}.h5", extra_attrs={
+            "ge": summary["ge"], "straight_drag_N": summary["straight_drag_N"]}))
         summary["paraview"] = str(write_paraview(run, out / stem))
     if args.json:
         _print_json(summary)

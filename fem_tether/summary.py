@@ -1,0 +1,38 @@
+"""Post-processing of one tether run: period means, G_e, straight-line comparison.
+
+G_e = L / (D_k + lines F_t) (seed 000 eq. 5.1) with the air density at the
+kite's mean altitude over the stored snapshots, and the straight-line F_t of
+the same case (seed 000 §4.1) for comparison.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fem_tether import atmosphere, kite, straight
+
+
+def run_summary(run, cfg) -> dict:
+    """Period means, straight-line comparison and G_e of one tether run."""
+    means = run.means()
+    kite_z = float(np.mean(run.snapshots["position_m"][:, -1, 2]))
+    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(kite_z)))
+    k = cfg["kite"]
+    ge = kite.global_efficiency(means["mean_drag_N"], rho, k["area_m2"], k["cl"], k["efficiency"],
+                                k["speed_ms"], cfg["tether"]["lines"])
+    return {
+        "solver": run.solver,
+        "length_m": run.length_m,
+        "mean_drag_N": means["mean_drag_N"],
+        "mean_drag_against_N": means["mean_drag_against_N"],
+        "mean_ground_tension_N": means["mean_ground_tension_N"],
+        "mean_kite_tension_N": means["mean_kite_tension_N"],
+        "mean_kite_radius_m": means["mean_kite_radius_m"],
+        "max_strain": float(np.max(run.series["max_strain"])),
+        "straight_drag_N": straight.from_config(cfg, length_m=run.length_m).drag_N,
+        "ge": float(ge),
+        "periods": run.periods,
+        "period_s": run.period_s,
+        "wall_s": run.wall_s,
+        **run.extra,
+    }
