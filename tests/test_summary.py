@@ -15,7 +15,7 @@ def test_summary_of_a_short_run():
     s = run_summary(run, cfg)
     assert s["mean_drag_N"] == pytest.approx(run.mean("drag_N"))
     # G_e = L / (L/E + 2 F_t) with L = 1/2 rho A C_l V^2 at the kite's altitude
-    lift = 0.5 * s["mean_drag_N"] / (1.0 / s["ge"] - 1.0 / 28.0)
+    lift = 2.0 * s["mean_drag_N"] / (1.0 / s["ge"] - 1.0 / 28.0)
     rho = lift / (0.5 * 120.0 * 1.0 * 80.0**2)
     assert 1.15 < rho < 1.20  # ISA around the 500 m line's kite altitude (~350 m)
     assert s["ge"] < 28.0 and s["straight_drag_N"] > 0
