@@ -132,6 +132,11 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "max_newton": Key(20, "Newton iterations before a step is halved", at_least(1)),
         "max_halvings": Key(6, "step halvings before the solve gives up", at_least(0)),
     },
+    "crosscheck": {
+        "drag_rel": Key(0.02, "FE/FD tolerance on mean F_t (relative)", positive),
+        "tension_rel": Key(0.02, "FE/FD tolerance on mean ground and kite tension (relative)", positive),
+        "shape_rel": Key(0.01, "FE/FD tolerance on the largest distance between the lines / L", positive),
+    },
     "output": {
         "every": Key(5, "time steps between stored snapshots of the whole line", at_least(1)),
     },

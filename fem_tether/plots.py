@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+import numpy as np  # noqa: E402
 
+from .aep import AepByLength  # noqa: E402
 from .kite import ZONES, CharacteristicCurves, PowerCurves  # noqa: E402
+from .power import SEED_GE, SEED_LENGTHS_M, CycleCurves  # noqa: E402
 
 
 def save_atomically(fig, path) -> Path:
@@ -68,6 +72,95 @@ def plot_characteristic_curves(kitegen: CharacteristicCurves, loyd: PowerCurves,
     text = (f"cut-in {s.cut_in_ms:.2f} m/s, full force {s.full_force_ms:.2f} m/s, "
             f"full power {s.full_power_ms:.2f} m/s")
     fig.suptitle(text if title is None else f"{title}\n{text}", fontsize=10)
+    try:
+        return save_atomically(fig, path)
+    finally:
+        plt.close(fig)
+
+
+#: seed 000's colours: straight lines dashed blue squares, flexible ropes red circles (Figs. 5.1, 5.6)
+CASE_STYLE = {"straight": dict(color="tab:blue", ls="--", marker="s"),
+              "flexible": dict(color="tab:red", ls="-", marker="o")}
+
+
+def _case_style(case: str, i: int) -> dict:
+    return CASE_STYLE.get(case, dict(color=f"C{i + 2}", ls="-", marker="^"))
+
+
+def _plot_by_length(lengths_m, values_by_case, scale, ylabel, title, path, reference=None) -> Path:
+    """Values against cable length, one line per case; ``reference`` adds seed points."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    for i, (case, values) in enumerate(values_by_case.items()):
+        ax.plot(lengths_m, np.asarray(values) * scale, label=case, ms=6, **_case_style(case, i))
+    for i, (case, (ref_lengths, ref_values)) in enumerate((reference or {}).items()):
+        style = _case_style(case, i)
+        ax.plot(ref_lengths, np.asarray(ref_values) * scale, ls="none", marker=style["marker"],
+                ms=11, mfc="none", mec=style["color"], mew=1.2, label=f"{case}, seed 000 Tab. 5.1")
+    ax.set_xlabel("cable length $L$ [m]")
+    ax.set_ylabel(ylabel)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title(title, fontsize=10)
+    try:
+        return save_atomically(fig, path)
+    finally:
+        plt.close(fig)
+
+
+def plot_drag(lengths_m, drag_by_case: Mapping[str, np.ndarray], path) -> Path:
+    """Drag F_t of one line lumped at the kite (eq. 4.1) against L, e.g. straight vs flexible (Fig. 4.43)."""
+    return _plot_by_length(lengths_m, drag_by_case, 1e-3, "line drag $F_t$ per line [kN]",
+                           "cable drag lumped at the kite (seed 000 eq. 4.1, Fig. 4.43)", path)
+
+
+def plot_ge(lengths_m, ge_by_case: Mapping[str, np.ndarray], path,
+            reference: Mapping[str, np.ndarray] | None = SEED_GE) -> Path:
+    """Global efficiency G_e (eq. 5.1) against L; ``reference``: seed Tab. 5.1 at its lengths (hollow)."""
+    ref = {case: (SEED_LENGTHS_M, ge) for case, ge in (reference or {}).items()}
+    return _plot_by_length(lengths_m, ge_by_case, 1.0, "global efficiency $G_e$",
+                           "$G_e = L/(D_k + 2F_t)$ (seed 000 eq. 5.1, Fig. 5.1)", path, ref)
+
+
+def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
+    """AEP (eq. 5.2) against L per case, each case's best length starred (seed 000 Fig. 5.6)."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    for i, (case, r) in enumerate(results.items()):
+        style = _case_style(case, i)
+        ax.plot(r.length_m, r.aep_MWh * 1e-3, ms=6, **style,
+                label=f"{case}: best {r.best_length_m:.0f} m, CF {r.capacity_factor.max():.2f}")
+        best = np.argmax(r.aep_MWh)
+        ax.plot(r.length_m[best], r.aep_MWh[best] * 1e-3, "*", ms=16, color=style["color"],
+                mec="k", mew=0.6, zorder=5)
+    ax.set_xlabel("cable length $L$ [m]")
+    ax.set_ylabel("annual energy production [GWh]")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title("AEP with the cycle-mean power curve (seed 000 eq. 5.2, Fig. 5.6)", fontsize=10)
+    try:
+        return save_atomically(fig, path)
+    finally:
+        plt.close(fig)
+
+
+def plot_power_curves(curves_by_label: Mapping[str, CycleCurves], path) -> Path:
+    """Active-phase (dashed) and cycle-mean (solid) power against wind speed (seed 000 Figs. 5.4–5.5)."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    for i, (label, c) in enumerate(curves_by_label.items()):
+        color = f"C{i}"
+        ax.plot(c.active.wind_ms, c.active.power_W * 1e-6, "--", color=color, lw=1.2)
+        ax.plot(c.active.wind_ms, c.power_W * 1e-6, "-", color=color, lw=2, label=label)
+    ax.plot([], [], "--", color="0.4", lw=1.2, label="active phase")
+    ax.plot([], [], "-", color="0.4", lw=2, label="cycle mean")
+    ax.set_xlabel("wind speed $V_w$ [m/s]")
+    ax.set_ylabel("power [MW]")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right")
+    ax.set_title("power curves: active phase and cycle mean with side-slip recovery",
+                 fontsize=10)
     try:
         return save_atomically(fig, path)
     finally:

@@ -1,0 +1,102 @@
+"""FE <-> FD cross-check: two independent discretisations must agree.
+
+Both solvers run the same case; the check compares period means of F_t
+(eq. 4.1), the ground and the kite-end tension (relative differences), and the
+tether shape: at every FE snapshot time the FD line is interpolated to the
+same instant (linearly in time) and both lines to common arc lengths
+(linearly in s); the largest distance between them, divided by L, is the
+shape difference.  Tolerances come from ``[crosscheck]``: a difference within
+its tolerance passes, and the check is ``ok`` only if all pass.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether.results import TetherRun
+
+QUANTITIES = (("drag", "drag_N"), ("ground_tension", "ground_tension_N"),
+              ("kite_tension", "kite_tension_N"))
+
+
+@dataclass
+class CrossCheck:
+    """Outcome of one FE/FD comparison."""
+
+    length_m: float
+    fe: dict                # period means of the FE run
+    fd: dict                # period means of the FD run
+    rel_diff: dict          # drag, ground_tension, kite_tension, shape
+    tolerances: dict
+    ok: bool
+
+    def as_dict(self) -> dict:
+        return {
+            "length_m": self.length_m,
+            "drag_fe_N": self.fe["drag_N"], "drag_fd_N": self.fd["drag_N"],
+            "ground_tension_fe_N": self.fe["ground_tension_N"],
+            "ground_tension_fd_N": self.fd["ground_tension_N"],
+            "kite_tension_fe_N": self.fe["kite_tension_N"],
+            "kite_tension_fd_N": self.fd["kite_tension_N"],
+            "rel_diff": dict(self.rel_diff),
+            "tolerances": dict(self.tolerances),
+            "ok": self.ok,
+        }
+
+
+def _line_at(run: TetherRun, t):
+    """Node positions of ``run`` at time t, linear between snapshots."""
+    times = run.snapshot_time_s
+    pos = run.snapshots["position_m"]
+    j = int(np.clip(np.searchsorted(times, t), 1, times.size - 1))
+    w = (t - times[j - 1]) / (times[j] - times[j - 1])
+    return (1.0 - w) * pos[j - 1] + w * pos[j]
+
+
+def _on_grid(s_nodes, pos, s):
+    return np.column_stack([np.interp(s, s_nodes, pos[:, k]) for k in range(3)])
+
+
+def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
+    """max over a's snapshot times and common s of |r_a - r_b| / L."""
+    s = np.linspace(0.0, a.length_m, samples)
+    t_end = min(a.snapshot_time_s[-1], b.snapshot_time_s[-1])
+    worst = 0.0
+    for t, pos in zip(a.snapshot_time_s, a.snapshots["position_m"]):
+        if t > t_end + 1e-9:
+            break
+        ra = _on_grid(a.s_nodes_m, pos, s)
+        rb = _on_grid(b.s_nodes_m, _line_at(b, t), s)
+        worst = max(worst, float(np.max(np.linalg.norm(ra - rb, axis=1))))
+    return worst / a.length_m
+
+
+def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
+    """Compare two runs of the same case against ``tolerances``.
+
+    ``tolerances``: ``drag_rel``, ``tension_rel`` (both relative), ``shape_rel``
+    (fraction of L).
+    """
+    fe_means = {key: fe.mean(key) for _, key in QUANTITIES}
+    fd_means = {key: fd.mean(key) for _, key in QUANTITIES}
+    rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
+    rel["shape"] = shape_difference(fe, fd)
+    limits = {"drag": tolerances["drag_rel"], "ground_tension": tolerances["tension_rel"],
+              "kite_tension": tolerances["tension_rel"], "shape": tolerances["shape_rel"]}
+    ok = all(rel[k] <= limits[k] for k in limits)
+    return CrossCheck(fe.length_m, fe_means, fd_means, rel, dict(tolerances), ok)
+
+
+def crosscheck(cfg, length_m=None, progress=False):
+    """Run the FE and the FD solver on the configured case and compare them.
+
+    Returns ``(CrossCheck, fe_run, fd_run)``.
+    """
+    from fem_tether import fd
+    from fem_tether.fe.solver import simulate
+
+    fe_run = simulate(cfg, length_m, progress=progress)
+    fd_run = fd.simulate(cfg, length_m, progress=progress)
+    return compare(fe_run, fd_run, cfg["crosscheck"]), fe_run, fd_run

@@ -1,0 +1,160 @@
+"""Wind resource per altitude band: default Weibull on the De Bilt log law, validated CSV histograms."""
+
+import numpy as np
+import pytest
+from scipy.special import gamma
+
+from fem_tether.power import SEED_LENGTHS_M
+from fem_tether.resource import (
+    ANNUAL_DE_BILT,
+    COLUMNS,
+    ResourceError,
+    read_resource_csv,
+    weibull_probabilities,
+    weibull_resource,
+    write_resource_csv,
+)
+from fem_tether.wind import NoWind, PowerWind
+
+THETA = np.radians(45.0)
+SEED_BANDS = [(200, 500), (500, 800), (800, 1100), (1100, 1400), (1400, 1700), (1700, 2000),
+              (2000, 2300)]
+
+
+def test_default_bands_and_bins():
+    r = weibull_resource()
+    assert [(b.low_m, b.high_m) for b in r.bands] == SEED_BANDS
+    band = r.bands[0]
+    assert band.edges_ms[0] == 0.0 and band.edges_ms[-1] == 40.0
+    assert np.diff(band.edges_ms) == pytest.approx(0.5)
+    for b in r.bands:       # bins + remainder hold all the probability
+        assert np.all(b.probability >= 0)
+        assert b.probability.sum() + b.remainder == pytest.approx(1.0, abs=1e-12)
+        assert 0 < b.remainder < 2e-3
+
+
+@pytest.mark.parametrize("k", [1.5, 2.0, 2.12, 3.0])
+def test_weibull_mean_recovered_from_the_bins(k):
+    """Means follow the De Bilt annual log law at the band centres (10.07 m/s at 350 m)."""
+    r = weibull_resource(weibull_k=k, max_speed_ms=80.0)
+    for b in r.bands:
+        target = float(ANNUAL_DE_BILT.speed_ms(b.centre_m))
+        assert b.mean_ms == pytest.approx(target, rel=1e-3)
+    assert r.bands[0].mean_ms == pytest.approx(10.07, abs=0.01)
+
+
+def test_weibull_probabilities_by_hand():
+    k, mean = 2.0, 10.0
+    scale = mean / gamma(1.5)
+    p = weibull_probabilities([0.0, 12.0, np.inf], mean, k)
+    assert p[1] == pytest.approx(np.exp(-(12 / scale) ** 2), rel=1e-14)
+    assert p.sum() == pytest.approx(1.0, abs=1e-15)
+
+
+def test_weibull_needs_positive_mean_and_shape():
+    with pytest.raises(ResourceError, match="mean wind 0.0 m/s at 350 m"):
+        weibull_resource(NoWind())
+    with pytest.raises(ResourceError, match="shape k = 0"):
+        weibull_resource(weibull_k=0)
+    power = weibull_resource(PowerWind(9.5, 20.0, 0.2), band_bottom_m=100, band_top_m=700)
+    assert len(power.bands) == 2 and power.bands[0].centre_m == 250.0
+
+
+def test_band_for_length_uses_the_mean_kite_altitude():
+    """Seed 000 §5: L = 500, 919, …, 3000 m ↔ bands 200–500, 500–800, …, 2000–2300 m."""
+    r = weibull_resource()
+    assert [(r.band_for_length(L, THETA).low_m, r.band_for_length(L, THETA).high_m)
+            for L in SEED_LENGTHS_M] == SEED_BANDS
+    assert r.band_at_altitude(500.0).low_m == 200.0      # shared boundary: the lower band
+    with pytest.raises(ResourceError, match="altitude 2475 m is in no band"):
+        r.band_for_length(3500.0, THETA)
+
+
+def test_csv_round_trip(tmp_path):
+    resource = weibull_resource(weibull_k=2.12, max_speed_ms=80.0)
+    path = write_resource_csv(resource, tmp_path / "wind.csv")
+    assert path.read_text().splitlines()[0] == ",".join(COLUMNS)
+    back = read_resource_csv(path)
+    assert len(back.bands) == len(resource.bands) and back.source == str(path)
+    for a, b in zip(resource.bands, back.bands):
+        assert (a.low_m, a.high_m) == (b.low_m, b.high_m)
+        np.testing.assert_array_equal(a.edges_ms, b.edges_ms)
+        np.testing.assert_array_equal(a.probability, b.probability)
+
+
+def test_write_refuses_a_band_with_missing_mass(tmp_path):
+    with pytest.raises(ResourceError, match="band 200–500 m leaves probability 4.17e-06 "
+                                            "outside its bins \\(above 40 m/s\\)"):
+        write_resource_csv(weibull_resource(), tmp_path / "wind.csv")
+
+
+HEADER = "band_low_m,band_high_m,bin_low_ms,bin_high_ms,probability"
+GOOD = [HEADER,
+        "200,500,0,5,0.25", "200,500,5,10,0.5", "200,500,10,20,0.25",
+        "500,800,0,10,0.4", "500,800,10,20,0.6"]
+
+
+def _write(tmp_path, lines):
+    path = tmp_path / "wind.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_read_good_csv(tmp_path):
+    # columns in any order, surrounding blanks in the header, bands in any order
+    lines = ["probability, bin_low_ms ,bin_high_ms,band_low_m,band_high_m",
+             "0.4,0,10,500,800", "0.6,10,20,500,800",
+             "0.25,0,5,200,500", "0.5,5,10,200,500", "0.25,10,20,200,500"]
+    r = read_resource_csv(_write(tmp_path, lines))
+    assert [(b.low_m, b.high_m) for b in r.bands] == [(200, 500), (500, 800)]
+    np.testing.assert_array_equal(r.bands[0].edges_ms, [0, 5, 10, 20])
+    np.testing.assert_array_equal(r.bands[0].probability, [0.25, 0.5, 0.25])
+    assert r.bands[1].remainder == pytest.approx(0.0, abs=1e-15)
+
+
+def _with(line_no, text):
+    """GOOD with its line ``line_no`` (1-based) replaced."""
+    lines = list(GOOD)
+    lines[line_no - 1] = text
+    return lines
+
+
+@pytest.mark.parametrize("lines, message", [
+    (_with(3, "200,500,5,10,abc"), "wind.csv line 3: probability 'abc' is not a number"),
+    (_with(3, "200,500,5,10,"), "wind.csv line 3: probability '' is not a number"),
+    (_with(3, "200,500,5,nan,0.5"), "wind.csv line 3: bin_high_ms 'nan' is not finite"),
+    (_with(4, "200,500,10,20,-0.1"), "wind.csv line 4: probability -0.1 is negative"),
+    (_with(2, "200,500,-1,5,0.25"), "wind.csv line 2: bin_low_ms -1 is negative"),
+    (_with(3, "200,500,5,4,0.5"), "wind.csv line 3: bin 5–4 m/s: bin_high_ms must exceed"),
+    (_with(3, "200,500,6,10,0.5"), "wind.csv line 3: bin starts at 6 m/s but the previous bin "
+                                   "ends at 5 m/s"),
+    (_with(4, "200,500,10,20,0.2"), "wind.csv lines 2–4: band 200–500 m probabilities sum to "
+                                    "0.95, not 1"),
+    (_with(5, "400,800,0,10,0.4")[:5] + ["400,800,10,20,0.6"],
+     "wind.csv line 5: band 400–800 m overlaps band 200–500 m"),
+    (GOOD[:3] + GOOD[4:5] + GOOD[3:4] + GOOD[5:],
+     "wind.csv line 5: band 200–500 m resumes after another band"),
+    (_with(2, "500,200,0,5,0.25"), "wind.csv line 2: band 500–200 m: band_high_m must exceed"),
+    (_with(3, "200,500,5,10"), "wind.csv line 3: expected 5 fields"),
+    (_with(3, "200,500,5,10,0.5,7"), "wind.csv line 3: expected 5 fields"),
+    (_with(1, "band_low_m,band_high_m,bin_low_ms,bin_high_ms"),
+     "wind.csv line 1: missing column\\(s\\) probability"),
+    (_with(1, HEADER + ",notes"), "wind.csv line 1: unknown column\\(s\\) notes"),
+    ([HEADER], "wind.csv: no rows after the header"),
+    ([""], "wind.csv line 1: missing column"),
+])
+def test_csv_errors_name_the_row(tmp_path, lines, message):
+    with pytest.raises(ResourceError, match="^" + message):
+        read_resource_csv(_write(tmp_path, lines))
+
+
+def test_sum_tolerance_is_1e_6(tmp_path):
+    near = _with(4, "200,500,10,20,0.2500009")
+    assert read_resource_csv(_write(tmp_path, near)).bands[0].remainder == pytest.approx(-9e-7)
+    with pytest.raises(ResourceError, match="sum to 1.0000011"):
+        read_resource_csv(_write(tmp_path, _with(4, "200,500,10,20,0.2500011")))
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(ResourceError, match="cannot read"):
+        read_resource_csv(tmp_path / "nope.csv")
