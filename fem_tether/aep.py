@@ -75,7 +75,8 @@ def aep_by_length(cfg, lengths_m, global_efficiency, mean_phi_deg, resource: Win
         aep = annual_energy_Wh(cycle_curves(band.edges_ms, design, cycle).power_W,
                                band.probability)
         rows.append((band.low_m, band.high_m, aep, rated_power_W(design, cycle), band.remainder))
-    low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float) for col in zip(*rows))
+    low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float)
+                                          for col in (zip(*rows) if rows else [()] * 5))
     return AepByLength(length_m=lengths, band_low_m=low, band_high_m=high, aep_MWh=aep_Wh / 1e6,
                        rated_power_W=rated, capacity_factor=capacity_factor(aep_Wh, rated),
                        unbinned_probability=unbinned)
@@ -86,3 +87,56 @@ def compare_aep(cfg, lengths_m, ge_by_case: Mapping[str, np.ndarray], mean_phi_d
     """:func:`aep_by_length` for each named G_e curve, e.g. ``{"straight": …, "flexible": …}``."""
     return {case: aep_by_length(cfg, lengths_m, ge, mean_phi_deg, resource, cycle)
             for case, ge in ge_by_case.items()}
+
+
+@dataclass(frozen=True)
+class SweepAep:
+    """AEP of a sweep's lengths, straight and flexible, with the cross-check gate."""
+
+    straight: AepByLength
+    flexible: AepByLength
+    excluded_m: tuple[float, ...]      # flexible lengths left out (failed cross-check or solve)
+    unchecked_m: tuple[float, ...]     # flexible lengths kept with --allow-unchecked
+
+    def as_dict(self) -> dict:
+        rows = []
+        for i, length in enumerate(self.straight.length_m):
+            j = np.flatnonzero(self.flexible.length_m == length)
+            row = {"length_m": float(length),
+                   "aep_straight_MWh": float(self.straight.aep_MWh[i]),
+                   "cf_straight": float(self.straight.capacity_factor[i]),
+                   "aep_fe_MWh": float(self.flexible.aep_MWh[j[0]]) if j.size else None,
+                   "cf_fe": float(self.flexible.capacity_factor[j[0]]) if j.size else None,
+                   "unchecked": float(length) in self.unchecked_m}
+            rows.append(row)
+        return {"lengths": rows,
+                "best_length_straight_m": self.straight.best_length_m,
+                "best_length_fe_m": self.flexible.best_length_m if self.flexible.length_m.size else None,
+                "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m)}
+
+
+def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
+                 allow_unchecked: bool = False) -> SweepAep:
+    """AEP for the lengths of a sweep result (:func:`fem_tether.sweep.read_sweep`).
+
+    Straight lines: every length with a straight-line G_e.  Flexible lines:
+    the lengths whose FE run succeeded and whose cross-check passed; with
+    ``allow_unchecked`` also those whose cross-check failed or did not run
+    (listed in ``unchecked_m``).
+    """
+    cfg = sweep_data["config"]
+    lengths = np.asarray(sweep_data["length_m"], dtype=float)
+    phi = np.asarray(sweep_data["mean_phi_deg"], dtype=float)
+    ge_fe = np.asarray(sweep_data["ge_fe"], dtype=float)
+    ge_straight = np.asarray(sweep_data["ge_straight"], dtype=float)
+    checked = np.asarray(sweep_data["crosscheck_ok"]) == 1
+    has_fe = np.isfinite(ge_fe)
+    keep = has_fe & (checked | allow_unchecked)
+    has_straight = np.isfinite(ge_straight)
+    return SweepAep(
+        straight=aep_by_length(cfg, lengths[has_straight], ge_straight[has_straight],
+                               phi[has_straight], resource, cycle),
+        flexible=aep_by_length(cfg, lengths[keep], ge_fe[keep], phi[keep], resource, cycle),
+        excluded_m=tuple(float(v) for v in lengths[~keep]),
+        unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
+    )

@@ -1,12 +1,14 @@
-"""``fem-tether bench``: cost and accuracy of the FE solver on one fixed case.
+"""``fem-tether bench``: cost and accuracy of the FE and FD solvers on one case.
 
-Case (issue 3): L = 3000 m, quiet air, rho = 1.2 kg/m3, C_d = 1.2, tension
-mode (150 kN), the default eight; one period of spin-up and three averaged
-periods (4 periods of the eight, 29 s simulated).  Every setting of the grid
-(elements x time step) runs the same case; the error of its mean F_t is
-measured against a refined run with 4x the finest elements and 1/4 of the
-finest time step, in the same process.  Wall times are the best of
-``repeats`` runs (one core; the solver is single-threaded).
+Case: L = 3000 m, quiet air, rho = 1.2 kg/m3, C_d = 1.2, tension mode
+(150 kN), the default eight; one period of spin-up and three averaged periods
+(4 periods of the eight, 29 s simulated).  Every setting of each solver's grid
+(elements or segments x time step) runs the same case; the error of its mean
+F_t is measured against a refined FE run with 4x the finest elements and 1/4
+of the finest time step, in the same process (a refined FD run is printed
+beside it: the two limits agree).  Wall times are the best of ``repeats`` runs
+on one core (both solvers are single-threaded).  The FD/FE ratio compares the
+cheapest setting of each within the tolerance, measured in this one run.
 """
 
 from __future__ import annotations
@@ -17,8 +19,9 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from fem_tether import fd
 from fem_tether.config import load_config
-from fem_tether.fe.solver import simulate
+from fem_tether.fe import solver as fe
 
 BENCH_CASE = {
     "tether": {"length_m": 3000.0},
@@ -31,6 +34,8 @@ BENCH_CASE = {
 }
 ELEMENTS = (10, 20, 40, 80)
 TIME_STEPS_S = (0.2, 0.1, 0.05)
+FD_SEGMENTS = (25, 50, 100)
+FD_TIME_STEPS_S = (0.1, 0.05, 0.025)
 SCALING_ELEMENTS = (20, 80, 320, 1280)
 SCALING_DT_S = 0.1
 TOLERANCE = 0.005
@@ -38,6 +43,7 @@ TOLERANCE = 0.005
 
 @dataclass(frozen=True)
 class BenchRow:
+    solver: str
     elements: int
     dt_s: float
     steps: int
@@ -50,10 +56,16 @@ class BenchRow:
         return 1e6 * self.wall_s / (self.elements * self.steps)
 
 
-def _run(elements, dt_s, repeats):
+def _run(solver, resolution, dt_s, repeats):
+    """Best-of-``repeats`` wall time of one setting; ``resolution`` is the FE
+    element count or the FD segment count."""
     cfg = load_config(overrides=BENCH_CASE)
-    cfg["fe"]["elements"] = elements
-    cfg["time"]["dt_s"] = dt_s
+    if solver == "fe":
+        cfg["fe"]["elements"] = resolution
+        cfg["time"]["dt_s"] = dt_s
+    else:
+        cfg["fd"].update(segments=resolution, dt_s=dt_s)
+    simulate = fe.simulate if solver == "fe" else fd.simulate
     best, run = np.inf, None
     for _ in range(repeats):
         t0 = time.perf_counter()
@@ -62,23 +74,29 @@ def _run(elements, dt_s, repeats):
     return run, best
 
 
-def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS,
-          repeats=3) -> dict:
-    """Run the grid and the reference; return the table and the summary."""
-    ref_run, ref_wall = _run(4 * max(elements), min(time_steps_s) / 4, 1)
-    ref = ref_run.mean("drag_N")
+def _grid(solver, resolutions, time_steps_s, reference_N, repeats):
     rows = []
-    for n in elements:
+    for n in resolutions:
         for dt in time_steps_s:
-            run, wall = _run(n, dt, repeats)
+            run, wall = _run(solver, n, dt, repeats)
             drag = run.mean("drag_N")
-            rows.append(BenchRow(n, run.extra["dt_s"], run.time_s.size - 1, wall, drag,
-                                 abs(drag / ref - 1.0)))
+            rows.append(BenchRow(solver, n, run.extra["dt_s"], run.time_s.size - 1, wall, drag,
+                                 abs(drag / reference_N - 1.0)))
     ok = [r for r in rows if r.rel_error <= TOLERANCE]
-    cheapest = min(ok, key=lambda r: r.wall_s) if ok else None
+    return rows, (min(ok, key=lambda r: r.wall_s) if ok else None)
+
+
+def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
+          fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=3) -> dict:
+    """Run both grids and the references; return the tables and the summary."""
+    ref_run, ref_wall = _run("fe", 4 * max(elements), min(time_steps_s) / 4, 1)
+    ref = ref_run.mean("drag_N")
+    fd_ref_run, fd_ref_wall = _run("fd", 4 * max(fd_segments), min(fd_time_steps_s) / 4, 1)
+    rows, cheapest = _grid("fe", elements, time_steps_s, ref, repeats)
+    fd_rows, fd_cheapest = _grid("fd", fd_segments, fd_time_steps_s, ref, repeats)
     scaling = []
     for n in scaling_elements:
-        run, wall = _run(n, SCALING_DT_S, 1)
+        run, wall = _run("fe", n, SCALING_DT_S, 1)
         scaling.append({"elements": n, "steps": run.time_s.size - 1, "wall_s": wall})
     n_el = np.array([r["elements"] for r in scaling], dtype=float)
     wall = np.array([r["wall_s"] for r in scaling])
@@ -89,8 +107,13 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, scaling_elements=SCALING
         "cpu_count": os.cpu_count(),
         "reference": {"elements": 4 * max(elements), "dt_s": ref_run.extra["dt_s"],
                       "drag_N": ref, "wall_s": ref_wall},
-        "rows": [asdict(r) | {"us_per_element_step": r.us_per_element_step} for r in rows],
+        "fd_reference": {"segments": 4 * max(fd_segments), "dt_s": fd_ref_run.extra["dt_s"],
+                         "drag_N": fd_ref_run.mean("drag_N"), "wall_s": fd_ref_wall},
+        "rows": [asdict(r) | {"us_per_element_step": r.us_per_element_step} for r in rows + fd_rows],
         "cheapest": None if cheapest is None else asdict(cheapest),
+        "fd_cheapest": None if fd_cheapest is None else asdict(fd_cheapest),
+        "fd_over_fe_wall": (fd_cheapest.wall_s / cheapest.wall_s
+                            if cheapest and fd_cheapest else None),
         "tolerance": TOLERANCE,
         "scaling": {"dt_s": SCALING_DT_S, "runs": scaling, "fit_intercept_s": float(intercept),
                     "fit_s_per_element": float(slope),
@@ -99,22 +122,28 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, scaling_elements=SCALING
 
 
 def format_report(result: dict) -> str:
-    ref = result["reference"]
+    ref, fd_ref = result["reference"], result["fd_reference"]
+    tol = 100 * result["tolerance"]
     lines = [f"fem-tether bench: {result['case']} ({result['simulated_s']:.1f} s simulated)",
-             f"reference: {ref['elements']} elements, dt = {ref['dt_s']:.4f} s: "
+             f"reference: FE {ref['elements']} elements, dt = {ref['dt_s']:.4f} s: "
              f"F_t = {ref['drag_N']:.2f} N ({ref['wall_s']:.2f} s)",
+             f"           FD {fd_ref['segments']} segments, dt = {fd_ref['dt_s']:.4f} s: "
+             f"F_t = {fd_ref['drag_N']:.2f} N ({fd_ref['wall_s']:.2f} s)",
              "",
-             " elements    dt [s]  steps   wall [s]    F_t [N]   error   us/(element step)"]
+             " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)"]
     for r in result["rows"]:
-        lines.append(f" {r['elements']:8d}  {r['dt_s']:8.4f}  {r['steps']:5d}  {r['wall_s']:9.3f}"
-                     f"  {r['drag_N']:9.1f}  {100 * r['rel_error']:5.2f} %  {r['us_per_element_step']:8.1f}")
-    c = result["cheapest"]
+        lines.append(f" {r['solver']:6s}  {r['elements']:17d}  {r['dt_s']:6.4f}  {r['steps']:5d}  "
+                     f"{r['wall_s']:9.3f}  {r['drag_N']:9.1f}  {100 * r['rel_error']:5.2f} %  "
+                     f"{r['us_per_element_step']:8.1f}")
     lines.append("")
-    if c is None:
-        lines.append(f"no setting within {100 * result['tolerance']:.1f} % of the reference")
-    else:
-        lines.append(f"cheapest within {100 * result['tolerance']:.1f} %: {c['elements']} elements, "
-                     f"dt = {c['dt_s']:.4f} s: {c['wall_s']:.3f} s wall, error {100 * c['rel_error']:.2f} %")
+    for label, c in (("FE", result["cheapest"]), ("FD", result["fd_cheapest"])):
+        if c is None:
+            lines.append(f"{label}: no setting within {tol:.1f} % of the reference")
+        else:
+            lines.append(f"{label} cheapest within {tol:.1f} %: {c['elements']} elements/segments, "
+                         f"dt = {c['dt_s']:.4f} s: {c['wall_s']:.3f} s wall, error {100 * c['rel_error']:.2f} %")
+    if result["fd_over_fe_wall"] is not None:
+        lines.append(f"FD wall / FE wall at equal accuracy ({tol:.1f} %): {result['fd_over_fe_wall']:.1f}")
     s = result["scaling"]
     lines.append(f"cost vs elements at dt = {s['dt_s']} s: " + ", ".join(
         f"{r['elements']} el {r['wall_s']:.2f} s" for r in s["runs"]))

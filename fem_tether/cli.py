@@ -17,8 +17,10 @@ import numpy as np
 
 from fem_tether import __version__, kite
 from fem_tether.config import ConfigError, load_config, to_toml
+from fem_tether.errors import SolverDivergedError
 from fem_tether.fe.integrator import SchemeError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
+from fem_tether.resource import ResourceError
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -163,6 +165,112 @@ def cmd_simulate(args):
     return 0
 
 
+def cmd_crosscheck(args):
+    from fem_tether.crosscheck import crosscheck
+
+    cfg = _config(args, args.length)
+    fd_cfg = _config(argparse.Namespace(config=args.fd_config), args.length) if args.fd_config else None
+    check, _, _ = crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
+    data = check.as_dict()
+    if args.json:
+        _print_json(data)
+    else:
+        tol = check.tolerances
+        limits = {"drag": tol["drag_rel"], "ground_tension": tol["tension_rel"],
+                  "kite_tension": tol["tension_rel"], "shape": tol["shape_rel"]}
+        print(f"FE <-> FD cross-check, L = {check.length_m:g} m")
+        print("  quantity              FE             FD        difference  tolerance")
+        for name, key in (("drag", "drag_N"), ("ground_tension", "ground_tension_N"),
+                          ("kite_tension", "kite_tension_N")):
+            print(f"  mean {name:15s} {check.fe[key]:12.1f} N {check.fd[key]:12.1f} N  "
+                  f"{100 * check.rel_diff[name]:8.3f} %  {100 * limits[name]:6.2f} %")
+        print(f"  shape (max |r_FE - r_FD| / L)               {100 * check.rel_diff['shape']:8.3f} %  "
+              f"{100 * limits['shape']:6.2f} %")
+        print("  cross-check " + ("PASSED" if check.ok else "FAILED"))
+    return 0 if check.ok else EXIT_FAILED
+
+
+def _rank() -> int:
+    """This process's MPI rank if MPI is in use, else 0."""
+    mpi = sys.modules.get("mpi4py.MPI")
+    return mpi.COMM_WORLD.Get_rank() if mpi else 0
+
+
+def cmd_sweep(args):
+    from fem_tether.sweep import load_job, read_sweep, sweep
+
+    job = load_job(args.job)
+    results = sweep(job, args.out, progress=not args.json)
+    if results is None:
+        return 0
+    failed = [r for r in results if r.status != "ok"]
+    if args.json:
+        data = read_sweep(args.out)
+        _print_json({"file": str(args.out), "n_ranks": int(data["attrs"]["n_ranks"]), "lengths": [
+            {"length_m": r.length_m, "status": r.status, "error": r.error,
+             **{k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in r.values.items()}}
+            for r in results]})
+    else:
+        print(f"sweep of {len(results)} lengths -> {args.out}")
+        for r in results:
+            v = r.values
+            print(f"  L = {r.length_m:6g} m: F_t FE {v['drag_fe_N']:9.1f} N, FD {v['drag_fd_N']:9.1f} N, "
+                  f"straight {v['drag_straight_N']:9.1f} N, cross-check "
+                  f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
+                  + (f"  [{r.error}]" if r.status != "ok" else ""))
+    return EXIT_FAILED if failed else 0
+
+
+def cmd_aep(args):
+    from fem_tether.pipeline import sweep_aep
+    from fem_tether.sweep import read_sweep
+
+    data = read_sweep(args.file)
+    energy = sweep_aep(data, args.wind, args.allow_unchecked)
+    result = energy.as_dict()
+    if args.json:
+        _print_json(result)
+        return 0
+    print("    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible")
+    for r in result["lengths"]:
+        fe = (f"{r['aep_fe_MWh']:18.0f}  {r['cf_fe']:11.3f}" if r["aep_fe_MWh"] is not None
+              else f"{'left out':>18s}  {'':11s}")
+        print(f" {r['length_m']:8.0f}  {r['aep_straight_MWh']:18.0f}  {r['cf_straight']:11.3f}  {fe}"
+              + ("  (unchecked)" if r["unchecked"] else ""))
+    print(f"best length: straight {result['best_length_straight_m']:g} m, flexible "
+          f"{result['best_length_fe_m']} m")
+    if result["excluded_m"]:
+        print("left out (cross-check failed or not run): "
+              + ", ".join(f"{v:g} m" for v in result["excluded_m"]))
+    return 0
+
+
+def cmd_run(args):
+    import time
+
+    from fem_tether.pipeline import summary_table, sweep_aep, write_json, write_plots
+    from fem_tether.sweep import load_job, read_sweep, sweep
+
+    t0 = time.perf_counter()
+    job = load_job(args.job)
+    out = Path(args.out)
+    h5 = out / "sweep.h5"
+    results = sweep(job, h5)
+    if results is None:
+        return 0
+    data = read_sweep(h5)
+    energy = sweep_aep(data, allow_unchecked=args.allow_unchecked)
+    files = write_plots(data, energy, out)
+    files["aep_json"] = write_json(out / "aep.json", energy.as_dict())
+    print(summary_table(data, energy))
+    print(f"\n{len(results)} lengths on {int(data['attrs']['n_ranks'])} rank(s) in "
+          f"{time.perf_counter() - t0:.1f} s")
+    print(f"results: {h5}")
+    for name, path in files.items():
+        print(f"{name}: {path}")
+    return EXIT_FAILED if any(r.status != "ok" for r in results) else 0
+
+
 def cmd_bench(args):
     from fem_tether.bench import bench, format_report
 
@@ -217,6 +325,31 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", metavar="DIR", help="write HDF5 and a ParaView time series here")
     c.add_argument("--json", action="store_true")
 
+    c = command("crosscheck", cmd_crosscheck, "run the FE and the FD solver on one case and compare")
+    c.add_argument("--length", type=_positive_float, help="cable length [m]")
+    c.add_argument("--fd-config", metavar="CONFIG", help="a different configuration for the FD run")
+    c.add_argument("--json", action="store_true")
+
+    c = command("sweep", cmd_sweep, "FE (+ FD cross-check, straight line) over cable lengths, MPI-parallel",
+                config=False)
+    c.add_argument("job", help="sweep job (TOML), e.g. sweeps/default.toml")
+    c.add_argument("--out", required=True, metavar="FILE.h5", help="result file")
+    c.add_argument("--json", action="store_true")
+
+    c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)
+    c.add_argument("file", metavar="FILE.h5", help="sweep result")
+    c.add_argument("--wind", metavar="CSV", help="wind histograms per altitude band (CSV)")
+    c.add_argument("--allow-unchecked", action="store_true",
+                   help="keep lengths whose cross-check failed, marked")
+    c.add_argument("--json", action="store_true")
+
+    c = command("run", cmd_run, "the main job: sweep, cross-check gate, AEP, plots, summary",
+                config=False)
+    c.add_argument("job", nargs="?", help="sweep job (default: the embedded default job)")
+    c.add_argument("--out", default="results", metavar="DIR", help="output directory (results)")
+    c.add_argument("--allow-unchecked", action="store_true",
+                   help="keep lengths whose cross-check failed, marked")
+
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False)
     c.add_argument("--repeats", type=int, default=3, help="best of N runs per setting")
     c.add_argument("--json", action="store_true")
@@ -230,21 +363,23 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    from fem_tether.fe.solver import SolverDivergedError
-
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.func(args)
-    except (ConfigError, MeshError, SchemeError, UsageError) as exc:
-        print(f"fem-tether: error: {exc}", file=sys.stderr)
-        return EXIT_USAGE
+    except (ConfigError, MeshError, SchemeError, ResourceError, UsageError) as exc:
+        return _fail(f"fem-tether: error: {exc}", EXIT_USAGE)
     except SolverDivergedError as exc:
-        print(f"fem-tether: solver failed: {exc}", file=sys.stderr)
-        return EXIT_FAILED
+        return _fail(f"fem-tether: solver failed: {exc}", EXIT_FAILED)
     except OSError as exc:
-        print(f"fem-tether: error: {exc.filename or ''}: {exc.strerror or exc}", file=sys.stderr)
-        return EXIT_USAGE
+        return _fail(f"fem-tether: error: {exc.filename or ''}: {exc.strerror or exc}", EXIT_USAGE)
+
+
+def _fail(message: str, code: int) -> int:
+    """One line on stderr (from rank 0 only under MPI) and the exit code."""
+    if _rank() == 0:
+        print(message, file=sys.stderr)
+    return code
 
 
 if __name__ == "__main__":

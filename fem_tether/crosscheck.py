@@ -89,14 +89,15 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
     return CrossCheck(fe.length_m, fe_means, fd_means, rel, dict(tolerances), ok)
 
 
-def crosscheck(cfg, length_m=None, progress=False):
+def crosscheck(cfg, length_m=None, progress=False, fd_cfg=None):
     """Run the FE and the FD solver on the configured case and compare them.
 
-    Returns ``(CrossCheck, fe_run, fd_run)``.
+    ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
+    tolerances are ``cfg``'s.  Returns ``(CrossCheck, fe_run, fd_run)``.
     """
     from fem_tether import fd
     from fem_tether.fe.solver import simulate
 
     fe_run = simulate(cfg, length_m, progress=progress)
-    fd_run = fd.simulate(cfg, length_m, progress=progress)
+    fd_run = fd.simulate(fd_cfg or cfg, length_m, progress=progress)
     return compare(fe_run, fd_run, cfg["crosscheck"]), fe_run, fd_run

@@ -238,3 +238,16 @@ def write_resource_csv(resource: WindResource, path) -> Path:
             for v_low, v_high, p in zip(band.edges_ms[:-1], band.edges_ms[1:], band.probability):
                 writer.writerow([repr(float(x)) for x in (band.low_m, band.high_m, v_low, v_high, p)])
     return path
+
+
+def from_config(cfg: dict, csv_path=None) -> WindResource:
+    """The resource of ``cfg["resource"]``: the CSV ``csv_path`` (or ``[resource] csv``)
+    if given, else Weibull histograms following ``cfg``'s wind profile."""
+    from .wind import from_config as wind_from_config
+
+    r = cfg["resource"]
+    path = csv_path or r["csv"]
+    if path:
+        return read_resource_csv(path)
+    return weibull_resource(wind_from_config(cfg), r["weibull_k"], r["band_bottom_m"],
+                            r["band_top_m"], r["band_width_m"], r["bin_width_ms"], r["max_speed_ms"])

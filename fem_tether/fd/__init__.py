@@ -9,9 +9,9 @@ Modules: :mod:`.system` (grid, residual, banded Jacobian),
 :mod:`.solver` (static start, Newton, time stepping, results).
 """
 
-from fem_tether.fd.solver import (FDModel, SolverDivergedError, State, build_model, fd_settings,
+from fem_tether.fd.solver import (FDModel, SolverDivergedError, State, build_model,
                                   line_state, run, simulate, static_equilibrium)
 from fem_tether.fd.system import Physics, physics_from_config
 
-__all__ = ["FDModel", "Physics", "SolverDivergedError", "State", "build_model", "fd_settings",
+__all__ = ["FDModel", "Physics", "SolverDivergedError", "State", "build_model",
            "line_state", "physics_from_config", "run", "simulate", "static_equilibrium"]

@@ -19,8 +19,7 @@ frozen rigid-rotation velocity field v(s) = (s/L) R0 e'(0) (R0 = L in tension
 mode, the prescribed radius otherwise), from a straight line (tension mode) or
 the catenary (prescribed mode), by a backtracking Newton.
 
-Configuration (read with defaults until the schema has them):
-``[fd] segments`` (200) and ``[fd] scheme`` ("bdf2" or "euler").
+Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler").
 """
 
 from __future__ import annotations
@@ -33,6 +32,7 @@ import numpy as np
 
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
+from fem_tether.errors import SolverDivergedError
 from fem_tether.fd.system import Grid, Physics, TetherFD, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
@@ -40,25 +40,6 @@ from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
 from fem_tether.trajectory import FigureEight
 
 SCHEMES = ("bdf2", "euler")
-DEFAULT_SEGMENTS = 200
-DEFAULT_SCHEME = "bdf2"
-
-
-class SolverDivergedError(RuntimeError):
-    """Newton did not converge even after the allowed step halvings."""
-
-
-def fd_settings(cfg) -> dict:
-    """``[fd] segments`` and ``[fd] scheme`` with their defaults, validated."""
-    fd = cfg.get("fd", {}) or {}
-    segments = fd.get("segments", DEFAULT_SEGMENTS)
-    scheme = fd.get("scheme", DEFAULT_SCHEME)
-    if isinstance(segments, bool) or not isinstance(segments, int) or segments < 2:
-        raise ConfigError(f"[fd] segments = {segments!r}: must be an integer >= 2")
-    if scheme not in SCHEMES:
-        raise ConfigError(f"[fd] scheme = {scheme!r}: must be one of "
-                          f"{', '.join(map(repr, SCHEMES))}")
-    return {"segments": segments, "scheme": scheme}
 
 
 @dataclass
@@ -105,9 +86,8 @@ def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
     ``drag=False`` switch those loads off (the mass stays).
     """
     length = float(cfg["tether"]["length_m"] if length_m is None else length_m)
-    settings = fd_settings(cfg)
-    segments = settings["segments"] if segments is None else int(segments)
-    scheme = settings["scheme"] if scheme is None else scheme
+    segments = cfg["fd"]["segments"] if segments is None else int(segments)
+    scheme = cfg["fd"]["scheme"] if scheme is None else scheme
     if scheme not in SCHEMES:
         raise ConfigError(f"FD scheme {scheme!r}: must be one of {', '.join(map(repr, SCHEMES))}")
     tension_mode = cfg["winch"]["mode"] == "tension"
@@ -365,8 +345,8 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
 
 
 def simulate(cfg, length_m=None, progress=False) -> TetherRun:
-    """Run the configured case with the FD solver."""
+    """Run the configured case with the FD solver (time step ``[fd] dt_s``)."""
     model = build_model(cfg, length_m)
     t = cfg["time"]
-    return run(model, t["dt_s"], t["spinup_periods"], t["average_periods"],
+    return run(model, cfg["fd"]["dt_s"], t["spinup_periods"], t["average_periods"],
                cfg["output"]["every"], config=cfg, progress=progress)

@@ -22,6 +22,7 @@ import numpy as np
 from fem_tether import atmosphere, drag_coefficient, wind
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
+from fem_tether.errors import SolverDivergedError
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -30,10 +31,6 @@ from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
 from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
 from fem_tether.trajectory import FigureEight
-
-
-class SolverDivergedError(RuntimeError):
-    """Newton did not converge even after the allowed step halvings."""
 
 
 @dataclass

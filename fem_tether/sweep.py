@@ -1,0 +1,368 @@
+"""Sweeps over cable length, spread over MPI ranks, results in one HDF5 file.
+
+A job (TOML, see ``sweeps/default.toml``) is a configuration plus a
+``[sweep]`` table: the cable lengths, whether the FD cross-check and the
+straight-line baseline run.  Each length is split into tasks (the FE run and,
+with the cross-check, the FD run); tasks are assigned to ranks by longest
+processing time first on an estimated cost (unknowns x time steps), so the
+assignment, and every number, is the same whatever the number of ranks.
+
+Durability: every finished task is written at once, atomically, to its own
+file in ``<out>.parts/`` by the rank that ran it; rank 0 assembles the result
+file ``<out>`` from the parts after each of its own tasks and at the end (so
+an interrupted sweep leaves a readable file).  Re-running the same job skips
+the tasks whose stored configuration matches.  A task whose solve fails is
+recorded with its error; the other tasks go on.
+
+Result file (h5py), root datasets, one entry per length (NaN where not run)::
+
+    length_m, drag_fe_N, drag_fd_N, drag_straight_N, ge_fe, ge_straight,
+    crosscheck_ok (int8: 1 ok, 0 failed or not run), mean_phi_deg,
+    status ("ok" | "failed"), error (message or ""),
+    kite_tension_fe_N, kite_tension_fd_N, rel_diff_drag, rel_diff_shape
+
+root attributes ``config_toml`` (the job's configuration), ``job_toml``,
+``fem_tether_version``, ``n_ranks``, ``created_utc``; one group ``L<length>``
+per length with its configuration and status as attributes and subgroups
+``fe`` and ``fd`` holding the whole run as :mod:`fem_tether.output` writes it
+(series, means, snapshots).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import os
+import time
+import tomllib
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from fem_tether import __version__, atmosphere, kite, straight
+from fem_tether.config import ConfigError, load_config, merge, read_toml, to_toml
+from fem_tether.crosscheck import compare
+from fem_tether.errors import SolverDivergedError
+from fem_tether.output import read_run_hdf5, write_run_hdf5
+from fem_tether.power import operating_altitude_m
+from fem_tether.progress import Progress
+from fem_tether.trajectory import FigureEight
+
+DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
+DEFAULT_JOB = {"sweep": {"lengths_m": list(DEFAULT_LENGTHS_M), "crosscheck": True, "straight": True}}
+
+
+@dataclass(frozen=True)
+class Job:
+    """A validated sweep job."""
+
+    lengths_m: tuple[float, ...]
+    crosscheck: bool
+    straight: bool
+    config: dict
+    toml: str = ""
+
+    @property
+    def solvers(self) -> tuple[str, ...]:
+        return ("fe", "fd") if self.crosscheck else ("fe",)
+
+    def config_for(self, length_m: float) -> dict:
+        cfg = merge(self.config, {})
+        cfg["tether"]["length_m"] = float(length_m)
+        return cfg
+
+
+def _job_error(key, value, problem):
+    return ConfigError(f"[sweep] {key} = {value!r}: {problem}")
+
+
+def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job:
+    """Validate a job table: ``[sweep]`` keys plus configuration sections."""
+    data = dict(data)
+    sweep = dict(data.pop("sweep", {}))
+    unknown = set(sweep) - {"lengths_m", "crosscheck", "straight", "base"}
+    if unknown:
+        raise ConfigError(f"[sweep] {sorted(unknown)[0]}: unknown key "
+                          "(known: lengths_m, crosscheck, straight, base)")
+    lengths = sweep.get("lengths_m", list(DEFAULT_LENGTHS_M))
+    if not isinstance(lengths, list) or not lengths:
+        raise _job_error("lengths_m", lengths, "expected a non-empty list of lengths")
+    for value in lengths:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
+            raise _job_error("lengths_m", value, "every length must be a number > 0")
+    if len(set(map(float, lengths))) != len(lengths):
+        raise _job_error("lengths_m", lengths, "lengths must be distinct")
+    for key in ("crosscheck", "straight"):
+        if not isinstance(sweep.get(key, True), bool):
+            raise _job_error(key, sweep[key], "expected true or false")
+    base = sweep.get("base", "")
+    if not isinstance(base, str):
+        raise _job_error("base", base, "expected a file name")
+    cfg = load_config(base_dir / base if base else None)
+    cfg = merge(cfg, data)
+    return Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
+               sweep.get("straight", True), cfg, text)
+
+
+def load_job(path: str | Path | None = None) -> Job:
+    """The job in the TOML file ``path``, or the embedded default job."""
+    if path is None:
+        return job_from_dict(DEFAULT_JOB, text=_job_text(DEFAULT_JOB))
+    path = Path(path)
+    data = read_toml(path)
+    return job_from_dict(data, path.parent, path.read_text())
+
+
+def _job_text(data: dict) -> str:
+    s = data["sweep"]
+    lengths = ", ".join(f"{v:g}" for v in s["lengths_m"])
+    return (f"[sweep]\nlengths_m = [{lengths}]\ncrosscheck = {str(s['crosscheck']).lower()}\n"
+            f"straight = {str(s['straight']).lower()}\n")
+
+
+# --- tasks and their assignment --------------------------------------------------------
+@dataclass(frozen=True)
+class Task:
+    length_m: float
+    solver: str
+
+    @property
+    def name(self) -> str:
+        return f"L{self.length_m:g}_{self.solver}"
+
+
+def task_cost(job: Job, task: Task) -> float:
+    """Estimated cost: unknowns x time steps (the step cost is linear in unknowns)."""
+    cfg = job.config_for(task.length_m)
+    period = FigureEight.from_config(cfg).period_s
+    t = cfg["time"]
+    steps = (t["spinup_periods"] + t["average_periods"]) * np.ceil(period / t["dt_s"])
+    unknowns = 4 * (cfg["fe"]["elements"] if task.solver == "fe" else cfg["fd"]["segments"])
+    return float(unknowns * steps)
+
+
+def assign(costs: list[float], n_ranks: int) -> list[list[int]]:
+    """Longest processing time first: each task, costliest first, to the least
+    loaded rank (ties to the lowest rank); deterministic."""
+    loads = [0.0] * n_ranks
+    owners: list[list[int]] = [[] for _ in range(n_ranks)]
+    for i in sorted(range(len(costs)), key=lambda i: (-costs[i], i)):
+        rank = min(range(n_ranks), key=lambda r: (loads[r], r))
+        loads[rank] += costs[i]
+        owners[rank].append(i)
+    return owners
+
+
+# --- parts -------------------------------------------------------------------------------
+def parts_dir(out: Path) -> Path:
+    return out.with_name(out.name + ".parts")
+
+
+def _stored(path: Path, cfg_toml: str) -> str | None:
+    """Status of a stored part whose configuration matches, else None."""
+    try:
+        with h5py.File(path, "r") as f:
+            if f.attrs.get("config_toml") != cfg_toml:
+                return None
+            return str(f.attrs.get("status", "ok"))
+    except (OSError, KeyError):
+        return None
+
+
+def _write_failure(path: Path, cfg_toml: str, error: str) -> None:
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with h5py.File(tmp, "w") as f:
+            f.attrs.update(config_toml=cfg_toml, status="failed", error=error,
+                           fem_tether_version=__version__)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def run_task(job: Job, task: Task, directory: Path) -> str:
+    """Run one task unless a matching successful part exists; return its status."""
+    cfg = job.config_for(task.length_m)
+    cfg_toml = to_toml(cfg)
+    path = directory / f"{task.name}.h5"
+    if _stored(path, cfg_toml) == "ok":
+        return "ok"
+    if task.solver == "fe":
+        from fem_tether.fe.solver import simulate
+    else:
+        from fem_tether.fd import simulate
+    try:
+        run = simulate(cfg)
+    except SolverDivergedError as exc:
+        _write_failure(path, cfg_toml, f"{task.solver.upper()}: {exc}")
+        return "failed"
+    except Exception as exc:  # a defect must not cost the other lengths their results
+        last = traceback.extract_tb(exc.__traceback__)[-1]
+        _write_failure(path, cfg_toml, f"{task.solver.upper()}: {type(exc).__name__}: {exc} "
+                                       f"({Path(last.filename).name}:{last.lineno})")
+        return "failed"
+    write_run_hdf5(run, path, extra_attrs={"status": "ok"})
+    return "ok"
+
+
+# --- assembly ----------------------------------------------------------------------------
+@dataclass
+class LengthResult:
+    length_m: float
+    status: str = "ok"
+    error: str = ""
+    values: dict = field(default_factory=dict)
+
+
+def _ge(cfg, drag_N, length_m):
+    """G_e (seed 000 eq. 5.1) with rho at the operating altitude L cos(theta0)."""
+    k = cfg["kite"]
+    z = operating_altitude_m(length_m, np.radians(k["theta0_deg"]))
+    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(z)))
+    return float(kite.global_efficiency(drag_N, rho, k["area_m2"], k["cl"], k["efficiency"],
+                                        k["speed_ms"], cfg["tether"]["lines"]))
+
+
+def evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthResult, dict]:
+    """Combine the stored parts of one length: cross-check, straight line, G_e.
+
+    Returns the result and the part paths found (solver -> path)."""
+    cfg = job.config_for(length_m)
+    cfg_toml = to_toml(cfg)
+    res = LengthResult(length_m)
+    nan = float("nan")
+    v = dict.fromkeys(("drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
+                       "kite_tension_fe_N", "kite_tension_fd_N", "rel_diff_drag",
+                       "rel_diff_shape"), nan)
+    v["crosscheck_ok"] = 0
+    v["mean_phi_deg"] = FigureEight.from_config(cfg).mean_abs_phi_deg()
+    runs, parts, errors = {}, {}, []
+    for solver in job.solvers:
+        path = directory / f"{Task(length_m, solver).name}.h5"
+        status = _stored(path, cfg_toml)
+        if status is None:
+            errors.append(f"{solver.upper()}: not run")
+            continue
+        parts[solver] = path
+        if status != "ok":
+            with h5py.File(path, "r") as f:
+                errors.append(str(f.attrs["error"]))
+            continue
+        runs[solver] = read_run_hdf5(path)
+    if "fe" in runs:
+        v["drag_fe_N"] = runs["fe"].mean("drag_N")
+        v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
+        v["ge_fe"] = _ge(cfg, v["drag_fe_N"], length_m)
+    if "fd" in runs:
+        v["drag_fd_N"] = runs["fd"].mean("drag_N")
+        v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")
+    if "fe" in runs and "fd" in runs:
+        check = compare(runs["fe"], runs["fd"], cfg["crosscheck"])
+        v["crosscheck_ok"] = int(check.ok)
+        v["rel_diff_drag"] = check.rel_diff["drag"]
+        v["rel_diff_shape"] = check.rel_diff["shape"]
+    if job.straight:
+        v["drag_straight_N"] = straight.from_config(cfg, length_m, with_wind=True).drag_N
+        v["ge_straight"] = _ge(cfg, v["drag_straight_N"], length_m)
+    res.values = v
+    if errors:
+        res.status, res.error = "failed", "; ".join(errors)
+    return res, parts
+
+
+ROOT_DATASETS = ("drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
+                 "crosscheck_ok", "mean_phi_deg", "kite_tension_fe_N", "kite_tension_fd_N",
+                 "rel_diff_drag", "rel_diff_shape")
+
+
+def assemble(job: Job, out: Path, n_ranks: int) -> list[LengthResult]:
+    """Write the result file from the parts present now (atomically)."""
+    directory = parts_dir(out)
+    results = [evaluate_length(job, L, directory) for L in job.lengths_m]
+    tmp = out.with_name(f".{out.name}.tmp-{os.getpid()}")
+    try:
+        with h5py.File(tmp, "w") as f:
+            f.attrs.update(config_toml=to_toml(job.config), job_toml=job.toml,
+                           fem_tether_version=__version__, n_ranks=n_ranks,
+                           created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
+            f["length_m"] = np.array(job.lengths_m)
+            for name in ROOT_DATASETS:
+                f[name] = np.array([r.values[name] for r, _ in results],
+                                   dtype=np.int8 if name == "crosscheck_ok" else float)
+            f["status"] = np.array([r.status for r, _ in results], dtype=h5py.string_dtype())
+            f["error"] = np.array([r.error for r, _ in results], dtype=h5py.string_dtype())
+            for r, parts in results:
+                group = f.create_group(f"L{r.length_m:g}")
+                group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
+                                   config_toml=to_toml(job.config_for(r.length_m)))
+                for solver, path in parts.items():
+                    with h5py.File(path, "r") as src:
+                        sub = group.create_group(solver)
+                        sub.attrs.update(dict(src.attrs))
+                        for name in src:
+                            src.copy(src[name], sub, name)
+        os.replace(tmp, out)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return [r for r, _ in results]
+
+
+# --- the driver ----------------------------------------------------------------------------
+def _count_done(tasks, directory):
+    return sum((directory / f"{t.name}.h5").exists() for t in tasks)
+
+
+def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> list[LengthResult] | None:
+    """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
+
+    Returns the per-length results on rank 0 and ``None`` on the other ranks.
+    """
+    if comm is None:
+        from mpi4py import MPI
+        comm = MPI.COMM_WORLD
+    out = Path(out)
+    rank, size = comm.Get_rank(), comm.Get_size()
+    directory = parts_dir(out)
+    if rank == 0:
+        directory.mkdir(parents=True, exist_ok=True)
+    comm.Barrier()
+    tasks = [Task(L, s) for L in job.lengths_m for s in job.solvers]
+    mine = assign([task_cost(job, t) for t in tasks], size)[rank]
+    bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
+                   enabled=progress and rank == 0)
+    for i in mine:
+        run_task(job, tasks[i], directory)
+        if rank == 0:
+            assemble(job, out, size)
+            bar.update(_count_done(tasks, directory))
+    request = comm.Ibarrier()
+    while not request.Test():
+        if rank == 0:
+            bar.update(_count_done(tasks, directory))
+        time.sleep(0.05)
+    if rank != 0:
+        return None
+    results = assemble(job, out, size)
+    bar.update(len(tasks))
+    bar.close()
+    return results
+
+
+def read_sweep(path: str | Path) -> dict:
+    """Root datasets and attributes of a result file, as NumPy arrays and strings."""
+    try:
+        with h5py.File(path, "r") as f:
+            data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
+            data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
+            data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
+            data["config"] = tomllib.loads(f.attrs["config_toml"])
+            data["attrs"] = {k: f.attrs[k] for k in f.attrs}
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: no such file") from None
+    except (OSError, KeyError) as exc:
+        raise ConfigError(f"{path}: not a fem-tether sweep result ({exc})") from None
+    return data

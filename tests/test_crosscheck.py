@@ -1,0 +1,46 @@
+"""FE <-> FD cross-check: passes on the default case, fails on different physics."""
+
+import json
+
+import numpy as np
+import pytest
+
+from fem_tether.cli import main
+from fem_tether.config import load_config
+from fem_tether.crosscheck import compare, crosscheck, shape_difference
+
+
+def test_default_case_at_1000_m_passes():
+    check, fe_run, fd_run = crosscheck(load_config())
+    print(f"\n F_t FE {check.fe['drag_N']:.1f} N, FD {check.fd['drag_N']:.1f} N, "
+          f"differences {check.rel_diff}")
+    assert check.ok
+    assert check.rel_diff["drag"] < 0.005 and check.rel_diff["shape"] < 0.001
+
+
+def test_different_drag_coefficient_fails_with_exit_code_1(tmp_path, capsys):
+    """FD given C_d = 1.5 against FE with C_d = 1.2: the check must fail."""
+    fe_cfg = tmp_path / "fe.toml"
+    fe_cfg.write_text('[drag]\nmodel = "constant"\ncd = 1.2\n[tether]\nlength_m = 500.0\n')
+    fd_cfg = tmp_path / "fd.toml"
+    fd_cfg.write_text('[drag]\nmodel = "constant"\ncd = 1.5\n[tether]\nlength_m = 500.0\n')
+    code = main(["crosscheck", str(fe_cfg), "--fd-config", str(fd_cfg), "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 1 and data["ok"] is False
+    assert data["rel_diff"]["drag"] > 0.1
+    for key in ("drag_fe_N", "drag_fd_N", "rel_diff", "ok"):
+        assert key in data
+
+
+def test_shape_difference_of_a_run_with_itself_is_zero_and_detects_offsets():
+    cfg = load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8},
+                                 "time": {"dt_s": 0.2, "average_periods": 1}})
+    from fem_tether.fe.solver import simulate
+    run = simulate(cfg)
+    assert shape_difference(run, run) == 0.0
+    import copy
+    moved = copy.deepcopy(run)
+    moved.snapshots["position_m"] = moved.snapshots["position_m"] + np.array([0.0, 6.0, 0.0])
+    assert shape_difference(run, moved) == pytest.approx(6.0 / 300.0)
+    tol = cfg["crosscheck"]
+    assert compare(run, run, tol).ok and not compare(run, moved, tol).ok
