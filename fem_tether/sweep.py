@@ -9,8 +9,9 @@ assignment, and every number, is the same whatever the number of ranks.
 
 Durability: every finished task is written at once, atomically, to its own
 file in ``<out>.parts/`` by the rank that ran it; rank 0 assembles the result
-file ``<out>`` from the parts after each of its own tasks and at the end (so
-an interrupted sweep leaves a readable file).  Re-running the same job skips
+file ``<out>`` from the parts after its own tasks (at most every
+``REFRESH_S`` seconds) and at the end, so an interrupted sweep leaves a
+readable file.  Re-running the same job skips
 the tasks whose stored configuration matches.  A task whose solve fails is
 recorded with its error; the other tasks go on.
 
@@ -50,6 +51,7 @@ from fem_tether.power import operating_altitude_m
 from fem_tether.progress import Progress
 from fem_tether.trajectory import FigureEight
 
+REFRESH_S = 10.0
 DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
 DEFAULT_JOB = {"sweep": {"lengths_m": list(DEFAULT_LENGTHS_M), "crosscheck": True, "straight": True}}
 
@@ -334,10 +336,13 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> list[L
     mine = assign([task_cost(job, t) for t in tasks], size)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
+    refreshed = time.monotonic()
     for i in mine:
         run_task(job, tasks[i], directory)
         if rank == 0:
-            assemble(job, out, size)
+            if time.monotonic() - refreshed > REFRESH_S:
+                assemble(job, out, size)
+                refreshed = time.monotonic()
             bar.update(_count_done(tasks, directory))
     request = comm.Ibarrier()
     while not request.Test():

@@ -1,0 +1,86 @@
+"""The main job and the aep command: files, table, cross-check gate, wind CSV."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import pytest
+
+from fem_tether.cli import main
+from fem_tether.resource import from_config as resource_from_config
+from fem_tether.resource import write_resource_csv
+from fem_tether.config import load_config
+
+QUICK = Path(__file__).parents[1] / "sweeps" / "quick.toml"
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("run")
+    code = main(["run", str(QUICK), "--out", str(out)])
+    return code, out
+
+
+def test_run_writes_results_plots_and_table(quick_run, capsys):
+    code, out = quick_run
+    assert code == 0
+    for name in ("sweep.h5", "aep.json", "drag_vs_length.png", "ge_vs_length.png",
+                 "power_curves.png", "aep_vs_length.png"):
+        assert (out / name).stat().st_size > 0, name
+    data = json.loads((out / "aep.json").read_text())
+    assert data["best_length_straight_m"] in (500.0, 1500.0, 3000.0)
+    assert [r["length_m"] for r in data["lengths"]] == [500.0, 1500.0, 3000.0]
+
+
+def test_aep_gate_leaves_out_failed_crosschecks(quick_run, tmp_path, capsys):
+    _, out = quick_run
+    h5 = tmp_path / "sweep.h5"
+    shutil.copy(out / "sweep.h5", h5)
+    with h5py.File(h5, "r+") as f:
+        f["crosscheck_ok"][1] = 0
+    assert main(["aep", str(h5), "--json"]) == 0
+    gated = json.loads(capsys.readouterr().out)
+    assert gated["excluded_m"] == [1500.0]
+    assert gated["lengths"][1]["aep_fe_MWh"] is None and gated["lengths"][1]["aep_straight_MWh"] > 0
+    assert main(["aep", str(h5), "--json", "--allow-unchecked"]) == 0
+    kept = json.loads(capsys.readouterr().out)
+    assert kept["unchecked_m"] == [1500.0] and kept["lengths"][1]["aep_fe_MWh"] > 0
+    for key in ("aep_fe_MWh", "aep_straight_MWh", "cf_fe", "cf_straight"):
+        assert key in kept["lengths"][0]
+    assert "best_length_fe_m" in kept and "best_length_straight_m" in kept
+
+
+def test_aep_with_a_wind_csv_and_a_bad_one(quick_run, tmp_path, capsys):
+    _, out = quick_run
+    csv = write_resource_csv(resource_from_config(
+        load_config(overrides={"resource": {"max_speed_ms": 80.0}})), tmp_path / "wind.csv")
+    assert main(["aep", str(out / "sweep.h5"), "--wind", str(csv), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["lengths"][0]["aep_straight_MWh"] > 0
+    lines = csv.read_text().splitlines()
+    lines[3] = lines[3].rsplit(",", 1)[0] + ",-0.1"
+    bad = tmp_path / "bad.csv"
+    bad.write_text("\n".join(lines) + "\n")
+    assert main(["aep", str(out / "sweep.h5"), "--wind", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.csv line 4" in err and err.count("\n") == 1
+
+
+def test_aep_of_a_file_that_is_not_a_sweep(tmp_path, capsys):
+    path = tmp_path / "x.h5"
+    with h5py.File(path, "w") as f:
+        f["a"] = 1
+    assert main(["aep", str(path)]) == 2
+    assert "not a fem-tether sweep result" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_main_job_under_mpiexec(tmp_path):
+    proc = subprocess.run(["mpiexec", "-n", "2", sys.executable, "-m", "fem_tether.cli", "run",
+                           str(QUICK), "--out", str(tmp_path)], capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.count("best length") == 1          # rank 0 alone reports
+    assert "3 lengths on 2 rank(s)" in proc.stdout
