@@ -237,8 +237,9 @@ def cmd_aep(args):
               else f"{'left out':>18s}  {'':11s}")
         print(f" {r['length_m']:8.0f}  {r['aep_straight_MWh']:18.0f}  {r['cf_straight']:11.3f}  {fe}"
               + ("  (unchecked)" if r["unchecked"] else ""))
+    best_fe = result["best_length_fe_m"]
     print(f"best length: straight {result['best_length_straight_m']:g} m, flexible "
-          f"{result['best_length_fe_m']} m")
+          + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
     if result["excluded_m"]:
         print("left out (cross-check failed or not run): "
               + ", ".join(f"{v:g} m" for v in result["excluded_m"]))

@@ -76,8 +76,9 @@ def summary_table(data: dict, energy: SweepAep) -> str:
                      f"{data['ge_fe'][i]:9.2f}  {r.get('aep_straight_MWh', np.nan) / 1e3:8.2f}  "
                      f"{(aep_fe if aep_fe is not None else np.nan) / 1e3:9.2f}  {check}")
     d = energy.as_dict()
+    best_fe = d["best_length_fe_m"]
     lines.append(f"best length: straight {d['best_length_straight_m']:g} m, flexible "
-                 f"{d['best_length_fe_m'] if d['best_length_fe_m'] is not None else 'none'} m")
+                 + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
     if energy.excluded_m:
         lines.append("left out of the flexible AEP (cross-check failed or not run): "
                      + ", ".join(f"{v:g} m" for v in energy.excluded_m))

@@ -7,6 +7,7 @@ window (whole periods of the eight after the spin-up).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -67,3 +68,38 @@ def period_mean(t, y) -> float:
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
     return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+
+
+def time_grid(period_s: float, dt_s: float, spinup_periods: int, average_periods: int):
+    """Step ``h = period / ceil(period / dt)`` (a whole number of steps per
+    period, none longer than ``dt_s``) and the number of steps of the run."""
+    steps_per_period = max(1, math.ceil(period_s / dt_s - 1e-9))
+    return period_s / steps_per_period, (spinup_periods + average_periods) * steps_per_period
+
+
+class Recorder:
+    """Collects the series every step and the snapshots every ``output_every``
+    steps (and at the last step) of a run, then builds its :class:`TetherRun`."""
+
+    def __init__(self, n_steps: int, output_every: int):
+        self.n_steps, self.output_every = n_steps, output_every
+        self.times, self.rows, self.snap_t, self.snaps = [], [], [], []
+
+    def add(self, step: int, t: float, values: dict) -> None:
+        """Record ``values`` (every name of SERIES, NODE_FIELDS and CELL_FIELDS) at step ``step``."""
+        self.times.append(t)
+        self.rows.append([values[k] for k in SERIES])
+        if step % self.output_every == 0 or step == self.n_steps:
+            self.snap_t.append(t)
+            self.snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+
+    def run(self, **fields) -> TetherRun:
+        """The :class:`TetherRun`; ``fields`` are its remaining attributes."""
+        series = np.asarray(self.rows)
+        return TetherRun(
+            time_s=np.asarray(self.times),
+            series={k: series[:, j] for j, k in enumerate(SERIES)},
+            snapshot_time_s=np.asarray(self.snap_t),
+            snapshots={k: np.stack([s[k] for s in self.snaps]) for k in NODE_FIELDS + CELL_FIELDS},
+            **fields,
+        )

@@ -11,7 +11,8 @@ from fem_tether.fe.solver import (FEModel, SolverDivergedError, State, advance, 
                                   simulate, static_equilibrium)
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.mesh import unit_nodes
-from fem_tether.fe.system import Physics, TetherSystem
+from fem_tether.fe.system import TetherSystem
+from fem_tether.tether import TetherPhysics
 from fem_tether.straight import closed_form_drag_N
 from fem_tether.trajectory import Stationary
 
@@ -21,12 +22,14 @@ MU = 0.062
 def _model(elements, length_m, tension_mode, physics, end, radius_m=0.0, scheme=None,
            ground_tension_N=150e3):
     spaces = build_spaces(unit_nodes(elements), length_m, MU)
-    return FEModel(TetherSystem(spaces, physics, tension_mode), scheme or Scheme.generalized_alpha(0.8),
-                   end, length_m, ground_tension_N, radius_m)
+    return FEModel(end=end, length_m=length_m, tension_mode=tension_mode,
+                   ground_tension_N=ground_tension_N, radius_m=radius_m, newton_tol=1e-10,
+                   max_newton=20, max_halvings=6, system=TetherSystem(spaces, physics, tension_mode),
+                   scheme=scheme or Scheme.generalized_alpha(0.8))
 
 
 def _still_air(gravity=True, cd=0.0, **kw):
-    return Physics(atmosphere.ConstantAir(1.2, 1.8e-5), drag_coefficient.ConstantDrag(cd), wind.NoWind(),
+    return TetherPhysics(atmosphere.ConstantAir(1.2, 1.8e-5), drag_coefficient.ConstantDrag(cd), wind.NoWind(),
                    0.011, MU, gravity_ms2=9.81 if gravity else 0.0, **kw)
 
 

@@ -11,7 +11,6 @@ Modules: :mod:`.system` (grid, residual, banded Jacobian),
 
 from fem_tether.fd.solver import (FDModel, SolverDivergedError, State, build_model,
                                   line_state, run, simulate, static_equilibrium)
-from fem_tether.fd.system import Physics, physics_from_config
 
-__all__ = ["FDModel", "Physics", "SolverDivergedError", "State", "build_model",
-           "line_state", "physics_from_config", "run", "simulate", "static_equilibrium"]
+__all__ = ["FDModel", "SolverDivergedError", "State", "build_model",
+           "line_state", "run", "simulate", "static_equilibrium"]

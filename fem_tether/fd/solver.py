@@ -26,43 +26,34 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
 from fem_tether.errors import SolverDivergedError
-from fem_tether.fd.system import Grid, Physics, TetherFD, physics_from_config
+from fem_tether.drag_coefficient import ConstantDrag
+from fem_tether.fd.system import Grid, TetherFD
+from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
-from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
-from fem_tether.trajectory import FigureEight
+from fem_tether.results import Recorder, TetherRun, time_grid
 
 SCHEMES = ("bdf2", "euler")
 
 
 @dataclass
-class FDModel:
-    """A discrete line, its time scheme, its kite-end motion and its controls."""
+class FDModel(TetherCase):
+    """A discrete line and its time scheme, on a :class:`TetherCase`."""
 
     eq: TetherFD
     scheme: str                   # "bdf2" or "euler"
-    end: object                   # FigureEight or Stationary: state(t, R), period_s
-    length_m: float
-    ground_tension_N: float
-    radius_m: float               # prescribed mode only
-    newton_tol: float = 1e-10
-    max_newton: int = 20
-    max_halvings: int = 6
 
     @property
     def grid(self) -> Grid:
         return self.eq.grid
-
-    @property
-    def tension_mode(self) -> bool:
-        return self.eq.grid.tension_mode
 
 
 @dataclass
@@ -77,42 +68,28 @@ class State:
     R: float
 
 
+def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysics:
+    """``physics`` with gravity (g = 0) and/or drag (C_d = 0) switched off."""
+    return replace(physics, gravity_ms2=physics.gravity_ms2 if gravity else 0.0,
+                   drag=physics.drag if drag else ConstantDrag(0.0))
+
+
 def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
-                gravity=True, drag=True, physics: Physics | None = None) -> FDModel:
+                gravity=True, drag=True, physics: TetherPhysics | None = None) -> FDModel:
     """FD model of the configured case.
 
     ``end`` overrides the figure-eight (e.g. ``trajectory.Stationary``);
     ``segments``/``scheme`` override ``[fd]``; ``gravity=False`` /
     ``drag=False`` switch those loads off (the mass stays).
     """
-    length = float(cfg["tether"]["length_m"] if length_m is None else length_m)
+    case = case_fields(cfg, length_m, end)
     segments = cfg["fd"]["segments"] if segments is None else int(segments)
     scheme = cfg["fd"]["scheme"] if scheme is None else scheme
     if scheme not in SCHEMES:
         raise ConfigError(f"FD scheme {scheme!r}: must be one of {', '.join(map(repr, SCHEMES))}")
-    tension_mode = cfg["winch"]["mode"] == "tension"
-    radius = cfg["kite"]["radius_m"]
-    if tension_mode and cfg["tether"]["elasticity"] == "elastic":
-        raise ConfigError("[tether] elasticity = 'elastic': needs [winch] mode = 'prescribed' "
-                          "(as the FE solver); use an inextensible line in tension mode")
-    if not tension_mode:
-        inextensible = cfg["tether"]["elasticity"] == "inextensible"
-        if radius <= 0.0 or (inextensible and radius >= length):
-            raise ConfigError(f"[kite] radius_m = {radius}: [winch] mode = 'prescribed' needs "
-                              f"0 < radius_m < length_m = {length} for an inextensible line")
-    t = cfg["time"]
-    return FDModel(
-        eq=TetherFD(Grid(length, segments, tension_mode),
-                    physics or physics_from_config(cfg, gravity=gravity, drag=drag)),
-        scheme=scheme,
-        end=end or FigureEight.from_config(cfg, length_m=length),
-        length_m=length,
-        ground_tension_N=cfg["winch"]["ground_tension_N"],
-        radius_m=radius,
-        newton_tol=t["newton_tol"],
-        max_newton=t["max_newton"],
-        max_halvings=t["max_halvings"],
-    )
+    grid = Grid(case["length_m"], segments, case["tension_mode"])
+    return FDModel(eq=TetherFD(grid, physics or _switched(physics_from_config(cfg), gravity, drag)),
+                   scheme=scheme, **case)
 
 
 def _force_ref(model: FDModel, T) -> float:
@@ -305,37 +282,25 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
     """
     wall0 = time.perf_counter()
     period = model.end.period_s
-    steps_per_period = max(1, math.ceil(period / dt_s - 1e-9))
-    h = period / steps_per_period
-    n_steps = (spinup_periods + average_periods) * steps_per_period
+    h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
     state = initial if initial is not None else static_equilibrium(model)
     t0 = state.t
     prev = None
     stats = {"newton": 0, "halvings": 0}
-    times, rows, snap_t, snaps = [], [], [], []
+    record = Recorder(n_steps, output_every)
     bar = Progress(n_steps, f"FD L = {model.length_m:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
             prev, state = _advance(model, prev, state, h, stats)
             state.t = t0 + i * h
             bar.update(i)
-        values = line_state(model, state)
-        times.append(state.t)
-        rows.append([values[k] for k in SERIES])
-        if i % output_every == 0 or i == n_steps:
-            snap_t.append(state.t)
-            snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+        record.add(i, state.t, line_state(model, state))
     bar.close()
-    series = np.asarray(rows)
-    return TetherRun(
+    return record.run(
         solver="fd",
         length_m=model.length_m,
         period_s=period,
-        time_s=np.asarray(times),
-        series={k: series[:, j] for j, k in enumerate(SERIES)},
         s_nodes_m=model.grid.s_m.copy(),
-        snapshot_time_s=np.asarray(snap_t),
-        snapshots={k: np.stack([s[k] for s in snaps]) for k in NODE_FIELDS + CELL_FIELDS},
         average_start_s=t0 + spinup_periods * period,
         config=config or {},
         wall_s=time.perf_counter() - wall0,

@@ -35,49 +35,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import solve_banded
 
-from fem_tether import atmosphere, drag_coefficient, wind
-from fem_tether.loads import G_MS2, crossflow_drag
+from fem_tether.loads import crossflow_drag
+from fem_tether.tether import TetherPhysics
 
 _EYE = np.eye(3)
-
-
-@dataclass(frozen=True)
-class Physics:
-    """Leaf models and tether constants used by the FD equations."""
-
-    air: object
-    drag: object
-    wind: object
-    diameter_m: float
-    linear_density_kg_m: float
-    compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
-    damping_time_s: float = 0.0        # Kelvin-Voigt retardation time
-    skin_friction_cf: float = 0.0
-    gravity: bool = True               # w = -mu g e_z (off: no weight, mass kept)
-    aero: bool = True                  # cross-flow drag (off: none)
-
-    @property
-    def weight_N_m(self) -> np.ndarray:
-        g = G_MS2 if self.gravity else 0.0
-        return np.array([0.0, 0.0, -self.linear_density_kg_m * g])
-
-
-def physics_from_config(cfg, gravity=True, drag=True) -> Physics:
-    """Physics of ``cfg`` (tether, air, drag, wind); ``gravity``/``drag`` switch loads off."""
-    tether = cfg["tether"]
-    elastic = tether["elasticity"] == "elastic"
-    return Physics(
-        air=atmosphere.from_config(cfg),
-        drag=drag_coefficient.from_config(cfg),
-        wind=wind.from_config(cfg),
-        diameter_m=tether["diameter_m"],
-        linear_density_kg_m=tether["linear_density_kg_m"],
-        compliance_per_N=1.0 / tether["axial_stiffness_N"] if elastic else 0.0,
-        damping_time_s=tether["damping_time_s"] if elastic else 0.0,
-        skin_friction_cf=cfg["drag"]["skin_friction_cf"],
-        gravity=bool(gravity),
-        aero=bool(drag),
-    )
 
 
 def _unit(d):
@@ -225,7 +186,7 @@ class Evaluation:
 class TetherFD:
     """The discrete equations of one line: residual, Jacobian, nodal loads."""
 
-    def __init__(self, grid: Grid, physics: Physics):
+    def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
 
@@ -245,8 +206,7 @@ class TetherFD:
         tangent[-1] = r[-1] - r[-2]
         tangent, _ = _unit(tangent)
         load = self.nodal_drag(r, v, tangent)
-        force = load.force if self.physics.aero else np.zeros_like(load.force)
-        return NodalLoads(force, load.vn_ms, load.re, load.cd, tangent)
+        return NodalLoads(load.force, load.vn_ms, load.re, load.cd, tangent)
 
     # --- equations ---------------------------------------------------------------
     def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
@@ -264,11 +224,8 @@ class TetherFD:
         # nodal drag at interior nodes with the central tangent
         dn = r[2:] - r[:-2]
         tau_n, dn_len = _unit(dn)
-        if ph.aero:
-            load = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=jacobian)
-            f = load.force
-        else:
-            load, f = None, 0.0
+        load = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=jacobian)
+        f = load.force
         mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / ds - ph.weight_N_m - f
         dv = v[1:] - v[:-1]
         con = ell - ds * (1.0 + ph.compliance_per_N * T)
@@ -288,18 +245,17 @@ class TetherFD:
         A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / ds
         A_next = -K[1:] / ds
         A_prev = -K[:-1] / ds
-        if ph.aero:
-            z = r[1:-1, 2]
-            df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-                + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
-                + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
-            d_self = -c_v * load.d_dvrel
-            d_self[:, :, 2] += df_dz
-            proj_n = _EYE - _outer(tau_n, tau_n)
-            d_next = load.d_dtau @ proj_n / dn_len[:, None, None]
-            A_self = A_self - d_self
-            A_next = A_next - d_next
-            A_prev = A_prev + d_next
+        z = r[1:-1, 2]
+        df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
+            + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
+            + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
+        d_self = -c_v * load.d_dvrel
+        d_self[:, :, 2] += df_dz
+        proj_n = _EYE - _outer(tau_n, tau_n)
+        d_next = load.d_dtau @ proj_n / dn_len[:, None, None]
+        A_self = A_self - d_self
+        A_next = A_next - d_next
+        A_prev = A_prev + d_next
         B_plus = -tau[1:] / ds
         B_minus = tau[:-1] / ds
         c_row = tau

@@ -19,37 +19,26 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
 from fem_tether.errors import SolverDivergedError
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
-from fem_tether.fe.system import Physics, TetherSystem
+from fem_tether.fe.system import TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
-from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, TetherRun
-from fem_tether.trajectory import FigureEight
+from fem_tether.tether import physics_from_config
+from fem_tether.results import Recorder, TetherRun, time_grid
 
 
 @dataclass
-class FEModel:
-    """A discrete tether, its integrator, its kite-end motion and its controls."""
+class FEModel(TetherCase):
+    """A discrete tether and its integrator, on a :class:`TetherCase`."""
 
     system: TetherSystem
     scheme: Scheme
-    end: object                   # FigureEight or Stationary: state(t, R), period_s
-    length_m: float
-    ground_tension_N: float
-    radius_m: float               # prescribed mode only
-    newton_tol: float = 1e-10
-    max_newton: int = 20
-    max_halvings: int = 6
-
-    @property
-    def tension_mode(self) -> bool:
-        return self.system.tension_mode
 
 
 @dataclass
@@ -76,48 +65,13 @@ def unit_mesh_from_config(cfg) -> np.ndarray:
         raise ConfigError(f"[fe] mesh = {fe['mesh']!r}: {exc}") from None
 
 
-def physics_from_config(cfg) -> Physics:
-    tether = cfg["tether"]
-    elastic = tether["elasticity"] == "elastic"
-    return Physics(
-        air=atmosphere.from_config(cfg),
-        drag=drag_coefficient.from_config(cfg),
-        wind=wind.from_config(cfg),
-        diameter_m=tether["diameter_m"],
-        linear_density_kg_m=tether["linear_density_kg_m"],
-        compliance_per_N=1.0 / tether["axial_stiffness_N"] if elastic else 0.0,
-        damping_time_s=tether["damping_time_s"] if elastic else 0.0,
-        skin_friction_cf=cfg["drag"]["skin_friction_cf"],
-    )
-
-
 def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
     """FE model of the configured case; ``end`` overrides the figure-eight."""
-    length = cfg["tether"]["length_m"] if length_m is None else float(length_m)
-    tension_mode = cfg["winch"]["mode"] == "tension"
-    radius = cfg["kite"]["radius_m"]
-    if tension_mode and cfg["tether"]["elasticity"] == "elastic":
-        raise ConfigError("[tether] elasticity = 'elastic': needs [winch] mode = 'prescribed'; a "
-                          "fixed-length elastic line cannot hold the winch tension through the "
-                          "kite's radius (waves take time to cross it), use an inextensible line")
-    if not tension_mode:
-        inextensible = cfg["tether"]["elasticity"] == "inextensible"
-        if radius <= 0.0 or (inextensible and radius >= length):
-            raise ConfigError(f"[kite] radius_m = {radius}: [winch] mode = 'prescribed' needs "
-                              f"0 < radius_m < length_m = {length} for an inextensible line")
-    spaces = build_spaces(unit_mesh_from_config(cfg), length, cfg["tether"]["linear_density_kg_m"])
-    t = cfg["time"]
-    return FEModel(
-        system=TetherSystem(spaces, physics or physics_from_config(cfg), tension_mode),
-        scheme=scheme_from_config(cfg),
-        end=end or FigureEight.from_config(cfg, length_m=length),
-        length_m=length,
-        ground_tension_N=cfg["winch"]["ground_tension_N"],
-        radius_m=radius,
-        newton_tol=t["newton_tol"],
-        max_newton=t["max_newton"],
-        max_halvings=t["max_halvings"],
-    )
+    case = case_fields(cfg, length_m, end)
+    spaces = build_spaces(unit_mesh_from_config(cfg), case["length_m"],
+                          cfg["tether"]["linear_density_kg_m"])
+    return FEModel(system=TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"]),
+                   scheme=scheme_from_config(cfg), **case)
 
 
 def _force_ref(model: FEModel, T) -> float:
@@ -268,34 +222,22 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     """Static start, then whole periods of the eight; returns the :class:`TetherRun`."""
     wall0 = time.perf_counter()
     period = model.end.period_s
-    steps_per_period = max(1, math.ceil(period / dt_s - 1e-9))
-    h = period / steps_per_period
-    n_steps = (spinup_periods + average_periods) * steps_per_period
+    h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
     state = initial_state(model)
-    times, rows, snap_t, snaps = [], [], [], []
+    record = Recorder(n_steps, output_every)
     bar = Progress(n_steps, f"FE L = {model.length_m:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
             state = advance(model, state, h)
             state.t = i * h
             bar.update(i)
-        values = line_state(model, state)
-        times.append(state.t)
-        rows.append([values[k] for k in SERIES])
-        if i % output_every == 0 or i == n_steps:
-            snap_t.append(state.t)
-            snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+        record.add(i, state.t, line_state(model, state))
     bar.close()
-    series = np.asarray(rows)
-    return TetherRun(
+    return record.run(
         solver="fe",
         length_m=model.length_m,
         period_s=period,
-        time_s=np.asarray(times),
-        series={k: series[:, j] for j, k in enumerate(SERIES)},
         s_nodes_m=model.system.spaces.s_m,
-        snapshot_time_s=np.asarray(snap_t),
-        snapshots={k: np.stack([s[k] for s in snaps]) for k in NODE_FIELDS + CELL_FIELDS},
         average_start_s=spinup_periods * period,
         config=config or {},
         wall_s=time.perf_counter() - wall0,

@@ -27,24 +27,10 @@ import numpy as np
 from scipy.linalg import solve_banded
 
 from fem_tether.fe.spaces import TetherSpaces
-from fem_tether.loads import G_MS2, CrossflowDrag, crossflow_drag, gravity_N_m
+from fem_tether.loads import CrossflowDrag, crossflow_drag
+from fem_tether.tether import TetherPhysics
 
 BAND = 6
-
-
-@dataclass(frozen=True)
-class Physics:
-    """Leaf-model objects and tether constants the residual needs."""
-
-    air: object
-    drag: object
-    wind: object
-    diameter_m: float
-    linear_density_kg_m: float
-    compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
-    damping_time_s: float = 0.0        # Kelvin-Voigt retardation time eta
-    skin_friction_cf: float = 0.0
-    gravity_ms2: float = G_MS2
 
 
 @dataclass
@@ -66,14 +52,14 @@ class TetherSystem:
     """Discrete tether on a mesh: evaluates residuals and solves Newton steps."""
 
     spaces: TetherSpaces
-    physics: Physics
+    physics: TetherPhysics
     tension_mode: bool
     _idx: dict = field(init=False, repr=False)
 
     def __post_init__(self):
         n_el = self.spaces.n_elements
         self.n = 4 * n_el + 4
-        self.weight = gravity_N_m(self.physics.linear_density_kg_m, self.physics.gravity_ms2)
+        self.weight = self.physics.weight_N_m
         self.w_lo = np.asarray(self.spaces.Q[np.arange(n_el), np.arange(n_el)]).ravel()
         self.w_hi = np.asarray(self.spaces.Q[np.arange(1, n_el + 1), np.arange(n_el)]).ravel()
         interior = np.zeros(n_el + 1)

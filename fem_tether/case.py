@@ -1,0 +1,50 @@
+"""What a tether solver is asked to solve, shared by the FE and FD solvers.
+
+The line's length, the kite end's motion (``end.state(t, R)`` gives R e(t)
+and its derivatives: a :class:`~fem_tether.trajectory.FigureEight` or a
+:class:`~fem_tether.trajectory.Stationary` end), the winch condition (REFERENCE
+"Tether": r(0, t) = 0 and either T(0, t) = T_0 with the kite's radius free,
+``tension_mode``, or the kite at a prescribed radius) and the Newton controls.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from fem_tether.config import ConfigError
+from fem_tether.trajectory import FigureEight
+
+
+@dataclass
+class TetherCase:
+    """Boundary conditions and solver controls of one run."""
+
+    end: object
+    length_m: float
+    tension_mode: bool
+    ground_tension_N: float       # tension mode: T(0, t)
+    radius_m: float               # prescribed mode: |r(L, t)|
+    newton_tol: float
+    max_newton: int
+    max_halvings: int
+
+
+def case_fields(cfg, length_m=None, end=None) -> dict:
+    """Validated :class:`TetherCase` fields of ``cfg`` (``end``: default the eight)."""
+    length = float(cfg["tether"]["length_m"] if length_m is None else length_m)
+    tension_mode = cfg["winch"]["mode"] == "tension"
+    radius = cfg["kite"]["radius_m"]
+    if tension_mode and cfg["tether"]["elasticity"] == "elastic":
+        raise ConfigError("[tether] elasticity = 'elastic': needs [winch] mode = 'prescribed'; a "
+                          "fixed-length elastic line cannot hold the winch tension through the "
+                          "kite's radius (waves take time to cross it), use an inextensible line")
+    if not tension_mode:
+        inextensible = cfg["tether"]["elasticity"] == "inextensible"
+        if radius <= 0.0 or (inextensible and radius >= length):
+            raise ConfigError(f"[kite] radius_m = {radius}: [winch] mode = 'prescribed' needs "
+                              f"0 < radius_m < length_m = {length:g} for an inextensible line")
+    t = cfg["time"]
+    return dict(end=end or FigureEight.from_config(cfg, length_m=length), length_m=length,
+                tension_mode=tension_mode, ground_tension_N=cfg["winch"]["ground_tension_N"],
+                radius_m=radius, newton_tol=t["newton_tol"], max_newton=t["max_newton"],
+                max_halvings=t["max_halvings"])
