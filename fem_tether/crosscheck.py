@@ -46,31 +46,36 @@ class CrossCheck:
         }
 
 
-def _line_at(run: TetherRun, t):
-    """Node positions of ``run`` at time t, linear between snapshots."""
+def _on_grid(run: TetherRun, i: int, s):
+    """Positions of snapshot ``i`` at arc lengths ``s`` (linear between nodes)."""
+    line = run.line(i)
+    return np.column_stack([np.interp(s, line["s_m"], line["position_m"][:, k]) for k in range(3)])
+
+
+def _line_at(run: TetherRun, t, s):
+    """Positions of ``run`` at time t and arc lengths s, linear between snapshots."""
     times = run.snapshot_time_s
-    pos = run.snapshots["position_m"]
     j = int(np.clip(np.searchsorted(times, t), 1, times.size - 1))
     w = (t - times[j - 1]) / (times[j] - times[j - 1])
-    return (1.0 - w) * pos[j - 1] + w * pos[j]
-
-
-def _on_grid(s_nodes, pos, s):
-    return np.column_stack([np.interp(s, s_nodes, pos[:, k]) for k in range(3)])
+    return (1.0 - w) * _on_grid(run, j - 1, s) + w * _on_grid(run, j, s)
 
 
 def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
-    """max over a's snapshot times and common s of |r_a - r_b| / L."""
-    s = np.linspace(0.0, a.length_m, samples)
+    """max over a's snapshot times and common s of |r_a - r_b| / L.
+
+    For a line whose length changes (reel-out), the common arc lengths span
+    the shorter of the two lines at that time, and L is the longer length."""
     t_end = min(a.snapshot_time_s[-1], b.snapshot_time_s[-1])
-    worst = 0.0
-    for t, pos in zip(a.snapshot_time_s, a.snapshots["position_m"]):
+    worst, length = 0.0, a.length_m
+    for i, t in enumerate(a.snapshot_time_s):
         if t > t_end + 1e-9:
             break
-        ra = _on_grid(a.s_nodes_m, pos, s)
-        rb = _on_grid(b.s_nodes_m, _line_at(b, t), s)
-        worst = max(worst, float(np.max(np.linalg.norm(ra - rb, axis=1))))
-    return worst / a.length_m
+        s_a = a.line(i)["s_m"]
+        s = np.linspace(0.0, s_a[-1], samples)
+        diff = _on_grid(a, i, s) - _line_at(b, t, s)
+        worst = max(worst, float(np.max(np.linalg.norm(diff, axis=1))))
+        length = max(length, float(s_a[-1]))
+    return worst / length
 
 
 def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:

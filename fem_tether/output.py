@@ -15,9 +15,10 @@ run::
     /series/<name>          (n_t,)                     one per series (results.SERIES)
     /means                  attribute mean_<name> per series, over the averaging window
     /snapshots/time_s       (n_snap,)
-    /snapshots/s_nodes_m    (n_nodes,)                 arc length of the nodes
-    /snapshots/<field>      (n_snap, n_nodes, 3)       node fields (results.NODE_FIELDS)
+    /snapshots/<field>      (n_snap, n_nodes[, 3])     node fields (results.NODE_FIELDS:
+                                                       s_m arc length from the winch, ...)
                             (n_snap, n_el[, 3])        element fields (results.CELL_FIELDS)
+                            (NaN-padded when the node count changes: reel-out)
     /extra                  attributes: solver-specific values (TetherRun.extra)
 
 Datasets under ``series`` and ``snapshots`` carry a ``units`` attribute read off
@@ -112,7 +113,6 @@ def _write_hdf5(f: h5py.File, run: TetherRun, extra_attrs: dict):
 
     snapshots = f.create_group("snapshots", track_order=True)
     _dataset(snapshots, "time_s", run.snapshot_time_s)
-    _dataset(snapshots, "s_nodes_m", run.s_nodes_m)
     for name, values in run.snapshots.items():
         _dataset(snapshots, name, values, chunks=True, compression="gzip")
 
@@ -133,9 +133,8 @@ def read_run_hdf5(path) -> TetherRun:
             period_s=float(f.attrs["period_s"]),
             time_s=f["series/time_s"][()],
             series={k: v[()] for k, v in f["series"].items() if k != "time_s"},
-            s_nodes_m=snapshots["s_nodes_m"][()],
             snapshot_time_s=snapshots["time_s"][()],
-            snapshots={k: v[()] for k, v in snapshots.items() if k not in ("time_s", "s_nodes_m")},
+            snapshots={k: v[()] for k, v in snapshots.items() if k != "time_s"},
             average_start_s=float(f.attrs["average_start_s"]),
             config=tomllib.loads(f.attrs["config_toml"]),
             wall_s=float(f.attrs["wall_s"]),
@@ -172,16 +171,15 @@ def write_paraview(run: TetherRun, directory, name: str = "tether") -> Path:
 
 
 def _write_paraview(run: TetherRun, directory: Path, name: str):
-    positions = run.snapshots["position_m"]
-    n_nodes = positions.shape[1]
-    lines = np.column_stack([np.arange(n_nodes - 1), np.arange(1, n_nodes)])
     collection = ET.Element("Collection")
     for i, t in enumerate(run.snapshot_time_s):
+        line = run.line(i)
+        n_nodes = line["s_m"].size
         mesh = meshio.Mesh(
-            positions[i],
-            [("line", lines)],
-            point_data={"velocity_ms": run.snapshots["velocity_ms"][i], "s_m": run.s_nodes_m},
-            cell_data={k: [run.snapshots[k][i]] for k in CELL_FIELDS},
+            line["position_m"],
+            [("line", np.column_stack([np.arange(n_nodes - 1), np.arange(1, n_nodes)]))],
+            point_data={"velocity_ms": line["velocity_ms"], "s_m": line["s_m"]},
+            cell_data={k: [line[k]] for k in CELL_FIELDS},
         )
         file = f"{name}_{i:04d}.vtu"
         meshio.write(directory / file, mesh)

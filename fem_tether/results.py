@@ -22,8 +22,10 @@ SERIES = (
     "max_strain",          # max over elements of | |r_s| - 1 |
 )
 
-#: Snapshot fields: per node (position, velocity) and per element (the rest).
-NODE_FIELDS = ("position_m", "velocity_ms")
+#: Snapshot fields: per node (arc length from the winch, position, velocity)
+#: and per element (the rest).  A run whose node count changes (reel-out) pads
+#: every snapshot with NaN to the largest count.
+NODE_FIELDS = ("s_m", "position_m", "velocity_ms")
 CELL_FIELDS = ("tension_N", "vn_ms", "reynolds", "cd", "drag_N_m")
 
 
@@ -36,13 +38,23 @@ class TetherRun:
     period_s: float
     time_s: np.ndarray
     series: dict[str, np.ndarray]
-    s_nodes_m: np.ndarray
     snapshot_time_s: np.ndarray
     snapshots: dict[str, np.ndarray]
     average_start_s: float
     config: dict
     wall_s: float = 0.0
     extra: dict = field(default_factory=dict)
+
+    @property
+    def s_nodes_m(self) -> np.ndarray:
+        """Arc lengths of the nodes of the first snapshot (all, for a fixed-length run)."""
+        s = self.snapshots["s_m"][0]
+        return s[np.isfinite(s)]
+
+    def line(self, i: int) -> dict:
+        """Snapshot ``i`` without padding: node fields (n, ...) and cell fields (n - 1, ...)."""
+        n = int(np.count_nonzero(np.isfinite(self.snapshots["s_m"][i])))
+        return {k: v[i, :n] if k in NODE_FIELDS else v[i, :n - 1] for k, v in self.snapshots.items()}
 
     @property
     def average_window(self) -> np.ndarray:
@@ -100,6 +112,15 @@ class Recorder:
             time_s=np.asarray(self.times),
             series={k: series[:, j] for j, k in enumerate(SERIES)},
             snapshot_time_s=np.asarray(self.snap_t),
-            snapshots={k: np.stack([s[k] for s in self.snaps]) for k in NODE_FIELDS + CELL_FIELDS},
+            snapshots={k: _padded([s[k] for s in self.snaps]) for k in NODE_FIELDS + CELL_FIELDS},
             **fields,
         )
+
+
+def _padded(arrays) -> np.ndarray:
+    """Stack arrays whose first axes may differ, padding with NaN."""
+    n = max(a.shape[0] for a in arrays)
+    out = np.full((len(arrays), n) + arrays[0].shape[1:], np.nan)
+    for i, a in enumerate(arrays):
+        out[i, :a.shape[0]] = a
+    return out

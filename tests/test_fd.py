@@ -178,7 +178,8 @@ def test_run_structure():
     assert set(run.series) == set(SERIES)
     assert run.snapshot_time_s[-1] == pytest.approx(2 * period)
     for k in NODE_FIELDS:
-        assert run.snapshots[k].shape[1:] == (13, 3)
+        assert run.snapshots[k].shape[1] == 13
+    assert run.snapshots["position_m"].shape[2] == 3
     for k in CELL_FIELDS:
         assert run.snapshots[k].shape[1] == 12
     assert run.s_nodes_m[-1] == 300.0
