@@ -45,6 +45,10 @@ def non_negative(v):
     return None if v >= 0 else "must be >= 0"
 
 
+def unrestricted(v):
+    return None
+
+
 def between(lo, hi, closed=(False, False)):
     def check(v):
         ok_lo = v >= lo if closed[0] else v > lo
@@ -112,11 +116,21 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "mode": Key("tension", "'tension' (winch holds ground_tension_N) or 'prescribed'",
                     one_of("tension", "prescribed")),
         "ground_tension_N": Key(150000.0, "tension held by the winch, per line", positive),
+        "reel_out": Key("none", "reeling during flight: 'none', 'constant', 'table' or 'controlled'",
+                        one_of("none", "constant", "table", "controlled")),
+        "reel_out_speed_ms": Key(0.0, "reel_out = 'constant': V_L (< 0 reels in)", unrestricted),
+        "reel_out_table": Key("", "reel_out = 'table': CSV time_s,speed_ms from the start of reeling"),
+        "reel_out_stop_m": Key(0.0, "stop reeling and the run at this length (0: run the periods)",
+                               non_negative),
     },
     "fe": {
         "mesh": Key("graded", "'uniform', 'graded' or a meshio file of [0, 1] (e.g. meshes/graded_40.vtu)"),
         "elements": Key(40, "elements of a generated mesh", at_least(1)),
         "grading": Key(4.0, "first/last element size of a graded mesh (kite end finer)", positive),
+        "min_element_m": Key(2.0, "reeling: the winch element merges with its neighbour below this",
+                             positive),
+        "max_element_m": Key(100.0, "reeling: the winch element splits above this (into halves of it)",
+                             positive),
     },
     "time": {
         "dt_s": Key(0.05, "time step (rounded down to a whole number of steps per period)", positive),

@@ -20,6 +20,10 @@ SERIES = (
     "drag_N",              # F_t = |M_d| / |r_kite| (seed 000 eq. 4.1)
     "drag_against_N",      # component of F_t opposing the kite's velocity
     "max_strain",          # max over elements of | |r_s| - 1 |
+    "length_m",            # paid-out line length L(t)
+    "reel_out_ms",         # winch speed V_L(t) (> 0 pays out)
+    "winch_power_W",       # mechanical power at the winch T(0, t) V_L(t), per line
+    "winch_energy_J",      # its time integral since the start, per line
 )
 
 #: Snapshot fields: per node (arc length from the winch, position, velocity)
@@ -97,11 +101,12 @@ class Recorder:
         self.n_steps, self.output_every = n_steps, output_every
         self.times, self.rows, self.snap_t, self.snaps = [], [], [], []
 
-    def add(self, step: int, t: float, values: dict) -> None:
-        """Record ``values`` (every name of SERIES, NODE_FIELDS and CELL_FIELDS) at step ``step``."""
+    def add(self, step: int, t: float, values: dict, last: bool = False) -> None:
+        """Record ``values`` (every name of SERIES, NODE_FIELDS and CELL_FIELDS) at step
+        ``step``; ``last`` marks a run's last step when it ends early."""
         self.times.append(t)
         self.rows.append([values[k] for k in SERIES])
-        if step % self.output_every == 0 or step == self.n_steps:
+        if step % self.output_every == 0 or step == self.n_steps or last:
             self.snap_t.append(t)
             self.snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
 

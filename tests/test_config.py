@@ -11,7 +11,8 @@ def test_defaults_are_the_seed_case():
     cfg = load_config()
     assert cfg["tether"]["length_m"] == 1000.0 and cfg["tether"]["diameter_m"] == 0.011
     assert cfg["tether"]["linear_density_kg_m"] == 0.062 and cfg["tether"]["lines"] == 2
-    assert cfg["winch"] == {"mode": "tension", "ground_tension_N": 150000.0}
+    assert cfg["winch"]["mode"] == "tension" and cfg["winch"]["ground_tension_N"] == 150000.0
+    assert cfg["winch"]["reel_out"] == "none"
     assert cfg["kite"]["speed_ms"] == 80.0 and cfg["kite"]["efficiency"] == 28.0
 
 

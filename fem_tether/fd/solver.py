@@ -295,7 +295,9 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
             prev, state = _advance(model, prev, state, h, stats)
             state.t = t0 + i * h
             bar.update(i)
-        record.add(i, state.t, line_state(model, state))
+        record.add(i, state.t, line_state(model, state) | {
+            "length_m": model.length_m, "reel_out_ms": 0.0, "winch_power_W": 0.0,
+            "winch_energy_J": 0.0})
     bar.close()
     return record.run(
         solver="fd",

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -29,6 +29,7 @@ from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.system import TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
+from fem_tether.reel import Reel, reel_from_config
 from fem_tether.tether import physics_from_config
 from fem_tether.results import Recorder, TetherRun, time_grid
 
@@ -39,6 +40,7 @@ class FEModel(TetherCase):
 
     system: TetherSystem
     scheme: Scheme
+    reel_ms: float = 0.0          # winch speed V_L during the current step
 
 
 @dataclass
@@ -166,7 +168,7 @@ def _step(model: FEModel, state: State, h: float) -> State:
     for _ in range(model.max_newton):
         kin = state.kin.advance(r, h, model.scheme)
         ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
-                           f_ref, c_a, c_v)
+                           f_ref, c_a, c_v, reel_ms=model.reel_ms)
         worst = float(np.max(np.abs(ev.residual))) / f_ref
         if not np.isfinite(worst):
             break
@@ -218,21 +220,81 @@ def line_state(model: FEModel, state: State) -> dict:
     }
 
 
+def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
+           min_element_m: float, max_element_m: float) -> tuple[FEModel, State]:
+    """Model and state with the line paid out (or reeled in) to ``length_m``.
+
+    Element birth and death at the winch: the nodes are material points, and
+    the winch element (node 0 fixed at the drum) takes the length change.  When
+    it would exceed ``max_element_m`` a new material node is placed on it,
+    ``max_element_m / 2`` from node 1, so the line keeps its resolution as it
+    grows; when it would fall below ``min_element_m`` it merges with its
+    neighbour (node 1 is removed).  The line's mass stays mu L(t): the lumped
+    masses are mu times the element lengths shared by their nodes.
+    """
+    sp = model.system.spaces
+    mu = model.system.physics.linear_density_kg_m
+    kin = state.kin
+    growth = length_m - model.length_m
+    T = state.T
+    if sp.h_m[0] + growth > max_element_m:
+        s1 = sp.h_m[0]
+        f = (s1 - 0.5 * max_element_m) / s1         # new node's fraction of the way to node 1
+        winch = reel_ms * (kin.q[1] / s1)           # material velocity leaving the drum
+        rows = {"q": f * kin.q[1], "v": (1 - f) * winch + f * kin.v[1], "a": f * kin.a[1],
+                "qdd": f * kin.qdd[1]}
+        kin = Kinematics(*(np.insert(getattr(kin, k), 1, rows[k], axis=0) for k in ("q", "v", "a", "qdd")))
+        T = np.insert(T, 0, T[0])
+        spaces = build_spaces(np.insert(sp.s_m, 1, f * s1) / model.length_m, model.length_m, mu)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode)
+    elif sp.h_m[0] + growth < min_element_m and sp.n_elements > 1:
+        kin = Kinematics(*(np.delete(getattr(kin, k), 1, axis=0) for k in ("q", "v", "a", "qdd")))
+        T = np.delete(T, 0)
+        spaces = build_spaces(np.delete(sp.s_m, 1) / model.length_m, model.length_m, mu)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode)
+    else:
+        system = model.system
+    system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
+    model = replace(model, system=system, length_m=length_m, reel_ms=reel_ms,
+                    end=replace(model.end, length_m=length_m))
+    return model, State(state.t, kin, T, state.R)
+
+
 def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
-        output_every: int = 1, config: dict | None = None, progress: bool = False) -> TetherRun:
-    """Static start, then whole periods of the eight; returns the :class:`TetherRun`."""
+        output_every: int = 1, config: dict | None = None, progress: bool = False,
+        reel: Reel = Reel(), element_bounds_m: tuple[float, float] = (2.0, 100.0)) -> TetherRun:
+    """Static start, then whole periods of the eight; returns the :class:`TetherRun`.
+
+    With an active ``reel`` the winch pays the line out (or in) at V_L(t)
+    after the spin-up (:func:`reeled`, V_L taken at the start of each step)
+    until ``reel.stop_m`` or the end of the periods; the series then carry
+    L(t), V_L(t), the winch power T(0) V_L and the energy delivered.
+    """
     wall0 = time.perf_counter()
     period = model.end.period_s
     h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
     state = initial_state(model)
+    start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
     record = Recorder(n_steps, output_every)
     bar = Progress(n_steps, f"FE L = {model.length_m:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
+            reel_ms = reel.speed_ms(state.t, state.kin.q[-1])
+            if reel_ms or model.reel_ms:
+                target = model.length_m + h * reel_ms
+                if reel.stop_m:
+                    target = min(target, reel.stop_m) if reel_ms > 0 else max(target, reel.stop_m)
+                model, state = reeled(model, state, target, reel_ms, *element_bounds_m)
             state = advance(model, state, h)
             state.t = i * h
+            energy_J += h * reel_ms * state.T[0]
             bar.update(i)
-        record.add(i, state.t, line_state(model, state))
+        done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
+        record.add(i, state.t, line_state(model, state) | {
+            "length_m": model.length_m, "reel_out_ms": reel_ms,
+            "winch_power_W": reel_ms * state.T[0], "winch_energy_J": energy_J}, last=done)
+        if done:
+            break
     bar.close()
     return record.run(
         solver="fe",
@@ -248,6 +310,11 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
 def simulate(cfg, length_m=None, progress=False) -> TetherRun:
     """Run the configured case with the FE solver."""
     model = build_model(cfg, length_m)
-    t = cfg["time"]
+    t, fe = cfg["time"], cfg["fe"]
+    if not fe["max_element_m"] > 2.0 * fe["min_element_m"]:
+        raise ConfigError(f"[fe] max_element_m = {fe['max_element_m']:g}: must exceed twice "
+                          f"[fe] min_element_m = {fe['min_element_m']:g}")
+    reel = reel_from_config(cfg, start_s=t["spinup_periods"] * model.end.period_s)
     return run(model, t["dt_s"], t["spinup_periods"], t["average_periods"],
-               cfg["output"]["every"], config=cfg, progress=progress)
+               cfg["output"]["every"], config=cfg, progress=progress, reel=reel,
+               element_bounds_m=(fe["min_element_m"], fe["max_element_m"]))

@@ -21,6 +21,7 @@ rows are multiplied by ``k = F_ref / h_mean`` so all rows are forces.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -60,12 +61,24 @@ class TetherSystem:
         n_el = self.spaces.n_elements
         self.n = 4 * n_el + 4
         self.weight = self.physics.weight_N_m
-        self.w_lo = np.asarray(self.spaces.Q[np.arange(n_el), np.arange(n_el)]).ravel()
-        self.w_hi = np.asarray(self.spaces.Q[np.arange(1, n_el + 1), np.arange(n_el)]).ravel()
         interior = np.zeros(n_el + 1)
         interior[1:-1] = 1.0
         self.interior = interior
         self._idx = self._band_indices()
+
+    def with_spaces(self, spaces: TetherSpaces) -> "TetherSystem":
+        """This system on other spaces of the same topology (reeling changes lengths)."""
+        other = copy.copy(self)
+        other.spaces = spaces
+        return other
+
+    @property
+    def load_weights(self) -> np.ndarray:
+        """Q's entries (n_el, 2): the share of element e's load on its two nodes."""
+        n_el = self.spaces.n_elements
+        Q = self.spaces.Q
+        e = np.arange(n_el)
+        return np.column_stack([np.asarray(Q[e, e]).ravel(), np.asarray(Q[e + 1, e]).ravel()])
 
     # --- layout -----------------------------------------------------------
     def pack(self, r, T, R):
@@ -106,11 +119,13 @@ class TetherSystem:
 
     # --- equations --------------------------------------------------------
     def evaluate(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
-                 force_ref_N, c_a=0.0, c_v=0.0, jacobian=True) -> Evaluation:
+                 force_ref_N, c_a=0.0, c_v=0.0, jacobian=True, reel_ms=0.0) -> Evaluation:
         """Scaled residual (and banded Jacobian) at positions r, velocities v.
 
         ``c_a = dqdd/dr`` and ``c_v = dv/dr`` come from the time integrator
-        (both 0 for a static solve with frozen velocities).
+        (both 0 for a static solve with frozen velocities).  ``reel_ms`` is the
+        winch's reel-out speed V_L: the line leaves the winch node, which stays
+        at the origin, with the material velocity V_L tau_0.
         """
         sp, ph = self.spaces, self.physics
         h = sp.h_m
@@ -118,6 +133,9 @@ class TetherSystem:
         dr = sp.D @ r
         length = np.linalg.norm(dr, axis=1)
         tau = dr / length[:, None]
+        if reel_ms:
+            v = v.copy()
+            v[0] = reel_ms * tau[0]
         r_mid = 0.5 * (r[1:] + r[:-1])
         v_mid = 0.5 * (v[1:] + v[:-1])
         z = r_mid[:, 2]
@@ -140,10 +158,11 @@ class TetherSystem:
         res[-1] = (T[0] - ground_tension_N) if self.tension_mode else k_s * (R - radius_m)
         out = Evaluation(res, k_s, tau, length, r_mid, load)
         if jacobian:
-            out.ab, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir)
+            out.ab, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir,
+                                               reel_ms)
         return out
 
-    def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir):
+    def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir, reel_ms=0.0):
         sp, ph = self.spaces, self.physics
         n_el = sp.n_elements
         eye = np.eye(3)
@@ -159,10 +178,14 @@ class TetherSystem:
         d_tau = load.d_dtau @ proj / length[:, None, None]
         d_mid = -0.5 * c_v * load.d_dvrel
         d_mid[:, :, 2] += 0.5 * df_dz
-        w = np.stack([self.w_lo, self.w_hi], axis=1)                  # Q weights (n_el, 2)
+        w = self.load_weights
         block = (sgn[None, :, None, None, None] * sgn[None, None, :, None, None]) * k_geo[:, None, None] \
             - w[:, :, None, None, None] * (sgn[None, None, :, None, None] * d_tau[:, None, None]
                                            + d_mid[:, None, None])
+        if reel_ms:   # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1), not 1/2 (v_0 + v_1)
+            turn = (0.5 * reel_ms / length[0]) * (load.d_dvrel[0] @ proj[0])
+            block[0] += (sgn[None, :, None, None] * w[0, :, None, None, None]) * turn
+            block[0, :, 0] -= w[0, :, None, None] * (0.5 * c_v) * load.d_dvrel[0]
         node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
         block *= self.interior[node][:, :, None, None, None]
         rT = sgn[None, :, None] * tau[:, None, :] * self.interior[node][:, :, None]

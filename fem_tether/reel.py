@@ -1,0 +1,138 @@
+"""Reeling at the winch: the speed V_L(t) at which the line is paid out (> 0)
+or reeled in (< 0) while the kite flies (seed 000 §4.2).
+
+Modes (``[winch] reel_out``):
+
+* ``"none"``: fixed length;
+* ``"constant"``: V_L = ``reel_out_speed_ms``;
+* ``"table"``: V_L(t) interpolated linearly in a CSV file with columns
+  ``time_s,speed_ms`` (time measured from the start of reeling; the last
+  speed is held);
+* ``"controlled"``: the kite traction law (seed 000 eq. 4.17) solved for the
+  reel-out speed that makes the kite pull the nominal force of the lines,
+  lines x ``ground_tension_N`` (the seed's condition), with the wind and air
+  density at the kite's altitude and its current angles::
+
+      V_L = V_w(z_k) sin(theta) cos(phi) - sqrt(lines T_0 / C(rho(z_k))),
+      C = 1/2 rho A C_l E^2 (1 + 1/E^2)^(3/2),
+
+  held within [0, max_reel_out_ms].
+
+Reeling starts after the spin-up (``start_s``) and stops when the line reaches
+``reel_out_stop_m`` (0: never).
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from fem_tether import atmosphere, kite, wind
+from fem_tether.config import ConfigError
+
+
+class SpeedTableError(ValueError):
+    """A reel-out speed table is malformed; the message names the line."""
+
+
+def read_speed_table(path) -> tuple[np.ndarray, np.ndarray]:
+    """``time_s,speed_ms`` rows (with that header), times strictly increasing from 0."""
+    path = Path(path)
+    try:
+        with path.open(newline="") as fh:
+            rows = list(csv.reader(fh))
+    except FileNotFoundError:
+        raise SpeedTableError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SpeedTableError(f"{path}: cannot read: {exc}") from None
+    if not rows or [c.strip() for c in rows[0]] != ["time_s", "speed_ms"]:
+        raise SpeedTableError(f"{path} line 1: expected the header 'time_s,speed_ms'")
+    t, v = [], []
+    for line, row in enumerate(rows[1:], start=2):
+        if not row or not "".join(row).strip():
+            continue
+        try:
+            ti, vi = (float(c) for c in row)
+        except ValueError:
+            raise SpeedTableError(f"{path} line {line}: expected two numbers, got {','.join(row)!r}") from None
+        if not (np.isfinite(ti) and np.isfinite(vi)):
+            raise SpeedTableError(f"{path} line {line}: values must be finite")
+        if t and ti <= t[-1]:
+            raise SpeedTableError(f"{path} line {line}: time {ti:g} s is not after {t[-1]:g} s")
+        if not t and ti != 0.0:
+            raise SpeedTableError(f"{path} line {line}: the table must start at time_s = 0")
+        t.append(ti)
+        v.append(vi)
+    if not t:
+        raise SpeedTableError(f"{path}: no rows")
+    return np.array(t), np.array(v)
+
+
+@dataclass(frozen=True)
+class Reel:
+    """The winch's reeling law; ``speed_ms(t, kite_position)`` gives V_L."""
+
+    mode: str = "none"
+    start_s: float = 0.0
+    stop_m: float = 0.0
+    speed: float = 0.0
+    table: tuple[np.ndarray, np.ndarray] | None = field(default=None, compare=False)
+    cfg: dict | None = field(default=None, compare=False, repr=False)
+
+    @property
+    def active(self) -> bool:
+        return self.mode != "none"
+
+    def speed_ms(self, t_s: float, kite_position_m) -> float:
+        """V_L at time ``t_s`` (0 before ``start_s``) with the kite at ``kite_position_m``."""
+        if self.mode == "none" or t_s < self.start_s:
+            return 0.0
+        if self.mode == "constant":
+            return self.speed
+        if self.mode == "table":
+            return float(np.interp(t_s - self.start_s, *self.table))
+        return self._controlled(np.asarray(kite_position_m, dtype=float))
+
+    def _controlled(self, p) -> float:
+        cfg = self.cfg
+        k = cfg["kite"]
+        z = np.array(max(p[2], 0.0))
+        rho = float(atmosphere.from_config(cfg).density_kg_m3(z))
+        v_w = float(wind.from_config(cfg).speed_ms(z))
+        theta = np.arccos(p[2] / np.linalg.norm(p))
+        phi = np.arctan2(p[1], p[0])
+        c = kite.traction_coefficient(rho, k["area_m2"], k["cl"], k["efficiency"])
+        nominal = cfg["tether"]["lines"] * cfg["winch"]["ground_tension_N"]
+        v_l = v_w * np.sin(theta) * np.cos(phi) - np.sqrt(nominal / c)
+        return float(np.clip(v_l, 0.0, k["max_reel_out_ms"]))
+
+    def stopped(self, length_m: float, start_length_m: float) -> bool:
+        """True once the line has reached ``stop_m`` from ``start_length_m``."""
+        if not self.stop_m:
+            return False
+        if self.stop_m >= start_length_m:
+            return length_m >= self.stop_m - 1e-9
+        return length_m <= self.stop_m + 1e-9
+
+
+def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
+    """The reeling law of ``cfg["winch"]``, starting at ``start_s``."""
+    w = cfg["winch"]
+    mode = w["reel_out"]
+    if mode == "none":
+        return Reel()
+    if w["mode"] != "tension":
+        raise ConfigError(f"[winch] reel_out = {mode!r}: needs [winch] mode = 'tension' "
+                          "(the kite's radius follows the paid-out line)")
+    table = None
+    if mode == "table":
+        if not w["reel_out_table"]:
+            raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = 'table'")
+        try:
+            table = read_speed_table(w["reel_out_table"])
+        except SpeedTableError as exc:
+            raise ConfigError(f"[winch] reel_out_table: {exc}") from None
+    return Reel(mode, start_s, w["reel_out_stop_m"], w["reel_out_speed_ms"], table, cfg)
