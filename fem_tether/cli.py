@@ -147,11 +147,15 @@ def cmd_simulate(args):
         summary["hdf5"] = str(write_run_hdf5(run, out / f"{stem}.h5", extra_attrs={
             "ge": summary["ge"], "straight_drag_N": summary["straight_drag_N"]}))
         summary["paraview"] = str(write_paraview(run, out / stem))
+        if cfg["winch"]["reel_out"] != "none":
+            from fem_tether.pipeline import reel_drag_plot
+            summary["reel_plot"] = str(reel_drag_plot(run, cfg, out / f"{stem}_reel_drag.png",
+                                                      args.sweep))
     if args.json:
         _print_json(summary)
         return 0
     s = summary
-    print(f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements, dt = {s['dt_s']:.4f} s, "
+    print(f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements (at the end), dt = {s['dt_s']:.4f} s, "
           f"{s['periods']} periods averaged (period {s['period_s']:.2f} s), wall {s['wall_s']:.2f} s")
     print(f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   (straight line {s['straight_drag_N']:.1f} N)")
     print(f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N")
@@ -160,6 +164,9 @@ def cmd_simulate(args):
     print(f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m")
     print(f"  G_e                       {s['ge']:10.2f}")
     print(f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}")
+    if cfg["winch"]["reel_out"] != "none":
+        print(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
+              f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line")
     if args.out:
         print(f"results: {s['hdf5']}\nParaView: {s['paraview']}")
     return 0
@@ -324,6 +331,8 @@ def build_parser() -> argparse.ArgumentParser:
     c = command("simulate", cmd_simulate, "FE tether dynamics on the figure-eight")
     c.add_argument("--length", type=_positive_float, help="cable length [m]")
     c.add_argument("--out", metavar="DIR", help="write HDF5 and a ParaView time series here")
+    c.add_argument("--sweep", metavar="FILE.h5",
+                   help="reel-out: overlay a sweep's fixed-length F_t on the F_t(L) plot")
     c.add_argument("--json", action="store_true")
 
     c = command("crosscheck", cmd_crosscheck, "run the FE and the FD solver on one case and compare")

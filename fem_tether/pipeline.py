@@ -59,6 +59,23 @@ def write_json(path: Path, payload: dict) -> Path:
     return path
 
 
+def reel_drag_plot(run, cfg, path, sweep_file=None) -> Path:
+    """F_t(L) of a reel-out run beside the straight line and, if given, a sweep's FE points."""
+    from fem_tether import straight
+    from fem_tether.results import period_average
+    from fem_tether.sweep import read_sweep
+
+    curve = period_average(run, "drag_N")
+    lengths = np.linspace(run.series["length_m"].min(), run.series["length_m"].max(), 30)
+    straight_drag = [straight.from_config(cfg, L, with_wind=True).drag_N for L in lengths]
+    points = None
+    if sweep_file:
+        data = read_sweep(sweep_file)
+        points = (data["length_m"], data["drag_fe_N"])
+    return plots.plot_reel_drag(curve, path, points, (lengths, straight_drag),
+                                (run.series["length_m"], run.series["drag_N"]))
+
+
 def summary_table(data: dict, energy: SweepAep) -> str:
     rows = {r["length_m"]: r for r in energy.as_dict()["lengths"]}
     lines = ["    L [m]  F_t straight  F_t flexible  G_e str.  G_e flex.  AEP str.  AEP flex.  cross-check",

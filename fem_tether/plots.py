@@ -165,3 +165,31 @@ def plot_power_curves(curves_by_label: Mapping[str, CycleCurves], path) -> Path:
         return save_atomically(fig, path)
     finally:
         plt.close(fig)
+
+
+def plot_reel_drag(run_curve, path, sweep_points=None, straight_curve=None,
+                   instantaneous=None) -> Path:
+    """F_t against L along a reel-out run (period-averaged), beside the
+    fixed-length sweep's points and the straight line (seed 000 Fig. 4.43)."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    if instantaneous is not None:
+        ax.plot(instantaneous[0], np.asarray(instantaneous[1]) * 1e-3, color="C3", lw=0.5,
+                alpha=0.25, label="reel-out run, instantaneous")
+    ax.plot(run_curve[0], np.asarray(run_curve[1]) * 1e-3, color="C3", lw=2,
+            label="reel-out run, mean over one period")
+    if sweep_points is not None:
+        ax.plot(sweep_points[0], np.asarray(sweep_points[1]) * 1e-3, "o", ms=8, mfc="none",
+                mec="k", mew=1.3, label="fixed-length runs (sweep)")
+    if straight_curve is not None:
+        ax.plot(straight_curve[0], np.asarray(straight_curve[1]) * 1e-3, "--", color="C0",
+                label="straight line")
+    ax.set_xlabel("cable length $L$ [m]")
+    ax.set_ylabel("line drag $F_t$ per line [kN]")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title("cable drag while the line is paid out (seed 000 eq. 4.1)", fontsize=10)
+    try:
+        return save_atomically(fig, path)
+    finally:
+        plt.close(fig)

@@ -129,3 +129,18 @@ def _padded(arrays) -> np.ndarray:
     for i, a in enumerate(arrays):
         out[i, :a.shape[0]] = a
     return out
+
+
+def period_average(run: TetherRun, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Moving average of a series over one period of the eight, against the
+    line length at the window's centre: ``(L, mean)`` (F_t(L) along a reel-out).
+
+    Only windows after the spin-up and inside the run are kept."""
+    h = run.time_s[1] - run.time_s[0]
+    n = int(round(run.period_s / h))
+    y = run.series[name]
+    trapezoid = np.convolve(y, np.r_[0.5, np.ones(n - 1), 0.5], mode="valid") / n
+    start = np.searchsorted(run.time_s, run.average_start_s - 1e-9 * run.period_s)
+    centre = np.arange(trapezoid.size) + n // 2
+    keep = np.arange(trapezoid.size) >= start
+    return run.series["length_m"][centre[keep]], trapezoid[keep]

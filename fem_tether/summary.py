@@ -15,7 +15,7 @@ from fem_tether import atmosphere, kite, straight
 def run_summary(run, cfg) -> dict:
     """Period means, straight-line comparison and G_e of one tether run."""
     means = run.means()
-    kite_z = float(np.mean(run.snapshots["position_m"][:, -1, 2]))
+    kite_z = float(np.mean([run.line(i)["position_m"][-1, 2] for i in range(run.snapshot_time_s.size)]))
     rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(kite_z)))
     k = cfg["kite"]
     ge = kite.global_efficiency(means["mean_drag_N"], rho, k["area_m2"], k["cl"], k["efficiency"],
@@ -31,6 +31,8 @@ def run_summary(run, cfg) -> dict:
         "max_strain": float(np.max(run.series["max_strain"])),
         "straight_drag_N": straight.from_config(cfg, length_m=run.length_m).drag_N,
         "ge": float(ge),
+        "length_end_m": float(run.series["length_m"][-1]),
+        "winch_energy_J": float(run.series["winch_energy_J"][-1]),
         "periods": run.periods,
         "period_s": run.period_s,
         "wall_s": run.wall_s,

@@ -19,7 +19,26 @@ frozen rigid-rotation velocity field v(s) = (s/L) R0 e'(0) (R0 = L in tension
 mode, the prescribed radius otherwise), from a straight line (tension mode) or
 the catenary (prescribed mode), by a backtracking Newton.
 
-Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler").
+Reeling (``[winch] reel_out``, :mod:`fem_tether.reel`): after the spin-up the
+winch pays the line out (V_L > 0) or reels it in (V_L < 0).  Nodes 1..M are
+material points; node 0 is the drum's exit, fixed at the origin, and the
+winch segment h_0 takes the length change: L_{n+1} = L_n + h V_L with V_L
+taken at the start of the step, then the implicit step on the grid with the
+new h_0 (:func:`reeled`).  When h_0 would exceed ``[fe] max_element_m`` a
+material node is inserted on it ``max_element_m / 2`` from node 1 (position,
+velocity and acceleration interpolated along the segment, the line leaving the
+drum at V_L tau_{1/2}); below ``[fe] min_element_m`` node 1 is removed (the
+winch segment merges with the next one).  The node-1 equation then has unequal
+half-segments on its two sides (:mod:`.system`: mass mu (h_0 + h_1)/2), and
+the lumped masses always sum to mu L(t).  BDF2's history is not defined for a
+new node, so the step after an insertion is an implicit-Euler step (the
+start of BDF2); a removal keeps the history of the remaining nodes.  The kite
+flies the eight on the sphere of the current L.  The same law as the FE solver,
+written independently.
+
+Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler");
+reeling uses ``[winch]`` and the segment bounds ``[fe] min_element_m`` and
+``[fe] max_element_m``.
 """
 
 from __future__ import annotations
@@ -39,6 +58,7 @@ from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
+from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import Recorder, TetherRun, time_grid
 
 SCHEMES = ("bdf2", "euler")
@@ -50,6 +70,7 @@ class FDModel(TetherCase):
 
     eq: TetherFD
     scheme: str                   # "bdf2" or "euler"
+    reel_ms: float = 0.0          # winch speed V_L during the current step
 
     @property
     def grid(self) -> Grid:
@@ -209,7 +230,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: dict)
     for _ in range(model.max_newton):
         r = _nodes(model, r_int, R, e)
         v, acc = kinematics(r)
-        ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0)
+        ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_ms=model.reel_ms)
         stats["newton"] += 1
         worst = float(np.max(np.abs(ev.residual)))
         if not np.isfinite(worst):
@@ -240,14 +261,14 @@ def _advance(model: FDModel, prev: State | None, cur: State, h: float, stats: di
 def line_state(model: FDModel, state: State) -> dict:
     """Series values and snapshot fields of one solution.
 
-    Drag is evaluated at every node (one-sided tangents at the ends); F_t from
-    eq. 4.1 with trapezoidal weights.  Per-segment fields: tension T_{k+1/2};
+    Drag is evaluated at every node (one-sided tangents at the ends; the line
+    leaves the winch at V_L tau_{1/2}); F_t from eq. 4.1 with trapezoidal weights.  Per-segment fields: tension T_{k+1/2};
     |V_n| and f_t averaged from the two nodes; Re and C_d from that |V_n| at
     the segment midpoint's altitude.
     """
     g, ph = model.grid, model.eq.physics
     r, v = state.r, state.v
-    loads = model.eq.line_loads(r, v)
+    loads = model.eq.line_loads(r, v, model.reel_ms)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     seg = np.linalg.norm(np.diff(r, axis=0), axis=1)
@@ -261,7 +282,7 @@ def line_state(model: FDModel, state: State) -> dict:
         "kite_radius_m": float(np.linalg.norm(r[-1])),
         "drag_N": float(drag),
         "drag_against_N": float(against) if against is not None else 0.0,
-        "max_strain": float(np.max(np.abs(seg / g.ds - 1.0))),
+        "max_strain": float(np.max(np.abs(seg / g.h - 1.0))),
         "s_m": model.grid.s_m.copy(),
         "position_m": r.copy(),
         "velocity_ms": v.copy(),
@@ -273,13 +294,58 @@ def line_state(model: FDModel, state: State) -> dict:
     }
 
 
+def reeled(model: FDModel, prev: State | None, state: State, length_m: float, reel_ms: float,
+           min_segment_m: float, max_segment_m: float) -> tuple[FDModel, State | None, State]:
+    """Model, BDF2 history and state with the line paid out (or reeled in) to ``length_m``.
+
+    The winch segment h_0 takes the change ``length_m - L``.  Above
+    ``max_segment_m`` a material node is inserted on it, ``max_segment_m / 2``
+    from node 1 (r, v, a interpolated linearly between the winch, where the
+    line moves at V_L tau_{1/2}, and node 1; its tension is the winch
+    segment's); the history is dropped (the next step is implicit Euler).
+    Below ``min_segment_m`` (with at least 3 segments) node 1 is removed and
+    the winch segment reaches node 2; the history keeps the other nodes.
+    """
+    g = model.grid
+    h0 = g.h[0] + (length_m - model.length_m)
+    r, v, a, T = state.r, state.v, state.a, state.T
+    if h0 > max_segment_m:
+        half = 0.5 * max_segment_m
+        f = (g.h[0] - half) / g.h[0]            # new node's fraction of the way to node 1
+        drum = reel_ms * r[1] / np.linalg.norm(r[1])
+        r = np.insert(r, 1, f * r[1], axis=0)
+        v = np.insert(v, 1, (1.0 - f) * drum + f * v[1], axis=0)
+        a = np.insert(a, 1, f * a[1], axis=0)
+        T = np.insert(T, 1, T[0])
+        grid = Grid.from_lengths(np.concatenate([[h0 - half, half], g.h[1:]]), g.tension_mode)
+        prev = None
+    elif h0 < min_segment_m and g.M > 2:
+        r, v, a = (np.delete(x, 1, axis=0) for x in (r, v, a))
+        T = np.delete(T, 1)                     # T_{1/2} stays (the winch's, in tension mode)
+        grid = Grid.from_lengths(np.concatenate([[h0 + g.h[1]], g.h[2:]]), g.tension_mode)
+        if prev is not None:
+            prev = replace(prev, r=np.delete(prev.r, 1, axis=0), v=np.delete(prev.v, 1, axis=0),
+                           a=np.delete(prev.a, 1, axis=0), T=np.delete(prev.T, 1))
+    else:
+        grid = g.with_first_length(h0)
+    end = replace(model.end, length_m=length_m) if hasattr(model.end, "length_m") else model.end
+    model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=length_m,
+                    reel_ms=reel_ms, end=end)
+    return model, prev, State(state.t, r, v, a, T, state.R)
+
+
 def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
         output_every: int = 1, config: dict | None = None, progress: bool = False,
-        initial: State | None = None) -> TetherRun:
+        initial: State | None = None, reel: Reel = Reel(),
+        segment_bounds_m: tuple[float, float] = (2.0, 100.0)) -> TetherRun:
     """Static start (or ``initial``), then whole periods of the end motion.
 
     The step is ``period / ceil(period / dt_s)``; series are recorded every
-    step, snapshots every ``output_every`` steps and at the end.
+    step, snapshots every ``output_every`` steps and at the end.  With an
+    active ``reel`` the winch pays the line out (or in) at V_L(t), taken at
+    the start of each step (:func:`reeled`, segments kept within
+    ``segment_bounds_m``), until ``reel.stop_m`` or the end of the periods;
+    the series carry L(t), V_L(t), the winch power T(0) V_L and its energy.
     """
     wall0 = time.perf_counter()
     period = model.end.period_s
@@ -287,17 +353,28 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
     state = initial if initial is not None else static_equilibrium(model)
     t0 = state.t
     prev = None
+    start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
     stats = {"newton": 0, "halvings": 0}
     record = Recorder(n_steps, output_every)
     bar = Progress(n_steps, f"FD L = {model.length_m:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
+            reel_ms = reel.speed_ms(state.t, state.r[-1])
+            if reel_ms or model.reel_ms:
+                target = model.length_m + h * reel_ms
+                if reel.stop_m:
+                    target = min(target, reel.stop_m) if reel_ms > 0 else max(target, reel.stop_m)
+                model, prev, state = reeled(model, prev, state, target, reel_ms, *segment_bounds_m)
             prev, state = _advance(model, prev, state, h, stats)
             state.t = t0 + i * h
+            energy_J += h * reel_ms * state.T[0]
             bar.update(i)
+        done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
         record.add(i, state.t, line_state(model, state) | {
-            "length_m": model.length_m, "reel_out_ms": 0.0, "winch_power_W": 0.0,
-            "winch_energy_J": 0.0})
+            "length_m": model.length_m, "reel_out_ms": reel_ms,
+            "winch_power_W": reel_ms * state.T[0], "winch_energy_J": energy_J}, last=done)
+        if done:
+            break
     bar.close()
     return record.run(
         solver="fd",
@@ -312,8 +389,17 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
 
 
 def simulate(cfg, length_m=None, progress=False) -> TetherRun:
-    """Run the configured case with the FD solver (time step ``[fd] dt_s``)."""
+    """Run the configured case with the FD solver (time step ``[fd] dt_s``).
+
+    Reeling (``[winch] reel_out``) starts after the spin-up; the winch
+    segment stays within ``[fe] min_element_m`` .. ``[fe] max_element_m``.
+    """
     model = build_model(cfg, length_m)
-    t = cfg["time"]
+    t, fe = cfg["time"], cfg["fe"]
+    if not fe["max_element_m"] > 2.0 * fe["min_element_m"]:
+        raise ConfigError(f"[fe] max_element_m = {fe['max_element_m']:g}: must exceed twice "
+                          f"[fe] min_element_m = {fe['min_element_m']:g}")
+    reel = reel_from_config(cfg, start_s=t["spinup_periods"] * model.end.period_s)
     return run(model, cfg["fd"]["dt_s"], t["spinup_periods"], t["average_periods"],
-               cfg["output"]["every"], config=cfg, progress=progress)
+               cfg["output"]["every"], config=cfg, progress=progress, reel=reel,
+               segment_bounds_m=(fe["min_element_m"], fe["max_element_m"]))

@@ -1,16 +1,30 @@
-"""Finite-difference tether equations on a uniform grid: residual and banded Jacobian.
+"""Finite-difference tether equations on a grid of segments: residual and banded Jacobian.
 
-Nodes ``r_0 .. r_M`` at ``s_i = i ds`` (``ds = L/M``), tensions on the
-staggered grid ``T_{k+1/2}`` (segment midpoints, ``k = 0 .. M-1``).  Central
-differences in s, drag at the nodes (seed 000 eqs. 4.13-4.16)::
+Nodes ``r_0 .. r_M`` at arc lengths ``s_0 = 0 < s_1 < .. < s_M = L`` with
+segment lengths ``h_k = s_{k+1} - s_k`` (all ``ds = L/M`` on the uniform grid
+the solver starts from; with reeling the winch segment ``h_0`` varies, see
+:mod:`.solver`), tensions on the staggered grid ``T_{k+1/2}`` (segment
+midpoints, ``k = 0 .. M-1``).  Central differences in s, drag at the nodes
+(seed 000 eqs. 4.13-4.16)::
 
-    mu a_i = (F_{i+1/2} - F_{i-1/2}) / ds + w + f_t(r_i, v_i, tau_i)   i = 1 .. M-1
+    mu a_i = (F_{i+1/2} - F_{i-1/2}) / hbar_i + w + f_t(r_i, v_i, tau_i)   i = 1 .. M-1
     F_{k+1/2} = T_{k+1/2} tau_{k+1/2},  tau_{k+1/2} = (r_{k+1} - r_k) / l_k,  l_k = |r_{k+1} - r_k|
-    l_k - ds (1 + T_{k+1/2}/EA) + eta tau_{k+1/2} . (v_{k+1} - v_k) = 0       k = 0 .. M-1
+    l_k - h_k (1 + T_{k+1/2}/EA) + eta tau_{k+1/2} . (v_{k+1} - v_k) = 0       k = 0 .. M-1
 
-with the nodal tangent ``tau_i = (r_{i+1} - r_{i-1}) / |r_{i+1} - r_{i-1}|``.
-For the inextensible line (EA = inf, eta = 0) ``l_k = ds`` and
-``F_{k+1/2} = T_{k+1/2} (r_{k+1} - r_k)/ds``: the seed's ``(T r_s)_s``.
+with ``hbar_i = (h_{i-1} + h_i) / 2`` and the nodal tangent
+``tau_i = (r_{i+1} - r_{i-1}) / |r_{i+1} - r_{i-1}|``.  The momentum equation
+is the balance of node i's control volume, the half segments on either side:
+lumped mass ``mu hbar_i``, the two tension fluxes, and weight and drag over
+``hbar_i``; the end nodes carry ``mu h_0 / 2`` and ``mu h_{M-1} / 2`` (their
+motion is kinematic), so the lumped masses sum to ``mu L`` on any grid.  On a
+uniform grid ``hbar_i = ds`` and this is the usual central difference; for
+the inextensible line (EA = inf, eta = 0) ``l_k = h_k`` and
+``F_{k+1/2} = T_{k+1/2} (r_{k+1} - r_k)/h_k``: the seed's ``(T r_s)_s``.
+
+Reeling: node 0 stays at the winch (the drum's exit) while the line leaves it
+with the material velocity ``v_0 = V_L tau_{1/2}``; that velocity enters the
+Kelvin-Voigt strain rate of the winch segment and the drag reported at node 0
+(the equations carry no drag at the kinematic node 0).
 
 Ends: ``r_0 = 0``; ``r_M = R e(t)``.  The closing condition is substituted,
 not appended: in tension mode ``T_{1/2} = T_0`` is known and R is an unknown;
@@ -19,8 +33,8 @@ unknowns ``[.., T_{k+1/2}, r_{k+1}, ..]`` (+ R) and the equations
 ``[g_{k+1/2}, m_{k+1}, ..]`` interleave so the Jacobian is banded
 (7 sub- / 5 super-diagonals, or 6 / 6) and needs no bordering.
 
-Rows are scaled to be dimensionless: momentum rows by ``ds / F_ref`` (nodal
-force over the reference tension), constraint rows by ``1/ds`` (strain).
+Rows are scaled to be dimensionless: momentum rows by ``hbar_i / F_ref`` (nodal
+force over the reference tension), constraint rows by ``1/h_k`` (strain).
 
 The full unknown layout (before dropping the known one) has ``4M - 2``
 entries: ``x[4k] = T_{k+1/2}`` (k < M), ``x[4k+1 : 4k+4] = r_{k+1}``
@@ -30,6 +44,7 @@ entries: ``x[4k] = T_{k+1/2}`` (k < M), ``x[4k+1 : 4k+4] = r_{k+1}``
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,22 +77,57 @@ class NodalLoads:
 
 
 class Grid:
-    """Uniform FD grid of a line of length L with M segments, and its band layout."""
+    """FD grid of a line of length L with M segments, and its band layout.
+
+    ``Grid(L, M, mode)`` is uniform (``ds = L/M``); :meth:`from_lengths` takes
+    any positive segment lengths.  The band layout depends on M and the winch
+    mode only, so :meth:`with_first_length` (reeling without a new node)
+    shares it.
+    """
 
     def __init__(self, length_m: float, segments: int, tension_mode: bool):
         if segments < 2:
             raise ValueError(f"FD grid needs at least 2 segments, got {segments}")
         M = int(segments)
         self.M = M
-        self.length_m = float(length_m)
-        self.ds = self.length_m / M
-        self.s_m = np.linspace(0.0, self.length_m, M + 1)
         self.tension_mode = bool(tension_mode)
         self.n_full = 4 * M - 2
         self.n = 4 * M - 3                       # active unknowns = equations
-        self.trap_weights = np.full(M + 1, self.ds)
-        self.trap_weights[[0, -1]] *= 0.5
+        ds = float(length_m) / M
+        self._set_lengths(np.full(M, ds), np.linspace(0.0, float(length_m), M + 1))
         self._layout()
+
+    @classmethod
+    def from_lengths(cls, lengths_m, tension_mode: bool) -> "Grid":
+        """Grid with the segment lengths ``lengths_m`` (at least 2, all > 0)."""
+        h = np.array(lengths_m, dtype=float)
+        if h.size < 2 or not np.all(h > 0):
+            raise ValueError(f"FD grid needs at least 2 segments of positive length, got {h}")
+        grid = cls(float(h.sum()), h.size, tension_mode)
+        grid._set_lengths(h, np.concatenate([[0.0], np.cumsum(h)]))
+        return grid
+
+    def _set_lengths(self, h, s_m):
+        self.h = h                               # segment lengths h_k (M,)
+        self.s_m = s_m                           # node arc lengths from the winch (M+1,)
+        self.length_m = float(s_m[-1])
+        self.ds = self.length_m / self.M         # mean segment length
+        self.hbar = 0.5 * (h[1:] + h[:-1])       # control-volume length of the interior nodes
+        self.trap_weights = np.empty(self.M + 1)  # ... of all nodes (mass mu * these)
+        self.trap_weights[1:-1] = self.hbar
+        self.trap_weights[0] = 0.5 * h[0]
+        self.trap_weights[-1] = 0.5 * h[-1]
+
+    def with_first_length(self, h0_m: float) -> "Grid":
+        """The same grid with the winch segment ``h_0`` changed to ``h0_m`` (the
+        other nodes keep their distance to the kite end)."""
+        other = copy.copy(self)
+        h = self.h.copy()
+        h[0] = h0_m
+        s_m = self.s_m + (h0_m - self.h[0])
+        s_m[0] = 0.0
+        other._set_lengths(h, s_m)
+        return other
 
     # --- index bookkeeping -------------------------------------------------
     def _node_cols(self):
@@ -198,53 +248,73 @@ class TetherFD:
         return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
-    def line_loads(self, r, v) -> NodalLoads:
-        """Drag at every node 0..M; one-sided tangents at the two ends."""
+    def line_loads(self, r, v, reel_ms=0.0) -> NodalLoads:
+        """Drag at every node 0..M; one-sided tangents at the two ends.
+
+        With reeling (``reel_ms`` = V_L) the line leaves the winch node with
+        the material velocity V_L tau_{1/2}."""
         tangent = np.empty_like(r)
         tangent[1:-1] = r[2:] - r[:-2]
         tangent[0] = r[1] - r[0]
         tangent[-1] = r[-1] - r[-2]
         tangent, _ = _unit(tangent)
+        if reel_ms:
+            v = v.copy()
+            v[0] = reel_ms * tangent[0]
         load = self.nodal_drag(r, v, tangent)
         return NodalLoads(load.force, load.vn_ms, load.re, load.cd, tangent)
 
     # --- equations ---------------------------------------------------------------
+    @property
+    def mass_kg(self) -> np.ndarray:
+        """Lumped nodal masses mu * (control-volume length), M+1 values summing to mu L."""
+        return self.physics.linear_density_kg_m * self.grid.trap_weights
+
     def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
-                 jacobian=True) -> Evaluation:
+                 jacobian=True, reel_ms=0.0) -> Evaluation:
         """Scaled residual (and banded Jacobian) at nodal r, v, a (M+1, 3) and tensions T (M,).
 
-        ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for statics).
+        ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for
+        statics).  ``reel_ms`` is the winch speed V_L: node 0 stays at the
+        winch, the line leaves it with the velocity V_L tau_{1/2}.  That
+        velocity only enters the winch segment's strain rate,
+        ``tau_{1/2} . (v_1 - V_L tau_{1/2}) = tau_{1/2} . v_1 - V_L``, whose
+        derivative in r is the same as without reeling.
         """
         g, ph = self.grid, self.physics
-        ds, M = g.ds, g.M
+        h, hbar, M = g.h, g.hbar, g.M
         mu = ph.linear_density_kg_m
         d = r[1:] - r[:-1]
         tau, ell = _unit(d)
+        if reel_ms:
+            v = v.copy()
+            v[0] = reel_ms * tau[0]
         flux = T[:, None] * tau
         # nodal drag at interior nodes with the central tangent
         dn = r[2:] - r[:-2]
         tau_n, dn_len = _unit(dn)
         load = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=jacobian)
         f = load.force
-        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / ds - ph.weight_N_m - f
+        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / hbar[:, None] - ph.weight_N_m - f
         dv = v[1:] - v[:-1]
-        con = ell - ds * (1.0 + ph.compliance_per_N * T)
+        con = ell - h * (1.0 + ph.compliance_per_N * T)
         if ph.damping_time_s:
             con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
-        sm = ds / force_ref_N
+        sm = hbar / force_ref_N
         res = np.empty(g.n)
-        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / ds
-        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm
-        res[4 * M - 4] = con[-1] / ds
+        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / h[:-1]
+        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm[:, None]
+        res[4 * M - 4] = con[-1] / h[-1]
         out = Evaluation(res, tau, ell)
         if not jacobian:
             return out
 
         proj = _EYE - _outer(tau, tau)                         # (M, 3, 3)
         K = (T / ell)[:, None, None] * proj                    # d F_{k+1/2} / d r_{k+1}
-        A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / ds
-        A_next = -K[1:] / ds
-        A_prev = -K[:-1] / ds
+        hb3 = hbar[:, None, None]
+        A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / hb3
+        A_next = -K[1:] / hb3
+        A_prev = -K[:-1] / hb3
         z = r[1:-1, 2]
         df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
             + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
@@ -256,18 +326,19 @@ class TetherFD:
         A_self = A_self - d_self
         A_next = A_next - d_next
         A_prev = A_prev + d_next
-        B_plus = -tau[1:] / ds
-        B_minus = tau[:-1] / ds
+        B_plus = -tau[1:] / hbar[:, None]
+        B_minus = tau[:-1] / hbar[:, None]
         c_row = tau
         if ph.damping_time_s:
             c_row = tau + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None]
                                                + c_v * tau)
-        D = np.full(M, -ds * ph.compliance_per_N)
-        sg = 1.0 / ds
+        D = -h * ph.compliance_per_N
+        sg = 1.0 / h
+        sm3 = sm[:, None, None]
         values = np.concatenate([
-            (A_self * sm).ravel(), (A_next * sm).ravel(), (A_prev * sm).ravel(),
-            (B_plus * sm).ravel(), (B_minus * sm).ravel(),
-            (c_row * sg).ravel(), (-c_row * sg).ravel(), D * sg,
+            (A_self * sm3).ravel(), (A_next * sm3).ravel(), (A_prev * sm3).ravel(),
+            (B_plus * sm[:, None]).ravel(), (B_minus * sm[:, None]).ravel(),
+            (c_row * sg[:, None]).ravel(), (-c_row * sg[:, None]).ravel(), D * sg,
         ])
         out.ab = g.assemble(values, kite_dir)
         return out

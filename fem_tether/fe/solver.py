@@ -151,6 +151,9 @@ def initial_state(model: FEModel, t=0.0) -> State:
     return State(t, Kinematics(st.kin.q, v, qdd, qdd.copy()), T, st.R)
 
 
+RESTART_JUMP_MS = 0.1
+
+
 class _NotConverged(Exception):
     def __init__(self, residual):
         self.residual = residual
@@ -167,8 +170,11 @@ def _step(model: FEModel, state: State, h: float) -> State:
     worst = math.inf
     for _ in range(model.max_newton):
         kin = state.kin.advance(r, h, model.scheme)
-        ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
-                           f_ref, c_a, c_v, reel_ms=model.reel_ms)
+        try:
+            ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
+                               f_ref, c_a, c_v, reel_ms=model.reel_ms)
+        except ValueError:     # an iterate left the atmosphere's range: not converging
+            break
         worst = float(np.max(np.abs(ev.residual))) / f_ref
         if not np.isfinite(worst):
             break
@@ -229,7 +235,12 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
     it would exceed ``max_element_m`` a new material node is placed on it,
     ``max_element_m / 2`` from node 1, so the line keeps its resolution as it
     grows; when it would fall below ``min_element_m`` it merges with its
-    neighbour (node 1 is removed).  The line's mass stays mu L(t): the lumped
+    neighbour (node 1 is removed).  Splits happen only while paying out and
+    merges only while reeling in, so a mesh never flips between the two.
+    After a change of mesh, or a jump of V_L by more than ``RESTART_JUMP_MS``,
+    velocities and accelerations are made consistent with the new constraints
+    (:meth:`TetherSystem.consistent_start`) and the integrator restarts: an
+    index-3 scheme fed inconsistent data answers with a tension oscillation.  The line's mass stays mu L(t): the lumped
     masses are mu times the element lengths shared by their nodes.
     """
     sp = model.system.spaces
@@ -237,7 +248,7 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
     kin = state.kin
     growth = length_m - model.length_m
     T = state.T
-    if sp.h_m[0] + growth > max_element_m:
+    if growth > 0 and sp.h_m[0] + growth > max_element_m:
         s1 = sp.h_m[0]
         f = (s1 - 0.5 * max_element_m) / s1         # new node's fraction of the way to node 1
         winch = reel_ms * (kin.q[1] / s1)           # material velocity leaving the drum
@@ -247,16 +258,21 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
         T = np.insert(T, 0, T[0])
         spaces = build_spaces(np.insert(sp.s_m, 1, f * s1) / model.length_m, model.length_m, mu)
         system = TetherSystem(spaces, model.system.physics, model.tension_mode)
-    elif sp.h_m[0] + growth < min_element_m and sp.n_elements > 1:
+    elif growth < 0 and sp.h_m[0] + growth < min_element_m and sp.n_elements > 1:
         kin = Kinematics(*(np.delete(getattr(kin, k), 1, axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.delete(T, 0)
         spaces = build_spaces(np.delete(sp.s_m, 1) / model.length_m, model.length_m, mu)
         system = TetherSystem(spaces, model.system.physics, model.tension_mode)
     else:
         system = model.system
+    restart = system is not model.system or abs(reel_ms - model.reel_ms) > RESTART_JUMP_MS
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
     model = replace(model, system=system, length_m=length_m, reel_ms=reel_ms,
                     end=replace(model.end, length_m=length_m))
+    if restart:
+        v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
+                                            model.ground_tension_N, reel_ms, free_radius=True)
+        kin = Kinematics(kin.q, v, qdd, qdd.copy())
     return model, State(state.t, kin, T, state.R)
 
 
@@ -298,7 +314,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     bar.close()
     return record.run(
         solver="fe",
-        length_m=model.length_m,
+        length_m=start_length,
         period_s=period,
         average_start_s=spinup_periods * period,
         config=config or {},

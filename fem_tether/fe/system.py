@@ -210,23 +210,26 @@ class TetherSystem:
         r_col[-3:] = -k_s * kite_dir
         return ab, r_col
 
-    def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N):
-        """Velocities and accelerations at rest on the constraint manifold.
+    def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_ms=0.0,
+                         free_radius=False):
+        """Velocities and accelerations on the constraint manifold.
 
         With ``B`` the constraint gradient (rows ``sgn tau_e``) and ``M`` the
         lumped mass, solves two saddle-point problems on the line ``r``::
 
-            M v + B^T lam = M v_guess,   B v = 0                         (projection)
+            M v + B^T lam = M v_guess,   B v = (V_L, 0, ..., 0)          (projection)
             M qdd + B^T T = Q (f_t + w), B qdd = -(|Dv|^2 - (tau.Dv)^2)/|Dr|
 
-        with v_0 = qdd_0 = 0 at the winch and the kite end on its trajectory
-        (``kite = (e, e_dot, e_ddot)``; dR/dt = 0 at the start; d2R/dt2 closed by
-        T_0 = T_ground in tension mode).  Starting an index-3 integration from
-        such consistent data avoids the tension impulse an inconsistent velocity
-        field would cause.  An elastic line starts with the same projected
-        velocities (no strain rate) but keeps the tension ``T`` of its strain;
-        its accelerations follow from ``M qdd = Q (f_t + w) - D^T (T tau)``.
-        Returns ``(v, qdd, T)``.
+        with v_0 = qdd_0 = 0 at the winch node, the winch element growing at
+        the reel-out speed V_L = ``reel_ms``, and the kite end on its trajectory
+        (``kite = (e, e_dot, e_ddot)``; its radius rate dR/dt = 0 at the start,
+        or free with ``free_radius`` for a restart during reeling; d2R/dt2 closed
+        by T_0 = T_ground in tension mode).  Starting (or restarting, after the
+        mesh or V_L jumps) an index-3 integration from consistent data avoids
+        the tension impulse an inconsistent velocity field causes.  An elastic
+        line starts with the same projected velocities (no strain rate) but
+        keeps the tension ``T`` of its strain; its accelerations follow from
+        ``M qdd = Q (f_t + w) - D^T (T tau)``.  Returns ``(v, qdd, T)``.
         """
         sp = self.spaces
         e, e_dot, e_ddot = kite
@@ -235,40 +238,41 @@ class TetherSystem:
         tau = dr / length[:, None]
         ab = self._saddle(tau)
         m = sp.mass_kg[:, None] * self.interior[:, None]
+        r_col = np.zeros(self.n - 1)
+        r_col[-3:] = -e
 
-        def solve(node_rhs, constraint_rhs, tension_closure):
+        def solve(node_rhs, constraint_rhs, border_index, border_rhs):
+            """Bordered solve; the last unknown (dR/dt or d2R/dt2) is zero when
+            ``border_index`` is None, else fixed by x[border_index] = border_rhs."""
             b = np.zeros(self.n)
             b.reshape(-1, 4)[:, :3] = node_rhs
             b[3:-1:4] = constraint_rhs
-            r_col = np.zeros(self.n - 1)
-            r_col[-3:] = -e
             y, zc = solve_banded((BAND, BAND), ab, np.column_stack([b[:-1], r_col]),
                                  check_finite=False).T
-            if tension_closure:
-                b[-1] = ground_tension_N
-                x_last = (b[-1] - y[3]) / (-zc[3])
-            else:
-                x_last = 0.0
-            return self.unpack(np.append(y - zc * x_last, x_last))
+            last = 0.0 if border_index is None else (border_rhs - y[border_index]) / (-zc[border_index])
+            return self.unpack(np.append(y - zc * last, last))
 
         ph = self.physics
         node = m * v_guess
         node[0], node[-1] = 0.0, R * e_dot
-        v, _, _ = solve(node, 0.0, False)
+        constraint = np.zeros(sp.n_elements)
+        constraint[0] = reel_ms
+        v, _, R_dot = solve(node, constraint, self.n - 5 if free_radius else None, 0.0)
         dv = sp.D @ v
         curvature = (np.einsum("ij,ij->i", dv, dv) - np.einsum("ij,ij->i", tau, dv) ** 2) / length
         v_mid = 0.5 * (v[1:] + v[:-1])
+        v_mid[0] += 0.5 * reel_ms * tau[0]
         z = 0.5 * (r[1:, 2] + r[:-1, 2])
         load = crossflow_drag(ph.wind.velocity_ms(z) - v_mid, tau, ph.air.density_kg_m3(z),
                               ph.air.viscosity_Pa_s(z), ph.diameter_m, ph.drag, ph.skin_friction_cf)
         node = (sp.Q @ (load.force + self.weight)) * self.interior[:, None]
+        node[-1] = R * e_ddot + 2.0 * R_dot * e_dot
         if ph.compliance_per_N:
             qdd = (node - sp.D.T @ (T[:, None] * tau)) * self.interior[:, None]
             qdd[1:-1] /= sp.mass_kg[1:-1, None]
-            qdd[-1] = R * e_ddot
+            qdd[-1] = node[-1]
             return v, qdd, T
-        node[-1] = R * e_ddot
-        qdd, T, _ = solve(node, -curvature, self.tension_mode)
+        qdd, T, _ = solve(node, -curvature, 3 if self.tension_mode else None, ground_tension_N)
         return v, qdd, T
 
     def _saddle(self, tau):
