@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from fem_tether.config import ConfigError
+from fem_tether.config import merge, validate
 from fem_tether.trajectory import FigureEight
 
 
@@ -32,19 +32,9 @@ class TetherCase:
 def case_fields(cfg, length_m=None, end=None) -> dict:
     """Validated :class:`TetherCase` fields of ``cfg`` (``end``: default the eight)."""
     length = float(cfg["tether"]["length_m"] if length_m is None else length_m)
-    tension_mode = cfg["winch"]["mode"] == "tension"
-    radius = cfg["kite"]["radius_m"]
-    if tension_mode and cfg["tether"]["elasticity"] == "elastic":
-        raise ConfigError("[tether] elasticity = 'elastic': needs [winch] mode = 'prescribed'; a "
-                          "fixed-length elastic line cannot hold the winch tension through the "
-                          "kite's radius (waves take time to cross it), use an inextensible line")
-    if not tension_mode:
-        inextensible = cfg["tether"]["elasticity"] == "inextensible"
-        if radius <= 0.0 or (inextensible and radius >= length):
-            raise ConfigError(f"[kite] radius_m = {radius}: [winch] mode = 'prescribed' needs "
-                              f"0 < radius_m < length_m = {length:g} for an inextensible line")
+    validate(merge(cfg, {"tether": {"length_m": length}}), eight=end is None)
     t = cfg["time"]
     return dict(end=end or FigureEight.from_config(cfg, length_m=length), length_m=length,
-                tension_mode=tension_mode, ground_tension_N=cfg["winch"]["ground_tension_N"],
-                radius_m=radius, newton_tol=t["newton_tol"], max_newton=t["max_newton"],
-                max_halvings=t["max_halvings"])
+                tension_mode=cfg["winch"]["mode"] == "tension",
+                ground_tension_N=cfg["winch"]["ground_tension_N"], radius_m=cfg["kite"]["radius_m"],
+                newton_tol=t["newton_tol"], max_newton=t["max_newton"], max_halvings=t["max_halvings"])

@@ -13,6 +13,7 @@ message names the offending ``[section] key``.
 from __future__ import annotations
 
 import copy
+import json
 import math
 import tomllib
 from dataclasses import dataclass
@@ -61,7 +62,7 @@ def between(lo, hi, closed=(False, False)):
 
 def one_of(*choices):
     def check(v):
-        return None if v in choices else f"must be one of {', '.join(map(repr, choices))}"
+        return None if v in choices else f"must be one of {', '.join(map(_toml_value, choices))}"
     return check
 
 
@@ -189,7 +190,7 @@ def defaults() -> dict[str, dict[str, Any]]:
 
 def _coerce(section: str, name: str, value: Any) -> Any:
     key = SCHEMA[section][name]
-    where = f"[{section}] {name} = {value!r}"
+    where = f"[{section}] {name} = {_toml_value(value)}"
     if key.kind is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ConfigError(f"{where}: expected a number")
@@ -226,13 +227,87 @@ def merge(base: dict, overrides: dict) -> dict:
     return out
 
 
+#: Keys that name files: a relative name in a file is read relative to that file.
+FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"))
+
+
+def resolve_paths(values: dict, base_dir: Path) -> dict:
+    """``values`` (a parsed TOML table) with relative file names made relative to ``base_dir``."""
+    out = copy.deepcopy(values)
+    for section, name in FILE_KEYS:
+        value = out.get(section, {}).get(name) if isinstance(out.get(section), dict) else None
+        if isinstance(value, str) and value and value not in ("uniform", "graded") \
+                and not Path(value).is_absolute():
+            out[section][name] = str(base_dir / value)
+    return out
+
+
 def load_config(path: str | Path | None = None, overrides: dict | None = None) -> dict:
-    """Defaults, then the TOML file at ``path``, then ``overrides``; validated."""
+    """Defaults, then the TOML file at ``path``, then ``overrides``; validated
+    key by key and across keys (:func:`validate`).  File names in the file are
+    relative to the file."""
     cfg = defaults()
     if path is not None:
-        cfg = merge(cfg, read_toml(path))
+        cfg = merge(cfg, resolve_paths(read_toml(path), Path(path).parent))
     if overrides:
         cfg = merge(cfg, overrides)
+    return validate(cfg)
+
+
+#: Highest altitude of the ISA troposphere the atmosphere model covers [m].
+CEILING_M = 11000.0
+
+
+def validate(cfg: dict, eight: bool = True) -> dict:
+    """Rules across keys; raises :class:`ConfigError` naming the key, returns ``cfg``.
+
+    The case must be solvable: an elastic line needs a prescribed kite radius,
+    a prescribed radius must be set and shorter than an inextensible line,
+    reeling needs the winch-tension mode, the figure-eight must fit the
+    sphere of the line (azimuth within 1 rad, polar angle inside (0, 90) deg)
+    and stay below the ISA ceiling, and the reeling element bounds must allow
+    a split into two admissible halves.  ``eight=False`` skips the eight's
+    rules (a caller that moves the kite end otherwise).
+    """
+    tether, kite, winch, fe = cfg["tether"], cfg["kite"], cfg["winch"], cfg["fe"]
+    length = tether["length_m"]
+    tension_mode = winch["mode"] == "tension"
+    if tension_mode and tether["elasticity"] == "elastic":
+        raise ConfigError("[tether] elasticity = \"elastic\": needs [winch] mode = \"prescribed\"; a "
+                          "fixed-length elastic line cannot hold the winch tension through the "
+                          "kite's radius (waves take time to cross it), use an inextensible line")
+    if not tension_mode:
+        radius = kite["radius_m"]
+        if radius <= 0.0 or (tether["elasticity"] == "inextensible" and radius >= length):
+            raise ConfigError(f"[kite] radius_m = {radius:g}: [winch] mode = \"prescribed\" needs "
+                              f"0 < radius_m < length_m = {length:g} for an inextensible line")
+    if winch["reel_out"] != "none" and not tension_mode:
+        raise ConfigError(f"[winch] reel_out = \"{winch['reel_out']}\": needs [winch] mode = "
+                          "\"tension\" (the kite's radius follows the paid-out line)")
+    if winch["reel_out"] == "table" and not winch["reel_out_table"]:
+        raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = \"table\"")
+    for section, name in FILE_KEYS:
+        value = cfg[section][name]
+        if value and value not in ("uniform", "graded") and not Path(value).is_file():
+            raise ConfigError(f"[{section}] {name} = {_toml_value(value)}: no such file")
+    if not fe["max_element_m"] > 2.0 * fe["min_element_m"]:
+        raise ConfigError(f"[fe] max_element_m = {fe['max_element_m']:g}: must exceed twice "
+                          f"[fe] min_element_m = {fe['min_element_m']:g}")
+    if not eight:
+        return cfg
+    theta0 = math.radians(kite["theta0_deg"])
+    half_height = 0.5 * kite["eight_height_m"] / length
+    if kite["eight_width_m"] / (2.0 * length * math.sin(theta0)) > 1.0:
+        raise ConfigError(f"[tether] length_m = {length:g}: the eight ([kite] eight_width_m = "
+                          f"{kite['eight_width_m']:g}) spans more than 1 rad of azimuth on so short a line")
+    if not (0.0 < theta0 - half_height and theta0 + half_height < math.pi / 2):
+        raise ConfigError(f"[kite] theta0_deg = {kite['theta0_deg']:g}: the eight ([kite] eight_height_m = "
+                          f"{kite['eight_height_m']:g}) must stay between the zenith and the horizon "
+                          f"on a {length:g} m line")
+    for stop in (length, winch["reel_out_stop_m"]):
+        if stop * math.cos(theta0 - half_height) + 0.5 * kite["eight_height_m"] > CEILING_M:
+            raise ConfigError(f"[tether] length_m = {stop:g}: the kite would fly above the ISA "
+                              f"troposphere ({CEILING_M:g} m), which the atmosphere model covers")
     return cfg
 
 
@@ -244,7 +319,7 @@ def read_toml(path: str | Path) -> dict:
             return tomllib.load(fh)
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such file") from None
-    except tomllib.TOMLDecodeError as exc:
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{path}: invalid TOML: {exc}") from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read: {exc.strerror}") from None
@@ -254,7 +329,7 @@ def _toml_value(v: Any) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        return json.dumps(v, ensure_ascii=False)   # JSON string escapes are TOML basic-string escapes
     return repr(v)
 
 

@@ -119,18 +119,14 @@ class Reel:
 
 
 def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
-    """The reeling law of ``cfg["winch"]``, starting at ``start_s``."""
+    """The reeling law of ``cfg["winch"]`` (validated by :func:`config.validate`),
+    starting at ``start_s``."""
     w = cfg["winch"]
     mode = w["reel_out"]
     if mode == "none":
         return Reel()
-    if w["mode"] != "tension":
-        raise ConfigError(f"[winch] reel_out = {mode!r}: needs [winch] mode = 'tension' "
-                          "(the kite's radius follows the paid-out line)")
     table = None
     if mode == "table":
-        if not w["reel_out_table"]:
-            raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = 'table'")
         try:
             table = read_speed_table(w["reel_out_table"])
         except SpeedTableError as exc:

@@ -71,7 +71,7 @@ def test_bad_config_value_exits_2(capsys, tmp_path):
     cfg.write_text("[winch]\nmode = 'sideways'\n")
     code, _, err = run_cli(capsys, "simulate", str(cfg))
     assert code == 2
-    assert err.strip().count("\n") == 0 and "[winch] mode = 'sideways'" in err
+    assert err.strip().count("\n") == 0 and "[winch] mode = \"sideways\"" in err
 
 
 def test_console_script_entry_point():

@@ -29,11 +29,11 @@ def test_toml_round_trip(tmp_path):
 @pytest.mark.parametrize("overrides, match", [
     ({"tether": {"lenght_m": 1.0}}, r"\[tether\] lenght_m: unknown key"),
     ({"tehter": {}}, r"\[tehter\]: unknown section"),
-    ({"tether": {"length_m": "long"}}, r"\[tether\] length_m = 'long': expected a number"),
+    ({"tether": {"length_m": "long"}}, r'\[tether\] length_m = "long": expected a number'),
     ({"tether": {"length_m": -5.0}}, r"\[tether\] length_m = -5.0: must be > 0"),
     ({"tether": {"lines": 1.5}}, r"\[tether\] lines = 1.5: expected an integer"),
-    ({"tether": {"lines": True}}, r"\[tether\] lines = True: expected an integer"),
-    ({"air": {"model": "mars"}}, r"\[air\] model = 'mars': must be one of 'isa', 'constant'"),
+    ({"tether": {"lines": True}}, r"\[tether\] lines = true: expected an integer"),
+    ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "constant"'),
     ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0.0, 90.0\)"),
     ({"time": {"rho_inf": 1.5}}, r"\[time\] rho_inf = 1.5"),
 ])

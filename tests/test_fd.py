@@ -16,7 +16,7 @@ from fem_tether.config import ConfigError, load_config
 from fem_tether.fd.solver import State, _apply, _nodes
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.loads import G_MS2
-from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES
+from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, period_average
 from fem_tether.straight import closed_form_drag_N
 from fem_tether.trajectory import Stationary
 
@@ -132,7 +132,8 @@ def test_static_start_is_robust(segments, mode):
 
 # 2. taut string --------------------------------------------------------------------------
 def _taut_string(scheme, segments=50, amplitude_m=0.05, L=100.0, T0=1000.0):
-    cfg = load_config(overrides={"tether": {"length_m": L}, "winch": {"ground_tension_N": T0}})
+    cfg = load_config(overrides={"tether": {"length_m": L}, "winch": {"ground_tension_N": T0},
+                                 "kite": {"eight_width_m": 10.0, "eight_height_m": 5.0}})
     mu = cfg["tether"]["linear_density_kg_m"]
     f_exact = np.sqrt(T0 / mu) / (2 * L)
     model = fd.build_model(cfg, end=Stationary((1.0, 0.0, 0.0), period_s=1.0 / f_exact),
@@ -292,44 +293,64 @@ def test_zero_reel_speed_reproduces_the_fixed_length_run_exactly():
     assert np.all(still.series["length_m"] == 300.0) and np.all(still.series["winch_energy_J"] == 0)
 
 
+def _velocity_constraints(model, st):
+    """tau_{k+1/2} . (v_{k+1} - v_k) - V_L [k = 0] on every segment."""
+    tau = np.diff(st.r, axis=0)
+    tau /= np.linalg.norm(tau, axis=1)[:, None]
+    out = np.einsum("ij,ij->i", tau, np.diff(st.v, axis=0))
+    out[0] -= model.reel_ms
+    return out
+
+
 def test_reeled_inserts_and_removes_material_nodes():
-    """Insertion: a node on the winch segment max/2 from node 1, on the chord, moving
-    between the drum's V_L tau and node 1's velocity; removal: node 1 gone.
-    The lumped masses sum to mu L in both cases (1e-12)."""
+    """Insertion (paying out): a node on the winch segment max/2 from node 1, on the
+    chord; removal (reeling in): node 1 gone, the winch segment reaches node 2;
+    otherwise only h_0 changes.  After a change of grid or a jump of V_L the
+    velocities satisfy the constraints with the new V_L (1e-10 m/s), the history
+    is dropped and v_0 = 0 at the winch.  The lumped masses sum to mu L (1e-12)."""
     cfg = load_config(overrides={"tether": {"length_m": 300.0}})
     mu = cfg["tether"]["linear_density_kg_m"]
-    model = fd.build_model(cfg, segments=10)
+    model = replace(fd.build_model(cfg, segments=10), reel_ms=5.0)
     st = fd.static_equilibrium(model)
-    st.v[1] = (1.0, 2.0, 3.0)
     grown, prev, new = fd.reeled(model, st, st, 311.0, 5.0, 2.0, 40.0)
     assert prev is None                                   # BDF2 restarts after an insertion
     assert grown.grid.M == 11 and np.allclose(grown.grid.h[:3], [21.0, 20.0, 30.0])
-    tau = st.r[1] / np.linalg.norm(st.r[1])
     np.testing.assert_allclose(new.r[1], st.r[1] / 3.0, atol=1e-12)
-    np.testing.assert_allclose(new.v[1], 2.0 / 3.0 * 5.0 * tau + st.v[1] / 3.0, atol=1e-12)
     np.testing.assert_array_equal(new.r[2:], st.r[1:])
+    assert np.max(np.abs(_velocity_constraints(grown, new))) < 1e-10
+    assert not np.any(new.v[0])
     assert new.T.size == 11 and new.T[0] == new.T[1] == 150e3
     assert grown.end.length_m == 311.0 and grown.reel_ms == 5.0
     assert np.sum(grown.eq.mass_kg) == pytest.approx(mu * 311.0, rel=1e-12)
+    assert fd.reeled(model, st, st, 299.0, -5.0, 2.0, 25.0)[0].grid.M == 10   # no split reeling in
+    model = replace(model, reel_ms=-5.0)
     shrunk, prev, new = fd.reeled(model, st, st, 271.0, -5.0, 2.0, 40.0)
-    assert shrunk.grid.M == 9 and shrunk.grid.h[0] == pytest.approx(31.0)
-    assert prev.r.shape == new.r.shape == (10, 3)
+    assert shrunk.grid.M == 9 and shrunk.grid.h[0] == pytest.approx(31.0) and prev is None
     np.testing.assert_array_equal(new.r[1:], st.r[2:])
     assert new.T[0] == 150e3
     assert np.sum(shrunk.eq.mass_kg) == pytest.approx(mu * 271.0, rel=1e-12)
-    same, _, new = fd.reeled(model, st, st, 303.0, 3.0, 2.0, 40.0)
-    assert same.grid.M == 10 and same.grid.h[0] == pytest.approx(33.0)
-    assert same.grid.s_m[-1] == pytest.approx(303.0, rel=1e-15)
+    assert fd.reeled(model, st, st, 301.0, 5.0, 35.0, 80.0)[0].grid.M == 10   # no merge paying out
+    same, prev, new = fd.reeled(model, st, st, 297.0, -5.0, 2.0, 40.0)      # same V_L: no restart
+    assert same.grid.M == 10 and same.grid.h[0] == pytest.approx(27.0) and prev is st
+    assert same.grid.s_m[-1] == pytest.approx(297.0, rel=1e-15)
+    np.testing.assert_array_equal(new.v, st.v)
+    jumped, prev, new = fd.reeled(model, st, st, 303.0, 3.0, 2.0, 40.0)     # V_L jump: restart
+    assert prev is None and np.max(np.abs(_velocity_constraints(jumped, new))) < 1e-10
+    again, _ = jumped.eq.consistent_velocity(new.r, new.v, new.R, jumped.end.state(0.0, 1.0)[:2], 3.0)
+    np.testing.assert_allclose(again, new.v, atol=1e-10)     # a projection: consistent data stay
 
 
 def test_segment_bounds_are_validated():
-    cfg = load_config(overrides={"fe": {"min_element_m": 10.0, "max_element_m": 20.0}})
+    """max_element_m must exceed 2 min_element_m; reeling needs the winch-tension mode."""
+    with pytest.raises(ConfigError, match=r"\[fe\] max_element_m"):
+        fd.simulate(load_config(overrides={"fe": {"min_element_m": 10.0, "max_element_m": 20.0}}))
+    cfg = load_config()
+    cfg["fe"].update(min_element_m=10.0, max_element_m=20.0)     # edited after validation
     with pytest.raises(ConfigError, match=r"\[fe\] max_element_m"):
         fd.simulate(cfg)
-    cfg = load_config(overrides={"winch": {"mode": "prescribed", "reel_out": "constant"},
-                                 "kite": {"radius_m": 990.0}})
     with pytest.raises(ConfigError, match=r"reel_out"):
-        fd.simulate(cfg)
+        fd.simulate(load_config(overrides={"winch": {"mode": "prescribed", "reel_out": "constant"},
+                                           "kite": {"radius_m": 990.0}}))
 
 
 PUMP_L0, PUMP_V, PUMP_DT = 300.0, 15.0, 0.05
@@ -368,8 +389,11 @@ def test_pumping_mass_conservation(pumping):
     s = run.snapshots["s_m"]
     assert run.snapshot_time_s.size == run.time_s.size
     h = np.diff(s, axis=1)
-    lumped = np.nansum(np.column_stack([0.5 * h[:, :1], 0.5 * (h[:, 1:] + h[:, :-1]), 0 * h[:, :1]]), axis=1)
-    lumped += 0.5 * np.array([row[np.isfinite(row)][-1] for row in h])
+    lumped = []                  # control-volume lengths of the nodes: the masses / mu
+    for row in h:
+        row = row[np.isfinite(row)]
+        lumped.append(np.concatenate([[0.5 * row[0]], 0.5 * (row[1:] + row[:-1]), [0.5 * row[-1]]]).sum())
+    lumped = np.array(lumped)
     arc = np.nansum(np.linalg.norm(np.diff(run.snapshots["position_m"], axis=1), axis=2), axis=1)
     print(f"\n mass: max |sum h - L|/L = {np.max(np.abs(np.nansum(h, axis=1) / L - 1)):.1e}, "
           f"lumped {np.max(np.abs(lumped / L - 1)):.1e}, chords {np.max(np.abs(arc / L - 1)):.1e}")
@@ -421,16 +445,6 @@ def test_pumping_cycle_returns_to_the_start_bounded(pumping):
         assert after == pytest.approx(ref.mean(k), rel=1e-6)
 
 
-def _period_average_vs_length(run):
-    """Moving average of F_t over one period (trapezoidal), against the window's mean L,
-    for windows starting after the spin-up."""
-    t, L, F = run.time_s, run.series["length_m"], run.series["drag_N"]
-    n = int(round(run.period_s / (t[1] - t[0])))
-    c = np.concatenate([[0.0], np.cumsum(0.5 * (F[1:] + F[:-1]))])
-    keep = t[:-n] >= run.average_start_s - 1e-9
-    return (0.5 * (L[n:] + L[:-n]))[keep], ((c[n:] - c[:-n]) / n)[keep]
-
-
 def test_reel_out_matches_the_fe_solver():
     """500 -> 800 m at 10 m/s, default physics (FE 20 graded elements at 0.05 s, FD
     40 segments at 0.025 s, segments <= 100 m): the period-averaged F_t along the
@@ -445,8 +459,8 @@ def test_reel_out_matches_the_fe_solver():
     fe_run, fd_run = fe_simulate(cfg), fd.simulate(cfg)
     for run in (fe_run, fd_run):
         assert run.series["length_m"][-1] == 800.0
-    L_fe, F_fe = _period_average_vs_length(fe_run)
-    L_fd, F_fd = _period_average_vs_length(fd_run)
+    L_fe, F_fe = period_average(fe_run, "drag_N")
+    L_fd, F_fd = period_average(fd_run, "drag_N")
     L = np.linspace(max(L_fe[0], L_fd[0]), min(L_fe[-1], L_fd[-1]), 9)
     fe_F, fd_F = np.interp(L, L_fe, F_fe), np.interp(L, L_fd, F_fd)
     print("\n   L [m]   FE F_t [N]   FD F_t [N]   FD/FE - 1")

@@ -94,12 +94,16 @@ def test_speed_table_and_config_errors(tmp_path):
         bad.write_text(text)
         with pytest.raises(SpeedTableError, match=match):
             read_speed_table(bad)
-    with pytest.raises(ConfigError, match=r"\[winch\] reel_out_table"):
-        reel_from_config(_cfg(reel_out="table"))
-    with pytest.raises(ConfigError, match=r"\[winch\] reel_out = 'constant': needs"):
-        cfg = _cfg(reel_out="constant", mode="prescribed")
-        reel_from_config(cfg)
-    cfg = _cfg(reel_out="constant")
-    cfg["fe"].update(min_element_m=30.0, max_element_m=50.0)
-    with pytest.raises(ConfigError, match=r"\[fe\] max_element_m"):
-        simulate(cfg)
+    for overrides, match in [
+        ({"winch": {"reel_out": "table"}}, r"\[winch\] reel_out_table"),
+        ({"winch": {"reel_out": "table", "reel_out_table": "nope.csv"}}, r'reel_out_table = "nope.csv": no such'),
+        ({"winch": {"reel_out": "constant", "mode": "prescribed"}, "kite": {"radius_m": 900.0}},
+         r'\[winch\] reel_out = "constant": needs'),
+        ({"fe": {"min_element_m": 30.0, "max_element_m": 50.0}}, r"\[fe\] max_element_m"),
+    ]:
+        with pytest.raises(ConfigError, match=match):
+            load_config(overrides=overrides)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,v\n")
+    with pytest.raises(ConfigError, match=r"\[winch\] reel_out_table: .*line 1"):
+        reel_from_config(load_config(overrides={"winch": {"reel_out": "table", "reel_out_table": str(bad)}}))

@@ -185,6 +185,8 @@ def test_elastic_line_in_tension_mode_is_an_input_error(quiet_cfg):
     quiet_cfg["tether"]["elasticity"] = "elastic"
     with pytest.raises(ConfigError, match=r"\[tether\] elasticity"):
         build_model(quiet_cfg)
+    with pytest.raises(ConfigError, match=r"\[tether\] elasticity"):
+        load_config(overrides={"tether": {"elasticity": "elastic"}})
 
 
 # 5. short line vs closed form -----------------------------------------------------
@@ -207,9 +209,8 @@ def test_ground_tension_held_every_step():
 
 # errors ---------------------------------------------------------------------------
 def test_prescribed_radius_longer_than_line_is_an_input_error():
-    cfg = load_config(overrides={"winch": {"mode": "prescribed"}, "kite": {"radius_m": 1200.0}})
     with pytest.raises(ConfigError, match=r"\[kite\] radius_m"):
-        build_model(cfg)
+        load_config(overrides={"winch": {"mode": "prescribed"}, "kite": {"radius_m": 1200.0}})
 
 
 def test_divergence_reports_time_length_and_residual(quiet_cfg):

@@ -30,9 +30,9 @@ velocity and acceleration interpolated along the segment, the line leaving the
 drum at V_L tau_{1/2}); below ``[fe] min_element_m`` node 1 is removed (the
 winch segment merges with the next one).  The node-1 equation then has unequal
 half-segments on its two sides (:mod:`.system`: mass mu (h_0 + h_1)/2), and
-the lumped masses always sum to mu L(t).  BDF2's history is not defined for a
-new node, so the step after an insertion is an implicit-Euler step (the
-start of BDF2); a removal keeps the history of the remaining nodes.  The kite
+the lumped masses always sum to mu L(t).  After a change of the grid or a
+jump of V_L the velocities are projected on the constraints with the new V_L
+and BDF2 restarts with an implicit-Euler step.  The kite
 flies the eight on the sphere of the current L.  The same law as the FE solver,
 written independently.
 
@@ -294,22 +294,31 @@ def line_state(model: FDModel, state: State) -> dict:
     }
 
 
+RESTART_JUMP_MS = 0.1
+
+
 def reeled(model: FDModel, prev: State | None, state: State, length_m: float, reel_ms: float,
            min_segment_m: float, max_segment_m: float) -> tuple[FDModel, State | None, State]:
     """Model, BDF2 history and state with the line paid out (or reeled in) to ``length_m``.
 
-    The winch segment h_0 takes the change ``length_m - L``.  Above
-    ``max_segment_m`` a material node is inserted on it, ``max_segment_m / 2``
-    from node 1 (r, v, a interpolated linearly between the winch, where the
-    line moves at V_L tau_{1/2}, and node 1; its tension is the winch
-    segment's); the history is dropped (the next step is implicit Euler).
-    Below ``min_segment_m`` (with at least 3 segments) node 1 is removed and
-    the winch segment reaches node 2; the history keeps the other nodes.
+    The winch segment h_0 takes the change ``length_m - L``.  Paid out
+    above ``max_segment_m``, a material node is inserted on it,
+    ``max_segment_m / 2`` from node 1 (r, v, a interpolated linearly between
+    the winch, where the line moves at V_L tau_{1/2}, and node 1; its tension
+    is the winch segment's).  Reeled in below ``min_segment_m`` (with at
+    least 3 segments), node 1 is removed and the winch segment reaches node 2.
+    Insertions happen only while paying out and removals only while reeling
+    in, so the grid never flips between them.  After a change of the grid, or
+    a jump of V_L by more than ``RESTART_JUMP_MS``, the velocities are
+    projected on the constraints with the new V_L
+    (:meth:`TetherFD.consistent_velocity`: the speed change is an impulse, not
+    a tension spike spread over the next steps) and BDF2 restarts (the
+    history is dropped: the next step is implicit Euler).
     """
     g = model.grid
     h0 = g.h[0] + (length_m - model.length_m)
     r, v, a, T = state.r, state.v, state.a, state.T
-    if h0 > max_segment_m:
+    if h0 > max_segment_m and h0 > g.h[0]:
         half = 0.5 * max_segment_m
         f = (g.h[0] - half) / g.h[0]            # new node's fraction of the way to node 1
         drum = reel_ms * r[1] / np.linalg.norm(r[1])
@@ -318,19 +327,19 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         a = np.insert(a, 1, f * a[1], axis=0)
         T = np.insert(T, 1, T[0])
         grid = Grid.from_lengths(np.concatenate([[h0 - half, half], g.h[1:]]), g.tension_mode)
-        prev = None
-    elif h0 < min_segment_m and g.M > 2:
+    elif h0 < min_segment_m and h0 < g.h[0] and g.M > 2:
         r, v, a = (np.delete(x, 1, axis=0) for x in (r, v, a))
         T = np.delete(T, 1)                     # T_{1/2} stays (the winch's, in tension mode)
         grid = Grid.from_lengths(np.concatenate([[h0 + g.h[1]], g.h[2:]]), g.tension_mode)
-        if prev is not None:
-            prev = replace(prev, r=np.delete(prev.r, 1, axis=0), v=np.delete(prev.v, 1, axis=0),
-                           a=np.delete(prev.a, 1, axis=0), T=np.delete(prev.T, 1))
     else:
         grid = g.with_first_length(h0)
+    restart = grid.M != g.M or abs(reel_ms - model.reel_ms) > RESTART_JUMP_MS
     end = replace(model.end, length_m=length_m) if hasattr(model.end, "length_m") else model.end
     model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=length_m,
                     reel_ms=reel_ms, end=end)
+    if restart:
+        v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_ms)
+        prev = None
     return model, prev, State(state.t, r, v, a, T, state.R)
 
 
@@ -378,7 +387,7 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
     bar.close()
     return record.run(
         solver="fd",
-        length_m=model.length_m,
+        length_m=start_length,
         period_s=period,
         average_start_s=t0 + spinup_periods * period,
         config=config or {},

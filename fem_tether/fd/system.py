@@ -342,3 +342,50 @@ class TetherFD:
         ])
         out.ab = g.assemble(values, kite_dir)
         return out
+
+    def consistent_velocity(self, r, v_guess, R, kite, reel_ms=0.0):
+        """Velocities of the inextensible line on its constraints, closest to
+        ``v_guess`` in the kinetic-energy norm.
+
+        Solves, in the band layout of the Newton system (the tensions' columns
+        carry the multipliers ``lam``)::
+
+            m_i (v_i - v_guess_i) + lam_{i-1/2} tau_{i-1/2} - lam_{i+1/2} tau_{i+1/2} = 0   i = 1 .. M-1
+            tau_{k+1/2} . (v_{k+1} - v_k) = V_L [k = 0]                                    k = 0 .. M-1
+
+        with ``v_0 = 0`` at the winch node (the winch segment grows at V_L) and
+        the kite end on its trajectory, ``v_M = R e' + R' e`` (``kite = (e, e')``).
+        The closure is the one of the Newton system: in tension mode the winch
+        takes no impulse (``lam_{1/2} = 0``, the tension there is held) and the
+        radius rate R' is free; in prescribed mode R' = 0.  Used to restart the
+        time stepping when V_L jumps or the grid changes (:mod:`.solver`).
+        Returns ``(v, R')``.
+        """
+        g = self.grid
+        M = g.M
+        e, e_dot = kite
+        tau, _ = _unit(r[1:] - r[:-1])
+        m = self.mass_kg[1:-1]
+        zero3 = np.zeros((M - 1, 3, 3))
+        values = np.concatenate([
+            (m[:, None, None] * _EYE).ravel(), zero3.ravel(), zero3.ravel(),
+            (-tau[1:]).ravel(), tau[:-1].ravel(),
+            tau.ravel(), (-tau).ravel(), np.zeros(M),
+        ])
+        ab = g.assemble(values, e)
+        full = np.zeros(g.n_full)
+        body = full[: 4 * M - 4].reshape(M - 1, 4)
+        body[:, 1:] = m[:, None] * v_guess[1:-1]
+        con = np.zeros(M)
+        con[0] = reel_ms
+        con[-1] -= tau[-1] @ (R * e_dot)        # the kite's known velocity R e'
+        body[:, 0] = con[:-1]
+        full[4 * M - 4] = con[-1]
+        x = g.solve(ab, full[:-1])                # rows: all 4M - 3 equations
+        dv, _, r_dot = g.expand(x)
+        if not g.tension_mode:
+            r_dot = 0.0
+        v = np.zeros_like(v_guess)
+        v[1:-1] = dv
+        v[-1] = R * e_dot + r_dot * e
+        return v, float(r_dot)

@@ -327,9 +327,6 @@ def simulate(cfg, length_m=None, progress=False) -> TetherRun:
     """Run the configured case with the FE solver."""
     model = build_model(cfg, length_m)
     t, fe = cfg["time"], cfg["fe"]
-    if not fe["max_element_m"] > 2.0 * fe["min_element_m"]:
-        raise ConfigError(f"[fe] max_element_m = {fe['max_element_m']:g}: must exceed twice "
-                          f"[fe] min_element_m = {fe['min_element_m']:g}")
     reel = reel_from_config(cfg, start_s=t["spinup_periods"] * model.end.period_s)
     return run(model, t["dt_s"], t["spinup_periods"], t["average_periods"],
                cfg["output"]["every"], config=cfg, progress=progress, reel=reel,
