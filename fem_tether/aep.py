@@ -52,9 +52,9 @@ class AepByLength:
     unbinned_probability: np.ndarray
 
     @property
-    def best_length_m(self) -> float:
-        """The length of the largest AEP."""
-        return float(self.length_m[np.argmax(self.aep_MWh)])
+    def best_length_m(self) -> float | None:
+        """The length of the largest AEP (None without lengths)."""
+        return float(self.length_m[np.argmax(self.aep_MWh)]) if self.length_m.size else None
 
 
 def aep_by_length(cfg, lengths_m, global_efficiency, mean_phi_deg, resource: WindResource,
@@ -82,13 +82,6 @@ def aep_by_length(cfg, lengths_m, global_efficiency, mean_phi_deg, resource: Win
                        unbinned_probability=unbinned)
 
 
-def compare_aep(cfg, lengths_m, ge_by_case: Mapping[str, np.ndarray], mean_phi_deg,
-                resource: WindResource, cycle: Cycle = Cycle()) -> dict[str, AepByLength]:
-    """:func:`aep_by_length` for each named G_e curve, e.g. ``{"straight": …, "flexible": …}``."""
-    return {case: aep_by_length(cfg, lengths_m, ge, mean_phi_deg, resource, cycle)
-            for case, ge in ge_by_case.items()}
-
-
 @dataclass(frozen=True)
 class SweepAep:
     """AEP of a sweep's lengths, straight and flexible, with the cross-check gate."""
@@ -99,19 +92,20 @@ class SweepAep:
     unchecked_m: tuple[float, ...]     # flexible lengths kept with --allow-unchecked
 
     def as_dict(self) -> dict:
-        rows = []
-        for i, length in enumerate(self.straight.length_m):
-            j = np.flatnonzero(self.flexible.length_m == length)
-            row = {"length_m": float(length),
-                   "aep_straight_MWh": float(self.straight.aep_MWh[i]),
-                   "cf_straight": float(self.straight.capacity_factor[i]),
-                   "aep_fe_MWh": float(self.flexible.aep_MWh[j[0]]) if j.size else None,
-                   "cf_fe": float(self.flexible.capacity_factor[j[0]]) if j.size else None,
-                   "unchecked": float(length) in self.unchecked_m}
-            rows.append(row)
+        def at(result: AepByLength, length, name):
+            j = np.flatnonzero(result.length_m == length)
+            return float(getattr(result, name)[j[0]]) if j.size else None
+
+        lengths = np.union1d(self.straight.length_m, self.flexible.length_m)
+        rows = [{"length_m": float(length),
+                 "aep_straight_MWh": at(self.straight, length, "aep_MWh"),
+                 "cf_straight": at(self.straight, length, "capacity_factor"),
+                 "aep_fe_MWh": at(self.flexible, length, "aep_MWh"),
+                 "cf_fe": at(self.flexible, length, "capacity_factor"),
+                 "unchecked": float(length) in self.unchecked_m} for length in lengths]
         return {"lengths": rows,
                 "best_length_straight_m": self.straight.best_length_m,
-                "best_length_fe_m": self.flexible.best_length_m if self.flexible.length_m.size else None,
+                "best_length_fe_m": self.flexible.best_length_m,
                 "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m)}
 
 

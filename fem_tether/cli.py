@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from fem_tether import __version__, kite
+from fem_tether.atomic import OutputError, check_writable
 from fem_tether.config import ConfigError, load_config, to_toml
 from fem_tether.errors import SolverDivergedError
 from fem_tether.fe.integrator import SchemeError
@@ -26,8 +28,32 @@ EXIT_USAGE = 2
 EXIT_FAILED = 1
 
 
-class UsageError(Exception):
-    """A command-line value that is not acceptable."""
+class _Parser(argparse.ArgumentParser):
+    """argparse with the project's one-line errors (exit code 2)."""
+
+    def error(self, message):
+        self.exit(EXIT_USAGE, f"fem-tether: error: {self.prog.removeprefix('fem-tether ')}: {message}\n"
+                  if self.prog != "fem-tether" else f"fem-tether: error: {message}\n")
+
+
+def _positive_int(text):
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} must be at least 1")
+    return value
+
+
+def _azimuth_deg(text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not -90.0 < value < 90.0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be an azimuth in (-90, 90) degrees")
+    return value
 
 
 def _positive_float(text):
@@ -139,17 +165,23 @@ def cmd_simulate(args):
     from fem_tether.summary import run_summary
 
     cfg = _config(args, args.length)
+    if args.out:
+        stem = Path(args.out) / f"fe_L{cfg['tether']['length_m']:g}"
+        check_writable(stem.with_suffix(".h5"))
+        check_writable(stem, directory=True)
     run = simulate(cfg, progress=not args.json)
     summary = run_summary(run, cfg)
     if args.out:
-        out = Path(args.out)
-        stem = f"fe_L{run.length_m:g}"
-        summary["hdf5"] = str(write_run_hdf5(run, out / f"{stem}.h5", extra_attrs={
-            "ge": summary["ge"], "straight_drag_N": summary["straight_drag_N"]}))
-        summary["paraview"] = str(write_paraview(run, out / stem))
+        summary["paraview"] = str(write_paraview(run, stem))
+        try:
+            summary["hdf5"] = str(write_run_hdf5(run, stem.with_suffix(".h5"), extra_attrs={
+                "ge": summary["ge"], "straight_drag_N": summary["straight_drag_N"]}))
+        except BaseException:
+            shutil.rmtree(stem, ignore_errors=True)   # both files or neither
+            raise
         if cfg["winch"]["reel_out"] != "none":
             from fem_tether.pipeline import reel_drag_plot
-            summary["reel_plot"] = str(reel_drag_plot(run, cfg, out / f"{stem}_reel_drag.png",
+            summary["reel_plot"] = str(reel_drag_plot(run, cfg, stem.with_name(stem.name + "_reel_drag.png"),
                                                       args.sweep))
     if args.json:
         _print_json(summary)
@@ -177,7 +209,7 @@ def cmd_crosscheck(args):
 
     cfg = _config(args, args.length)
     fd_cfg = _config(argparse.Namespace(config=args.fd_config), args.length) if args.fd_config else None
-    check, _, _ = crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
+    check, fe_run, _ = crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
     data = check.as_dict()
     if args.json:
         _print_json(data)
@@ -193,6 +225,8 @@ def cmd_crosscheck(args):
                   f"{100 * check.rel_diff[name]:8.3f} %  {100 * limits[name]:6.2f} %")
         print(f"  shape (max |r_FE - r_FD| / L)               {100 * check.rel_diff['shape']:8.3f} %  "
               f"{100 * limits['shape']:6.2f} %")
+        if np.ptp(fe_run.series["length_m"]) > 0:
+            print("  (reel-out: largest differences of the one-period means along the run's lengths)")
         print("  cross-check " + ("PASSED" if check.ok else "FAILED"))
     return 0 if check.ok else EXIT_FAILED
 
@@ -257,12 +291,16 @@ def cmd_run(args):
     import time
 
     from fem_tether.pipeline import summary_table, sweep_aep, write_json, write_plots
+    from fem_tether.power import Cycle
+    from fem_tether.resource import from_config as resource_from_config
     from fem_tether.sweep import load_job, read_sweep, sweep
 
     t0 = time.perf_counter()
     job = load_job(args.job)
     out = Path(args.out)
     h5 = out / "sweep.h5"
+    resource_from_config(job.config)       # a bad resource fails now, not after the sweep
+    Cycle(**job.config["cycle"])
     results = sweep(job, h5)
     if results is None:
         return 0
@@ -291,16 +329,22 @@ def cmd_bench(args):
 
 
 def cmd_mesh(args):
-    path = write_unit_mesh(args.out, unit_nodes(args.elements, args.grading))
+    if args.elements < 2:
+        raise MeshError(f"--elements {args.elements}: a tether mesh needs at least 2 elements")
+    nodes = unit_nodes(args.elements, args.grading)
+    if np.any(np.diff(nodes) <= 0):
+        raise MeshError(f"--grading {args.grading:g}: too strong for {args.elements} elements "
+                        "(the smallest elements vanish)")
+    path = write_unit_mesh(args.out, nodes)
     print(f"wrote {path}: {args.elements} elements on [0, 1], grading {args.grading:g}")
     return 0
 
 
 # --- parser -------------------------------------------------------------------------
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="fem-tether", description=__doc__.splitlines()[0])
+    p = _Parser(prog="fem-tether", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"fem-tether {__version__}")
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
     def command(name, func, help_text, config=True):
         c = sub.add_parser(name, help=help_text, description=help_text)
@@ -324,7 +368,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("curves", cmd_curves, "KiteGen characteristic curves (seed 000 §2.4)")
     c.add_argument("--ge", type=_positive_float, help="global efficiency G_e used in place of E")
-    c.add_argument("--phi-deg", type=float, help="azimuth [deg] (default [kite] design_phi_deg)")
+    c.add_argument("--phi-deg", type=_azimuth_deg,
+                   help="azimuth [deg] in (-90, 90) (default [kite] design_phi_deg)")
     c.add_argument("--plot", metavar="FILE.png", help="write reel-out speed, force, power vs wind")
     c.add_argument("--json", action="store_true")
 
@@ -361,12 +406,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="keep lengths whose cross-check failed, marked")
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False)
-    c.add_argument("--repeats", type=int, default=3, help="best of N runs per setting")
+    c.add_argument("--repeats", type=_positive_int, default=3, help="best of N runs per setting")
     c.add_argument("--json", action="store_true")
 
     c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False)
     c.add_argument("out", help="output file (.vtu, .xdmf, .vtk, ...)")
-    c.add_argument("--elements", type=int, required=True)
+    c.add_argument("--elements", type=_positive_int, required=True, help="number of elements (>= 2)")
     c.add_argument("--grading", type=_positive_float, default=1.0,
                    help="first/last element size (> 1: finer toward the kite)")
     return p
@@ -377,12 +422,13 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.func(args)
-    except (ConfigError, MeshError, SchemeError, ResourceError, UsageError) as exc:
+    except (ConfigError, MeshError, SchemeError, ResourceError, OutputError) as exc:
         return _fail(f"fem-tether: error: {exc}", EXIT_USAGE)
     except SolverDivergedError as exc:
         return _fail(f"fem-tether: solver failed: {exc}", EXIT_FAILED)
     except OSError as exc:
-        return _fail(f"fem-tether: error: {exc.filename or ''}: {exc.strerror or exc}", EXIT_USAGE)
+        where = f"{exc.filename}: " if exc.filename else ""
+        return _fail(f"fem-tether: error: {where}{exc.strerror or exc}", EXIT_USAGE)
 
 
 def _fail(message: str, code: int) -> int:

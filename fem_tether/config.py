@@ -62,7 +62,7 @@ def between(lo, hi, closed=(False, False)):
 
 def one_of(*choices):
     def check(v):
-        return None if v in choices else f"must be one of {', '.join(map(_toml_value, choices))}"
+        return None if v in choices else f"must be one of {', '.join(map(toml_value, choices))}"
     return check
 
 
@@ -126,7 +126,7 @@ SCHEMA: dict[str, dict[str, Key]] = {
     },
     "fe": {
         "mesh": Key("graded", "'uniform', 'graded' or a meshio file of [0, 1] (e.g. meshes/graded_40.vtu)"),
-        "elements": Key(40, "elements of a generated mesh", at_least(1)),
+        "elements": Key(40, "elements of a generated mesh", at_least(2)),
         "grading": Key(4.0, "first/last element size of a graded mesh (kite end finer)", positive),
         "min_element_m": Key(2.0, "reeling: the winch element merges with its neighbour below this",
                              positive),
@@ -190,7 +190,7 @@ def defaults() -> dict[str, dict[str, Any]]:
 
 def _coerce(section: str, name: str, value: Any) -> Any:
     key = SCHEMA[section][name]
-    where = f"[{section}] {name} = {_toml_value(value)}"
+    where = f"[{section}] {name} = {toml_value(value)}"
     if key.kind is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ConfigError(f"{where}: expected a number")
@@ -289,7 +289,7 @@ def validate(cfg: dict, eight: bool = True) -> dict:
     for section, name in FILE_KEYS:
         value = cfg[section][name]
         if value and value not in ("uniform", "graded") and not Path(value).is_file():
-            raise ConfigError(f"[{section}] {name} = {_toml_value(value)}: no such file")
+            raise ConfigError(f"[{section}] {name} = {toml_value(value)}: no such file")
     if not fe["max_element_m"] > 2.0 * fe["min_element_m"]:
         raise ConfigError(f"[fe] max_element_m = {fe['max_element_m']:g}: must exceed twice "
                           f"[fe] min_element_m = {fe['min_element_m']:g}")
@@ -325,7 +325,7 @@ def read_toml(path: str | Path) -> dict:
         raise ConfigError(f"{path}: cannot read: {exc.strerror}") from None
 
 
-def _toml_value(v: Any) -> str:
+def toml_value(v: Any) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, str):
@@ -340,6 +340,6 @@ def to_toml(cfg: dict) -> str:
         lines.append(f"[{section}]")
         for name, value in values.items():
             doc = SCHEMA[section][name].doc if name in SCHEMA.get(section, {}) else ""
-            lines.append(f"{name} = {_toml_value(value)}" + (f"  # {doc}" if doc else ""))
+            lines.append(f"{name} = {toml_value(value)}" + (f"  # {doc}" if doc else ""))
         lines.append("")
     return "\n".join(lines)

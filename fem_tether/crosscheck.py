@@ -7,15 +7,23 @@ same instant (linearly in time) and both lines to common arc lengths
 (linearly in s); the largest distance between them, divided by L, is the
 shape difference.  Tolerances come from ``[crosscheck]``: a difference within
 its tolerance passes, and the check is ``ok`` only if all pass.
+
+On reel-out runs (the length changes) F_t and the tensions are compared along
+the run: their means over one period of the eight against the line length
+(:func:`fem_tether.results.period_average`), the largest relative difference
+over the lengths both runs reached.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.results import TetherRun
+from fem_tether.config import ConfigError, merge
+from fem_tether.results import TetherRun, period_average
+from fem_tether.trajectory import FigureEight
 
 QUANTITIES = (("drag", "drag_N"), ("ground_tension", "ground_tension_N"),
               ("kite_tension", "kite_tension_N"))
@@ -78,15 +86,45 @@ def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
     return worst / length
 
 
+MIN_SNAPSHOTS_PER_PERIOD = 10
+
+
+def checkable(cfg: dict) -> dict:
+    """``cfg`` with ``[output] every`` lowered, if needed, so that both solvers
+    store at least ``MIN_SNAPSHOTS_PER_PERIOD`` snapshots per period."""
+    period = FigureEight.from_config(cfg).period_s
+    steps = min(math.ceil(period / cfg["time"]["dt_s"] - 1e-9), math.ceil(period / cfg["fd"]["dt_s"] - 1e-9))
+    every = max(1, min(cfg["output"]["every"], steps // MIN_SNAPSHOTS_PER_PERIOD))
+    return merge(cfg, {"output": {"every": every}})
+
+
+def _along_length(a: TetherRun, b: TetherRun, key: str) -> float:
+    """Largest |b/a - 1| of the period means of ``key`` against L, on a's lengths."""
+    la, ya = period_average(a, key)
+    lb, yb = period_average(b, key)
+    inside = (la >= lb.min()) & (la <= lb.max())
+    return float(np.max(np.abs(np.interp(la[inside], lb, yb) / ya[inside] - 1.0)))
+
+
 def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
     """Compare two runs of the same case against ``tolerances``.
 
     ``tolerances``: ``drag_rel``, ``tension_rel`` (both relative), ``shape_rel``
-    (fraction of L).
+    (fraction of L).  The shape is compared at the snapshots, so each run must
+    store at least ``MIN_SNAPSHOTS_PER_PERIOD`` per period of the eight.
     """
+    for run in (fe, fd):
+        per_period = run.period_s / np.max(np.diff(run.snapshot_time_s))
+        if per_period < MIN_SNAPSHOTS_PER_PERIOD:
+            raise ConfigError(f"[output] every = {run.config['output']['every']}: the cross-check "
+                              f"needs at least {MIN_SNAPSHOTS_PER_PERIOD} snapshots per period of "
+                              f"the eight ({run.solver.upper()} stores {per_period:.1f})")
     fe_means = {key: fe.mean(key) for _, key in QUANTITIES}
     fd_means = {key: fd.mean(key) for _, key in QUANTITIES}
-    rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
+    if np.ptp(fe.series["length_m"]) > 0 or np.ptp(fd.series["length_m"]) > 0:
+        rel = {name: _along_length(fe, fd, key) for name, key in QUANTITIES}
+    else:
+        rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
     rel["shape"] = shape_difference(fe, fd)
     limits = {"drag": tolerances["drag_rel"], "ground_tension": tolerances["tension_rel"],
               "kite_tension": tolerances["tension_rel"], "shape": tolerances["shape_rel"]}
@@ -98,11 +136,14 @@ def crosscheck(cfg, length_m=None, progress=False, fd_cfg=None):
     """Run the FE and the FD solver on the configured case and compare them.
 
     ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
+    both run at the FE's length, with enough snapshots (:func:`checkable`);
     tolerances are ``cfg``'s.  Returns ``(CrossCheck, fe_run, fd_run)``.
     """
     from fem_tether import fd
     from fem_tether.fe.solver import simulate
 
+    length_m = cfg["tether"]["length_m"] if length_m is None else length_m
+    cfg = checkable(cfg)
     fe_run = simulate(cfg, length_m, progress=progress)
-    fd_run = fd.simulate(fd_cfg or cfg, length_m, progress=progress)
+    fd_run = fd.simulate(checkable(fd_cfg) if fd_cfg else cfg, length_m, progress=progress)
     return compare(fe_run, fd_run, cfg["crosscheck"]), fe_run, fd_run

@@ -53,6 +53,7 @@ import meshio
 import numpy as np
 
 from . import __version__
+from .atomic import atomic_path, check_writable
 from .config import to_toml
 from .results import CELL_FIELDS, TetherRun
 
@@ -64,23 +65,12 @@ def units(name: str) -> str:
     return next((u for suffix, u in UNITS if name.endswith(suffix)), "")
 
 
-def _temporary(path: Path) -> Path:
-    return path.with_name(f".{path.name}.tmp-{os.getpid()}")
-
-
 def write_run_hdf5(run: TetherRun, path, extra_attrs: dict | None = None) -> Path:
     """Write ``run`` to the HDF5 file ``path`` (layout in the module docstring)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = _temporary(path)
-    try:
+    with atomic_path(path) as tmp:
         with h5py.File(tmp, "w", track_order=True) as f:
             _write_hdf5(f, run, extra_attrs or {})
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    return path
+    return Path(path)
 
 
 def _dataset(group, name, data, **kwargs):
@@ -149,10 +139,8 @@ def write_paraview(run: TetherRun, directory, name: str = "tether") -> Path:
     and renamed into place.  An existing ``directory`` is replaced: it is first
     renamed aside, then removed once the new set is in place.
     """
-    directory = Path(directory)
-    if directory.exists() and not directory.is_dir():
-        raise NotADirectoryError(directory)
-    tmp = _temporary(directory)
+    directory = check_writable(directory, directory=True)
+    tmp = directory.with_name(f".{directory.name}.tmp-{os.getpid()}")
     shutil.rmtree(tmp, ignore_errors=True)  # left over by a killed process
     tmp.mkdir(parents=True)
     try:

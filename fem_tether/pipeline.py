@@ -8,13 +8,13 @@ output directory: ``sweep.h5`` (the sweep result, see :mod:`fem_tether.sweep`),
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import numpy as np
 
 from fem_tether import plots
 from fem_tether.aep import SweepAep, aep_of_sweep
+from fem_tether.atomic import atomic_path
 from fem_tether.power import Cycle, cycle_curves, operating_design
 from fem_tether.resource import from_config as resource_from_config
 
@@ -53,9 +53,8 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
 
 
 def write_json(path: Path, payload: dict) -> Path:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    tmp.write_text(json.dumps(payload, indent=2, sort_keys=True))
-    os.replace(tmp, path)
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(payload, indent=2, sort_keys=True))
     return path
 
 

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -14,22 +12,16 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 import numpy as np  # noqa: E402
 
 from .aep import AepByLength  # noqa: E402
+from .atomic import atomic_path  # noqa: E402
 from .kite import ZONES, CharacteristicCurves, PowerCurves  # noqa: E402
 from .power import SEED_GE, SEED_LENGTHS_M, CycleCurves  # noqa: E402
 
 
 def save_atomically(fig, path) -> Path:
     """Save ``fig`` as PNG at ``path`` through a temporary file in the same directory."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".png")
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", dpi=150)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
-    return path
+    return Path(path)
 
 
 def plot_characteristic_curves(kitegen: CharacteristicCurves, loyd: PowerCurves, path,

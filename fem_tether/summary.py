@@ -1,8 +1,9 @@
 """Post-processing of one tether run: period means, G_e, straight-line comparison.
 
 G_e = L / (D_k + lines F_t) (seed 000 eq. 5.1) with the air density at the
-kite's mean altitude over the stored snapshots, and the straight-line F_t of
-the same case (seed 000 §4.1) for comparison.
+operating altitude L cos(theta0), and the straight-line F_t of the same case
+(seed 000 §4.1, with the wind's normal component as the flexible line has it)
+for comparison; the sweep uses the same two.
 """
 
 from __future__ import annotations
@@ -10,16 +11,22 @@ from __future__ import annotations
 import numpy as np
 
 from fem_tether import atmosphere, kite, straight
+from fem_tether.power import operating_altitude_m
+
+
+def operating_ge(cfg, drag_N, length_m) -> float:
+    """G_e (seed 000 eq. 5.1) with rho at the operating altitude L cos(theta0)."""
+    k = cfg["kite"]
+    z = operating_altitude_m(length_m, np.radians(k["theta0_deg"]))
+    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(z)))
+    return float(kite.global_efficiency(drag_N, rho, k["area_m2"], k["cl"], k["efficiency"],
+                                        k["speed_ms"], cfg["tether"]["lines"]))
 
 
 def run_summary(run, cfg) -> dict:
     """Period means, straight-line comparison and G_e of one tether run."""
     means = run.means()
-    kite_z = float(np.mean([run.line(i)["position_m"][-1, 2] for i in range(run.snapshot_time_s.size)]))
-    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(kite_z)))
-    k = cfg["kite"]
-    ge = kite.global_efficiency(means["mean_drag_N"], rho, k["area_m2"], k["cl"], k["efficiency"],
-                                k["speed_ms"], cfg["tether"]["lines"])
+    ge = operating_ge(cfg, means["mean_drag_N"], run.length_m)
     return {
         "solver": run.solver,
         "length_m": run.length_m,
@@ -29,7 +36,7 @@ def run_summary(run, cfg) -> dict:
         "mean_kite_tension_N": means["mean_kite_tension_N"],
         "mean_kite_radius_m": means["mean_kite_radius_m"],
         "max_strain": float(np.max(run.series["max_strain"])),
-        "straight_drag_N": straight.from_config(cfg, length_m=run.length_m).drag_N,
+        "straight_drag_N": straight.from_config(cfg, length_m=run.length_m, with_wind=True).drag_N,
         "ge": float(ge),
         "length_end_m": float(run.series["length_m"][-1]),
         "winch_energy_J": float(run.series["winch_energy_J"][-1]),

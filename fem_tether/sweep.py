@@ -32,7 +32,9 @@ per length with its configuration and status as attributes and subgroups
 from __future__ import annotations
 
 import datetime as _dt
+import math
 import os
+import sys
 import time
 import tomllib
 import traceback
@@ -42,16 +44,20 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from fem_tether import __version__, atmosphere, kite, straight
-from fem_tether.config import ConfigError, load_config, merge, read_toml, to_toml
-from fem_tether.crosscheck import compare
+from fem_tether import __version__, straight
+from fem_tether.atomic import OutputError, atomic_path, check_writable
+from fem_tether.config import (ConfigError, toml_value, load_config, merge, read_toml,
+                               resolve_paths, to_toml, validate)
+from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import SolverDivergedError
 from fem_tether.output import read_run_hdf5, write_run_hdf5
-from fem_tether.power import operating_altitude_m
 from fem_tether.progress import Progress
+from fem_tether.results import time_grid
+from fem_tether.summary import operating_ge
 from fem_tether.trajectory import FigureEight
 
 REFRESH_S = 10.0
+EXIT_ABORT = 3
 DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
 DEFAULT_JOB = {"sweep": {"lengths_m": list(DEFAULT_LENGTHS_M), "crosscheck": True, "straight": True}}
 
@@ -71,19 +77,22 @@ class Job:
         return ("fe", "fd") if self.crosscheck else ("fe",)
 
     def config_for(self, length_m: float) -> dict:
-        cfg = merge(self.config, {})
-        cfg["tether"]["length_m"] = float(length_m)
-        return cfg
+        """The configuration of one length (with enough snapshots for the cross-check)."""
+        cfg = merge(self.config, {"tether": {"length_m": float(length_m)}})
+        return checkable(cfg) if self.crosscheck else cfg
 
 
 def _job_error(key, value, problem):
-    return ConfigError(f"[sweep] {key} = {value!r}: {problem}")
+    return ConfigError(f"[sweep] {key} = {toml_value(value)}: {problem}")
 
 
 def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job:
-    """Validate a job table: ``[sweep]`` keys plus configuration sections."""
+    """Validate a job table: ``[sweep]`` keys plus configuration sections (file
+    names relative to ``base_dir``); every length's case is validated."""
     data = dict(data)
-    sweep = dict(data.pop("sweep", {}))
+    sweep = data.pop("sweep", {})
+    if not isinstance(sweep, dict):
+        raise ConfigError("[sweep]: expected a table (lengths_m, crosscheck, straight, base)")
     unknown = set(sweep) - {"lengths_m", "crosscheck", "straight", "base"}
     if unknown:
         raise ConfigError(f"[sweep] {sorted(unknown)[0]}: unknown key "
@@ -92,10 +101,11 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
     if not isinstance(lengths, list) or not lengths:
         raise _job_error("lengths_m", lengths, "expected a non-empty list of lengths")
     for value in lengths:
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
-            raise _job_error("lengths_m", value, "every length must be a number > 0")
-    if len(set(map(float, lengths))) != len(lengths):
-        raise _job_error("lengths_m", lengths, "lengths must be distinct")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not (value > 0 and math.isfinite(value)):
+            raise _job_error("lengths_m", value, "every length must be a finite number > 0")
+    if len({_tag(v) for v in lengths}) != len(lengths):
+        raise _job_error("lengths_m", lengths, "lengths must be distinct (to 1 mm)")
     for key in ("crosscheck", "straight"):
         if not isinstance(sweep.get(key, True), bool):
             raise _job_error(key, sweep[key], "expected true or false")
@@ -103,9 +113,17 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
     if not isinstance(base, str):
         raise _job_error("base", base, "expected a file name")
     cfg = load_config(base_dir / base if base else None)
-    cfg = merge(cfg, data)
-    return Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
-               sweep.get("straight", True), cfg, text)
+    cfg = validate(merge(cfg, resolve_paths(data, base_dir)))
+    job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
+              sweep.get("straight", True), cfg, text)
+    for length in job.lengths_m:
+        validate(job.config_for(length))
+    return job
+
+
+def _tag(length_m: float) -> str:
+    """The length in names of parts and groups: millimetre precision, no trailing zeros."""
+    return f"{float(length_m):.3f}".rstrip("0").rstrip(".")
 
 
 def load_job(path: str | Path | None = None) -> Job:
@@ -132,17 +150,20 @@ class Task:
 
     @property
     def name(self) -> str:
-        return f"L{self.length_m:g}_{self.solver}"
+        return f"L{_tag(self.length_m)}_{self.solver}"
 
 
 def task_cost(job: Job, task: Task) -> float:
     """Estimated cost: unknowns x time steps (the step cost is linear in unknowns)."""
+    from fem_tether.fe.solver import unit_mesh_from_config
+
     cfg = job.config_for(task.length_m)
     period = FigureEight.from_config(cfg).period_s
     t = cfg["time"]
-    steps = (t["spinup_periods"] + t["average_periods"]) * np.ceil(period / t["dt_s"])
-    unknowns = 4 * (cfg["fe"]["elements"] if task.solver == "fe" else cfg["fd"]["segments"])
-    return float(unknowns * steps)
+    dt = t["dt_s"] if task.solver == "fe" else cfg["fd"]["dt_s"]
+    steps = time_grid(period, dt, t["spinup_periods"], t["average_periods"])[1]
+    points = unit_mesh_from_config(cfg).size if task.solver == "fe" else cfg["fd"]["segments"] + 1
+    return float(4 * points * steps)
 
 
 def assign(costs: list[float], n_ranks: int) -> list[list[int]]:
@@ -174,15 +195,9 @@ def _stored(path: Path, cfg_toml: str) -> str | None:
 
 
 def _write_failure(path: Path, cfg_toml: str, error: str) -> None:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        with h5py.File(tmp, "w") as f:
-            f.attrs.update(config_toml=cfg_toml, status="failed", error=error,
-                           fem_tether_version=__version__)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    with atomic_path(path) as tmp, h5py.File(tmp, "w") as f:
+        f.attrs.update(config_toml=cfg_toml, status="failed", error=error,
+                       fem_tether_version=__version__)
 
 
 def run_task(job: Job, task: Task, directory: Path) -> str:
@@ -219,19 +234,25 @@ class LengthResult:
     values: dict = field(default_factory=dict)
 
 
-def _ge(cfg, drag_N, length_m):
-    """G_e (seed 000 eq. 5.1) with rho at the operating altitude L cos(theta0)."""
-    k = cfg["kite"]
-    z = operating_altitude_m(length_m, np.radians(k["theta0_deg"]))
-    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(z)))
-    return float(kite.global_efficiency(drag_N, rho, k["area_m2"], k["cl"], k["efficiency"],
-                                        k["speed_ms"], cfg["tether"]["lines"]))
+_EVALUATED: dict = {}
 
 
 def evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthResult, dict]:
     """Combine the stored parts of one length: cross-check, straight line, G_e.
 
-    Returns the result and the part paths found (solver -> path)."""
+    Returns the result and the part paths found (solver -> path); remembered
+    while the parts on disk do not change."""
+    stamps = []
+    for solver in job.solvers:
+        path = directory / f"{Task(length_m, solver).name}.h5"
+        stamps.append(path.stat().st_mtime_ns if path.exists() else None)
+    key = (id(job), str(directory), length_m, tuple(stamps))
+    if key not in _EVALUATED:
+        _EVALUATED[key] = _evaluate_length(job, length_m, directory)
+    return _EVALUATED[key]
+
+
+def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthResult, dict]:
     cfg = job.config_for(length_m)
     cfg_toml = to_toml(cfg)
     res = LengthResult(length_m)
@@ -257,7 +278,7 @@ def evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthR
     if "fe" in runs:
         v["drag_fe_N"] = runs["fe"].mean("drag_N")
         v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
-        v["ge_fe"] = _ge(cfg, v["drag_fe_N"], length_m)
+        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"], length_m)
     if "fd" in runs:
         v["drag_fd_N"] = runs["fd"].mean("drag_N")
         v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")
@@ -268,7 +289,7 @@ def evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthR
         v["rel_diff_shape"] = check.rel_diff["shape"]
     if job.straight:
         v["drag_straight_N"] = straight.from_config(cfg, length_m, with_wind=True).drag_N
-        v["ge_straight"] = _ge(cfg, v["drag_straight_N"], length_m)
+        v["ge_straight"] = operating_ge(cfg, v["drag_straight_N"], length_m)
     res.values = v
     if errors:
         res.status, res.error = "failed", "; ".join(errors)
@@ -280,12 +301,12 @@ ROOT_DATASETS = ("drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_strai
                  "rel_diff_drag", "rel_diff_shape")
 
 
-def assemble(job: Job, out: Path, n_ranks: int) -> list[LengthResult]:
-    """Write the result file from the parts present now (atomically)."""
+def assemble(job: Job, out: Path, n_ranks: int, full: bool = True) -> list[LengthResult]:
+    """Write the result file from the parts present now (atomically); without
+    ``full`` only the per-length summaries (the refresh during a sweep)."""
     directory = parts_dir(out)
     results = [evaluate_length(job, L, directory) for L in job.lengths_m]
-    tmp = out.with_name(f".{out.name}.tmp-{os.getpid()}")
-    try:
+    with atomic_path(out) as tmp:
         with h5py.File(tmp, "w") as f:
             f.attrs.update(config_toml=to_toml(job.config), job_toml=job.toml,
                            fem_tether_version=__version__, n_ranks=n_ranks,
@@ -297,19 +318,15 @@ def assemble(job: Job, out: Path, n_ranks: int) -> list[LengthResult]:
             f["status"] = np.array([r.status for r, _ in results], dtype=h5py.string_dtype())
             f["error"] = np.array([r.error for r, _ in results], dtype=h5py.string_dtype())
             for r, parts in results:
-                group = f.create_group(f"L{r.length_m:g}")
+                group = f.create_group(f"L{_tag(r.length_m)}")
                 group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
                                    config_toml=to_toml(job.config_for(r.length_m)))
-                for solver, path in parts.items():
+                for solver, path in (parts.items() if full else ()):
                     with h5py.File(path, "r") as src:
                         sub = group.create_group(solver)
                         sub.attrs.update(dict(src.attrs))
                         for name in src:
                             src.copy(src[name], sub, name)
-        os.replace(tmp, out)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return [r for r, _ in results]
 
 
@@ -329,21 +346,32 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> list[L
     out = Path(out)
     rank, size = comm.Get_rank(), comm.Get_size()
     directory = parts_dir(out)
+    problem = None
     if rank == 0:
-        directory.mkdir(parents=True, exist_ok=True)
-    comm.Barrier()
+        try:
+            check_writable(out)
+            check_writable(directory, directory=True)
+        except OutputError as exc:
+            problem = str(exc)
+    problem = comm.bcast(problem, root=0)
+    if problem:
+        raise OutputError(problem)
     tasks = [Task(L, s) for L in job.lengths_m for s in job.solvers]
     mine = assign([task_cost(job, t) for t in tasks], size)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
     refreshed = time.monotonic()
-    for i in mine:
-        run_task(job, tasks[i], directory)
-        if rank == 0:
-            if time.monotonic() - refreshed > REFRESH_S:
-                assemble(job, out, size)
-                refreshed = time.monotonic()
-            bar.update(_count_done(tasks, directory))
+    try:
+        for i in mine:
+            run_task(job, tasks[i], directory)
+            if rank == 0:
+                if time.monotonic() - refreshed > REFRESH_S:
+                    assemble(job, out, size, full=False)
+                    refreshed = time.monotonic()
+                bar.update(_count_done(tasks, directory))
+    except Exception as exc:   # an I/O failure on one rank must not leave the others waiting
+        print(f"fem-tether: error on rank {rank}: {exc}", file=sys.stderr, flush=True)
+        comm.Abort(EXIT_ABORT)
     request = comm.Ibarrier()
     while not request.Test():
         if rank == 0:

@@ -8,7 +8,6 @@ from fem_tether.aep import (
     aep_by_length,
     annual_energy_Wh,
     capacity_factor,
-    compare_aep,
 )
 from fem_tether.atmosphere import ISA
 from fem_tether.config import load_config
@@ -59,7 +58,8 @@ def test_seed_tables_with_the_default_resource(cfg):
     """Tab. 5.1 G_e and Tab. 5.2 φ in the De Bilt Weibull (k = 2) bands; seed 000 Fig. 5.6 finds
     the best length at 500 m, straight and flexible diverging beyond ≈900 m."""
     resource = weibull_resource()
-    results = compare_aep(cfg, SEED_LENGTHS_M, SEED_GE, SEED_MEAN_PHI_DEG, resource)
+    results = {case: aep_by_length(cfg, SEED_LENGTHS_M, ge, SEED_MEAN_PHI_DEG, resource)
+               for case, ge in SEED_GE.items()}
     straight, flexible = results["straight"], results["flexible"]
     print("\nAEP, default resource (De Bilt annual log law, Weibull k = 2), Cycle() defaults:")
     print("   L [m]  band [m]    AEP straight / flexible [MWh]   CF straight / flexible  "
@@ -102,7 +102,8 @@ def test_plots_by_length_write_pngs(cfg, tmp_path):
     rho = ISA().density_kg_m3(SEED_LENGTHS_M * np.cos(np.radians(45.0)))
     lift = 0.5 * rho * 120.0 * 80.0**2
     drag = {case: (lift / ge - lift / 28.0) / 2 for case, ge in SEED_GE.items()}
-    results = compare_aep(cfg, SEED_LENGTHS_M, SEED_GE, SEED_MEAN_PHI_DEG, weibull_resource())
+    results = {case: aep_by_length(cfg, SEED_LENGTHS_M, ge, SEED_MEAN_PHI_DEG, weibull_resource())
+               for case, ge in SEED_GE.items()}
     paths = [plot_drag(SEED_LENGTHS_M, drag, tmp_path / "drag.png"),
              plot_ge(SEED_LENGTHS_M, SEED_GE, tmp_path / "ge.png"),
              plot_ge(SEED_LENGTHS_M, {"flexible": SEED_GE["flexible"]}, tmp_path / "ge_only.png",

@@ -29,7 +29,7 @@ def _oscillator(scheme, omega, h, t_end):
     c_a, _ = scheme.coefficients(h)
     for _ in range(int(round(t_end / h))):
         # residual qdd(q) + omega^2 q = 0 is linear in q: one Newton step is exact
-        q0 = kin.predict(h, scheme)
+        q0 = kin.predict(h)
         trial = kin.advance(q0, h, scheme)
         q = q0 - (trial.qdd + omega**2 * q0) / (c_a + omega**2)
         kin = kin.advance(q, h, scheme)

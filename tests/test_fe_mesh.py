@@ -35,7 +35,11 @@ def test_bad_meshes(tmp_path):
     with pytest.raises(MeshError, match="cannot read"):
         read_unit_mesh(tmp_path / "missing.vtu")
     with pytest.raises(MeshError, match="span"):
-        write_unit_mesh(tmp_path / "x.vtu", np.array([0.0, 0.5]))
+        write_unit_mesh(tmp_path / "x.vtu", np.array([0.0, 0.25, 0.5]))
+    with pytest.raises(MeshError, match="at least 2 segments"):
+        write_unit_mesh(tmp_path / "x.vtu", np.array([0.0, 1.0]))
+    with pytest.raises(MeshError, match="unknown mesh format"):
+        write_unit_mesh(tmp_path / "x.xyz", np.array([0.0, 0.5, 1.0]))
     with pytest.raises(MeshError, match="increasing"):
         write_unit_mesh(tmp_path / "x.vtu", np.array([0.0, 0.6, 0.5, 1.0]))
     with pytest.raises(MeshError, match=">= 1"):

@@ -84,7 +84,7 @@ def test_hdf5_failure_leaves_nothing(run, tmp_path, monkeypatch):
     path = tmp_path / "run.h5"
 
     def fail():
-        assert hidden(tmp_path) == [f".run.h5.tmp-{os.getpid()}"]  # mid-write
+        assert hidden(tmp_path) == [f".run.h5.tmp-{os.getpid()}.h5"]  # mid-write
         raise RuntimeError("disk full")
 
     monkeypatch.setattr(run, "means", fail)

@@ -47,20 +47,20 @@ class Scheme:
     @classmethod
     def newmark(cls, beta=0.25, gamma=0.5):
         if not (gamma >= 0.5 and beta >= 0.25 * (gamma + 0.5) ** 2 - 1e-15):
-            raise SchemeError(f"newmark beta = {beta}, gamma = {gamma}: need gamma >= 1/2 "
+            raise SchemeError(f"[time] beta = {beta}, gamma = {gamma}: Newmark needs gamma >= 1/2 "
                               "and beta >= (gamma + 1/2)^2/4 for unconditional stability")
         return cls("newmark", 0.0, 0.0, beta, gamma)
 
     @classmethod
     def hht(cls, alpha=-0.1):
         if not -1.0 / 3.0 <= alpha <= 0.0:
-            raise SchemeError(f"hht alpha = {alpha}: must be in [-1/3, 0]")
+            raise SchemeError(f"[time] hht_alpha = {alpha}: must be in [-1/3, 0]")
         return cls("hht", 0.0, -alpha, 0.25 * (1.0 - alpha) ** 2, 0.5 - alpha)
 
     @classmethod
     def generalized_alpha(cls, rho_inf=0.8):
         if not 0.0 <= rho_inf <= 1.0:
-            raise SchemeError(f"generalized-alpha rho_inf = {rho_inf}: must be in [0, 1]")
+            raise SchemeError(f"[time] rho_inf = {rho_inf}: must be in [0, 1]")
         am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0)
         af = rho_inf / (rho_inf + 1.0)
         gamma = 0.5 + af - am
@@ -81,7 +81,7 @@ class Kinematics:
     a: np.ndarray
     qdd: np.ndarray
 
-    def predict(self, h, scheme: Scheme):
+    def predict(self, h):
         """Constant-acceleration predictor of q_{n+1}."""
         return self.q + h * self.v + 0.5 * h * h * self.a
 

@@ -8,12 +8,12 @@ progression, shrinking toward the kite where the line bends most, with
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import meshio
 import numpy as np
+
+from fem_tether.atomic import atomic_path
 
 
 class MeshError(ValueError):
@@ -39,19 +39,13 @@ def write_unit_mesh(path: str | Path, nodes: np.ndarray) -> Path:
     """Write a unit mesh as a meshio file (format from the suffix), atomically."""
     path = Path(path)
     nodes = _validated(np.asarray(nodes, dtype=float), str(path))
+    if path.suffix not in meshio.extension_to_filetypes:
+        raise MeshError(f"{path}: unknown mesh format {path.suffix or '(no suffix)'!r}; "
+                        "use e.g. .vtu, .xdmf or .vtk")
     points = np.column_stack([nodes, np.zeros((nodes.size, 2))])
     cells = [("line", np.column_stack([np.arange(nodes.size - 1), np.arange(1, nodes.size)]))]
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=path.suffix)
-    os.close(fd)
-    try:
-        meshio.write(tmp, meshio.Mesh(points, cells))
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, meshio.Mesh(points, cells), file_format=meshio.extension_to_filetypes[path.suffix][0])
     return path
 
 
@@ -80,8 +74,8 @@ def read_unit_mesh(path: str | Path) -> np.ndarray:
 
 
 def _validated(nodes: np.ndarray, where: str) -> np.ndarray:
-    if nodes.ndim != 1 or nodes.size < 2:
-        raise MeshError(f"{where}: need at least one segment")
+    if nodes.ndim != 1 or nodes.size < 3:
+        raise MeshError(f"{where}: a tether mesh needs at least 2 segments")
     if abs(nodes[0]) > 1e-12 or abs(nodes[-1] - 1.0) > 1e-12:
         raise MeshError(f"{where}: mesh must span [0, 1], got [{nodes[0]}, {nodes[-1]}]")
     if np.any(np.diff(nodes) <= 0):
