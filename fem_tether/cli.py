@@ -18,7 +18,7 @@ import numpy as np
 
 from fem_tether import __version__, kite
 from fem_tether.atomic import OutputError, check_writable
-from fem_tether.config import ConfigError, load_config, to_toml
+from fem_tether.config import ConfigError, load_config, merge, to_toml, validate
 from fem_tether.errors import SolverDivergedError
 from fem_tether.fe.integrator import SchemeError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
@@ -77,10 +77,7 @@ def _float_list(text):
 
 
 def _config(args, length_m=None):
-    cfg = load_config(args.config)
-    if length_m is not None:
-        cfg["tether"]["length_m"] = length_m
-    return cfg
+    return load_config(args.config, {"tether": {"length_m": length_m}} if length_m else None)
 
 
 def _print_json(data):
@@ -102,6 +99,7 @@ def cmd_straight(args):
     theta = np.radians(kite_cfg["theta0_deg"])
     rows = []
     for length in lengths:
+        validate(merge(cfg, {"tether": {"length_m": length}}))
         integral = straight.from_config(cfg, length_m=length, with_wind=args.wind)
         rho = args.rho or integral.mean_density_kg_m3
         cd = args.cd or integral.cd_top
@@ -434,7 +432,7 @@ def main(argv=None) -> int:
 def _fail(message: str, code: int) -> int:
     """One line on stderr (from rank 0 only under MPI) and the exit code."""
     if _rank() == 0:
-        print(message, file=sys.stderr)
+        print(" ".join(message.split("\n")), file=sys.stderr)
     return code
 
 

@@ -40,12 +40,10 @@ from pathlib import Path
 import numpy as np
 from scipy.special import gamma
 
-from .wind import DE_BILT, MeanOfProfiles
+from .wind import DE_BILT_ANNUAL
 
 COLUMNS = ("band_low_m", "band_high_m", "bin_low_ms", "bin_high_ms", "probability")
 SUM_TOLERANCE = 1e-6
-#: De Bilt annual log law: the mean of the winter and summer profiles (seed 000 §3)
-ANNUAL_DE_BILT = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
 
 
 class ResourceError(ValueError):
@@ -111,7 +109,7 @@ def weibull_probabilities(edges_ms, mean_ms, shape_k):
     return np.diff(cdf)
 
 
-def weibull_resource(profile=ANNUAL_DE_BILT, weibull_k=2.0, band_bottom_m=200.0,
+def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
                      band_top_m=2300.0, band_width_m=300.0, bin_width_ms=0.5,
                      max_speed_ms=40.0) -> WindResource:
     """Weibull histograms whose means follow ``profile`` at the band centres (seed 000 §5).

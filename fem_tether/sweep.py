@@ -11,9 +11,10 @@ Durability: every finished task is written at once, atomically, to its own
 file in ``<out>.parts/`` by the rank that ran it; rank 0 assembles the result
 file ``<out>`` from the parts after its own tasks (at most every
 ``REFRESH_S`` seconds) and at the end, so an interrupted sweep leaves a
-readable file.  Re-running the same job skips
-the tasks whose stored configuration matches.  A task whose solve fails is
-recorded with its error; the other tasks go on.
+readable file.  Re-running the same job skips the tasks whose inputs match
+(:func:`inputs_key`: configuration, package version and the contents of the
+files it names).  A task whose solve fails is recorded with its error; the
+other tasks go on.
 
 Result file (h5py), root datasets, one entry per length (NaN where not run)::
 
@@ -32,6 +33,7 @@ per length with its configuration and status as attributes and subgroups
 from __future__ import annotations
 
 import datetime as _dt
+import hashlib
 import math
 import os
 import sys
@@ -46,8 +48,8 @@ import numpy as np
 
 from fem_tether import __version__, straight
 from fem_tether.atomic import OutputError, atomic_path, check_writable
-from fem_tether.config import (ConfigError, toml_value, load_config, merge, read_toml,
-                               resolve_paths, to_toml, validate)
+from fem_tether.config import (FILE_KEYS, ConfigError, load_config, merge, read_toml,
+                               resolve_paths, to_toml, toml_value, validate)
 from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import SolverDivergedError
 from fem_tether.output import read_run_hdf5, write_run_hdf5
@@ -183,29 +185,40 @@ def parts_dir(out: Path) -> Path:
     return out.with_name(out.name + ".parts")
 
 
-def _stored(path: Path, cfg_toml: str) -> str | None:
-    """Status of a stored part whose configuration matches, else None."""
+def inputs_key(cfg: dict) -> str:
+    """What a task's result depends on: its configuration, the package version
+    and the contents of the files the configuration names (a mesh, a table)."""
+    digest = hashlib.sha256((to_toml(cfg) + __version__).encode())
+    for section, name in FILE_KEYS:
+        value = cfg[section][name]
+        if value and value not in ("uniform", "graded"):
+            digest.update(Path(value).read_bytes())
+    return digest.hexdigest()
+
+
+def _stored(path: Path, key: str) -> str | None:
+    """Status of a stored part whose inputs match ``key``, else None."""
     try:
         with h5py.File(path, "r") as f:
-            if f.attrs.get("config_toml") != cfg_toml:
+            if f.attrs.get("inputs_key") != key:
                 return None
             return str(f.attrs.get("status", "ok"))
     except (OSError, KeyError):
         return None
 
 
-def _write_failure(path: Path, cfg_toml: str, error: str) -> None:
+def _write_failure(path: Path, cfg: dict, key: str, error: str) -> None:
     with atomic_path(path) as tmp, h5py.File(tmp, "w") as f:
-        f.attrs.update(config_toml=cfg_toml, status="failed", error=error,
+        f.attrs.update(config_toml=to_toml(cfg), inputs_key=key, status="failed", error=error,
                        fem_tether_version=__version__)
 
 
 def run_task(job: Job, task: Task, directory: Path) -> str:
     """Run one task unless a matching successful part exists; return its status."""
     cfg = job.config_for(task.length_m)
-    cfg_toml = to_toml(cfg)
+    key = inputs_key(cfg)
     path = directory / f"{task.name}.h5"
-    if _stored(path, cfg_toml) == "ok":
+    if _stored(path, key) == "ok":
         return "ok"
     if task.solver == "fe":
         from fem_tether.fe.solver import simulate
@@ -214,14 +227,14 @@ def run_task(job: Job, task: Task, directory: Path) -> str:
     try:
         run = simulate(cfg)
     except SolverDivergedError as exc:
-        _write_failure(path, cfg_toml, f"{task.solver.upper()}: {exc}")
+        _write_failure(path, cfg, key, f"{task.solver.upper()}: {exc}")
         return "failed"
     except Exception as exc:  # a defect must not cost the other lengths their results
         last = traceback.extract_tb(exc.__traceback__)[-1]
-        _write_failure(path, cfg_toml, f"{task.solver.upper()}: {type(exc).__name__}: {exc} "
+        _write_failure(path, cfg, key, f"{task.solver.upper()}: {type(exc).__name__}: {exc} "
                                        f"({Path(last.filename).name}:{last.lineno})")
         return "failed"
-    write_run_hdf5(run, path, extra_attrs={"status": "ok"})
+    write_run_hdf5(run, path, extra_attrs={"status": "ok", "inputs_key": key})
     return "ok"
 
 
@@ -254,7 +267,7 @@ def evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthR
 
 def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthResult, dict]:
     cfg = job.config_for(length_m)
-    cfg_toml = to_toml(cfg)
+    key = inputs_key(cfg)
     res = LengthResult(length_m)
     nan = float("nan")
     v = dict.fromkeys(("drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
@@ -265,7 +278,7 @@ def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[Length
     runs, parts, errors = {}, {}, []
     for solver in job.solvers:
         path = directory / f"{Task(length_m, solver).name}.h5"
-        status = _stored(path, cfg_toml)
+        status = _stored(path, key)
         if status is None:
             errors.append(f"{solver.upper()}: not run")
             continue

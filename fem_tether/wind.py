@@ -107,15 +107,15 @@ DE_BILT = {
     "winter": LogWind(v0_ms=5.1, z0_m=27.5, zr_m=3.5),
     "summer": LogWind(v0_ms=4.4, z0_m=27.5, zr_m=2.1),
 }
+#: De Bilt "annual": the mean of the winter and summer profiles' speeds.
+DE_BILT_ANNUAL = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
 
 
 def from_config(cfg: dict) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
     """The wind profile of ``cfg["wind"]``; the "annual" De Bilt season is the winter/summer mean."""
     wind = cfg["wind"]
     if wind["profile"] == "log":
-        if wind["season"] == "annual":
-            return MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
-        return DE_BILT[wind["season"]]
+        return DE_BILT_ANNUAL if wind["season"] == "annual" else DE_BILT[wind["season"]]
     if wind["profile"] == "power":
         return PowerWind(wind["reference_speed_ms"], wind["reference_height_m"], wind["alpha"])
     return NoWind()

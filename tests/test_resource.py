@@ -2,11 +2,12 @@
 
 import numpy as np
 import pytest
+
+from fem_tether.wind import DE_BILT_ANNUAL
 from scipy.special import gamma
 
 from fem_tether.power import SEED_LENGTHS_M
 from fem_tether.resource import (
-    ANNUAL_DE_BILT,
     COLUMNS,
     ResourceError,
     read_resource_csv,
@@ -38,7 +39,7 @@ def test_weibull_mean_recovered_from_the_bins(k):
     """Means follow the De Bilt annual log law at the band centres (10.07 m/s at 350 m)."""
     r = weibull_resource(weibull_k=k, max_speed_ms=80.0)
     for b in r.bands:
-        target = float(ANNUAL_DE_BILT.speed_ms(b.centre_m))
+        target = float(DE_BILT_ANNUAL.speed_ms(b.centre_m))
         assert b.mean_ms == pytest.approx(target, rel=1e-3)
     assert r.bands[0].mean_ms == pytest.approx(10.07, abs=0.01)
 
