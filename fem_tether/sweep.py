@@ -400,6 +400,8 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> list[L
 
 def read_sweep(path: str | Path) -> dict:
     """Root datasets and attributes of a result file, as NumPy arrays and strings."""
+    if Path(path).is_dir():
+        raise ConfigError(f"{path}: is a directory, not a sweep result file")
     try:
         with h5py.File(path, "r") as f:
             data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
