@@ -65,20 +65,21 @@ class TetherSystem:
         interior[1:-1] = 1.0
         self.interior = interior
         self._idx = self._band_indices()
+        self.load_weights = self._load_weights()
 
     def with_spaces(self, spaces: TetherSpaces) -> "TetherSystem":
         """This system on other spaces of the same topology (reeling changes lengths)."""
         other = copy.copy(self)
         other.spaces = spaces
+        other.load_weights = other._load_weights()
         return other
 
-    @property
-    def load_weights(self) -> np.ndarray:
+    def _load_weights(self) -> np.ndarray:
         """Q's entries (n_el, 2): the share of element e's load on its two nodes."""
-        n_el = self.spaces.n_elements
-        Q = self.spaces.Q
-        e = np.arange(n_el)
-        return np.column_stack([np.asarray(Q[e, e]).ravel(), np.asarray(Q[e + 1, e]).ravel()])
+        Q = self.spaces.Q.tocoo()
+        weights = np.zeros((self.spaces.n_elements, 2))
+        weights[Q.col, Q.row - Q.col] = Q.data
+        return weights
 
     # --- layout -----------------------------------------------------------
     def pack(self, r, T, R):
