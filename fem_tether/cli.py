@@ -196,7 +196,8 @@ def cmd_simulate(args):
     print(f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}")
     if cfg["winch"]["reel_out"] != "none":
         print(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
-              f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line")
+              f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line (the means above mix lengths; "
+              "F_t(L) is in the HDF5 series and the plot)")
     if args.out:
         print(f"results: {s['hdf5']}\nParaView: {s['paraview']}")
     return 0
