@@ -80,7 +80,7 @@ class Reel:
     stop_m: float = 0.0
     speed: float = 0.0
     table: tuple[np.ndarray, np.ndarray] | None = field(default=None, compare=False)
-    cfg: dict | None = field(default=None, compare=False, repr=False)
+    law: "TractionLaw | None" = field(default=None, compare=False, repr=False)
 
     @property
     def active(self) -> bool:
@@ -94,20 +94,7 @@ class Reel:
             return self.speed
         if self.mode == "table":
             return float(np.interp(t_s - self.start_s, *self.table))
-        return self._controlled(np.asarray(kite_position_m, dtype=float))
-
-    def _controlled(self, p) -> float:
-        cfg = self.cfg
-        k = cfg["kite"]
-        z = np.array(max(p[2], 0.0))
-        rho = float(atmosphere.from_config(cfg).density_kg_m3(z))
-        v_w = float(wind.from_config(cfg).speed_ms(z))
-        theta = np.arccos(p[2] / np.linalg.norm(p))
-        phi = np.arctan2(p[1], p[0])
-        c = kite.traction_coefficient(rho, k["area_m2"], k["cl"], k["efficiency"])
-        nominal = cfg["tether"]["lines"] * cfg["winch"]["ground_tension_N"]
-        v_l = v_w * np.sin(theta) * np.cos(phi) - np.sqrt(nominal / c)
-        return float(np.clip(v_l, 0.0, k["max_reel_out_ms"]))
+        return self.law.reel_out_ms(np.asarray(kite_position_m, dtype=float))
 
     def stopped(self, length_m: float, start_length_m: float) -> bool:
         """True once the line has reached ``stop_m`` from ``start_length_m``."""
@@ -116,6 +103,29 @@ class Reel:
         if self.stop_m >= start_length_m:
             return length_m >= self.stop_m - 1e-9
         return length_m <= self.stop_m + 1e-9
+
+
+@dataclass(frozen=True)
+class TractionLaw:
+    """Reel-out speed at which the kite pulls the lines' nominal force (eq. 4.17)."""
+
+    air: object
+    wind: object
+    area_m2: float
+    cl: float
+    efficiency: float
+    nominal_force_N: float
+    max_reel_out_ms: float
+
+    def reel_out_ms(self, kite_position_m) -> float:
+        p = kite_position_m
+        z = np.array(max(p[2], 0.0))
+        c = kite.traction_coefficient(float(self.air.density_kg_m3(z)), self.area_m2, self.cl,
+                                      self.efficiency)
+        theta = np.arccos(p[2] / np.linalg.norm(p))
+        v_l = float(self.wind.speed_ms(z)) * np.sin(theta) * np.cos(np.arctan2(p[1], p[0])) \
+            - np.sqrt(self.nominal_force_N / c)
+        return float(np.clip(v_l, 0.0, self.max_reel_out_ms))
 
 
 def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
@@ -131,4 +141,8 @@ def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
             table = read_speed_table(w["reel_out_table"])
         except SpeedTableError as exc:
             raise ConfigError(f"[winch] reel_out_table: {exc}") from None
-    return Reel(mode, start_s, w["reel_out_stop_m"], w["reel_out_speed_ms"], table, cfg)
+    k = cfg["kite"]
+    law = TractionLaw(atmosphere.from_config(cfg), wind.from_config(cfg), k["area_m2"], k["cl"],
+                      k["efficiency"], cfg["tether"]["lines"] * w["ground_tension_N"],
+                      k["max_reel_out_ms"])
+    return Reel(mode, start_s, w["reel_out_stop_m"], w["reel_out_speed_ms"], table, law)
