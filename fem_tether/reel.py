@@ -96,6 +96,13 @@ class Reel:
             return float(np.interp(t_s - self.start_s, *self.table))
         return self.law.reel_out_ms(np.asarray(kite_position_m, dtype=float))
 
+    def next_length(self, length_m: float, speed_ms: float, h_s: float) -> float:
+        """L + h V_L, held at ``stop_m`` once reached."""
+        target = length_m + h_s * speed_ms
+        if self.stop_m:
+            target = min(target, self.stop_m) if speed_ms > 0 else max(target, self.stop_m)
+        return target
+
     def stopped(self, length_m: float, start_length_m: float) -> bool:
         """True once the line has reached ``stop_m`` from ``start_length_m``."""
         if not self.stop_m:

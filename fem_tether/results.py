@@ -86,6 +86,12 @@ def period_mean(t, y) -> float:
     return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / (t[-1] - t[0]))
 
 
+def winch_values(length_m, reel_ms, ground_tension_N, energy_J) -> dict:
+    """The reeling series of one step: L, V_L, winch power T(0) V_L, energy."""
+    return {"length_m": length_m, "reel_out_ms": reel_ms,
+            "winch_power_W": reel_ms * ground_tension_N, "winch_energy_J": energy_J}
+
+
 def time_grid(period_s: float, dt_s: float, spinup_periods: int, average_periods: int):
     """Step ``h = period / ceil(period / dt)`` (a whole number of steps per
     period, none longer than ``dt_s``) and the number of steps of the run."""

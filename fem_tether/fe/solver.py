@@ -31,7 +31,7 @@ from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.tether import physics_from_config
-from fem_tether.results import Recorder, TetherRun, time_grid
+from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
 
 
 @dataclass
@@ -303,18 +303,15 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
         if i:
             reel_ms = reel.speed_ms(state.t, state.kin.q[-1])
             if reel_ms or model.reel_ms:
-                target = model.length_m + h * reel_ms
-                if reel.stop_m:
-                    target = min(target, reel.stop_m) if reel_ms > 0 else max(target, reel.stop_m)
+                target = reel.next_length(model.length_m, reel_ms, h)
                 model, state = reeled(model, state, target, reel_ms, *element_bounds_m)
             state = advance(model, state, h)
             state.t = i * h
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
         done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
-        record.add(i, state.t, line_state(model, state) | {
-            "length_m": model.length_m, "reel_out_ms": reel_ms,
-            "winch_power_W": reel_ms * state.T[0], "winch_energy_J": energy_J}, last=done)
+        record.add(i, state.t, line_state(model, state)
+                   | winch_values(model.length_m, reel_ms, state.T[0], energy_J), last=done)
         if done:
             break
     bar.close()
