@@ -107,12 +107,16 @@ class Recorder:
         self.n_steps, self.output_every = n_steps, output_every
         self.times, self.rows, self.snap_t, self.snaps = [], [], [], []
 
+    def snapshot_due(self, step: int, last: bool = False) -> bool:
+        """Whether step ``step`` stores the whole line (``last``: the run ends early)."""
+        return step % self.output_every == 0 or step == self.n_steps or last
+
     def add(self, step: int, t: float, values: dict, last: bool = False) -> None:
-        """Record ``values`` (every name of SERIES, NODE_FIELDS and CELL_FIELDS) at step
-        ``step``; ``last`` marks a run's last step when it ends early."""
+        """Record ``values`` at step ``step``: the SERIES always, the NODE_FIELDS and
+        CELL_FIELDS when :meth:`snapshot_due`; ``last`` marks a run's last step."""
         self.times.append(t)
         self.rows.append([values[k] for k in SERIES])
-        if step % self.output_every == 0 or step == self.n_steps or last:
+        if self.snapshot_due(step, last):
             self.snap_t.append(t)
             self.snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
 

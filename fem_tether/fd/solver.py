@@ -269,8 +269,8 @@ def _advance(model: FDModel, prev: State | None, cur: State, h: float, stats: di
     return _advance(model, prev, mid, h / 2, stats, depth + 1)
 
 
-def line_state(model: FDModel, state: State) -> dict:
-    """Series values and snapshot fields of one solution.
+def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
+    """Series values and, with ``fields``, the snapshot fields of one solution.
 
     Drag is evaluated at every node (one-sided tangents at the ends; the line
     leaves the winch at V_L tau_{1/2}); F_t from eq. 4.1 with the nodes'
@@ -284,17 +284,21 @@ def line_state(model: FDModel, state: State) -> dict:
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     seg = np.linalg.norm(np.diff(r, axis=0), axis=1)
-    z_mid = 0.5 * (r[1:, 2] + r[:-1, 2])
-    vn_mid = 0.5 * (loads.vn_ms[1:] + loads.vn_ms[:-1])
-    re_mid = ph.air.density_kg_m3(z_mid) * np.maximum(vn_mid, 1e-30) * ph.diameter_m \
-        / ph.air.viscosity_Pa_s(z_mid)
-    return {
+    series = {
         "ground_tension_N": float(state.T[0]),
         "kite_tension_N": float(state.T[-1]),
         "kite_radius_m": float(np.linalg.norm(r[-1])),
         "drag_N": float(drag),
         "drag_against_N": float(against) if against is not None else 0.0,
         "max_strain": float(np.max(np.abs(seg / g.h - 1.0))),
+    }
+    if not fields:
+        return series
+    z_mid = 0.5 * (r[1:, 2] + r[:-1, 2])
+    vn_mid = 0.5 * (loads.vn_ms[1:] + loads.vn_ms[:-1])
+    re_mid = ph.air.density_kg_m3(z_mid) * np.maximum(vn_mid, 1e-30) * ph.diameter_m \
+        / ph.air.viscosity_Pa_s(z_mid)
+    return series | {
         "s_m": model.grid.s_m.copy(),
         "position_m": r.copy(),
         "velocity_ms": v.copy(),
@@ -389,7 +393,7 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
         done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
-        record.add(i, state.t, line_state(model, state)
+        record.add(i, state.t, line_state(model, state, record.snapshot_due(i, done))
                    | winch_values(model.length_m, reel_ms, state.T[0], energy_J), last=done)
         if done:
             break

@@ -228,7 +228,6 @@ class Grid:
 @dataclass
 class Evaluation:
     residual: np.ndarray          # scaled, rows in layout order (4M-3)
-    tau_seg: np.ndarray           # (M, 3)
     length_m: np.ndarray          # (M,)
     ab: np.ndarray | None = None
 
@@ -305,7 +304,7 @@ class TetherFD:
         res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / h[:-1]
         res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm[:, None]
         res[4 * M - 4] = con[-1] / h[-1]
-        out = Evaluation(res, tau, ell)
+        out = Evaluation(res, ell)
         if not jacobian:
             return out
 

@@ -205,8 +205,8 @@ def advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
     return advance(model, half, h / 2, depth + 1)
 
 
-def line_state(model: FEModel, state: State) -> dict:
-    """Series values and snapshot fields of one solution."""
+def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
+    """Series values and, with ``fields``, the snapshot fields of one solution."""
     sys_ = model.system
     r, v = state.kin.q, state.kin.v
     ev = state.ev or sys_.evaluate(r, v, state.kin.qdd, state.T, state.R,
@@ -214,13 +214,17 @@ def line_state(model: FEModel, state: State) -> dict:
                                    model.radius_m, 1.0, jacobian=False)
     moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
-    return {
+    series = {
         "ground_tension_N": state.T[0],
         "kite_tension_N": state.T[-1],
         "kite_radius_m": float(np.linalg.norm(r[-1])),
         "drag_N": float(drag),
         "drag_against_N": float(against) if against is not None else 0.0,
         "max_strain": float(np.max(np.abs(ev.length_m / sys_.spaces.h_m - 1.0))),
+    }
+    if not fields:
+        return series
+    return series | {
         "s_m": sys_.spaces.s_m,
         "position_m": r.copy(),
         "velocity_ms": v.copy(),
@@ -310,7 +314,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
         done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
-        record.add(i, state.t, line_state(model, state)
+        record.add(i, state.t, line_state(model, state, record.snapshot_due(i, done))
                    | winch_values(model.length_m, reel_ms, state.T[0], energy_J), last=done)
         if done:
             break
