@@ -28,11 +28,19 @@ TROPOPAUSE_M = 11000.0
 PRESSURE_EXPONENT = STANDARD_GRAVITY_M_S2 / (GAS_CONSTANT_J_KG_K * LAPSE_RATE_K_M)
 
 
+class AltitudeError(ValueError):
+    """An altitude above the troposphere, where the ISA model does not hold."""
+
+    def __init__(self, altitude_m: float):
+        self.altitude_m = altitude_m
+        super().__init__(f"altitude {altitude_m:.0f} m is above the ISA troposphere "
+                         f"(z <= {TROPOPAUSE_M:.0f} m)")
+
+
 def _altitude(z_m) -> np.ndarray:
     z = np.asarray(z_m, dtype=float)
     if np.any(z > TROPOPAUSE_M):
-        raise ValueError(f"altitude {np.max(z)} m is above the ISA troposphere "
-                         f"(z <= {TROPOPAUSE_M} m)")
+        raise AltitudeError(float(np.max(z)))
     return z
 
 
@@ -54,7 +62,7 @@ def sutherland_viscosity_Pa_s(temperature):
 
 @dataclass(frozen=True)
 class ISA:
-    """ISA troposphere, valid for z <= 11000 m (ValueError above)."""
+    """ISA troposphere, valid for z <= 11000 m (:class:`AltitudeError` above)."""
 
     def density_kg_m3(self, z_m):
         """rho = p / (R T) (ideal gas; ISA, ICAO Doc 7488)."""

@@ -18,7 +18,7 @@ import numpy as np
 
 from fem_tether import __version__, kite
 from fem_tether.atomic import OutputError, check_writable
-from fem_tether.config import ConfigError, load_config, merge, to_toml, validate
+from fem_tether.config import MAX_ELEMENTS, ConfigError, load_config, merge, to_toml, validate
 from fem_tether.errors import SolverDivergedError
 from fem_tether.fe.integrator import SchemeError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
@@ -26,6 +26,9 @@ from fem_tether.resource import ResourceError
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
+DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
+               "energy systems (FE model with an independent FD cross-check).")
+JSON_HELP = "print the result as JSON on stdout (no table, no progress)"
 
 
 class _Parser(argparse.ArgumentParser):
@@ -67,12 +70,9 @@ def _positive_float(text):
 
 
 def _float_list(text):
-    try:
-        values = [_positive_float(v) for v in text.split(",") if v.strip()]
-    except argparse.ArgumentTypeError as exc:
-        raise argparse.ArgumentTypeError(f"--lengths: {exc}") from None
+    values = [_positive_float(v) for v in text.split(",") if v.strip()]
     if not values:
-        raise argparse.ArgumentTypeError("--lengths: give comma-separated lengths, e.g. 500,1000")
+        raise argparse.ArgumentTypeError("give comma-separated lengths, e.g. 500,1000")
     return values
 
 
@@ -328,8 +328,8 @@ def cmd_bench(args):
 
 
 def cmd_mesh(args):
-    if args.elements < 2:
-        raise MeshError(f"--elements {args.elements}: a tether mesh needs at least 2 elements")
+    if not 2 <= args.elements <= MAX_ELEMENTS:
+        raise MeshError(f"--elements {args.elements}: must be from 2 to {MAX_ELEMENTS}")
     nodes = unit_nodes(args.elements, args.grading)
     if np.any(np.diff(nodes) <= 0):
         raise MeshError(f"--grading {args.grading:g}: too strong for {args.elements} elements "
@@ -341,7 +341,9 @@ def cmd_mesh(args):
 
 # --- parser -------------------------------------------------------------------------
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="fem-tether", description=__doc__.splitlines()[0])
+    p = _Parser(prog="fem-tether", description=DESCRIPTION,
+                epilog="Every command runs on the embedded default case without a file; "
+                       "'fem-tether COMMAND --help' lists its options.")
     p.add_argument("--version", action="version", version=f"fem-tether {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
@@ -352,8 +354,7 @@ def build_parser() -> argparse.ArgumentParser:
         c.set_defaults(func=func)
         return c
 
-    c = command("config", cmd_config, "print the effective configuration as TOML")
-    c.add_argument("--show", action="store_true", help="print it (the default action)")
+    command("config", cmd_config, "print the effective configuration as TOML, each key with its meaning")
 
     c = command("straight", cmd_straight, "straight-line tether drag F_t per line (seed 000 §4.1)")
     g = c.add_mutually_exclusive_group()
@@ -363,39 +364,39 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--rho", type=_positive_float, help="closed form density (default: line mean)")
     c.add_argument("--cd", type=_positive_float, help="closed form C_d (default: C_d,c at the top)")
     c.add_argument("--wind", action="store_true", help="include the wind's normal component")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("curves", cmd_curves, "KiteGen characteristic curves (seed 000 §2.4)")
     c.add_argument("--ge", type=_positive_float, help="global efficiency G_e used in place of E")
     c.add_argument("--phi-deg", type=_azimuth_deg,
                    help="azimuth [deg] in (-90, 90) (default [kite] design_phi_deg)")
     c.add_argument("--plot", metavar="FILE.png", help="write reel-out speed, force, power vs wind")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("simulate", cmd_simulate, "FE tether dynamics on the figure-eight")
     c.add_argument("--length", type=_positive_float, help="cable length [m]")
     c.add_argument("--out", metavar="DIR", help="write HDF5 and a ParaView time series here")
     c.add_argument("--sweep", metavar="FILE.h5",
                    help="reel-out: overlay a sweep's fixed-length F_t on the F_t(L) plot")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("crosscheck", cmd_crosscheck, "run the FE and the FD solver on one case and compare")
     c.add_argument("--length", type=_positive_float, help="cable length [m]")
     c.add_argument("--fd-config", metavar="CONFIG", help="a different configuration for the FD run")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("sweep", cmd_sweep, "FE (+ FD cross-check, straight line) over cable lengths, MPI-parallel",
                 config=False)
     c.add_argument("job", help="sweep job (TOML), e.g. sweeps/default.toml")
     c.add_argument("--out", required=True, metavar="FILE.h5", help="result file")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)
     c.add_argument("file", metavar="FILE.h5", help="sweep result")
     c.add_argument("--wind", metavar="CSV", help="wind histograms per altitude band (CSV)")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="keep lengths whose cross-check failed, marked")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("run", cmd_run, "the main job: sweep, cross-check gate, AEP, plots, summary",
                 config=False)
@@ -406,7 +407,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False)
     c.add_argument("--repeats", type=_positive_int, default=3, help="best of N runs per setting")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False)
     c.add_argument("out", help="output file (.vtu, .xdmf, .vtk, ...)")

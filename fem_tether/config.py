@@ -20,6 +20,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
+from fem_tether.trajectory import FigureEight
+
 
 class ConfigError(ValueError):
     """A configuration value is unknown, of the wrong type or out of range."""
@@ -68,6 +70,16 @@ def one_of(*choices):
 
 def at_least(n):
     return lambda v: None if v >= n else f"must be >= {n}"
+
+
+def count_between(lo, hi):
+    return lambda v: None if lo <= v <= hi else f"must be from {lo} to {hi}"
+
+
+#: Most elements (FE) or segments (FD) accepted: both solvers were run at
+#: this size (static start and a period of the eight, default case); beyond
+#: it no run has shown that they converge or how long they take.
+MAX_ELEMENTS = 10000
 
 
 SCHEMA: dict[str, dict[str, Key]] = {
@@ -126,7 +138,7 @@ SCHEMA: dict[str, dict[str, Key]] = {
     },
     "fe": {
         "mesh": Key("graded", "'uniform', 'graded' or a meshio file of [0, 1] (e.g. meshes/graded_40.vtu)"),
-        "elements": Key(40, "elements of a generated mesh", at_least(2)),
+        "elements": Key(40, "elements of a generated mesh", count_between(2, MAX_ELEMENTS)),
         "grading": Key(4.0, "first/last element size of a graded mesh (kite end finer)", positive),
         "min_element_m": Key(2.0, "reeling: the winch element merges with its neighbour below this",
                              positive),
@@ -148,7 +160,7 @@ SCHEMA: dict[str, dict[str, Key]] = {
         "max_halvings": Key(6, "step halvings before the solve gives up", at_least(0)),
     },
     "fd": {
-        "segments": Key(100, "FD reference solver: uniform segments", at_least(2)),
+        "segments": Key(100, "FD reference solver: uniform segments", count_between(2, MAX_ELEMENTS)),
         "scheme": Key("bdf2", "FD time scheme: 'bdf2' or 'euler' (the seed's)", one_of("bdf2", "euler")),
         "dt_s": Key(0.025, "FD time step (BDF2's error constant is larger than generalized-alpha's)",
                     positive),
@@ -257,6 +269,13 @@ def load_config(path: str | Path | None = None, overrides: dict | None = None) -
 #: Highest altitude of the ISA troposphere the atmosphere model covers [m].
 CEILING_M = 11000.0
 
+#: Fewest time steps per period of the eight, per time-step key.  From the
+#: convergence of mean F_t in dt (default case, 500 m is the worst length):
+#: FE generalised-alpha errs +2.2 % at 40 steps, +4.0 % at 30, +10 % at 20;
+#: FD BDF2 errs +1.9 % at 72 steps, +6.1 % at 36.  The limits keep the
+#: coarsest admissible step near the cross-check's 2 % (docs/numerics.md).
+MIN_STEPS_PER_PERIOD = {("time", "dt_s"): 36, ("fd", "dt_s"): 72}
+
 
 def validate(cfg: dict, eight: bool = True) -> dict:
     """Rules across keys; raises :class:`ConfigError` naming the key, returns ``cfg``.
@@ -265,7 +284,8 @@ def validate(cfg: dict, eight: bool = True) -> dict:
     a prescribed radius must be set and shorter than an inextensible line,
     reeling needs the winch-tension mode, the figure-eight must fit the
     sphere of the line (azimuth within 1 rad, polar angle inside (0, 90) deg)
-    and stay below the ISA ceiling, and the reeling element bounds must allow
+    and stay below the ISA ceiling, both time steps must resolve its period
+    (:data:`MIN_STEPS_PER_PERIOD`), and the reeling element bounds must allow
     a split into two admissible halves.  ``eight=False`` skips the eight's
     rules (a caller that moves the kite end otherwise).
     """
@@ -304,6 +324,14 @@ def validate(cfg: dict, eight: bool = True) -> dict:
         raise ConfigError(f"[kite] theta0_deg = {kite['theta0_deg']:g}: the eight ([kite] eight_height_m = "
                           f"{kite['eight_height_m']:g}) must stay between the zenith and the horizon "
                           f"on a {length:g} m line")
+    period_s = FigureEight.from_config(cfg).period_s
+    for (section, name), fewest in MIN_STEPS_PER_PERIOD.items():
+        steps = math.ceil(period_s / cfg[section][name] - 1e-9)
+        if steps < fewest:
+            largest = math.floor(1e4 * period_s / fewest) / 1e4
+            raise ConfigError(f"[{section}] {name} = {toml_value(cfg[section][name])}: {steps} steps per "
+                              f"period of the eight ({period_s:.3f} s), at least {fewest} needed; "
+                              f"largest allowed {name} = {largest:g}")
     for stop in (length, winch["reel_out_stop_m"]):
         if stop * math.cos(theta0 - half_height) + 0.5 * kite["eight_height_m"] > CEILING_M:
             raise ConfigError(f"[tether] length_m = {stop:g}: the kite would fly above the ISA "

@@ -1,12 +1,16 @@
 """The command line: outputs, JSON keys, one-line errors with exit code 2."""
 
+import argparse
 import json
+import os
+import shutil
 import subprocess
 import sys
+import warnings
 
 import pytest
 
-from fem_tether.cli import main
+from fem_tether.cli import build_parser, main
 
 
 def run_cli(capsys, *argv):
@@ -15,9 +19,28 @@ def run_cli(capsys, *argv):
     return code, out.out, out.err
 
 
-def test_config_show(capsys):
-    code, out, _ = run_cli(capsys, "config", "--show")
-    assert code == 0 and "[tether]" in out and "length_m = 1000.0" in out
+def test_config_prints_the_effective_configuration(capsys, tmp_path):
+    cfg = tmp_path / "c.toml"
+    cfg.write_text("[tether]\nlength_m = 2000.0\n")
+    code, out, _ = run_cli(capsys, "config", str(cfg))
+    assert code == 0 and "[tether]" in out and "length_m = 2000.0  # cable length" in out
+    code, out, _ = run_cli(capsys, "config")
+    assert code == 0 and "length_m = 1000.0" in out
+
+
+def _help_texts(parser):
+    """(command, option strings, help) of every argument of every command."""
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    for name, command in sub.choices.items():
+        for action in command._actions:
+            yield name, action.option_strings or [action.dest], action.help
+
+
+def test_help_is_plain_text_and_every_option_is_explained():
+    parser = build_parser()
+    assert "``" not in parser.format_help()
+    missing = [(name, opts) for name, opts, text in _help_texts(parser) if not text]
+    assert missing == []
 
 
 def test_straight_json_and_table(capsys):
@@ -51,7 +74,8 @@ def test_simulate_json_and_files(capsys, tmp_path):
 
 @pytest.mark.parametrize("argv, match", [
     (["straight", "--length", "-3"], "must be a positive number"),
-    (["straight", "--lengths", "500,x"], "--lengths"),
+    (["straight", "--lengths", "500,x"], "straight: argument --lengths: 'x' is not a number"),
+    (["straight", "--lengths", ","], "straight: argument --lengths: give comma-separated lengths"),
     (["curves", "--ge", "zero"], "not a number"),
     (["simulate", "missing.toml"], "missing.toml: no such file"),
     (["frobnicate"], "invalid choice"),
@@ -62,8 +86,8 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, match):
         raise SystemExit(code)
     err = capsys.readouterr().err
     assert info.value.code == 2
-    assert match in err
-    assert "Traceback" not in err
+    assert match in err and err.count("--lengths:") <= 1
+    assert "Traceback" not in err and err.count("\n") == 1
 
 
 def test_bad_config_value_exits_2(capsys, tmp_path):
@@ -75,5 +99,26 @@ def test_bad_config_value_exits_2(capsys, tmp_path):
 
 
 def test_console_script_entry_point():
-    proc = subprocess.run([sys.executable, "-m", "fem_tether.cli", "config"], capture_output=True, text=True)
+    """The installed ``fem-tether`` script (from pyproject's [project.scripts]) runs."""
+    script = shutil.which("fem-tether", path=os.path.dirname(sys.executable)) or shutil.which("fem-tether")
+    assert script, "the fem-tether console script is not installed on PATH"
+    proc = subprocess.run([script, "config"], capture_output=True, text=True)
     assert proc.returncode == 0 and "[winch]" in proc.stdout
+    proc = subprocess.run([script, "--version"], capture_output=True, text=True)
+    assert proc.returncode == 0 and proc.stdout.startswith("fem-tether ")
+
+
+@pytest.mark.parametrize("command", ["simulate", "crosscheck"])
+@pytest.mark.parametrize("tension_N", [100.0, 1000.0])
+def test_line_leaving_the_atmosphere_is_a_solver_failure(capsys, tmp_path, command, tension_N):
+    """A winch tension too low to hold the line against its drag: the iterates
+    rise above the ISA troposphere.  One line naming the length, the time and
+    the cause, exit code 1, no traceback and no warnings."""
+    cfg = tmp_path / "t.toml"
+    cfg.write_text(f"[winch]\nground_tension_N = {tension_N}\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        code, _, err = run_cli(capsys, command, str(cfg), "--json")
+    assert code == 1 and err.count("\n") == 1
+    assert err.startswith("fem-tether: solver failed: ") and "t = 0 s" in err and "L = 1000 m" in err
+    assert "left the atmosphere" in err and "tension is too low" in err

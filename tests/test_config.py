@@ -50,3 +50,17 @@ def test_bad_files(tmp_path):
     bad.write_text("[tether\nlength_m = 1")
     with pytest.raises(ConfigError, match="invalid TOML"):
         load_config(bad)
+
+
+@pytest.mark.parametrize("section, dt_s, fewest", [("time", 1.0, 36), ("time", 100.0, 36), ("fd", 1.0, 72)])
+def test_time_step_must_resolve_the_eight(section, dt_s, fewest):
+    """A step too coarse for the eight's period (7.23 s) is an input error that
+    names the key, the steps per period and the largest allowed value; the
+    largest allowed value itself is accepted."""
+    with pytest.raises(ConfigError) as info:
+        load_config(overrides={section: {"dt_s": dt_s}})
+    message = str(info.value)
+    assert message.startswith(f"[{section}] dt_s = {dt_s!r}:") and f"at least {fewest} needed" in message
+    largest = float(message.rsplit("= ", 1)[1])
+    assert largest == pytest.approx(7.233 / fewest, rel=1e-3)
+    load_config(overrides={section: {"dt_s": largest}})

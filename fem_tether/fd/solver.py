@@ -52,7 +52,8 @@ import numpy as np
 from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
-from fem_tether.errors import SolverDivergedError
+from fem_tether.atmosphere import AltitudeError
+from fem_tether.errors import SolverDivergedError, left_atmosphere
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
@@ -201,8 +202,8 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=100) -> State:
 
 
 class _NotConverged(Exception):
-    def __init__(self, residual):
-        self.residual = residual
+    def __init__(self, residual, cause=""):
+        self.residual, self.cause = residual, cause
 
 
 def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):
@@ -237,8 +238,8 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: dict)
         v, acc = kinematics(r)
         try:
             ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_ms=model.reel_ms)
-        except ValueError:       # an iterate left the atmosphere's range: not converging
-            break
+        except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
+            raise _NotConverged(worst, left_atmosphere(exc)) from None
         stats["newton"] += 1
         worst = float(np.max(np.abs(ev.residual)))
         if not np.isfinite(worst):
@@ -262,8 +263,8 @@ def _advance(model: FDModel, prev: State | None, cur: State, h: float, stats: di
             raise SolverDivergedError(
                 f"FD time step did not converge at t = {cur.t:.4f} s (step {h:.3e} s after "
                 f"{depth} halvings), L = {model.length_m:g} m, {model.grid.M} segments: "
-                f"scaled residual {exc.residual:.3e} after {model.max_newton} Newton "
-                f"iterations") from None
+                + (exc.cause or f"scaled residual {exc.residual:.3e} after {model.max_newton} "
+                   "Newton iterations")) from None
     stats["halvings"] += 1
     prev, mid = _advance(model, prev, cur, h / 2, stats, depth + 1)
     return _advance(model, prev, mid, h / 2, stats, depth + 1)

@@ -21,8 +21,9 @@ import numpy as np
 
 from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
-from fem_tether.config import ConfigError
-from fem_tether.errors import SolverDivergedError
+from fem_tether.config import MAX_ELEMENTS, ConfigError, toml_value
+from fem_tether.atmosphere import AltitudeError
+from fem_tether.errors import SolverDivergedError, left_atmosphere
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -62,9 +63,13 @@ def unit_mesh_from_config(cfg) -> np.ndarray:
     if fe["mesh"] == "graded":
         return fe_mesh.unit_nodes(fe["elements"], fe["grading"])
     try:
-        return fe_mesh.read_unit_mesh(fe["mesh"])
+        nodes = fe_mesh.read_unit_mesh(fe["mesh"])
     except fe_mesh.MeshError as exc:
-        raise ConfigError(f"[fe] mesh = {fe['mesh']!r}: {exc}") from None
+        raise ConfigError(f"[fe] mesh = {toml_value(fe['mesh'])}: {exc}") from None
+    if nodes.size - 1 > MAX_ELEMENTS:
+        raise ConfigError(f"[fe] mesh = {toml_value(fe['mesh'])}: {nodes.size - 1} elements, "
+                          f"at most {MAX_ELEMENTS}")
+    return nodes
 
 
 def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
@@ -158,8 +163,8 @@ RESTART_JUMP_MS = 0.1
 
 
 class _NotConverged(Exception):
-    def __init__(self, residual):
-        self.residual = residual
+    def __init__(self, residual, cause=""):
+        self.residual, self.cause = residual, cause
 
 
 def _step(model: FEModel, state: State, h: float) -> State:
@@ -176,8 +181,8 @@ def _step(model: FEModel, state: State, h: float) -> State:
         try:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, reel_ms=model.reel_ms)
-        except ValueError:     # an iterate left the atmosphere's range: not converging
-            break
+        except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
+            raise _NotConverged(worst, left_atmosphere(exc)) from None
         worst = float(np.max(np.abs(ev.residual))) / f_ref
         if not np.isfinite(worst):
             break
@@ -199,8 +204,9 @@ def advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
         if depth >= model.max_halvings:
             raise SolverDivergedError(
                 f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
-                f"{depth} halvings), L = {model.length_m:g} m: scaled residual {exc.residual:.3e} "
-                f"after {model.max_newton} Newton iterations") from None
+                f"{depth} halvings), L = {model.length_m:g} m: "
+                + (exc.cause or f"scaled residual {exc.residual:.3e} after {model.max_newton} "
+                   "Newton iterations")) from None
     half = advance(model, state, h / 2, depth + 1)
     return advance(model, half, h / 2, depth + 1)
 
