@@ -350,13 +350,14 @@ def build_parser() -> argparse.ArgumentParser:
     def command(name, func, help_text, config=True):
         c = sub.add_parser(name, help=help_text, description=help_text)
         if config:
-            c.add_argument("config", nargs="?", help="TOML configuration (default: embedded seed-000 case)")
+            c.add_argument("config", nargs="?",
+                           help="TOML configuration (default: the embedded KiteGen case of Roselli 2016)")
         c.set_defaults(func=func)
         return c
 
     command("config", cmd_config, "print the effective configuration as TOML, each key with its meaning")
 
-    c = command("straight", cmd_straight, "straight-line tether drag F_t per line (seed 000 §4.1)")
+    c = command("straight", cmd_straight, "straight-line tether drag F_t per line (Roselli 2016, §4.1)")
     g = c.add_mutually_exclusive_group()
     g.add_argument("--length", type=_positive_float, help="cable length [m]")
     g.add_argument("--lengths", type=_float_list, help="comma-separated lengths [m] for a table")
@@ -366,7 +367,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--wind", action="store_true", help="include the wind's normal component")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
-    c = command("curves", cmd_curves, "KiteGen characteristic curves (seed 000 §2.4)")
+    c = command("curves", cmd_curves, "KiteGen characteristic curves (Roselli 2016, §2.4)")
     c.add_argument("--ge", type=_positive_float, help="global efficiency G_e used in place of E")
     c.add_argument("--phi-deg", type=_azimuth_deg,
                    help="azimuth [deg] in (-90, 90) (default [kite] design_phi_deg)")
