@@ -2,8 +2,8 @@
 
 The line's length, the kite end's motion (``end.state(t, R)`` gives R e(t)
 and its derivatives: a :class:`~fem_tether.trajectory.FigureEight` or a
-:class:`~fem_tether.trajectory.Stationary` end), the winch condition (REFERENCE
-"Tether": r(0, t) = 0 and either T(0, t) = T_0 with the kite's radius free,
+:class:`~fem_tether.trajectory.Stationary` end), the winch condition (docs/physics.md
+§8: r(0, t) = 0 and either T(0, t) = T_0 with the kite's radius free,
 ``tension_mode``, or the kite at a prescribed radius) and the Newton controls.
 """
 

@@ -14,7 +14,7 @@ Seed 000 §4.1 uses two branches, and so does :class:`CylinderDrag`:
   C_d = C_i (Re/Re_i)^s_i on each interval; above the last node the last value
   is held.
 
->>> CylinderDrag().cd([10.0, 1e3, 5e5])    # ~ [2.79, 0.95, 0.31]
+>>> CylinderDrag().cd([10.0, 1e3, 5e5])    # ~ [2.71, 0.95, 0.31]
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ BELAN_TORDELLA_MAX_RE = 40.0
 #: * 1e4 to 1.7e5, the subcritical plateau: C_d = 1.2, the handbook value of
 #:   the smooth cylinder in low-turbulence flow (Hoerner, Fluid-Dynamic Drag,
 #:   1965, ch. 3; Zdravkovich, Flow Around Circular Cylinders vol. 1, 1997,
-#:   regime TrSL3; REFERENCE.md: "about 1.2 over 1e4-2e5"), reached from the
+#:   regime TrSL3; docs/physics.md §4), reached from the
 #:   minimum through 1.1 at 1e4.  Single wind-tunnel series (Wieselsberger's
 #:   among them) scatter by about +-5 % around it.
 #: * 3.5e6 and 1e7: Roshko, J. Fluid Mech. 10:345 (1961): C_d rises from its

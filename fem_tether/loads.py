@@ -1,6 +1,6 @@
 """Distributed loads on a tether per unit length: gravity and cross-flow drag.
 
-Cross-flow principle (seed 000 eqs. 4.9-4.12, REFERENCE "Tether")::
+Cross-flow principle (seed 000 eqs. 4.9-4.12, docs/physics.md §6)::
 
     V_n = V_rel - (V_rel . tau) tau            normal relative air velocity
     Re  = rho(z) |V_n| d / mu_air(z)           (4.10)
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 G_MS2 = 9.81
-"""Gravitational acceleration used by seed 000 (REFERENCE "Tether")."""
+"""Gravitational acceleration used by seed 000 (docs/physics.md §6)."""
 
 _TINY_MS = 1e-30
 

@@ -4,7 +4,7 @@ Seed 000 §4.2 lets the kite fly "an eight-shaped trajectory with average polar
 angle ϑ = 45° and width of roughly 190 m, flying at constant transversal
 velocity V_k = 80 m/s"; the tether's upper boundary condition r(L, t) is that
 kite position.  The seed does not give the curve, so this module makes it
-precise (global frame x downwind, z up; REFERENCE "Frames"):
+precise (global frame x downwind, z up; docs/physics.md §1):
 
 * direction from the polar angle ϑ (from the vertical) and azimuth φ::
 

@@ -6,7 +6,7 @@ import pytest
 from fem_tether.config import load_config
 from fem_tether.trajectory import FigureEight, direction
 
-#: REFERENCE "Figure-eight and sweep geometry": seed 000 Tab. 5.2, L [m] -> mean |φ| [deg].
+#: Roselli 2016 (seed 000) Tab. 5.2, L [m] -> mean |φ| [deg].
 TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.47, 3000: 1.28}
 
 
