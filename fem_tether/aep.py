@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .config import ConfigError
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
 from .resource import WindResource
 
@@ -82,6 +83,10 @@ def aep_by_length(cfg, lengths_m, global_efficiency, mean_phi_deg, resource: Win
                        unbinned_probability=unbinned)
 
 
+class IncompleteSweepError(ConfigError):
+    """The sweep has lengths whose tasks have not run (an interrupted or running sweep)."""
+
+
 @dataclass(frozen=True)
 class SweepAep:
     """AEP of a sweep's lengths, straight and flexible, with the cross-check gate."""
@@ -90,6 +95,7 @@ class SweepAep:
     flexible: AepByLength
     excluded_m: tuple[float, ...]      # flexible lengths left out (failed cross-check or solve)
     unchecked_m: tuple[float, ...]     # flexible lengths kept with --allow-unchecked
+    pending_m: tuple[float, ...] = ()  # lengths not finished (kept only with allow_incomplete)
 
     def as_dict(self) -> dict:
         def at(result: AepByLength, length, name):
@@ -106,20 +112,30 @@ class SweepAep:
         return {"lengths": rows,
                 "best_length_straight_m": self.straight.best_length_m,
                 "best_length_fe_m": self.flexible.best_length_m,
-                "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m)}
+                "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m),
+                "pending_m": list(self.pending_m)}
 
 
 def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
-                 allow_unchecked: bool = False) -> SweepAep:
+                 allow_unchecked: bool = False, allow_incomplete: bool = False) -> SweepAep:
     """AEP for the lengths of a sweep result (:func:`fem_tether.sweep.read_sweep`).
 
     Straight lines: every length with a straight-line G_e.  Flexible lines:
     the lengths whose FE run succeeded and whose cross-check passed; with
     ``allow_unchecked`` also those whose cross-check failed or did not run
-    (listed in ``unchecked_m``).
+    (listed in ``unchecked_m``).  A sweep with ``pending`` lengths raises
+    :class:`IncompleteSweepError` naming them, unless ``allow_incomplete``
+    (then they are listed in ``pending_m`` and gated like the others).
     """
     cfg = sweep_data["config"]
     lengths = np.asarray(sweep_data["length_m"], dtype=float)
+    pending = np.asarray(sweep_data["status"]) == "pending"
+    if pending.any() and not allow_incomplete:
+        raise IncompleteSweepError(
+            f"{sweep_data.get('file', 'sweep')}: incomplete sweep, {np.count_nonzero(pending)} of "
+            f"{lengths.size} lengths pending ({', '.join(f'{v:g}' for v in lengths[pending])} m); "
+            "run the same sweep again to finish it, or allow an incomplete sweep "
+            "(--allow-incomplete)")
     phi = np.asarray(sweep_data["mean_phi_deg"], dtype=float)
     ge_fe = np.asarray(sweep_data["ge_fe"], dtype=float)
     ge_straight = np.asarray(sweep_data["ge_straight"], dtype=float)
@@ -131,6 +147,7 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
         straight=aep_by_length(cfg, lengths[has_straight], ge_straight[has_straight],
                                phi[has_straight], resource, cycle),
         flexible=aep_by_length(cfg, lengths[keep], ge_fe[keep], phi[keep], resource, cycle),
-        excluded_m=tuple(float(v) for v in lengths[~keep]),
+        excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
+        pending_m=tuple(float(v) for v in lengths[pending]),
     )

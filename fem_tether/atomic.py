@@ -27,6 +27,9 @@ def check_writable(path, directory: bool = False) -> Path:
         raise OutputError(f"cannot write {path}: it exists and is not a directory")
     if not directory and path.is_dir():
         raise OutputError(f"cannot write {path}: it is a directory")
+    blocking = next((p for p in (folder, *folder.parents) if p.exists() and not p.is_dir()), None)
+    if blocking:
+        raise OutputError(f"cannot write {path}: {blocking} is not a directory")
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -9,9 +9,13 @@ that does not converge prints where and why and exits with code 1.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import json
+import os
 import shutil
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +30,7 @@ from fem_tether.resource import ResourceError
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
+EXIT_INTERRUPTED = 130
 DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
                "energy systems (FE model with an independent FD cross-check).")
 JSON_HELP = "print the result as JSON on stdout (no table, no progress)"
@@ -236,29 +241,33 @@ def _rank() -> int:
     return mpi.COMM_WORLD.Get_rank() if mpi else 0
 
 
-def cmd_sweep(args):
-    from fem_tether.sweep import load_job, read_sweep, sweep
+def _reused(outcome) -> str:
+    return (f"{outcome.reused} of {outcome.tasks} tasks reused from the stored parts, "
+            f"{outcome.tasks - outcome.reused} run")
 
-    job = load_job(args.job)
-    results = sweep(job, args.out, progress=not args.json)
-    if results is None:
+
+def cmd_sweep(args):
+    from fem_tether.sweep import load_job, sweep
+
+    outcome = sweep(load_job(args.job), args.out, progress=not args.json)
+    if outcome is None:
         return 0
-    failed = [r for r in results if r.status != "ok"]
+    results = outcome.lengths
     if args.json:
-        data = read_sweep(args.out)
-        _print_json({"file": str(args.out), "n_ranks": int(data["attrs"]["n_ranks"]), "lengths": [
+        _print_json({"file": str(args.out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
+                     "reused_tasks": outcome.reused, "lengths": [
             {"length_m": r.length_m, "status": r.status, "error": r.error,
              **{k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in r.values.items()}}
             for r in results]})
     else:
-        print(f"sweep of {len(results)} lengths -> {args.out}")
+        print(f"sweep of {len(results)} lengths -> {args.out} ({_reused(outcome)})")
         for r in results:
             v = r.values
             print(f"  L = {r.length_m:6g} m: F_t FE {v['drag_fe_N']:9.1f} N, FD {v['drag_fd_N']:9.1f} N, "
                   f"straight {v['drag_straight_N']:9.1f} N, cross-check "
                   f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
                   + (f"  [{r.error}]" if r.status != "ok" else ""))
-    return EXIT_FAILED if failed else 0
+    return 0 if outcome.ok else EXIT_FAILED
 
 
 def cmd_aep(args):
@@ -266,7 +275,7 @@ def cmd_aep(args):
     from fem_tether.sweep import read_sweep
 
     data = read_sweep(args.file)
-    energy = sweep_aep(data, args.wind, args.allow_unchecked)
+    energy = sweep_aep(data, args.wind, args.allow_unchecked, args.allow_incomplete)
     result = energy.as_dict()
     if args.json:
         _print_json(result)
@@ -276,19 +285,21 @@ def cmd_aep(args):
         fe = (f"{r['aep_fe_MWh']:18.0f}  {r['cf_fe']:11.3f}" if r["aep_fe_MWh"] is not None
               else f"{'left out':>18s}  {'':11s}")
         print(f" {r['length_m']:8.0f}  {r['aep_straight_MWh']:18.0f}  {r['cf_straight']:11.3f}  {fe}"
-              + ("  (unchecked)" if r["unchecked"] else ""))
+              + ("  (unchecked)" if r["unchecked"] else "")
+              + ("  (pending)" if r["length_m"] in result["pending_m"] else ""))
     best_fe = result["best_length_fe_m"]
     print(f"best length: straight {result['best_length_straight_m']:g} m, flexible "
           + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
     if result["excluded_m"]:
         print("left out (cross-check failed or not run): "
               + ", ".join(f"{v:g} m" for v in result["excluded_m"]))
+    if result["pending_m"]:
+        print("pending, not run yet (--allow-incomplete): "
+              + ", ".join(f"{v:g} m" for v in result["pending_m"]))
     return 0
 
 
 def cmd_run(args):
-    import time
-
     from fem_tether.pipeline import summary_table, sweep_aep, write_json, write_plots
     from fem_tether.power import Cycle
     from fem_tether.resource import from_config as resource_from_config
@@ -300,20 +311,20 @@ def cmd_run(args):
     h5 = out / "sweep.h5"
     resource_from_config(job.config)       # a bad resource fails now, not after the sweep
     Cycle(**job.config["cycle"])
-    results = sweep(job, h5)
-    if results is None:
+    outcome = sweep(job, h5)
+    if outcome is None:
         return 0
     data = read_sweep(h5)
-    energy = sweep_aep(data, allow_unchecked=args.allow_unchecked)
+    energy = sweep_aep(data, allow_unchecked=args.allow_unchecked, allow_incomplete=args.allow_incomplete)
     files = write_plots(data, energy, out)
     files["aep_json"] = write_json(out / "aep.json", energy.as_dict())
     print(summary_table(data, energy))
-    print(f"\n{len(results)} lengths on {int(data['attrs']['n_ranks'])} rank(s) in "
-          f"{time.perf_counter() - t0:.1f} s")
+    print(f"\n{len(outcome.lengths)} lengths on {outcome.n_ranks} rank(s) in "
+          f"{time.perf_counter() - t0:.1f} s ({_reused(outcome)})")
     print(f"results: {h5}")
     for name, path in files.items():
         print(f"{name}: {path}")
-    return EXIT_FAILED if any(r.status != "ok" for r in results) else 0
+    return 0 if outcome.ok else EXIT_FAILED
 
 
 def cmd_bench(args):
@@ -397,6 +408,8 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--wind", metavar="CSV", help="wind histograms per altitude band (CSV)")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="keep lengths whose cross-check failed, marked")
+    c.add_argument("--allow-incomplete", action="store_true",
+                   help="compute the AEP of an unfinished sweep (else exit 2 naming the pending lengths)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("run", cmd_run, "the main job: sweep, cross-check gate, AEP, plots, summary",
@@ -405,6 +418,8 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", default="results", metavar="DIR", help="output directory (results)")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="keep lengths whose cross-check failed, marked")
+    c.add_argument("--allow-incomplete", action="store_true",
+                   help="compute the AEP even if lengths are pending (else exit 2 naming them)")
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False)
     c.add_argument("--repeats", type=_positive_int, default=3, help="best of N runs per setting")
@@ -418,9 +433,59 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+#: Environment variables set by MPI launchers (MPICH/Intel MPI hydra, Open MPI, PMIx).
+_LAUNCHER_VARIABLES = ("PMI_RANK", "PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "PMIX_RANK")
+#: Commands that share their work among the ranks; every other one runs on rank 0 alone.
+_PARALLEL_COMMANDS = ("sweep", "run")
+
+
+def _world():
+    """MPI.COMM_WORLD when started by an MPI launcher with more than one rank, else None
+    (MPI is not even initialised for a plain command)."""
+    if not any(name in os.environ for name in _LAUNCHER_VARIABLES):
+        return None
+    from mpi4py import MPI
+    return MPI.COMM_WORLD if MPI.COMM_WORLD.Get_size() > 1 else None
+
+
 def main(argv=None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    """Run a command.  Under ``mpiexec -n N`` only ``sweep`` and ``run`` use the
+    ranks; any other command runs on rank 0 alone and the other ranks exit
+    with its exit code (they parse the same arguments silently)."""
+    world = _world()
+    with contextlib.ExitStack() as quiet:
+        if world is not None and world.Get_rank() != 0:     # usage errors and --help once
+            quiet.enter_context(contextlib.redirect_stdout(io.StringIO()))
+            quiet.enter_context(contextlib.redirect_stderr(io.StringIO()))
+        args = build_parser().parse_args(argv)
+    if world is None or args.command in _PARALLEL_COMMANDS:
+        return _run(args)
+    return _on_rank_zero(world, args)
+
+
+def _on_rank_zero(comm, args) -> int:
+    """Rank 0 runs the command and broadcasts its exit code; the other ranks
+    wait for it asleep (not spinning on a core rank 0 may need)."""
+    code = np.array([EXIT_FAILED], dtype="i")
+    if comm.Get_rank() != 0:
+        try:
+            _complete(comm.Ibcast(code, root=0))
+        except KeyboardInterrupt:        # mpiexec passes Ctrl-C to every rank
+            return EXIT_INTERRUPTED
+        return int(code[0])
+    try:
+        code[0] = _run(args)
+    finally:                             # a defect's traceback still releases the others
+        _complete(comm.Ibcast(code, root=0))
+    return int(code[0])
+
+
+def _complete(request) -> None:
+    while not request.Test():
+        time.sleep(0.02)
+
+
+def _run(args) -> int:
     try:
         return args.func(args)
     except (ConfigError, MeshError, SchemeError, ResourceError, OutputError) as exc:
@@ -430,6 +495,8 @@ def main(argv=None) -> int:
     except OSError as exc:
         where = f"{exc.filename}: " if exc.filename else ""
         return _fail(f"fem-tether: error: {where}{exc.strerror or exc}", EXIT_USAGE)
+    except KeyboardInterrupt as exc:      # a sweep's says what it kept (SweepInterrupted)
+        return _fail(f"fem-tether: interrupted{f': {exc}' if str(exc) else ''}", EXIT_INTERRUPTED)
 
 
 def _fail(message: str, code: int) -> int:

@@ -21,9 +21,9 @@ run::
                             (NaN-padded when the node count changes: reel-out)
     /extra                  attributes: solver-specific values (TetherRun.extra)
 
-Datasets under ``series`` and ``snapshots`` carry a ``units`` attribute read off
-their name's suffix (``_N`` -> N, ``_N_m`` -> N/m, ``_m`` -> m, ``_ms`` -> m/s,
-``_s`` -> s, otherwise ""); snapshot fields are chunked and gzip-compressed.
+Every dataset carries ``units`` and ``description`` attributes from
+:mod:`fem_tether.quantities` (``"1"``: dimensionless), every group a
+``description``; snapshot fields are chunked and gzip-compressed.
 
 ParaView (:func:`write_paraview`), one directory per run::
 
@@ -55,14 +55,17 @@ import numpy as np
 from . import __version__
 from .atomic import atomic_path, check_writable
 from .config import to_toml
+from .quantities import attributes
 from .results import CELL_FIELDS, TetherRun
 
-UNITS = (("_N_m", "N/m"), ("_ms", "m/s"), ("_N", "N"), ("_m", "m"), ("_s", "s"))
-
-
-def units(name: str) -> str:
-    """Units of a quantity named with a unit suffix, e.g. ``"drag_N_m"`` -> ``"N/m"``."""
-    return next((u for suffix, u in UNITS if name.endswith(suffix)), "")
+GROUPS = {
+    "series": "time series, one value per time step",
+    "means": "period means over the averaging window: attribute mean_<name> of each "
+             "series/<name>, in its units",
+    "snapshots": "the whole line every [output] every steps: node fields (n_snap, n_nodes[, 3]), "
+                 "element fields (n_snap, n_el[, 3])",
+    "extra": "solver-specific values as attributes",
+}
 
 
 def write_run_hdf5(run: TetherRun, path, extra_attrs: dict | None = None) -> Path:
@@ -73,8 +76,15 @@ def write_run_hdf5(run: TetherRun, path, extra_attrs: dict | None = None) -> Pat
     return Path(path)
 
 
+def _group(parent, name):
+    group = parent.create_group(name, track_order=True)
+    group.attrs["description"] = GROUPS[name]
+    return group
+
+
 def _dataset(group, name, data, **kwargs):
-    group.create_dataset(name, data=data, **kwargs).attrs["units"] = units(name)
+    where = group.name.rsplit("/", 1)[-1]
+    group.create_dataset(name, data=data, **kwargs).attrs.update(attributes(where, name))
 
 
 def _write_hdf5(f: h5py.File, run: TetherRun, extra_attrs: dict):
@@ -94,19 +104,19 @@ def _write_hdf5(f: h5py.File, run: TetherRun, extra_attrs: dict):
         raise ValueError(f"extra_attrs would overwrite {', '.join(sorted(clash))}")
     f.attrs.update(extra_attrs)
 
-    series = f.create_group("series", track_order=True)
+    series = _group(f, "series")
     _dataset(series, "time_s", run.time_s)
     for name, values in run.series.items():
         _dataset(series, name, values)
 
-    f.create_group("means", track_order=True).attrs.update(run.means())
+    _group(f, "means").attrs.update(run.means())
 
-    snapshots = f.create_group("snapshots", track_order=True)
+    snapshots = _group(f, "snapshots")
     _dataset(snapshots, "time_s", run.snapshot_time_s)
     for name, values in run.snapshots.items():
         _dataset(snapshots, name, values, chunks=True, compression="gzip")
 
-    f.create_group("extra", track_order=True).attrs.update(run.extra)
+    _group(f, "extra").attrs.update(run.extra)
 
 
 def _python(value):
@@ -128,7 +138,7 @@ def read_run_hdf5(path) -> TetherRun:
             average_start_s=float(f.attrs["average_start_s"]),
             config=tomllib.loads(f.attrs["config_toml"]),
             wall_s=float(f.attrs["wall_s"]),
-            extra={k: _python(v) for k, v in f["extra"].attrs.items()},
+            extra={k: _python(v) for k, v in f["extra"].attrs.items() if k != "description"},
         )
 
 

@@ -19,11 +19,11 @@ from fem_tether.power import Cycle, cycle_curves, operating_design
 from fem_tether.resource import from_config as resource_from_config
 
 
-def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False) -> SweepAep:
+def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
     """AEP of a sweep result with the configured (or given) wind resource and cycle."""
     cfg = data["config"]
     return aep_of_sweep(data, resource_from_config(cfg, wind_csv), Cycle(**cfg["cycle"]),
-                        allow_unchecked)
+                        allow_unchecked, allow_incomplete)
 
 
 def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
@@ -83,9 +83,11 @@ def summary_table(data: dict, energy: SweepAep) -> str:
         r = rows.get(float(length), {})
         aep_fe = r.get("aep_fe_MWh")
         check = ("ok" if data["crosscheck_ok"][i] else
-                 ("not run" if not np.isfinite(data["drag_fd_N"][i]) else
+                 ("not run" if not np.isfinite(data["rel_diff_drag"][i]) else
                   f"FAILED ({100 * data['rel_diff_drag'][i]:.1f} % on F_t)"))
-        if data["status"][i] != "ok":
+        if data["status"][i] == "pending":
+            check = f"{check}; pending"
+        elif data["status"][i] != "ok":
             check = f"{check}; {data['error'][i]}"
         lines.append(f" {length:8.0f}  {data['drag_straight_N'][i] / 1e3:12.2f}  "
                      f"{data['drag_fe_N'][i] / 1e3:12.2f}  {data['ge_straight'][i]:8.2f}  "
@@ -98,6 +100,9 @@ def summary_table(data: dict, energy: SweepAep) -> str:
     if energy.excluded_m:
         lines.append("left out of the flexible AEP (cross-check failed or not run): "
                      + ", ".join(f"{v:g} m" for v in energy.excluded_m))
+    if energy.pending_m:
+        lines.append("pending (not run yet, --allow-incomplete): "
+                     + ", ".join(f"{v:g} m" for v in energy.pending_m))
     if energy.unchecked_m:
         lines.append("kept without a passed cross-check (--allow-unchecked): "
                      + ", ".join(f"{v:g} m" for v in energy.unchecked_m))

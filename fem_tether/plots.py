@@ -115,10 +115,14 @@ def plot_ge(lengths_m, ge_by_case: Mapping[str, np.ndarray], path,
 
 
 def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
-    """AEP (eq. 5.2) against L per case, each case's best length starred (seed 000 Fig. 5.6)."""
+    """AEP (eq. 5.2) against L per case, each case's best length starred (seed 000 Fig. 5.6);
+    a case without lengths (none passed the cross-check) is named in the legend only."""
     fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
     for i, (case, r) in enumerate(results.items()):
         style = _case_style(case, i)
+        if not r.length_m.size:
+            ax.plot([], [], **style, label=f"{case}: no length")
+            continue
         ax.plot(r.length_m, r.aep_MWh * 1e-3, ms=6, **style,
                 label=f"{case}: best {r.best_length_m:.0f} m, CF {r.capacity_factor.max():.2f}")
         best = np.argmax(r.aep_MWh)

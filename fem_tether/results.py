@@ -12,23 +12,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-#: Time series every solver records, one value per time step.
-SERIES = (
-    "ground_tension_N",    # tension at the winch, T(0, t)
-    "kite_tension_N",      # tension at the kite end, T(L, t)
-    "kite_radius_m",       # |r(L, t)|
-    "drag_N",              # F_t = |M_d| / |r_kite| (seed 000 eq. 4.1)
-    "drag_against_N",      # component of F_t opposing the kite's velocity
-    "max_strain",          # max over elements of | |r_s| - 1 |
-    "length_m",            # paid-out line length L(t)
-    "reel_out_ms",         # winch speed V_L(t) (> 0 pays out)
-    "winch_power_W",       # mechanical power at the winch T(0, t) V_L(t), per line
-    "winch_energy_J",      # its time integral since the start, per line
-)
+#: Time series every solver records, one value per time step (units and
+#: meanings: :mod:`fem_tether.quantities`, ``where = "series"``).
+SERIES = ("ground_tension_N", "kite_tension_N", "kite_radius_m", "drag_N", "drag_against_N",
+          "max_strain", "length_m", "reel_out_ms", "winch_power_W", "winch_energy_J")
 
 #: Snapshot fields: per node (arc length from the winch, position, velocity)
-#: and per element (the rest).  A run whose node count changes (reel-out) pads
-#: every snapshot with NaN to the largest count.
+#: and per element (the rest); units and meanings in :mod:`fem_tether.quantities`.
+#: A run whose node count changes (reel-out) pads every snapshot with NaN to
+#: the largest count.
 NODE_FIELDS = ("s_m", "position_m", "velocity_ms")
 CELL_FIELDS = ("tension_N", "vn_ms", "reynolds", "cd", "drag_N_m")
 

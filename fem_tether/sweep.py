@@ -1,27 +1,32 @@
 """Sweeps over cable length, spread over MPI ranks, results in one HDF5 file.
 
 A job (TOML, see ``sweeps/default.toml``) is a configuration plus a
-``[sweep]`` table: the cable lengths, whether the FD cross-check and the
-straight-line baseline run.  Each length is split into tasks (the FE run and,
-with the cross-check, the FD run); tasks are assigned to ranks by longest
+``[sweep]`` table: the cable lengths (required), whether the FD cross-check and
+the straight-line baseline run.  Each length is split into tasks (the FE run
+and, with the cross-check, the FD run); tasks are assigned to ranks by longest
 processing time first on an estimated cost (unknowns x time steps), so the
 assignment, and every number, is the same whatever the number of ranks.
 
 Durability: every finished task is written at once, atomically, to its own
-file in ``<out>.parts/`` by the rank that ran it; rank 0 assembles the result
-file ``<out>`` from the parts after its own tasks (at most every
-``REFRESH_S`` seconds) and at the end, so an interrupted sweep leaves a
-readable file.  Re-running the same job skips the tasks whose inputs match
+file in ``<out>.parts/`` by the rank that ran it, which then assembles the
+result file ``<out>`` from the parts present (one rank at a time, under a lock
+in the parts directory), so ``<out>`` is current from the first finished task
+on and an interrupted sweep leaves a readable file; rank 0 assembles it once
+more at the end.  A length whose tasks have not all run is ``pending``.
+Re-running the same job reuses the tasks whose inputs match
 (:func:`inputs_key`: configuration, package version and the contents of the
-files it names).  A task whose solve fails is recorded with its error; the
-other tasks go on.
+files it names) and reports how many.  A task whose solve fails is recorded
+with its error; the other tasks go on.  An existing ``<out>`` that is not a
+sweep result is never overwritten.
 
-Result file (h5py), root datasets, one entry per length (NaN where not run)::
+Result file (h5py), root datasets, one entry per length (NaN where not run),
+units and meanings in :mod:`fem_tether.quantities` (``where = "sweep"``) and in
+each dataset's ``units`` and ``description`` attributes::
 
     length_m, drag_fe_N, drag_fd_N, drag_straight_N, ge_fe, ge_straight,
     crosscheck_ok (int8: 1 ok, 0 failed or not run), mean_phi_deg,
-    status ("ok" | "failed"), error (message or ""),
-    kite_tension_fe_N, kite_tension_fd_N, rel_diff_drag, rel_diff_shape
+    kite_tension_fe_N, kite_tension_fd_N, rel_diff_drag, rel_diff_shape,
+    status ("ok" | "pending" | "failed"), error (message or "")
 
 root attributes ``config_toml`` (the job's configuration), ``job_toml``,
 ``fem_tether_version``, ``n_ranks``, ``created_utc``; one group ``L<length>``
@@ -33,14 +38,16 @@ per length with its configuration and status as attributes and subgroups
 from __future__ import annotations
 
 import datetime as _dt
+import fcntl
 import hashlib
 import math
-import os
 import sys
 import time
 import tomllib
 import traceback
+from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import h5py
@@ -54,11 +61,11 @@ from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import SolverDivergedError
 from fem_tether.output import read_run_hdf5, write_run_hdf5
 from fem_tether.progress import Progress
+from fem_tether.quantities import attributes, names
 from fem_tether.results import time_grid
 from fem_tether.summary import operating_ge
 from fem_tether.trajectory import FigureEight
 
-REFRESH_S = 10.0
 EXIT_ABORT = 3
 DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
 DEFAULT_JOB = {"sweep": {"lengths_m": list(DEFAULT_LENGTHS_M), "crosscheck": True, "straight": True}}
@@ -78,10 +85,19 @@ class Job:
     def solvers(self) -> tuple[str, ...]:
         return ("fe", "fd") if self.crosscheck else ("fe",)
 
+    @property
+    def tasks(self) -> list[Task]:
+        return [Task(L, s) for L in self.lengths_m for s in self.solvers]
+
     def config_for(self, length_m: float) -> dict:
         """The configuration of one length (with enough snapshots for the cross-check)."""
         cfg = merge(self.config, {"tether": {"length_m": float(length_m)}})
         return checkable(cfg) if self.crosscheck else cfg
+
+    @cached_property
+    def case_tomls(self) -> dict[float, str]:
+        """Each length's configuration as TOML (written into, and keying, every assembly)."""
+        return {L: to_toml(self.config_for(L)) for L in self.lengths_m}
 
 
 def _job_error(key, value, problem):
@@ -92,14 +108,20 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
     """Validate a job table: ``[sweep]`` keys plus configuration sections (file
     names relative to ``base_dir``); every length's case is validated."""
     data = dict(data)
-    sweep = data.pop("sweep", {})
+    if "sweep" not in data:
+        raise ConfigError("[sweep]: missing; a job needs a [sweep] table with its cable lengths, "
+                          "e.g. lengths_m = [500, 1000, 2000] (see sweeps/default.toml)")
+    sweep = data.pop("sweep")
     if not isinstance(sweep, dict):
         raise ConfigError("[sweep]: expected a table (lengths_m, crosscheck, straight, base)")
     unknown = set(sweep) - {"lengths_m", "crosscheck", "straight", "base"}
     if unknown:
         raise ConfigError(f"[sweep] {sorted(unknown)[0]}: unknown key "
                           "(known: lengths_m, crosscheck, straight, base)")
-    lengths = sweep.get("lengths_m", list(DEFAULT_LENGTHS_M))
+    if "lengths_m" not in sweep:
+        raise ConfigError("[sweep] lengths_m: missing; give the job's cable lengths, "
+                          "e.g. lengths_m = [500, 1000, 2000]")
+    lengths = sweep["lengths_m"]
     if not isinstance(lengths, list) or not lengths:
         raise _job_error("lengths_m", lengths, "expected a non-empty list of lengths")
     for value in lengths:
@@ -114,6 +136,10 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
     base = sweep.get("base", "")
     if not isinstance(base, str):
         raise _job_error("base", base, "expected a file name")
+    if base and not (base_dir / base).is_file():
+        where = base_dir / base
+        raise _job_error("base", base, f"not a file ({where})" if where.exists()
+                         else f"no such file ({where})")
     cfg = load_config(base_dir / base if base else None)
     cfg = validate(merge(cfg, resolve_paths(data, base_dir)))
     job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
@@ -222,12 +248,13 @@ def _write_failure(path: Path, cfg: dict, key: str, error: str) -> None:
 
 
 def run_task(job: Job, task: Task, directory: Path) -> str:
-    """Run one task unless a matching successful part exists; return its status."""
+    """Run one task unless a matching successful part exists; return
+    ``"reused"`` (a stored part matched), ``"ok"`` or ``"failed"``."""
     cfg = job.config_for(task.length_m)
     key = inputs_key(cfg)
     path = directory / f"{task.name}.h5"
     if _stored(path, key) == "ok":
-        return "ok"
+        return "reused"
     if task.solver == "fe":
         from fem_tether.fe.solver import simulate
     else:
@@ -246,15 +273,23 @@ def run_task(job: Job, task: Task, directory: Path) -> str:
     return "ok"
 
 
+def kept_tasks(job: Job, out: Path) -> int:
+    """How many of the job's tasks have a stored successful part (reused by a rerun)."""
+    directory = parts_dir(Path(out))
+    return sum(_stored(directory / f"{t.name}.h5", inputs_key(job.config_for(t.length_m))) == "ok"
+               for t in job.tasks)
+
+
 # --- assembly ----------------------------------------------------------------------------
 @dataclass
 class LengthResult:
     length_m: float
-    status: str = "ok"
+    status: str = "ok"          # "ok", "pending" (a task has not run) or "failed"
     error: str = ""
     values: dict = field(default_factory=dict)
 
 
+#: (parts directory, length) -> (what the evaluation depends on, its result)
 _EVALUATED: dict = {}
 
 
@@ -262,33 +297,35 @@ def evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthR
     """Combine the stored parts of one length: cross-check, straight line, G_e.
 
     Returns the result and the part paths found (solver -> path); remembered
-    while the parts on disk do not change."""
+    while the job's case and the parts on disk do not change."""
     stamps = []
     for solver in job.solvers:
         path = directory / f"{Task(length_m, solver).name}.h5"
         stamps.append(path.stat().st_mtime_ns if path.exists() else None)
-    key = (id(job), str(directory), length_m, tuple(stamps))
-    if key not in _EVALUATED:
-        _EVALUATED[key] = _evaluate_length(job, length_m, directory)
-    return _EVALUATED[key]
+    depends = (job.case_tomls[length_m], job.solvers, job.straight, tuple(stamps))
+    place = (str(directory), length_m)
+    if _EVALUATED.get(place, (None,))[0] != depends:
+        _EVALUATED[place] = (depends, _evaluate_length(job, length_m, directory))
+    return _EVALUATED[place][1]
+
+
+#: The numeric root datasets (one value per length), in the quantities table's order.
+ROOT_DATASETS = tuple(n for n in names("sweep") if n not in ("length_m", "status", "error"))
 
 
 def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[LengthResult, dict]:
     cfg = job.config_for(length_m)
     key = inputs_key(cfg)
     res = LengthResult(length_m)
-    nan = float("nan")
-    v = dict.fromkeys(("drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
-                       "kite_tension_fe_N", "kite_tension_fd_N", "rel_diff_drag",
-                       "rel_diff_shape"), nan)
+    v = dict.fromkeys(ROOT_DATASETS, float("nan"))
     v["crosscheck_ok"] = 0
     v["mean_phi_deg"] = FigureEight.from_config(cfg).mean_abs_phi_deg()
-    runs, parts, errors = {}, {}, []
+    runs, parts, errors, pending = {}, {}, [], False
     for solver in job.solvers:
         path = directory / f"{Task(length_m, solver).name}.h5"
         status = _stored(path, key)
         if status is None:
-            errors.append(f"{solver.upper()}: not run")
+            pending = True
             continue
         parts[solver] = path
         if status != "ok":
@@ -314,52 +351,118 @@ def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[Length
     res.values = v
     if errors:
         res.status, res.error = "failed", "; ".join(errors)
+    elif pending:
+        res.status = "pending"
     return res, parts
 
 
-ROOT_DATASETS = ("drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
-                 "crosscheck_ok", "mean_phi_deg", "kite_tension_fe_N", "kite_tension_fd_N",
-                 "rel_diff_drag", "rel_diff_shape")
+GROUP_DESCRIPTIONS = {
+    "length": "one cable length: its configuration, status and error as attributes, its runs "
+              "in fe and fd",
+    "fe": "the FE run of this length (single-run layout, fem_tether.output; attributes only "
+          "if it failed)",
+    "fd": "the FD run of this length (single-run layout, fem_tether.output; attributes only "
+          "if it failed)",
+}
 
 
-def assemble(job: Job, out: Path, n_ranks: int, full: bool = True) -> list[LengthResult]:
-    """Write the result file from the parts present now (atomically); without
-    ``full`` only the per-length summaries (the refresh during a sweep)."""
+def _dataset(f, name, data):
+    f.create_dataset(name, data=data).attrs.update(attributes("sweep", name))
+
+
+@contextmanager
+def _assembly_lock(directory: Path):
+    """One assembler at a time (ranks finishing tasks together); released on exit or kill."""
+    with open(directory / ".assemble.lock", "a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        yield
+
+
+def assemble(job: Job, out: Path, n_ranks: int) -> list[LengthResult]:
+    """Write the result file from the parts present now (atomically, under
+    the parts directory's lock); return the per-length results."""
     directory = parts_dir(out)
-    results = [evaluate_length(job, L, directory) for L in job.lengths_m]
-    with atomic_path(out) as tmp:
-        with h5py.File(tmp, "w") as f:
-            f.attrs.update(config_toml=to_toml(job.config), job_toml=job.toml,
-                           fem_tether_version=__version__, n_ranks=n_ranks,
-                           created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
-            f["length_m"] = np.array(job.lengths_m)
-            for name in ROOT_DATASETS:
-                f[name] = np.array([r.values[name] for r, _ in results],
-                                   dtype=np.int8 if name == "crosscheck_ok" else float)
-            f["status"] = np.array([r.status for r, _ in results], dtype=h5py.string_dtype())
-            f["error"] = np.array([r.error for r, _ in results], dtype=h5py.string_dtype())
-            for r, parts in results:
-                group = f.create_group(f"L{_tag(r.length_m)}")
-                group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
-                                   config_toml=to_toml(job.config_for(r.length_m)))
-                for solver, path in (parts.items() if full else ()):
-                    with h5py.File(path, "r") as src:
-                        sub = group.create_group(solver)
-                        sub.attrs.update(dict(src.attrs))
-                        for name in src:
-                            src.copy(src[name], sub, name)
+    with _assembly_lock(directory):
+        results = [evaluate_length(job, L, directory) for L in job.lengths_m]
+        with atomic_path(out) as tmp:
+            with h5py.File(tmp, "w") as f:
+                _write_result(f, job, n_ranks, results)
     return [r for r, _ in results]
 
 
+def _write_result(f: h5py.File, job: Job, n_ranks: int, results) -> None:
+    f.attrs.update(config_toml=to_toml(job.config), job_toml=job.toml,
+                   fem_tether_version=__version__, n_ranks=n_ranks,
+                   created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
+    _dataset(f, "length_m", np.array(job.lengths_m))
+    for name in ROOT_DATASETS:
+        _dataset(f, name, np.array([r.values[name] for r, _ in results],
+                                   dtype=np.int8 if name == "crosscheck_ok" else float))
+    for name in ("status", "error"):
+        _dataset(f, name, np.array([getattr(r, name) for r, _ in results], dtype=h5py.string_dtype()))
+    for r, parts in results:
+        group = f.create_group(f"L{_tag(r.length_m)}")
+        group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
+                           config_toml=job.case_tomls[r.length_m],
+                           description=GROUP_DESCRIPTIONS["length"])
+        for solver, path in parts.items():
+            with h5py.File(path, "r") as src:      # a failed task's part: attributes only
+                sub = group.create_group(solver)
+                sub.attrs.update(dict(src.attrs))
+                sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
+                for name in src:
+                    src.copy(src[name], sub, name)
+
+
+def is_sweep_result(path: Path) -> bool:
+    """Whether ``path`` is a file this module wrote (safe to replace)."""
+    try:
+        with h5py.File(path, "r") as f:
+            return "job_toml" in f.attrs and "length_m" in f and "status" in f
+    except OSError:
+        return False
+
+
 # --- the driver ----------------------------------------------------------------------------
+@dataclass(frozen=True)
+class SweepOutcome:
+    """What a sweep did: the per-length results and how many tasks ran or were reused."""
+
+    lengths: list[LengthResult]
+    tasks: int
+    reused: int
+    n_ranks: int
+
+    @property
+    def ok(self) -> bool:
+        return all(r.status == "ok" for r in self.lengths)
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a sweep; the message says what is kept and how to resume."""
+
+    def __init__(self, kept: int, total: int, directory: Path):
+        self.kept, self.total, self.directory = kept, total, directory
+        super().__init__(f"{kept} of {total} tasks kept in {directory}; run the same command to resume")
+
+
 def _count_done(tasks, directory):
     return sum((directory / f"{t.name}.h5").exists() for t in tasks)
 
 
-def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> list[LengthResult] | None:
+def _check_out(out: Path) -> None:
+    check_writable(out)
+    if out.exists() and not is_sweep_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether sweep result "
+                          "(move it away or choose another file)")
+    check_writable(parts_dir(out), directory=True)
+
+
+def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
-    Returns the per-length results on rank 0 and ``None`` on the other ranks.
+    Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
+    ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are kept).
     """
     if comm is None:
         from mpi4py import MPI
@@ -370,44 +473,48 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> list[L
     problem = None
     if rank == 0:
         try:
-            check_writable(out)
-            check_writable(directory, directory=True)
+            _check_out(out)
         except OutputError as exc:
             problem = str(exc)
     problem = comm.bcast(problem, root=0)
     if problem:
         raise OutputError(problem)
-    tasks = [Task(L, s) for L in job.lengths_m for s in job.solvers]
+    tasks = job.tasks
     mine = assign([task_cost(job, t) for t in tasks], size)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
-    refreshed = time.monotonic()
+    reused = 0
     try:
         for i in mine:
-            run_task(job, tasks[i], directory)
+            if run_task(job, tasks[i], directory) == "reused":
+                reused += 1
+            else:
+                assemble(job, out, size)
             if rank == 0:
-                if time.monotonic() - refreshed > REFRESH_S:
-                    assemble(job, out, size, full=False)
-                    refreshed = time.monotonic()
                 bar.update(_count_done(tasks, directory))
+        request = comm.Ibarrier()
+        while not request.Test():
+            if rank == 0:
+                bar.update(_count_done(tasks, directory))
+            time.sleep(0.05)
+    except KeyboardInterrupt:
+        bar.close()
+        raise SweepInterrupted(kept_tasks(job, out), len(tasks), directory) from None
     except Exception as exc:   # an I/O failure on one rank must not leave the others waiting
         print(f"fem-tether: error on rank {rank}: {exc}", file=sys.stderr, flush=True)
         comm.Abort(EXIT_ABORT)
-    request = comm.Ibarrier()
-    while not request.Test():
-        if rank == 0:
-            bar.update(_count_done(tasks, directory))
-        time.sleep(0.05)
+    reused = comm.reduce(reused, root=0)
     if rank != 0:
         return None
     results = assemble(job, out, size)
     bar.update(len(tasks))
     bar.close()
-    return results
+    return SweepOutcome(results, len(tasks), reused, size)
 
 
 def read_sweep(path: str | Path) -> dict:
-    """Root datasets and attributes of a result file, as NumPy arrays and strings."""
+    """Root datasets and attributes of a result file, as NumPy arrays and strings
+    (``"file"``: the path as given)."""
     if Path(path).is_dir():
         raise ConfigError(f"{path}: is a directory, not a sweep result file")
     try:
@@ -421,4 +528,5 @@ def read_sweep(path: str | Path) -> dict:
         raise ConfigError(f"{path}: no such file") from None
     except (OSError, KeyError) as exc:
         raise ConfigError(f"{path}: not a fem-tether sweep result ({exc})") from None
+    data["file"] = str(path)
     return data

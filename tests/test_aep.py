@@ -112,3 +112,11 @@ def test_plots_by_length_write_pngs(cfg, tmp_path):
     assert all(_is_png(p) for p in paths)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["aep.png", "drag.png", "ge.png",
                                                           "ge_only.png"]
+
+
+def test_aep_plot_without_flexible_lengths(cfg, tmp_path):
+    """No length passed the cross-check: `run` still plots (it used to fail formatting None)."""
+    results = {"straight": aep_by_length(cfg, SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG,
+                                         weibull_resource()),
+               "flexible": aep_by_length(cfg, [], [], [], weibull_resource())}
+    assert _is_png(plot_aep(results, tmp_path / "aep.png"))

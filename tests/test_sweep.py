@@ -1,9 +1,13 @@
 """Sweeps: job files, balancing, durable parts, resume, failures, MPI reproducibility."""
 
 import json
+import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
+import warnings
 from pathlib import Path
 
 import h5py
@@ -30,6 +34,10 @@ average_periods = 1
 """
 
 
+THREE = TINY.replace("lengths_m = [400, 800]", "lengths_m = [400, 800, 1200]")
+CLI = [sys.executable, "-m", "fem_tether.cli"]
+
+
 @pytest.fixture
 def tiny_job(tmp_path):
     path = tmp_path / "tiny.toml"
@@ -52,9 +60,16 @@ def test_default_job_file_is_the_embedded_default():
     ("[sweep]\nlengths_m = []\n", r"\[sweep\] lengths_m = \[\]"),
     ("[sweep]\nlengths_m = [500, -1]\n", r"\[sweep\] lengths_m = -1"),
     ("[sweep]\nlengths_m = [500, 500]\n", "distinct"),
-    ("[sweep]\ncrosscheck = 'yes'\n", r"\[sweep\] crosscheck"),
+    ("[sweep]\nlengths_m = [500]\ncrosscheck = 'yes'\n", r"\[sweep\] crosscheck"),
     ("[sweep]\nlenghts_m = [1]\n", r"\[sweep\] lenghts_m: unknown key"),
     ("[sweep]\nlengths_m = [500]\n[time]\ndt_s = -1\n", r"\[time\] dt_s = -1"),
+    # a job names its lengths: an empty file or one without them is not the default job
+    ("", r"^\[sweep\]: missing"),
+    ("[time]\naverage_periods = 1\n", r"^\[sweep\]: missing"),
+    ("[sweep]\ncrosscheck = true\n", r"^\[sweep\] lengths_m: missing"),
+    ("[sweep]\nlengths_m = [500]\nbase = 'nothere.toml'\n",
+     r'^\[sweep\] base = "nothere.toml": no such file \(.*nothere.toml\)$'),
+    ("[sweep]\nlengths_m = [500]\nbase = '.'\n", r'^\[sweep\] base = "\.": not a file'),
 ])
 def test_bad_jobs_name_the_key(tmp_path, text, match):
     path = tmp_path / "job.toml"
@@ -74,8 +89,9 @@ def test_longest_processing_time_assignment_balances():
 
 def test_serial_sweep_writes_the_documented_schema(tiny_job, tmp_path):
     out = tmp_path / "r.h5"
-    results = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
-    assert [r.status for r in results] == ["ok", "ok"]
+    outcome = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert [r.status for r in outcome.lengths] == ["ok", "ok"]
+    assert (outcome.tasks, outcome.reused, outcome.n_ranks) == (4, 0, 1)
     with h5py.File(out) as f:
         for name in ("length_m", "drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
                      "crosscheck_ok", "mean_phi_deg", "status"):
@@ -102,14 +118,14 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
         return real(cfg, length_m, progress)
 
     monkeypatch.setattr(fe_solver, "simulate", flaky)
-    # nothing to do: every stored part matches the job
-    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    # nothing to do: every stored part matches the job, and the outcome says so
+    assert sw.sweep(tiny_job, out, comm=_self_comm(), progress=False).reused == 4
     assert calls == []
     # lose one part: only that task runs again, and its failure is recorded
     (sw.parts_dir(out) / "L800_fe.h5").unlink()
-    results = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
-    assert calls == [800.0]
-    assert [r.status for r in results] == ["ok", "failed"]
+    outcome = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert calls == [800.0] and outcome.reused == 3
+    assert [r.status for r in outcome.lengths] == ["ok", "failed"]
     data = sw.read_sweep(out)
     assert "L = 800 m" in data["error"][1] and data["status"][0] == "ok"
     assert np.isnan(data["drag_fe_N"][1]) and np.isfinite(data["drag_fe_N"][0])
@@ -148,3 +164,174 @@ def test_mpi_two_ranks_give_identical_numbers(tmp_path):
         for name in sw.ROOT_DATASETS + ("length_m",):
             assert np.array_equal(a[name][()], b[name][()], equal_nan=True), name
         assert np.array_equal(a["L3000/fe/series/drag_N"][()], b["L3000/fe/series/drag_N"][()])
+
+
+def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, monkeypatch):
+    """Each finished task is in the result file before the next one starts, the
+    lengths still to run marked pending (not failed): a kill leaves it current."""
+    out = tmp_path / "r.h5"
+    real, seen = sw.run_task, []
+
+    def observed(job, task, directory):
+        done = {p.stem for p in directory.glob("L*.h5")}
+        if done:
+            data = sw.read_sweep(out)
+            expected = ["ok" if {f"L{L:g}_fe", f"L{L:g}_fd"} <= done else "pending"
+                        for L in job.lengths_m]
+            assert list(data["status"]) == expected and set(data["error"]) == {""}
+            assert list(np.isfinite(data["drag_fe_N"])) == [f"L{L:g}_fe" in done for L in job.lengths_m]
+            seen.append(len(done))
+        return real(job, task, directory)
+
+    monkeypatch.setattr(sw, "run_task", observed)
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert seen == [1, 2, 3]
+
+
+def test_aep_of_an_incomplete_sweep_needs_allow_incomplete(tiny_job, tmp_path, capsys):
+    out = tmp_path / "r.h5"
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    (sw.parts_dir(out) / "L800_fd.h5").unlink()
+    sw.assemble(tiny_job, out, 1)          # as a sweep killed before that task leaves it
+    data = sw.read_sweep(out)
+    assert list(data["status"]) == ["ok", "pending"] and list(data["error"]) == ["", ""]
+    assert np.isfinite(data["drag_fe_N"][1]) and data["crosscheck_ok"][1] == 0
+    assert main(["aep", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "1 of 2 lengths pending (800 m)" in err and "--allow-incomplete" in err
+    assert main(["aep", str(out), "--allow-incomplete", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["pending_m"] == [800.0] and result["excluded_m"] == []
+    assert result["best_length_fe_m"] == 400.0 and result["lengths"][1]["aep_fe_MWh"] is None
+
+
+def _default_sigint():
+    signal.signal(signal.SIGINT, signal.SIG_DFL)   # as from a terminal, even if pytest ignores it
+
+
+def _start_sweep(tmp_path, out):
+    job = tmp_path / "three.toml"
+    job.write_text(THREE)
+    argv = [*CLI, "sweep", str(job), "--out", str(out), "--json"]
+    return argv, subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                  preexec_fn=_default_sigint)
+
+
+def _wait_for(path, proc, timeout_s=120.0):
+    start = time.monotonic()
+    while not path.exists():
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() - start < timeout_s
+        time.sleep(0.01)
+
+
+def test_killed_sweep_leaves_a_current_file_that_aep_refuses(tmp_path, capsys):
+    out = tmp_path / "s.h5"
+    _, proc = _start_sweep(tmp_path, out)
+    _wait_for(out, proc)               # written as the first task finished
+    proc.kill()
+    proc.communicate()
+    data = sw.read_sweep(out)
+    assert "pending" in data["status"] and "failed" not in data["status"]
+    assert np.count_nonzero(data["status"] == "ok") < 3
+    assert main(["aep", str(out)]) == 2
+    assert "pending" in capsys.readouterr().err
+
+
+def test_ctrl_c_keeps_the_finished_tasks_and_says_how_to_resume(tmp_path):
+    out = tmp_path / "s.h5"
+    argv, proc = _start_sweep(tmp_path, out)
+    _wait_for(out, proc)
+    proc.send_signal(signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and stdout == ""
+    match = re.fullmatch(r"fem-tether: interrupted: (\d) of 6 tasks kept in (.*); run the same "
+                         r"command to resume\n", stderr)
+    assert match, stderr
+    kept = int(match.group(1))
+    assert 1 <= kept < 6 and match.group(2) == str(sw.parts_dir(out))
+    rerun = subprocess.run(argv, capture_output=True, text=True, timeout=300)
+    assert rerun.returncode == 0, rerun.stderr
+    assert json.loads(rerun.stdout)["reused_tasks"] == kept
+
+
+def test_sweep_never_overwrites_a_file_it_did_not_write(tiny_job, tmp_path, capsys):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    precious = tmp_path / "x.h5"
+    precious.write_text("precious\n")
+    assert main(["sweep", str(job), "--out", str(precious)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "x.h5: it exists and is not a fem-tether sweep result" in err
+    assert precious.read_text() == "precious\n" and not sw.parts_dir(precious).exists()
+    with h5py.File(precious, "w") as f:          # an HDF5 file, but not a sweep result
+        f["data"] = [1.0]
+    with pytest.raises(sw.OutputError, match="not a fem-tether sweep result"):
+        sw.sweep(tiny_job, precious, comm=_self_comm(), progress=False)
+    with h5py.File(precious) as f:
+        assert list(f) == ["data"]
+
+
+@pytest.mark.parametrize("argv", [
+    ["run", "{job}", "--out", "{blocker}"],
+    ["run", "{job}", "--out", "{blocker}/deeper"],
+    ["sweep", "{job}", "--out", "{blocker}/s.h5"],
+    ["simulate", "--out", "{blocker}"],
+])
+def test_out_below_a_regular_file_says_not_a_directory(tmp_path, capsys, argv):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    blocker = tmp_path / "notdir"
+    blocker.write_text("a file\n")
+    assert main([a.format(job=job, blocker=blocker) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{blocker} is not a directory" in err and "File exists" not in err
+
+
+def test_cli_reports_reused_tasks(tmp_path, capsys):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY.replace("[400, 800]", "[400]"))
+    out = tmp_path / "r"
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    assert "(0 of 2 tasks reused from the stored parts, 2 run)" in capsys.readouterr().out
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    assert "(2 of 2 tasks reused from the stored parts, 0 run)" in capsys.readouterr().out
+    assert main(["sweep", str(job), "--out", str(out / "sweep.h5"), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert (data["tasks"], data["reused_tasks"]) == (2, 2)
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_other_commands_run_on_rank_zero_alone(tmp_path):
+    """Under mpiexec a command other than sweep/run works once; every rank exits with its code."""
+    def mpi(*argv):
+        return subprocess.run(["mpiexec", "-n", "2", *CLI, *argv], capture_output=True, text=True,
+                              timeout=300)
+
+    proc = mpi("straight", "--lengths", "500,1000", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert [r["length_m"] for r in json.loads(proc.stdout)["rows"]] == [500, 1000]   # one document
+    proc = mpi("config", str(tmp_path / "missing.toml"))
+    assert proc.returncode == 2 and proc.stderr.count("missing.toml: no such file") == 1
+    proc = mpi("straight", "--length", "x")
+    assert proc.returncode == 2 and proc.stderr.count("is not a number") == 1
+
+
+def test_a_failed_solve_is_recorded_quietly(tmp_path):
+    """A real divergence (a heavy line in constant air): the FE error is recorded, the
+    FD run kept, no RuntimeWarning on stderr, and the table says the check did not run."""
+    from fem_tether.pipeline import summary_table, sweep_aep
+
+    job = tmp_path / "heavy.toml"
+    job.write_text(TINY.replace("[400, 800]", "[400]") + "[tether]\nlinear_density_kg_m = 2.0\n"
+                   "[air]\nmodel = \"constant\"\n[drag]\nmodel = \"constant\"\n")
+    out = tmp_path / "h.h5"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        outcome = sw.sweep(sw.load_job(job), out, comm=_self_comm(), progress=False)
+        data = sw.read_sweep(out)
+        table = summary_table(data, sweep_aep(data))
+    assert [r.status for r in outcome.lengths] == ["failed"]
+    assert data["error"][0].startswith("FE: time step did not converge")
+    assert np.isnan(data["drag_fe_N"][0]) and np.isfinite(data["drag_fd_N"][0])
+    assert "not run; FE: time step did not converge" in table and "nan %" not in table

@@ -1,0 +1,86 @@
+"""Every quantity stored in a result file: its name, unit and meaning.
+
+One table for the writers (each dataset gets ``units`` and ``description``
+attributes from it), the reader's documentation (README's layout tables are
+:func:`markdown_rows` of it; a test keeps them equal) and the tests.  Units
+follow UDUNITS: ``"1"`` for a dimensionless number, ``""`` for text.
+
+``where`` names the place in a file: ``"series"`` and ``"snapshots"`` are the
+groups of a single-run file (:mod:`fem_tether.output`), ``"sweep"`` the root
+datasets of a sweep result (:mod:`fem_tether.sweep`).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+
+class Quantity(NamedTuple):
+    where: str
+    name: str
+    unit: str
+    meaning: str
+
+
+QUANTITIES = (
+    Quantity("series", "time_s", "s", "time of each step from the start of the run"),
+    Quantity("series", "ground_tension_N", "N", "tension at the winch T(0, t)"),
+    Quantity("series", "kite_tension_N", "N", "tension at the kite end T(L, t)"),
+    Quantity("series", "kite_radius_m", "m", "distance |r(L, t)| of the kite from the winch"),
+    Quantity("series", "drag_N", "N", "line drag F_t lumped at the kite, |M_d| / |r_kite| (eq. 4.1)"),
+    Quantity("series", "drag_against_N", "N", "component of F_t opposing the kite's velocity"),
+    Quantity("series", "max_strain", "1", "largest | |r_s| - 1 | over the elements"),
+    Quantity("series", "length_m", "m", "paid-out line length L(t)"),
+    Quantity("series", "reel_out_ms", "m/s", "winch speed V_L(t), > 0 pays out"),
+    Quantity("series", "winch_power_W", "W", "mechanical power at the winch T(0, t) V_L(t), per line"),
+    Quantity("series", "winch_energy_J", "J", "time integral of winch_power_W since the start, per line"),
+    Quantity("snapshots", "time_s", "s", "time of each snapshot of the whole line"),
+    Quantity("snapshots", "s_m", "m", "arc length of each node from the winch (NaN padding)"),
+    Quantity("snapshots", "position_m", "m", "node positions x, y, z (z up, winch at the origin)"),
+    Quantity("snapshots", "velocity_ms", "m/s", "node velocities"),
+    Quantity("snapshots", "tension_N", "N", "tension of each element"),
+    Quantity("snapshots", "vn_ms", "m/s", "cross-flow speed |V_n| of each element"),
+    Quantity("snapshots", "reynolds", "1", "cross-flow Reynolds number of each element"),
+    Quantity("snapshots", "cd", "1", "cross-flow drag coefficient C_d,c of each element"),
+    Quantity("snapshots", "drag_N_m", "N/m", "cross-flow drag load f_t of each element, x, y, z"),
+    Quantity("sweep", "length_m", "m", "cable length of each case"),
+    Quantity("sweep", "drag_fe_N", "N", "mean F_t per line, FE solver"),
+    Quantity("sweep", "drag_fd_N", "N", "mean F_t per line, FD solver"),
+    Quantity("sweep", "drag_straight_N", "N", "F_t per line of the straight line (with the wind's normal component)"),
+    Quantity("sweep", "ge_fe", "1", "G_e = L/(D_k + 2 F_t) (eq. 5.1) with the FE F_t, rho at L cos(theta0)"),
+    Quantity("sweep", "ge_straight", "1", "G_e with the straight line's F_t"),
+    Quantity("sweep", "crosscheck_ok", "1", "1 if the FE/FD cross-check passed, 0 if it failed or did not run"),
+    Quantity("sweep", "mean_phi_deg", "deg", "mean |phi| of the flown eight"),
+    Quantity("sweep", "kite_tension_fe_N", "N", "mean kite-end tension, FE solver"),
+    Quantity("sweep", "kite_tension_fd_N", "N", "mean kite-end tension, FD solver"),
+    Quantity("sweep", "rel_diff_drag", "1", "|F_t,FD / F_t,FE - 1| of the cross-check"),
+    Quantity("sweep", "rel_diff_shape", "1", "largest distance between the FE and FD lines / L"),
+    Quantity("sweep", "status", "", "ok, pending (a task has not run) or failed"),
+    Quantity("sweep", "error", "", "the failed tasks' error messages, or empty"),
+)
+
+_BY_PLACE = {(q.where, q.name): q for q in QUANTITIES}
+
+
+def quantity(where: str, name: str) -> Quantity:
+    """The table's entry of ``name`` in ``where``; KeyError names a missing one."""
+    try:
+        return _BY_PLACE[where, name]
+    except KeyError:
+        raise KeyError(f"{where}/{name} is not in fem_tether.quantities.QUANTITIES") from None
+
+
+def attributes(where: str, name: str) -> dict[str, str]:
+    """The ``units`` and ``description`` attributes of a stored dataset."""
+    q = quantity(where, name)
+    return {"units": q.unit, "description": q.meaning}
+
+
+def names(where: str) -> tuple[str, ...]:
+    return tuple(q.name for q in QUANTITIES if q.where == where)
+
+
+def markdown_rows(where: str) -> list[str]:
+    """README's table rows ``| `name` | unit | meaning |`` of ``where``."""
+    return [f"| `{q.name}` | {q.unit or 'text'} | {q.meaning.replace('|', chr(92) + '|')} |"
+            for q in QUANTITIES if q.where == where]
