@@ -4,6 +4,19 @@ import pytest
 
 from fem_tether.config import load_config
 
+#: A sweep job small enough for the suite: coarse meshes and steps, one averaged period.
+TINY_JOB = """[sweep]
+lengths_m = [400, 800]
+[fe]
+elements = 10
+[fd]
+segments = 20
+dt_s = 0.05
+[time]
+dt_s = 0.2
+average_periods = 1
+"""
+
 QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},
          "drag": {"model": "constant", "cd": 1.2},
          "wind": {"profile": "none"}}

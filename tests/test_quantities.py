@@ -7,6 +7,8 @@ import h5py
 import pytest
 from mpi4py import MPI
 
+from conftest import TINY_JOB
+
 from fem_tether import quantities, sweep
 from fem_tether.config import load_config
 from fem_tether.fe.solver import simulate
@@ -14,17 +16,6 @@ from fem_tether.output import write_run_hdf5
 from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES
 
 README = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
-JOB = """[sweep]
-lengths_m = [400]
-[fe]
-elements = 10
-[fd]
-segments = 20
-dt_s = 0.05
-[time]
-dt_s = 0.2
-average_periods = 1
-"""
 
 
 def test_the_table_covers_what_the_solvers_record():
@@ -61,7 +52,7 @@ def _check_run_file(items, prefix=""):
 @pytest.fixture(scope="module")
 def sweep_file(tmp_path_factory):
     directory = tmp_path_factory.mktemp("sweep")
-    (directory / "job.toml").write_text(JOB)
+    (directory / "job.toml").write_text(TINY_JOB.replace("[400, 800]", "[400]"))
     out = directory / "s.h5"
     sweep.sweep(sweep.load_job(directory / "job.toml"), out, comm=MPI.COMM_SELF, progress=False)
     return out

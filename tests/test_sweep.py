@@ -14,6 +14,8 @@ import h5py
 import numpy as np
 import pytest
 
+from conftest import TINY_JOB as TINY
+
 from fem_tether import sweep as sw
 from fem_tether.cli import main
 from fem_tether.config import ConfigError
@@ -21,17 +23,6 @@ from fem_tether.errors import SolverDivergedError
 
 ROOT = Path(__file__).parents[1]
 QUICK = ROOT / "sweeps" / "quick.toml"
-TINY = """[sweep]
-lengths_m = [400, 800]
-[fe]
-elements = 10
-[fd]
-segments = 20
-dt_s = 0.05
-[time]
-dt_s = 0.2
-average_periods = 1
-"""
 
 
 THREE = TINY.replace("lengths_m = [400, 800]", "lengths_m = [400, 800, 1200]")
