@@ -16,8 +16,12 @@ first step of BDF2).  Both are L-stable, so the constraint's algebraic mode
 
 Start: static equilibrium at t = 0 under gravity, wind and the drag of the
 frozen rigid-rotation velocity field v(s) = (s/L) R0 e'(0) (R0 = L in tension
-mode, the prescribed radius otherwise), from a straight line (tension mode) or
-the catenary (prescribed mode), by a backtracking Newton.
+mode, the prescribed radius otherwise): the gravity-only equilibrium from a
+straight line (tension mode) or the catenary (prescribed mode), then the wind
+and drag load ramped up (:mod:`fem_tether.continuation`), each load step a
+backtracking Newton solve.  The straight line is regular here: the winch
+condition T_{1/2} = T_0 is substituted, not eliminated by bordering as in
+the FE solver, whose straight start was singular.
 
 Reeling (``[winch] reel_out``, :mod:`fem_tether.reel`): after the spin-up the
 winch pays the line out (V_L > 0) or reels it in (V_L < 0).  Nodes 1..M are
@@ -58,6 +62,7 @@ from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
+from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
@@ -156,49 +161,96 @@ def initial_guess(model: FDModel, t=0.0):
     return cat.position(g.s_m), cat.tension_N(s_mid), model.radius_m
 
 
-def static_equilibrium(model: FDModel, t=0.0, max_iter=100) -> State:
-    """Equilibrium at time ``t`` with the frozen rigid-rotation velocity field.
+def _trial_norm(evaluate, x):
+    """2-norm of the residual at ``x = (r_int, T, R)`` without the Jacobian;
+    infinite where the iterate leaves the atmosphere's range (ValueError)."""
+    try:
+        return np.linalg.norm(evaluate(*x, jacobian=False).residual)
+    except ValueError:
+        return math.inf
 
-    Backtracking Newton from :func:`initial_guess`; raises
-    :class:`SolverDivergedError` if the residual does not fall below tolerance.
+
+def _static_newton(model: FDModel, evaluate, x, max_iter):
+    """Backtracking Newton on ``x = (r_int, T, R)`` to ``max |residual| <= newton_tol``.
+
+    A step is halved until the residual's 2-norm falls (Armijo; trial
+    residuals without the Jacobian); the solve fails (:class:`NotConverged`)
+    on a start above the atmosphere, on a singular Jacobian, on no decrease
+    down to a step of 1e-4, or after ``max_iter`` steps.
     """
-    g = model.grid
-    r, T, R = initial_guess(model, t)
-    e, e_dot, e_ddot = model.end.state(t, 1.0)
-    frac = (g.s_m / model.length_m)[:, None]
-    v = frac * (R * e_dot)
-    acc = frac * (R * e_ddot)
-    zero = np.zeros_like(r)
-    f_ref = _force_ref(model, T)
-    r_int = r[1:-1].copy()
-
-    def evaluate(r_int, T, R, jacobian=True):
-        return model.eq.evaluate(_nodes(model, r_int, R, e), v, zero, T, e, f_ref,
-                                 jacobian=jacobian)
-
-    ev = evaluate(r_int, T, R)
-    norm = np.linalg.norm(ev.residual)
+    try:
+        ev = evaluate(*x)
+    except ValueError:
+        raise NotConverged(math.inf) from None
     for _ in range(max_iter):
-        if np.max(np.abs(ev.residual)) <= model.newton_tol:
-            return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
+        worst = float(np.max(np.abs(ev.residual)))
+        if worst <= model.newton_tol:
+            return x
         try:
             dx = model.grid.solve(ev.ab, -ev.residual)
         except np.linalg.LinAlgError:
             break
+        norm = np.linalg.norm(ev.residual)
         step = 1.0
-        while True:
-            trial = _apply(model, dx, r_int, T, R, step)
-            ev_trial = evaluate(*trial)
-            norm_trial = np.linalg.norm(ev_trial.residual)
-            if (np.isfinite(norm_trial) and norm_trial < (1.0 - 1e-4 * step) * norm) or step < 1e-4:
-                break
+        while not _trial_norm(evaluate, _apply(model, dx, *x, step)) < (1.0 - 1e-4 * step) * norm:
             step *= 0.5
-        if not np.isfinite(norm_trial):
-            break
-        (r_int, T, R), ev, norm = trial, ev_trial, norm_trial
-    raise SolverDivergedError(
-        f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: no "
-        f"convergence from the analytic guess, scaled residual {np.max(np.abs(ev.residual)):.3e}")
+            if step < 1e-4:
+                raise NotConverged(worst)
+        x = _apply(model, dx, *x, step)
+        ev = evaluate(*x)
+    raise NotConverged(float(np.max(np.abs(ev.residual))))
+
+
+def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
+    """Equilibrium at time ``t`` with the frozen rigid-rotation velocity field.
+
+    Loads: gravity, the wind and the drag of v(s) = (s/L) R0 e'(t) (R0 = L in
+    tension mode, the prescribed radius otherwise).  The aerodynamic load is
+    ramped (:func:`fem_tether.continuation.continuation`): the gravity-only
+    equilibrium first, from ``guess = (r, T, R)`` (default
+    :func:`initial_guess`), then the full load in one step or, where that
+    Newton solve fails, in halved load steps; ``max_iter`` backtracking Newton
+    iterations per load step.  Why: a slack line (prescribed radius below
+    ~0.95 L) is blown by the drag (up to ~80 times its weight) far from its
+    catenary, and Newton's first full-load steps threw it above the
+    atmosphere (measured for 3 to 200 segments at 0.5 to 0.9 L); the ramp
+    reaches it in a few load steps and costs one extra solve (load 0) where
+    the full load converges directly.  The known one of ``T_{1/2}`` (= T_0,
+    tension mode) and R (prescribed) is the case's, not the guess's.  Raises
+    :class:`SolverDivergedError` (time, length, segments, residual) if the
+    load cannot be raised to its full value.
+    """
+    g = model.grid
+    r, T, R = initial_guess(model, t) if guess is None else guess
+    T = np.array(T, dtype=float)
+    if model.tension_mode:
+        T[0] = model.ground_tension_N
+    else:
+        R = model.radius_m
+    e, e_dot, e_ddot = model.end.state(t, 1.0)
+    frac = (g.s_m / model.length_m)[:, None]
+    kite_radius_m = model.length_m if model.tension_mode else model.radius_m
+    v = frac * (kite_radius_m * e_dot)
+    acc = frac * (kite_radius_m * e_ddot)
+    zero = np.zeros_like(r)
+    f_ref = _force_ref(model, T)
+
+    def solve(load_factor, x):
+        eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor))
+
+        def evaluate(r_int, T, R, jacobian=True):
+            return eq.evaluate(_nodes(model, r_int, R, e), v, zero, T, e, f_ref, jacobian=jacobian)
+
+        return _static_newton(model, evaluate, x, max_iter)
+
+    try:
+        r_int, T, R = continuation(solve, (r[1:-1].copy(), T, R))
+    except ContinuationFailed as exc:
+        raise SolverDivergedError(
+            f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
+            f"no convergence beyond {exc.load_factor:.6g} of the wind and drag load, scaled "
+            f"residual {exc.residual:.3e}") from None
+    return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
 
 
 class _NotConverged(Exception):

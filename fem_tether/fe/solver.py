@@ -2,13 +2,14 @@
 
 Start (seed 000 eqs. 4.19-4.20 made an equilibrium): the line is solved for
 static equilibrium at the trajectory's starting point under gravity, wind and
-the drag of a frozen rigid-rotation velocity field v(s) = (s/L) v_kite, from an
-analytic guess (straight line in tension mode, catenary in prescribed mode)
-with a backtracking Newton.  Then the generalised-alpha scheme
-(:mod:`.integrator`) advances whole periods of the eight: spin-up, then the
-averaging window.  A step whose Newton iteration fails is halved, up to
-``max_halvings`` times, then :class:`SolverDivergedError` says when, for which
-length, and the residual.
+the drag of a frozen rigid-rotation velocity field v(s) = (s/L) v_kite, from
+the catenary (the gravity-only equilibrium) with the wind and drag load
+ramped up (:mod:`fem_tether.continuation`), each load step a backtracking
+Newton solve (:func:`static_equilibrium` says why).  Then the
+generalised-alpha scheme (:mod:`.integrator`) advances whole periods of the
+eight: spin-up, then the averaging window.  A step whose Newton iteration
+fails is halved, up to ``max_halvings`` times, then
+:class:`SolverDivergedError` says when, for which length, and the residual.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import time
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.optimize import brentq
 
 from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
@@ -29,6 +31,7 @@ from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.system import TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
+from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.tether import physics_from_config
@@ -86,68 +89,159 @@ def _force_ref(model: FEModel, T) -> float:
     return model.ground_tension_N if model.tension_mode else max(float(np.max(np.abs(T))), weight, 1.0)
 
 
+def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:
+    """Chord R of the catenary of length L towards ``e0`` whose winch tension is T_0.
+
+    On the taut branch T(0) rises monotonically to infinity as R -> L: R is
+    found between L/2 and (1 - 1e-12) L, and is L/2 when T_0 is below even
+    that catenary's winch tension (a winch too weak for the line's weight).
+    None when T_0 is above the tension at (1 - 1e-12) L: a weightless line, or
+    one so taut that its sag is lost in round-off.
+    """
+    L = model.length_m
+
+    def excess_N(R):
+        return Catenary(L, tuple(R * e0), weight_N_m).tension_N(0.0) - model.ground_tension_N
+
+    lo, hi = 0.5 * L, (1.0 - 1e-12) * L
+    if excess_N(hi) <= 0.0:
+        return None
+    return lo if excess_N(lo) >= 0.0 else brentq(excess_N, lo, hi)
+
+
 def initial_guess(model: FEModel, t=0.0):
-    """Straight line (tension mode) or catenary (prescribed) with its tension."""
+    """The gravity-only equilibrium of the continuous line, ``(r, T, R)``.
+
+    The catenary through the winch and the kite end: in prescribed mode at the
+    prescribed radius, in tension mode the one whose winch tension is T_0
+    (:func:`_winch_chord_m`); an elastic line whose prescribed radius is at
+    least L is stretched straight with the tension of its strain.  Not the
+    straight line of length L in tension mode (exact, and the fallback, only
+    for a weightless line): at it the Newton step's bordered solve (R
+    eliminated, so the kite end held fixed) is singular, as a straight
+    inextensible line between fixed ends carries any tension.  The catenary's
+    sag, however small (1e-8 L at L = 200 m and T_0 = 150 kN), makes it
+    regular.
+    """
     s = model.system.spaces.s_m
+    s_mid = model.system.spaces.s_mid_m
     e0 = model.end.state(t, 1.0)[0]
-    if model.tension_mode:
-        return s[:, None] * e0, np.full(s.size - 1, model.ground_tension_N), model.length_m
     ph = model.system.physics
-    w = ph.linear_density_kg_m * ph.gravity_ms2
+    w = max(ph.linear_density_kg_m * ph.gravity_ms2, 1e-12)
+    if model.tension_mode:
+        R = _winch_chord_m(model, e0, w)
+        if R is None:
+            return s[:, None] * e0, np.full(s_mid.size, model.ground_tension_N), model.length_m
+        cat = Catenary(model.length_m, tuple(R * e0), w)
+        return cat.position(s), cat.tension_N(s_mid), R
     if model.radius_m >= model.length_m:          # elastic line stretched taut
         stretch = model.radius_m / model.length_m
         tension = max((stretch - 1.0) / ph.compliance_per_N, w * model.length_m, 1.0)
-        return stretch * s[:, None] * e0, np.full(s.size - 1, tension), model.radius_m
-    cat = Catenary(model.length_m, tuple(model.radius_m * e0), max(w, 1e-12))
-    return cat.position(s), cat.tension_N(model.system.spaces.s_mid_m), model.radius_m
+        return stretch * s[:, None] * e0, np.full(s_mid.size, tension), model.radius_m
+    cat = Catenary(model.length_m, tuple(model.radius_m * e0), w)
+    return cat.position(s), cat.tension_N(s_mid), model.radius_m
 
 
-def static_equilibrium(model: FEModel, t=0.0, max_iter=100) -> State:
-    """Equilibrium at time ``t`` with the frozen rigid-rotation velocity field.
+def _residual_norm(evaluate, x):
+    """The 2-norm of ``evaluate(x, jacobian=False).residual``; infinite where the
+    iterate leaves the atmosphere's range (ValueError)."""
+    try:
+        return np.linalg.norm(evaluate(x, jacobian=False).residual)
+    except ValueError:
+        return math.inf
 
-    Backtracking Newton from :func:`initial_guess`; raises
-    :class:`SolverDivergedError` if the residual does not fall below tolerance.
+
+def _newton(evaluate, newton_step, x, f_ref, tol, max_iter):
+    """Backtracking Newton: ``x`` with ``max |evaluate(x).residual| <= tol f_ref``.
+
+    Each step is halved until the residual's 2-norm falls (Armijo; trial
+    residuals without the Jacobian, which costs ~6 residuals); the solve fails
+    (:class:`NotConverged`, with the scaled residual) on a start above the
+    atmosphere, on a singular Jacobian, on no decrease down to a step of
+    1e-4, or after ``max_iter`` steps.
     """
-    sys_ = model.system
-    s = sys_.spaces.s_m
-    r, T, R = initial_guess(model, t)
-    e, e_dot, e_ddot = model.end.state(t, 1.0)
-    v = (s / model.length_m)[:, None] * (R * e_dot)
-    acc = (s / model.length_m)[:, None] * (R * e_ddot)
-    zero = np.zeros_like(r)
-    f_ref = _force_ref(model, T)
-    x = sys_.pack(r, T, R)
-
-    def evaluate(x, jacobian=True):
-        r, T, R = sys_.unpack(x)
-        return sys_.evaluate(r, v, zero, T, R, e, model.ground_tension_N, model.radius_m,
-                             f_ref, jacobian=jacobian)
-
-    ev = evaluate(x)
+    try:
+        ev = evaluate(x)
+    except ValueError:
+        raise NotConverged(math.inf) from None
     norm = np.linalg.norm(ev.residual)
     for _ in range(max_iter):
-        if np.max(np.abs(ev.residual)) <= model.newton_tol * f_ref:
-            r, T, R = sys_.unpack(x)
-            return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
+        if np.max(np.abs(ev.residual)) <= tol * f_ref:
+            return x
         try:
-            dx = sys_.newton_step(ev)
+            dx = newton_step(ev)
         except np.linalg.LinAlgError:
             break
         step = 1.0
-        while step > 1e-4:
-            trial = x + step * dx
-            ev_trial = evaluate(trial)
-            norm_trial = np.linalg.norm(ev_trial.residual)
-            if np.isfinite(norm_trial) and norm_trial < (1.0 - 1e-4 * step) * norm:
-                break
+        while not _residual_norm(evaluate, x + step * dx) < (1.0 - 1e-4 * step) * norm:
             step *= 0.5
-        if not np.isfinite(norm_trial):
-            break
-        x, ev, norm = trial, ev_trial, norm_trial
-    raise SolverDivergedError(
-        f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
-        f"{sys_.spaces.n_elements} elements: no convergence from the analytic guess, scaled "
-        f"residual {np.max(np.abs(ev.residual)) / f_ref:.3e}")
+            if step < 1e-4:
+                raise NotConverged(np.max(np.abs(ev.residual)) / f_ref)
+        x = x + step * dx
+        ev = evaluate(x)
+        norm = np.linalg.norm(ev.residual)
+    raise NotConverged(np.max(np.abs(ev.residual)) / f_ref)
+
+
+def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
+    """Equilibrium at time ``t`` with the frozen rigid-rotation velocity field.
+
+    Loads: gravity, the wind and the drag of v(s) = (s/L) R0 e'(t) (R0 = L in
+    tension mode, the prescribed radius otherwise).  The aerodynamic load is
+    ramped (:func:`fem_tether.continuation.continuation`): the gravity-only
+    equilibrium is solved from ``guess = (r, T, R)`` (default
+    :func:`initial_guess`, the catenary), then the full load is tried in one
+    step and, where that fails, in halved load steps, each a backtracking
+    Newton solve (:func:`_newton`, ``max_iter`` iterations) from the last
+    equilibrium.  Raises :class:`SolverDivergedError` (time, length, elements,
+    residual) if the load cannot be raised to its full value.
+
+    Why (measured): the former start, Newton from the straight line in tension
+    mode, failed or succeeded by rounding.  Not a local minimum of the
+    residual, a folded line or the residual's scaling: at the straight line of length L the bordered Newton solve (R
+    eliminated, :meth:`TetherSystem.newton_step`) is singular (condition
+    ~1e17) although the full Jacobian is not (~1e3 to 1e6), so the first step
+    was rounding noise, 1e2 to 1e3 times the true one; with 2 and 3 uniform
+    elements here (4 elsewhere) LAPACK found an exact zero pivot and the
+    solve stopped at the guess's residual (3.65e-2 for 4 elements at 1000 m).
+    The catenary guess removes that singularity (bordered and full-system
+    steps agree to 1e-11).  Separately, a slack line (prescribed radius
+    < ~0.95 L) is blown by the drag (up to ~80 times its weight) far from its
+    catenary, and Newton's first full-load steps threw it above the
+    atmosphere: the load ramp reaches it in 2 to 6 load steps.  A trust region
+    or Levenberg-Marquardt step would globalise the Newton solve too, but
+    needs the full Jacobian's scaling and radius tuning; the ramp reuses the
+    solver's Newton step and costs nothing where the full load converges
+    directly (two solves: load 0, then 1).
+    """
+    sys_ = model.system
+    s = sys_.spaces.s_m
+    r, T, R = initial_guess(model, t) if guess is None else guess
+    e, e_dot, e_ddot = model.end.state(t, 1.0)
+    kite_radius_m = model.length_m if model.tension_mode else model.radius_m
+    v = (s / model.length_m)[:, None] * (kite_radius_m * e_dot)
+    acc = (s / model.length_m)[:, None] * (kite_radius_m * e_ddot)
+    zero = np.zeros_like(r)
+    f_ref = _force_ref(model, T)
+
+    def solve(load_factor, x):
+        loaded = replace(sys_, physics=with_load_factor(sys_.physics, load_factor))
+
+        def evaluate(x, jacobian=True):
+            r, T, R = loaded.unpack(x)
+            return loaded.evaluate(r, v, zero, T, R, e, model.ground_tension_N, model.radius_m,
+                                   f_ref, jacobian=jacobian)
+
+        return _newton(evaluate, loaded.newton_step, x, f_ref, model.newton_tol, max_iter)
+
+    try:
+        r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
+    except ContinuationFailed as exc:
+        raise SolverDivergedError(
+            f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
+            f"{sys_.spaces.n_elements} elements: no convergence beyond {exc.load_factor:.6g} of the "
+            f"wind and drag load, scaled residual {exc.residual:.3e}") from None
+    return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
 def initial_state(model: FEModel, t=0.0) -> State:
