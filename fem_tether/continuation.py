@@ -39,22 +39,27 @@ MIN_LOAD_STEP = 2.0 ** -20
 
 
 class NotConverged(Exception):
-    """A Newton solve at one load factor failed; ``residual`` is its last scaled residual."""
+    """A Newton solve at one load factor failed; ``residual`` is its last scaled
+    residual, ``cause`` why it failed if known (e.g. the line left the atmosphere)."""
 
-    def __init__(self, residual: float):
-        super().__init__(f"scaled residual {residual:.3e}")
-        self.residual = residual
+    def __init__(self, residual: float, cause: str = ""):
+        super().__init__(cause or f"scaled residual {residual:.3e}")
+        self.residual, self.cause = residual, cause
 
 
 class ContinuationFailed(Exception):
     """The load could not be raised beyond ``load_factor`` (steps down to ``MIN_LOAD_STEP``
-    failed); ``residual`` is the last failed solve's scaled residual."""
+    failed); ``residual`` and ``cause`` are the last failed solve's."""
 
-    def __init__(self, load_factor: float, residual: float):
+    def __init__(self, load_factor: float, residual: float, cause: str = ""):
         super().__init__(f"no convergence beyond load factor {load_factor:.6g}, "
-                         f"scaled residual {residual:.3e}")
-        self.load_factor = load_factor
-        self.residual = residual
+                         + (cause or f"scaled residual {residual:.3e}"))
+        self.load_factor, self.residual, self.cause = load_factor, residual, cause
+
+    def reason(self) -> str:
+        """What a solver's error message says after naming the case."""
+        return (f"no convergence beyond {self.load_factor:.6g} of the wind and drag load: "
+                + (self.cause or f"scaled residual {self.residual:.3e}"))
 
 
 @dataclass(frozen=True)
@@ -91,7 +96,7 @@ def continuation(solve, start, min_step: float = MIN_LOAD_STEP):
     try:
         x = solve(0.0, start)
     except NotConverged as exc:
-        raise ContinuationFailed(0.0, exc.residual) from None
+        raise ContinuationFailed(0.0, exc.residual, exc.cause) from None
     load, step = 0.0, 1.0
     while load < 1.0:
         target = min(1.0, load + step)
@@ -100,5 +105,5 @@ def continuation(solve, start, min_step: float = MIN_LOAD_STEP):
         except NotConverged as exc:
             step *= 0.5
             if step < min_step:
-                raise ContinuationFailed(load, exc.residual) from None
+                raise ContinuationFailed(load, exc.residual, exc.cause) from None
     return x

@@ -1,4 +1,7 @@
-"""Exceptions shared by the solvers and the sweep driver."""
+"""Exceptions shared by the solvers and the sweep driver, and the physical
+reasons a solve fails (named in their messages)."""
+
+import numpy as np
 
 
 class SolverDivergedError(RuntimeError):
@@ -10,3 +13,27 @@ def left_atmosphere(exc) -> str:
     for :class:`SolverDivergedError` messages; ``exc`` an AltitudeError)."""
     return (f"the line left the atmosphere ({exc}): the tension is too low to hold it "
             "against its drag, weight and the wind")
+
+
+def slack(tension_N, s_mid_m) -> str:
+    """Why a line with a negative tension is no longer the model's ("" if none is):
+    a string carries no compression."""
+    k = int(np.argmin(tension_N))
+    if tension_N[k] >= 0.0:
+        return ""
+    return (f"the line went slack (tension {tension_N[k]:.0f} N at s = {s_mid_m[k]:.0f} m; a string "
+            "carries no compression): the winch tension is too low to keep it taut against its "
+            "drag and weight")
+
+
+def check_taut(tension_N, s_mid_m, t_s: float, length_m: float) -> None:
+    """Raise :class:`SolverDivergedError` naming the time and length if the line is slack."""
+    cause = slack(tension_N, s_mid_m)
+    if cause:
+        raise SolverDivergedError(f"at t = {t_s:.4f} s, L = {length_m:g} m, {cause}")
+
+
+def too_weak_for_weight(ground_tension_N: float, weight_N: float) -> str:
+    """The cause of a static start that fails under gravity alone in tension mode."""
+    return (f"; no equilibrium even under gravity alone: the winch tension {ground_tension_N:g} N "
+            f"cannot hold the line (weight {weight_N:.0f} N) toward the kite")

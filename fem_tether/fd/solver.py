@@ -57,7 +57,7 @@ from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, left_atmosphere
+from fem_tether.errors import SolverDivergedError, check_taut, left_atmosphere, slack, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
@@ -119,11 +119,19 @@ def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
                    scheme=scheme, **case)
 
 
+def _weight_N(model: FDModel) -> float:
+    return -model.eq.physics.weight_N_m[2] * model.length_m
+
+
 def _force_ref(model: FDModel, T) -> float:
     if model.tension_mode:
         return model.ground_tension_N
-    weight = -model.eq.physics.weight_N_m[2] * model.length_m
-    return max(float(np.max(np.abs(T))), weight, 1.0)
+    return max(float(np.max(np.abs(T))), _weight_N(model), 1.0)
+
+
+def _segment_midpoints_m(model: FDModel) -> np.ndarray:
+    """Arc lengths of the segment midpoints, where the tensions live."""
+    return 0.5 * (model.grid.s_m[1:] + model.grid.s_m[:-1])
 
 
 def _nodes(model: FDModel, r_int, R, e):
@@ -161,13 +169,13 @@ def initial_guess(model: FDModel, t=0.0):
     return cat.position(g.s_m), cat.tension_N(s_mid), model.radius_m
 
 
-def _trial_norm(evaluate, x):
-    """2-norm of the residual at ``x = (r_int, T, R)`` without the Jacobian;
-    infinite where the iterate leaves the atmosphere's range (ValueError)."""
+def _trial_norm(evaluate, x) -> tuple[float, str]:
+    """2-norm of the residual at ``x = (r_int, T, R)`` without the Jacobian, or
+    infinity and the cause where the iterate leaves the atmosphere's range."""
     try:
-        return np.linalg.norm(evaluate(*x, jacobian=False).residual)
-    except ValueError:
-        return math.inf
+        return np.linalg.norm(evaluate(*x, jacobian=False).residual), ""
+    except AltitudeError as exc:
+        return math.inf, left_atmosphere(exc)
 
 
 def _static_newton(model: FDModel, evaluate, x, max_iter):
@@ -180,8 +188,8 @@ def _static_newton(model: FDModel, evaluate, x, max_iter):
     """
     try:
         ev = evaluate(*x)
-    except ValueError:
-        raise NotConverged(math.inf) from None
+    except AltitudeError as exc:
+        raise NotConverged(math.inf, left_atmosphere(exc)) from None
     for _ in range(max_iter):
         worst = float(np.max(np.abs(ev.residual)))
         if worst <= model.newton_tol:
@@ -192,10 +200,11 @@ def _static_newton(model: FDModel, evaluate, x, max_iter):
             break
         norm = np.linalg.norm(ev.residual)
         step = 1.0
-        while not _trial_norm(evaluate, _apply(model, dx, *x, step)) < (1.0 - 1e-4 * step) * norm:
+        while not (trial := _trial_norm(evaluate, _apply(model, dx, *x, step)))[0] \
+                < (1.0 - 1e-4 * step) * norm:
             step *= 0.5
             if step < 1e-4:
-                raise NotConverged(worst)
+                raise NotConverged(worst, trial[1])
         x = _apply(model, dx, *x, step)
         ev = evaluate(*x)
     raise NotConverged(float(np.max(np.abs(ev.residual))))
@@ -246,10 +255,11 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     try:
         r_int, T, R = continuation(solve, (r[1:-1].copy(), T, R))
     except ContinuationFailed as exc:
+        weak = model.tension_mode and exc.load_factor == 0.0
         raise SolverDivergedError(
             f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
-            f"no convergence beyond {exc.load_factor:.6g} of the wind and drag load, scaled "
-            f"residual {exc.residual:.3e}") from None
+            f"{exc.reason()}"
+            + (too_weak_for_weight(model.ground_tension_N, _weight_N(model)) if weak else "")) from None
     return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
 
 
@@ -428,6 +438,7 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
     wall0 = time.perf_counter()
     period = model.end.period_s
     h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
+    spinup_steps = n_steps * spinup_periods // (spinup_periods + average_periods)
     state = initial if initial is not None else static_equilibrium(model)
     t0 = state.t
     prev = None
@@ -441,8 +452,14 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
             if reel_ms or model.reel_ms:
                 target = reel.next_length(model.length_m, reel_ms, h)
                 model, prev, state = reeled(model, prev, state, target, reel_ms, *segment_bounds_m)
-            prev, state = _advance(model, prev, state, h, stats)
+            try:
+                prev, state = _advance(model, prev, state, h, stats)
+            except SolverDivergedError as exc:       # say why, if the line was slack
+                cause = slack(state.T, _segment_midpoints_m(model))
+                raise SolverDivergedError(f"{exc}; {cause}" if cause else str(exc)) from None
             state.t = t0 + i * h
+            if i > spinup_steps:                     # the start's transients are spun up
+                check_taut(state.T, _segment_midpoints_m(model), state.t, model.length_m)
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
         done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))

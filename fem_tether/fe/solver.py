@@ -25,7 +25,7 @@ from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import MAX_ELEMENTS, ConfigError, toml_value
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, left_atmosphere
+from fem_tether.errors import SolverDivergedError, check_taut, left_atmosphere, slack, too_weak_for_weight
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -84,9 +84,12 @@ def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
                    scheme=scheme_from_config(cfg), **case)
 
 
+def _weight_N(model: FEModel) -> float:
+    return model.system.physics.linear_density_kg_m * model.system.physics.gravity_ms2 * model.length_m
+
+
 def _force_ref(model: FEModel, T) -> float:
-    weight = model.system.physics.linear_density_kg_m * model.system.physics.gravity_ms2 * model.length_m
-    return model.ground_tension_N if model.tension_mode else max(float(np.max(np.abs(T))), weight, 1.0)
+    return model.ground_tension_N if model.tension_mode else max(float(np.max(np.abs(T))), _weight_N(model), 1.0)
 
 
 def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:
@@ -142,13 +145,13 @@ def initial_guess(model: FEModel, t=0.0):
     return cat.position(s), cat.tension_N(s_mid), model.radius_m
 
 
-def _residual_norm(evaluate, x):
-    """The 2-norm of ``evaluate(x, jacobian=False).residual``; infinite where the
-    iterate leaves the atmosphere's range (ValueError)."""
+def _residual_norm(evaluate, x) -> tuple[float, str]:
+    """The 2-norm of ``evaluate(x, jacobian=False).residual``, or infinity and
+    the cause where the iterate leaves the atmosphere's range."""
     try:
-        return np.linalg.norm(evaluate(x, jacobian=False).residual)
-    except ValueError:
-        return math.inf
+        return np.linalg.norm(evaluate(x, jacobian=False).residual), ""
+    except AltitudeError as exc:
+        return math.inf, left_atmosphere(exc)
 
 
 def _newton(evaluate, newton_step, x, f_ref, tol, max_iter):
@@ -162,8 +165,8 @@ def _newton(evaluate, newton_step, x, f_ref, tol, max_iter):
     """
     try:
         ev = evaluate(x)
-    except ValueError:
-        raise NotConverged(math.inf) from None
+    except AltitudeError as exc:
+        raise NotConverged(math.inf, left_atmosphere(exc)) from None
     norm = np.linalg.norm(ev.residual)
     for _ in range(max_iter):
         if np.max(np.abs(ev.residual)) <= tol * f_ref:
@@ -173,10 +176,10 @@ def _newton(evaluate, newton_step, x, f_ref, tol, max_iter):
         except np.linalg.LinAlgError:
             break
         step = 1.0
-        while not _residual_norm(evaluate, x + step * dx) < (1.0 - 1e-4 * step) * norm:
+        while not (trial := _residual_norm(evaluate, x + step * dx))[0] < (1.0 - 1e-4 * step) * norm:
             step *= 0.5
             if step < 1e-4:
-                raise NotConverged(np.max(np.abs(ev.residual)) / f_ref)
+                raise NotConverged(np.max(np.abs(ev.residual)) / f_ref, trial[1])
         x = x + step * dx
         ev = evaluate(x)
         norm = np.linalg.norm(ev.residual)
@@ -237,10 +240,11 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     try:
         r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
     except ContinuationFailed as exc:
+        weak = model.tension_mode and exc.load_factor == 0.0
         raise SolverDivergedError(
             f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
-            f"{sys_.spaces.n_elements} elements: no convergence beyond {exc.load_factor:.6g} of the "
-            f"wind and drag load, scaled residual {exc.residual:.3e}") from None
+            f"{sys_.spaces.n_elements} elements: {exc.reason()}"
+            + (too_weak_for_weight(model.ground_tension_N, _weight_N(model)) if weak else "")) from None
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
@@ -399,6 +403,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     wall0 = time.perf_counter()
     period = model.end.period_s
     h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
+    spinup_steps = n_steps * spinup_periods // (spinup_periods + average_periods)
     state = initial_state(model)
     start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
     record = Recorder(n_steps, output_every)
@@ -409,8 +414,14 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
             if reel_ms or model.reel_ms:
                 target = reel.next_length(model.length_m, reel_ms, h)
                 model, state = reeled(model, state, target, reel_ms, *element_bounds_m)
-            state = advance(model, state, h)
+            try:
+                state = advance(model, state, h)
+            except SolverDivergedError as exc:       # say why, if the line was slack
+                cause = slack(state.T, model.system.spaces.s_mid_m)
+                raise SolverDivergedError(f"{exc}; {cause}" if cause else str(exc)) from None
             state.t = i * h
+            if i > spinup_steps:                     # the start's transients are spun up
+                check_taut(state.T, model.system.spaces.s_mid_m, state.t, model.length_m)
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
         done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
