@@ -5,12 +5,12 @@ import pytest
 
 from fem_tether import atmosphere, drag_coefficient, wind
 from fem_tether.catenary import Catenary
-from fem_tether.config import ConfigError, load_config
+from fem_tether.config import MAX_ELEMENTS, ConfigError, load_config
 from fem_tether.fe.integrator import Kinematics, Scheme
 from fem_tether.fe.solver import (FEModel, SolverDivergedError, State, advance, build_model,
-                                  run, simulate, static_equilibrium)
+                                  initial_state, run, simulate, static_equilibrium)
 from fem_tether.fe.spaces import build_spaces
-from fem_tether.fe.mesh import unit_nodes
+from fem_tether.fe.mesh import unit_nodes, write_unit_mesh
 from fem_tether.fe.system import TetherSystem
 from fem_tether.tether import TetherPhysics
 from fem_tether.straight import closed_form_drag_N
@@ -373,3 +373,21 @@ def test_mean_drag_converges_under_mesh_refinement(quiet_cfg):
         print(f" {n:8d}  {drags[n]:11.1f}  {e:.2e}")
     assert np.all(np.log2(errors[:-1] / errors[1:]) > 1.5)
     assert errors[-1] < 1e-3
+
+
+def test_largest_accepted_mesh_starts_and_steps():
+    """[fe] elements is capped at MAX_ELEMENTS (10 000): the solver is shown to
+    start and step at that size (the cap's reason), and one more is refused."""
+    cfg = load_config(overrides={"fe": {"elements": MAX_ELEMENTS}})
+    model = build_model(cfg)
+    state = advance(model, initial_state(model), 0.05)
+    assert state.T[0] == pytest.approx(150e3, rel=1e-9) and np.min(state.T) > 0
+    with pytest.raises(ConfigError, match=r"\[fe\] elements = 10001: must be from 2 to 10000"):
+        load_config(overrides={"fe": {"elements": MAX_ELEMENTS + 1}})
+
+
+def test_mesh_file_beyond_the_cap_is_refused(tmp_path):
+    path = write_unit_mesh(tmp_path / "big.vtu", unit_nodes(MAX_ELEMENTS + 1))
+    cfg = load_config(overrides={"fe": {"mesh": str(path)}})
+    with pytest.raises(ConfigError, match=r"\[fe\] mesh = .*big.vtu\": 10001 elements, at most 10000"):
+        build_model(cfg)
