@@ -329,7 +329,7 @@ def validate(cfg: dict, eight: bool = True) -> dict:
         steps = math.ceil(period_s / cfg[section][name] - 1e-9)
         if steps < fewest:
             largest = math.floor(1e4 * period_s / fewest) / 1e4
-            raise ConfigError(f"[{section}] {name} = {toml_value(cfg[section][name])}: {steps} steps per "
+            raise ConfigError(f"[{section}] {name} = {toml_value(cfg[section][name])}: {steps} step(s) per "
                               f"period of the eight ({period_s:.3f} s), at least {fewest} needed; "
                               f"largest allowed {name} = {largest:g}")
     for stop in (length, winch["reel_out_stop_m"]):

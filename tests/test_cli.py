@@ -94,13 +94,13 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, match):
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
 @pytest.mark.parametrize("section, fewest", [("time", 36), ("fd", 72)])
 def test_coarse_time_step_names_its_key(capsys, tmp_path, command, section, fewest):
-    """A 1 s step (7 steps per period of the eight) once returned F_t 35 % off
+    """A 1 s step (8 steps per period of the eight) once returned F_t 35 % off
     with exit 0, and crosscheck blamed [output] every: now exit 2 naming the key."""
     cfg = tmp_path / "c.toml"
     cfg.write_text(f"[{section}]\ndt_s = 1.0\n")
     code, _, err = run_cli(capsys, command, str(cfg))
     assert code == 2 and err.count("\n") == 1 and "[output]" not in err
-    assert f"[{section}] dt_s = 1.0: 8 steps per period of the eight" in err and f"at least {fewest}" in err
+    assert f"[{section}] dt_s = 1.0: 8 step(s) per period of the eight" in err and f"at least {fewest}" in err
 
 
 def test_bad_config_value_exits_2(capsys, tmp_path):
