@@ -52,9 +52,8 @@ class ContinuationFailed(Exception):
     failed); ``residual`` and ``cause`` are the last failed solve's."""
 
     def __init__(self, load_factor: float, residual: float, cause: str = ""):
-        super().__init__(f"no convergence beyond load factor {load_factor:.6g}, "
-                         + (cause or f"scaled residual {residual:.3e}"))
         self.load_factor, self.residual, self.cause = load_factor, residual, cause
+        super().__init__(self.reason())
 
     def reason(self) -> str:
         """What a solver's error message says after naming the case."""

@@ -33,6 +33,13 @@ def check_taut(tension_N, s_mid_m, t_s: float, length_m: float) -> None:
         raise SolverDivergedError(f"at t = {t_s:.4f} s, L = {length_m:g} m, {cause}")
 
 
+def slack_failure(exc: SolverDivergedError, tension_N, s_mid_m) -> SolverDivergedError:
+    """``exc`` (a failed step) with the slack line named as its cause if the last
+    solved state, of tensions ``tension_N``, was slack."""
+    cause = slack(tension_N, s_mid_m)
+    return SolverDivergedError(f"{exc}; {cause}") if cause else exc
+
+
 def too_weak_for_weight(ground_tension_N: float, weight_N: float) -> str:
     """The cause of a static start that fails under gravity alone in tension mode."""
     return (f"; no equilibrium even under gravity alone: the winch tension {ground_tension_N:g} N "

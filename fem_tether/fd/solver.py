@@ -57,7 +57,8 @@ from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import ConfigError
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, check_taut, left_atmosphere, slack, too_weak_for_weight
+from fem_tether.errors import (SolverDivergedError, check_taut, left_atmosphere, slack_failure,
+                               too_weak_for_weight)
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
@@ -438,9 +439,9 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
     wall0 = time.perf_counter()
     period = model.end.period_s
     h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
-    spinup_steps = n_steps * spinup_periods // (spinup_periods + average_periods)
     state = initial if initial is not None else static_equilibrium(model)
     t0 = state.t
+    average_start_s = t0 + spinup_periods * period
     prev = None
     start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
     stats = {"newton": 0, "halvings": 0}
@@ -454,11 +455,10 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
                 model, prev, state = reeled(model, prev, state, target, reel_ms, *segment_bounds_m)
             try:
                 prev, state = _advance(model, prev, state, h, stats)
-            except SolverDivergedError as exc:       # say why, if the line was slack
-                cause = slack(state.T, _segment_midpoints_m(model))
-                raise SolverDivergedError(f"{exc}; {cause}" if cause else str(exc)) from None
+            except SolverDivergedError as exc:
+                raise slack_failure(exc, state.T, _segment_midpoints_m(model)) from None
             state.t = t0 + i * h
-            if i > spinup_steps:                     # the start's transients are spun up
+            if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
                 check_taut(state.T, _segment_midpoints_m(model), state.t, model.length_m)
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
@@ -472,7 +472,7 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
         solver="fd",
         length_m=start_length,
         period_s=period,
-        average_start_s=t0 + spinup_periods * period,
+        average_start_s=average_start_s,
         config=config or {},
         wall_s=time.perf_counter() - wall0,
         extra={"segments": model.grid.M, "dt_s": h, "scheme": model.scheme,

@@ -25,7 +25,8 @@ from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
 from fem_tether.config import MAX_ELEMENTS, ConfigError, toml_value
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, check_taut, left_atmosphere, slack, too_weak_for_weight
+from fem_tether.errors import (SolverDivergedError, check_taut, left_atmosphere, slack_failure,
+                               too_weak_for_weight)
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -403,7 +404,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     wall0 = time.perf_counter()
     period = model.end.period_s
     h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
-    spinup_steps = n_steps * spinup_periods // (spinup_periods + average_periods)
+    average_start_s = spinup_periods * period
     state = initial_state(model)
     start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
     record = Recorder(n_steps, output_every)
@@ -416,11 +417,10 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
                 model, state = reeled(model, state, target, reel_ms, *element_bounds_m)
             try:
                 state = advance(model, state, h)
-            except SolverDivergedError as exc:       # say why, if the line was slack
-                cause = slack(state.T, model.system.spaces.s_mid_m)
-                raise SolverDivergedError(f"{exc}; {cause}" if cause else str(exc)) from None
+            except SolverDivergedError as exc:
+                raise slack_failure(exc, state.T, model.system.spaces.s_mid_m) from None
             state.t = i * h
-            if i > spinup_steps:                     # the start's transients are spun up
+            if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
                 check_taut(state.T, model.system.spaces.s_mid_m, state.t, model.length_m)
             energy_J += h * reel_ms * state.T[0]
             bar.update(i)
@@ -434,7 +434,7 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
         solver="fe",
         length_m=start_length,
         period_s=period,
-        average_start_s=spinup_periods * period,
+        average_start_s=average_start_s,
         config=config or {},
         wall_s=time.perf_counter() - wall0,
         extra={"elements": model.system.spaces.n_elements, "dt_s": h},
