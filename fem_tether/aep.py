@@ -7,7 +7,8 @@ bin edges and integrated by eq. 5.2.  Probability outside the bins (a
 Weibull's tail above the last edge) produces nothing, as if the machine cut
 out there; it is reported as ``unbinned_probability``.  Usage::
 
-    straight = aep_by_length(cfg, SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG,
+    design = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines)
+    straight = aep_by_length(design, ISA(), SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG,
                              weibull_resource())
     straight.aep_MWh, straight.capacity_factor, straight.best_length_m
 """
@@ -19,7 +20,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .config import ConfigError
+from . import atmosphere
+from .errors import InputError
+from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
 from .resource import WindResource
 
@@ -58,24 +61,24 @@ class AepByLength:
         return float(self.length_m[np.argmax(self.aep_MWh)]) if self.length_m.size else None
 
 
-def aep_by_length(cfg, lengths_m, global_efficiency, mean_phi_deg, resource: WindResource,
-                  cycle: Cycle = Cycle()) -> AepByLength:
-    """AEP (eq. 5.2) and capacity factor of each length, with its G_e and mean φ.
+def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean_phi_deg,
+                  resource: WindResource, cycle: Cycle = Cycle()) -> AepByLength:
+    """AEP (eq. 5.2) and capacity factor of ``design`` flown on each length, with
+    its G_e and mean φ.
 
-    The design's ρ is ``cfg["air"]`` at z = L cosϑ0, the band the one holding
+    The design's ρ is that of ``air`` at z = L cosϑ0, the band the one holding
     z (:meth:`WindResource.band_for_length`).
     """
     lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
     ge = np.broadcast_to(global_efficiency, lengths.shape)
     phi = np.broadcast_to(mean_phi_deg, lengths.shape)
-    theta = np.radians(cfg["kite"]["theta0_deg"])
     rows = []
     for length, g, p in zip(lengths, ge, phi):
-        design = operating_design(cfg, length, g, p)
-        band = resource.band_for_length(length, theta)
-        aep = annual_energy_Wh(cycle_curves(band.edges_ms, design, cycle).power_W,
+        flown = operating_design(design, air, length, g, p)
+        band = resource.band_for_length(length, design.theta_rad)
+        aep = annual_energy_Wh(cycle_curves(band.edges_ms, flown, cycle).power_W,
                                band.probability)
-        rows.append((band.low_m, band.high_m, aep, rated_power_W(design, cycle), band.remainder))
+        rows.append((band.low_m, band.high_m, aep, rated_power_W(flown, cycle), band.remainder))
     low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float)
                                           for col in (zip(*rows) if rows else [()] * 5))
     return AepByLength(length_m=lengths, band_low_m=low, band_high_m=high, aep_MWh=aep_Wh / 1e6,
@@ -83,7 +86,7 @@ def aep_by_length(cfg, lengths_m, global_efficiency, mean_phi_deg, resource: Win
                        unbinned_probability=unbinned)
 
 
-class IncompleteSweepError(ConfigError):
+class IncompleteSweepError(InputError):
     """The sweep has lengths whose tasks have not run (an interrupted or running sweep)."""
 
 
@@ -128,6 +131,7 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
     (then they are listed in ``pending_m`` and gated like the others).
     """
     cfg = sweep_data["config"]
+    design, air = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines), atmosphere.from_config(cfg.air)
     lengths = np.asarray(sweep_data["length_m"], dtype=float)
     pending = np.asarray(sweep_data["status"]) == "pending"
     if pending.any() and not allow_incomplete:
@@ -144,9 +148,9 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
     keep = has_fe & (checked | allow_unchecked)
     has_straight = np.isfinite(ge_straight)
     return SweepAep(
-        straight=aep_by_length(cfg, lengths[has_straight], ge_straight[has_straight],
+        straight=aep_by_length(design, air, lengths[has_straight], ge_straight[has_straight],
                                phi[has_straight], resource, cycle),
-        flexible=aep_by_length(cfg, lengths[keep], ge_fe[keep], phi[keep], resource, cycle),
+        flexible=aep_by_length(design, air, lengths[keep], ge_fe[keep], phi[keep], resource, cycle),
         excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem_tether.errors import InputError
+
 SEA_LEVEL_TEMPERATURE_K = 288.15
 SEA_LEVEL_PRESSURE_PA = 101325.0
 LAPSE_RATE_K_M = 0.0065
@@ -28,7 +30,7 @@ TROPOPAUSE_M = 11000.0
 PRESSURE_EXPONENT = STANDARD_GRAVITY_M_S2 / (GAS_CONSTANT_J_KG_K * LAPSE_RATE_K_M)
 
 
-class AltitudeError(ValueError):
+class AltitudeError(InputError):
     """An altitude above the troposphere, where the ISA model does not hold."""
 
     def __init__(self, altitude_m: float):
@@ -106,9 +108,8 @@ class ConstantAir:
         return np.zeros(np.shape(z_m))
 
 
-def from_config(cfg: dict) -> ISA | ConstantAir:
-    """The air model of ``cfg["air"]``: ``model = "isa"`` or ``"constant"``."""
-    air = cfg["air"]
-    if air["model"] == "isa":
+def from_config(air) -> ISA | ConstantAir:
+    """The air model of the ``[air]`` section: ``model = "isa"`` or ``"constant"``."""
+    if air.model == "isa":
         return ISA()
-    return ConstantAir(air["density_kg_m3"], air["viscosity_Pa_s"])
+    return ConstantAir(air.density_kg_m3, air.viscosity_Pa_s)

@@ -13,8 +13,10 @@ import os
 from contextlib import contextmanager
 from pathlib import Path
 
+from fem_tether.errors import InputError
 
-class OutputError(OSError):
+
+class OutputError(InputError, OSError):
     """An output path cannot be written; the message names it."""
 
 

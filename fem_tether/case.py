@@ -11,9 +11,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from fem_tether.config import merge, validate
-from fem_tether.trajectory import FigureEight
-
 
 @dataclass
 class TetherCase:
@@ -29,12 +26,10 @@ class TetherCase:
     max_halvings: int
 
 
-def case_fields(cfg, length_m=None, end=None) -> dict:
-    """Validated :class:`TetherCase` fields of ``cfg`` (``end``: default the eight)."""
-    length = float(cfg["tether"]["length_m"] if length_m is None else length_m)
-    validate(merge(cfg, {"tether": {"length_m": length}}), eight=end is None)
-    t = cfg["time"]
-    return dict(end=end or FigureEight.from_config(cfg, length_m=length), length_m=length,
-                tension_mode=cfg["winch"]["mode"] == "tension",
-                ground_tension_N=cfg["winch"]["ground_tension_N"], radius_m=cfg["kite"]["radius_m"],
-                newton_tol=t["newton_tol"], max_newton=t["max_newton"], max_halvings=t["max_halvings"])
+def case_fields(cfg, end=None) -> dict:
+    """:class:`TetherCase` fields of the configuration ``cfg`` (``end``: default its eight)."""
+    t = cfg.time
+    return dict(end=end or cfg.eight, length_m=cfg.tether.length_m,
+                tension_mode=cfg.winch.mode == "tension",
+                ground_tension_N=cfg.winch.ground_tension_N, radius_m=cfg.kite.radius_m,
+                newton_tol=t.newton_tol, max_newton=t.max_newton, max_halvings=t.max_halvings)

@@ -21,12 +21,10 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import __version__, kite
-from fem_tether.atomic import OutputError, check_writable
-from fem_tether.config import MAX_ELEMENTS, ConfigError, load_config, merge, to_toml, validate
-from fem_tether.errors import SolverDivergedError
-from fem_tether.fe.integrator import SchemeError
+from fem_tether.atomic import check_writable
+from fem_tether.config import MAX_ELEMENTS, load_config
+from fem_tether.errors import InputError, SolverDivergedError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
-from fem_tether.resource import ResourceError
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
@@ -91,7 +89,7 @@ def _print_json(data):
 
 # --- commands ---------------------------------------------------------------------
 def cmd_config(args):
-    print(to_toml(load_config(args.config)), end="")
+    print(load_config(args.config).to_toml(), end="")
     return 0
 
 
@@ -99,16 +97,15 @@ def cmd_straight(args):
     from fem_tether import straight
 
     cfg = _config(args)
-    lengths = args.lengths or [args.length or cfg["tether"]["length_m"]]
-    kite_cfg, tether = cfg["kite"], cfg["tether"]
-    theta = np.radians(kite_cfg["theta0_deg"])
+    lengths = args.lengths or [args.length or cfg.tether.length_m]
+    kite_cfg, tether = cfg.kite, cfg.tether
+    theta = np.radians(kite_cfg.theta0_deg)
     rows = []
     for length in lengths:
-        validate(merge(cfg, {"tether": {"length_m": length}}))
-        integral = straight.from_config(cfg, length_m=length, with_wind=args.wind)
+        integral = straight.from_config(cfg.with_length(length), with_wind=args.wind)
         rho = args.rho or integral.mean_density_kg_m3
         cd = args.cd or integral.cd_top
-        closed = straight.closed_form_drag_N(rho, cd, tether["diameter_m"], length, kite_cfg["speed_ms"])
+        closed = straight.closed_form_drag_N(rho, cd, tether.diameter_m, length, kite_cfg.speed_ms)
         rows.append({
             "length_m": length,
             "drag_N": closed if args.closed_form else integral.drag_N,
@@ -124,8 +121,8 @@ def cmd_straight(args):
     if args.json:
         _print_json(rows[0] if len(rows) == 1 else {"rows": rows})
         return 0
-    print(f"straight-line tether drag F_t per line, theta = {kite_cfg['theta0_deg']:g} deg, "
-          f"d = {1e3 * tether['diameter_m']:g} mm, V_k = {kite_cfg['speed_ms']:g} m/s, "
+    print(f"straight-line tether drag F_t per line, theta = {kite_cfg.theta0_deg:g} deg, "
+          f"d = {1e3 * tether.diameter_m:g} mm, V_k = {kite_cfg.speed_ms:g} m/s, "
           f"{'with wind' if args.wind else 'quiet air'}")
     print("   L [m]   F_t [N]   integral [N]  closed [N] (rho, C_d)     C_d,c top  Re top")
     for r in rows:
@@ -139,7 +136,8 @@ def cmd_curves(args):
     from fem_tether.plots import plot_characteristic_curves
 
     cfg = _config(args)
-    design = kite.KiteGenDesign.from_config(cfg, efficiency=args.ge, phi_deg=args.phi_deg)
+    design = kite.KiteGenDesign.from_config(cfg.kite, cfg.tether.lines, efficiency=args.ge,
+                                            phi_deg=args.phi_deg)
     speeds = kite.characteristic_speeds(design)
     wind_ms = np.linspace(0.0, max(45.0, 1.2 * speeds.full_power_ms), 901)
     curves = kite.characteristic_curves(wind_ms, design)
@@ -169,7 +167,7 @@ def cmd_simulate(args):
 
     cfg = _config(args, args.length)
     if args.out:
-        stem = Path(args.out) / f"fe_L{cfg['tether']['length_m']:g}"
+        stem = Path(args.out) / f"fe_L{cfg.tether.length_m:g}"
         check_writable(stem.with_suffix(".h5"))
         check_writable(stem, directory=True)
     run = simulate(cfg, progress=not args.json)
@@ -182,7 +180,7 @@ def cmd_simulate(args):
         except BaseException:
             shutil.rmtree(stem, ignore_errors=True)   # both files or neither
             raise
-        if cfg["winch"]["reel_out"] != "none":
+        if cfg.winch.reel_out != "none":
             from fem_tether.pipeline import reel_drag_plot
             summary["reel_plot"] = str(reel_drag_plot(run, cfg, stem.with_name(stem.name + "_reel_drag.png"),
                                                       args.sweep))
@@ -199,7 +197,7 @@ def cmd_simulate(args):
     print(f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m")
     print(f"  G_e                       {s['ge']:10.2f}")
     print(f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}")
-    if cfg["winch"]["reel_out"] != "none":
+    if cfg.winch.reel_out != "none":
         print(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
               f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line (the means above mix lengths; "
               "F_t(L) is in the HDF5 series and the plot)")
@@ -302,6 +300,7 @@ def cmd_aep(args):
 def cmd_run(args):
     from fem_tether.pipeline import summary_table, sweep_aep, write_json, write_plots
     from fem_tether.power import Cycle
+    from fem_tether import wind
     from fem_tether.resource import from_config as resource_from_config
     from fem_tether.sweep import load_job, read_sweep, sweep
 
@@ -309,8 +308,8 @@ def cmd_run(args):
     job = load_job(args.job)
     out = Path(args.out)
     h5 = out / "sweep.h5"
-    resource_from_config(job.config)       # a bad resource fails now, not after the sweep
-    Cycle(**job.config["cycle"])
+    resource_from_config(job.config.resource, wind.from_config(job.config.wind))   # fails now, not after the sweep
+    Cycle(**job.config.cycle.to_dict())
     outcome = sweep(job, h5)
     if outcome is None:
         return 0
@@ -488,7 +487,7 @@ def _complete(request) -> None:
 def _run(args) -> int:
     try:
         return args.func(args)
-    except (ConfigError, MeshError, SchemeError, ResourceError, OutputError) as exc:
+    except InputError as exc:
         return _fail(f"fem-tether: error: {exc}", EXIT_USAGE)
     except SolverDivergedError as exc:
         return _fail(f"fem-tether: solver failed: {exc}", EXIT_FAILED)

@@ -16,14 +16,13 @@ over the lengths both runs reached.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.config import ConfigError, merge
+from fem_tether.config import Crosscheck, steps_per_period
+from fem_tether.errors import ConfigError
 from fem_tether.results import TetherRun, period_average
-from fem_tether.trajectory import FigureEight
 
 QUANTITIES = (("drag", "drag_N"), ("ground_tension", "ground_tension_N"),
               ("kite_tension", "kite_tension_N"))
@@ -92,10 +91,10 @@ MIN_SNAPSHOTS_PER_PERIOD = 10
 def checkable(cfg: dict) -> dict:
     """``cfg`` with ``[output] every`` lowered, if needed, so that both solvers
     store at least ``MIN_SNAPSHOTS_PER_PERIOD`` snapshots per period."""
-    period = FigureEight.from_config(cfg).period_s
-    steps = min(math.ceil(period / cfg["time"]["dt_s"] - 1e-9), math.ceil(period / cfg["fd"]["dt_s"] - 1e-9))
-    every = max(1, min(cfg["output"]["every"], steps // MIN_SNAPSHOTS_PER_PERIOD))
-    return merge(cfg, {"output": {"every": every}})
+    period = cfg.eight.period_s
+    steps = min(steps_per_period(period, cfg.time.dt_s), steps_per_period(period, cfg.fd.dt_s))
+    every = max(1, min(cfg.output.every, steps // MIN_SNAPSHOTS_PER_PERIOD))
+    return cfg.replace(output={"every": every})
 
 
 def _along_length(a: TetherRun, b: TetherRun, key: str) -> float:
@@ -106,17 +105,17 @@ def _along_length(a: TetherRun, b: TetherRun, key: str) -> float:
     return float(np.max(np.abs(np.interp(la[inside], lb, yb) / ya[inside] - 1.0)))
 
 
-def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
+def compare(fe: TetherRun, fd: TetherRun, tolerances: Crosscheck) -> CrossCheck:
     """Compare two runs of the same case against ``tolerances``.
 
-    ``tolerances``: ``drag_rel``, ``tension_rel`` (both relative), ``shape_rel``
-    (fraction of L).  The shape is compared at the snapshots, so each run must
+    ``tolerances``: the ``[crosscheck]`` section: ``drag_rel``, ``tension_rel``
+    (both relative), ``shape_rel`` (fraction of L).  The shape is compared at the snapshots, so each run must
     store at least ``MIN_SNAPSHOTS_PER_PERIOD`` per period of the eight.
     """
     for run in (fe, fd):
         per_period = run.period_s / np.max(np.diff(run.snapshot_time_s))
         if per_period < MIN_SNAPSHOTS_PER_PERIOD:
-            raise ConfigError(f"[output] every = {run.config['output']['every']}: the cross-check "
+            raise ConfigError(f"[output] every = {run.config.output.every}: the cross-check "
                               f"needs at least {MIN_SNAPSHOTS_PER_PERIOD} snapshots per period of "
                               f"the eight ({run.solver.upper()} stores {per_period:.1f})")
     fe_means = {key: fe.mean(key) for _, key in QUANTITIES}
@@ -126,13 +125,13 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
     else:
         rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
     rel["shape"] = shape_difference(fe, fd)
-    limits = {"drag": tolerances["drag_rel"], "ground_tension": tolerances["tension_rel"],
-              "kite_tension": tolerances["tension_rel"], "shape": tolerances["shape_rel"]}
+    limits = {"drag": tolerances.drag_rel, "ground_tension": tolerances.tension_rel,
+              "kite_tension": tolerances.tension_rel, "shape": tolerances.shape_rel}
     ok = all(rel[k] <= limits[k] for k in limits)
-    return CrossCheck(fe.length_m, fe_means, fd_means, rel, dict(tolerances), ok)
+    return CrossCheck(fe.length_m, fe_means, fd_means, rel, tolerances.to_dict(), ok)
 
 
-def crosscheck(cfg, length_m=None, progress=False, fd_cfg=None):
+def crosscheck(cfg, progress=False, fd_cfg=None):
     """Run the FE and the FD solver on the configured case and compare them.
 
     ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
@@ -142,8 +141,8 @@ def crosscheck(cfg, length_m=None, progress=False, fd_cfg=None):
     from fem_tether import fd
     from fem_tether.fe.solver import simulate
 
-    length_m = cfg["tether"]["length_m"] if length_m is None else length_m
     cfg = checkable(cfg)
-    fe_run = simulate(cfg, length_m, progress=progress)
-    fd_run = fd.simulate(checkable(fd_cfg) if fd_cfg else cfg, length_m, progress=progress)
-    return compare(fe_run, fd_run, cfg["crosscheck"]), fe_run, fd_run
+    fd_cfg = checkable(fd_cfg.with_length(cfg.tether.length_m)) if fd_cfg else cfg
+    fe_run = simulate(cfg, progress=progress)
+    fd_run = fd.simulate(fd_cfg, progress=progress)
+    return compare(fe_run, fd_run, cfg.crosscheck), fe_run, fd_run

@@ -157,9 +157,9 @@ class ConstantDrag:
         return np.zeros(np.shape(re))
 
 
-def from_config(cfg: dict) -> CylinderDrag | ConstantDrag:
-    """The drag model of ``cfg["drag"]``: ``model = "cylinder"`` or ``"constant"`` (uses ``cd``)."""
-    drag = cfg["drag"]
-    if drag["model"] == "cylinder":
+def from_config(drag) -> CylinderDrag | ConstantDrag:
+    """The drag model of the ``[drag]`` section: ``model = "cylinder"`` or
+    ``"constant"`` (uses ``cd``)."""
+    if drag.model == "cylinder":
         return CylinderDrag()
-    return ConstantDrag(drag["cd"])
+    return ConstantDrag(drag.cd)

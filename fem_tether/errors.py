@@ -1,10 +1,31 @@
-"""Exceptions shared by the solvers and the sweep driver, and the physical
-reasons a solve fails (named in their messages)."""
+"""The project's exceptions, and the physical reasons a solve fails (named in
+their messages).
+
+Two families, which the CLI tells apart by their bases alone:
+
+- :class:`InputError`: something a user can get wrong (a configuration key, a
+  file, a table); its message is one line naming the key or file.  The CLI
+  prints it and exits with code 2.
+- :class:`SolverDivergedError`: a valid case the solver could not follow; the
+  message says when, for which length, and why.  Exit code 1.
+"""
 
 import numpy as np
 
 
-class SolverDivergedError(RuntimeError):
+class FemTetherError(Exception):
+    """Base of every error fem-tether raises on purpose."""
+
+
+class InputError(FemTetherError, ValueError):
+    """A user input (configuration, file, table, option) is wrong; the message names it."""
+
+
+class ConfigError(InputError):
+    """A configuration value is unknown, of the wrong type or out of range."""
+
+
+class SolverDivergedError(FemTetherError, RuntimeError):
     """A solve did not converge; the message says when, for which length, and why."""
 
 

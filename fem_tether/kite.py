@@ -5,10 +5,10 @@ any parameter, may be NumPy arrays that broadcast together.  SI units
 throughout; angles in radians, ϑ measured **from the vertical**.  Equation
 numbers are seed 000's (Roselli 2016) unless stated.  Usage::
 
-    design = KiteGenDesign.from_config(cfg)                 # E = 28, ρ = 1, φ = 11°
+    design = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines)   # E = 28, ρ = 1, φ = 11°
     speeds = characteristic_speeds(design)                  # 2.86, 3.63, 23.08 m/s
     curves = characteristic_curves(np.linspace(0, 30, 301), design)
-    with_cables = KiteGenDesign.from_config(cfg, efficiency=g_e, phi_deg=1.28)
+    with_cables = KiteGenDesign.from_config(cfg.kite, 2, efficiency=g_e, phi_deg=1.28)
 """
 
 from __future__ import annotations
@@ -100,26 +100,25 @@ class KiteGenDesign:
     kite_efficiency: float | None = None
 
     @classmethod
-    def from_config(cls, cfg, efficiency=None, phi_deg=None, rho_kg_m3=None):
-        """The design of ``cfg["kite"]`` and ``cfg["tether"]["lines"]``.
+    def from_config(cls, kite, lines, efficiency=None, phi_deg=None, rho_kg_m3=None):
+        """The design of the ``[kite]`` section flown on ``lines`` lines.
 
         ``efficiency`` replaces E in the force law (pass G_e), ``phi_deg`` the
         design azimuth and ``rho_kg_m3`` the curves' air density (default: the
         seed's conservative 1 kg/m³).  The cut-in speed keeps the wing's E.
         """
-        kite = cfg["kite"]
         return cls(
-            rho_kg_m3=kite["air_density_kg_m3"] if rho_kg_m3 is None else rho_kg_m3,
-            area_m2=kite["area_m2"],
-            cl=kite["cl"],
-            efficiency=kite["efficiency"] if efficiency is None else efficiency,
-            speed_ms=kite["speed_ms"],
-            theta_rad=np.radians(kite["theta0_deg"]),
-            phi_rad=np.radians(kite["design_phi_deg"] if phi_deg is None else phi_deg),
-            nominal_force_N=kite["nominal_force_N"],
-            max_reel_out_ms=kite["max_reel_out_ms"],
-            lines=cfg["tether"]["lines"],
-            kite_efficiency=kite["efficiency"],
+            rho_kg_m3=kite.air_density_kg_m3 if rho_kg_m3 is None else rho_kg_m3,
+            area_m2=kite.area_m2,
+            cl=kite.cl,
+            efficiency=kite.efficiency if efficiency is None else efficiency,
+            speed_ms=kite.speed_ms,
+            theta_rad=np.radians(kite.theta0_deg),
+            phi_rad=np.radians(kite.design_phi_deg if phi_deg is None else phi_deg),
+            nominal_force_N=kite.nominal_force_N,
+            max_reel_out_ms=kite.max_reel_out_ms,
+            lines=lines,
+            kite_efficiency=kite.efficiency,
         )
 
     @property

@@ -54,7 +54,7 @@ import numpy as np
 
 from . import __version__
 from .atomic import atomic_path, check_writable
-from .config import to_toml
+from .config import Config
 from .quantities import attributes
 from .results import CELL_FIELDS, TetherRun
 
@@ -89,7 +89,7 @@ def _dataset(group, name, data, **kwargs):
 
 def _write_hdf5(f: h5py.File, run: TetherRun, extra_attrs: dict):
     f.attrs.update({
-        "config_toml": to_toml(run.config),
+        "config_toml": run.config.to_toml() if run.config else "",
         "fem_tether_version": __version__,
         "solver": run.solver,
         "length_m": run.length_m,
@@ -136,7 +136,7 @@ def read_run_hdf5(path) -> TetherRun:
             snapshot_time_s=snapshots["time_s"][()],
             snapshots={k: v[()] for k, v in snapshots.items() if k != "time_s"},
             average_start_s=float(f.attrs["average_start_s"]),
-            config=tomllib.loads(f.attrs["config_toml"]),
+            config=Config.from_dict(tomllib.loads(f.attrs["config_toml"])),
             wall_s=float(f.attrs["wall_s"]),
             extra={k: _python(v) for k, v in f["extra"].attrs.items() if k != "description"},
         )

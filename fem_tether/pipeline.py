@@ -12,9 +12,10 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether import plots
+from fem_tether import atmosphere, plots, wind
 from fem_tether.aep import SweepAep, aep_of_sweep
 from fem_tether.atomic import atomic_path
+from fem_tether.kite import KiteGenDesign
 from fem_tether.power import Cycle, cycle_curves, operating_design
 from fem_tether.resource import from_config as resource_from_config
 
@@ -22,7 +23,8 @@ from fem_tether.resource import from_config as resource_from_config
 def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
     """AEP of a sweep result with the configured (or given) wind resource and cycle."""
     cfg = data["config"]
-    return aep_of_sweep(data, resource_from_config(cfg, wind_csv), Cycle(**cfg["cycle"]),
+    return aep_of_sweep(data, resource_from_config(cfg.resource, wind.from_config(cfg.wind), wind_csv),
+                        Cycle(**cfg.cycle.to_dict()),
                         allow_unchecked, allow_incomplete)
 
 
@@ -37,14 +39,16 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
         "ge": plots.plot_ge(lengths, {c: data[g] for c, (_, g) in cases.items()},
                             directory / "ge_vs_length.png"),
     }
-    cycle = Cycle(**cfg["cycle"])
-    wind = np.linspace(0.0, cfg["resource"]["max_speed_ms"], 501)
+    cycle = Cycle(**cfg.cycle.to_dict())
+    base = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines)
+    air = atmosphere.from_config(cfg.air)
+    wind = np.linspace(0.0, cfg.resource.max_speed_ms, 501)
     curves = {}
     for i in (0, lengths.size - 1):
         for case, (_, ge_key) in cases.items():
             ge = data[ge_key][i]
             if np.isfinite(ge):
-                design = operating_design(cfg, lengths[i], ge, data["mean_phi_deg"][i])
+                design = operating_design(base, air, lengths[i], ge, data["mean_phi_deg"][i])
                 curves[f"{lengths[i]:g} m, {case}"] = cycle_curves(wind, design, cycle)
     files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png")
     files["aep"] = plots.plot_aep({"straight": energy.straight, "flexible": energy.flexible},
@@ -66,7 +70,8 @@ def reel_drag_plot(run, cfg, path, sweep_file=None) -> Path:
 
     curve = period_average(run, "drag_N")
     lengths = np.linspace(run.series["length_m"].min(), run.series["length_m"].max(), 30)
-    straight_drag = [straight.from_config(cfg, L, with_wind=True).drag_N for L in lengths]
+    line = straight.line_of_config(cfg, with_wind=True)
+    straight_drag = [line(L).drag_N for L in lengths]
     points = None
     if sweep_file:
         data = read_sweep(sweep_file)

@@ -8,7 +8,8 @@ curve (seed 000 Fig. 5.5): reel-out over a stroke, then a side-slip recovery
 (seed 000 §2.1.2) at reel-in speed V_in against a low force, modelled by seed
 004 eq. 3.24.  Usage::
 
-    design = operating_design(cfg, length_m=3000.0, global_efficiency=7.43, mean_phi_deg=1.28)
+    design = operating_design(KiteGenDesign.from_config(cfg.kite, cfg.tether.lines), ISA(),
+                              length_m=3000.0, global_efficiency=7.43, mean_phi_deg=1.28)
     cycle = cycle_curves(np.linspace(0, 40, 81), design, Cycle())
     cycle.active.power_W, cycle.power_W            # active phase, cycle mean
 
@@ -24,11 +25,10 @@ V_in = 17.5 m/s; 3 MW would take V_in ≈ 39 m/s.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from . import atmosphere
 from .kite import CharacteristicCurves, KiteGenDesign, characteristic_curves, characteristic_speeds
 
 #: Seed 000 §5: mean cable length of each 300 m altitude band (Tab. 5.1)
@@ -47,18 +47,17 @@ def operating_altitude_m(length_m, theta_rad):
     return np.asarray(length_m, dtype=float) * np.cos(theta_rad)
 
 
-def operating_design(cfg, length_m, global_efficiency, mean_phi_deg) -> KiteGenDesign:
-    """The KiteGen design flown on lines of length L (seed 000 §5.1).
+def operating_design(design: KiteGenDesign, air, length_m, global_efficiency, mean_phi_deg) -> KiteGenDesign:
+    """``design`` flown on lines of length L (seed 000 §5.1).
 
     G_e replaces E in the force law (eq. 5.1), φ is the mean |φ| of the eight
-    (Tab. 5.2) and ρ is ``cfg["air"]``'s density at z = L cosϑ0: ISA there
+    (Tab. 5.2) and ρ is the density of ``air`` (a model of
+    :mod:`fem_tether.atmosphere`) at z = L cosϑ0: ISA there
     reproduces Tab. 5.3 within ≈1 % (the §2.4 design value of 1 kg/m³ is up to
     9 % off).  The cut-in speed keeps the wing's E (the seed's 80/E).
     """
-    z_m = operating_altitude_m(length_m, np.radians(cfg["kite"]["theta0_deg"]))
-    rho = atmosphere.from_config(cfg).density_kg_m3(z_m)
-    return KiteGenDesign.from_config(cfg, efficiency=global_efficiency, phi_deg=mean_phi_deg,
-                                     rho_kg_m3=rho)
+    rho = air.density_kg_m3(operating_altitude_m(length_m, design.theta_rad))
+    return replace(design, efficiency=global_efficiency, phi_rad=np.radians(mean_phi_deg), rho_kg_m3=rho)
 
 
 @dataclass(frozen=True)

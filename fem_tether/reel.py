@@ -31,10 +31,10 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import atmosphere, kite, wind
-from fem_tether.config import ConfigError
+from fem_tether.errors import ConfigError, InputError
 
 
-class SpeedTableError(ValueError):
+class SpeedTableError(InputError):
     """A reel-out speed table is malformed; the message names the line."""
 
 
@@ -136,20 +136,18 @@ class TractionLaw:
 
 
 def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
-    """The reeling law of ``cfg["winch"]`` (validated by :func:`config.validate`),
+    """The reeling law of ``cfg.winch`` (validated by :func:`config.validate`),
     starting at ``start_s``."""
-    w = cfg["winch"]
-    mode = w["reel_out"]
-    if mode == "none":
+    w = cfg.winch
+    if w.reel_out == "none":
         return Reel()
     table = None
-    if mode == "table":
+    if w.reel_out == "table":
         try:
-            table = read_speed_table(w["reel_out_table"])
+            table = read_speed_table(w.reel_out_table)
         except SpeedTableError as exc:
             raise ConfigError(f"[winch] reel_out_table: {exc}") from None
-    k = cfg["kite"]
-    law = TractionLaw(atmosphere.from_config(cfg), wind.from_config(cfg), k["area_m2"], k["cl"],
-                      k["efficiency"], cfg["tether"]["lines"] * w["ground_tension_N"],
-                      k["max_reel_out_ms"])
-    return Reel(mode, start_s, w["reel_out_stop_m"], w["reel_out_speed_ms"], table, law)
+    k = cfg.kite
+    law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind), k.area_m2, k.cl,
+                      k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_ms)
+    return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_ms, table, law)

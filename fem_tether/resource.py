@@ -40,13 +40,14 @@ from pathlib import Path
 import numpy as np
 from scipy.special import gamma
 
+from .errors import InputError
 from .wind import DE_BILT_ANNUAL
 
 COLUMNS = ("band_low_m", "band_high_m", "bin_low_ms", "bin_high_ms", "probability")
 SUM_TOLERANCE = 1e-6
 
 
-class ResourceError(ValueError):
+class ResourceError(InputError):
     """A wind resource is malformed, or has no band for an altitude."""
 
 
@@ -238,14 +239,12 @@ def write_resource_csv(resource: WindResource, path) -> Path:
     return path
 
 
-def from_config(cfg: dict, csv_path=None) -> WindResource:
-    """The resource of ``cfg["resource"]``: the CSV ``csv_path`` (or ``[resource] csv``)
-    if given, else Weibull histograms following ``cfg``'s wind profile."""
-    from .wind import from_config as wind_from_config
-
-    r = cfg["resource"]
-    path = csv_path or r["csv"]
+def from_config(resource, wind_profile, csv_path=None) -> WindResource:
+    """The resource of the ``[resource]`` section: the CSV ``csv_path`` (or
+    ``[resource] csv``) if given, else Weibull histograms following
+    ``wind_profile`` (a profile of :mod:`fem_tether.wind`)."""
+    path = csv_path or resource.csv
     if path:
         return read_resource_csv(path)
-    return weibull_resource(wind_from_config(cfg), r["weibull_k"], r["band_bottom_m"],
-                            r["band_top_m"], r["band_width_m"], r["bin_width_ms"], r["max_speed_ms"])
+    return weibull_resource(wind_profile, resource.weibull_k, resource.band_bottom_m, resource.band_top_m,
+                            resource.band_width_m, resource.bin_width_ms, resource.max_speed_ms)

@@ -9,8 +9,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from fem_tether.config import Config
 
 #: Time series every solver records, one value per time step (units and
 #: meanings: :mod:`fem_tether.quantities`, ``where = "series"``).
@@ -37,7 +41,7 @@ class TetherRun:
     snapshot_time_s: np.ndarray
     snapshots: dict[str, np.ndarray]
     average_start_s: float
-    config: dict
+    config: Config | None
     wall_s: float = 0.0
     extra: dict = field(default_factory=dict)
 

@@ -16,7 +16,9 @@ With constant rho and C_d in quiet air the integral has the closed form
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -83,15 +85,20 @@ def straight_line_drag(length_m, theta_rad, diameter_m, speed_ms, air, drag,
     )
 
 
-def from_config(cfg, length_m=None, with_wind=False) -> StraightLineDrag:
-    """Straight-line F_t for a configuration (quiet air unless ``with_wind``)."""
-    kite = cfg["kite"]
-    return straight_line_drag(
-        length_m=cfg["tether"]["length_m"] if length_m is None else length_m,
-        theta_rad=np.radians(kite["theta0_deg"]),
-        diameter_m=cfg["tether"]["diameter_m"],
-        speed_ms=kite["speed_ms"],
-        air=atmosphere.from_config(cfg),
-        drag=drag_coefficient.from_config(cfg),
-        wind_profile=wind.from_config(cfg) if with_wind else None,
+def line_of_config(cfg, with_wind=False) -> Callable[[float], StraightLineDrag]:
+    """F_t of the configured straight line as a function of its length L
+    (quiet air unless ``with_wind``)."""
+    return partial(
+        straight_line_drag,
+        theta_rad=np.radians(cfg.kite.theta0_deg),
+        diameter_m=cfg.tether.diameter_m,
+        speed_ms=cfg.kite.speed_ms,
+        air=atmosphere.from_config(cfg.air),
+        drag=drag_coefficient.from_config(cfg.drag),
+        wind_profile=wind.from_config(cfg.wind) if with_wind else None,
     )
+
+
+def from_config(cfg, with_wind=False) -> StraightLineDrag:
+    """Straight-line F_t of the configured case (quiet air unless ``with_wind``)."""
+    return line_of_config(cfg, with_wind)(cfg.tether.length_m)

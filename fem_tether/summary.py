@@ -14,19 +14,20 @@ from fem_tether import atmosphere, kite, straight
 from fem_tether.power import operating_altitude_m
 
 
-def operating_ge(cfg, drag_N, length_m) -> float:
-    """G_e (seed 000 eq. 5.1) with rho at the operating altitude L cos(theta0)."""
-    k = cfg["kite"]
-    z = operating_altitude_m(length_m, np.radians(k["theta0_deg"]))
-    rho = float(atmosphere.from_config(cfg).density_kg_m3(np.array(z)))
-    return float(kite.global_efficiency(drag_N, rho, k["area_m2"], k["cl"], k["efficiency"],
-                                        k["speed_ms"], cfg["tether"]["lines"]))
+def operating_ge(cfg, drag_N) -> float:
+    """G_e (seed 000 eq. 5.1) of the configured case with tether drag ``drag_N``
+    per line, rho at the operating altitude L cos(theta0)."""
+    k = cfg.kite
+    z = operating_altitude_m(cfg.tether.length_m, np.radians(k.theta0_deg))
+    rho = float(atmosphere.from_config(cfg.air).density_kg_m3(np.array(z)))
+    return float(kite.global_efficiency(drag_N, rho, k.area_m2, k.cl, k.efficiency, k.speed_ms,
+                                        cfg.tether.lines))
 
 
 def run_summary(run, cfg) -> dict:
     """Period means, straight-line comparison and G_e of one tether run."""
     means = run.means()
-    ge = operating_ge(cfg, means["mean_drag_N"], run.length_m)
+    ge = operating_ge(cfg, means["mean_drag_N"])
     return {
         "solver": run.solver,
         "length_m": run.length_m,
@@ -36,7 +37,7 @@ def run_summary(run, cfg) -> dict:
         "mean_kite_tension_N": means["mean_kite_tension_N"],
         "mean_kite_radius_m": means["mean_kite_radius_m"],
         "max_strain": float(np.max(run.series["max_strain"])),
-        "straight_drag_N": straight.from_config(cfg, length_m=run.length_m, with_wind=True).drag_N,
+        "straight_drag_N": straight.from_config(cfg, with_wind=True).drag_N,
         "ge": float(ge),
         "length_end_m": float(run.series["length_m"][-1]),
         "winch_energy_J": float(run.series["winch_energy_J"][-1]),

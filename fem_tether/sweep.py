@@ -55,8 +55,8 @@ import numpy as np
 
 from fem_tether import __version__, straight
 from fem_tether.atomic import OutputError, atomic_path, check_writable
-from fem_tether.config import (FILE_KEYS, ConfigError, load_config, merge, read_toml,
-                               resolve_paths, to_toml, toml_value, validate)
+from fem_tether.config import (FILE_KEYS, NOT_FILES, Config, ConfigError, load_config, read_toml,
+                               resolve_paths, toml_value)
 from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import SolverDivergedError
 from fem_tether.output import read_run_hdf5, write_run_hdf5
@@ -64,7 +64,6 @@ from fem_tether.progress import Progress
 from fem_tether.quantities import attributes, names
 from fem_tether.results import time_grid
 from fem_tether.summary import operating_ge
-from fem_tether.trajectory import FigureEight
 
 EXIT_ABORT = 3
 DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
@@ -78,7 +77,7 @@ class Job:
     lengths_m: tuple[float, ...]
     crosscheck: bool
     straight: bool
-    config: dict
+    config: Config
     toml: str = ""
 
     @property
@@ -89,15 +88,15 @@ class Job:
     def tasks(self) -> list[Task]:
         return [Task(L, s) for L in self.lengths_m for s in self.solvers]
 
-    def config_for(self, length_m: float) -> dict:
+    def config_for(self, length_m: float) -> Config:
         """The configuration of one length (with enough snapshots for the cross-check)."""
-        cfg = merge(self.config, {"tether": {"length_m": float(length_m)}})
+        cfg = self.config.with_length(length_m)
         return checkable(cfg) if self.crosscheck else cfg
 
     @cached_property
     def case_tomls(self) -> dict[float, str]:
         """Each length's configuration as TOML (written into, and keying, every assembly)."""
-        return {L: to_toml(self.config_for(L)) for L in self.lengths_m}
+        return {L: self.config_for(L).to_toml() for L in self.lengths_m}
 
 
 def _job_error(key, value, problem):
@@ -140,12 +139,11 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
         where = base_dir / base
         raise _job_error("base", base, f"not a file ({where})" if where.exists()
                          else f"no such file ({where})")
-    cfg = load_config(base_dir / base if base else None)
-    cfg = validate(merge(cfg, resolve_paths(data, base_dir)))
+    cfg = load_config(base_dir / base if base else None, resolve_paths(data, base_dir))
     job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
               sweep.get("straight", True), cfg, text)
     for length in job.lengths_m:
-        validate(job.config_for(length))
+        job.config_for(length)
     return job
 
 
@@ -194,11 +192,11 @@ def task_cost(job: Job, task: Task) -> float:
     from fem_tether.fe.solver import unit_mesh_from_config
 
     cfg = job.config_for(task.length_m)
-    period = FigureEight.from_config(cfg).period_s
-    t = cfg["time"]
-    dt = t["dt_s"] if task.solver == "fe" else cfg["fd"]["dt_s"]
-    steps = time_grid(period, dt, t["spinup_periods"], t["average_periods"])[1]
-    points = unit_mesh_from_config(cfg).size if task.solver == "fe" else cfg["fd"]["segments"] + 1
+    period = cfg.eight.period_s
+    t = cfg.time
+    dt = t.dt_s if task.solver == "fe" else cfg.fd.dt_s
+    steps = time_grid(period, dt, t.spinup_periods, t.average_periods)[1]
+    points = unit_mesh_from_config(cfg.fe).size if task.solver == "fe" else cfg.fd.segments + 1
     return float(steps * (1.0 + points / NODES_PER_OVERHEAD))
 
 
@@ -219,13 +217,13 @@ def parts_dir(out: Path) -> Path:
     return out.with_name(out.name + ".parts")
 
 
-def inputs_key(cfg: dict) -> str:
+def inputs_key(cfg: Config) -> str:
     """What a task's result depends on: its configuration, the package version
     and the contents of the files the configuration names (a mesh, a table)."""
-    digest = hashlib.sha256((to_toml(cfg) + __version__).encode())
+    digest = hashlib.sha256((cfg.to_toml() + __version__).encode())
     for section, name in FILE_KEYS:
-        value = cfg[section][name]
-        if value and value not in ("uniform", "graded"):
+        value = getattr(getattr(cfg, section), name)
+        if value not in NOT_FILES:
             digest.update(Path(value).read_bytes())
     return digest.hexdigest()
 
@@ -241,9 +239,9 @@ def _stored(path: Path, key: str) -> str | None:
         return None
 
 
-def _write_failure(path: Path, cfg: dict, key: str, error: str) -> None:
+def _write_failure(path: Path, cfg: Config, key: str, error: str) -> None:
     with atomic_path(path) as tmp, h5py.File(tmp, "w") as f:
-        f.attrs.update(config_toml=to_toml(cfg), inputs_key=key, status="failed", error=error,
+        f.attrs.update(config_toml=cfg.to_toml(), inputs_key=key, status="failed", error=error,
                        fem_tether_version=__version__)
 
 
@@ -319,7 +317,7 @@ def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[Length
     res = LengthResult(length_m)
     v = dict.fromkeys(ROOT_DATASETS, float("nan"))
     v["crosscheck_ok"] = 0
-    v["mean_phi_deg"] = FigureEight.from_config(cfg).mean_abs_phi_deg()
+    v["mean_phi_deg"] = cfg.eight.mean_abs_phi_deg()
     runs, parts, errors, pending = {}, {}, [], False
     for solver in job.solvers:
         path = directory / f"{Task(length_m, solver).name}.h5"
@@ -336,18 +334,18 @@ def _evaluate_length(job: Job, length_m: float, directory: Path) -> tuple[Length
     if "fe" in runs:
         v["drag_fe_N"] = runs["fe"].mean("drag_N")
         v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
-        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"], length_m)
+        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"])
     if "fd" in runs:
         v["drag_fd_N"] = runs["fd"].mean("drag_N")
         v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")
     if "fe" in runs and "fd" in runs:
-        check = compare(runs["fe"], runs["fd"], cfg["crosscheck"])
+        check = compare(runs["fe"], runs["fd"], cfg.crosscheck)
         v["crosscheck_ok"] = int(check.ok)
         v["rel_diff_drag"] = check.rel_diff["drag"]
         v["rel_diff_shape"] = check.rel_diff["shape"]
     if job.straight:
-        v["drag_straight_N"] = straight.from_config(cfg, length_m, with_wind=True).drag_N
-        v["ge_straight"] = operating_ge(cfg, v["drag_straight_N"], length_m)
+        v["drag_straight_N"] = straight.from_config(cfg, with_wind=True).drag_N
+        v["ge_straight"] = operating_ge(cfg, v["drag_straight_N"])
     res.values = v
     if errors:
         res.status, res.error = "failed", "; ".join(errors)
@@ -391,7 +389,7 @@ def assemble(job: Job, out: Path, n_ranks: int) -> list[LengthResult]:
 
 
 def _write_result(f: h5py.File, job: Job, n_ranks: int, results) -> None:
-    f.attrs.update(config_toml=to_toml(job.config), job_toml=job.toml,
+    f.attrs.update(config_toml=job.config.to_toml(), job_toml=job.toml,
                    fem_tether_version=__version__, n_ranks=n_ranks,
                    created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
     _dataset(f, "length_m", np.array(job.lengths_m))
@@ -522,7 +520,7 @@ def read_sweep(path: str | Path) -> dict:
             data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
             data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
             data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
-            data["config"] = tomllib.loads(f.attrs["config_toml"])
+            data["config"] = Config.from_dict(tomllib.loads(f.attrs["config_toml"]))
             data["attrs"] = {k: f.attrs[k] for k in f.attrs}
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such file") from None

@@ -39,15 +39,15 @@ class TetherPhysics:
 
 def physics_from_config(cfg) -> TetherPhysics:
     """The physics of ``cfg``'s [tether], [air], [drag] and [wind] sections."""
-    tether = cfg["tether"]
-    elastic = tether["elasticity"] == "elastic"
+    tether = cfg.tether
+    elastic = tether.elasticity == "elastic"
     return TetherPhysics(
-        air=atmosphere.from_config(cfg),
-        drag=drag_coefficient.from_config(cfg),
-        wind=wind.from_config(cfg),
-        diameter_m=tether["diameter_m"],
-        linear_density_kg_m=tether["linear_density_kg_m"],
-        compliance_per_N=1.0 / tether["axial_stiffness_N"] if elastic else 0.0,
-        damping_time_s=tether["damping_time_s"] if elastic else 0.0,
-        skin_friction_cf=cfg["drag"]["skin_friction_cf"],
+        air=atmosphere.from_config(cfg.air),
+        drag=drag_coefficient.from_config(cfg.drag),
+        wind=wind.from_config(cfg.wind),
+        diameter_m=tether.diameter_m,
+        linear_density_kg_m=tether.linear_density_kg_m,
+        compliance_per_N=1.0 / tether.axial_stiffness_N if elastic else 0.0,
+        damping_time_s=tether.damping_time_s if elastic else 0.0,
+        skin_friction_cf=cfg.drag.skin_friction_cf,
     )

@@ -147,15 +147,14 @@ class FigureEight:
     _tau_of_arc: BPoly = field(init=False, repr=False, compare=False)
 
     @classmethod
-    def from_config(cls, cfg, length_m=None):
-        """Eight of ``cfg["kite"]``; L from ``cfg["tether"]["length_m"]`` unless given."""
-        kite = cfg["kite"]
+    def from_config(cls, kite, length_m):
+        """The eight of the ``[kite]`` section on a line of ``length_m``."""
         return cls(
-            length_m=float(cfg["tether"]["length_m"] if length_m is None else length_m),
-            theta0_rad=float(np.radians(kite["theta0_deg"])),
-            width_m=float(kite["eight_width_m"]),
-            height_m=float(kite["eight_height_m"]),
-            speed_ms=float(kite["speed_ms"]),
+            length_m=float(length_m),
+            theta0_rad=float(np.radians(kite.theta0_deg)),
+            width_m=float(kite.eight_width_m),
+            height_m=float(kite.eight_height_m),
+            speed_ms=float(kite.speed_ms),
         )
 
     def __post_init__(self):

@@ -111,11 +111,11 @@ DE_BILT = {
 DE_BILT_ANNUAL = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
 
 
-def from_config(cfg: dict) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
-    """The wind profile of ``cfg["wind"]``; the "annual" De Bilt season is the winter/summer mean."""
-    wind = cfg["wind"]
-    if wind["profile"] == "log":
-        return DE_BILT_ANNUAL if wind["season"] == "annual" else DE_BILT[wind["season"]]
-    if wind["profile"] == "power":
-        return PowerWind(wind["reference_speed_ms"], wind["reference_height_m"], wind["alpha"])
+def from_config(wind) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
+    """The wind profile of the ``[wind]`` section; the "annual" De Bilt season is
+    the winter/summer mean."""
+    if wind.profile == "log":
+        return DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
+    if wind.profile == "power":
+        return PowerWind(wind.reference_speed_ms, wind.reference_height_m, wind.alpha)
     return NoWind()

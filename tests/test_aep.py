@@ -9,8 +9,10 @@ from fem_tether.aep import (
     annual_energy_Wh,
     capacity_factor,
 )
+from fem_tether import atmosphere
 from fem_tether.atmosphere import ISA
 from fem_tether.config import load_config
+from fem_tether.kite import KiteGenDesign
 from fem_tether.plots import plot_aep, plot_drag, plot_ge
 from fem_tether.power import (
     SEED_GE,
@@ -24,8 +26,10 @@ from fem_tether.resource import Band, WindResource, weibull_resource
 
 
 @pytest.fixture
-def cfg():
-    return load_config()
+def system():
+    """The default design and air model, as operating_design and aep_by_length take them."""
+    cfg = load_config()
+    return KiteGenDesign.from_config(cfg.kite, cfg.tether.lines), atmosphere.from_config(cfg.air)
 
 
 def test_constant_power_curve_gives_power_times_hours_times_mass():
@@ -43,22 +47,22 @@ def test_trapezoid_by_hand_and_broadcasting():
     assert capacity_factor(0.5 * 3e6 * HOURS_PER_YEAR, 3e6) == pytest.approx(0.5)
 
 
-def test_single_bin_resource(cfg):
+def test_single_bin_resource(system):
     """All the wind in one bin [10, 20] m/s: AEP = ½ (P(10) + P(20)) · 8760 h."""
     resource = WindResource((Band(0.0, 5000.0, np.array([10.0, 20.0]), np.array([1.0])),),
                             source="one bin")
-    design = operating_design(cfg, 1343.0, 9.36, 2.86)
+    design = operating_design(*system, 1343.0, 9.36, 2.86)
     p10, p20 = cycle_curves(np.array([10.0, 20.0]), design).power_W
-    r = aep_by_length(cfg, 1343.0, 9.36, 2.86, resource)
+    r = aep_by_length(*system, 1343.0, 9.36, 2.86, resource)
     assert r.aep_MWh == pytest.approx([0.5 * (p10 + p20) * 8760 / 1e6], rel=1e-12)
     assert r.unbinned_probability == pytest.approx([0.0], abs=1e-15)
 
 
-def test_seed_tables_with_the_default_resource(cfg):
+def test_seed_tables_with_the_default_resource(system):
     """Tab. 5.1 G_e and Tab. 5.2 φ in the De Bilt Weibull (k = 2) bands; seed 000 Fig. 5.6 finds
     the best length at 500 m, straight and flexible diverging beyond ≈900 m."""
     resource = weibull_resource()
-    results = {case: aep_by_length(cfg, SEED_LENGTHS_M, ge, SEED_MEAN_PHI_DEG, resource)
+    results = {case: aep_by_length(*system, SEED_LENGTHS_M, ge, SEED_MEAN_PHI_DEG, resource)
                for case, ge in SEED_GE.items()}
     straight, flexible = results["straight"], results["flexible"]
     print("\nAEP, default resource (De Bilt annual log law, Weibull k = 2), Cycle() defaults:")
@@ -80,15 +84,15 @@ def test_seed_tables_with_the_default_resource(cfg):
                                   [b.remainder for b in resource.bands])
 
 
-def test_capacity_factor_uses_the_cycle_rated_power(cfg):
-    r = aep_by_length(cfg, SEED_LENGTHS_M[:2], SEED_GE["flexible"][:2], SEED_MEAN_PHI_DEG[:2],
+def test_capacity_factor_uses_the_cycle_rated_power(system):
+    r = aep_by_length(*system, SEED_LENGTHS_M[:2], SEED_GE["flexible"][:2], SEED_MEAN_PHI_DEG[:2],
                       weibull_resource())
     assert r.capacity_factor == pytest.approx(r.aep_MWh * 1e6 / (r.rated_power_W * 8760))
     assert np.all((2.1e6 < r.rated_power_W) & (r.rated_power_W < 2.29e6))
 
 
-def test_losses_lower_the_aep(cfg):
-    args = (cfg, 919.0, 11.16, 4.16, weibull_resource())
+def test_losses_lower_the_aep(system):
+    args = (*system, 919.0, 11.16, 4.16, weibull_resource())
     ideal, lossy = aep_by_length(*args), aep_by_length(*args, cycle=Cycle(eta_e=0.8, eta_c=0.7))
     assert lossy.aep_MWh[0] < 0.8 * ideal.aep_MWh[0]
 
@@ -97,12 +101,12 @@ def _is_png(path):
     return path.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
 
 
-def test_plots_by_length_write_pngs(cfg, tmp_path):
+def test_plots_by_length_write_pngs(system, tmp_path):
     """Tab. 5.1 G_e as input; F_t from it by inverting eq. 5.1 with ISA ρ at L cos45°."""
     rho = ISA().density_kg_m3(SEED_LENGTHS_M * np.cos(np.radians(45.0)))
     lift = 0.5 * rho * 120.0 * 80.0**2
     drag = {case: (lift / ge - lift / 28.0) / 2 for case, ge in SEED_GE.items()}
-    results = {case: aep_by_length(cfg, SEED_LENGTHS_M, ge, SEED_MEAN_PHI_DEG, weibull_resource())
+    results = {case: aep_by_length(*system, SEED_LENGTHS_M, ge, SEED_MEAN_PHI_DEG, weibull_resource())
                for case, ge in SEED_GE.items()}
     paths = [plot_drag(SEED_LENGTHS_M, drag, tmp_path / "drag.png"),
              plot_ge(SEED_LENGTHS_M, SEED_GE, tmp_path / "ge.png"),
@@ -114,9 +118,9 @@ def test_plots_by_length_write_pngs(cfg, tmp_path):
                                                           "ge_only.png"]
 
 
-def test_aep_plot_without_flexible_lengths(cfg, tmp_path):
+def test_aep_plot_without_flexible_lengths(system, tmp_path):
     """No length passed the cross-check: `run` still plots (it used to fail formatting None)."""
-    results = {"straight": aep_by_length(cfg, SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG,
+    results = {"straight": aep_by_length(*system, SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG,
                                          weibull_resource()),
-               "flexible": aep_by_length(cfg, [], [], [], weibull_resource())}
+               "flexible": aep_by_length(*system, [], [], [], weibull_resource())}
     assert _is_png(plot_aep(results, tmp_path / "aep.png"))

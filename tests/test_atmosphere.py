@@ -64,8 +64,8 @@ def test_density_gradient_against_finite_difference(z):
 
 
 def test_from_config():
-    assert isinstance(atmosphere.from_config(load_config()), ISA)
+    assert isinstance(atmosphere.from_config(load_config().air), ISA)
     cfg = load_config(overrides={"air": {"model": "constant", "density_kg_m3": 1.0}})
-    air = atmosphere.from_config(cfg)
+    air = atmosphere.from_config(cfg.air)
     assert air == ConstantAir(1.0, 1.789e-5)
     assert air.density_kg_m3(300.0) == 1.0

@@ -4,26 +4,26 @@ import tomllib
 
 import pytest
 
-from fem_tether.config import ConfigError, defaults, load_config, to_toml
+from fem_tether.config import Config, ConfigError, load_config
 
 
 def test_defaults_are_the_seed_case():
     cfg = load_config()
-    assert cfg["tether"]["length_m"] == 1000.0 and cfg["tether"]["diameter_m"] == 0.011
-    assert cfg["tether"]["linear_density_kg_m"] == 0.062 and cfg["tether"]["lines"] == 2
-    assert cfg["winch"]["mode"] == "tension" and cfg["winch"]["ground_tension_N"] == 150000.0
-    assert cfg["winch"]["reel_out"] == "none"
-    assert cfg["kite"]["speed_ms"] == 80.0 and cfg["kite"]["efficiency"] == 28.0
+    assert cfg.tether.length_m == 1000.0 and cfg.tether.diameter_m == 0.011
+    assert cfg.tether.linear_density_kg_m == 0.062 and cfg.tether.lines == 2
+    assert cfg.winch.mode == "tension" and cfg.winch.ground_tension_N == 150000.0
+    assert cfg.winch.reel_out == "none"
+    assert cfg.kite.speed_ms == 80.0 and cfg.kite.efficiency == 28.0
 
 
 def test_toml_round_trip(tmp_path):
-    text = to_toml(defaults())
-    assert tomllib.loads(text) == defaults()
+    text = Config().to_toml()
+    assert tomllib.loads(text) == Config().to_dict()
     path = tmp_path / "c.toml"
     path.write_text('[tether]\nlength_m = 3000\n[wind]\nprofile = "none"\n')
     cfg = load_config(path)
-    assert cfg["tether"]["length_m"] == 3000.0 and isinstance(cfg["tether"]["length_m"], float)
-    assert cfg["wind"]["profile"] == "none" and cfg["air"]["model"] == "isa"
+    assert cfg.tether.length_m == 3000.0 and isinstance(cfg.tether.length_m, float)
+    assert cfg.wind.profile == "none" and cfg.air.model == "isa"
 
 
 @pytest.mark.parametrize("overrides, match", [

@@ -42,7 +42,7 @@ def test_shape_difference_of_a_run_with_itself_is_zero_and_detects_offsets():
     moved = copy.deepcopy(run)
     moved.snapshots["position_m"] = moved.snapshots["position_m"] + np.array([0.0, 6.0, 0.0])
     assert shape_difference(run, moved) == pytest.approx(6.0 / 300.0)
-    tol = cfg["crosscheck"]
+    tol = cfg.crosscheck
     assert compare(run, run, tol).ok and not compare(run, moved, tol).ok
 
 
@@ -53,4 +53,4 @@ def test_too_few_snapshots_for_the_shape_check_is_an_error():
                                  "time": {"dt_s": 0.2, "average_periods": 1}, "output": {"every": 100}})
     run = simulate(cfg)
     with pytest.raises(ConfigError, match=r"\[output\] every = 100"):
-        compare(run, run, cfg["crosscheck"])
+        compare(run, run, cfg.crosscheck)

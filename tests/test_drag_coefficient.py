@@ -106,6 +106,6 @@ def test_constant_drag():
 
 
 def test_from_config():
-    assert drag_coefficient.from_config(load_config()) == CylinderDrag()
+    assert drag_coefficient.from_config(load_config().drag) == CylinderDrag()
     cfg = load_config(overrides={"drag": {"model": "constant", "cd": 1.1}})
-    assert drag_coefficient.from_config(cfg) == ConstantDrag(1.1)
+    assert drag_coefficient.from_config(cfg.drag) == ConstantDrag(1.1)

@@ -13,9 +13,7 @@ FAST = {"fe": {"elements": 12}, "time": {"dt_s": 0.1, "average_periods": 1}}
 
 
 def _cfg(length_m=400.0, **winch):
-    cfg = load_config(overrides={**FAST, "tether": {"length_m": length_m}})
-    cfg["winch"].update(winch)
-    return cfg
+    return load_config(overrides={**FAST, "tether": {"length_m": length_m}, "winch": winch})
 
 
 def _segment_lengths(run, i):
@@ -35,9 +33,9 @@ def test_mass_length_and_resolution_while_paying_out_and_back(tmp_path):
     is mu L(t)), and every segment stays within [min, max] element size."""
     table = tmp_path / "speed.csv"
     table.write_text("time_s,speed_ms\n0,15\n20,15\n20.001,-15\n40,-15\n40.001,0\n")
-    cfg = _cfg(reel_out="table", reel_out_table=str(table))
-    cfg["fe"].update(min_element_m=5.0, max_element_m=40.0, mesh="uniform", elements=12)
-    cfg["time"]["average_periods"] = 7
+    cfg = _cfg(reel_out="table", reel_out_table=str(table)).replace(
+        fe={"min_element_m": 5.0, "max_element_m": 40.0, "mesh": "uniform", "elements": 12},
+        time={"average_periods": 7})
     run = simulate(cfg)
     L = run.series["length_m"]
     assert L.max() == pytest.approx(400 + 15 * 20, abs=2.0)
@@ -66,15 +64,15 @@ def test_controlled_speed_follows_the_traction_law():
     v = run.series["reel_out_ms"][run.time_s > run.average_start_s + 1e-9]
     assert np.all(v >= 0) and np.all(v <= 13.5) and v.max() > 1.0
     # no wind: the kite cannot pull 300 kN while paying out, V_L = 0
-    cfg["wind"]["profile"] = "none"
+    cfg = cfg.replace(wind={"profile": "none"})
     assert np.all(simulate(cfg).series["reel_out_ms"] == 0.0)
 
 
 def test_reel_out_drag_tracks_the_fixed_length_runs():
     """Paying out 500 -> 800 m at 10 m/s: the period-averaged F_t(L) along the
     run stays within 5 % of fixed-length runs at 600 and 750 m."""
-    cfg = _cfg(500.0, reel_out="constant", reel_out_speed_ms=10.0, reel_out_stop_m=800.0)
-    cfg["time"]["average_periods"] = 10
+    cfg = _cfg(500.0, reel_out="constant", reel_out_speed_ms=10.0, reel_out_stop_m=800.0).replace(
+        time={"average_periods": 10})
     L, F = period_average(simulate(cfg), "drag_N")
     assert L[-1] == pytest.approx(800.0, abs=40.0)
     for length in (600.0, 750.0):

@@ -260,18 +260,13 @@ def test_newmark_conserves_energy_of_taut_string():
 
 # 4. constraint ------------------------------------------------------------------
 def test_inextensible_constraint_held_every_step(quiet_cfg):
-    quiet_cfg["tether"]["length_m"] = 500.0
-    quiet_cfg["time"].update(dt_s=0.1, average_periods=1)
-    run = simulate(quiet_cfg)
+    run = simulate(quiet_cfg.replace(tether={"length_m": 500.0}, time={"dt_s": 0.1, "average_periods": 1}))
     assert np.max(run.series["max_strain"]) <= 1e-8
 
 
 def _prescribed(cfg, radius_m, **tether):
-    cfg["tether"].update(length_m=500.0, **tether)
-    cfg["winch"]["mode"] = "prescribed"
-    cfg["kite"]["radius_m"] = radius_m
-    cfg["time"].update(dt_s=0.1, average_periods=1)
-    return simulate(cfg)
+    return simulate(cfg.replace(tether={"length_m": 500.0, **tether}, winch={"mode": "prescribed"},
+                                kite={"radius_m": radius_m}, time={"dt_s": 0.1, "average_periods": 1}))
 
 
 def test_compliant_strain_equals_tension_over_EA(quiet_cfg):
@@ -307,9 +302,8 @@ def test_kelvin_voigt_damping_dissipates(quiet_cfg):
 
 
 def test_elastic_line_in_tension_mode_is_an_input_error(quiet_cfg):
-    quiet_cfg["tether"]["elasticity"] = "elastic"
     with pytest.raises(ConfigError, match=r"\[tether\] elasticity"):
-        build_model(quiet_cfg)
+        build_model(quiet_cfg.replace(tether={"elasticity": "elastic"}))
     with pytest.raises(ConfigError, match=r"\[tether\] elasticity"):
         load_config(overrides={"tether": {"elasticity": "elastic"}})
 
@@ -317,9 +311,7 @@ def test_elastic_line_in_tension_mode_is_an_input_error(quiet_cfg):
 # 5. short line vs closed form -----------------------------------------------------
 def test_short_line_matches_straight_closed_form(quiet_cfg):
     """200 m in quiet air on the eight: F_t within 3 % of rho C_d d L V^2 / 8."""
-    quiet_cfg["tether"]["length_m"] = 200.0
-    quiet_cfg["time"].update(dt_s=0.05, average_periods=1)
-    run = simulate(quiet_cfg)
+    run = simulate(quiet_cfg.replace(tether={"length_m": 200.0}, time={"dt_s": 0.05, "average_periods": 1}))
     closed = closed_form_drag_N(1.2, 1.2, 0.011, 200.0, 80.0)
     print(f"\n 200 m: F_t = {run.mean('drag_N'):.1f} N, closed form {closed:.1f} N")
     assert run.mean("drag_N") == pytest.approx(closed, rel=0.03)
@@ -339,9 +331,9 @@ def test_prescribed_radius_longer_than_line_is_an_input_error():
 
 
 def test_divergence_reports_time_length_and_residual(quiet_cfg):
-    quiet_cfg["time"].update(max_newton=1, max_halvings=1)
+    cfg = quiet_cfg.replace(time={"max_newton": 1, "max_halvings": 1})
     with pytest.raises(SolverDivergedError, match=r"t = .* s .*L = 1000 m.*residual"):
-        run(build_model(quiet_cfg), 0.5, 1, 1)
+        run(build_model(cfg), 0.5, 1, 1)
 
 
 # stability and convergence of the dynamic solution ------------------------------------
@@ -361,12 +353,8 @@ def test_no_spurious_tension_oscillation():
 
 def test_mean_drag_converges_under_mesh_refinement(quiet_cfg):
     """3000 m, fixed dt: |F_t(n) - F_t(80)| falls ~4x per doubling (printed)."""
-    quiet_cfg["tether"]["length_m"] = 3000.0
-    quiet_cfg["time"].update(dt_s=0.05, average_periods=1)
-    drags = {}
-    for n in (10, 20, 40, 80):
-        quiet_cfg["fe"]["elements"] = n
-        drags[n] = simulate(quiet_cfg).mean("drag_N")
+    cfg = quiet_cfg.replace(tether={"length_m": 3000.0}, time={"dt_s": 0.05, "average_periods": 1})
+    drags = {n: simulate(cfg.replace(fe={"elements": n})).mean("drag_N") for n in (10, 20, 40, 80)}
     errors = np.array([abs(drags[n] / drags[80] - 1) for n in (10, 20, 40)])
     print("\n elements  mean F_t [N]  |rel. diff to 80|")
     for n, e in zip((10, 20, 40), errors):

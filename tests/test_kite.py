@@ -26,14 +26,14 @@ THETA, PHI = np.radians(45.0), np.radians(11.0)
 
 @pytest.fixture
 def design():
-    return KiteGenDesign.from_config(load_config())
+    return KiteGenDesign.from_config(load_config().kite, 2)
 
 
 def test_design_from_config_is_the_seed_case(design):
     assert design == KiteGenDesign(**SEED, speed_ms=80.0, theta_rad=THETA, phi_rad=PHI,
                                    nominal_force_N=300e3, max_reel_out_ms=13.5, lines=2,
                                    kite_efficiency=28.0)
-    other = KiteGenDesign.from_config(load_config(), efficiency=7.43, phi_deg=1.28, rho_kg_m3=1.1)
+    other = KiteGenDesign.from_config(load_config().kite, 2, efficiency=7.43, phi_deg=1.28, rho_kg_m3=1.1)
     assert (other.efficiency, other.kite_efficiency, other.rho_kg_m3) == (7.43, 28.0, 1.1)
     assert other.phi_rad == pytest.approx(np.radians(1.28))
 
@@ -90,7 +90,7 @@ def test_seed_characteristic_speeds(design):
 
 def test_cut_in_keeps_the_wing_efficiency():
     """Tab. 5.3 lists 80/28 = 2.86 m/s for every length, whatever G_e."""
-    with_cables = KiteGenDesign.from_config(load_config(), efficiency=4.58)
+    with_cables = KiteGenDesign.from_config(load_config().kite, 2, efficiency=4.58)
     assert characteristic_speeds(with_cables).cut_in_ms == pytest.approx(80 / 28)
     assert characteristic_speeds(with_cables, seed_cut_in=False).cut_in_ms == pytest.approx(
         80 / (4.58 * np.sin(THETA) * np.cos(PHI)))
@@ -178,8 +178,8 @@ def test_tab_5_3_characteristic_speeds(lines):
     """
     cfg = load_config()
     row = TABLE[lines]
-    z_m = LENGTHS_M * np.cos(np.radians(cfg["kite"]["theta0_deg"]))
-    design = KiteGenDesign.from_config(cfg, efficiency=np.array(row["ge"]),
+    z_m = LENGTHS_M * np.cos(np.radians(cfg.kite.theta0_deg))
+    design = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines, efficiency=np.array(row["ge"]),
                                        phi_deg=MEAN_PHI_DEG, rho_kg_m3=ISA().density_kg_m3(z_m))
     s = characteristic_speeds(design)
     ff_err = 100 * (s.full_force_ms / row["full_force"] - 1)
@@ -198,7 +198,7 @@ def test_tab_5_3_characteristic_speeds(lines):
 
 def test_curves_accept_array_designs():
     """One design per cable length broadcasts against a column of wind speeds."""
-    design = KiteGenDesign.from_config(load_config(), efficiency=np.array([15.38, 4.58]))
+    design = KiteGenDesign.from_config(load_config().kite, 2, efficiency=np.array([15.38, 4.58]))
     c = characteristic_curves(np.array([[5.0], [30.0]]), design)
     assert c.zone.tolist() == [["B", "B"], ["D", "C"]]
     single = characteristic_curves(30.0, dataclasses.replace(design, efficiency=4.58))

@@ -5,6 +5,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from fem_tether import atmosphere
 from fem_tether.atmosphere import ISA
 from fem_tether.config import load_config
 from fem_tether.kite import KiteGenDesign, characteristic_curves, characteristic_speeds
@@ -39,11 +40,11 @@ def cfg():
 @pytest.fixture
 def seed_design(cfg):
     """Seed 000 §2.4: E = 28, φ = 11°, ρ = 1 kg/m³."""
-    return KiteGenDesign.from_config(cfg)
+    return KiteGenDesign.from_config(cfg.kite, cfg.tether.lines)
 
 
-def test_operating_design_takes_ge_phi_and_density_at_altitude(cfg):
-    design = operating_design(cfg, SEED_LENGTHS_M, SEED_GE["flexible"], SEED_MEAN_PHI_DEG)
+def test_operating_design_takes_ge_phi_and_density_at_altitude(seed_design):
+    design = operating_design(seed_design, ISA(), SEED_LENGTHS_M, SEED_GE["flexible"], SEED_MEAN_PHI_DEG)
     z = operating_altitude_m(SEED_LENGTHS_M, THETA)
     assert z[-1] == pytest.approx(3000 / np.sqrt(2))
     assert design.rho_kg_m3 == pytest.approx(ISA().density_kg_m3(z))
@@ -51,13 +52,13 @@ def test_operating_design_takes_ge_phi_and_density_at_altitude(cfg):
     assert design.phi_rad == pytest.approx(np.radians(SEED_MEAN_PHI_DEG))
     assert design.kite_efficiency == 28.0            # the seed's cut-in 80/E
     constant = load_config(overrides={"air": {"model": "constant", "density_kg_m3": 1.1}})
-    assert operating_design(constant, 2000.0, 8.0, 2.0).rho_kg_m3 == pytest.approx(1.1)
+    assert operating_design(seed_design, atmosphere.from_config(constant.air), 2000.0, 8.0, 2.0).rho_kg_m3 == pytest.approx(1.1)
 
 
 @pytest.mark.parametrize("lines", ["straight", "flexible"])
-def test_tab_5_3_through_operating_design(cfg, lines):
+def test_tab_5_3_through_operating_design(seed_design, lines):
     """Tab. 5.3 from Tab. 5.1's G_e and Tab. 5.2's mean φ via power.py, within 2 %."""
-    design = operating_design(cfg, SEED_LENGTHS_M, SEED_GE[lines], SEED_MEAN_PHI_DEG)
+    design = operating_design(seed_design, ISA(), SEED_LENGTHS_M, SEED_GE[lines], SEED_MEAN_PHI_DEG)
     s = characteristic_speeds(design)
     full_force, full_power = (np.array(v) for v in TAB_5_3[lines])
     ff_err = 100 * (s.full_force_ms / full_force - 1)
@@ -139,13 +140,13 @@ def test_seed_case_rated_power(seed_design):
         assert 1.9e6 < rated_power_W(seed_design, Cycle(reel_in_ms=v_in)) < 2.5e6
 
 
-def test_rated_power_is_the_curve_maximum_at_full_power(seed_design, cfg):
+def test_rated_power_is_the_curve_maximum_at_full_power(seed_design):
     rated = rated_power_W(seed_design)
     dense = cycle_curves(np.linspace(0.0, 60.0, 60001), seed_design).power_W
     assert dense.max() <= rated * (1 + 1e-12)
     v_fp = characteristic_speeds(seed_design).full_power_ms
     assert rated == pytest.approx(cycle_curves(v_fp, seed_design).power_W, rel=1e-12)
-    per_length = operating_design(cfg, SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG)
+    per_length = operating_design(seed_design, ISA(), SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG)
     assert rated_power_W(per_length).shape == SEED_LENGTHS_M.shape
 
 
@@ -157,10 +158,10 @@ def test_cycle_rejects_bad_values(field, value):
         Cycle(**{field: value})
 
 
-def test_plot_power_curves_writes_png(cfg, tmp_path):
+def test_plot_power_curves_writes_png(seed_design, tmp_path):
     wind = np.linspace(0.0, 40.0, 401)
     curves = {f"{L:.0f} m, {case}": cycle_curves(wind, operating_design(
-        cfg, L, SEED_GE[case][i], SEED_MEAN_PHI_DEG[i]))
+        seed_design, ISA(), L, SEED_GE[case][i], SEED_MEAN_PHI_DEG[i]))
         for case in ("straight", "flexible") for i, L in ((0, 500.0), (6, 3000.0))}
     path = plot_power_curves(curves, tmp_path / "power.png")
     assert path.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")

@@ -34,7 +34,7 @@ def test_integral_with_isa_and_cylinder_curve_near_seed():
 
 def test_drag_grows_linearly_with_length_in_uniform_air():
     cfg = load_config(overrides={"air": {"model": "constant"}, "drag": {"model": "constant"}})
-    d = [from_config(cfg, length_m=L).drag_N for L in (500.0, 1000.0, 2000.0)]
+    d = [from_config(cfg.with_length(L)).drag_N for L in (500.0, 1000.0, 2000.0)]
     assert d[1] / d[0] == pytest.approx(2.0, rel=1e-9) and d[2] / d[1] == pytest.approx(2.0, rel=1e-9)
 
 

@@ -27,5 +27,5 @@ def test_summary_of_a_short_run():
     assert s["ge"] == pytest.approx(lift / (lift / 28.0 + 2.0 * s["mean_drag_N"]), rel=1e-12)
     assert 15.0 < s["ge"] < 16.5              # 500 m: G_e 15.5 at 40 elements, dt 0.05 s
     assert s["straight_drag_N"] == pytest.approx(
-        straight.from_config(cfg, length_m=500.0, with_wind=True).drag_N, rel=1e-12)
+        straight.from_config(cfg.with_length(500.0), with_wind=True).drag_N, rel=1e-12)
     assert s["mean_ground_tension_N"] == pytest.approx(150e3, rel=1e-9)

@@ -103,8 +103,8 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
     real = fe_solver.simulate
 
     def flaky(cfg, length_m=None, progress=False):
-        calls.append(cfg["tether"]["length_m"])
-        if cfg["tether"]["length_m"] == 800.0:
+        calls.append(cfg.tether.length_m)
+        if cfg.tether.length_m == 800.0:
             raise SolverDivergedError("time step did not converge at t = 1.0 s, L = 800 m")
         return real(cfg, length_m, progress)
 
@@ -127,7 +127,7 @@ def test_changed_config_is_recomputed(tiny_job, tmp_path):
     sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
     before = (sw.parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns
     changed = sw.Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
-                     sw.merge(tiny_job.config, {"drag": {"model": "constant"}}), tiny_job.toml)
+                     tiny_job.config.replace(drag={"model": "constant"}), tiny_job.toml)
     sw.sweep(changed, out, comm=_self_comm(), progress=False)
     assert (sw.parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns != before
 

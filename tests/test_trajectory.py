@@ -12,7 +12,7 @@ TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.4
 
 @pytest.fixture(scope="module")
 def eight():
-    return FigureEight.from_config(load_config())
+    return load_config().eight
 
 
 def one_period(eight, n=4001):
@@ -21,11 +21,11 @@ def one_period(eight, n=4001):
 
 def test_from_config_reads_kite_and_tether():
     cfg = load_config(overrides={"tether": {"length_m": 1500.0}})
-    e = FigureEight.from_config(cfg)
+    e = cfg.eight
     assert e.length_m == 1500.0
     assert e.theta0_rad == pytest.approx(np.pi / 4)
     assert (e.width_m, e.height_m, e.speed_ms) == (190.0, 95.0, 80.0)
-    assert FigureEight.from_config(cfg, length_m=700.0).length_m == 700.0
+    assert cfg.with_length(700.0).eight.length_m == 700.0
 
 
 @pytest.mark.parametrize("scale", [1.0, 0.9])
@@ -85,7 +85,7 @@ def test_parameter_follows_arc_length(eight):
 
 @pytest.mark.parametrize("length_m", [500.0, 1000.0, 3000.0])
 def test_derivatives_match_finite_differences(length_m):
-    e = FigureEight.from_config(load_config(), length_m=length_m)
+    e = load_config().with_length(length_m).eight
     t, h = np.linspace(-e.period_s, 2 * e.period_s, 3001), 3e-4
     x, v, a = e.state(t, radius_m=0.8 * length_m)
     xp, vp, _ = e.state(t + h, radius_m=0.8 * length_m)
@@ -115,7 +115,7 @@ def test_eight_has_prescribed_size(eight):
 
 def test_mean_abs_phi_against_table_5_2():
     cfg = load_config()
-    mean = {L: FigureEight.from_config(cfg, length_m=L).mean_abs_phi_deg() for L in TABLE_5_2}
+    mean = {L: FigureEight.from_config(cfg.kite, L).mean_abs_phi_deg() for L in TABLE_5_2}
     print("\n  L [m]   mean|phi| [deg]   Tab. 5.2 [deg]   ratio")
     for L, ref in TABLE_5_2.items():
         print(f"  {L:5d}   {mean[L]:15.3f}   {ref:14.2f}   {mean[L] / ref:5.3f}")

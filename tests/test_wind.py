@@ -66,10 +66,10 @@ def test_no_wind():
 
 
 def test_from_config():
-    assert wind.from_config(load_config()) == ANNUAL
+    assert wind.from_config(load_config().wind) == ANNUAL
     for season in ("winter", "summer"):
         cfg = load_config(overrides={"wind": {"season": season}})
-        assert wind.from_config(cfg) == DE_BILT[season]
+        assert wind.from_config(cfg.wind) == DE_BILT[season]
     cfg = load_config(overrides={"wind": {"profile": "power", "alpha": 0.14}})
-    assert wind.from_config(cfg) == PowerWind(9.5, 20.0, 0.14)
-    assert wind.from_config(load_config(overrides={"wind": {"profile": "none"}})) == NoWind()
+    assert wind.from_config(cfg.wind) == PowerWind(9.5, 20.0, 0.14)
+    assert wind.from_config(load_config(overrides={"wind": {"profile": "none"}}).wind) == NoWind()

@@ -55,7 +55,6 @@ import numpy as np
 
 from fem_tether.case import TetherCase, case_fields
 from fem_tether.catenary import Catenary
-from fem_tether.config import ConfigError
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.errors import (SolverDivergedError, check_taut, left_atmosphere, slack_failure,
                                too_weak_for_weight)
@@ -67,9 +66,6 @@ from fem_tether.continuation import ContinuationFailed, NotConverged, continuati
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
-
-SCHEMES = ("bdf2", "euler")
-
 
 @dataclass
 class FDModel(TetherCase):
@@ -102,22 +98,17 @@ def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysic
                    drag=physics.drag if drag else ConstantDrag(0.0))
 
 
-def build_model(cfg, length_m=None, end=None, segments=None, scheme=None,
-                gravity=True, drag=True, physics: TetherPhysics | None = None) -> FDModel:
-    """FD model of the configured case.
+def build_model(cfg, end=None, gravity=True, drag=True,
+                physics: TetherPhysics | None = None) -> FDModel:
+    """FD model of the configured case (``[fd] segments`` and ``scheme``).
 
     ``end`` overrides the figure-eight (e.g. ``trajectory.Stationary``);
-    ``segments``/``scheme`` override ``[fd]``; ``gravity=False`` /
-    ``drag=False`` switch those loads off (the mass stays).
+    ``gravity=False`` / ``drag=False`` switch those loads off (the mass stays).
     """
-    case = case_fields(cfg, length_m, end)
-    segments = cfg["fd"]["segments"] if segments is None else int(segments)
-    scheme = cfg["fd"]["scheme"] if scheme is None else scheme
-    if scheme not in SCHEMES:
-        raise ConfigError(f"FD scheme {scheme!r}: must be one of {', '.join(map(repr, SCHEMES))}")
-    grid = Grid(case["length_m"], segments, case["tension_mode"])
+    case = case_fields(cfg, end)
+    grid = Grid(case["length_m"], cfg.fd.segments, case["tension_mode"])
     return FDModel(eq=TetherFD(grid, physics or _switched(physics_from_config(cfg), gravity, drag)),
-                   scheme=scheme, **case)
+                   scheme=cfg.fd.scheme, **case)
 
 
 def _weight_N(model: FDModel) -> float:
@@ -480,15 +471,15 @@ def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
     )
 
 
-def simulate(cfg, length_m=None, progress=False) -> TetherRun:
+def simulate(cfg, progress=False) -> TetherRun:
     """Run the configured case with the FD solver (time step ``[fd] dt_s``).
 
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch
     segment stays within ``[fe] min_element_m`` .. ``[fe] max_element_m``.
     """
-    model = build_model(cfg, length_m)
-    t, fe = cfg["time"], cfg["fe"]
-    reel = reel_from_config(cfg, start_s=t["spinup_periods"] * model.end.period_s)
-    return run(model, cfg["fd"]["dt_s"], t["spinup_periods"], t["average_periods"],
-               cfg["output"]["every"], config=cfg, progress=progress, reel=reel,
-               segment_bounds_m=(fe["min_element_m"], fe["max_element_m"]))
+    model = build_model(cfg)
+    t, fe = cfg.time, cfg.fe
+    reel = reel_from_config(cfg, start_s=t.spinup_periods * model.end.period_s)
+    return run(model, cfg.fd.dt_s, t.spinup_periods, t.average_periods,
+               cfg.output.every, config=cfg, progress=progress, reel=reel,
+               segment_bounds_m=(fe.min_element_m, fe.max_element_m))

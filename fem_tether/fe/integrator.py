@@ -29,8 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem_tether.errors import InputError
 
-class SchemeError(ValueError):
+
+class SchemeError(InputError):
     """Integrator parameters outside the family's stable range."""
 
 
@@ -95,11 +97,10 @@ class Kinematics:
         return Kinematics(q_new, v_new, a_new, qdd_new)
 
 
-def scheme_from_config(cfg) -> Scheme:
-    """The scheme named by ``[time] scheme`` with its parameters."""
-    t = cfg["time"]
-    if t["scheme"] == "newmark":
-        return Scheme.newmark(t["beta"], t["gamma"])
-    if t["scheme"] == "hht":
-        return Scheme.hht(t["hht_alpha"])
-    return Scheme.generalized_alpha(t["rho_inf"])
+def scheme_from_config(time) -> Scheme:
+    """The scheme named by the ``[time]`` section's ``scheme``, with its parameters."""
+    if time.scheme == "newmark":
+        return Scheme.newmark(time.beta, time.gamma)
+    if time.scheme == "hht":
+        return Scheme.hht(time.hht_alpha)
+    return Scheme.generalized_alpha(time.rho_inf)

@@ -14,9 +14,10 @@ import meshio
 import numpy as np
 
 from fem_tether.atomic import atomic_path
+from fem_tether.errors import InputError
 
 
-class MeshError(ValueError):
+class MeshError(InputError):
     """A mesh file is unreadable or is not a chain of segments covering [0, 1]."""
 
 

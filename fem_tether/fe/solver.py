@@ -59,30 +59,29 @@ class State:
     ev: object = None             # the converged evaluation at t, if any
 
 
-def unit_mesh_from_config(cfg) -> np.ndarray:
-    """Unit-interval nodes named by ``[fe] mesh``: generated or read from a file."""
-    fe = cfg["fe"]
-    if fe["mesh"] == "uniform":
-        return fe_mesh.unit_nodes(fe["elements"])
-    if fe["mesh"] == "graded":
-        return fe_mesh.unit_nodes(fe["elements"], fe["grading"])
+def unit_mesh_from_config(fe) -> np.ndarray:
+    """Unit-interval nodes named by the ``[fe]`` section's ``mesh``: generated or read from a file."""
+    if fe.mesh == "uniform":
+        return fe_mesh.unit_nodes(fe.elements)
+    if fe.mesh == "graded":
+        return fe_mesh.unit_nodes(fe.elements, fe.grading)
     try:
-        nodes = fe_mesh.read_unit_mesh(fe["mesh"])
+        nodes = fe_mesh.read_unit_mesh(fe.mesh)
     except fe_mesh.MeshError as exc:
-        raise ConfigError(f"[fe] mesh = {toml_value(fe['mesh'])}: {exc}") from None
+        raise ConfigError(f"[fe] mesh = {toml_value(fe.mesh)}: {exc}") from None
     if nodes.size - 1 > MAX_ELEMENTS:
-        raise ConfigError(f"[fe] mesh = {toml_value(fe['mesh'])}: {nodes.size - 1} elements, "
+        raise ConfigError(f"[fe] mesh = {toml_value(fe.mesh)}: {nodes.size - 1} elements, "
                           f"at most {MAX_ELEMENTS}")
     return nodes
 
 
-def build_model(cfg, length_m=None, end=None, physics=None) -> FEModel:
+def build_model(cfg, end=None, physics=None) -> FEModel:
     """FE model of the configured case; ``end`` overrides the figure-eight."""
-    case = case_fields(cfg, length_m, end)
-    spaces = build_spaces(unit_mesh_from_config(cfg), case["length_m"],
-                          cfg["tether"]["linear_density_kg_m"])
+    case = case_fields(cfg, end)
+    spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
+                          cfg.tether.linear_density_kg_m)
     return FEModel(system=TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"]),
-                   scheme=scheme_from_config(cfg), **case)
+                   scheme=scheme_from_config(cfg.time), **case)
 
 
 def _weight_N(model: FEModel) -> float:
@@ -441,11 +440,11 @@ def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
     )
 
 
-def simulate(cfg, length_m=None, progress=False) -> TetherRun:
+def simulate(cfg, progress=False) -> TetherRun:
     """Run the configured case with the FE solver."""
-    model = build_model(cfg, length_m)
-    t, fe = cfg["time"], cfg["fe"]
-    reel = reel_from_config(cfg, start_s=t["spinup_periods"] * model.end.period_s)
-    return run(model, t["dt_s"], t["spinup_periods"], t["average_periods"],
-               cfg["output"]["every"], config=cfg, progress=progress, reel=reel,
-               element_bounds_m=(fe["min_element_m"], fe["max_element_m"]))
+    model = build_model(cfg)
+    t, fe = cfg.time, cfg.fe
+    reel = reel_from_config(cfg, start_s=t.spinup_periods * model.end.period_s)
+    return run(model, t.dt_s, t.spinup_periods, t.average_periods,
+               cfg.output.every, config=cfg, progress=progress, reel=reel,
+               element_bounds_m=(fe.min_element_m, fe.max_element_m))

@@ -1,0 +1,28 @@
+"""Configuration: typed, frozen, checked once; TOML in and out.
+
+Every command runs without a file: each key's default is seed 000's case.  A
+user file overrides any subset of keys; unknown keys, wrong types, values out
+of range and cases the solvers cannot solve raise
+:class:`~fem_tether.errors.ConfigError` whose one-line message names the
+``[section] key``.
+
+- :mod:`.settings`: one key (default, unit, meaning, check) and the section base;
+- :mod:`.sections`: the sections, one dataclass per TOML table;
+- :mod:`.rules`: the rules across sections;
+- :mod:`.model`: :class:`Config` and :func:`load_config`;
+- :mod:`.tomlio`: reading and writing TOML.
+"""
+
+from fem_tether.errors import ConfigError
+
+from .model import Config, load_config
+from .rules import CEILING_M, FILE_KEYS, MIN_STEPS_PER_PERIOD, NOT_FILES, steps_per_period
+from .sections import (FD, FE, MAX_ELEMENTS, SECTIONS, Air, Crosscheck, Cycle, Drag, Kite, Output,
+                       Resource, Tether, Time, Wind, Winch)
+from .settings import Section, toml_value
+from .tomlio import read_toml, resolve_paths
+
+__all__ = ["CEILING_M", "FD", "FE", "FILE_KEYS", "MAX_ELEMENTS", "MIN_STEPS_PER_PERIOD", "NOT_FILES",
+           "SECTIONS", "Air", "Config", "ConfigError", "Crosscheck", "Cycle", "Drag", "Kite", "Output",
+           "Resource", "Section", "Tether", "Time", "Wind", "Winch", "load_config", "read_toml",
+           "resolve_paths", "steps_per_period", "toml_value"]

@@ -1,0 +1,98 @@
+"""The whole configuration: one frozen :class:`Config` of typed sections.
+
+A :class:`Config` is checked once, when it is made (key by key in each
+section, then across sections by :func:`.rules.check`); a variant is a new
+checked object (:meth:`Config.replace`, :meth:`Config.with_length`), never an
+edited one.
+
+>>> cfg = load_config(overrides={"tether": {"length_m": 3000.0}})
+>>> cfg.tether.length_m, cfg.kite.speed_ms
+(3000.0, 80.0)
+>>> cfg.with_length(1500.0).tether.length_m
+1500.0
+>>> cfg.replace(fe={"elements": 20}).fe.elements
+20
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+from fem_tether.errors import ConfigError
+from fem_tether.trajectory import FigureEight
+
+from . import rules
+from .sections import (FD, FE, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, Tether, Time,
+                       Wind, Winch)
+from .tomlio import read_toml, resolve_paths, section_toml
+
+
+@dataclass(frozen=True)
+class Config:
+    """A checked case: every section, and the rules across them."""
+
+    tether: Tether = field(default_factory=Tether)
+    air: Air = field(default_factory=Air)
+    drag: Drag = field(default_factory=Drag)
+    wind: Wind = field(default_factory=Wind)
+    kite: Kite = field(default_factory=Kite)
+    winch: Winch = field(default_factory=Winch)
+    fe: FE = field(default_factory=FE)
+    time: Time = field(default_factory=Time)
+    fd: FD = field(default_factory=FD)
+    crosscheck: Crosscheck = field(default_factory=Crosscheck)
+    cycle: Cycle = field(default_factory=Cycle)
+    resource: Resource = field(default_factory=Resource)
+    output: Output = field(default_factory=Output)
+
+    def __post_init__(self) -> None:
+        rules.check(self)
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Config:
+        """The configuration of nested tables ``{section: {key: value}}`` over the defaults."""
+        return cls().replace(**data)
+
+    def replace(self, **sections: dict[str, Any]) -> Config:
+        """A checked copy with some keys changed: ``cfg.replace(fe={"elements": 20})``."""
+        known = {f.name: f for f in dataclasses.fields(self)}
+        changed = {}
+        for name, values in sections.items():
+            if name not in known:
+                raise ConfigError(f"[{name}]: unknown section (known: {', '.join(known)})")
+            if not isinstance(values, dict):
+                raise ConfigError(f"[{name}]: expected a table of keys")
+            changed[name] = getattr(self, name).replace(**values)
+        return dataclasses.replace(self, **changed)
+
+    def with_length(self, length_m: float) -> Config:
+        """The same case on a line of ``length_m``."""
+        return self.replace(tether={"length_m": float(length_m)})
+
+    @cached_property
+    def eight(self) -> FigureEight:
+        """The figure-eight the kite end flies on this line."""
+        return FigureEight.from_config(self.kite, self.tether.length_m)
+
+    def to_dict(self) -> dict[str, dict[str, Any]]:
+        return {f.name: getattr(self, f.name).to_dict() for f in dataclasses.fields(self)}
+
+    def to_toml(self) -> str:
+        """The configuration as TOML, each key commented with its meaning and unit."""
+        return "\n".join(section_toml(getattr(self, f.name)) for f in dataclasses.fields(self))
+
+
+def load_config(path: str | Path | None = None, overrides: dict | None = None) -> Config:
+    """Defaults, then the TOML file at ``path``, then ``overrides``.  File names
+    in the file are relative to the file, and must exist."""
+    data = resolve_paths(read_toml(path), Path(path).parent) if path is not None else {}
+    for name, values in (overrides or {}).items():
+        both = isinstance(data.get(name), dict) and isinstance(values, dict)
+        data[name] = {**data[name], **values} if both else values
+    cfg = Config.from_dict(data)
+    rules.check_files(cfg)
+    return cfg

@@ -1,0 +1,113 @@
+"""Rules across sections: the case must be one the solvers can solve.
+
+Each rule raises :class:`~fem_tether.errors.ConfigError` naming the key to
+change.  The limits and their reasons are in docs/numerics.md.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from fem_tether.errors import ConfigError
+
+from .settings import toml_value
+
+if TYPE_CHECKING:
+    from .model import Config
+
+#: Highest altitude of the ISA troposphere the atmosphere model covers [m].
+CEILING_M = 11000.0
+
+#: Fewest time steps per period of the eight, per time-step key.  From the
+#: convergence of mean F_t in dt (default case, 500 m is the worst length):
+#: FE generalised-alpha errs +2.2 % at 40 steps, +4.0 % at 30, +10 % at 20;
+#: FD BDF2 errs +1.9 % at 72 steps, +6.1 % at 36.  The limits keep the
+#: coarsest admissible step near the cross-check's 2 % (docs/numerics.md).
+MIN_STEPS_PER_PERIOD = {("time", "dt_s"): 36, ("fd", "dt_s"): 72}
+
+#: Keys that name files: a relative name in a file is read relative to that file.
+FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"))
+
+#: Values of file keys that are not files.
+NOT_FILES = ("", "uniform", "graded")
+
+
+def steps_per_period(period_s: float, dt_s: float) -> int:
+    """Whole steps of at most ``dt_s`` in a period: the step is rounded down so
+    that they fill it (the one rounding rule of both solvers)."""
+    return math.ceil(period_s / dt_s - 1e-9)
+
+
+def check(cfg: Config) -> None:
+    """Raise :class:`ConfigError` if ``cfg`` is not a solvable case.
+
+    An elastic line needs a prescribed kite radius, a prescribed radius must
+    be set and shorter than an inextensible line, reeling needs the
+    winch-tension mode, the reeling element bounds
+    must allow a split into two admissible halves, the figure-eight must fit
+    the sphere of the line (azimuth within 1 rad, polar angle inside
+    (0, 90) deg) and stay below the ISA ceiling, and both time steps must
+    resolve its period (:data:`MIN_STEPS_PER_PERIOD`).
+    """
+    _check_winch(cfg)
+    fe = cfg.fe
+    if not fe.max_element_m > 2.0 * fe.min_element_m:
+        raise ConfigError(f"[fe] max_element_m = {fe.max_element_m:g}: must exceed twice "
+                          f"[fe] min_element_m = {fe.min_element_m:g}")
+    _check_eight(cfg)
+
+
+def _check_winch(cfg: Config) -> None:
+    tether, winch = cfg.tether, cfg.winch
+    tension_mode = winch.mode == "tension"
+    if tension_mode and tether.elasticity == "elastic":
+        raise ConfigError("[tether] elasticity = \"elastic\": needs [winch] mode = \"prescribed\"; a "
+                          "fixed-length elastic line cannot hold the winch tension through the "
+                          "kite's radius (waves take time to cross it), use an inextensible line")
+    if not tension_mode:
+        radius = cfg.kite.radius_m
+        if radius <= 0.0 or (tether.elasticity == "inextensible" and radius >= tether.length_m):
+            raise ConfigError(f"[kite] radius_m = {radius:g}: [winch] mode = \"prescribed\" needs "
+                              f"0 < radius_m < length_m = {tether.length_m:g} for an inextensible line")
+    if winch.reel_out != "none" and not tension_mode:
+        raise ConfigError(f"[winch] reel_out = \"{winch.reel_out}\": needs [winch] mode = "
+                          "\"tension\" (the kite's radius follows the paid-out line)")
+    if winch.reel_out == "table" and not winch.reel_out_table:
+        raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = \"table\"")
+
+
+def check_files(cfg: Config) -> None:
+    """Raise :class:`ConfigError` if a file the configuration names does not
+    exist (checked when a configuration is loaded, not when a stored one is read)."""
+    for section, name in FILE_KEYS:
+        value = getattr(getattr(cfg, section), name)
+        if value not in NOT_FILES and not Path(value).is_file():
+            raise ConfigError(f"[{section}] {name} = {toml_value(value)}: no such file")
+
+
+def _check_eight(cfg: Config) -> None:
+    kite, length = cfg.kite, cfg.tether.length_m
+    theta0 = math.radians(kite.theta0_deg)
+    half_height = 0.5 * kite.eight_height_m / length
+    if kite.eight_width_m / (2.0 * length * math.sin(theta0)) > 1.0:
+        raise ConfigError(f"[tether] length_m = {length:g}: the eight ([kite] eight_width_m = "
+                          f"{kite.eight_width_m:g}) spans more than 1 rad of azimuth on so short a line")
+    if not (0.0 < theta0 - half_height and theta0 + half_height < math.pi / 2):
+        raise ConfigError(f"[kite] theta0_deg = {kite.theta0_deg:g}: the eight ([kite] eight_height_m = "
+                          f"{kite.eight_height_m:g}) must stay between the zenith and the horizon "
+                          f"on a {length:g} m line")
+    period_s = cfg.eight.period_s
+    for (section, name), fewest in MIN_STEPS_PER_PERIOD.items():
+        dt_s = getattr(getattr(cfg, section), name)
+        steps = steps_per_period(period_s, dt_s)
+        if steps < fewest:
+            largest = math.floor(1e4 * period_s / fewest) / 1e4
+            raise ConfigError(f"[{section}] {name} = {toml_value(dt_s)}: {steps} step(s) per "
+                              f"period of the eight ({period_s:.3f} s), at least {fewest} needed; "
+                              f"largest allowed {name} = {largest:g}")
+    for stop in (length, cfg.winch.reel_out_stop_m):
+        if stop * math.cos(theta0 - half_height) + 0.5 * kite.eight_height_m > CEILING_M:
+            raise ConfigError(f"[tether] length_m = {stop:g}: the kite would fly above the ISA "
+                              f"troposphere ({CEILING_M:g} m), which the atmosphere model covers")

@@ -1,0 +1,184 @@
+"""The configuration's sections: one frozen dataclass per TOML table.
+
+Every key has a default (seed 000's case: the KiteGen of Roselli 2016, a
+1000 m line flying an eight), a unit, a meaning and a check.  Sections are
+checked on creation; the rules across sections are in :mod:`.rules`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .settings import (Section, at_least, between, count_between, non_negative, one_of, positive,
+                       setting)
+
+#: Most elements (FE) or segments (FD) accepted: both solvers were run at
+#: this size (static start and a period of the eight, default case); beyond
+#: it no run has shown that they converge or how long they take.
+MAX_ELEMENTS = 10000
+
+
+@dataclass(frozen=True)
+class Tether(Section):
+    NAME = "tether"
+    length_m: float = setting(1000.0, "m", "cable length L (per line)", positive)
+    diameter_m: float = setting(0.011, "m", "line diameter d", positive)
+    linear_density_kg_m: float = setting(0.062, "kg/m", "mass per unit length mu", positive)
+    lines: int = setting(2, "-", "number of lines from ground to kite", at_least(1))
+    elasticity: str = setting("inextensible", "-",
+                              "'inextensible' (|r_s| = 1) or 'elastic' (strain = T/EA)",
+                              one_of("inextensible", "elastic"))
+    axial_stiffness_N: float = setting(1.4730e7, "N", "EA for elasticity = 'elastic' (SK99 11 mm: 155 GPa)",
+                                       positive)
+    damping_time_s: float = setting(0.0, "s", "Kelvin-Voigt retardation time eta, T = EA (eps + eta deps/dt)",
+                                    non_negative)
+
+
+@dataclass(frozen=True)
+class Air(Section):
+    NAME = "air"
+    model: str = setting("isa", "-", "'isa' (ISA troposphere) or 'constant'", one_of("isa", "constant"))
+    density_kg_m3: float = setting(1.225, "kg/m3", "density for model = 'constant'", positive)
+    viscosity_Pa_s: float = setting(1.789e-5, "Pa s", "dynamic viscosity for model = 'constant'", positive)
+
+
+@dataclass(frozen=True)
+class Drag(Section):
+    NAME = "drag"
+    model: str = setting("cylinder", "-", "'cylinder' (C_d,c(Re)) or 'constant'",
+                         one_of("cylinder", "constant"))
+    cd: float = setting(1.2, "-", "cross-flow drag coefficient for model = 'constant'", positive)
+    skin_friction_cf: float = setting(0.0, "-", "tangential skin-friction coefficient c_f (0: none)",
+                                      non_negative)
+
+
+@dataclass(frozen=True)
+class Wind(Section):
+    NAME = "wind"
+    profile: str = setting("log", "-", "'log' (De Bilt), 'power' or 'none'", one_of("log", "power", "none"))
+    season: str = setting("annual", "-", "De Bilt log-law season", one_of("winter", "summer", "annual"))
+    reference_speed_ms: float = setting(9.5, "m/s", "power law: speed at reference_height_m", non_negative)
+    reference_height_m: float = setting(20.0, "m", "power law: reference height", positive)
+    alpha: float = setting(0.2, "-", "power law: shear exponent", between(0.0, 1.0, (True, False)))
+
+
+@dataclass(frozen=True)
+class Kite(Section):
+    NAME = "kite"
+    area_m2: float = setting(120.0, "m2", "kite reference area A", positive)
+    cl: float = setting(1.0, "-", "lift coefficient C_l", positive)
+    efficiency: float = setting(28.0, "-", "aerodynamic efficiency E = C_l/C_d", positive)
+    speed_ms: float = setting(80.0, "m/s", "crosswind flight speed V_k on the eight", positive)
+    theta0_deg: float = setting(45.0, "deg", "polar angle of the eight's centre, from the vertical",
+                                between(0.0, 90.0))
+    eight_width_m: float = setting(190.0, "m", "crosswind width W of the eight", positive)
+    eight_height_m: float = setting(95.0, "m", "height H of the eight", positive)
+    design_phi_deg: float = setting(11.0, "deg", "azimuth used by the characteristic curves",
+                                    between(-90.0, 90.0))
+    nominal_force_N: float = setting(300000.0, "N", "nominal traction force (all lines)", positive)
+    max_reel_out_ms: float = setting(13.5, "m/s", "maximum reel-out speed", positive)
+    air_density_kg_m3: float = setting(1.0, "kg/m3", "density of the characteristic curves (seed: 1 kg/m3)",
+                                       positive)
+    radius_m: float = setting(0.0, "m", "kite distance for [winch] mode = 'prescribed' (0: unset)",
+                              non_negative)
+
+
+@dataclass(frozen=True)
+class Winch(Section):
+    NAME = "winch"
+    mode: str = setting("tension", "-", "'tension' (winch holds ground_tension_N) or 'prescribed'",
+                        one_of("tension", "prescribed"))
+    ground_tension_N: float = setting(150000.0, "N", "tension held by the winch, per line", positive)
+    reel_out: str = setting("none", "-", "reeling during flight: 'none', 'constant', 'table' or 'controlled'",
+                            one_of("none", "constant", "table", "controlled"))
+    reel_out_speed_ms: float = setting(0.0, "m/s", "reel_out = 'constant': V_L (< 0 reels in)")
+    reel_out_table: str = setting("", "-", "reel_out = 'table': CSV time_s,speed_ms from the start of reeling")
+    reel_out_stop_m: float = setting(0.0, "m", "stop reeling and the run at this length (0: run the periods)",
+                                     non_negative)
+
+
+@dataclass(frozen=True)
+class FE(Section):
+    NAME = "fe"
+    mesh: str = setting("graded", "-",
+                        "'uniform', 'graded' or a meshio file of [0, 1] (e.g. meshes/graded_40.vtu)")
+    elements: int = setting(40, "-", "elements of a generated mesh", count_between(2, MAX_ELEMENTS))
+    grading: float = setting(4.0, "-", "first/last element size of a graded mesh (kite end finer)", positive)
+    min_element_m: float = setting(2.0, "m", "reeling: the winch element merges with its neighbour below this",
+                                   positive)
+    max_element_m: float = setting(100.0, "m",
+                                   "reeling: the winch element splits above this (into halves of it)",
+                                   positive)
+
+
+@dataclass(frozen=True)
+class Time(Section):
+    NAME = "time"
+    dt_s: float = setting(0.05, "s", "time step (rounded down to a whole number of steps per period)", positive)
+    scheme: str = setting("generalized-alpha", "-", "'generalized-alpha', 'hht' or 'newmark'",
+                          one_of("generalized-alpha", "hht", "newmark"))
+    rho_inf: float = setting(0.8, "-", "generalized-alpha spectral radius at infinity",
+                             between(0.0, 1.0, (True, True)))
+    hht_alpha: float = setting(-0.1, "-", "HHT alpha", between(-1.0 / 3.0, 0.0, (True, True)))
+    beta: float = setting(0.25, "-", "Newmark beta", positive)
+    gamma: float = setting(0.5, "-", "Newmark gamma", positive)
+    spinup_periods: int = setting(1, "-", "periods of the eight flown before averaging", at_least(0))
+    average_periods: int = setting(2, "-", "whole periods averaged", at_least(1))
+    newton_tol: float = setting(1e-10, "-", "Newton tolerance on residuals scaled by the tension", positive)
+    max_newton: int = setting(20, "-", "Newton iterations before a step is halved", at_least(1))
+    max_halvings: int = setting(6, "-", "step halvings before the solve gives up", at_least(0))
+
+
+@dataclass(frozen=True)
+class FD(Section):
+    NAME = "fd"
+    segments: int = setting(100, "-", "FD reference solver: uniform segments", count_between(2, MAX_ELEMENTS))
+    scheme: str = setting("bdf2", "-", "FD time scheme: 'bdf2' or 'euler' (the seed's)", one_of("bdf2", "euler"))
+    dt_s: float = setting(0.025, "s", "FD time step (BDF2's error constant is larger than generalized-alpha's)",
+                          positive)
+
+
+@dataclass(frozen=True)
+class Crosscheck(Section):
+    NAME = "crosscheck"
+    drag_rel: float = setting(0.02, "-", "FE/FD tolerance on mean F_t (relative)", positive)
+    tension_rel: float = setting(0.02, "-", "FE/FD tolerance on mean ground and kite tension (relative)",
+                                 positive)
+    shape_rel: float = setting(0.01, "-", "FE/FD tolerance on the largest distance between the lines / L",
+                               positive)
+
+
+@dataclass(frozen=True)
+class Cycle(Section):
+    NAME = "cycle"
+    stroke_m: float = setting(450.0, "m", "line reeled out per active phase, then reeled in", positive)
+    reel_in_ms: float = setting(17.5, "m/s", "reel-in speed of the side-slip recovery", positive)
+    reel_in_cd0: float = setting(0.1, "-", "drag coefficient of the side-slipping wing (seed 004 eq. 3.24)",
+                                 non_negative)
+    eta_e: float = setting(1.0, "-", "efficiency of the generated energy (seed 001: 0.8)",
+                           between(0.0, 1.0, (False, True)))
+    eta_c: float = setting(1.0, "-", "efficiency of the recovery, divides its energy (seed 004 eta_in)",
+                           between(0.0, 1.0, (False, True)))
+
+
+@dataclass(frozen=True)
+class Resource(Section):
+    NAME = "resource"
+    csv: str = setting("", "-", "wind histograms per altitude band (CSV); '' = Weibull from the wind profile")
+    weibull_k: float = setting(2.0, "-", "Weibull shape k of the default resource", positive)
+    band_bottom_m: float = setting(200.0, "m", "lowest altitude of the bands", non_negative)
+    band_top_m: float = setting(2300.0, "m", "highest altitude of the bands", positive)
+    band_width_m: float = setting(300.0, "m", "altitude band width", positive)
+    bin_width_ms: float = setting(0.5, "m/s", "wind-speed bin width", positive)
+    max_speed_ms: float = setting(50.0, "m/s", "last wind-speed bin edge", positive)
+
+
+@dataclass(frozen=True)
+class Output(Section):
+    NAME = "output"
+    every: int = setting(5, "-", "time steps between stored snapshots of the whole line", at_least(1))
+
+
+#: The sections in the order of a configuration file.
+SECTIONS: tuple[type[Section], ...] = (Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
+                                        Resource, Output)

@@ -1,0 +1,122 @@
+"""One configuration key: default, unit, meaning and admissible values.
+
+A section of the configuration is a frozen dataclass whose fields are made by
+:func:`setting`; :class:`Section` checks and coerces every field when the
+section is built, so a section that exists is valid.  Errors name the key as a
+user writes it in TOML: ``[section] key = value: problem``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from typing import Any, Callable, ClassVar, Self
+
+from fem_tether.errors import ConfigError
+
+Check = Callable[[Any], "str | None"]
+
+
+def setting(default: Any, unit: str, doc: str, check: Check | None = None) -> Any:
+    """A dataclass field carrying its unit (``"-"``: dimensionless or a name),
+    meaning and check (a function returning the problem, or None)."""
+    return dataclasses.field(default=default, metadata={"unit": unit, "doc": doc, "check": check})
+
+
+def positive(v) -> str | None:
+    return None if v > 0 else "must be > 0"
+
+
+def non_negative(v) -> str | None:
+    return None if v >= 0 else "must be >= 0"
+
+
+def between(lo: float, hi: float, closed: tuple[bool, bool] = (False, False)) -> Check:
+    def check(v):
+        ok_lo = v >= lo if closed[0] else v > lo
+        ok_hi = v <= hi if closed[1] else v < hi
+        if ok_lo and ok_hi:
+            return None
+        return f"must be in {'[' if closed[0] else '('}{lo}, {hi}{']' if closed[1] else ')'}"
+    return check
+
+
+def one_of(*choices: str) -> Check:
+    return lambda v: None if v in choices else f"must be one of {', '.join(map(toml_value, choices))}"
+
+
+def at_least(n: int) -> Check:
+    return lambda v: None if v >= n else f"must be >= {n}"
+
+
+def count_between(lo: int, hi: int) -> Check:
+    return lambda v: None if lo <= v <= hi else f"must be from {lo} to {hi}"
+
+
+def toml_value(v: Any) -> str:
+    """``v`` as it is written in TOML (and in error messages)."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)   # JSON string escapes are TOML basic-string escapes
+    return repr(v)
+
+
+def _coerced(where: str, kind: type, value: Any) -> Any:
+    """``value`` as a ``kind`` (an int is a float where a float is expected)."""
+    if kind is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ConfigError(f"{where}: expected a number")
+        value = float(value)
+        if not math.isfinite(value):
+            raise ConfigError(f"{where}: must be finite")
+    elif kind is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ConfigError(f"{where}: expected an integer")
+    elif kind is bool:
+        if not isinstance(value, bool):
+            raise ConfigError(f"{where}: expected true or false")
+    elif not isinstance(value, kind):
+        raise ConfigError(f"{where}: expected a {kind.__name__}")
+    return value
+
+
+@dataclasses.dataclass(frozen=True)
+class Section:
+    """A configuration section: fields made by :func:`setting`, checked on creation."""
+
+    NAME: ClassVar[str] = ""
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            where = f"[{self.NAME}] {f.name} = {toml_value(value)}"
+            value = _coerced(where, type(f.default), value)
+            problem = f.metadata["check"] and f.metadata["check"](value)
+            if problem:
+                raise ConfigError(f"{where}: {problem}")
+            object.__setattr__(self, f.name, value)
+
+    @classmethod
+    def from_dict(cls, values: Any) -> Self:
+        """The section of a TOML table; unknown keys are errors."""
+        if not isinstance(values, dict):
+            raise ConfigError(f"[{cls.NAME}]: expected a table of keys")
+        known = [f.name for f in dataclasses.fields(cls)]
+        for name in values:
+            if name not in known:
+                raise ConfigError(f"[{cls.NAME}] {name}: unknown key (known: {', '.join(known)})")
+        return cls(**values)
+
+    def replace(self, **changes: Any) -> Self:
+        """A checked copy with ``changes``."""
+        return self.from_dict({**self.to_dict(), **changes})
+
+    def to_dict(self) -> dict[str, Any]:
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    @classmethod
+    def describe(cls) -> list[tuple[str, Any, str, str]]:
+        """(key, default, unit, meaning) of every key, in order."""
+        return [(f.name, f.default, f.metadata["unit"], f.metadata["doc"]) for f in dataclasses.fields(cls)]
