@@ -6,7 +6,8 @@ the viscosity follows Sutherland's law.  Seed 000 takes rho(z) and mu_air(z)
 from the ISA table (Tab. 4.1), which these formulas reproduce.
 
 >>> air = ISA()
->>> air.density_kg_m3([0.0, 1000.0])      # ~ [1.225, 1.112]
+>>> air.density_kg_m3([0.0, 1000.0]).round(3)
+array([1.225, 1.112])
 """
 
 from __future__ import annotations

@@ -14,7 +14,8 @@ Seed 000 §4.1 uses two branches, and so does :class:`CylinderDrag`:
   C_d = C_i (Re/Re_i)^s_i on each interval; above the last node the last value
   is held.
 
->>> CylinderDrag().cd([10.0, 1e3, 5e5])    # ~ [2.71, 0.95, 0.31]
+>>> CylinderDrag().cd([10.0, 1e3, 5e5]).round(2)
+array([2.71, 0.95, 0.31])
 """
 
 from __future__ import annotations

@@ -5,8 +5,10 @@ diameters they are interpolated linearly, outside the table range a
 ValueError names the diameter.  The 17 mm row of the seed's table is empty
 and is left out.
 
->>> breaking_load_N(0.011)                # 164950.0
->>> choose_diameter_m(150e3)              # 0.011, the seed's choice
+>>> float(breaking_load_N(0.011))
+164950.0
+>>> float(choose_diameter_m(150e3))       # the seed's choice
+0.011
 """
 
 from __future__ import annotations

@@ -27,7 +27,9 @@ flies in the band that holds its mean kite altitude L cosϑ0 (500 m ↔ 200–50
   writes this format (a template to edit).
 
 >>> resource = weibull_resource()
->>> band = resource.band_for_length(919.0, np.radians(45.0))     # 500–800 m
+>>> band = resource.band_for_length(919.0, np.radians(45.0))
+>>> band.low_m, band.high_m
+(500.0, 800.0)
 """
 
 from __future__ import annotations
