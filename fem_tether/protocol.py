@@ -108,7 +108,7 @@ def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int
         if depth >= case.max_halvings:
             raise SolverDivergedError(
                 f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
-                f"{depth} halvings), L = {case.length_m:g} m, {solver.resolution()}: "
+                f"{depth} halvings, {solver.resolution()}), L = {case.length_m:g} m: "
                 + (exc.cause or f"scaled residual {exc.residual:.3e} after {case.max_newton} "
                    "Newton iterations")) from None
     stats.halvings += 1

@@ -108,7 +108,7 @@ def test_failed_steps_are_halved_and_counted():
 def test_divergence_after_max_halvings_names_when_where_and_why():
     fake = FakeSolver(fails=lambda t, h: t >= 0.5)
     with pytest.raises(SolverDivergedError, match=r"^time step did not converge at t = 0\.5000 s "
-                       r"\(step 6\.250e-02 s after 3 halvings\), L = 100 m, 2 cells: scaled "
+                       r"\(step 6\.250e-02 s after 3 halvings, 2 cells\), L = 100 m: scaled "
                        r"residual 5\.000e-01 after 20 Newton iterations$"):
         protocol.run(fake, 0.5, 0, 1)
 

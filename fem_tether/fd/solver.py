@@ -248,7 +248,8 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
         raise SolverDivergedError(
             f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
             f"{exc.reason()}"
-            + (too_weak_for_weight(model.ground_tension_N, model.eq.physics.weight_N(model.length_m)) if weak else "")) from None
+            + (too_weak_for_weight(model.ground_tension_N, model.eq.physics.weight_N(model.length_m))
+               if weak else "")) from None
     return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
 
 

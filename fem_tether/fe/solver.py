@@ -235,7 +235,8 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
         raise SolverDivergedError(
             f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
             f"{sys_.spaces.n_elements} elements: {exc.reason()}"
-            + (too_weak_for_weight(model.ground_tension_N, sys_.physics.weight_N(model.length_m)) if weak else "")) from None
+            + (too_weak_for_weight(model.ground_tension_N, sys_.physics.weight_N(model.length_m))
+               if weak else "")) from None
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
