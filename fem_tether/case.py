@@ -9,7 +9,9 @@ and its derivatives: a :class:`~fem_tether.trajectory.FigureEight` or a
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+
+import numpy as np
 
 
 @dataclass
@@ -24,6 +26,20 @@ class TetherCase:
     newton_tol: float
     max_newton: int
     max_halvings: int
+
+    def force_ref_N(self, tension_N, physics) -> float:
+        """The force that scales the residuals (``newton_tol`` is relative to it):
+        T_0 in tension mode, else the largest of the tensions, the line's weight
+        (``physics``) and 1 N."""
+        if self.tension_mode:
+            return self.ground_tension_N
+        return max(float(np.max(np.abs(tension_N))), physics.weight_N(self.length_m), 1.0)
+
+
+def end_at_length(end, length_m: float):
+    """The end motion flown on the sphere of a line of ``length_m`` (an end that
+    does not depend on the length, such as a Stationary one, unchanged)."""
+    return replace(end, length_m=length_m) if hasattr(end, "length_m") else end
 
 
 def case_fields(cfg, end=None) -> dict:

@@ -39,8 +39,9 @@ MIN_LOAD_STEP = 2.0 ** -20
 
 
 class NotConverged(Exception):
-    """A Newton solve at one load factor failed; ``residual`` is its last scaled
-    residual, ``cause`` why it failed if known (e.g. the line left the atmosphere)."""
+    """A Newton solve failed (of a static equilibrium at one load factor, or of a
+    time step); ``residual`` is its last scaled residual, ``cause`` why it failed
+    if known (e.g. the line left the atmosphere)."""
 
     def __init__(self, residual: float, cause: str = ""):
         super().__init__(cause or f"scaled residual {residual:.3e}")

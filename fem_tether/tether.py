@@ -36,6 +36,10 @@ class TetherPhysics:
         """w = -mu g e_z (seed 000 eq. 4.15)."""
         return gravity_N_m(self.linear_density_kg_m, self.gravity_ms2)
 
+    def weight_N(self, length_m: float) -> float:
+        """The weight mu g L of a line of length ``length_m``."""
+        return self.linear_density_kg_m * self.gravity_ms2 * length_m
+
 
 def physics_from_config(cfg) -> TetherPhysics:
     """The physics of ``cfg``'s [tether], [air], [drag] and [wind] sections."""

@@ -17,6 +17,7 @@ from fem_tether.fd.solver import State, _apply, _nodes, initial_guess
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.fe import solver as fe_solver
 from fem_tether.loads import G_MS2
+from fem_tether import protocol
 from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, period_average
 from fem_tether.straight import closed_form_drag_N
 from fem_tether.trajectory import Stationary
@@ -256,7 +257,7 @@ def test_taut_string_fundamental_frequency(scheme):
     """Tension mode, still end, no gravity, no drag, half-sine start:
     f = sqrt(T/mu)/(2L) within 0.5 % (zero crossings of the midpoint, 4 periods)."""
     model, st, f_exact = _taut_string(scheme)
-    run = fd.run(model, 1.0 / f_exact / 200, 0, 4, output_every=1, initial=st)
+    run = protocol.run(fd.FDSolver(model), 1.0 / f_exact / 200, 0, 4, output_every=1, initial=st)
     t = run.snapshot_time_s
     y = run.snapshots["position_m"][:, model.grid.M // 2, 1]
     i = np.nonzero(y[:-1] * y[1:] < 0)[0]
@@ -272,7 +273,7 @@ def test_taut_string_fundamental_frequency(scheme):
 def test_ground_tension_held_every_step():
     """T(0, t) = T_0 to 1e-6 at every step; the line stays inextensible (strain <= 1e-8)."""
     cfg = load_config(overrides={"tether": {"length_m": 300.0}})
-    run = fd.run(fd.build_model(cfg.replace(fd={"segments": 30})), 0.05, 0, 1, output_every=10)
+    run = protocol.run(fd.FDSolver(fd.build_model(cfg.replace(fd={"segments": 30}))), 0.05, 0, 1, output_every=10)
     assert np.max(np.abs(run.series["ground_tension_N"] / 150e3 - 1)) <= 1e-6
     assert np.max(np.abs(run.snapshots["tension_N"][:, 0] / 150e3 - 1)) <= 1e-6
     assert np.max(run.series["max_strain"]) <= 1e-8
@@ -283,7 +284,7 @@ def test_run_structure():
     whole periods, averaging after the spin-up."""
     cfg = load_config(overrides={"tether": {"length_m": 300.0}})
     model = fd.build_model(cfg.replace(fd={"segments": 12}))
-    run = fd.run(model, 0.1, 1, 1, output_every=7, config=cfg)
+    run = protocol.run(fd.FDSolver(model), 0.1, 1, 1, output_every=7, config=cfg)
     period = model.end.period_s
     steps = int(np.ceil(period / 0.1 - 1e-9))
     assert run.solver == "fd"
@@ -310,7 +311,7 @@ def test_default_physics_1000m_run():
     cfg = load_config()
     model = fd.build_model(cfg.replace(fd={"segments": 50}))
     t0 = time.perf_counter()
-    run = fd.run(model, 0.05, 1, 2, output_every=50)
+    run = protocol.run(fd.FDSolver(model), 0.05, 1, 2, output_every=50)
     wall = time.perf_counter() - t0
     drag, kite = run.mean("drag_N"), run.mean("kite_tension_N")
     print(f"\n FD 1000 m default: mean F_t = {drag:.1f} N, mean kite tension = {kite:.1f} N, "
@@ -323,7 +324,7 @@ def test_default_physics_1000m_run():
 def test_short_line_matches_straight_closed_form():
     """200 m in quiet air on the eight: F_t within 3 % of rho C_d d L V^2 / 8."""
     cfg = load_config(overrides={**QUIET, "tether": {"length_m": 200.0}})
-    run = fd.run(fd.build_model(cfg.replace(fd={"segments": 20})), 0.05, 1, 1, output_every=50)
+    run = protocol.run(fd.FDSolver(fd.build_model(cfg.replace(fd={"segments": 20}))), 0.05, 1, 1, output_every=50)
     closed = closed_form_drag_N(1.2, 1.2, 0.011, 200.0, 80.0)
     print(f"\n FD 200 m: F_t = {run.mean('drag_N'):.1f} N, closed form {closed:.1f} N")
     assert run.mean("drag_N") == pytest.approx(closed, rel=0.03)
@@ -336,7 +337,7 @@ def test_compliant_strain_equals_tension_over_EA():
     cfg = load_config(overrides={**QUIET, "winch": {"mode": "prescribed"}, "kite": {"radius_m": 500.0},
                                  "tether": {"length_m": 500.0, "elasticity": "elastic",
                                             "axial_stiffness_N": ea}})
-    run = fd.run(fd.build_model(cfg.replace(fd={"segments": 25})), 0.1, 0, 1, output_every=5)
+    run = protocol.run(fd.FDSolver(fd.build_model(cfg.replace(fd={"segments": 25}))), 0.1, 0, 1, output_every=5)
     pos = run.snapshots["position_m"]
     strain = np.linalg.norm(np.diff(pos, axis=1), axis=2) / np.diff(run.s_nodes_m) - 1.0
     expected = run.snapshots["tension_N"] / ea
@@ -359,15 +360,15 @@ def test_config_errors():
 def test_divergence_reports_time_length_and_residual():
     cfg = load_config(overrides={**QUIET, "time": {"max_newton": 1, "max_halvings": 1}})
     with pytest.raises(fd.SolverDivergedError, match=r"t = .* s .*L = 1000 m.*residual"):
-        fd.run(fd.build_model(cfg.replace(fd={"segments": 20})), 0.5, 1, 1)
+        protocol.run(fd.FDSolver(fd.build_model(cfg.replace(fd={"segments": 20}))), 0.5, 1, 1)
 
 
 def test_step_halving_recovers():
     """With only 3 Newton iterations allowed, 0.5 s steps are halved (variable-step
     BDF2) and the run completes; mean F_t within 1 % of a 0.02 s run."""
     cfg = load_config(overrides={"tether": {"length_m": 300.0}, "time": {"max_newton": 3}})
-    coarse = fd.run(fd.build_model(cfg.replace(fd={"segments": 30})), 0.5, 1, 1, output_every=5)
-    fine = fd.run(fd.build_model(cfg.replace(fd={"segments": 30})), 0.02, 1, 1, output_every=50)
+    coarse = protocol.run(fd.FDSolver(fd.build_model(cfg.replace(fd={"segments": 30}))), 0.5, 1, 1, output_every=5)
+    fine = protocol.run(fd.FDSolver(fd.build_model(cfg.replace(fd={"segments": 30}))), 0.02, 1, 1, output_every=50)
     assert coarse.extra["halvings"] > 0
     assert coarse.mean("drag_N") == pytest.approx(fine.mean("drag_N"), rel=0.01)
 
@@ -532,7 +533,7 @@ def test_pumping_cycle_returns_to_the_start_bounded(pumping):
     assert energy.max() == pytest.approx(150e3 * stroke, rel=1e-9)
     assert abs(energy[-1]) <= 1e-9 * energy.max()
     from fem_tether.results import period_mean
-    ref = fd.run(fd.build_model(cfg), PUMP_DT, 1, 1)
+    ref = protocol.run(fd.FDSolver(fd.build_model(cfg)), PUMP_DT, 1, 1)
     t = run.time_s
     last = t >= t[-1] - run.period_s * (1 + 1e-9)
     for k in ("drag_N", "kite_tension_N"):

@@ -7,10 +7,11 @@ from fem_tether import atmosphere, drag_coefficient, wind
 from fem_tether.catenary import Catenary
 from fem_tether.config import MAX_ELEMENTS, ConfigError, load_config
 from fem_tether.fe.integrator import Kinematics, Scheme
-from fem_tether.fe.solver import (FEModel, SolverDivergedError, State, advance, build_model,
-                                  initial_state, run, simulate, static_equilibrium)
+from fem_tether.fe.solver import (FEModel, FESolver, SolverDivergedError, State, build_model,
+                                  initial_state, simulate, static_equilibrium)
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.mesh import unit_nodes, write_unit_mesh
+from fem_tether.protocol import Statistics, advance, run
 from fem_tether.fe.system import TetherSystem
 from fem_tether.tether import TetherPhysics
 from fem_tether.straight import closed_form_drag_N
@@ -219,8 +220,9 @@ def test_taut_string_fundamental_frequency():
     h = 1 / f_exact / 200
     mid = model.system.spaces.n_nodes // 2
     t, y = [0.0], [0.0]
+    solver, stats = FESolver(model), Statistics()
     for _ in range(1000):
-        st = advance(model, st, h)
+        st = advance(solver, st, h, stats)
         t.append(st.t)
         y.append(st.kin.q[mid, 1])
     t, y = np.array(t), np.array(y)
@@ -250,8 +252,9 @@ def test_newmark_conserves_energy_of_taut_string():
     e0 = energy(st)
     h = period / 40
     energies = []
+    solver, stats = FESolver(model), Statistics()
     for _ in range(50 * 40):
-        st = advance(model, st, h)
+        st = advance(solver, st, h, stats)
         energies.append(energy(st))
     drift = (np.max(np.abs(np.array(energies) - e0))) / e0
     print(f"\n energy drift over 50 periods: {drift:.2e}")
@@ -333,7 +336,7 @@ def test_prescribed_radius_longer_than_line_is_an_input_error():
 def test_divergence_reports_time_length_and_residual(quiet_cfg):
     cfg = quiet_cfg.replace(time={"max_newton": 1, "max_halvings": 1})
     with pytest.raises(SolverDivergedError, match=r"t = .* s .*L = 1000 m.*residual"):
-        run(build_model(cfg), 0.5, 1, 1)
+        run(FESolver(build_model(cfg)), 0.5, 1, 1)
 
 
 # stability and convergence of the dynamic solution ------------------------------------
@@ -368,7 +371,7 @@ def test_largest_accepted_mesh_starts_and_steps():
     start and step at that size (the cap's reason), and one more is refused."""
     cfg = load_config(overrides={"fe": {"elements": MAX_ELEMENTS}})
     model = build_model(cfg)
-    state = advance(model, initial_state(model), 0.05)
+    state = advance(FESolver(model), initial_state(model), 0.05, Statistics())
     assert state.T[0] == pytest.approx(150e3, rel=1e-9) and np.min(state.T) > 0
     with pytest.raises(ConfigError, match=r"\[fe\] elements = 10001: must be from 2 to 10000"):
         load_config(overrides={"fe": {"elements": MAX_ELEMENTS + 1}})

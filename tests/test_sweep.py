@@ -102,11 +102,11 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
     from fem_tether.fe import solver as fe_solver
     real = fe_solver.simulate
 
-    def flaky(cfg, length_m=None, progress=False):
+    def flaky(cfg, progress=False):
         calls.append(cfg.tether.length_m)
         if cfg.tether.length_m == 800.0:
             raise SolverDivergedError("time step did not converge at t = 1.0 s, L = 800 m")
-        return real(cfg, length_m, progress)
+        return real(cfg, progress)
 
     monkeypatch.setattr(fe_solver, "simulate", flaky)
     # nothing to do: every stored part matches the job, and the outcome says so

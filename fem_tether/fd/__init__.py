@@ -7,11 +7,13 @@ time, Newton with an analytic banded Jacobian.  It shares only the leaf
 physics, the reeling law and the post-processing with the FE solver.
 
 Modules: :mod:`.system` (grid, residual, banded Jacobian),
-:mod:`.solver` (static start, Newton, time stepping, reeling, results).
+:mod:`.solver` (static start, Newton, the time step, reeling, line values;
+the run protocol of :mod:`fem_tether.protocol` drives it as an
+:class:`~fem_tether.fd.solver.FDSolver`).
 """
 
-from fem_tether.fd.solver import (FDModel, SolverDivergedError, State, build_model,
-                                  line_state, reeled, run, simulate, static_equilibrium)
+from fem_tether.fd.solver import (FDModel, FDSolver, SolverDivergedError, State, build_model,
+                                  line_state, reeled, simulate, static_equilibrium)
 
-__all__ = ["FDModel", "SolverDivergedError", "State", "build_model",
-           "line_state", "reeled", "run", "simulate", "static_equilibrium"]
+__all__ = ["FDModel", "FDSolver", "SolverDivergedError", "State", "build_model",
+           "line_state", "reeled", "simulate", "static_equilibrium"]

@@ -48,24 +48,22 @@ reeling uses ``[winch]`` and the segment bounds ``[fe] min_element_m`` and
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from fem_tether.case import TetherCase, case_fields
+from fem_tether.case import TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import (SolverDivergedError, check_taut, left_atmosphere, slack_failure,
-                               too_weak_for_weight)
+from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
-from fem_tether.progress import Progress
-from fem_tether.reel import Reel, reel_from_config
-from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
+from fem_tether import protocol
+from fem_tether.protocol import Statistics, speed_jumped
+from fem_tether.results import TetherRun
 
 @dataclass
 class FDModel(TetherCase):
@@ -109,16 +107,6 @@ def build_model(cfg, end=None, gravity=True, drag=True,
     grid = Grid(case["length_m"], cfg.fd.segments, case["tension_mode"])
     return FDModel(eq=TetherFD(grid, physics or _switched(physics_from_config(cfg), gravity, drag)),
                    scheme=cfg.fd.scheme, **case)
-
-
-def _weight_N(model: FDModel) -> float:
-    return -model.eq.physics.weight_N_m[2] * model.length_m
-
-
-def _force_ref(model: FDModel, T) -> float:
-    if model.tension_mode:
-        return model.ground_tension_N
-    return max(float(np.max(np.abs(T))), _weight_N(model), 1.0)
 
 
 def _segment_midpoints_m(model: FDModel) -> np.ndarray:
@@ -234,7 +222,7 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     v = frac * (kite_radius_m * e_dot)
     acc = frac * (kite_radius_m * e_ddot)
     zero = np.zeros_like(r)
-    f_ref = _force_ref(model, T)
+    f_ref = model.force_ref_N(T, model.eq.physics)
 
     def solve(load_factor, x):
         eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor))
@@ -251,13 +239,9 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
         raise SolverDivergedError(
             f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
             f"{exc.reason()}"
-            + (too_weak_for_weight(model.ground_tension_N, _weight_N(model)) if weak else "")) from None
+            + (too_weak_for_weight(model.ground_tension_N, model.eq.physics.weight_N(model.length_m))
+               if weak else "")) from None
     return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
-
-
-class _NotConverged(Exception):
-    def __init__(self, residual, cause=""):
-        self.residual, self.cause = residual, cause
 
 
 def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):
@@ -268,12 +252,13 @@ def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):
     return 1.0 / h, 0.0
 
 
-def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: dict) -> State:
-    """One implicit step of size h solved by Newton."""
+def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
+    """One implicit step of size h after ``cur`` (``prev``: the BDF2 history) solved by
+    Newton (iterations counted in ``stats``); raises :class:`NotConverged`."""
     t_new = cur.t + h
     e = model.end.state(t_new, 1.0)[0]
     a0, a2 = _coefficients(model, prev, cur, h)
-    f_ref = _force_ref(model, cur.T)
+    f_ref = model.force_ref_N(cur.T, model.eq.physics)
     r_int = (cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1]
     T, R = cur.T.copy(), cur.R
 
@@ -293,8 +278,8 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: dict)
         try:
             ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_ms=model.reel_ms)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
-            raise _NotConverged(worst, left_atmosphere(exc)) from None
-        stats["newton"] += 1
+            raise NotConverged(worst, left_atmosphere(exc)) from None
+        stats.newton_iterations += 1
         worst = float(np.max(np.abs(ev.residual)))
         if not np.isfinite(worst):
             break
@@ -304,24 +289,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: dict)
             r_int, T, R = _apply(model, model.grid.solve(ev.ab, -ev.residual), r_int, T, R)
         except np.linalg.LinAlgError:
             break
-    raise _NotConverged(worst)
-
-
-def _advance(model: FDModel, prev: State | None, cur: State, h: float, stats: dict,
-             depth: int = 0) -> tuple[State, State]:
-    """Step of size h (halved recursively when Newton fails); returns (previous, new)."""
-    try:
-        return cur, _step(model, prev, cur, h, stats)
-    except _NotConverged as exc:
-        if depth >= model.max_halvings:
-            raise SolverDivergedError(
-                f"FD time step did not converge at t = {cur.t:.4f} s (step {h:.3e} s after "
-                f"{depth} halvings), L = {model.length_m:g} m, {model.grid.M} segments: "
-                + (exc.cause or f"scaled residual {exc.residual:.3e} after {model.max_newton} "
-                   "Newton iterations")) from None
-    stats["halvings"] += 1
-    prev, mid = _advance(model, prev, cur, h / 2, stats, depth + 1)
-    return _advance(model, prev, mid, h / 2, stats, depth + 1)
+    raise NotConverged(worst)
 
 
 def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
@@ -365,9 +333,6 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     }
 
 
-RESTART_JUMP_MS = 0.1
-
-
 def reeled(model: FDModel, prev: State | None, state: State, length_m: float, reel_ms: float,
            min_segment_m: float, max_segment_m: float) -> tuple[FDModel, State | None, State]:
     """Model, BDF2 history and state with the line paid out (or reeled in) to ``length_m``.
@@ -380,7 +345,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     least 3 segments), node 1 is removed and the winch segment reaches node 2.
     Insertions happen only while paying out and removals only while reeling
     in, so the grid never flips between them.  After a change of the grid, or
-    a jump of V_L by more than ``RESTART_JUMP_MS``, the velocities are
+    a jump of V_L (:func:`~fem_tether.protocol.speed_jumped`), the velocities are
     projected on the constraints with the new V_L
     (:meth:`TetherFD.consistent_velocity`: the speed change is an impulse, not
     a tension spike spread over the next steps) and BDF2 restarts (the
@@ -404,71 +369,56 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         grid = Grid.from_lengths(np.concatenate([[h0 + g.h[1]], g.h[2:]]), g.tension_mode)
     else:
         grid = g.with_first_length(h0)
-    restart = grid.M != g.M or abs(reel_ms - model.reel_ms) > RESTART_JUMP_MS
-    end = replace(model.end, length_m=length_m) if hasattr(model.end, "length_m") else model.end
+    restart = grid.M != g.M or speed_jumped(model.reel_ms, reel_ms)
     model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=length_m,
-                    reel_ms=reel_ms, end=end)
+                    reel_ms=reel_ms, end=end_at_length(model.end, length_m))
     if restart:
         v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_ms)
         prev = None
     return model, prev, State(state.t, r, v, a, T, state.R)
 
 
-def run(model: FDModel, dt_s: float, spinup_periods: int, average_periods: int,
-        output_every: int = 1, config: dict | None = None, progress: bool = False,
-        initial: State | None = None, reel: Reel = Reel(),
-        segment_bounds_m: tuple[float, float] = (2.0, 100.0)) -> TetherRun:
-    """Static start (or ``initial``), then whole periods of the end motion.
+@dataclass
+class FDSolver:
+    """The FD model as the run protocol's :class:`~fem_tether.protocol.TetherSolver`.
 
-    The step is ``period / ceil(period / dt_s)``; series are recorded every
-    step, snapshots every ``output_every`` steps and at the end.  With an
-    active ``reel`` the winch pays the line out (or in) at V_L(t), taken at
-    the start of each step (:func:`reeled`, segments kept within
-    ``segment_bounds_m``), until ``reel.stop_m`` or the end of the periods;
-    the series carry L(t), V_L(t), the winch power T(0) V_L and its energy.
+    It holds the BDF2 history ``prev``, the state before the one last stepped
+    from (None at the start and after a restart), and replaces its model as
+    the line is reeled, with segments kept within ``segment_bounds_m``.
     """
-    wall0 = time.perf_counter()
-    period = model.end.period_s
-    h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
-    state = initial if initial is not None else static_equilibrium(model)
-    t0 = state.t
-    average_start_s = t0 + spinup_periods * period
-    prev = None
-    start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
-    stats = {"newton": 0, "halvings": 0}
-    record = Recorder(n_steps, output_every)
-    bar = Progress(n_steps, f"FD L = {model.length_m:g} m", enabled=progress)
-    for i in range(n_steps + 1):
-        if i:
-            reel_ms = reel.speed_ms(state.t, state.r[-1])
-            if reel_ms or model.reel_ms:
-                target = reel.next_length(model.length_m, reel_ms, h)
-                model, prev, state = reeled(model, prev, state, target, reel_ms, *segment_bounds_m)
-            try:
-                prev, state = _advance(model, prev, state, h, stats)
-            except SolverDivergedError as exc:
-                raise slack_failure(exc, state.T, _segment_midpoints_m(model)) from None
-            state.t = t0 + i * h
-            if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
-                check_taut(state.T, _segment_midpoints_m(model), state.t, model.length_m)
-            energy_J += h * reel_ms * state.T[0]
-            bar.update(i)
-        done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
-        record.add(i, state.t, line_state(model, state, record.snapshot_due(i, done))
-                   | winch_values(model.length_m, reel_ms, state.T[0], energy_J), last=done)
-        if done:
-            break
-    bar.close()
-    return record.run(
-        solver="fd",
-        length_m=start_length,
-        period_s=period,
-        average_start_s=average_start_s,
-        config=config or {},
-        wall_s=time.perf_counter() - wall0,
-        extra={"segments": model.grid.M, "dt_s": h, "scheme": model.scheme,
-               "newton_iterations": stats["newton"], "halvings": stats["halvings"]},
-    )
+
+    model: FDModel
+    segment_bounds_m: tuple[float, float] = (2.0, 100.0)
+    prev: State | None = None
+    name = "fd"
+
+    def initial_state(self) -> State:
+        return static_equilibrium(self.model)
+
+    def step(self, state: State, h: float, stats: Statistics) -> State:
+        new = _step(self.model, self.prev, state, h, stats)
+        self.prev = state
+        return new
+
+    def reeled(self, state: State, length_m: float, reel_ms: float) -> State:
+        self.model, self.prev, state = reeled(self.model, self.prev, state, length_m, reel_ms,
+                                              *self.segment_bounds_m)
+        return state
+
+    def line_state(self, state: State, fields: bool) -> dict:
+        return line_state(self.model, state, fields)
+
+    def tension_s_m(self) -> np.ndarray:
+        return _segment_midpoints_m(self.model)
+
+    def kite_position_m(self, state: State) -> np.ndarray:
+        return state.r[-1]
+
+    def resolution(self) -> str:
+        return f"{self.model.grid.M} segments"
+
+    def extra(self) -> dict:
+        return {"segments": self.model.grid.M, "scheme": self.model.scheme}
 
 
 def simulate(cfg, progress=False) -> TetherRun:
@@ -477,9 +427,6 @@ def simulate(cfg, progress=False) -> TetherRun:
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch
     segment stays within ``[fe] min_element_m`` .. ``[fe] max_element_m``.
     """
-    model = build_model(cfg)
-    t, fe = cfg.time, cfg.fe
-    reel = reel_from_config(cfg, start_s=t.spinup_periods * model.end.period_s)
-    return run(model, cfg.fd.dt_s, t.spinup_periods, t.average_periods,
-               cfg.output.every, config=cfg, progress=progress, reel=reel,
-               segment_bounds_m=(fe.min_element_m, fe.max_element_m))
+    fe = cfg.fe
+    solver = FDSolver(build_model(cfg), (fe.min_element_m, fe.max_element_m))
+    return protocol.simulate(solver, cfg, cfg.fd.dt_s, progress)

@@ -6,37 +6,35 @@ the drag of a frozen rigid-rotation velocity field v(s) = (s/L) v_kite, from
 the catenary (the gravity-only equilibrium) with the wind and drag load
 ramped up (:mod:`fem_tether.continuation`), each load step a backtracking
 Newton solve (:func:`static_equilibrium` says why).  Then the
-generalised-alpha scheme (:mod:`.integrator`) advances whole periods of the
-eight: spin-up, then the averaging window.  A step whose Newton iteration
-fails is halved, up to ``max_halvings`` times, then
-:class:`SolverDivergedError` says when, for which length, and the residual.
+generalised-alpha scheme (:mod:`.integrator`) takes the steps of the run
+protocol (:mod:`fem_tether.protocol`: whole periods of the eight, spin-up
+then the averaging window, step halving, reeling), which drives this solver
+as an :class:`FESolver`.
 """
 
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import brentq
 
-from fem_tether.case import TetherCase, case_fields
+from fem_tether.case import TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.config import MAX_ELEMENTS, ConfigError, toml_value
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import (SolverDivergedError, check_taut, left_atmosphere, slack_failure,
-                               too_weak_for_weight)
+from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.system import TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
-from fem_tether.progress import Progress
-from fem_tether.reel import Reel, reel_from_config
+from fem_tether import protocol
+from fem_tether.protocol import Statistics, speed_jumped
 from fem_tether.tether import physics_from_config
-from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
+from fem_tether.results import TetherRun
 
 
 @dataclass
@@ -82,14 +80,6 @@ def build_model(cfg, end=None, physics=None) -> FEModel:
                           cfg.tether.linear_density_kg_m)
     return FEModel(system=TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"]),
                    scheme=scheme_from_config(cfg.time), **case)
-
-
-def _weight_N(model: FEModel) -> float:
-    return model.system.physics.linear_density_kg_m * model.system.physics.gravity_ms2 * model.length_m
-
-
-def _force_ref(model: FEModel, T) -> float:
-    return model.ground_tension_N if model.tension_mode else max(float(np.max(np.abs(T))), _weight_N(model), 1.0)
 
 
 def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:
@@ -225,7 +215,7 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     v = (s / model.length_m)[:, None] * (kite_radius_m * e_dot)
     acc = (s / model.length_m)[:, None] * (kite_radius_m * e_ddot)
     zero = np.zeros_like(r)
-    f_ref = _force_ref(model, T)
+    f_ref = model.force_ref_N(T, sys_.physics)
 
     def solve(load_factor, x):
         loaded = replace(sys_, physics=with_load_factor(sys_.physics, load_factor))
@@ -244,7 +234,8 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
         raise SolverDivergedError(
             f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
             f"{sys_.spaces.n_elements} elements: {exc.reason()}"
-            + (too_weak_for_weight(model.ground_tension_N, _weight_N(model)) if weak else "")) from None
+            + (too_weak_for_weight(model.ground_tension_N, sys_.physics.weight_N(model.length_m))
+               if weak else "")) from None
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
@@ -257,21 +248,14 @@ def initial_state(model: FEModel, t=0.0) -> State:
     return State(t, Kinematics(st.kin.q, v, qdd, qdd.copy()), T, st.R)
 
 
-RESTART_JUMP_MS = 0.1
-
-
-class _NotConverged(Exception):
-    def __init__(self, residual, cause=""):
-        self.residual, self.cause = residual, cause
-
-
-def _step(model: FEModel, state: State, h: float) -> State:
-    """One generalised-alpha step of size h solved by Newton."""
+def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
+    """One generalised-alpha step of size h solved by Newton (iterations counted in
+    ``stats``); raises :class:`NotConverged`."""
     sys_ = model.system
     t_new = state.t + h
     e = model.end.state(t_new, 1.0)[0]
     c_a, c_v = model.scheme.coefficients(h)
-    f_ref = _force_ref(model, state.T)
+    f_ref = model.force_ref_N(state.T, sys_.physics)
     r, T, R = state.kin.predict(h), state.T.copy(), state.R
     worst = math.inf
     for _ in range(model.max_newton):
@@ -280,7 +264,8 @@ def _step(model: FEModel, state: State, h: float) -> State:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, reel_ms=model.reel_ms)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
-            raise _NotConverged(worst, left_atmosphere(exc)) from None
+            raise NotConverged(worst, left_atmosphere(exc)) from None
+        stats.newton_iterations += 1
         worst = float(np.max(np.abs(ev.residual))) / f_ref
         if not np.isfinite(worst):
             break
@@ -291,22 +276,7 @@ def _step(model: FEModel, state: State, h: float) -> State:
         except np.linalg.LinAlgError:     # singular Jacobian (a folded or slack line)
             break
         r, T, R = r + dr, T + dT, R + dR
-    raise _NotConverged(worst)
-
-
-def advance(model: FEModel, state: State, h: float, depth: int = 0) -> State:
-    """Step of size h, halved recursively when Newton fails."""
-    try:
-        return _step(model, state, h)
-    except _NotConverged as exc:
-        if depth >= model.max_halvings:
-            raise SolverDivergedError(
-                f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
-                f"{depth} halvings), L = {model.length_m:g} m: "
-                + (exc.cause or f"scaled residual {exc.residual:.3e} after {model.max_newton} "
-                   "Newton iterations")) from None
-    half = advance(model, state, h / 2, depth + 1)
-    return advance(model, half, h / 2, depth + 1)
+    raise NotConverged(worst)
 
 
 def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
@@ -351,7 +321,7 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
     grows; when it would fall below ``min_element_m`` it merges with its
     neighbour (node 1 is removed).  Splits happen only while paying out and
     merges only while reeling in, so a mesh never flips between the two.
-    After a change of mesh, or a jump of V_L by more than ``RESTART_JUMP_MS``,
+    After a change of mesh, or a jump of V_L (:func:`~fem_tether.protocol.speed_jumped`),
     velocities and accelerations are made consistent with the new constraints
     (:meth:`TetherSystem.consistent_start`) and the integrator restarts: an
     index-3 scheme fed inconsistent data answers with a tension oscillation.  The line's mass stays mu L(t): the lumped
@@ -379,10 +349,10 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
         system = TetherSystem(spaces, model.system.physics, model.tension_mode)
     else:
         system = model.system
-    restart = system is not model.system or abs(reel_ms - model.reel_ms) > RESTART_JUMP_MS
+    restart = system is not model.system or speed_jumped(model.reel_ms, reel_ms)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
     model = replace(model, system=system, length_m=length_m, reel_ms=reel_ms,
-                    end=replace(model.end, length_m=length_m))
+                    end=end_at_length(model.end, length_m))
     if restart:
         v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
                                             model.ground_tension_N, reel_ms, free_radius=True)
@@ -390,61 +360,43 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
     return model, State(state.t, kin, T, state.R)
 
 
-def run(model: FEModel, dt_s: float, spinup_periods: int, average_periods: int,
-        output_every: int = 1, config: dict | None = None, progress: bool = False,
-        reel: Reel = Reel(), element_bounds_m: tuple[float, float] = (2.0, 100.0)) -> TetherRun:
-    """Static start, then whole periods of the eight; returns the :class:`TetherRun`.
+@dataclass
+class FESolver:
+    """The FE model as the run protocol's :class:`~fem_tether.protocol.TetherSolver`;
+    :meth:`reeled` replaces the model, with elements kept within ``element_bounds_m``."""
 
-    With an active ``reel`` the winch pays the line out (or in) at V_L(t)
-    after the spin-up (:func:`reeled`, V_L taken at the start of each step)
-    until ``reel.stop_m`` or the end of the periods; the series then carry
-    L(t), V_L(t), the winch power T(0) V_L and the energy delivered.
-    """
-    wall0 = time.perf_counter()
-    period = model.end.period_s
-    h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
-    average_start_s = spinup_periods * period
-    state = initial_state(model)
-    start_length, energy_J, reel_ms = model.length_m, 0.0, 0.0
-    record = Recorder(n_steps, output_every)
-    bar = Progress(n_steps, f"FE L = {model.length_m:g} m", enabled=progress)
-    for i in range(n_steps + 1):
-        if i:
-            reel_ms = reel.speed_ms(state.t, state.kin.q[-1])
-            if reel_ms or model.reel_ms:
-                target = reel.next_length(model.length_m, reel_ms, h)
-                model, state = reeled(model, state, target, reel_ms, *element_bounds_m)
-            try:
-                state = advance(model, state, h)
-            except SolverDivergedError as exc:
-                raise slack_failure(exc, state.T, model.system.spaces.s_mid_m) from None
-            state.t = i * h
-            if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
-                check_taut(state.T, model.system.spaces.s_mid_m, state.t, model.length_m)
-            energy_J += h * reel_ms * state.T[0]
-            bar.update(i)
-        done = i == n_steps or (reel.active and reel.stopped(model.length_m, start_length))
-        record.add(i, state.t, line_state(model, state, record.snapshot_due(i, done))
-                   | winch_values(model.length_m, reel_ms, state.T[0], energy_J), last=done)
-        if done:
-            break
-    bar.close()
-    return record.run(
-        solver="fe",
-        length_m=start_length,
-        period_s=period,
-        average_start_s=average_start_s,
-        config=config or {},
-        wall_s=time.perf_counter() - wall0,
-        extra={"elements": model.system.spaces.n_elements, "dt_s": h},
-    )
+    model: FEModel
+    element_bounds_m: tuple[float, float] = (2.0, 100.0)
+    name = "fe"
+
+    def initial_state(self) -> State:
+        return initial_state(self.model)
+
+    def step(self, state: State, h: float, stats: Statistics) -> State:
+        return _step(self.model, state, h, stats)
+
+    def reeled(self, state: State, length_m: float, reel_ms: float) -> State:
+        self.model, state = reeled(self.model, state, length_m, reel_ms, *self.element_bounds_m)
+        return state
+
+    def line_state(self, state: State, fields: bool) -> dict:
+        return line_state(self.model, state, fields)
+
+    def tension_s_m(self) -> np.ndarray:
+        return self.model.system.spaces.s_mid_m
+
+    def kite_position_m(self, state: State) -> np.ndarray:
+        return state.kin.q[-1]
+
+    def resolution(self) -> str:
+        return f"{self.model.system.spaces.n_elements} elements"
+
+    def extra(self) -> dict:
+        return {"elements": self.model.system.spaces.n_elements}
 
 
 def simulate(cfg, progress=False) -> TetherRun:
-    """Run the configured case with the FE solver."""
-    model = build_model(cfg)
-    t, fe = cfg.time, cfg.fe
-    reel = reel_from_config(cfg, start_s=t.spinup_periods * model.end.period_s)
-    return run(model, t.dt_s, t.spinup_periods, t.average_periods,
-               cfg.output.every, config=cfg, progress=progress, reel=reel,
-               element_bounds_m=(fe.min_element_m, fe.max_element_m))
+    """Run the configured case with the FE solver (time step ``[time] dt_s``)."""
+    fe = cfg.fe
+    solver = FESolver(build_model(cfg), (fe.min_element_m, fe.max_element_m))
+    return protocol.simulate(solver, cfg, cfg.time.dt_s, progress)

@@ -1,0 +1,179 @@
+"""The run protocol of both tether solvers: one experiment, any discretisation.
+
+A run (docs/numerics.md §1, §5, §7) starts from the solver's static
+equilibrium (or a given state) and flies whole periods of the kite's end
+motion on the grid of :func:`fem_tether.results.time_grid`: ``spinup_periods``
+whose start transient the means discard, then ``average_periods``.  Each step
+
+1. takes V_L from the reel schedule (:class:`fem_tether.reel.Reel`) at the
+   start of the step; while the winch reels (and in the step after it stops)
+   the solver remeshes to L + h V_L (``reeled``);
+2. advances by h (:func:`advance`): a step whose Newton iteration fails
+   (:class:`~fem_tether.continuation.NotConverged`) is retried as two half
+   steps, recursively, up to ``max_halvings`` levels deep; past that
+   :class:`SolverDivergedError` names the time, step, length, resolution and
+   cause, the slack line among them if the last solved state was slack;
+3. after the spin-up, stops the run if the line is slack
+   (:func:`fem_tether.errors.check_taut`);
+4. records the series, every ``output_every`` steps a snapshot, and the
+   winch's power and energy (:class:`fem_tether.results.Recorder`).
+
+The run ends after the periods or when the line reaches the reel's stop
+length.  Newton iterations and step halvings are counted for every solver
+(:class:`Statistics`, stored in ``TetherRun.extra``).
+
+Solvers plug in through :class:`TetherSolver`; each keeps its own
+discretisation, Newton iteration, static start and remeshing.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from fem_tether.case import TetherCase
+from fem_tether.config import Config
+from fem_tether.continuation import NotConverged
+from fem_tether.errors import SolverDivergedError, check_taut, slack_failure
+from fem_tether.progress import Progress
+from fem_tether.reel import Reel, reel_from_config
+from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
+
+#: A change of V_L between steps larger than this (m/s) restarts the time
+#: integration from data made consistent with the new constraints.
+RESTART_JUMP_MS = 0.1
+
+
+def speed_jumped(before_ms: float, after_ms: float) -> bool:
+    """Whether a change of the reel speed restarts the integration (:data:`RESTART_JUMP_MS`)."""
+    return abs(after_ms - before_ms) > RESTART_JUMP_MS
+
+
+@dataclass
+class Statistics:
+    """Work of one run: residual evaluations of the Newton iterations (converged
+    or not) and step halvings."""
+
+    newton_iterations: int = 0
+    halvings: int = 0
+
+
+class TetherSolver(Protocol):
+    """A discretisation as the protocol drives it.
+
+    Its states have the time ``t`` (s, which the protocol sets to the grid's
+    exact time after each step) and the tensions ``T`` (N, the winch's
+    first).  ``model`` is the current case; :meth:`reeled` replaces it.
+    """
+
+    name: str                     # "fe" or "fd": TetherRun.solver
+    model: TetherCase
+
+    def initial_state(self):
+        """The solved state at the start (static equilibrium)."""
+
+    def step(self, state, h: float, stats: Statistics):
+        """The state ``h`` later, counting each Newton iteration in ``stats``;
+        raises NotConverged."""
+
+    def reeled(self, state, length_m: float, reel_ms: float):
+        """The state on the line paid out (or in) to ``length_m``, reeled at
+        ``reel_ms`` during the next step."""
+
+    def line_state(self, state, fields: bool) -> dict:
+        """Series values and, with ``fields``, the snapshot fields of ``state``."""
+
+    def tension_s_m(self) -> np.ndarray:
+        """Arc lengths (m) where the tensions live."""
+
+    def kite_position_m(self, state) -> np.ndarray:
+        """Where the kite is in ``state``."""
+
+    def resolution(self) -> str:
+        """The grid's size in words, for messages ("12 elements")."""
+
+    def extra(self) -> dict:
+        """Solver-specific values for ``TetherRun.extra``."""
+
+
+def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int = 0):
+    """The state one step ``h`` later; a step whose Newton iteration fails is
+    halved, recursively, up to ``max_halvings`` levels deep."""
+    try:
+        return solver.step(state, h, stats)
+    except NotConverged as exc:
+        case = solver.model
+        if depth >= case.max_halvings:
+            raise SolverDivergedError(
+                f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
+                f"{depth} halvings, {solver.resolution()}), L = {case.length_m:g} m: "
+                + (exc.cause or f"scaled residual {exc.residual:.3e} after {case.max_newton} "
+                   "Newton iterations")) from None
+    stats.halvings += 1
+    half = advance(solver, state, h / 2, stats, depth + 1)
+    return advance(solver, half, h / 2, stats, depth + 1)
+
+
+def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods: int,
+        output_every: int = 1, config: Config | None = None, progress: bool = False,
+        reel: Reel = Reel(), initial=None) -> TetherRun:
+    """Static start (or ``initial``), then whole periods of the end motion; the
+    :class:`TetherRun` of the steps the module docstring lists.
+
+    The step is ``period / ceil(period / dt_s)``; series are recorded every
+    step, snapshots every ``output_every`` steps and at the end.  With an
+    active ``reel`` the series carry L(t), V_L(t), the winch power T(0) V_L
+    and the energy delivered.
+    """
+    wall0 = time.perf_counter()
+    period = solver.model.end.period_s
+    h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
+    state = initial if initial is not None else solver.initial_state()
+    t0 = state.t
+    average_start_s = t0 + spinup_periods * period
+    start_length, energy_J, reel_ms = solver.model.length_m, 0.0, 0.0
+    stats = Statistics()
+    record = Recorder(n_steps, output_every)
+    bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
+    for i in range(n_steps + 1):
+        if i:
+            reel_ms, was_reeling = reel.speed_ms(state.t, solver.kite_position_m(state)), reel_ms
+            if reel_ms or was_reeling:
+                state = solver.reeled(state, reel.next_length(solver.model.length_m, reel_ms, h), reel_ms)
+            try:
+                state = advance(solver, state, h, stats)
+            except SolverDivergedError as exc:
+                raise slack_failure(exc, state.T, solver.tension_s_m()) from None
+            state.t = t0 + i * h
+            if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
+                check_taut(state.T, solver.tension_s_m(), state.t, solver.model.length_m)
+            energy_J += h * reel_ms * state.T[0]
+            bar.update(i)
+        done = i == n_steps or (reel.active and reel.stopped(solver.model.length_m, start_length))
+        record.add(i, state.t, solver.line_state(state, record.snapshot_due(i, done))
+                   | winch_values(solver.model.length_m, reel_ms, state.T[0], energy_J), last=done)
+        if done:
+            break
+    bar.close()
+    return record.run(
+        solver=solver.name,
+        length_m=start_length,
+        period_s=period,
+        average_start_s=average_start_s,
+        config=config,
+        wall_s=time.perf_counter() - wall0,
+        extra=solver.extra() | {"dt_s": h, "newton_iterations": stats.newton_iterations,
+                                "halvings": stats.halvings},
+    )
+
+
+def simulate(solver: TetherSolver, cfg, dt_s: float, progress: bool = False) -> TetherRun:
+    """:func:`run` as ``cfg`` configures it (``[time]`` periods, ``[output] every``,
+    reeling from ``[winch]`` after the spin-up), with the time step ``dt_s``."""
+    t = cfg.time
+    reel = reel_from_config(cfg, start_s=t.spinup_periods * solver.model.end.period_s)
+    return run(solver, dt_s, t.spinup_periods, t.average_periods,
+               cfg.output.every, config=cfg, progress=progress, reel=reel)
