@@ -1,10 +1,11 @@
 """FE <-> FD cross-check: two independent discretisations must agree.
 
-Both solvers run the same case; the check compares period means of F_t
-(eq. 4.1), the ground and the kite-end tension (relative differences), and the
-tether shape: at every FE snapshot time the FD line is interpolated to the
-same instant (linearly in time) and both lines to common arc lengths
-(linearly in s); the largest distance between them, divided by L, is the
+Given an FE and an FD run of the same case (run by
+:func:`fem_tether.evaluate.run_crosscheck` or by a sweep), the check compares
+period means of F_t (eq. 4.1), the ground and the kite-end tension (relative
+differences), and the tether shape: at every FE snapshot time the FD line is
+interpolated to the same instant (linearly in time) and both lines to common
+arc lengths (linearly in s); the largest distance between them, divided by L, is the
 shape difference.  Tolerances come from ``[crosscheck]``: a difference within
 its tolerance passes, and the check is ``ok`` only if all pass.
 
@@ -106,6 +107,12 @@ def _along_length(a: TetherRun, b: TetherRun, key: str) -> float:
     return float(np.max(np.abs(np.interp(la[inside], lb, yb) / ya[inside] - 1.0)))
 
 
+def limits_of(tolerances: dict) -> dict:
+    """The tolerance of each compared quantity (drag, tensions, shape) from ``[crosscheck]``."""
+    return {"drag": tolerances["drag_rel"], "ground_tension": tolerances["tension_rel"],
+            "kite_tension": tolerances["tension_rel"], "shape": tolerances["shape_rel"]}
+
+
 def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
     """Compare two runs of the same case against ``tolerances``.
 
@@ -126,24 +133,7 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: dict) -> CrossCheck:
     else:
         rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
     rel["shape"] = shape_difference(fe, fd)
-    limits = {"drag": tolerances["drag_rel"], "ground_tension": tolerances["tension_rel"],
-              "kite_tension": tolerances["tension_rel"], "shape": tolerances["shape_rel"]}
+    limits = limits_of(tolerances)
     ok = all(rel[k] <= limits[k] for k in limits)
     return CrossCheck(fe.length_m, fe_means, fd_means, rel, dict(tolerances), ok)
 
-
-def crosscheck(cfg, length_m=None, progress=False, fd_cfg=None):
-    """Run the FE and the FD solver on the configured case and compare them.
-
-    ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
-    both run at the FE's length, with enough snapshots (:func:`checkable`);
-    tolerances are ``cfg``'s.  Returns ``(CrossCheck, fe_run, fd_run)``.
-    """
-    from fem_tether import fd
-    from fem_tether.fe.solver import simulate
-
-    length_m = cfg["tether"]["length_m"] if length_m is None else length_m
-    cfg = checkable(cfg)
-    fe_run = simulate(cfg, length_m, progress=progress)
-    fd_run = fd.simulate(checkable(fd_cfg) if fd_cfg else cfg, length_m, progress=progress)
-    return compare(fe_run, fd_run, cfg["crosscheck"]), fe_run, fd_run

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.config import merge, validate
 from fem_tether.loads import crossflow_drag
 from fem_tether.moment import drag_moment_Nm
 
@@ -95,3 +96,34 @@ def from_config(cfg, length_m=None, with_wind=False) -> StraightLineDrag:
         drag=drag_coefficient.from_config(cfg),
         wind_profile=wind.from_config(cfg) if with_wind else None,
     )
+
+
+def comparison(cfg, lengths, with_wind=False, closed_form=False, rho=None, cd=None) -> list[dict]:
+    """Integral and closed-form F_t of each length, as ``fem-tether straight`` reports them.
+
+    Each length's case is validated first.  The closed form takes ``rho`` and
+    ``cd`` if given, else the integral's mean density and C_d,c at the top;
+    ``drag_N`` is the closed form's if ``closed_form``, else the integral's.
+    """
+    kite_cfg, tether = cfg["kite"], cfg["tether"]
+    theta = np.radians(kite_cfg["theta0_deg"])
+    rows = []
+    for length in lengths:
+        validate(merge(cfg, {"tether": {"length_m": length}}))
+        integral = from_config(cfg, length_m=length, with_wind=with_wind)
+        rho_closed = rho or integral.mean_density_kg_m3
+        cd_closed = cd or integral.cd_top
+        closed = closed_form_drag_N(rho_closed, cd_closed, tether["diameter_m"], length, kite_cfg["speed_ms"])
+        rows.append({
+            "length_m": length,
+            "drag_N": closed if closed_form else integral.drag_N,
+            "method": "closed form (eq. 4.6)" if closed_form else "integral (eqs. 4.1-4.3)",
+            "integral_drag_N": integral.drag_N,
+            "closed_form_drag_N": closed,
+            "closed_form_rho_kg_m3": rho_closed,
+            "closed_form_cd": cd_closed,
+            "cd_top": integral.cd_top,
+            "re_top": integral.re_top,
+            "altitude_top_m": length * np.cos(theta),
+        })
+    return rows
