@@ -5,9 +5,9 @@ Given an FE and an FD run of the same case (run by
 period means of F_t (eq. 4.1), the ground and the kite-end tension (relative
 differences), and the tether shape: at every FE snapshot time the FD line is
 interpolated to the same instant (linearly in time) and both lines to common
-arc lengths (linearly in s); the largest distance between them, divided by L, is the
-shape difference.  Tolerances come from ``[crosscheck]``: a difference within
-its tolerance passes, and the check is ``ok`` only if all pass.
+arc lengths (linearly in s); the largest distance between them, divided by L,
+is the shape difference.  Tolerances come from ``[crosscheck]``: a difference
+within its tolerance passes, and the check is ``ok`` only if all pass.
 
 On reel-out runs (the length changes) F_t and the tensions are compared along
 the run: their means over one period of the eight against the line length
