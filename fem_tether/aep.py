@@ -20,11 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import atmosphere
+from . import atmosphere, wind
 from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
 from .resource import WindResource
+from .resource import from_config as resource_from_config
 
 HOURS_PER_YEAR = 8760.0
 
@@ -121,7 +122,7 @@ class SweepAep:
 
 def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
                  allow_unchecked: bool = False, allow_incomplete: bool = False) -> SweepAep:
-    """AEP for the lengths of a sweep result (:func:`fem_tether.sweep.read_sweep`).
+    """AEP for the lengths of a sweep result (:func:`fem_tether.sweepfile.read_sweep`).
 
     Straight lines: every length with a straight-line G_e.  Flexible lines:
     the lengths whose FE run succeeded and whose cross-check passed; with
@@ -155,3 +156,15 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),
     )
+
+
+def sweep_resource(cfg, wind_csv=None) -> WindResource:
+    """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
+    return resource_from_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
+
+
+def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
+    """AEP of a sweep result with the configured (or given) wind resource and cycle."""
+    cfg = data["config"]
+    return aep_of_sweep(data, sweep_resource(cfg, wind_csv), Cycle(**cfg.cycle.to_dict()),
+                        allow_unchecked, allow_incomplete)

@@ -4,11 +4,13 @@
 renames it into place only when the writer finished; on any error the
 temporary file is removed and the target is untouched.  :func:`check_writable`
 is the pre-flight check commands run before a long computation, so a bad
-output path fails at once, naming the path the user gave.
+output path fails at once, naming the path the user gave.  :func:`write_json`
+writes a JSON document that way.
 """
 
 from __future__ import annotations
 
+import json
 import os
 from contextlib import contextmanager
 from pathlib import Path
@@ -59,3 +61,10 @@ def atomic_path(path):
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
+
+
+def write_json(path, payload: dict) -> Path:
+    """``payload`` as an indented JSON document with sorted keys, written atomically."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(payload, indent=2, sort_keys=True))
+    return Path(path)

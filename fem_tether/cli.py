@@ -11,17 +11,13 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
-import json
 import os
-import shutil
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-from fem_tether import __version__, kite
-from fem_tether.atomic import check_writable
+from fem_tether import __version__, kite, report
 from fem_tether.config import MAX_ELEMENTS, load_config
 from fem_tether.errors import InputError, SolverDivergedError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
@@ -83,10 +79,6 @@ def _config(args, length_m=None):
     return load_config(args.config, {"tether": {"length_m": length_m}} if length_m else None)
 
 
-def _print_json(data):
-    print(json.dumps(data, indent=2, sort_keys=True))
-
-
 # --- commands ---------------------------------------------------------------------
 def cmd_config(args):
     print(load_config(args.config).to_toml(), end="")
@@ -98,37 +90,9 @@ def cmd_straight(args):
 
     cfg = _config(args)
     lengths = args.lengths or [args.length or cfg.tether.length_m]
-    kite_cfg, tether = cfg.kite, cfg.tether
-    theta = np.radians(kite_cfg.theta0_deg)
-    rows = []
-    for length in lengths:
-        integral = straight.from_config(cfg.with_length(length), with_wind=args.wind)
-        rho = args.rho or integral.mean_density_kg_m3
-        cd = args.cd or integral.cd_top
-        closed = straight.closed_form_drag_N(rho, cd, tether.diameter_m, length, kite_cfg.speed_ms)
-        rows.append({
-            "length_m": length,
-            "drag_N": closed if args.closed_form else integral.drag_N,
-            "method": "closed form (eq. 4.6)" if args.closed_form else "integral (eqs. 4.1-4.3)",
-            "integral_drag_N": integral.drag_N,
-            "closed_form_drag_N": closed,
-            "closed_form_rho_kg_m3": rho,
-            "closed_form_cd": cd,
-            "cd_top": integral.cd_top,
-            "re_top": integral.re_top,
-            "altitude_top_m": length * np.cos(theta),
-        })
-    if args.json:
-        _print_json(rows[0] if len(rows) == 1 else {"rows": rows})
-        return 0
-    print(f"straight-line tether drag F_t per line, theta = {kite_cfg.theta0_deg:g} deg, "
-          f"d = {1e3 * tether.diameter_m:g} mm, V_k = {kite_cfg.speed_ms:g} m/s, "
-          f"{'with wind' if args.wind else 'quiet air'}")
-    print("   L [m]   F_t [N]   integral [N]  closed [N] (rho, C_d)     C_d,c top  Re top")
-    for r in rows:
-        print(f" {r['length_m']:7.0f}  {r['drag_N']:8.0f}   {r['integral_drag_N']:10.0f}  "
-              f"{r['closed_form_drag_N']:9.0f} ({r['closed_form_rho_kg_m3']:.4f}, "
-              f"{r['closed_form_cd']:.3f})  {r['cd_top']:8.3f}  {r['re_top']:8.3g}")
+    rows = straight.comparison(cfg, lengths, args.wind, args.closed_form, args.rho, args.cd)
+    print(report.json_text(rows[0] if len(rows) == 1 else {"rows": rows}) if args.json
+          else report.straight_table(cfg, rows, args.wind))
     return 0
 
 
@@ -138,98 +102,31 @@ def cmd_curves(args):
     cfg = _config(args)
     design = kite.KiteGenDesign.from_config(cfg.kite, cfg.tether.lines, efficiency=args.ge,
                                             phi_deg=args.phi_deg)
-    speeds = kite.characteristic_speeds(design)
-    wind_ms = np.linspace(0.0, max(45.0, 1.2 * speeds.full_power_ms), 901)
-    curves = kite.characteristic_curves(wind_ms, design)
-    data = {"cut_in_ms": speeds.cut_in_ms, "full_force_ms": speeds.full_force_ms,
-            "full_power_ms": speeds.full_power_ms, "max_power_W": float(np.max(curves.power_W)),
-            "efficiency": design.efficiency, "phi_deg": float(np.degrees(design.phi_rad)),
-            "rho_kg_m3": design.rho_kg_m3}
+    curves = kite.characteristic_view(design)
+    data = report.curves_summary(design, curves)
     if args.plot:
-        data["plot"] = str(plot_characteristic_curves(curves, kite.loyd_curves(wind_ms, design), args.plot))
-    if args.json:
-        _print_json(data)
-        return 0
-    print(f"KiteGen characteristic speeds (E or G_e = {design.efficiency:g}, "
-          f"phi = {data['phi_deg']:g} deg, rho = {design.rho_kg_m3:g} kg/m3)")
-    print(f"  cut-in      {speeds.cut_in_ms:6.2f} m/s")
-    print(f"  full-force  {speeds.full_force_ms:6.2f} m/s")
-    print(f"  full-power  {speeds.full_power_ms:6.2f} m/s   ({data['max_power_W'] / 1e6:.2f} MW active phase)")
-    if args.plot:
-        print(f"plot: {data['plot']}")
+        data["plot"] = str(plot_characteristic_curves(curves, kite.loyd_curves(curves.wind_ms, design),
+                                                      args.plot))
+    print(report.json_text(data) if args.json else report.curves_text(data))
     return 0
 
 
 def cmd_simulate(args):
-    from fem_tether.fe.solver import simulate
-    from fem_tether.output import write_paraview, write_run_hdf5
-    from fem_tether.summary import run_summary
+    from fem_tether.simulation import simulate_case
 
     cfg = _config(args, args.length)
-    if args.out:
-        stem = Path(args.out) / f"fe_L{cfg.tether.length_m:g}"
-        check_writable(stem.with_suffix(".h5"))
-        check_writable(stem, directory=True)
-    run = simulate(cfg, progress=not args.json)
-    summary = run_summary(run, cfg)
-    if args.out:
-        summary["paraview"] = str(write_paraview(run, stem))
-        try:
-            summary["hdf5"] = str(write_run_hdf5(run, stem.with_suffix(".h5"), extra_attrs={
-                "ge": summary["ge"], "straight_drag_N": summary["straight_drag_N"]}))
-        except BaseException:
-            shutil.rmtree(stem, ignore_errors=True)   # both files or neither
-            raise
-        if cfg.winch.reel_out != "none":
-            from fem_tether.pipeline import reel_drag_plot
-            summary["reel_plot"] = str(reel_drag_plot(run, cfg, stem.with_name(stem.name + "_reel_drag.png"),
-                                                      args.sweep))
-    if args.json:
-        _print_json(summary)
-        return 0
-    s = summary
-    print(f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements (at the end), dt = {s['dt_s']:.4f} s, "
-          f"{s['periods']} periods averaged (period {s['period_s']:.2f} s), wall {s['wall_s']:.2f} s")
-    print(f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   (straight line {s['straight_drag_N']:.1f} N)")
-    print(f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N")
-    print(f"  mean ground tension       {s['mean_ground_tension_N']:10.1f} N")
-    print(f"  mean kite-end tension     {s['mean_kite_tension_N']:10.1f} N")
-    print(f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m")
-    print(f"  G_e                       {s['ge']:10.2f}")
-    print(f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}")
-    if cfg.winch.reel_out != "none":
-        print(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
-              f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line (the means above mix lengths; "
-              "F_t(L) is in the HDF5 series and the plot)")
-    if args.out:
-        print(f"results: {s['hdf5']}\nParaView: {s['paraview']}")
+    summary = simulate_case(cfg, args.out, args.sweep, progress=not args.json)
+    print(report.json_text(summary) if args.json else report.simulate_text(summary, cfg, bool(args.out)))
     return 0
 
 
 def cmd_crosscheck(args):
-    from fem_tether.crosscheck import crosscheck
+    from fem_tether.evaluate import run_crosscheck
 
     cfg = _config(args, args.length)
     fd_cfg = _config(argparse.Namespace(config=args.fd_config), args.length) if args.fd_config else None
-    check, fe_run, _ = crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
-    data = check.as_dict()
-    if args.json:
-        _print_json(data)
-    else:
-        tol = check.tolerances
-        limits = {"drag": tol["drag_rel"], "ground_tension": tol["tension_rel"],
-                  "kite_tension": tol["tension_rel"], "shape": tol["shape_rel"]}
-        print(f"FE <-> FD cross-check, L = {check.length_m:g} m")
-        print("  quantity              FE             FD        difference  tolerance")
-        for name, key in (("drag", "drag_N"), ("ground_tension", "ground_tension_N"),
-                          ("kite_tension", "kite_tension_N")):
-            print(f"  mean {name:15s} {check.fe[key]:12.1f} N {check.fd[key]:12.1f} N  "
-                  f"{100 * check.rel_diff[name]:8.3f} %  {100 * limits[name]:6.2f} %")
-        print(f"  shape (max |r_FE - r_FD| / L)               {100 * check.rel_diff['shape']:8.3f} %  "
-              f"{100 * limits['shape']:6.2f} %")
-        if np.ptp(fe_run.series["length_m"]) > 0:
-            print("  (reel-out: largest differences of the one-period means along the run's lengths)")
-        print("  cross-check " + ("PASSED" if check.ok else "FAILED"))
+    check, fe_run, _ = run_crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
+    print(report.json_text(check.as_dict()) if args.json else report.crosscheck_text(check, fe_run))
     return 0 if check.ok else EXIT_FAILED
 
 
@@ -239,101 +136,43 @@ def _rank() -> int:
     return mpi.COMM_WORLD.Get_rank() if mpi else 0
 
 
-def _reused(outcome) -> str:
-    return (f"{outcome.reused} of {outcome.tasks} tasks reused from the stored parts, "
-            f"{outcome.tasks - outcome.reused} run")
-
-
 def cmd_sweep(args):
-    from fem_tether.sweep import load_job, sweep
+    from fem_tether.jobs import load_job
+    from fem_tether.sweep import sweep
 
     outcome = sweep(load_job(args.job), args.out, progress=not args.json)
     if outcome is None:
         return 0
-    results = outcome.lengths
-    if args.json:
-        _print_json({"file": str(args.out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
-                     "reused_tasks": outcome.reused, "lengths": [
-            {"length_m": r.length_m, "status": r.status, "error": r.error,
-             **{k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in r.values.items()}}
-            for r in results]})
-    else:
-        print(f"sweep of {len(results)} lengths -> {args.out} ({_reused(outcome)})")
-        for r in results:
-            v = r.values
-            print(f"  L = {r.length_m:6g} m: F_t FE {v['drag_fe_N']:9.1f} N, FD {v['drag_fd_N']:9.1f} N, "
-                  f"straight {v['drag_straight_N']:9.1f} N, cross-check "
-                  f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
-                  + (f"  [{r.error}]" if r.status != "ok" else ""))
+    print(report.json_text(report.sweep_summary(outcome, args.out)) if args.json
+          else report.sweep_text(outcome, args.out))
     return 0 if outcome.ok else EXIT_FAILED
 
 
 def cmd_aep(args):
-    from fem_tether.pipeline import sweep_aep
-    from fem_tether.sweep import read_sweep
+    from fem_tether.aep import sweep_aep
+    from fem_tether.sweepfile import read_sweep
 
-    data = read_sweep(args.file)
-    energy = sweep_aep(data, args.wind, args.allow_unchecked, args.allow_incomplete)
-    result = energy.as_dict()
-    if args.json:
-        _print_json(result)
-        return 0
-    print("    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible")
-    for r in result["lengths"]:
-        fe = (f"{r['aep_fe_MWh']:18.0f}  {r['cf_fe']:11.3f}" if r["aep_fe_MWh"] is not None
-              else f"{'left out':>18s}  {'':11s}")
-        print(f" {r['length_m']:8.0f}  {r['aep_straight_MWh']:18.0f}  {r['cf_straight']:11.3f}  {fe}"
-              + ("  (unchecked)" if r["unchecked"] else "")
-              + ("  (pending)" if r["length_m"] in result["pending_m"] else ""))
-    best_fe = result["best_length_fe_m"]
-    print(f"best length: straight {result['best_length_straight_m']:g} m, flexible "
-          + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
-    if result["excluded_m"]:
-        print("left out (cross-check failed or not run): "
-              + ", ".join(f"{v:g} m" for v in result["excluded_m"]))
-    if result["pending_m"]:
-        print("pending, not run yet (--allow-incomplete): "
-              + ", ".join(f"{v:g} m" for v in result["pending_m"]))
+    result = sweep_aep(read_sweep(args.file), args.wind, args.allow_unchecked,
+                       args.allow_incomplete).as_dict()
+    print(report.json_text(result) if args.json else report.aep_text(result))
     return 0
 
 
 def cmd_run(args):
-    from fem_tether.pipeline import summary_table, sweep_aep, write_json, write_plots
-    from fem_tether.power import Cycle
-    from fem_tether import wind
-    from fem_tether.resource import from_config as resource_from_config
-    from fem_tether.sweep import load_job, read_sweep, sweep
+    from fem_tether.pipeline import main_job
 
-    t0 = time.perf_counter()
-    job = load_job(args.job)
-    out = Path(args.out)
-    h5 = out / "sweep.h5"
-    resource_from_config(job.config.resource, wind.from_config(job.config.wind))   # fails now, not after the sweep
-    Cycle(**job.config.cycle.to_dict())
-    outcome = sweep(job, h5)
-    if outcome is None:
+    result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete)
+    if result is None:
         return 0
-    data = read_sweep(h5)
-    energy = sweep_aep(data, allow_unchecked=args.allow_unchecked, allow_incomplete=args.allow_incomplete)
-    files = write_plots(data, energy, out)
-    files["aep_json"] = write_json(out / "aep.json", energy.as_dict())
-    print(summary_table(data, energy))
-    print(f"\n{len(outcome.lengths)} lengths on {outcome.n_ranks} rank(s) in "
-          f"{time.perf_counter() - t0:.1f} s ({_reused(outcome)})")
-    print(f"results: {h5}")
-    for name, path in files.items():
-        print(f"{name}: {path}")
-    return 0 if outcome.ok else EXIT_FAILED
+    print(report.main_job_text(result))
+    return 0 if result.outcome.ok else EXIT_FAILED
 
 
 def cmd_bench(args):
     from fem_tether.bench import bench, format_report
 
     result = bench(repeats=args.repeats)
-    if args.json:
-        _print_json(result)
-    else:
-        print(format_report(result))
+    print(report.json_text(result) if args.json else format_report(result))
     return 0
 
 

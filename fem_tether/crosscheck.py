@@ -1,12 +1,13 @@
 """FE <-> FD cross-check: two independent discretisations must agree.
 
-Both solvers run the same case; the check compares period means of F_t
-(eq. 4.1), the ground and the kite-end tension (relative differences), and the
-tether shape: at every FE snapshot time the FD line is interpolated to the
-same instant (linearly in time) and both lines to common arc lengths
-(linearly in s); the largest distance between them, divided by L, is the
-shape difference.  Tolerances come from ``[crosscheck]``: a difference within
-its tolerance passes, and the check is ``ok`` only if all pass.
+Given an FE and an FD run of the same case (run by
+:func:`fem_tether.evaluate.run_crosscheck` or by a sweep), the check compares
+period means of F_t (eq. 4.1), the ground and the kite-end tension (relative
+differences), and the tether shape: at every FE snapshot time the FD line is
+interpolated to the same instant (linearly in time) and both lines to common
+arc lengths (linearly in s); the largest distance between them, divided by L,
+is the shape difference.  Tolerances come from ``[crosscheck]``: a difference
+within its tolerance passes, and the check is ``ok`` only if all pass.
 
 On reel-out runs (the length changes) F_t and the tensions are compared along
 the run: their means over one period of the eight against the line length
@@ -20,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.config import Crosscheck, steps_per_period
+from fem_tether.config import Config, Crosscheck, steps_per_period
 from fem_tether.errors import ConfigError
 from fem_tether.results import TetherRun, period_average
 
@@ -88,7 +89,7 @@ def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
 MIN_SNAPSHOTS_PER_PERIOD = 10
 
 
-def checkable(cfg: dict) -> dict:
+def checkable(cfg: Config) -> Config:
     """``cfg`` with ``[output] every`` lowered, if needed, so that both solvers
     store at least ``MIN_SNAPSHOTS_PER_PERIOD`` snapshots per period."""
     period = cfg.eight.period_s
@@ -103,6 +104,13 @@ def _along_length(a: TetherRun, b: TetherRun, key: str) -> float:
     lb, yb = period_average(b, key)
     inside = (la >= lb.min()) & (la <= lb.max())
     return float(np.max(np.abs(np.interp(la[inside], lb, yb) / ya[inside] - 1.0)))
+
+
+def limits_of(tolerances: dict) -> dict:
+    """The tolerance of each compared quantity (drag, tensions, shape) from the
+    ``[crosscheck]`` keys (:attr:`CrossCheck.tolerances`)."""
+    return {"drag": tolerances["drag_rel"], "ground_tension": tolerances["tension_rel"],
+            "kite_tension": tolerances["tension_rel"], "shape": tolerances["shape_rel"]}
 
 
 def compare(fe: TetherRun, fd: TetherRun, tolerances: Crosscheck) -> CrossCheck:
@@ -125,24 +133,7 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: Crosscheck) -> CrossCheck:
     else:
         rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
     rel["shape"] = shape_difference(fe, fd)
-    limits = {"drag": tolerances.drag_rel, "ground_tension": tolerances.tension_rel,
-              "kite_tension": tolerances.tension_rel, "shape": tolerances.shape_rel}
+    limits = limits_of(tolerances.to_dict())
     ok = all(rel[k] <= limits[k] for k in limits)
     return CrossCheck(fe.length_m, fe_means, fd_means, rel, tolerances.to_dict(), ok)
 
-
-def crosscheck(cfg, progress=False, fd_cfg=None):
-    """Run the FE and the FD solver on the configured case and compare them.
-
-    ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
-    both run at the FE's length, with enough snapshots (:func:`checkable`);
-    tolerances are ``cfg``'s.  Returns ``(CrossCheck, fe_run, fd_run)``.
-    """
-    from fem_tether import fd
-    from fem_tether.fe.solver import simulate
-
-    cfg = checkable(cfg)
-    fd_cfg = checkable(fd_cfg.with_length(cfg.tether.length_m)) if fd_cfg else cfg
-    fe_run = simulate(cfg, progress=progress)
-    fd_run = fd.simulate(fd_cfg, progress=progress)
-    return compare(fe_run, fd_run, cfg.crosscheck), fe_run, fd_run

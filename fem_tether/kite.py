@@ -225,3 +225,10 @@ def loyd_curves(wind_ms, design: KiteGenDesign, projection=1.0) -> PowerCurves:
     force = design.coefficient * (w * projection - reel_out) ** 2
     return PowerCurves(wind_ms=w, reel_out_ms=reel_out,
                        force_per_line_N=force / design.lines, power_W=power)
+
+
+def characteristic_view(design: KiteGenDesign, points: int = 901) -> CharacteristicCurves:
+    """The characteristic curves from calm air to 1.2 times the full-power speed
+    (at least 45 m/s): the range ``fem-tether curves`` shows."""
+    speeds = characteristic_speeds(design)
+    return characteristic_curves(np.linspace(0.0, max(45.0, 1.2 * speeds.full_power_ms), points), design)

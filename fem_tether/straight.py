@@ -102,3 +102,32 @@ def line_of_config(cfg, with_wind=False) -> Callable[[float], StraightLineDrag]:
 def from_config(cfg, with_wind=False) -> StraightLineDrag:
     """Straight-line F_t of the configured case (quiet air unless ``with_wind``)."""
     return line_of_config(cfg, with_wind)(cfg.tether.length_m)
+
+
+def comparison(cfg, lengths, with_wind=False, closed_form=False, rho=None, cd=None) -> list[dict]:
+    """Integral and closed-form F_t of each length, as ``fem-tether straight`` reports them.
+
+    Each length's case is checked first (:meth:`Config.with_length`).  The closed form takes ``rho`` and
+    ``cd`` if given, else the integral's mean density and C_d,c at the top;
+    ``drag_N`` is the closed form's if ``closed_form``, else the integral's.
+    """
+    theta = np.radians(cfg.kite.theta0_deg)
+    rows = []
+    for length in lengths:
+        integral = from_config(cfg.with_length(length), with_wind=with_wind)
+        rho_closed = rho or integral.mean_density_kg_m3
+        cd_closed = cd or integral.cd_top
+        closed = closed_form_drag_N(rho_closed, cd_closed, cfg.tether.diameter_m, length, cfg.kite.speed_ms)
+        rows.append({
+            "length_m": length,
+            "drag_N": closed if closed_form else integral.drag_N,
+            "method": "closed form (eq. 4.6)" if closed_form else "integral (eqs. 4.1-4.3)",
+            "integral_drag_N": integral.drag_N,
+            "closed_form_drag_N": closed,
+            "closed_form_rho_kg_m3": rho_closed,
+            "closed_form_cd": cd_closed,
+            "cd_top": integral.cd_top,
+            "re_top": integral.re_top,
+            "altitude_top_m": length * np.cos(theta),
+        })
+    return rows

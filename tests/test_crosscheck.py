@@ -1,4 +1,4 @@
-"""FE <-> FD cross-check: passes on the default case, fails on different physics."""
+"""FE <-> FD comparison: fails on different physics, shape metric, snapshot requirement."""
 
 import json
 
@@ -7,15 +7,7 @@ import pytest
 
 from fem_tether.cli import main
 from fem_tether.config import load_config
-from fem_tether.crosscheck import compare, crosscheck, shape_difference
-
-
-def test_default_case_at_1000_m_passes():
-    check, fe_run, fd_run = crosscheck(load_config())
-    print(f"\n F_t FE {check.fe['drag_N']:.1f} N, FD {check.fd['drag_N']:.1f} N, "
-          f"differences {check.rel_diff}")
-    assert check.ok
-    assert check.rel_diff["drag"] < 0.005 and check.rel_diff["shape"] < 0.001
+from fem_tether.crosscheck import compare, shape_difference
 
 
 def test_different_drag_coefficient_fails_with_exit_code_1(tmp_path, capsys):

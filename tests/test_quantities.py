@@ -10,6 +10,8 @@ from mpi4py import MPI
 from conftest import TINY_JOB
 
 from fem_tether import quantities, sweep
+from fem_tether.evaluate import ROOT_DATASETS
+from fem_tether.jobs import load_job
 from fem_tether.config import load_config
 from fem_tether.fe.solver import simulate
 from fem_tether.output import write_run_hdf5
@@ -21,7 +23,7 @@ README = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
 def test_the_table_covers_what_the_solvers_record():
     assert quantities.names("series") == ("time_s",) + SERIES
     assert set(quantities.names("snapshots")) == {"time_s", *NODE_FIELDS, *CELL_FIELDS}
-    assert quantities.names("sweep") == ("length_m",) + sweep.ROOT_DATASETS + ("status", "error")
+    assert quantities.names("sweep") == ("length_m",) + ROOT_DATASETS + ("status", "error")
     units = {q.unit for q in quantities.QUANTITIES}
     assert units <= {"s", "m", "m/s", "N", "N/m", "W", "J", "deg", "1", ""}
     assert all(q.meaning for q in quantities.QUANTITIES)
@@ -54,7 +56,7 @@ def sweep_file(tmp_path_factory):
     directory = tmp_path_factory.mktemp("sweep")
     (directory / "job.toml").write_text(TINY_JOB.replace("[400, 800]", "[400]"))
     out = directory / "s.h5"
-    sweep.sweep(sweep.load_job(directory / "job.toml"), out, comm=MPI.COMM_SELF, progress=False)
+    sweep.sweep(load_job(directory / "job.toml"), out, comm=MPI.COMM_SELF, progress=False)
     return out
 
 

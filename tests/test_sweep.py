@@ -1,4 +1,4 @@
-"""Sweeps: job files, balancing, durable parts, resume, failures, MPI reproducibility."""
+"""Sweeps: durable parts, resume, failures, interruption, MPI reproducibility."""
 
 import json
 import re
@@ -17,9 +17,13 @@ import pytest
 from conftest import TINY_JOB as TINY
 
 from fem_tether import sweep as sw
+from fem_tether.atomic import OutputError
 from fem_tether.cli import main
-from fem_tether.config import ConfigError
 from fem_tether.errors import SolverDivergedError
+from fem_tether.evaluate import ROOT_DATASETS
+from fem_tether.jobs import Job, load_job
+from fem_tether.store import PartsStore, parts_dir
+from fem_tether.sweepfile import assemble, read_sweep
 
 ROOT = Path(__file__).parents[1]
 QUICK = ROOT / "sweeps" / "quick.toml"
@@ -33,49 +37,12 @@ CLI = [sys.executable, "-m", "fem_tether.cli"]
 def tiny_job(tmp_path):
     path = tmp_path / "tiny.toml"
     path.write_text(TINY)
-    return sw.load_job(path)
+    return load_job(path)
 
 
 def _self_comm():
     from mpi4py import MPI
     return MPI.COMM_SELF
-
-
-def test_default_job_file_is_the_embedded_default():
-    embedded, shipped = sw.load_job(), sw.load_job(ROOT / "sweeps" / "default.toml")
-    assert embedded.lengths_m == shipped.lengths_m == sw.DEFAULT_LENGTHS_M
-    assert embedded.config == shipped.config and embedded.crosscheck and embedded.straight
-
-
-@pytest.mark.parametrize("text, match", [
-    ("[sweep]\nlengths_m = []\n", r"\[sweep\] lengths_m = \[\]"),
-    ("[sweep]\nlengths_m = [500, -1]\n", r"\[sweep\] lengths_m = -1"),
-    ("[sweep]\nlengths_m = [500, 500]\n", "distinct"),
-    ("[sweep]\nlengths_m = [500]\ncrosscheck = 'yes'\n", r"\[sweep\] crosscheck"),
-    ("[sweep]\nlenghts_m = [1]\n", r"\[sweep\] lenghts_m: unknown key"),
-    ("[sweep]\nlengths_m = [500]\n[time]\ndt_s = -1\n", r"\[time\] dt_s = -1"),
-    # a job names its lengths: an empty file or one without them is not the default job
-    ("", r"^\[sweep\]: missing"),
-    ("[time]\naverage_periods = 1\n", r"^\[sweep\]: missing"),
-    ("[sweep]\ncrosscheck = true\n", r"^\[sweep\] lengths_m: missing"),
-    ("[sweep]\nlengths_m = [500]\nbase = 'nothere.toml'\n",
-     r'^\[sweep\] base = "nothere.toml": no such file \(.*nothere.toml\)$'),
-    ("[sweep]\nlengths_m = [500]\nbase = '.'\n", r'^\[sweep\] base = "\.": not a file'),
-])
-def test_bad_jobs_name_the_key(tmp_path, text, match):
-    path = tmp_path / "job.toml"
-    path.write_text(text)
-    with pytest.raises(ConfigError, match=match):
-        sw.load_job(path)
-
-
-def test_longest_processing_time_assignment_balances():
-    costs = [500, 919, 1343, 1768, 2192, 2616, 3000]
-    owners = sw.assign(costs, 2)
-    loads = [sum(costs[i] for i in o) for o in owners]
-    assert sorted(sum(owners, [])) == list(range(7))
-    assert max(loads) / (sum(costs) / 2) < 1.02
-    assert sw.assign(costs, 1) == [sorted(range(7), key=lambda i: -costs[i])]
 
 
 def test_serial_sweep_writes_the_documented_schema(tiny_job, tmp_path):
@@ -113,11 +80,11 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
     assert sw.sweep(tiny_job, out, comm=_self_comm(), progress=False).reused == 4
     assert calls == []
     # lose one part: only that task runs again, and its failure is recorded
-    (sw.parts_dir(out) / "L800_fe.h5").unlink()
+    (parts_dir(out) / "L800_fe.h5").unlink()
     outcome = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
     assert calls == [800.0] and outcome.reused == 3
     assert [r.status for r in outcome.lengths] == ["ok", "failed"]
-    data = sw.read_sweep(out)
+    data = read_sweep(out)
     assert "L = 800 m" in data["error"][1] and data["status"][0] == "ok"
     assert np.isnan(data["drag_fe_N"][1]) and np.isfinite(data["drag_fe_N"][0])
 
@@ -125,11 +92,11 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
 def test_changed_config_is_recomputed(tiny_job, tmp_path):
     out = tmp_path / "r.h5"
     sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
-    before = (sw.parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns
-    changed = sw.Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
+    before = (parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns
+    changed = Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
                      tiny_job.config.replace(drag={"model": "constant"}), tiny_job.toml)
     sw.sweep(changed, out, comm=_self_comm(), progress=False)
-    assert (sw.parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns != before
+    assert (parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns != before
 
 
 def test_cli_sweep_exit_code_and_json(tmp_path, capsys):
@@ -152,7 +119,7 @@ def test_mpi_two_ranks_give_identical_numbers(tmp_path):
         assert proc.returncode == 0, proc.stderr
     with h5py.File(tmp_path / "n1.h5") as a, h5py.File(tmp_path / "n2.h5") as b:
         assert (a.attrs["n_ranks"], b.attrs["n_ranks"]) == (1, 2)
-        for name in sw.ROOT_DATASETS + ("length_m",):
+        for name in ROOT_DATASETS + ("length_m",):
             assert np.array_equal(a[name][()], b[name][()], equal_nan=True), name
         assert np.array_equal(a["L3000/fe/series/drag_N"][()], b["L3000/fe/series/drag_N"][()])
 
@@ -163,16 +130,17 @@ def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, mo
     out = tmp_path / "r.h5"
     real, seen = sw.run_task, []
 
-    def observed(job, task, directory):
-        done = {p.stem for p in directory.glob("L*.h5")}
+    def observed(store, task):
+        job = store.job
+        done = {p.stem for p in store.directory.glob("L*.h5")}
         if done:
-            data = sw.read_sweep(out)
+            data = read_sweep(out)
             expected = ["ok" if {f"L{L:g}_fe", f"L{L:g}_fd"} <= done else "pending"
                         for L in job.lengths_m]
             assert list(data["status"]) == expected and set(data["error"]) == {""}
             assert list(np.isfinite(data["drag_fe_N"])) == [f"L{L:g}_fe" in done for L in job.lengths_m]
             seen.append(len(done))
-        return real(job, task, directory)
+        return real(store, task)
 
     monkeypatch.setattr(sw, "run_task", observed)
     sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
@@ -182,9 +150,9 @@ def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, mo
 def test_aep_of_an_incomplete_sweep_needs_allow_incomplete(tiny_job, tmp_path, capsys):
     out = tmp_path / "r.h5"
     sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
-    (sw.parts_dir(out) / "L800_fd.h5").unlink()
-    sw.assemble(tiny_job, out, 1)          # as a sweep killed before that task leaves it
-    data = sw.read_sweep(out)
+    (parts_dir(out) / "L800_fd.h5").unlink()
+    assemble(PartsStore(tiny_job, out), 1)          # as a sweep killed before that task leaves it
+    data = read_sweep(out)
     assert list(data["status"]) == ["ok", "pending"] and list(data["error"]) == ["", ""]
     assert np.isfinite(data["drag_fe_N"][1]) and data["crosscheck_ok"][1] == 0
     assert main(["aep", str(out)]) == 2
@@ -222,7 +190,7 @@ def test_killed_sweep_leaves_a_current_file_that_aep_refuses(tmp_path, capsys):
     _wait_for(out, proc)               # written as the first task finished
     proc.kill()
     proc.communicate()
-    data = sw.read_sweep(out)
+    data = read_sweep(out)
     assert "pending" in data["status"] and "failed" not in data["status"]
     assert np.count_nonzero(data["status"] == "ok") < 3
     assert main(["aep", str(out)]) == 2
@@ -240,7 +208,7 @@ def test_ctrl_c_keeps_the_finished_tasks_and_says_how_to_resume(tmp_path):
                          r"command to resume\n", stderr)
     assert match, stderr
     kept = int(match.group(1))
-    assert 1 <= kept < 6 and match.group(2) == str(sw.parts_dir(out))
+    assert 1 <= kept < 6 and match.group(2) == str(parts_dir(out))
     rerun = subprocess.run(argv, capture_output=True, text=True, timeout=300)
     assert rerun.returncode == 0, rerun.stderr
     assert json.loads(rerun.stdout)["reused_tasks"] == kept
@@ -254,10 +222,10 @@ def test_sweep_never_overwrites_a_file_it_did_not_write(tiny_job, tmp_path, caps
     assert main(["sweep", str(job), "--out", str(precious)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "x.h5: it exists and is not a fem-tether sweep result" in err
-    assert precious.read_text() == "precious\n" and not sw.parts_dir(precious).exists()
+    assert precious.read_text() == "precious\n" and not parts_dir(precious).exists()
     with h5py.File(precious, "w") as f:          # an HDF5 file, but not a sweep result
         f["data"] = [1.0]
-    with pytest.raises(sw.OutputError, match="not a fem-tether sweep result"):
+    with pytest.raises(OutputError, match="not a fem-tether sweep result"):
         sw.sweep(tiny_job, precious, comm=_self_comm(), progress=False)
     with h5py.File(precious) as f:
         assert list(f) == ["data"]
@@ -313,7 +281,8 @@ def test_a_failed_solve_is_recorded_quietly(tmp_path):
     errors are recorded (the FD's as the slack line it is; before the slack check it
     reported means of a line in compression), no RuntimeWarning on stderr, and the
     table says the check did not run."""
-    from fem_tether.pipeline import summary_table, sweep_aep
+    from fem_tether.aep import sweep_aep
+    from fem_tether.report import summary_table
 
     job = tmp_path / "heavy.toml"
     job.write_text(TINY.replace("[400, 800]", "[400]") + "[tether]\nlinear_density_kg_m = 2.0\n"
@@ -321,8 +290,8 @@ def test_a_failed_solve_is_recorded_quietly(tmp_path):
     out = tmp_path / "h.h5"
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
-        outcome = sw.sweep(sw.load_job(job), out, comm=_self_comm(), progress=False)
-        data = sw.read_sweep(out)
+        outcome = sw.sweep(load_job(job), out, comm=_self_comm(), progress=False)
+        data = read_sweep(out)
         table = summary_table(data, sweep_aep(data))
     assert [r.status for r in outcome.lengths] == ["failed"]
     assert data["error"][0].startswith("FE: time step did not converge")

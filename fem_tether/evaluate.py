@@ -1,0 +1,127 @@
+"""Evaluation of one cable length: its solver runs and what follows from them.
+
+:func:`run_crosscheck` runs the FE and the FD solver on one case and compares
+them; :func:`run_task` runs one solver of a sweep's length into the parts
+store; :func:`evaluate_length` combines a length's stored runs with the
+straight line into the values of the sweep result (F_t, G_e, cross-check).
+"""
+
+from __future__ import annotations
+
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from fem_tether import fd, straight
+from fem_tether.crosscheck import checkable, compare
+from fem_tether.errors import SolverDivergedError
+from fem_tether.fe import solver as fe_solver
+from fem_tether.jobs import Task
+from fem_tether.quantities import names
+from fem_tether.store import PartsStore
+from fem_tether.summary import operating_ge
+
+
+def simulator(solver: str):
+    """The ``simulate`` of the solver ``"fe"`` or ``"fd"``, looked up at each call
+    (so that a replaced solver function is the one that runs)."""
+    return fe_solver.simulate if solver == "fe" else fd.simulate
+
+
+def run_crosscheck(cfg, progress=False, fd_cfg=None):
+    """Run the FE and the FD solver on the configured case and compare them.
+
+    ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
+    both run at the FE's length, with enough snapshots (:func:`checkable`);
+    tolerances are ``cfg``'s.  Returns ``(CrossCheck, fe_run, fd_run)``.
+    """
+    cfg = checkable(cfg)
+    fd_cfg = checkable(fd_cfg.with_length(cfg.tether.length_m)) if fd_cfg else cfg
+    fe_run = simulator("fe")(cfg, progress=progress)
+    fd_run = simulator("fd")(fd_cfg, progress=progress)
+    return compare(fe_run, fd_run, cfg.crosscheck), fe_run, fd_run
+
+
+def run_task(store: PartsStore, task: Task) -> str:
+    """Run one task unless a matching successful part exists; return
+    ``"reused"`` (a stored part matched), ``"ok"`` or ``"failed"``."""
+    cfg = store.job.config_for(task.length_m)
+    key = store.inputs_key(task.length_m)
+    if store.status(task, key) == "ok":
+        return "reused"
+    try:
+        run = simulator(task.solver)(cfg)
+    except SolverDivergedError as exc:
+        store.write_failure(task, cfg, key, f"{task.solver.upper()}: {exc}")
+        return "failed"
+    except Exception as exc:  # a defect must not cost the other lengths their results
+        last = traceback.extract_tb(exc.__traceback__)[-1]
+        store.write_failure(task, cfg, key, f"{task.solver.upper()}: {type(exc).__name__}: {exc} "
+                                            f"({Path(last.filename).name}:{last.lineno})")
+        return "failed"
+    store.write_run(task, run, key)
+    return "ok"
+
+
+@dataclass
+class LengthResult:
+    length_m: float
+    status: str = "ok"          # "ok", "pending" (a task has not run) or "failed"
+    error: str = ""
+    values: dict = field(default_factory=dict)
+
+
+#: The per-length values, which are the numeric root datasets of a sweep result
+#: (one value per length), in the quantities table's order.
+ROOT_DATASETS = tuple(n for n in names("sweep") if n not in ("length_m", "status", "error"))
+
+
+def evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:
+    """Combine the stored parts of one length: cross-check, straight line, G_e.
+
+    Returns the result and the part paths found (solver -> path); remembered
+    by the store while the parts on disk do not change."""
+    return store.combined(length_m, lambda: _evaluate_length(store, length_m))
+
+
+def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:
+    job = store.job
+    cfg = job.config_for(length_m)
+    key = store.inputs_key(length_m)
+    res = LengthResult(length_m)
+    v = dict.fromkeys(ROOT_DATASETS, float("nan"))
+    v["crosscheck_ok"] = 0
+    v["mean_phi_deg"] = cfg.eight.mean_abs_phi_deg()
+    runs, parts, errors, pending = {}, {}, [], False
+    for solver in job.solvers:
+        task = Task(length_m, solver)
+        status = store.status(task, key)
+        if status is None:
+            pending = True
+            continue
+        parts[solver] = store.path(task)
+        if status != "ok":
+            errors.append(store.error(task))
+            continue
+        runs[solver] = store.read(task)
+    if "fe" in runs:
+        v["drag_fe_N"] = runs["fe"].mean("drag_N")
+        v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
+        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"])
+    if "fd" in runs:
+        v["drag_fd_N"] = runs["fd"].mean("drag_N")
+        v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")
+    if "fe" in runs and "fd" in runs:
+        check = compare(runs["fe"], runs["fd"], cfg.crosscheck)
+        v["crosscheck_ok"] = int(check.ok)
+        v["rel_diff_drag"] = check.rel_diff["drag"]
+        v["rel_diff_shape"] = check.rel_diff["shape"]
+    if job.straight:
+        v["drag_straight_N"] = straight.from_config(cfg, with_wind=True).drag_N
+        v["ge_straight"] = operating_ge(cfg, v["drag_straight_N"])
+    res.values = v
+    if errors:
+        res.status, res.error = "failed", "; ".join(errors)
+    elif pending:
+        res.status = "pending"
+    return res, parts

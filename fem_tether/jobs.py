@@ -1,0 +1,131 @@
+"""Sweep jobs: a configuration plus the cable lengths to run it at.
+
+A job (TOML, see ``sweeps/default.toml``) is a configuration plus a
+``[sweep]`` table: the cable lengths (required), whether the FD cross-check and
+the straight-line baseline run, and an optional base configuration file.
+Each length is split into tasks: the FE run and, with the cross-check, the FD
+run.  Everything a sweep does follows from the validated :class:`Job`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
+from fem_tether.crosscheck import checkable
+
+DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
+DEFAULT_JOB = {"sweep": {"lengths_m": list(DEFAULT_LENGTHS_M), "crosscheck": True, "straight": True}}
+
+
+def length_tag(length_m: float) -> str:
+    """The length in names of parts and groups: millimetre precision, no trailing zeros."""
+    return f"{float(length_m):.3f}".rstrip("0").rstrip(".")
+
+
+@dataclass(frozen=True)
+class Task:
+    """One solver run of one length: the unit of work, of scheduling and of storage."""
+
+    length_m: float
+    solver: str
+
+    @property
+    def name(self) -> str:
+        return f"L{length_tag(self.length_m)}_{self.solver}"
+
+
+@dataclass(frozen=True)
+class Job:
+    """A validated sweep job."""
+
+    lengths_m: tuple[float, ...]
+    crosscheck: bool
+    straight: bool
+    config: Config
+    toml: str = ""
+
+    @property
+    def solvers(self) -> tuple[str, ...]:
+        return ("fe", "fd") if self.crosscheck else ("fe",)
+
+    @property
+    def tasks(self) -> list[Task]:
+        return [Task(L, s) for L in self.lengths_m for s in self.solvers]
+
+    def config_for(self, length_m: float) -> Config:
+        """The configuration of one length (with enough snapshots for the cross-check)."""
+        cfg = self.config.with_length(length_m)
+        return checkable(cfg) if self.crosscheck else cfg
+
+    @cached_property
+    def case_tomls(self) -> dict[float, str]:
+        """Each length's configuration as TOML (written into, and keying, every assembly)."""
+        return {L: self.config_for(L).to_toml() for L in self.lengths_m}
+
+
+def _job_error(key, value, problem):
+    return ConfigError(f"[sweep] {key} = {toml_value(value)}: {problem}")
+
+
+def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job:
+    """Validate a job table: ``[sweep]`` keys plus configuration sections (file
+    names relative to ``base_dir``); every length's case is validated."""
+    data = dict(data)
+    if "sweep" not in data:
+        raise ConfigError("[sweep]: missing; a job needs a [sweep] table with its cable lengths, "
+                          "e.g. lengths_m = [500, 1000, 2000] (see sweeps/default.toml)")
+    sweep = data.pop("sweep")
+    if not isinstance(sweep, dict):
+        raise ConfigError("[sweep]: expected a table (lengths_m, crosscheck, straight, base)")
+    unknown = set(sweep) - {"lengths_m", "crosscheck", "straight", "base"}
+    if unknown:
+        raise ConfigError(f"[sweep] {sorted(unknown)[0]}: unknown key "
+                          "(known: lengths_m, crosscheck, straight, base)")
+    if "lengths_m" not in sweep:
+        raise ConfigError("[sweep] lengths_m: missing; give the job's cable lengths, "
+                          "e.g. lengths_m = [500, 1000, 2000]")
+    lengths = sweep["lengths_m"]
+    if not isinstance(lengths, list) or not lengths:
+        raise _job_error("lengths_m", lengths, "expected a non-empty list of lengths")
+    for value in lengths:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not (value > 0 and math.isfinite(value)):
+            raise _job_error("lengths_m", value, "every length must be a finite number > 0")
+    if len({length_tag(v) for v in lengths}) != len(lengths):
+        raise _job_error("lengths_m", lengths, "lengths must be distinct (to 1 mm)")
+    for key in ("crosscheck", "straight"):
+        if not isinstance(sweep.get(key, True), bool):
+            raise _job_error(key, sweep[key], "expected true or false")
+    base = sweep.get("base", "")
+    if not isinstance(base, str):
+        raise _job_error("base", base, "expected a file name")
+    if base and not (base_dir / base).is_file():
+        where = base_dir / base
+        raise _job_error("base", base, f"not a file ({where})" if where.exists()
+                         else f"no such file ({where})")
+    cfg = load_config(base_dir / base if base else None, resolve_paths(data, base_dir))
+    job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
+              sweep.get("straight", True), cfg, text)
+    for length in job.lengths_m:
+        job.config_for(length)          # every length's case is checked now, not in the sweep
+    return job
+
+
+def load_job(path: str | Path | None = None) -> Job:
+    """The job in the TOML file ``path``, or the embedded default job."""
+    if path is None:
+        return job_from_dict(DEFAULT_JOB, text=_job_text(DEFAULT_JOB))
+    path = Path(path)
+    data = read_toml(path)
+    return job_from_dict(data, path.parent, path.read_text())
+
+
+def _job_text(data: dict) -> str:
+    s = data["sweep"]
+    lengths = ", ".join(f"{v:g}" for v in s["lengths_m"])
+    return (f"[sweep]\nlengths_m = [{lengths}]\ncrosscheck = {str(s['crosscheck']).lower()}\n"
+            f"straight = {str(s['straight']).lower()}\n")

@@ -1,0 +1,191 @@
+"""What the commands print: the text tables and the JSON documents.
+
+Each function turns a result into the text (or the JSON-ready dict) a
+command prints, so the command line only parses and dispatches, and every
+printed number is formatted in one place.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from fem_tether.crosscheck import QUANTITIES, CrossCheck, limits_of
+
+
+def json_text(data) -> str:
+    """``data`` as the indented JSON document with sorted keys every ``--json`` prints."""
+    return json.dumps(data, indent=2, sort_keys=True)
+
+
+def _lengths(values) -> str:
+    return ", ".join(f"{v:g} m" for v in values)
+
+
+def _best_length(best_straight, best_fe) -> str:
+    return (f"best length: straight {best_straight:g} m, flexible "
+            + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
+
+
+def straight_table(cfg, rows: list[dict], with_wind: bool) -> str:
+    """``fem-tether straight``: F_t per length, integral beside closed form."""
+    lines = [f"straight-line tether drag F_t per line, theta = {cfg.kite.theta0_deg:g} deg, "
+             f"d = {1e3 * cfg.tether.diameter_m:g} mm, V_k = {cfg.kite.speed_ms:g} m/s, "
+             f"{'with wind' if with_wind else 'quiet air'}",
+             "   L [m]   F_t [N]   integral [N]  closed [N] (rho, C_d)     C_d,c top  Re top"]
+    for r in rows:
+        lines.append(f" {r['length_m']:7.0f}  {r['drag_N']:8.0f}   {r['integral_drag_N']:10.0f}  "
+                     f"{r['closed_form_drag_N']:9.0f} ({r['closed_form_rho_kg_m3']:.4f}, "
+                     f"{r['closed_form_cd']:.3f})  {r['cd_top']:8.3f}  {r['re_top']:8.3g}")
+    return "\n".join(lines)
+
+
+def curves_summary(design, curves) -> dict:
+    """``fem-tether curves``: the characteristic speeds and what sets them."""
+    speeds = curves.speeds
+    return {"cut_in_ms": speeds.cut_in_ms, "full_force_ms": speeds.full_force_ms,
+            "full_power_ms": speeds.full_power_ms, "max_power_W": float(np.max(curves.power_W)),
+            "efficiency": design.efficiency, "phi_deg": float(np.degrees(design.phi_rad)),
+            "rho_kg_m3": design.rho_kg_m3}
+
+
+def curves_text(data: dict) -> str:
+    """``fem-tether curves``: the characteristic speeds as text."""
+    lines = [f"KiteGen characteristic speeds (E or G_e = {data['efficiency']:g}, "
+             f"phi = {data['phi_deg']:g} deg, rho = {data['rho_kg_m3']:g} kg/m3)",
+             f"  cut-in      {data['cut_in_ms']:6.2f} m/s",
+             f"  full-force  {data['full_force_ms']:6.2f} m/s",
+             f"  full-power  {data['full_power_ms']:6.2f} m/s   "
+             f"({data['max_power_W'] / 1e6:.2f} MW active phase)"]
+    if "plot" in data:
+        lines.append(f"plot: {data['plot']}")
+    return "\n".join(lines)
+
+
+def simulate_text(s: dict, cfg, written: bool) -> str:
+    """``fem-tether simulate``: the run's summary (:func:`fem_tether.summary.run_summary`)
+    and, if ``written``, its files."""
+    lines = [f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements (at the end), "
+             f"dt = {s['dt_s']:.4f} s, {s['periods']} periods averaged (period {s['period_s']:.2f} s), "
+             f"wall {s['wall_s']:.2f} s",
+             f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   "
+             f"(straight line {s['straight_drag_N']:.1f} N)",
+             f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N",
+             f"  mean ground tension       {s['mean_ground_tension_N']:10.1f} N",
+             f"  mean kite-end tension     {s['mean_kite_tension_N']:10.1f} N",
+             f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m",
+             f"  G_e                       {s['ge']:10.2f}",
+             f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}"]
+    if cfg.winch.reel_out != "none":
+        lines.append(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
+                     f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line (the means above mix lengths; "
+                     "F_t(L) is in the HDF5 series and the plot)")
+    if written:
+        lines.append(f"results: {s['hdf5']}\nParaView: {s['paraview']}")
+    return "\n".join(lines)
+
+
+def crosscheck_text(check: CrossCheck, fe_run) -> str:
+    """``fem-tether crosscheck``: each quantity of both solvers, its difference and tolerance."""
+    limits = limits_of(check.tolerances)
+    lines = [f"FE <-> FD cross-check, L = {check.length_m:g} m",
+             "  quantity              FE             FD        difference  tolerance"]
+    for name, key in QUANTITIES:
+        lines.append(f"  mean {name:15s} {check.fe[key]:12.1f} N {check.fd[key]:12.1f} N  "
+                     f"{100 * check.rel_diff[name]:8.3f} %  {100 * limits[name]:6.2f} %")
+    lines.append(f"  shape (max |r_FE - r_FD| / L)               {100 * check.rel_diff['shape']:8.3f} %  "
+                 f"{100 * limits['shape']:6.2f} %")
+    if np.ptp(fe_run.series["length_m"]) > 0:
+        lines.append("  (reel-out: largest differences of the one-period means along the run's lengths)")
+    lines.append("  cross-check " + ("PASSED" if check.ok else "FAILED"))
+    return "\n".join(lines)
+
+
+def reused(outcome) -> str:
+    """How many of a sweep's tasks were reused from stored parts and how many ran."""
+    return (f"{outcome.reused} of {outcome.tasks} tasks reused from the stored parts, "
+            f"{outcome.tasks - outcome.reused} run")
+
+
+def sweep_summary(outcome, out) -> dict:
+    """``fem-tether sweep --json``: the outcome, non-finite values as null."""
+    return {"file": str(out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
+            "reused_tasks": outcome.reused, "lengths": [
+                {"length_m": r.length_m, "status": r.status, "error": r.error,
+                 **{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
+                    for k, v in r.values.items()}}
+                for r in outcome.lengths]}
+
+
+def sweep_text(outcome, out) -> str:
+    """``fem-tether sweep``: F_t of each length, both solvers and the straight line."""
+    lines = [f"sweep of {len(outcome.lengths)} lengths -> {out} ({reused(outcome)})"]
+    for r in outcome.lengths:
+        v = r.values
+        lines.append(f"  L = {r.length_m:6g} m: F_t FE {v['drag_fe_N']:9.1f} N, FD {v['drag_fd_N']:9.1f} N, "
+                     f"straight {v['drag_straight_N']:9.1f} N, cross-check "
+                     f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
+                     + (f"  [{r.error}]" if r.status != "ok" else ""))
+    return "\n".join(lines)
+
+
+def aep_text(result: dict) -> str:
+    """``fem-tether aep``: AEP and capacity factor per length (``SweepAep.as_dict()``)."""
+    lines = ["    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible"]
+    for r in result["lengths"]:
+        fe = (f"{r['aep_fe_MWh']:18.0f}  {r['cf_fe']:11.3f}" if r["aep_fe_MWh"] is not None
+              else f"{'left out':>18s}  {'':11s}")
+        lines.append(f" {r['length_m']:8.0f}  {r['aep_straight_MWh']:18.0f}  {r['cf_straight']:11.3f}  {fe}"
+                     + ("  (unchecked)" if r["unchecked"] else "")
+                     + ("  (pending)" if r["length_m"] in result["pending_m"] else ""))
+    lines.append(_best_length(result["best_length_straight_m"], result["best_length_fe_m"]))
+    if result["excluded_m"]:
+        lines.append("left out (cross-check failed or not run): " + _lengths(result["excluded_m"]))
+    if result["pending_m"]:
+        lines.append("pending, not run yet (--allow-incomplete): " + _lengths(result["pending_m"]))
+    return "\n".join(lines)
+
+
+def summary_table(data: dict, energy) -> str:
+    """The main job's table: F_t, G_e and AEP per length, straight and flexible, with the
+    cross-check and the best lengths (``data``: :func:`fem_tether.sweepfile.read_sweep`)."""
+    rows = {r["length_m"]: r for r in energy.as_dict()["lengths"]}
+    lines = ["    L [m]  F_t straight  F_t flexible  G_e str.  G_e flex.  AEP str.  AEP flex.  cross-check",
+             "                   [kN]          [kN]                          [GWh]      [GWh]"]
+    for i, length in enumerate(data["length_m"]):
+        r = rows.get(float(length), {})
+        aep_fe = r.get("aep_fe_MWh")
+        check = ("ok" if data["crosscheck_ok"][i] else
+                 ("not run" if not np.isfinite(data["rel_diff_drag"][i]) else
+                  f"FAILED ({100 * data['rel_diff_drag'][i]:.1f} % on F_t)"))
+        if data["status"][i] == "pending":
+            check = f"{check}; pending"
+        elif data["status"][i] != "ok":
+            check = f"{check}; {data['error'][i]}"
+        lines.append(f" {length:8.0f}  {data['drag_straight_N'][i] / 1e3:12.2f}  "
+                     f"{data['drag_fe_N'][i] / 1e3:12.2f}  {data['ge_straight'][i]:8.2f}  "
+                     f"{data['ge_fe'][i]:9.2f}  {r.get('aep_straight_MWh', np.nan) / 1e3:8.2f}  "
+                     f"{(aep_fe if aep_fe is not None else np.nan) / 1e3:9.2f}  {check}")
+    d = energy.as_dict()
+    lines.append(_best_length(d["best_length_straight_m"], d["best_length_fe_m"]))
+    if energy.excluded_m:
+        lines.append("left out of the flexible AEP (cross-check failed or not run): "
+                     + _lengths(energy.excluded_m))
+    if energy.pending_m:
+        lines.append("pending (not run yet, --allow-incomplete): " + _lengths(energy.pending_m))
+    if energy.unchecked_m:
+        lines.append("kept without a passed cross-check (--allow-unchecked): "
+                     + _lengths(energy.unchecked_m))
+    return "\n".join(lines)
+
+
+def main_job_text(result) -> str:
+    """``fem-tether run``: the summary table, the time taken and the files written
+    (``result``: :class:`fem_tether.pipeline.MainJob`)."""
+    outcome = result.outcome
+    return "\n".join([summary_table(result.data, result.energy), "",
+                      f"{len(outcome.lengths)} lengths on {outcome.n_ranks} rank(s) in "
+                      f"{result.seconds:.1f} s ({reused(outcome)})",
+                      f"results: {result.h5}",
+                      *(f"{name}: {path}" for name, path in result.files.items())])

@@ -1,0 +1,113 @@
+"""The durable parts of a sweep: one HDF5 file per finished task.
+
+Every finished task is written at once, atomically, to its own file in
+``<out>.parts/`` by the rank that ran it, so nothing finished is lost when a
+sweep is interrupted.  A part records the key of the inputs it was computed
+from (:func:`inputs_key`: configuration, package version and the contents of
+the files it names); re-running the same job reuses the parts whose key
+matches.  A task whose solve failed is stored too, as attributes only (its
+status and error), so the other tasks go on and the failure is reported.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import hashlib
+from contextlib import contextmanager
+from pathlib import Path
+
+import h5py
+
+from fem_tether import __version__
+from fem_tether.atomic import atomic_path
+from fem_tether.config import FILE_KEYS, NOT_FILES, Config
+from fem_tether.jobs import Job, Task
+from fem_tether.output import read_run_hdf5, write_run_hdf5
+from fem_tether.results import TetherRun
+
+
+def parts_dir(out: Path) -> Path:
+    """Where the parts of the result file ``out`` are kept."""
+    return out.with_name(out.name + ".parts")
+
+
+def inputs_key(cfg: Config) -> str:
+    """What a task's result depends on: its configuration, the package version
+    and the contents of the files the configuration names (a mesh, a table)."""
+    digest = hashlib.sha256((cfg.to_toml() + __version__).encode())
+    for section, name in FILE_KEYS:
+        value = getattr(getattr(cfg, section), name)
+        if value not in NOT_FILES:
+            digest.update(Path(value).read_bytes())
+    return digest.hexdigest()
+
+
+class PartsStore:
+    """The parts of one job's sweep into the result file ``out``.
+
+    Besides the files, it remembers for its lifetime (one sweep) what was
+    combined from each length's parts, so that assembling after every task
+    does not read and compare the unchanged lengths again.
+    """
+
+    def __init__(self, job: Job, out: str | Path):
+        self.job = job
+        self.out = Path(out)
+        self.directory = parts_dir(self.out)
+        self._combined: dict = {}
+
+    def path(self, task: Task) -> Path:
+        return self.directory / f"{task.name}.h5"
+
+    def inputs_key(self, length_m: float) -> str:
+        """The inputs key of the tasks of one length."""
+        return inputs_key(self.job.config_for(length_m))
+
+    def status(self, task: Task, key: str) -> str | None:
+        """Status of the stored part of ``task`` if its inputs match ``key``, else None."""
+        try:
+            with h5py.File(self.path(task), "r") as f:
+                if f.attrs.get("inputs_key") != key:
+                    return None
+                return str(f.attrs.get("status", "ok"))
+        except (OSError, KeyError):
+            return None
+
+    def error(self, task: Task) -> str:
+        """The error recorded in the part of a failed task."""
+        with h5py.File(self.path(task), "r") as f:
+            return str(f.attrs["error"])
+
+    def read(self, task: Task) -> TetherRun:
+        return read_run_hdf5(self.path(task))
+
+    def write_run(self, task: Task, run: TetherRun, key: str) -> None:
+        write_run_hdf5(run, self.path(task), extra_attrs={"status": "ok", "inputs_key": key})
+
+    def write_failure(self, task: Task, cfg: Config, key: str, error: str) -> None:
+        with atomic_path(self.path(task)) as tmp, h5py.File(tmp, "w") as f:
+            f.attrs.update(config_toml=cfg.to_toml(), inputs_key=key, status="failed", error=error,
+                           fem_tether_version=__version__)
+
+    def kept(self) -> int:
+        """How many of the job's tasks have a stored successful part (reused by a rerun)."""
+        return sum(self.status(t, self.inputs_key(t.length_m)) == "ok" for t in self.job.tasks)
+
+    def done(self) -> int:
+        """How many of the job's tasks have a part, whatever its inputs or status."""
+        return sum(self.path(t).exists() for t in self.job.tasks)
+
+    @contextmanager
+    def lock(self):
+        """One assembler at a time (ranks finishing tasks together); released on exit or kill."""
+        with open(self.directory / ".assemble.lock", "a") as fh:
+            fcntl.flock(fh, fcntl.LOCK_EX)
+            yield
+
+    def combined(self, length_m: float, combine):
+        """``combine()`` of one length, remembered while its parts on disk do not change."""
+        stamps = tuple(path.stat().st_mtime_ns if path.exists() else None
+                       for path in (self.path(Task(length_m, s)) for s in self.job.solvers))
+        if self._combined.get(length_m, (None,))[0] != stamps:
+            self._combined[length_m] = (stamps, combine())
+        return self._combined[length_m][1]

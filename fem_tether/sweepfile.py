@@ -1,0 +1,127 @@
+"""The sweep result file: assembled from the parts present, read back for the AEP.
+
+The rank that finished a task assembles ``<out>`` from the parts present (one
+rank at a time, under the parts directory's lock), so ``<out>`` is current
+from the first finished task on and an interrupted sweep leaves a readable
+file; a length whose tasks have not all run is ``pending``.  An existing
+``<out>`` that is not a sweep result is never overwritten.
+
+Result file (h5py), root datasets, one entry per length (NaN where not run),
+units and meanings in :mod:`fem_tether.quantities` (``where = "sweep"``) and in
+each dataset's ``units`` and ``description`` attributes::
+
+    length_m, drag_fe_N, drag_fd_N, drag_straight_N, ge_fe, ge_straight,
+    crosscheck_ok (int8: 1 ok, 0 failed or not run), mean_phi_deg,
+    kite_tension_fe_N, kite_tension_fd_N, rel_diff_drag, rel_diff_shape,
+    status ("ok" | "pending" | "failed"), error (message or "")
+
+root attributes ``config_toml`` (the job's configuration), ``job_toml``,
+``fem_tether_version``, ``n_ranks``, ``created_utc``; one group ``L<length>``
+per length with its configuration and status as attributes and subgroups
+``fe`` and ``fd`` holding the whole run as :mod:`fem_tether.output` writes it
+(series, means, snapshots).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import tomllib
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from fem_tether import __version__
+from fem_tether.atomic import OutputError, atomic_path, check_writable
+from fem_tether.config import Config, ConfigError
+from fem_tether.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
+from fem_tether.jobs import Job, length_tag
+from fem_tether.quantities import attributes
+from fem_tether.store import PartsStore, parts_dir
+
+GROUP_DESCRIPTIONS = {
+    "length": "one cable length: its configuration, status and error as attributes, its runs "
+              "in fe and fd",
+    "fe": "the FE run of this length (single-run layout, fem_tether.output; attributes only "
+          "if it failed)",
+    "fd": "the FD run of this length (single-run layout, fem_tether.output; attributes only "
+          "if it failed)",
+}
+
+
+def _dataset(f, name, data):
+    f.create_dataset(name, data=data).attrs.update(attributes("sweep", name))
+
+
+def check_out(out: Path) -> None:
+    """Before a sweep: ``out`` and its parts directory can be written, and ``out``
+    is not a file some other program wrote."""
+    check_writable(out)
+    if out.exists() and not is_sweep_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether sweep result "
+                          "(move it away or choose another file)")
+    check_writable(parts_dir(out), directory=True)
+
+
+def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
+    """Write the result file from the parts present now (atomically, under
+    the parts directory's lock); return the per-length results."""
+    with store.lock():
+        results = [evaluate_length(store, L) for L in store.job.lengths_m]
+        with atomic_path(store.out) as tmp:
+            with h5py.File(tmp, "w") as f:
+                _write_result(f, store.job, n_ranks, results)
+    return [r for r, _ in results]
+
+
+def _write_result(f: h5py.File, job: Job, n_ranks: int, results) -> None:
+    f.attrs.update(config_toml=job.config.to_toml(), job_toml=job.toml,
+                   fem_tether_version=__version__, n_ranks=n_ranks,
+                   created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
+    _dataset(f, "length_m", np.array(job.lengths_m))
+    for name in ROOT_DATASETS:
+        _dataset(f, name, np.array([r.values[name] for r, _ in results],
+                                   dtype=np.int8 if name == "crosscheck_ok" else float))
+    for name in ("status", "error"):
+        _dataset(f, name, np.array([getattr(r, name) for r, _ in results], dtype=h5py.string_dtype()))
+    for r, parts in results:
+        group = f.create_group(f"L{length_tag(r.length_m)}")
+        group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
+                           config_toml=job.case_tomls[r.length_m],
+                           description=GROUP_DESCRIPTIONS["length"])
+        for solver, path in parts.items():
+            with h5py.File(path, "r") as src:      # a failed task's part: attributes only
+                sub = group.create_group(solver)
+                sub.attrs.update(dict(src.attrs))
+                sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
+                for name in src:
+                    src.copy(src[name], sub, name)
+
+
+def is_sweep_result(path: Path) -> bool:
+    """Whether ``path`` is a file this module wrote (safe to replace)."""
+    try:
+        with h5py.File(path, "r") as f:
+            return "job_toml" in f.attrs and "length_m" in f and "status" in f
+    except OSError:
+        return False
+
+
+def read_sweep(path: str | Path) -> dict:
+    """Root datasets and attributes of a result file, as NumPy arrays and strings
+    (``"file"``: the path as given)."""
+    if Path(path).is_dir():
+        raise ConfigError(f"{path}: is a directory, not a sweep result file")
+    try:
+        with h5py.File(path, "r") as f:
+            data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
+            data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
+            data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
+            data["config"] = Config.from_dict(tomllib.loads(f.attrs["config_toml"]))
+            data["attrs"] = {k: f.attrs[k] for k in f.attrs}
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: no such file") from None
+    except (OSError, KeyError) as exc:
+        raise ConfigError(f"{path}: not a fem-tether sweep result ({exc})") from None
+    data["file"] = str(path)
+    return data

@@ -1,0 +1,38 @@
+"""Sweep jobs: the embedded default job and the errors of bad job files."""
+
+from pathlib import Path
+
+import pytest
+
+from fem_tether.config import ConfigError
+from fem_tether.jobs import DEFAULT_LENGTHS_M, load_job
+
+ROOT = Path(__file__).parents[1]
+
+
+def test_default_job_file_is_the_embedded_default():
+    embedded, shipped = load_job(), load_job(ROOT / "sweeps" / "default.toml")
+    assert embedded.lengths_m == shipped.lengths_m == DEFAULT_LENGTHS_M
+    assert embedded.config == shipped.config and embedded.crosscheck and embedded.straight
+
+
+@pytest.mark.parametrize("text, match", [
+    ("[sweep]\nlengths_m = []\n", r"\[sweep\] lengths_m = \[\]"),
+    ("[sweep]\nlengths_m = [500, -1]\n", r"\[sweep\] lengths_m = -1"),
+    ("[sweep]\nlengths_m = [500, 500]\n", "distinct"),
+    ("[sweep]\nlengths_m = [500]\ncrosscheck = 'yes'\n", r"\[sweep\] crosscheck"),
+    ("[sweep]\nlenghts_m = [1]\n", r"\[sweep\] lenghts_m: unknown key"),
+    ("[sweep]\nlengths_m = [500]\n[time]\ndt_s = -1\n", r"\[time\] dt_s = -1"),
+    # a job names its lengths: an empty file or one without them is not the default job
+    ("", r"^\[sweep\]: missing"),
+    ("[time]\naverage_periods = 1\n", r"^\[sweep\]: missing"),
+    ("[sweep]\ncrosscheck = true\n", r"^\[sweep\] lengths_m: missing"),
+    ("[sweep]\nlengths_m = [500]\nbase = 'nothere.toml'\n",
+     r'^\[sweep\] base = "nothere.toml": no such file \(.*nothere.toml\)$'),
+    ("[sweep]\nlengths_m = [500]\nbase = '.'\n", r'^\[sweep\] base = "\.": not a file'),
+])
+def test_bad_jobs_name_the_key(tmp_path, text, match):
+    path = tmp_path / "job.toml"
+    path.write_text(text)
+    with pytest.raises(ConfigError, match=match):
+        load_job(path)
