@@ -30,8 +30,8 @@ from fem_tether.summary import run_summary
 
 
 def main(out_dir="out/fe_run") -> dict:
-    cfg = load_config(overrides={"tether": {"length_m": 500.0}, "fe": {"elements": 16},
-                                 "time": {"dt_s": 0.1, "average_periods": 1}})
+    cfg = load_config(overrides={"tether": {"length_m": 500.0}, "fe": {"elements": 16, "dt_s": 0.1},
+                                 "time": {"average_periods": 1}})
     run = simulate(cfg)
     summary = run_summary(run, cfg)
     out = Path(out_dir)

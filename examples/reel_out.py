@@ -24,9 +24,9 @@ from fem_tether.results import period_average
 
 def main() -> dict:
     cfg = load_config(overrides={
-        "tether": {"length_m": 500.0}, "fe": {"elements": 12},
-        "time": {"dt_s": 0.1, "average_periods": 4},
-        "winch": {"reel_out": "constant", "reel_out_speed_ms": 10.0, "reel_out_stop_m": 700.0}})
+        "tether": {"length_m": 500.0}, "fe": {"elements": 12, "dt_s": 0.1},
+        "time": {"average_periods": 4},
+        "winch": {"reel_out": "constant", "reel_out_speed_mps": 10.0, "reel_out_stop_m": 700.0}})
     run = simulate(cfg)
     paid_out_m = run.series["length_m"][-1] - run.series["length_m"][0]
     length_m, drag_N = period_average(run, "drag_N")

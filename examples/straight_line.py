@@ -32,7 +32,7 @@ def main() -> dict:
     cfg = load_config(overrides=CONSTANT)
     integral_N = straight.from_config(cfg).drag_N
     closed_N = straight.closed_form_drag_N(1.225, 1.2, cfg.tether.diameter_m, cfg.tether.length_m,
-                                           cfg.kite.speed_ms)
+                                           cfg.kite.speed_mps)
     seed_case = load_config()                       # ISA and C_d,c(Re)
     by_length_N = {L: straight.from_config(seed_case.with_length(L)).drag_N for L in (500.0, 1000.0, 3000.0)}
     return {"integral_N": integral_N, "closed_form_N": closed_N, "isa_cylinder_N": by_length_N}

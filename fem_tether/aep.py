@@ -77,7 +77,7 @@ def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean
     for length, g, p in zip(lengths, ge, phi):
         flown = operating_design(design, air, length, g, p)
         band = resource.band_for_length(length, design.theta_rad)
-        aep = annual_energy_Wh(cycle_curves(band.edges_ms, flown, cycle).power_W,
+        aep = annual_energy_Wh(cycle_curves(band.edges_mps, flown, cycle).power_W,
                                band.probability)
         rows.append((band.low_m, band.high_m, aep, rated_power_W(flown, cycle), band.remainder))
     low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float)

@@ -61,7 +61,7 @@ def _run(solver, resolution, dt_s, repeats):
     element count or the FD segment count."""
     cfg = load_config(overrides=BENCH_CASE)
     if solver == "fe":
-        cfg = cfg.replace(fe={"elements": resolution}, time={"dt_s": dt_s})
+        cfg = cfg.replace(fe={"elements": resolution, "dt_s": dt_s})
     else:
         cfg = cfg.replace(fd={"segments": resolution, "dt_s": dt_s})
     simulate = fe.simulate if solver == "fe" else fd.simulate

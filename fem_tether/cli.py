@@ -105,7 +105,7 @@ def cmd_curves(args):
     curves = kite.characteristic_view(design)
     data = report.curves_summary(design, curves)
     if args.plot:
-        data["plot"] = str(plot_characteristic_curves(curves, kite.loyd_curves(curves.wind_ms, design),
+        data["plot"] = str(plot_characteristic_curves(curves, kite.loyd_curves(curves.wind_mps, design),
                                                       args.plot))
     print(report.json_text(data) if args.json else report.curves_text(data))
     return 0

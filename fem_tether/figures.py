@@ -31,7 +31,7 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
     }
     cycle = Cycle(**cfg.cycle.to_dict())
     base, air = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines), atmosphere.from_config(cfg.air)
-    wind = np.linspace(0.0, cfg.resource.max_speed_ms, 501)
+    wind = np.linspace(0.0, cfg.resource.max_speed_mps, 501)
     curves = {}
     for i in (0, lengths.size - 1):
         for case, (_, ge_key) in cases.items():

@@ -35,23 +35,23 @@ def projection(theta_rad, phi_rad):
     return np.sin(theta_rad) * np.cos(phi_rad)
 
 
-def traction_force_N(rho_kg_m3, area_m2, cl, efficiency, wind_ms, theta_rad, phi_rad,
-                     reel_out_ms):
+def traction_force_N(rho_kg_m3, area_m2, cl, efficiency, wind_mps, theta_rad, phi_rad,
+                     reel_out_mps):
     """F_k = ½ ρ A C_l E² (1 + 1/E²)^{3/2} (V_w sinϑ cosφ − V_L)²  (total, all lines).
 
     Seed 000 eqs. 2.45–2.46 (4.17 with G_e in place of E).
     """
-    v_er = np.asarray(wind_ms, dtype=float) * projection(theta_rad, phi_rad) - reel_out_ms
+    v_er = np.asarray(wind_mps, dtype=float) * projection(theta_rad, phi_rad) - reel_out_mps
     return traction_coefficient(rho_kg_m3, area_m2, cl, efficiency) * v_er**2
 
 
-def power_W(rho_kg_m3, area_m2, cl, efficiency, wind_ms, theta_rad, phi_rad, reel_out_ms):
+def power_W(rho_kg_m3, area_m2, cl, efficiency, wind_mps, theta_rad, phi_rad, reel_out_mps):
     """P = F_k V_L  (seed 000 eq. 2.47)."""
-    return traction_force_N(rho_kg_m3, area_m2, cl, efficiency, wind_ms, theta_rad,
-                            phi_rad, reel_out_ms) * reel_out_ms
+    return traction_force_N(rho_kg_m3, area_m2, cl, efficiency, wind_mps, theta_rad,
+                            phi_rad, reel_out_mps) * reel_out_mps
 
 
-def loyd_optimum(rho_kg_m3, area_m2, cl, efficiency, wind_ms, projection=1.0):
+def loyd_optimum(rho_kg_m3, area_m2, cl, efficiency, wind_mps, projection=1.0):
     """Loyd's optimum: V_L = V_w/3, P = (4/27) ½ ρ A C_l E² (1 + 1/E²)^{3/2} V_w³.
 
     Seed 000 eqs. 2.53–2.54, which take the kite at ϑ = 90°, φ = 0 (the
@@ -59,21 +59,21 @@ def loyd_optimum(rho_kg_m3, area_m2, cl, efficiency, wind_ms, projection=1.0):
     Pass ``projection = sinϑ cosφ`` to optimise at another position instead
     (V_w → V_w sinϑ cosφ in both formulas).
 
-    Returns ``(reel_out_ms, power_W)``.
+    Returns ``(reel_out_mps, power_W)``.
     """
-    v = np.asarray(wind_ms, dtype=float) * projection
+    v = np.asarray(wind_mps, dtype=float) * projection
     c = traction_coefficient(rho_kg_m3, area_m2, cl, efficiency)
     return v / 3.0, 4.0 / 27.0 * c * v**3
 
 
-def global_efficiency(tether_drag_N, rho_kg_m3, area_m2, cl, efficiency, speed_ms, lines=2):
+def global_efficiency(tether_drag_N, rho_kg_m3, area_m2, cl, efficiency, speed_mps, lines=2):
     """G_e = L / (D_k + lines·F_t), L = ½ ρ A C_l V_k², D_k = L/E.
 
     Seed 000 eqs. 5.1 and 2.48 (``lines = 2``: D_c = 2 F_t), with F_t the drag
     of one line lumped at the kite (eq. 4.1).  The seed evaluates ρ at the
     kite's altitude.
     """
-    lift_N = 0.5 * rho_kg_m3 * area_m2 * cl * np.asarray(speed_ms, dtype=float) ** 2
+    lift_N = 0.5 * rho_kg_m3 * area_m2 * cl * np.asarray(speed_mps, dtype=float) ** 2
     return lift_N / (lift_N / efficiency + lines * np.asarray(tether_drag_N, dtype=float))
 
 
@@ -91,11 +91,11 @@ class KiteGenDesign:
     area_m2: float
     cl: float
     efficiency: float
-    speed_ms: float
+    speed_mps: float
     theta_rad: float
     phi_rad: float
     nominal_force_N: float
-    max_reel_out_ms: float
+    max_reel_out_mps: float
     lines: int = 2
     kite_efficiency: float | None = None
 
@@ -112,11 +112,11 @@ class KiteGenDesign:
             area_m2=kite.area_m2,
             cl=kite.cl,
             efficiency=kite.efficiency if efficiency is None else efficiency,
-            speed_ms=kite.speed_ms,
+            speed_mps=kite.speed_mps,
             theta_rad=np.radians(kite.theta0_deg),
             phi_rad=np.radians(kite.design_phi_deg if phi_deg is None else phi_deg),
             nominal_force_N=kite.nominal_force_N,
-            max_reel_out_ms=kite.max_reel_out_ms,
+            max_reel_out_mps=kite.max_reel_out_mps,
             lines=lines,
             kite_efficiency=kite.efficiency,
         )
@@ -136,9 +136,9 @@ class KiteGenDesign:
 class CharacteristicSpeeds:
     """Wind speeds [m/s] where zones B, C and D begin (seed 000 §2.4, Tab. 5.3)."""
 
-    cut_in_ms: float
-    full_force_ms: float
-    full_power_ms: float
+    cut_in_mps: float
+    full_force_mps: float
+    full_power_mps: float
 
 
 def characteristic_speeds(design: KiteGenDesign, seed_cut_in: bool = True) -> CharacteristicSpeeds:
@@ -159,20 +159,20 @@ def characteristic_speeds(design: KiteGenDesign, seed_cut_in: bool = True) -> Ch
     p = design.projection
     if seed_cut_in:
         e = design.efficiency if design.kite_efficiency is None else design.kite_efficiency
-        cut_in = design.speed_ms / np.asarray(e, dtype=float)
+        cut_in = design.speed_mps / np.asarray(e, dtype=float)
     else:
-        cut_in = design.speed_ms / (np.asarray(design.efficiency, dtype=float) * p)
+        cut_in = design.speed_mps / (np.asarray(design.efficiency, dtype=float) * p)
     full_force = np.sqrt(design.nominal_force_N / design.coefficient) / p
-    return CharacteristicSpeeds(cut_in_ms=cut_in, full_force_ms=full_force,
-                                full_power_ms=full_force + design.max_reel_out_ms / p)
+    return CharacteristicSpeeds(cut_in_mps=cut_in, full_force_mps=full_force,
+                                full_power_mps=full_force + design.max_reel_out_mps / p)
 
 
 @dataclass(frozen=True)
 class PowerCurves:
     """Operating curves against wind speed; force per line, power of the active phase."""
 
-    wind_ms: np.ndarray
-    reel_out_ms: np.ndarray
+    wind_mps: np.ndarray
+    reel_out_mps: np.ndarray
     force_per_line_N: np.ndarray
     power_W: np.ndarray
 
@@ -185,7 +185,7 @@ class CharacteristicCurves(PowerCurves):
     speeds: CharacteristicSpeeds
 
 
-def characteristic_curves(wind_ms, design: KiteGenDesign, seed_cut_in: bool = True
+def characteristic_curves(wind_mps, design: KiteGenDesign, seed_cut_in: bool = True
                           ) -> CharacteristicCurves:
     """KiteGen four-zone operation (seed 000 §2.4, eqs. 2.55–2.57, Figs. 2.15–2.17).
 
@@ -199,31 +199,31 @@ def characteristic_curves(wind_ms, design: KiteGenDesign, seed_cut_in: bool = Tr
     Forces are reported per line, F_k / lines.  ``seed_cut_in`` as in
     :func:`characteristic_speeds`.
     """
-    w = np.asarray(wind_ms, dtype=float)
+    w = np.asarray(wind_mps, dtype=float)
     s = characteristic_speeds(design, seed_cut_in)
     p = design.projection
-    zone_index = np.select([w < s.cut_in_ms, w < s.full_force_ms, w < s.full_power_ms],
+    zone_index = np.select([w < s.cut_in_mps, w < s.full_force_mps, w < s.full_power_mps],
                            [0, 1, 2], 3)
     held_N = design.coefficient * (w * p) ** 2
     force_N = np.select([zone_index == 0, zone_index == 1], [0.0, held_N], design.nominal_force_N)
     reel_out = np.where(zone_index >= 2,
-                        np.minimum((w - s.full_force_ms) * p, design.max_reel_out_ms), 0.0)
+                        np.minimum((w - s.full_force_mps) * p, design.max_reel_out_mps), 0.0)
     return CharacteristicCurves(
-        wind_ms=w, reel_out_ms=reel_out, force_per_line_N=force_N / design.lines,
+        wind_mps=w, reel_out_mps=reel_out, force_per_line_N=force_N / design.lines,
         power_W=force_N * reel_out, zone=np.asarray(ZONES)[zone_index], speeds=s)
 
 
-def loyd_curves(wind_ms, design: KiteGenDesign, projection=1.0) -> PowerCurves:
+def loyd_curves(wind_mps, design: KiteGenDesign, projection=1.0) -> PowerCurves:
     """Loyd's optimum at every wind speed (eqs. 2.53–2.54), for comparison plots.
 
     F_k = ½ ρ A C_l E² (1 + 1/E²)^{3/2} (V_w − V_L)² at V_L = V_w/3 (eq. 2.45); see
     :func:`loyd_optimum` for ``projection``.
     """
-    w = np.asarray(wind_ms, dtype=float)
+    w = np.asarray(wind_mps, dtype=float)
     reel_out, power = loyd_optimum(design.rho_kg_m3, design.area_m2, design.cl,
                                    design.efficiency, w, projection)
     force = design.coefficient * (w * projection - reel_out) ** 2
-    return PowerCurves(wind_ms=w, reel_out_ms=reel_out,
+    return PowerCurves(wind_mps=w, reel_out_mps=reel_out,
                        force_per_line_N=force / design.lines, power_W=power)
 
 
@@ -231,4 +231,4 @@ def characteristic_view(design: KiteGenDesign, points: int = 901) -> Characteris
     """The characteristic curves from calm air to 1.2 times the full-power speed
     (at least 45 m/s): the range ``fem-tether curves`` shows."""
     speeds = characteristic_speeds(design)
-    return characteristic_curves(np.linspace(0.0, max(45.0, 1.2 * speeds.full_power_ms), points), design)
+    return characteristic_curves(np.linspace(0.0, max(45.0, 1.2 * speeds.full_power_mps), points), design)

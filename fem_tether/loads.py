@@ -19,15 +19,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-G_MS2 = 9.81
+G_MPS2 = 9.81
 """Gravitational acceleration used by seed 000 (docs/physics.md §6)."""
 
-_TINY_MS = 1e-30
+_TINY_MPS = 1e-30
 
 
-def gravity_N_m(linear_density_kg_m: float, g_ms2: float = G_MS2) -> np.ndarray:
+def gravity_N_m(linear_density_kg_m: float, g_mps2: float = G_MPS2) -> np.ndarray:
     """Weight per unit length w = -mu g e_z (seed 000 eq. 4.15)."""
-    return np.array([0.0, 0.0, -linear_density_kg_m * g_ms2])
+    return np.array([0.0, 0.0, -linear_density_kg_m * g_mps2])
 
 
 @dataclass
@@ -35,7 +35,7 @@ class CrossflowDrag:
     """Drag per unit length at a set of points, with what produced it.
 
     ``force`` is f_t (+ skin friction) [N/m]; ``vn`` the normal relative
-    velocity; ``vn_ms`` its magnitude; ``re`` and ``cd`` the Reynolds number and
+    velocity; ``vn_mps`` its magnitude; ``re`` and ``cd`` the Reynolds number and
     coefficient.  ``d_dvrel`` and ``d_dtau`` are the Jacobians
     df/dV_rel and df/dtau, shape ``(n, 3, 3)``, and ``d_drho``, ``d_dmu`` the
     derivatives df/drho and df/dmu_air, shape ``(n, 3)``, when requested.
@@ -43,7 +43,7 @@ class CrossflowDrag:
 
     force: np.ndarray
     vn: np.ndarray
-    vn_ms: np.ndarray
+    vn_mps: np.ndarray
     re: np.ndarray
     cd: np.ndarray
     d_dvrel: np.ndarray | None = None
@@ -78,7 +78,7 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     a = np.einsum("ij,ij->i", v_rel, tau)                # V_rel . tau
     vn = v_rel - a[:, None] * tau
     n = np.sqrt(np.einsum("ij,ij->i", vn, vn))
-    n_safe = np.maximum(n, _TINY_MS)
+    n_safe = np.maximum(n, _TINY_MPS)
     re = rho * n_safe * diameter_m / np.asarray(mu_air, dtype=float)
     cd = drag_model.cd(re)
     c = 0.5 * rho * diameter_m * cd * n_safe
@@ -86,7 +86,7 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     k_s = 0.5 * rho * np.pi * diameter_m * skin_friction_cf
     if skin_friction_cf:
         force = force + (k_s * np.abs(a) * a)[:, None] * tau
-    out = CrossflowDrag(force=force, vn=vn, vn_ms=n, re=re, cd=cd)
+    out = CrossflowDrag(force=force, vn=vn, vn_mps=n, re=re, cd=cd)
     if not jacobian:
         return out
 

@@ -21,7 +21,7 @@ def drag_moment_Nm(points_m, force_N_m, weights_m):
     return np.einsum("...ij,i->...j", np.cross(points_m, force_N_m), weights_m)
 
 
-def equivalent_force(moment_Nm, kite_position_m, kite_velocity_ms=None):
+def equivalent_force(moment_Nm, kite_position_m, kite_velocity_mps=None):
     """Equivalent drag force at the kite from its moment (eq. 4.1).
 
     Returns ``(F_t, F_against)``: ``F_t = |M_d| / r_k`` and, if the kite
@@ -32,10 +32,10 @@ def equivalent_force(moment_Nm, kite_position_m, kite_velocity_ms=None):
     r = np.asarray(kite_position_m, dtype=float)
     r_k = np.linalg.norm(r, axis=-1)
     drag_N = np.linalg.norm(moment_Nm, axis=-1) / r_k
-    if kite_velocity_ms is None:
+    if kite_velocity_mps is None:
         return drag_N, None
     e_r = r / r_k[..., None]
     f_perp = np.cross(moment_Nm, e_r) / r_k[..., None]
-    v = np.asarray(kite_velocity_ms, dtype=float)
+    v = np.asarray(kite_velocity_mps, dtype=float)
     v_hat = v / np.linalg.norm(v, axis=-1)[..., None]
     return drag_N, -np.einsum("...i,...i->...", f_perp, v_hat)

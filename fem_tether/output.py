@@ -29,8 +29,8 @@ ParaView (:func:`write_paraview`), one directory per run::
 
     <directory>/<name>.pvd          collection: one DataSet per snapshot, with its time
     <directory>/<name>_0000.vtu     the line at snapshot 0: points = node positions,
-    ...                             "line" cells, point data velocity_ms and s_m,
-                                    cell data tension_N, vn_ms, reynolds, cd, drag_N_m
+    ...                             "line" cells, point data velocity_mps and s_m,
+                                    cell data tension_N, vn_mps, reynolds, cd, drag_N_m
 
 Open the ``.pvd`` in ParaView and play the animation to see the tether move.
 
@@ -176,7 +176,7 @@ def _write_paraview(run: TetherRun, directory: Path, name: str):
         mesh = meshio.Mesh(
             line["position_m"],
             [("line", np.column_stack([np.arange(n_nodes - 1), np.arange(1, n_nodes)]))],
-            point_data={"velocity_ms": line["velocity_ms"], "s_m": line["s_m"]},
+            point_data={"velocity_mps": line["velocity_mps"], "s_m": line["s_m"]},
             cell_data={k: [line[k]] for k in CELL_FIELDS},
         )
         file = f"{name}_{i:04d}.vtu"

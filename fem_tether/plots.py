@@ -33,14 +33,14 @@ def plot_characteristic_curves(kitegen: CharacteristicCurves, loyd: PowerCurves,
     each panel's scale follows the KiteGen curve and Loyd's leaves the frame.
     Writes a PNG at ``path`` and returns it.
     """
-    w = kitegen.wind_ms
+    w = kitegen.wind_mps
     s = kitegen.speeds
     panels = [
-        (kitegen.reel_out_ms, loyd.reel_out_ms, 1.0, "reel-out speed $V_L$ [m/s]"),
+        (kitegen.reel_out_mps, loyd.reel_out_mps, 1.0, "reel-out speed $V_L$ [m/s]"),
         (kitegen.force_per_line_N, loyd.force_per_line_N, 1e-3, "force per line [kN]"),
         (kitegen.power_W, loyd.power_W, 1e-6, "power, active phase [MW]"),
     ]
-    edges = [w.min(), s.cut_in_ms, s.full_force_ms, s.full_power_ms, w.max()]
+    edges = [w.min(), s.cut_in_mps, s.full_force_mps, s.full_power_mps, w.max()]
     fig, axes = plt.subplots(3, 1, sharex=True, figsize=(7.0, 8.5), constrained_layout=True)
     for ax, (ours, theirs, scale, label) in zip(axes, panels):
         for i, zone in enumerate(ZONES):
@@ -61,8 +61,8 @@ def plot_characteristic_curves(kitegen: CharacteristicCurves, loyd: PowerCurves,
     axes[0].legend(loc="upper left")
     axes[-1].set_xlabel("wind speed $V_w$ [m/s]")
     axes[-1].set_xlim(w.min(), w.max())
-    text = (f"cut-in {s.cut_in_ms:.2f} m/s, full force {s.full_force_ms:.2f} m/s, "
-            f"full power {s.full_power_ms:.2f} m/s")
+    text = (f"cut-in {s.cut_in_mps:.2f} m/s, full force {s.full_force_mps:.2f} m/s, "
+            f"full power {s.full_power_mps:.2f} m/s")
     fig.suptitle(text if title is None else f"{title}\n{text}", fontsize=10)
     try:
         return save_atomically(fig, path)
@@ -145,8 +145,8 @@ def plot_power_curves(curves_by_label: Mapping[str, CycleCurves], path) -> Path:
     fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
     for i, (label, c) in enumerate(curves_by_label.items()):
         color = f"C{i}"
-        ax.plot(c.active.wind_ms, c.active.power_W * 1e-6, "--", color=color, lw=1.2)
-        ax.plot(c.active.wind_ms, c.power_W * 1e-6, "-", color=color, lw=2, label=label)
+        ax.plot(c.active.wind_mps, c.active.power_W * 1e-6, "--", color=color, lw=1.2)
+        ax.plot(c.active.wind_mps, c.power_W * 1e-6, "-", color=color, lw=2, label=label)
     ax.plot([], [], "--", color="0.4", lw=1.2, label="active phase")
     ax.plot([], [], "-", color="0.4", lw=2, label="cycle mean")
     ax.set_xlabel("wind speed $V_w$ [m/s]")

@@ -66,7 +66,7 @@ class Cycle:
 
     - ``stroke_m``: line reeled out per active phase, then back in (seed 000
       §5: ≈450 m, the reason for its 300 m altitude bands).
-    - ``reel_in_ms``: winch speed V_in of the side-slip recovery (seed 000
+    - ``reel_in_mps``: winch speed V_in of the side-slip recovery (seed 000
       §2.4: "roughly 15–20 m/s").
     - ``reel_in_cd0``: drag coefficient C_d0 of the side-slipping wing on its
       area A in the reel-in force (seed 004 eq. 3.24).  Seed 004 lets a wing's
@@ -83,13 +83,13 @@ class Cycle:
     """
 
     stroke_m: float = 450.0
-    reel_in_ms: float = 17.5
+    reel_in_mps: float = 17.5
     reel_in_cd0: float = 0.1
     eta_e: float = 1.0
     eta_c: float = 1.0
 
     def __post_init__(self):
-        for name in ("stroke_m", "reel_in_ms"):
+        for name in ("stroke_m", "reel_in_mps"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} = {getattr(self, name)!r}: must be > 0")
         if not self.reel_in_cd0 >= 0:
@@ -99,7 +99,7 @@ class Cycle:
                 raise ValueError(f"{name} = {getattr(self, name)!r}: must be in (0, 1]")
 
 
-def reel_in_force_N(rho_kg_m3, area_m2, cd0, wind_ms, reel_in_ms, elevation_rad):
+def reel_in_force_N(rho_kg_m3, area_m2, cd0, wind_mps, reel_in_mps, elevation_rad):
     """T_r = ½ ρ V_w² A C_d0 (1 + γ_in² + 2 γ_in cosβ), γ_in = V_in/V_w  (seed 004 eq. 3.24).
 
     The wing is reeled in straight along the line at elevation β, its
@@ -107,8 +107,8 @@ def reel_in_force_N(rho_kg_m3, area_m2, cd0, wind_ms, reel_in_ms, elevation_rad)
     V_a² = V_w² + V_in² + 2 V_w V_in cosβ (eq. 3.21); written in that form it
     also holds at V_w = 0.
     """
-    w = np.asarray(wind_ms, dtype=float)
-    apparent_sq = w**2 + reel_in_ms**2 + 2.0 * w * reel_in_ms * np.cos(elevation_rad)
+    w = np.asarray(wind_mps, dtype=float)
+    apparent_sq = w**2 + reel_in_mps**2 + 2.0 * w * reel_in_mps * np.cos(elevation_rad)
     return 0.5 * rho_kg_m3 * area_m2 * cd0 * apparent_sq
 
 
@@ -127,7 +127,7 @@ class CycleCurves:
     power_W: np.ndarray
 
 
-def cycle_curves(wind_ms, design: KiteGenDesign, cycle: Cycle = Cycle()) -> CycleCurves:
+def cycle_curves(wind_mps, design: KiteGenDesign, cycle: Cycle = Cycle()) -> CycleCurves:
     """Cycle-mean power P = (η_e E_out − E_in/η_c) / (t_out + t_in), clipped at 0.
 
     Over one stroke s: reel-out at the active phase's V_L and total force F
@@ -142,13 +142,13 @@ def cycle_curves(wind_ms, design: KiteGenDesign, cycle: Cycle = Cycle()) -> Cycl
     recovery would cost more than the stroke yields, the machine would not
     run: P is clipped at 0.
     """
-    active = characteristic_curves(wind_ms, design)
+    active = characteristic_curves(wind_mps, design)
     force_N = active.force_per_line_N * design.lines
     reel_in_N = reel_in_force_N(design.rho_kg_m3, design.area_m2, cycle.reel_in_cd0,
-                                active.wind_ms, cycle.reel_in_ms, np.pi / 2 - design.theta_rad)
+                                active.wind_mps, cycle.reel_in_mps, np.pi / 2 - design.theta_rad)
     with np.errstate(divide="ignore"):
-        t_out = cycle.stroke_m / active.reel_out_ms
-    t_in = cycle.stroke_m / cycle.reel_in_ms
+        t_out = cycle.stroke_m / active.reel_out_mps
+    t_in = cycle.stroke_m / cycle.reel_in_mps
     e_out = force_N * cycle.stroke_m
     e_in = reel_in_N * cycle.stroke_m
     power = (cycle.eta_e * e_out - e_in / cycle.eta_c) / (t_out + t_in)
@@ -163,5 +163,5 @@ def rated_power_W(design: KiteGenDesign, cycle: Cycle = Cycle(), points: int = 2
     [0, V_full-power]; the curve is sampled there (``points`` speeds, both
     ends included).
     """
-    wind = np.linspace(0.0, characteristic_speeds(design).full_power_ms, points)
+    wind = np.linspace(0.0, characteristic_speeds(design).full_power_mps, points)
     return cycle_curves(wind, design, cycle).power_W.max(axis=0)

@@ -44,12 +44,12 @@ from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
 
 #: A change of V_L between steps larger than this (m/s) restarts the time
 #: integration from data made consistent with the new constraints.
-RESTART_JUMP_MS = 0.1
+RESTART_JUMP_MPS = 0.1
 
 
-def speed_jumped(before_ms: float, after_ms: float) -> bool:
-    """Whether a change of the reel speed restarts the integration (:data:`RESTART_JUMP_MS`)."""
-    return abs(after_ms - before_ms) > RESTART_JUMP_MS
+def speed_jumped(before_mps: float, after_mps: float) -> bool:
+    """Whether a change of the reel speed restarts the integration (:data:`RESTART_JUMP_MPS`)."""
+    return abs(after_mps - before_mps) > RESTART_JUMP_MPS
 
 
 @dataclass
@@ -79,9 +79,9 @@ class TetherSolver(Protocol):
         """The state ``h`` later, counting each Newton iteration in ``stats``;
         raises NotConverged."""
 
-    def reeled(self, state, length_m: float, reel_ms: float):
+    def reeled(self, state, length_m: float, reel_mps: float):
         """The state on the line paid out (or in) to ``length_m``, reeled at
-        ``reel_ms`` during the next step."""
+        ``reel_mps`` during the next step."""
 
     def line_state(self, state, fields: bool) -> dict:
         """Series values and, with ``fields``, the snapshot fields of ``state``."""
@@ -134,15 +134,15 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     state = initial if initial is not None else solver.initial_state()
     t0 = state.t
     average_start_s = t0 + spinup_periods * period
-    start_length, energy_J, reel_ms = solver.model.length_m, 0.0, 0.0
+    start_length, energy_J, reel_mps = solver.model.length_m, 0.0, 0.0
     stats = Statistics()
     record = Recorder(n_steps, output_every)
     bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
-            reel_ms, was_reeling = reel.speed_ms(state.t, solver.kite_position_m(state)), reel_ms
-            if reel_ms or was_reeling:
-                state = solver.reeled(state, reel.next_length(solver.model.length_m, reel_ms, h), reel_ms)
+            reel_mps, was_reeling = reel.speed_mps(state.t, solver.kite_position_m(state)), reel_mps
+            if reel_mps or was_reeling:
+                state = solver.reeled(state, reel.next_length(solver.model.length_m, reel_mps, h), reel_mps)
             try:
                 state = advance(solver, state, h, stats)
             except SolverDivergedError as exc:
@@ -150,11 +150,11 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
             state.t = t0 + i * h
             if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
                 check_taut(state.T, solver.tension_s_m(), state.t, solver.model.length_m)
-            energy_J += h * reel_ms * state.T[0]
+            energy_J += h * reel_mps * state.T[0]
             bar.update(i)
         done = i == n_steps or (reel.active and reel.stopped(solver.model.length_m, start_length))
         record.add(i, state.t, solver.line_state(state, record.snapshot_due(i, done))
-                   | winch_values(solver.model.length_m, reel_ms, state.T[0], energy_J), last=done)
+                   | winch_values(solver.model.length_m, reel_mps, state.T[0], energy_J), last=done)
         if done:
             break
     bar.close()

@@ -4,9 +4,9 @@ or reeled in (< 0) while the kite flies (seed 000 §4.2).
 Modes (``[winch] reel_out``):
 
 * ``"none"``: fixed length;
-* ``"constant"``: V_L = ``reel_out_speed_ms``;
+* ``"constant"``: V_L = ``reel_out_speed_mps``;
 * ``"table"``: V_L(t) interpolated linearly in a CSV file with columns
-  ``time_s,speed_ms`` (time measured from the start of reeling; the last
+  ``time_s,speed_mps`` (time measured from the start of reeling; the last
   speed is held);
 * ``"controlled"``: the kite traction law (seed 000 eq. 4.17) solved for the
   reel-out speed that makes the kite pull the nominal force of the lines,
@@ -16,7 +16,7 @@ Modes (``[winch] reel_out``):
       V_L = V_w(z_k) sin(theta) cos(phi) - sqrt(lines T_0 / C(rho(z_k))),
       C = 1/2 rho A C_l E^2 (1 + 1/E^2)^(3/2),
 
-  held within [0, max_reel_out_ms].
+  held within [0, max_reel_out_mps].
 
 Reeling starts after the spin-up (``start_s``) and stops when the line reaches
 ``reel_out_stop_m`` (0: never).
@@ -39,7 +39,7 @@ class SpeedTableError(InputError):
 
 
 def read_speed_table(path) -> tuple[np.ndarray, np.ndarray]:
-    """``time_s,speed_ms`` rows (with that header), times strictly increasing from 0."""
+    """``time_s,speed_mps`` rows (with that header), times strictly increasing from 0."""
     path = Path(path)
     try:
         with path.open(newline="") as fh:
@@ -48,8 +48,8 @@ def read_speed_table(path) -> tuple[np.ndarray, np.ndarray]:
         raise SpeedTableError(f"{path}: no such file") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise SpeedTableError(f"{path}: cannot read: {exc}") from None
-    if not rows or [c.strip() for c in rows[0]] != ["time_s", "speed_ms"]:
-        raise SpeedTableError(f"{path} line 1: expected the header 'time_s,speed_ms'")
+    if not rows or [c.strip() for c in rows[0]] != ["time_s", "speed_mps"]:
+        raise SpeedTableError(f"{path} line 1: expected the header 'time_s,speed_mps'")
     t, v = [], []
     for line, row in enumerate(rows[1:], start=2):
         if not row or not "".join(row).strip():
@@ -73,7 +73,7 @@ def read_speed_table(path) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class Reel:
-    """The winch's reeling law; ``speed_ms(t, kite_position)`` gives V_L."""
+    """The winch's reeling law; ``speed_mps(t, kite_position)`` gives V_L."""
 
     mode: str = "none"
     start_s: float = 0.0
@@ -86,7 +86,7 @@ class Reel:
     def active(self) -> bool:
         return self.mode != "none"
 
-    def speed_ms(self, t_s: float, kite_position_m) -> float:
+    def speed_mps(self, t_s: float, kite_position_m) -> float:
         """V_L at time ``t_s`` (0 before ``start_s``) with the kite at ``kite_position_m``."""
         if self.mode == "none" or t_s < self.start_s:
             return 0.0
@@ -94,13 +94,13 @@ class Reel:
             return self.speed
         if self.mode == "table":
             return float(np.interp(t_s - self.start_s, *self.table))
-        return self.law.reel_out_ms(np.asarray(kite_position_m, dtype=float))
+        return self.law.reel_out_mps(np.asarray(kite_position_m, dtype=float))
 
-    def next_length(self, length_m: float, speed_ms: float, h_s: float) -> float:
+    def next_length(self, length_m: float, speed_mps: float, h_s: float) -> float:
         """L + h V_L, held at ``stop_m`` once reached."""
-        target = length_m + h_s * speed_ms
+        target = length_m + h_s * speed_mps
         if self.stop_m:
-            target = min(target, self.stop_m) if speed_ms > 0 else max(target, self.stop_m)
+            target = min(target, self.stop_m) if speed_mps > 0 else max(target, self.stop_m)
         return target
 
     def stopped(self, length_m: float, start_length_m: float) -> bool:
@@ -122,17 +122,17 @@ class TractionLaw:
     cl: float
     efficiency: float
     nominal_force_N: float
-    max_reel_out_ms: float
+    max_reel_out_mps: float
 
-    def reel_out_ms(self, kite_position_m) -> float:
+    def reel_out_mps(self, kite_position_m) -> float:
         p = kite_position_m
         z = np.array(max(p[2], 0.0))
         c = kite.traction_coefficient(float(self.air.density_kg_m3(z)), self.area_m2, self.cl,
                                       self.efficiency)
         theta = np.arccos(p[2] / np.linalg.norm(p))
-        v_l = float(self.wind.speed_ms(z)) * np.sin(theta) * np.cos(np.arctan2(p[1], p[0])) \
+        v_l = float(self.wind.speed_mps(z)) * np.sin(theta) * np.cos(np.arctan2(p[1], p[0])) \
             - np.sqrt(self.nominal_force_N / c)
-        return float(np.clip(v_l, 0.0, self.max_reel_out_ms))
+        return float(np.clip(v_l, 0.0, self.max_reel_out_mps))
 
 
 def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
@@ -149,5 +149,5 @@ def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
             raise ConfigError(f"[winch] reel_out_table: {exc}") from None
     k = cfg.kite
     law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind), k.area_m2, k.cl,
-                      k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_ms)
-    return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_ms, table, law)
+                      k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps)
+    return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_mps, table, law)

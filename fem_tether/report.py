@@ -31,7 +31,7 @@ def _best_length(best_straight, best_fe) -> str:
 def straight_table(cfg, rows: list[dict], with_wind: bool) -> str:
     """``fem-tether straight``: F_t per length, integral beside closed form."""
     lines = [f"straight-line tether drag F_t per line, theta = {cfg.kite.theta0_deg:g} deg, "
-             f"d = {1e3 * cfg.tether.diameter_m:g} mm, V_k = {cfg.kite.speed_ms:g} m/s, "
+             f"d = {1e3 * cfg.tether.diameter_m:g} mm, V_k = {cfg.kite.speed_mps:g} m/s, "
              f"{'with wind' if with_wind else 'quiet air'}",
              "   L [m]   F_t [N]   integral [N]  closed [N] (rho, C_d)     C_d,c top  Re top"]
     for r in rows:
@@ -44,8 +44,8 @@ def straight_table(cfg, rows: list[dict], with_wind: bool) -> str:
 def curves_summary(design, curves) -> dict:
     """``fem-tether curves``: the characteristic speeds and what sets them."""
     speeds = curves.speeds
-    return {"cut_in_ms": speeds.cut_in_ms, "full_force_ms": speeds.full_force_ms,
-            "full_power_ms": speeds.full_power_ms, "max_power_W": float(np.max(curves.power_W)),
+    return {"cut_in_mps": speeds.cut_in_mps, "full_force_mps": speeds.full_force_mps,
+            "full_power_mps": speeds.full_power_mps, "max_power_W": float(np.max(curves.power_W)),
             "efficiency": design.efficiency, "phi_deg": float(np.degrees(design.phi_rad)),
             "rho_kg_m3": design.rho_kg_m3}
 
@@ -54,9 +54,9 @@ def curves_text(data: dict) -> str:
     """``fem-tether curves``: the characteristic speeds as text."""
     lines = [f"KiteGen characteristic speeds (E or G_e = {data['efficiency']:g}, "
              f"phi = {data['phi_deg']:g} deg, rho = {data['rho_kg_m3']:g} kg/m3)",
-             f"  cut-in      {data['cut_in_ms']:6.2f} m/s",
-             f"  full-force  {data['full_force_ms']:6.2f} m/s",
-             f"  full-power  {data['full_power_ms']:6.2f} m/s   "
+             f"  cut-in      {data['cut_in_mps']:6.2f} m/s",
+             f"  full-force  {data['full_force_mps']:6.2f} m/s",
+             f"  full-power  {data['full_power_mps']:6.2f} m/s   "
              f"({data['max_power_W'] / 1e6:.2f} MW active phase)"]
     if "plot" in data:
         lines.append(f"plot: {data['plot']}")

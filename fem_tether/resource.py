@@ -13,7 +13,7 @@ flies in the band that holds its mean kite altitude L cosϑ0 (500 m ↔ 200–50
   (:attr:`Band.remainder`), so totals are honest.
 - :func:`read_resource_csv`: measured histograms, one CSV row per bin::
 
-      band_low_m,band_high_m,bin_low_ms,bin_high_ms,probability
+      band_low_m,band_high_m,bin_low_mps,bin_high_mps,probability
       200,500,0,0.5,0.0021
       200,500,0.5,1,0.0064
       ...
@@ -45,7 +45,7 @@ from scipy.special import gamma
 from .errors import InputError
 from .wind import DE_BILT_ANNUAL
 
-COLUMNS = ("band_low_m", "band_high_m", "bin_low_ms", "bin_high_ms", "probability")
+COLUMNS = ("band_low_m", "band_high_m", "bin_low_mps", "bin_high_mps", "probability")
 SUM_TOLERANCE = 1e-6
 
 
@@ -59,7 +59,7 @@ class Band:
 
     low_m: float
     high_m: float
-    edges_ms: np.ndarray
+    edges_mps: np.ndarray
     probability: np.ndarray
 
     @property
@@ -72,9 +72,9 @@ class Band:
         return 1.0 - float(self.probability.sum())
 
     @property
-    def mean_ms(self) -> float:
+    def mean_mps(self) -> float:
         """Mean speed of the binned mass, Σ p_i (e_i + e_{i+1})/2 / Σ p_i."""
-        mid = 0.5 * (self.edges_ms[1:] + self.edges_ms[:-1])
+        mid = 0.5 * (self.edges_mps[1:] + self.edges_mps[:-1])
         return float(np.sum(self.probability * mid) / self.probability.sum())
 
 
@@ -102,7 +102,7 @@ def _band_list(bands) -> str:
     return ", ".join(f"{b.low_m:g}–{b.high_m:g} m" for b in bands)
 
 
-def weibull_probabilities(edges_ms, mean_ms, shape_k):
+def weibull_probabilities(edges_mps, mean_mps, shape_k):
     """p_i = F(e_{i+1}) − F(e_i), F(V) = 1 − exp(−(V/A)^k), A = mean / Γ(1 + 1/k).
 
     F integrates seed 004's Weibull density (eq. 3.92; ``scipy.stats.weibull_min``);
@@ -110,29 +110,29 @@ def weibull_probabilities(edges_ms, mean_ms, shape_k):
     """
     from scipy.stats import weibull_min   # imported here: scipy.stats costs ~0.6 s per process
 
-    scale = mean_ms / gamma(1.0 + 1.0 / shape_k)
-    return np.diff(weibull_min(shape_k, scale=scale).cdf(np.asarray(edges_ms, dtype=float)))
+    scale = mean_mps / gamma(1.0 + 1.0 / shape_k)
+    return np.diff(weibull_min(shape_k, scale=scale).cdf(np.asarray(edges_mps, dtype=float)))
 
 
 def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
-                     band_top_m=2300.0, band_width_m=300.0, bin_width_ms=0.5,
-                     max_speed_ms=40.0) -> WindResource:
+                     band_top_m=2300.0, band_width_m=300.0, bin_width_mps=0.5,
+                     max_speed_mps=40.0) -> WindResource:
     """Weibull histograms whose means follow ``profile`` at the band centres (seed 000 §5).
 
     Bands of ``band_width_m`` from ``band_bottom_m`` to ``band_top_m``; bins of
-    ``bin_width_ms`` from 0 to ``max_speed_ms``.  The mass above
-    ``max_speed_ms`` is each band's :attr:`Band.remainder`.
+    ``bin_width_mps`` from 0 to ``max_speed_mps``.  The mass above
+    ``max_speed_mps`` is each band's :attr:`Band.remainder`.
     """
     if not weibull_k > 0:
         raise ResourceError(f"Weibull shape k = {weibull_k!r}: must be > 0")
     band_edges = np.arange(band_bottom_m, band_top_m + 0.5 * band_width_m, band_width_m)
-    edges = np.arange(0.0, max_speed_ms + 0.5 * bin_width_ms, bin_width_ms)
+    edges = np.arange(0.0, max_speed_mps + 0.5 * bin_width_mps, bin_width_mps)
     if len(band_edges) < 2 or len(edges) < 2:
         raise ResourceError(f"no bands or no bins: bands {band_bottom_m}–{band_top_m} m by "
-                            f"{band_width_m} m, bins 0–{max_speed_ms} m/s by {bin_width_ms} m/s")
+                            f"{band_width_m} m, bins 0–{max_speed_mps} m/s by {bin_width_mps} m/s")
     bands = []
     for low, high in zip(band_edges[:-1], band_edges[1:]):
-        mean = float(profile.speed_ms(0.5 * (low + high)))
+        mean = float(profile.speed_mps(0.5 * (low + high)))
         if not mean > 0:
             raise ResourceError(f"mean wind {mean} m/s at {0.5 * (low + high):g} m: "
                                 "a Weibull needs a positive mean")
@@ -186,8 +186,8 @@ def read_resource_csv(path) -> WindResource:
             raise ResourceError(f"{where}: band {low:g}–{high:g} m: band_high_m must exceed "
                                 "band_low_m")
         if v_high <= v_low:
-            raise ResourceError(f"{where}: bin {v_low:g}–{v_high:g} m/s: bin_high_ms must "
-                                "exceed bin_low_ms")
+            raise ResourceError(f"{where}: bin {v_low:g}–{v_high:g} m/s: bin_high_mps must "
+                                "exceed bin_low_mps")
         group = groups[-1] if groups else None
         if group is None or (low, high) != group["band"]:
             if any((low, high) == g["band"] for g in groups):
@@ -232,13 +232,13 @@ def write_resource_csv(resource: WindResource, path) -> Path:
         if abs(band.remainder) > SUM_TOLERANCE:
             raise ResourceError(f"band {band.low_m:g}–{band.high_m:g} m leaves probability "
                                 f"{band.remainder:.3g} outside its bins (above "
-                                f"{band.edges_ms[-1]:g} m/s); widen them to write a CSV")
+                                f"{band.edges_mps[-1]:g} m/s); widen them to write a CSV")
     path = Path(path)
     with path.open("w", newline="", encoding="utf-8") as fh:
         writer = csv.writer(fh, lineterminator="\n")
         writer.writerow(COLUMNS)
         for band in resource.bands:
-            for v_low, v_high, p in zip(band.edges_ms[:-1], band.edges_ms[1:], band.probability):
+            for v_low, v_high, p in zip(band.edges_mps[:-1], band.edges_mps[1:], band.probability):
                 writer.writerow([repr(float(x)) for x in (band.low_m, band.high_m, v_low, v_high, p)])
     return path
 
@@ -251,4 +251,4 @@ def from_config(resource, wind_profile, csv_path=None) -> WindResource:
     if path:
         return read_resource_csv(path)
     return weibull_resource(wind_profile, resource.weibull_k, resource.band_bottom_m, resource.band_top_m,
-                            resource.band_width_m, resource.bin_width_ms, resource.max_speed_ms)
+                            resource.band_width_m, resource.bin_width_mps, resource.max_speed_mps)

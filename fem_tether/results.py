@@ -19,14 +19,14 @@ if TYPE_CHECKING:
 #: Time series every solver records, one value per time step (units and
 #: meanings: :mod:`fem_tether.quantities`, ``where = "series"``).
 SERIES = ("ground_tension_N", "kite_tension_N", "kite_radius_m", "drag_N", "drag_against_N",
-          "max_strain", "length_m", "reel_out_ms", "winch_power_W", "winch_energy_J")
+          "max_strain", "length_m", "reel_out_mps", "winch_power_W", "winch_energy_J")
 
 #: Snapshot fields: per node (arc length from the winch, position, velocity)
 #: and per element (the rest); units and meanings in :mod:`fem_tether.quantities`.
 #: A run whose node count changes (reel-out) pads every snapshot with NaN to
 #: the largest count.
-NODE_FIELDS = ("s_m", "position_m", "velocity_ms")
-CELL_FIELDS = ("tension_N", "vn_ms", "reynolds", "cd", "drag_N_m")
+NODE_FIELDS = ("s_m", "position_m", "velocity_mps")
+CELL_FIELDS = ("tension_N", "vn_mps", "reynolds", "cd", "drag_N_m")
 
 
 @dataclass
@@ -82,10 +82,10 @@ def period_mean(t, y) -> float:
     return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / (t[-1] - t[0]))
 
 
-def winch_values(length_m, reel_ms, ground_tension_N, energy_J) -> dict:
+def winch_values(length_m, reel_mps, ground_tension_N, energy_J) -> dict:
     """The reeling series of one step: L, V_L, winch power T(0) V_L, energy."""
-    return {"length_m": length_m, "reel_out_ms": reel_ms,
-            "winch_power_W": reel_ms * ground_tension_N, "winch_energy_J": energy_J}
+    return {"length_m": length_m, "reel_out_mps": reel_mps,
+            "winch_power_W": reel_mps * ground_tension_N, "winch_energy_J": energy_J}
 
 
 def time_grid(period_s: float, dt_s: float, spinup_periods: int, average_periods: int):

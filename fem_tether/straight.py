@@ -27,9 +27,9 @@ from fem_tether.loads import crossflow_drag
 from fem_tether.moment import drag_moment_Nm
 
 
-def closed_form_drag_N(rho_kg_m3, cd, diameter_m, length_m, speed_ms):
+def closed_form_drag_N(rho_kg_m3, cd, diameter_m, length_m, speed_mps):
     """F_t = rho C_d,c d L V_k^2 / 8 (seed 000 eq. 4.6)."""
-    return rho_kg_m3 * cd * diameter_m * length_m * speed_ms**2 / 8.0
+    return rho_kg_m3 * cd * diameter_m * length_m * speed_mps**2 / 8.0
 
 
 @dataclass(frozen=True)
@@ -53,12 +53,12 @@ def _gauss_points(length_m, n_panels, order=4):
     return s, (half[:, None] * w[None, :]).ravel()
 
 
-def straight_line_drag(length_m, theta_rad, diameter_m, speed_ms, air, drag,
+def straight_line_drag(length_m, theta_rad, diameter_m, speed_mps, air, drag,
                        wind_profile=None, n_panels=2000) -> StraightLineDrag:
     """Integral form of the straight-line drag (seed 000 eqs. 4.1-4.3).
 
     ``air`` has ``density_kg_m3(z)`` and ``viscosity_Pa_s(z)``, ``drag`` has
-    ``cd(re)``; ``wind_profile`` (``velocity_ms(z)``) adds the wind's normal
+    ``cd(re)``; ``wind_profile`` (``velocity_mps(z)``) adds the wind's normal
     component, ``None`` means quiet air.  Composite 4-point Gauss-Legendre
     quadrature on ``n_panels`` panels (the integrand has kinks where C_d,c's
     table does).
@@ -67,13 +67,13 @@ def straight_line_drag(length_m, theta_rad, diameter_m, speed_ms, air, drag,
     e_r = np.array([np.sin(theta_rad), 0.0, np.cos(theta_rad)])
     points = s[:, None] * e_r
     z = points[:, 2]
-    v_line = (speed_ms * s / length_m)[:, None] * np.array([0.0, 1.0, 0.0])
-    v_rel = -v_line if wind_profile is None else wind_profile.velocity_ms(z) - v_line
+    v_line = (speed_mps * s / length_m)[:, None] * np.array([0.0, 1.0, 0.0])
+    v_rel = -v_line if wind_profile is None else wind_profile.velocity_mps(z) - v_line
     rho = air.density_kg_m3(z)
     load = crossflow_drag(v_rel, np.broadcast_to(e_r, points.shape), rho,
                           air.viscosity_Pa_s(z), diameter_m, drag)
     moment = drag_moment_Nm(points, load.force, w)
-    top = crossflow_drag(-speed_ms * np.array([[0.0, 1.0, 0.0]]), e_r[None, :],
+    top = crossflow_drag(-speed_mps * np.array([[0.0, 1.0, 0.0]]), e_r[None, :],
                          air.density_kg_m3(np.array([length_m * e_r[2]])),
                          air.viscosity_Pa_s(np.array([length_m * e_r[2]])), diameter_m, drag)
     return StraightLineDrag(
@@ -92,7 +92,7 @@ def line_of_config(cfg, with_wind=False) -> Callable[[float], StraightLineDrag]:
         straight_line_drag,
         theta_rad=np.radians(cfg.kite.theta0_deg),
         diameter_m=cfg.tether.diameter_m,
-        speed_ms=cfg.kite.speed_ms,
+        speed_mps=cfg.kite.speed_mps,
         air=atmosphere.from_config(cfg.air),
         drag=drag_coefficient.from_config(cfg.drag),
         wind_profile=wind.from_config(cfg.wind) if with_wind else None,
@@ -117,7 +117,7 @@ def comparison(cfg, lengths, with_wind=False, closed_form=False, rho=None, cd=No
         integral = from_config(cfg.with_length(length), with_wind=with_wind)
         rho_closed = rho or integral.mean_density_kg_m3
         cd_closed = cd or integral.cd_top
-        closed = closed_form_drag_N(rho_closed, cd_closed, cfg.tether.diameter_m, length, cfg.kite.speed_ms)
+        closed = closed_form_drag_N(rho_closed, cd_closed, cfg.tether.diameter_m, length, cfg.kite.speed_mps)
         rows.append({
             "length_m": length,
             "drag_N": closed if closed_form else integral.drag_N,

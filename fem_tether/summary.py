@@ -20,7 +20,7 @@ def operating_ge(cfg, drag_N) -> float:
     k = cfg.kite
     z = operating_altitude_m(cfg.tether.length_m, np.radians(k.theta0_deg))
     rho = float(atmosphere.from_config(cfg.air).density_kg_m3(np.array(z)))
-    return float(kite.global_efficiency(drag_N, rho, k.area_m2, k.cl, k.efficiency, k.speed_ms,
+    return float(kite.global_efficiency(drag_N, rho, k.area_m2, k.cl, k.efficiency, k.speed_mps,
                                         cfg.tether.lines))
 
 

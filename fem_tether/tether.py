@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_tether import atmosphere, drag_coefficient, wind
-from fem_tether.loads import G_MS2, gravity_N_m
+from fem_tether.loads import G_MPS2, gravity_N_m
 
 
 @dataclass(frozen=True)
@@ -29,16 +29,16 @@ class TetherPhysics:
     compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
     damping_time_s: float = 0.0        # Kelvin-Voigt retardation time eta
     skin_friction_cf: float = 0.0
-    gravity_ms2: float = G_MS2
+    gravity_mps2: float = G_MPS2
 
     @property
     def weight_N_m(self) -> np.ndarray:
         """w = -mu g e_z (seed 000 eq. 4.15)."""
-        return gravity_N_m(self.linear_density_kg_m, self.gravity_ms2)
+        return gravity_N_m(self.linear_density_kg_m, self.gravity_mps2)
 
     def weight_N(self, length_m: float) -> float:
         """The weight mu g L of a line of length ``length_m``."""
-        return self.linear_density_kg_m * self.gravity_ms2 * length_m
+        return self.linear_density_kg_m * self.gravity_mps2 * length_m
 
 
 def physics_from_config(cfg) -> TetherPhysics:

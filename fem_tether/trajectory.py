@@ -141,7 +141,7 @@ class FigureEight:
     theta0_rad: float
     width_m: float
     height_m: float
-    speed_ms: float
+    speed_mps: float
     _loop_m: float = field(init=False, repr=False, compare=False)
     _arc_m: BPoly = field(init=False, repr=False, compare=False)
     _tau_of_arc: BPoly = field(init=False, repr=False, compare=False)
@@ -154,7 +154,7 @@ class FigureEight:
             theta0_rad=float(np.radians(kite.theta0_deg)),
             width_m=float(kite.eight_width_m),
             height_m=float(kite.eight_height_m),
-            speed_ms=float(kite.speed_ms),
+            speed_mps=float(kite.speed_mps),
         )
 
     def __post_init__(self):
@@ -184,7 +184,7 @@ class FigureEight:
     @property
     def period_s(self):
         """Time of one loop: s(2π) / V."""
-        return self._loop_m / self.speed_ms
+        return self._loop_m / self.speed_mps
 
     def parameter(self, t_s):
         """Path parameter τ(t), unwrapped (2π per period), from s(τ) = V t.
@@ -193,7 +193,7 @@ class FigureEight:
         dτ/ds = 1/g and d²τ/ds² = −g'/g³, then Newton on s(τ) − V t with the
         exact slope g(τ).
         """
-        loops, arc_m = np.divmod(self.speed_ms * np.asarray(t_s, dtype=float), self._loop_m)
+        loops, arc_m = np.divmod(self.speed_mps * np.asarray(t_s, dtype=float), self._loop_m)
         tau = self._tau_of_arc(arc_m)
         for _ in range(N_NEWTON):
             tau = tau - (self._arc_m(tau) - arc_m) / self.arc_rate(tau)[0]
@@ -220,8 +220,8 @@ class FigureEight:
         """
         theta, phi = self.angle_derivatives(self.parameter(t_s))
         g, dg = sphere_arc_rate(self.length_m, theta, phi)
-        tau_dot = self.speed_ms / g
-        tau_ddot = -self.speed_ms ** 2 * dg / g ** 3
+        tau_dot = self.speed_mps / g
+        tau_ddot = -self.speed_mps ** 2 * dg / g ** 3
         (th, dth, d2th), (ph, dph, d2ph) = theta, phi
         st, ct = np.sin(th), np.cos(th)
         velocity = local_to_global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0)

@@ -2,11 +2,11 @@
 
 Only the mean speed against altitude z is modelled (seed 000 §3): the
 logarithmic law with De Bilt coefficients, the power law, or still air.  Every
-profile offers ``speed_ms(z)``, its analytic shear ``shear_per_s(z) = dV/dz``
-and ``velocity_ms(z)``, the vector (V, 0, 0) with shape ``z.shape + (3,)``.
+profile offers ``speed_mps(z)``, its analytic shear ``shear_per_s(z) = dV/dz``
+and ``velocity_mps(z)``, the vector (V, 0, 0) with shape ``z.shape + (3,)``.
 
 >>> wind = DE_BILT["winter"]
->>> round(float(wind.speed_ms(27.5)), 2)   # m/s at the reference height
+>>> round(float(wind.speed_mps(27.5)), 2)   # m/s at the reference height
 5.1
 """
 
@@ -18,9 +18,9 @@ import numpy as np
 
 
 class _Profile:
-    def velocity_ms(self, z_m):
+    def velocity_mps(self, z_m):
         """V_w(z) = V(z) e_x, shape ``z.shape + (3,)``."""
-        speed = np.asarray(self.speed_ms(z_m), dtype=float)
+        speed = np.asarray(self.speed_mps(z_m), dtype=float)
         velocity = np.zeros(speed.shape + (3,))
         velocity[..., 0] = speed
         return velocity
@@ -34,23 +34,23 @@ class LogWind(_Profile):
     the speed is zero at and below z_r.
     """
 
-    v0_ms: float
+    v0_mps: float
     z0_m: float
     zr_m: float
 
-    def speed_ms(self, z_m):
+    def speed_mps(self, z_m):
         """V = V0 ln(z/z_r) / ln(z0/z_r) for z > z_r, else 0."""
         z = np.asarray(z_m, dtype=float)
         above = z > self.zr_m
         ratio = np.where(above, z, self.zr_m) / self.zr_m
-        return np.where(above, self.v0_ms * np.log(ratio) / np.log(self.z0_m / self.zr_m), 0.0)
+        return np.where(above, self.v0_mps * np.log(ratio) / np.log(self.z0_m / self.zr_m), 0.0)
 
     def shear_per_s(self, z_m):
         """dV/dz = V0 / (z ln(z0/z_r)) for z > z_r, else 0."""
         z = np.asarray(z_m, dtype=float)
         above = z > self.zr_m
         z_safe = np.where(above, z, self.zr_m)
-        return np.where(above, self.v0_ms / (z_safe * np.log(self.z0_m / self.zr_m)), 0.0)
+        return np.where(above, self.v0_mps / (z_safe * np.log(self.z0_m / self.zr_m)), 0.0)
 
 
 @dataclass(frozen=True)
@@ -59,9 +59,9 @@ class MeanOfProfiles(_Profile):
 
     profiles: tuple
 
-    def speed_ms(self, z_m):
+    def speed_mps(self, z_m):
         """V = (1/n) sum_i V_i(z)."""
-        return np.mean([p.speed_ms(z_m) for p in self.profiles], axis=0)
+        return np.mean([p.speed_mps(z_m) for p in self.profiles], axis=0)
 
     def shear_per_s(self, z_m):
         """dV/dz = (1/n) sum_i dV_i/dz."""
@@ -72,29 +72,29 @@ class MeanOfProfiles(_Profile):
 class PowerWind(_Profile):
     """Power law V = V_ref (z/z_ref)^alpha (seed 000 eq. 3.1, seed 003 eq. 3.4); zero for z <= 0."""
 
-    reference_speed_ms: float
+    reference_speed_mps: float
     reference_height_m: float
     alpha: float
 
-    def speed_ms(self, z_m):
+    def speed_mps(self, z_m):
         """V = V_ref (z/z_ref)^alpha for z > 0, else 0."""
         z = np.asarray(z_m, dtype=float)
         above = z > 0.0
         ratio = np.where(above, z, 1.0) / self.reference_height_m
-        return np.where(above, self.reference_speed_ms * ratio**self.alpha, 0.0)
+        return np.where(above, self.reference_speed_mps * ratio**self.alpha, 0.0)
 
     def shear_per_s(self, z_m):
         """dV/dz = alpha V / z for z > 0, else 0."""
         z = np.asarray(z_m, dtype=float)
         above = z > 0.0
-        return np.where(above, self.alpha * self.speed_ms(z) / np.where(above, z, 1.0), 0.0)
+        return np.where(above, self.alpha * self.speed_mps(z) / np.where(above, z, 1.0), 0.0)
 
 
 @dataclass(frozen=True)
 class NoWind(_Profile):
     """Still air: V = 0."""
 
-    def speed_ms(self, z_m):
+    def speed_mps(self, z_m):
         """V = 0."""
         return np.zeros(np.shape(z_m))
 
@@ -105,8 +105,8 @@ class NoWind(_Profile):
 
 #: De Bilt log-law coefficients fitted by Fagiano (PhD thesis, 2009), seed 000 §3
 DE_BILT = {
-    "winter": LogWind(v0_ms=5.1, z0_m=27.5, zr_m=3.5),
-    "summer": LogWind(v0_ms=4.4, z0_m=27.5, zr_m=2.1),
+    "winter": LogWind(v0_mps=5.1, z0_m=27.5, zr_m=3.5),
+    "summer": LogWind(v0_mps=4.4, z0_m=27.5, zr_m=2.1),
 }
 #: De Bilt "annual": the mean of the winter and summer profiles' speeds.
 DE_BILT_ANNUAL = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
@@ -118,5 +118,5 @@ def from_config(wind) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
     if wind.profile == "log":
         return DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
     if wind.profile == "power":
-        return PowerWind(wind.reference_speed_ms, wind.reference_height_m, wind.alpha)
+        return PowerWind(wind.reference_speed_mps, wind.reference_height_m, wind.alpha)
     return NoWind()

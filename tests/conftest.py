@@ -9,11 +9,11 @@ TINY_JOB = """[sweep]
 lengths_m = [400, 800]
 [fe]
 elements = 10
+dt_s = 0.2
 [fd]
 segments = 20
 dt_s = 0.05
 [time]
-dt_s = 0.2
 average_periods = 1
 """
 

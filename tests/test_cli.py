@@ -57,14 +57,14 @@ def test_curves_json_and_plot(capsys, tmp_path):
     code, out, _ = run_cli(capsys, "curves", "--json", "--plot", str(png))
     data = json.loads(out)
     assert code == 0 and png.stat().st_size > 0
-    assert data["cut_in_ms"] == pytest.approx(2.86, abs=0.01)
-    assert data["full_force_ms"] == pytest.approx(3.63, abs=0.01)
-    assert data["full_power_ms"] == pytest.approx(23.09, abs=0.01)
+    assert data["cut_in_mps"] == pytest.approx(2.86, abs=0.01)
+    assert data["full_force_mps"] == pytest.approx(3.63, abs=0.01)
+    assert data["full_power_mps"] == pytest.approx(23.09, abs=0.01)
 
 
 def test_simulate_json_and_files(capsys, tmp_path):
     cfg = tmp_path / "c.toml"
-    cfg.write_text("[fe]\nelements = 8\n[time]\ndt_s = 0.2\naverage_periods = 1\n")
+    cfg.write_text("[fe]\nelements = 8\ndt_s = 0.2\n[time]\naverage_periods = 1\n")
     code, out, _ = run_cli(capsys, "simulate", str(cfg), "--length", "500", "--out", str(tmp_path / "o"), "--json")
     data = json.loads(out)
     assert code == 0
@@ -92,7 +92,7 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, match):
 
 
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
-@pytest.mark.parametrize("section, fewest", [("time", 36), ("fd", 72)])
+@pytest.mark.parametrize("section, fewest", [("fe", 36), ("fd", 72)])
 def test_coarse_time_step_names_its_key(capsys, tmp_path, command, section, fewest):
     """A 1 s step (8 steps per period of the eight) once returned F_t 35 % off
     with exit 0, and crosscheck blamed [output] every: now exit 2 naming the key."""

@@ -4,7 +4,7 @@ import tomllib
 
 import pytest
 
-from fem_tether.config import Config, ConfigError, load_config
+from fem_tether.config import SECTIONS, Config, ConfigError, load_config
 
 
 def test_defaults_are_the_seed_case():
@@ -13,7 +13,7 @@ def test_defaults_are_the_seed_case():
     assert cfg.tether.linear_density_kg_m == 0.062 and cfg.tether.lines == 2
     assert cfg.winch.mode == "tension" and cfg.winch.ground_tension_N == 150000.0
     assert cfg.winch.reel_out == "none"
-    assert cfg.kite.speed_ms == 80.0 and cfg.kite.efficiency == 28.0
+    assert cfg.kite.speed_mps == 80.0 and cfg.kite.efficiency == 28.0
 
 
 def test_toml_round_trip(tmp_path):
@@ -35,7 +35,7 @@ def test_toml_round_trip(tmp_path):
     ({"tether": {"lines": True}}, r"\[tether\] lines = true: expected an integer"),
     ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "constant"'),
     ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0.0, 90.0\)"),
-    ({"time": {"rho_inf": 1.5}}, r"\[time\] rho_inf = 1.5"),
+    ({"fe": {"rho_inf": 1.5}}, r"\[fe\] rho_inf = 1.5"),
 ])
 def test_bad_values_name_the_key(overrides, match):
     with pytest.raises(ConfigError, match=match) as info:
@@ -52,7 +52,7 @@ def test_bad_files(tmp_path):
         load_config(bad)
 
 
-@pytest.mark.parametrize("section, dt_s, fewest", [("time", 1.0, 36), ("time", 100.0, 36), ("fd", 1.0, 72)])
+@pytest.mark.parametrize("section, dt_s, fewest", [("fe", 1.0, 36), ("fe", 100.0, 36), ("fd", 1.0, 72)])
 def test_time_step_must_resolve_the_eight(section, dt_s, fewest):
     """A step too coarse for the eight's period (7.23 s) is an input error that
     names the key, the steps per period and the largest allowed value; the
@@ -64,3 +64,36 @@ def test_time_step_must_resolve_the_eight(section, dt_s, fewest):
     largest = float(message.rsplit("= ", 1)[1])
     assert largest == pytest.approx(7.233 / fewest, rel=1e-3)
     load_config(overrides={section: {"dt_s": largest}})
+
+
+@pytest.mark.parametrize("overrides, now", [
+    ({"time": {"dt_s": 0.1}}, "[fe] dt_s"),
+    ({"time": {"scheme": "hht"}}, "[fe] scheme"),
+    ({"fe": {"min_element_m": 1.0}}, "[winch] min_element_m"),
+    ({"kite": {"speed_ms": 70.0}}, "[kite] speed_mps"),
+])
+def test_a_moved_or_renamed_key_says_where_it_is_now(overrides, now):
+    (section, values), = overrides.items()
+    with pytest.raises(ConfigError, match=rf"^\[{section}\] {next(iter(values))}: now \[") as info:
+        load_config(overrides=overrides)
+    assert str(info.value).endswith(now)
+
+
+def test_variants_are_new_checked_configurations():
+    """replace / with_length return new checked objects; the original is unchanged."""
+    cfg = load_config()
+    longer = cfg.with_length(3000.0)
+    assert longer.tether.length_m == 3000.0 and cfg.tether.length_m == 1000.0
+    assert longer.eight.period_s > cfg.eight.period_s
+    assert cfg.replace(fe={"elements": 20}).fe.elements == 20 and cfg.fe.elements == 40
+    with pytest.raises(ConfigError, match=r"^\[tether\] length_m = -1.0: must be > 0$"):
+        cfg.with_length(-1.0)
+    with pytest.raises(ConfigError, match=r"^\[fd\] dt_s = 1.0: "):
+        cfg.replace(fd={"dt_s": 1.0})
+
+
+def test_every_key_has_a_unit_and_a_meaning():
+    for section in SECTIONS:
+        for name, default, unit, doc in section.describe():
+            assert unit and doc, f"[{section.NAME}] {name}"
+            assert not name.endswith("_ms"), f"[{section.NAME}] {name}: m/s is spelled _mps"

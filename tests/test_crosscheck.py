@@ -25,8 +25,8 @@ def test_different_drag_coefficient_fails_with_exit_code_1(tmp_path, capsys):
 
 
 def test_shape_difference_of_a_run_with_itself_is_zero_and_detects_offsets():
-    cfg = load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8},
-                                 "time": {"dt_s": 0.2, "average_periods": 1}, "output": {"every": 1}})
+    cfg = load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8, "dt_s": 0.2},
+                                 "time": {"average_periods": 1}, "output": {"every": 1}})
     from fem_tether.fe.solver import simulate
     run = simulate(cfg)
     assert shape_difference(run, run) == 0.0
@@ -41,8 +41,8 @@ def test_shape_difference_of_a_run_with_itself_is_zero_and_detects_offsets():
 def test_too_few_snapshots_for_the_shape_check_is_an_error():
     from fem_tether.config import ConfigError
     from fem_tether.fe.solver import simulate
-    cfg = load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8},
-                                 "time": {"dt_s": 0.2, "average_periods": 1}, "output": {"every": 100}})
+    cfg = load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8, "dt_s": 0.2},
+                                 "time": {"average_periods": 1}, "output": {"every": 100}})
     run = simulate(cfg)
     with pytest.raises(ConfigError, match=r"\[output\] every = 100"):
         compare(run, run, cfg.crosscheck)

@@ -16,7 +16,7 @@ from fem_tether.config import ConfigError, load_config
 from fem_tether.fd.solver import State, _apply, _nodes, initial_guess
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.fe import solver as fe_solver
-from fem_tether.loads import G_MS2
+from fem_tether.loads import G_MPS2
 from fem_tether import protocol
 from fem_tether.results import CELL_FIELDS, NODE_FIELDS, SERIES, period_average
 from fem_tether.straight import closed_form_drag_N
@@ -43,9 +43,9 @@ def test_independent_of_the_fe_code():
 
 
 # Jacobian --------------------------------------------------------------------------
-@pytest.mark.parametrize("mode, reel_ms", [("tension", 0.0), ("prescribed", 0.0),
+@pytest.mark.parametrize("mode, reel_mps", [("tension", 0.0), ("prescribed", 0.0),
                                            ("tension", 12.0), ("prescribed", -7.0)])
-def test_banded_jacobian_matches_finite_differences(mode, reel_ms):
+def test_banded_jacobian_matches_finite_differences(mode, reel_mps):
     """Analytic banded Jacobian (drag, wind shear, ISA gradients, Kelvin-Voigt)
     equals central finite differences to 1e-6 of its largest entry; with
     reeling on a non-uniform grid (short winch segment, unequal segments) and
@@ -58,9 +58,9 @@ def test_banded_jacobian_matches_finite_differences(mode, reel_ms):
         "tether": {"length_m": 300.0, "elasticity": "elastic" if elastic else "inextensible",
                    "damping_time_s": 0.01 if elastic else 0.0}})
     model = fd.build_model(cfg.replace(fd={"segments": 6}))
-    if reel_ms:
+    if reel_mps:
         grid = Grid.from_lengths([13.0, 50.0, 37.0, 50.0, 50.0, 39.0, 61.0], mode == "tension")
-        model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=300.0, reel_ms=reel_ms)
+        model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=300.0, reel_mps=reel_mps)
     g = model.grid
     rng = np.random.default_rng(1)
     e = model.end.state(0.3, 1.0)[0]
@@ -69,12 +69,12 @@ def test_banded_jacobian_matches_finite_differences(mode, reel_ms):
     r_old, v_old = rng.normal(size=(g.M + 1, 3)), rng.normal(size=(g.M + 1, 3)) * 20
     c_a, c_v = 300.0, 17.0
 
-    def evaluate(r_int, T, R, reel=reel_ms):
+    def evaluate(r_int, T, R, reel=reel_mps):
         r = _nodes(model, r_int, R, e)
         return model.eq.evaluate(r, c_v * (r - r_old) + v_old, c_a * (r - r_old), T, e, 1.5e5,
-                                 c_a, c_v, reel_ms=reel)
+                                 c_a, c_v, reel_mps=reel)
 
-    if elastic and reel_ms:     # the winch speed really enters these equations
+    if elastic and reel_mps:     # the winch speed really enters these equations
         assert not np.allclose(evaluate(r_int, T, R).residual, evaluate(r_int, T, R, 0.0).residual)
     ab = evaluate(r_int, T, R).ab
     n = g.n
@@ -101,7 +101,7 @@ def test_static_catenary_converges_at_second_order():
     direction = (np.sin(np.radians(45.0)), 0.0, np.cos(np.radians(45.0)))
     cfg = load_config(overrides={"winch": {"mode": "prescribed"}, "kite": {"radius_m": R},
                                  "tether": {"length_m": L}, "wind": {"profile": "none"}})
-    exact = Catenary(L, tuple(R * np.array(direction)), cfg.tether.linear_density_kg_m * G_MS2)
+    exact = Catenary(L, tuple(R * np.array(direction)), cfg.tether.linear_density_kg_m * G_MPS2)
     rows = []
     for m in (10, 20, 40, 80, 160):
         model = fd.build_model(cfg.replace(fd={"segments": m}), end=Stationary(direction))
@@ -236,7 +236,7 @@ def test_static_start_above_the_atmosphere_names_the_cause():
 def _taut_string(scheme, segments=50, amplitude_m=0.05, L=100.0, T0=1000.0):
     cfg = load_config(overrides={"tether": {"length_m": L}, "winch": {"ground_tension_N": T0},
                                  "kite": {"eight_width_m": 10.0, "eight_height_m": 5.0},
-                                 "time": {"dt_s": 0.01}, "fd": {"dt_s": 0.005}})
+                                 "fe": {"dt_s": 0.01}, "fd": {"dt_s": 0.005}})
     mu = cfg.tether.linear_density_kg_m
     f_exact = np.sqrt(T0 / mu) / (2 * L)
     model = fd.build_model(cfg.replace(fd={"segments": segments, "scheme": scheme}),
@@ -388,7 +388,7 @@ def test_zero_reel_speed_reproduces_the_fixed_length_run_exactly():
             "time": {"average_periods": 1}, "output": {"every": 7}}
     fixed = fd.simulate(load_config(overrides=over))
     still = fd.simulate(load_config(overrides={**over, "winch": {"reel_out": "constant",
-                                                                  "reel_out_speed_ms": 0.0}}))
+                                                                  "reel_out_speed_mps": 0.0}}))
     _series_and_snapshots_equal(fixed, still)
     assert np.all(still.series["length_m"] == 300.0) and np.all(still.series["winch_energy_J"] == 0)
 
@@ -398,7 +398,7 @@ def _velocity_constraints(model, st):
     tau = np.diff(st.r, axis=0)
     tau /= np.linalg.norm(tau, axis=1)[:, None]
     out = np.einsum("ij,ij->i", tau, np.diff(st.v, axis=0))
-    out[0] -= model.reel_ms
+    out[0] -= model.reel_mps
     return out
 
 
@@ -410,7 +410,7 @@ def test_reeled_inserts_and_removes_material_nodes():
     is dropped and v_0 = 0 at the winch.  The lumped masses sum to mu L (1e-12)."""
     cfg = load_config(overrides={"tether": {"length_m": 300.0}})
     mu = cfg.tether.linear_density_kg_m
-    model = replace(fd.build_model(cfg.replace(fd={"segments": 10})), reel_ms=5.0)
+    model = replace(fd.build_model(cfg.replace(fd={"segments": 10})), reel_mps=5.0)
     st = fd.static_equilibrium(model)
     grown, prev, new = fd.reeled(model, st, st, 311.0, 5.0, 2.0, 40.0)
     assert prev is None                                   # BDF2 restarts after an insertion
@@ -420,10 +420,10 @@ def test_reeled_inserts_and_removes_material_nodes():
     assert np.max(np.abs(_velocity_constraints(grown, new))) < 1e-10
     assert not np.any(new.v[0])
     assert new.T.size == 11 and new.T[0] == new.T[1] == 150e3
-    assert grown.end.length_m == 311.0 and grown.reel_ms == 5.0
+    assert grown.end.length_m == 311.0 and grown.reel_mps == 5.0
     assert np.sum(grown.eq.mass_kg) == pytest.approx(mu * 311.0, rel=1e-12)
     assert fd.reeled(model, st, st, 299.0, -5.0, 2.0, 25.0)[0].grid.M == 10   # no split reeling in
-    model = replace(model, reel_ms=-5.0)
+    model = replace(model, reel_mps=-5.0)
     shrunk, prev, new = fd.reeled(model, st, st, 271.0, -5.0, 2.0, 40.0)
     assert shrunk.grid.M == 9 and shrunk.grid.h[0] == pytest.approx(31.0) and prev is None
     np.testing.assert_array_equal(new.r[1:], st.r[2:])
@@ -442,10 +442,10 @@ def test_reeled_inserts_and_removes_material_nodes():
 
 def test_segment_bounds_are_validated():
     """max_element_m must exceed 2 min_element_m; reeling needs the winch-tension mode."""
-    with pytest.raises(ConfigError, match=r"\[fe\] max_element_m"):
-        fd.simulate(load_config(overrides={"fe": {"min_element_m": 10.0, "max_element_m": 20.0}}))
+    with pytest.raises(ConfigError, match=r"\[winch\] max_element_m"):
+        fd.simulate(load_config(overrides={"winch": {"min_element_m": 10.0, "max_element_m": 20.0}}))
     with pytest.raises(FrozenInstanceError):     # a checked configuration stays checked
-        load_config().fe.min_element_m = 10.0
+        load_config().winch.min_element_m = 10.0
     with pytest.raises(ConfigError, match=r"reel_out"):
         fd.simulate(load_config(overrides={"winch": {"mode": "prescribed", "reel_out": "constant"},
                                            "kite": {"radius_m": 990.0}}))
@@ -467,10 +467,10 @@ def pumping(tmp_path_factory):
     knots = [(0, 0), (0.5, 0), (0.6, PUMP_V), (n + 0.5, PUMP_V), (n + 0.6, -PUMP_V),
              (2 * n + 0.5, -PUMP_V), (2 * n + 0.6, 0)]
     table = tmp_path_factory.mktemp("reel") / "pump.csv"
-    table.write_text("time_s,speed_ms\n" + "".join(f"{k * h!r},{v!r}\n" for k, v in knots))
+    table.write_text("time_s,speed_mps\n" + "".join(f"{k * h!r},{v!r}\n" for k, v in knots))
     periods = math.ceil((2 * n + 1) * h / period) + 2
-    cfg = load_config(overrides={**over, "winch": {"reel_out": "table", "reel_out_table": str(table)},
-                                 "fe": {"min_element_m": 2.0, "max_element_m": 40.0},
+    cfg = load_config(overrides={**over, "winch": {"reel_out": "table", "reel_out_table": str(table),
+                                                   "min_element_m": 2.0, "max_element_m": 40.0},
                                  "fd": {"segments": 15, "dt_s": PUMP_DT},
                                  "time": {"spinup_periods": 1, "average_periods": periods},
                                  "output": {"every": 1}})
@@ -519,7 +519,7 @@ def test_pumping_cycle_returns_to_the_start_bounded(pumping):
     cycle the line is back on its periodic state (last period's mean F_t and
     kite tension within 1e-6 of a fixed-length run)."""
     cfg, run, stroke = pumping
-    L, V = run.series["length_m"], run.series["reel_out_ms"]
+    L, V = run.series["length_m"], run.series["reel_out_mps"]
     assert L[-1] == pytest.approx(PUMP_L0, abs=1e-6)
     assert set(np.unique(V)) == {-PUMP_V, 0.0, PUMP_V}
     for k in SERIES:
@@ -548,7 +548,7 @@ def test_reel_out_matches_the_fe_solver():
     run, as a function of L, agrees within 2 % (measured ~0.2 %)."""
     from fem_tether.fe.solver import simulate as fe_simulate
     cfg = load_config(overrides={"tether": {"length_m": 500.0},
-                                 "winch": {"reel_out": "constant", "reel_out_speed_ms": 10.0,
+                                 "winch": {"reel_out": "constant", "reel_out_speed_mps": 10.0,
                                            "reel_out_stop_m": 800.0},
                                  "fe": {"elements": 20}, "fd": {"segments": 40},
                                  "time": {"spinup_periods": 1, "average_periods": 10},

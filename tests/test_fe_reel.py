@@ -9,7 +9,7 @@ from fem_tether.fe.solver import simulate
 from fem_tether.reel import Reel, SpeedTableError, read_speed_table, reel_from_config
 from fem_tether.results import period_average
 
-FAST = {"fe": {"elements": 12}, "time": {"dt_s": 0.1, "average_periods": 1}}
+FAST = {"fe": {"elements": 12, "dt_s": 0.1}, "time": {"average_periods": 1}}
 
 
 def _cfg(length_m=400.0, **winch):
@@ -22,7 +22,7 @@ def _segment_lengths(run, i):
 
 def test_zero_speed_reproduces_the_fixed_length_run_exactly():
     fixed = simulate(_cfg())
-    reeled = simulate(_cfg(reel_out="constant", reel_out_speed_ms=0.0))
+    reeled = simulate(_cfg(reel_out="constant", reel_out_speed_mps=0.0))
     for name in fixed.series:
         assert np.array_equal(fixed.series[name], reeled.series[name]), name
 
@@ -32,9 +32,9 @@ def test_mass_length_and_resolution_while_paying_out_and_back(tmp_path):
     up to L(t) (the lumped masses are mu x segment lengths, so the line's mass
     is mu L(t)), and every segment stays within [min, max] element size."""
     table = tmp_path / "speed.csv"
-    table.write_text("time_s,speed_ms\n0,15\n20,15\n20.001,-15\n40,-15\n40.001,0\n")
+    table.write_text("time_s,speed_mps\n0,15\n20,15\n20.001,-15\n40,-15\n40.001,0\n")
     cfg = _cfg(reel_out="table", reel_out_table=str(table)).replace(
-        fe={"min_element_m": 5.0, "max_element_m": 40.0, "mesh": "uniform", "elements": 12},
+        fe={"mesh": "uniform", "elements": 12}, winch={"min_element_m": 5.0, "max_element_m": 40.0},
         time={"average_periods": 7})
     run = simulate(cfg)
     L = run.series["length_m"]
@@ -54,24 +54,24 @@ def test_mass_length_and_resolution_while_paying_out_and_back(tmp_path):
     # energy: the winch delivered power while paying out and consumed it while reeling in
     e = run.series["winch_energy_J"]
     assert e.max() > 0 and e[-1] < e.max()
-    assert run.series["winch_power_W"] == pytest.approx(run.series["reel_out_ms"]
+    assert run.series["winch_power_W"] == pytest.approx(run.series["reel_out_mps"]
                                                         * run.series["ground_tension_N"])
 
 
 def test_controlled_speed_follows_the_traction_law():
     cfg = _cfg(reel_out="controlled")
     run = simulate(cfg)
-    v = run.series["reel_out_ms"][run.time_s > run.average_start_s + 1e-9]
+    v = run.series["reel_out_mps"][run.time_s > run.average_start_s + 1e-9]
     assert np.all(v >= 0) and np.all(v <= 13.5) and v.max() > 1.0
     # no wind: the kite cannot pull 300 kN while paying out, V_L = 0
     cfg = cfg.replace(wind={"profile": "none"})
-    assert np.all(simulate(cfg).series["reel_out_ms"] == 0.0)
+    assert np.all(simulate(cfg).series["reel_out_mps"] == 0.0)
 
 
 def test_reel_out_drag_tracks_the_fixed_length_runs():
     """Paying out 500 -> 800 m at 10 m/s: the period-averaged F_t(L) along the
     run stays within 5 % of fixed-length runs at 600 and 750 m."""
-    cfg = _cfg(500.0, reel_out="constant", reel_out_speed_ms=10.0, reel_out_stop_m=800.0).replace(
+    cfg = _cfg(500.0, reel_out="constant", reel_out_speed_mps=10.0, reel_out_stop_m=800.0).replace(
         time={"average_periods": 10})
     L, F = period_average(simulate(cfg), "drag_N")
     assert L[-1] == pytest.approx(800.0, abs=40.0)
@@ -82,12 +82,12 @@ def test_reel_out_drag_tracks_the_fixed_length_runs():
 
 def test_speed_table_and_config_errors(tmp_path):
     good = tmp_path / "ok.csv"
-    good.write_text("time_s,speed_ms\n0,1\n10,2\n")
+    good.write_text("time_s,speed_mps\n0,1\n10,2\n")
     t, v = read_speed_table(good)
-    assert Reel("table", 5.0, table=(t, v)).speed_ms(10.0, None) == pytest.approx(1.5)
-    for text, match in [("t,v\n0,1\n", "line 1"), ("time_s,speed_ms\n0,1\n0,2\n", "line 3"),
-                        ("time_s,speed_ms\n1,1\n", "start at time_s = 0"),
-                        ("time_s,speed_ms\n0,x\n", "line 2")]:
+    assert Reel("table", 5.0, table=(t, v)).speed_mps(10.0, None) == pytest.approx(1.5)
+    for text, match in [("t,v\n0,1\n", "line 1"), ("time_s,speed_mps\n0,1\n0,2\n", "line 3"),
+                        ("time_s,speed_mps\n1,1\n", "start at time_s = 0"),
+                        ("time_s,speed_mps\n0,x\n", "line 2")]:
         bad = tmp_path / "bad.csv"
         bad.write_text(text)
         with pytest.raises(SpeedTableError, match=match):
@@ -97,7 +97,7 @@ def test_speed_table_and_config_errors(tmp_path):
         ({"winch": {"reel_out": "table", "reel_out_table": "nope.csv"}}, r'reel_out_table = "nope.csv": no such'),
         ({"winch": {"reel_out": "constant", "mode": "prescribed"}, "kite": {"radius_m": 900.0}},
          r'\[winch\] reel_out = "constant": needs'),
-        ({"fe": {"min_element_m": 30.0, "max_element_m": 50.0}}, r"\[fe\] max_element_m"),
+        ({"winch": {"min_element_m": 30.0, "max_element_m": 50.0}}, r"\[winch\] max_element_m"),
     ]:
         with pytest.raises(ConfigError, match=match):
             load_config(overrides=overrides)

@@ -32,7 +32,7 @@ def _model(elements, length_m, tension_mode, physics, end, radius_m=0.0, scheme=
 
 def _still_air(gravity=True, cd=0.0, **kw):
     return TetherPhysics(atmosphere.ConstantAir(1.2, 1.8e-5), drag_coefficient.ConstantDrag(cd), wind.NoWind(),
-                   0.011, MU, gravity_ms2=9.81 if gravity else 0.0, **kw)
+                   0.011, MU, gravity_mps2=9.81 if gravity else 0.0, **kw)
 
 
 # 1. static catenary ----------------------------------------------------------
@@ -198,7 +198,7 @@ def test_static_start_above_the_atmosphere_names_the_cause():
 
 
 # 2./3. taut string -------------------------------------------------------------
-def _taut_string(scheme, elements=40, L=100.0, T0=1000.0, amplitude_ms=0.05):
+def _taut_string(scheme, elements=40, L=100.0, T0=1000.0, amplitude_mps=0.05):
     """Straight line along x, winch fixed, far end sliding along x (tension
     mode), no gravity or drag; a half-sine transverse velocity starts it."""
     model = _model(elements, L, True, _still_air(gravity=False), Stationary((1.0, 0.0, 0.0)),
@@ -206,7 +206,7 @@ def _taut_string(scheme, elements=40, L=100.0, T0=1000.0, amplitude_ms=0.05):
     st = static_equilibrium(model)
     s = model.system.spaces.s_m
     v = np.zeros_like(st.kin.q)
-    v[:, 1] = amplitude_ms * np.sin(np.pi * s / L)
+    v[:, 1] = amplitude_mps * np.sin(np.pi * s / L)
     v[-1] = 0.0
     zero = np.zeros_like(v)
     return model, State(0.0, Kinematics(st.kin.q, v, zero, zero.copy()), st.T, st.R)
@@ -243,7 +243,7 @@ def test_newmark_conserves_energy_of_taut_string():
     """
     L, T0 = 100.0, 1000.0
     period = 2 * L / np.sqrt(T0 / MU)
-    model, st = _taut_string(Scheme.newmark(), amplitude_ms=0.5)
+    model, st = _taut_string(Scheme.newmark(), amplitude_mps=0.5)
     m = model.system.spaces.mass_kg
 
     def energy(st):
@@ -263,13 +263,13 @@ def test_newmark_conserves_energy_of_taut_string():
 
 # 4. constraint ------------------------------------------------------------------
 def test_inextensible_constraint_held_every_step(quiet_cfg):
-    run = simulate(quiet_cfg.replace(tether={"length_m": 500.0}, time={"dt_s": 0.1, "average_periods": 1}))
+    run = simulate(quiet_cfg.replace(tether={"length_m": 500.0}, fe={"dt_s": 0.1}, time={"average_periods": 1}))
     assert np.max(run.series["max_strain"]) <= 1e-8
 
 
 def _prescribed(cfg, radius_m, **tether):
     return simulate(cfg.replace(tether={"length_m": 500.0, **tether}, winch={"mode": "prescribed"},
-                                kite={"radius_m": radius_m}, time={"dt_s": 0.1, "average_periods": 1}))
+                                kite={"radius_m": radius_m}, fe={"dt_s": 0.1}, time={"average_periods": 1}))
 
 
 def test_compliant_strain_equals_tension_over_EA(quiet_cfg):
@@ -314,7 +314,7 @@ def test_elastic_line_in_tension_mode_is_an_input_error(quiet_cfg):
 # 5. short line vs closed form -----------------------------------------------------
 def test_short_line_matches_straight_closed_form(quiet_cfg):
     """200 m in quiet air on the eight: F_t within 3 % of rho C_d d L V^2 / 8."""
-    run = simulate(quiet_cfg.replace(tether={"length_m": 200.0}, time={"dt_s": 0.05, "average_periods": 1}))
+    run = simulate(quiet_cfg.replace(tether={"length_m": 200.0}, fe={"dt_s": 0.05}, time={"average_periods": 1}))
     closed = closed_form_drag_N(1.2, 1.2, 0.011, 200.0, 80.0)
     print(f"\n 200 m: F_t = {run.mean('drag_N'):.1f} N, closed form {closed:.1f} N")
     assert run.mean("drag_N") == pytest.approx(closed, rel=0.03)
@@ -322,7 +322,7 @@ def test_short_line_matches_straight_closed_form(quiet_cfg):
 
 # 6. tension mode -------------------------------------------------------------------
 def test_ground_tension_held_every_step():
-    cfg = load_config(overrides={"tether": {"length_m": 800.0}, "time": {"dt_s": 0.1, "average_periods": 1}})
+    cfg = load_config(overrides={"tether": {"length_m": 800.0}, "fe": {"dt_s": 0.1}, "time": {"average_periods": 1}})
     run = simulate(cfg)
     assert np.max(np.abs(run.series["ground_tension_N"] / 150e3 - 1)) <= 1e-6
 
@@ -356,7 +356,7 @@ def test_no_spurious_tension_oscillation():
 
 def test_mean_drag_converges_under_mesh_refinement(quiet_cfg):
     """3000 m, fixed dt: |F_t(n) - F_t(80)| falls ~4x per doubling (printed)."""
-    cfg = quiet_cfg.replace(tether={"length_m": 3000.0}, time={"dt_s": 0.05, "average_periods": 1})
+    cfg = quiet_cfg.replace(tether={"length_m": 3000.0}, fe={"dt_s": 0.05}, time={"average_periods": 1})
     drags = {n: simulate(cfg.replace(fe={"elements": n})).mean("drag_N") for n in (10, 20, 40, 80)}
     errors = np.array([abs(drags[n] / drags[80] - 1) for n in (10, 20, 40)])
     print("\n elements  mean F_t [N]  |rel. diff to 80|")

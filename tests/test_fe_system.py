@@ -21,12 +21,12 @@ def _dense(sys_, ev, tension_mode):
     return A
 
 
-@pytest.mark.parametrize("mode, tether, reel_ms", [
+@pytest.mark.parametrize("mode, tether, reel_mps", [
     ("tension", {}, 0.0),
     ("tension", {}, 13.5),
     ("prescribed", {"elasticity": "elastic", "damping_time_s": 0.01}, 0.0),
 ])
-def test_jacobian_matches_central_differences(mode, tether, reel_ms):
+def test_jacobian_matches_central_differences(mode, tether, reel_mps):
     """ISA, cylinder C_d(Re), De Bilt wind, skin friction: every entry of the
     assembled Jacobian (incl. drag in velocity, tangent and altitude) within
     1e-6 of the largest, against central differences of the residual."""
@@ -45,11 +45,11 @@ def test_jacobian_matches_central_differences(mode, tether, reel_ms):
     def residual(x):
         r, T_, R_ = sys_.unpack(x)
         return sys_.evaluate(r, v0 + c_v * (r - r0), c_a * (r - r0), T_, R_, e, 150e3, 990.0, 1e5,
-                             c_a, c_v, jacobian=False, reel_ms=reel_ms).residual
+                             c_a, c_v, jacobian=False, reel_mps=reel_mps).residual
 
     x = sys_.pack(r0, T, R)
     ev = sys_.evaluate(r0, v0, np.zeros_like(r0), T, R, e, 150e3, 990.0, 1e5, c_a, c_v,
-                       reel_ms=reel_ms)
+                       reel_mps=reel_mps)
     A = _dense(sys_, ev, mode == "tension")
     N = np.zeros_like(A)
     for j in range(x.size):

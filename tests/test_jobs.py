@@ -22,7 +22,7 @@ def test_default_job_file_is_the_embedded_default():
     ("[sweep]\nlengths_m = [500, 500]\n", "distinct"),
     ("[sweep]\nlengths_m = [500]\ncrosscheck = 'yes'\n", r"\[sweep\] crosscheck"),
     ("[sweep]\nlenghts_m = [1]\n", r"\[sweep\] lenghts_m: unknown key"),
-    ("[sweep]\nlengths_m = [500]\n[time]\ndt_s = -1\n", r"\[time\] dt_s = -1"),
+    ("[sweep]\nlengths_m = [500]\n[fe]\ndt_s = -1\n", r"\[fe\] dt_s = -1"),
     # a job names its lengths: an empty file or one without them is not the default job
     ("", r"^\[sweep\]: missing"),
     ("[time]\naverage_periods = 1\n", r"^\[sweep\]: missing"),

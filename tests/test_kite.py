@@ -30,8 +30,8 @@ def design():
 
 
 def test_design_from_config_is_the_seed_case(design):
-    assert design == KiteGenDesign(**SEED, speed_ms=80.0, theta_rad=THETA, phi_rad=PHI,
-                                   nominal_force_N=300e3, max_reel_out_ms=13.5, lines=2,
+    assert design == KiteGenDesign(**SEED, speed_mps=80.0, theta_rad=THETA, phi_rad=PHI,
+                                   nominal_force_N=300e3, max_reel_out_mps=13.5, lines=2,
                                    kite_efficiency=28.0)
     other = KiteGenDesign.from_config(load_config().kite, 2, efficiency=7.43, phi_deg=1.28, rho_kg_m3=1.1)
     assert (other.efficiency, other.kite_efficiency, other.rho_kg_m3) == (7.43, 28.0, 1.1)
@@ -42,83 +42,83 @@ def test_traction_force_by_hand():
     # C = ½·1·120·1·28²·(1 + 1/28²)^1.5 = 47130.0 N s²/m²
     assert traction_coefficient(**SEED) == pytest.approx(47130.0, abs=1.0)
     v_er = 20.0 * np.sin(THETA) * np.cos(PHI) - 5.0
-    assert traction_force_N(**SEED, wind_ms=20.0, theta_rad=THETA, phi_rad=PHI,
-                            reel_out_ms=5.0) == pytest.approx(47130.0 * v_er**2, rel=1e-4)
-    force = traction_force_N(**SEED, wind_ms=np.array([10.0, 20.0]), theta_rad=THETA,
-                             phi_rad=PHI, reel_out_ms=5.0)
-    assert power_W(**SEED, wind_ms=np.array([10.0, 20.0]), theta_rad=THETA, phi_rad=PHI,
-                   reel_out_ms=5.0) == pytest.approx(5.0 * force)
+    assert traction_force_N(**SEED, wind_mps=20.0, theta_rad=THETA, phi_rad=PHI,
+                            reel_out_mps=5.0) == pytest.approx(47130.0 * v_er**2, rel=1e-4)
+    force = traction_force_N(**SEED, wind_mps=np.array([10.0, 20.0]), theta_rad=THETA,
+                             phi_rad=PHI, reel_out_mps=5.0)
+    assert power_W(**SEED, wind_mps=np.array([10.0, 20.0]), theta_rad=THETA, phi_rad=PHI,
+                   reel_out_mps=5.0) == pytest.approx(5.0 * force)
 
 
 def test_loyd_optimum_maximises_power_over_reel_out():
     wind = np.array([5.0, 10.0, 15.0])
-    reel_out, power = loyd_optimum(**SEED, wind_ms=wind)
+    reel_out, power = loyd_optimum(**SEED, wind_mps=wind)
     assert reel_out == pytest.approx(wind / 3)
     assert power == pytest.approx(4 / 27 * traction_coefficient(**SEED) * wind**3)
     trial = np.linspace(0.0, 1.0, 2001)[:, None] * wind
-    brute = power_W(**SEED, wind_ms=wind, theta_rad=np.pi / 2, phi_rad=0.0, reel_out_ms=trial)
+    brute = power_W(**SEED, wind_mps=wind, theta_rad=np.pi / 2, phi_rad=0.0, reel_out_mps=trial)
     assert brute.max(axis=0) == pytest.approx(power, rel=1e-6)
     # with the projection, V_w → V_w sinϑ cosφ
     p = np.sin(THETA) * np.cos(PHI)
-    reel_p, power_p = loyd_optimum(**SEED, wind_ms=wind, projection=p)
+    reel_p, power_p = loyd_optimum(**SEED, wind_mps=wind, projection=p)
     assert reel_p == pytest.approx(p * wind / 3)
     assert power_p == pytest.approx(p**3 * power)
 
 
 def test_global_efficiency():
     speeds = np.array([60.0, 80.0])
-    args = dict(rho_kg_m3=1.1, area_m2=120.0, cl=1.0, efficiency=28.0, speed_ms=speeds)
+    args = dict(rho_kg_m3=1.1, area_m2=120.0, cl=1.0, efficiency=28.0, speed_mps=speeds)
     assert global_efficiency(0.0, **args) == pytest.approx(28.0)
     lift = 0.5 * 1.1 * 120.0 * 80.0**2                               # 422.4 kN
     assert global_efficiency(10e3, **args)[1] == pytest.approx(lift / (lift / 28 + 20e3))
     assert global_efficiency(10e3, **args, lines=1)[1] == pytest.approx(lift / (lift / 28 + 10e3))
     drags = np.array([0.0, 5e3, 20e3])
-    ge = global_efficiency(drags, **{**args, "speed_ms": 80.0})
+    ge = global_efficiency(drags, **{**args, "speed_mps": 80.0})
     assert np.all(np.diff(ge) < 0) and ge[0] == pytest.approx(28.0)
 
 
 def test_seed_characteristic_speeds(design):
     """Seed 000 §2.4: cut-in 2.86, full-force 3.63, full-power 23.09 m/s."""
     s = characteristic_speeds(design)
-    assert s.cut_in_ms == pytest.approx(2.86, abs=0.01)
-    assert s.full_force_ms == pytest.approx(3.63, abs=0.01)
-    assert s.full_power_ms == pytest.approx(23.09, abs=0.01)
+    assert s.cut_in_mps == pytest.approx(2.86, abs=0.01)
+    assert s.full_force_mps == pytest.approx(3.63, abs=0.01)
+    assert s.full_power_mps == pytest.approx(23.09, abs=0.01)
     projected = characteristic_speeds(design, seed_cut_in=False)
-    assert projected.cut_in_ms == pytest.approx(80 / (28 * np.sin(THETA) * np.cos(PHI)))
-    assert (projected.full_force_ms, projected.full_power_ms) == (s.full_force_ms, s.full_power_ms)
+    assert projected.cut_in_mps == pytest.approx(80 / (28 * np.sin(THETA) * np.cos(PHI)))
+    assert (projected.full_force_mps, projected.full_power_mps) == (s.full_force_mps, s.full_power_mps)
 
 
 def test_cut_in_keeps_the_wing_efficiency():
     """Tab. 5.3 lists 80/28 = 2.86 m/s for every length, whatever G_e."""
     with_cables = KiteGenDesign.from_config(load_config().kite, 2, efficiency=4.58)
-    assert characteristic_speeds(with_cables).cut_in_ms == pytest.approx(80 / 28)
-    assert characteristic_speeds(with_cables, seed_cut_in=False).cut_in_ms == pytest.approx(
+    assert characteristic_speeds(with_cables).cut_in_mps == pytest.approx(80 / 28)
+    assert characteristic_speeds(with_cables, seed_cut_in=False).cut_in_mps == pytest.approx(
         80 / (4.58 * np.sin(THETA) * np.cos(PHI)))
 
 
 def test_zones_and_their_boundaries(design):
     s = characteristic_speeds(design)
     eps = 1e-9
-    wind = np.array([0.0, s.cut_in_ms - eps, s.cut_in_ms, s.full_force_ms - eps,
-                     s.full_force_ms, s.full_power_ms - eps, s.full_power_ms, 40.0])
+    wind = np.array([0.0, s.cut_in_mps - eps, s.cut_in_mps, s.full_force_mps - eps,
+                     s.full_force_mps, s.full_power_mps - eps, s.full_power_mps, 40.0])
     c = characteristic_curves(wind, design)
     assert "".join(c.zone) == "AABBCCDD"
     assert c.speeds == s
     # A: off
-    assert np.all(c.reel_out_ms[:2] == 0) and np.all(c.force_per_line_N[:2] == 0)
+    assert np.all(c.reel_out_mps[:2] == 0) and np.all(c.force_per_line_N[:2] == 0)
     # B: held lines, force by eq. 2.56, no power; reaches nominal at full force
-    assert np.all(c.reel_out_ms[2:4] == 0) and np.all(c.power_W[:4] == 0)
+    assert np.all(c.reel_out_mps[2:4] == 0) and np.all(c.power_W[:4] == 0)
     assert c.force_per_line_N[2] == pytest.approx(
-        traction_force_N(**SEED, wind_ms=s.cut_in_ms, theta_rad=THETA, phi_rad=PHI,
-                         reel_out_ms=0.0) / 2)
+        traction_force_N(**SEED, wind_mps=s.cut_in_mps, theta_rad=THETA, phi_rad=PHI,
+                         reel_out_mps=0.0) / 2)
     # continuity at full force and full power
     assert c.force_per_line_N[3] == pytest.approx(150e3, rel=1e-8)
-    assert c.reel_out_ms[5] == pytest.approx(13.5, rel=1e-8)
+    assert c.reel_out_mps[5] == pytest.approx(13.5, rel=1e-8)
     assert c.power_W[5] == pytest.approx(c.power_W[6], rel=1e-8)
     # C and D: nominal force, power F·V_L, D held at the full-power value
     assert np.all(c.force_per_line_N[4:] == 150e3)
-    assert c.power_W[4:] == pytest.approx(300e3 * c.reel_out_ms[4:])
-    assert c.reel_out_ms[-1] == 13.5 and c.power_W[-1] == pytest.approx(300e3 * 13.5)
+    assert c.power_W[4:] == pytest.approx(300e3 * c.reel_out_mps[4:])
+    assert c.reel_out_mps[-1] == 13.5 and c.power_W[-1] == pytest.approx(300e3 * 13.5)
 
 
 def test_zone_c_keeps_the_force_nominal(design):
@@ -126,8 +126,8 @@ def test_zone_c_keeps_the_force_nominal(design):
     wind = np.linspace(4.0, 23.0, 50)
     c = characteristic_curves(wind, design)
     assert set(c.zone) == {"C"}
-    force = traction_force_N(**SEED, wind_ms=wind, theta_rad=THETA, phi_rad=PHI,
-                             reel_out_ms=c.reel_out_ms)
+    force = traction_force_N(**SEED, wind_mps=wind, theta_rad=THETA, phi_rad=PHI,
+                             reel_out_mps=c.reel_out_mps)
     assert force == pytest.approx(300e3, rel=1e-10)
 
 
@@ -135,20 +135,20 @@ def test_curves_monotone_and_continuous_past_cut_in(design):
     wind = np.linspace(0.0, 45.0, 4501)
     c = characteristic_curves(wind, design)
     assert np.all(np.diff(c.power_W) >= 0)
-    assert np.all(np.diff(c.reel_out_ms) >= 0)
+    assert np.all(np.diff(c.reel_out_mps) >= 0)
     assert np.all(np.diff(c.force_per_line_N) >= 0)
-    on = wind >= c.speeds.cut_in_ms          # the only jump is the switch-on at cut-in
+    on = wind >= c.speeds.cut_in_mps          # the only jump is the switch-on at cut-in
     dw = wind[1] - wind[0]
     assert np.abs(np.diff(c.power_W[on])).max() <= 300e3 * 13.5 / (23.09 - 3.63) * dw * 1.01
-    assert np.abs(np.diff(c.reel_out_ms[on])).max() <= np.sin(THETA) * dw + 1e-12
+    assert np.abs(np.diff(c.reel_out_mps[on])).max() <= np.sin(THETA) * dw + 1e-12
     assert c.power_W.max() == pytest.approx(4.05e6)   # "active-phase power ≈ 4 MW"
 
 
 def test_loyd_curves(design):
     wind = np.array([3.0, 9.0])
     loyd = loyd_curves(wind, design)
-    reel_out, power = loyd_optimum(**SEED, wind_ms=wind)
-    assert loyd.reel_out_ms == pytest.approx(reel_out)
+    reel_out, power = loyd_optimum(**SEED, wind_mps=wind)
+    assert loyd.reel_out_mps == pytest.approx(reel_out)
     assert loyd.power_W == pytest.approx(power)
     assert loyd.force_per_line_N == pytest.approx(power / reel_out / 2)
 
@@ -182,16 +182,16 @@ def test_tab_5_3_characteristic_speeds(lines):
     design = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines, efficiency=np.array(row["ge"]),
                                        phi_deg=MEAN_PHI_DEG, rho_kg_m3=ISA().density_kg_m3(z_m))
     s = characteristic_speeds(design)
-    ff_err = 100 * (s.full_force_ms / row["full_force"] - 1)
-    fp_err = 100 * (s.full_power_ms / row["full_power"] - 1)
+    ff_err = 100 * (s.full_force_mps / row["full_force"] - 1)
+    fp_err = 100 * (s.full_power_mps / row["full_power"] - 1)
     print(f"\nTab. 5.3, {lines} lines: ours vs seed [m/s], ρ = ISA(L cos45°)")
     print("   L [m]  rho   G_e  | cut-in      | full-force         | full-power")
     for i, L in enumerate(LENGTHS_M):
         print(f"  {L:6.0f} {design.rho_kg_m3[i]:.3f} {row['ge'][i]:5.2f} |"
-              f" {s.cut_in_ms:.2f} / 2.86 |"
-              f" {s.full_force_ms[i]:5.2f} / {row['full_force'][i]:5.2f} {ff_err[i]:+.1f}% |"
-              f" {s.full_power_ms[i]:5.2f} / {row['full_power'][i]:5.2f} {fp_err[i]:+.1f}%")
-    assert s.cut_in_ms == pytest.approx(2.86, abs=0.005)
+              f" {s.cut_in_mps:.2f} / 2.86 |"
+              f" {s.full_force_mps[i]:5.2f} / {row['full_force'][i]:5.2f} {ff_err[i]:+.1f}% |"
+              f" {s.full_power_mps[i]:5.2f} / {row['full_power'][i]:5.2f} {fp_err[i]:+.1f}%")
+    assert s.cut_in_mps == pytest.approx(2.86, abs=0.005)
     assert np.abs(ff_err).max() < 2.0
     assert np.abs(fp_err).max() < 2.0
 

@@ -15,7 +15,7 @@ from fem_tether.results import CELL_FIELDS, SERIES
 
 @pytest.fixture(scope="module")
 def cfg():
-    return load_config(overrides={"fe": {"elements": 8}, "time": {"dt_s": 0.2, "average_periods": 1}})
+    return load_config(overrides={"fe": {"elements": 8, "dt_s": 0.2}, "time": {"average_periods": 1}})
 
 
 @pytest.fixture(scope="module")
@@ -115,7 +115,7 @@ def test_paraview(run, tmp_path):
         assert len(mesh.cells) == 1 and mesh.cells[0].type == "line"
         np.testing.assert_array_equal(mesh.cells[0].data[:, 1] - mesh.cells[0].data[:, 0], 1)
         assert len(mesh.cells[0].data) == n_nodes - 1
-        assert mesh.point_data["velocity_ms"].shape == (n_nodes, 3)
+        assert mesh.point_data["velocity_mps"].shape == (n_nodes, 3)
         np.testing.assert_allclose(mesh.point_data["s_m"], run.s_nodes_m)
         assert set(mesh.cell_data) == set(CELL_FIELDS)
         for name in CELL_FIELDS:

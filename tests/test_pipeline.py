@@ -74,7 +74,7 @@ def test_aep_gate_leaves_out_failed_crosschecks(quick_run, tmp_path, capsys):
 def test_aep_with_a_wind_csv_and_a_bad_one(quick_run, tmp_path, capsys):
     _, out = quick_run
     csv = write_resource_csv(resource_from_config(
-        load_config(overrides={"resource": {"max_speed_ms": 80.0}}).resource, DE_BILT_ANNUAL), tmp_path / "wind.csv")
+        load_config(overrides={"resource": {"max_speed_mps": 80.0}}).resource, DE_BILT_ANNUAL), tmp_path / "wind.csv")
     assert main(["aep", str(out / "sweep.h5"), "--wind", str(csv), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["lengths"][0]["aep_straight_MWh"] > 0
     lines = csv.read_text().splitlines()

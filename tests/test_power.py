@@ -61,14 +61,14 @@ def test_tab_5_3_through_operating_design(seed_design, lines):
     design = operating_design(seed_design, ISA(), SEED_LENGTHS_M, SEED_GE[lines], SEED_MEAN_PHI_DEG)
     s = characteristic_speeds(design)
     full_force, full_power = (np.array(v) for v in TAB_5_3[lines])
-    ff_err = 100 * (s.full_force_ms / full_force - 1)
-    fp_err = 100 * (s.full_power_ms / full_power - 1)
+    ff_err = 100 * (s.full_force_mps / full_force - 1)
+    fp_err = 100 * (s.full_power_mps / full_power - 1)
     print(f"\nTab. 5.3 {lines} via operating_design, ours / seed [m/s]:")
     for i, L in enumerate(SEED_LENGTHS_M):
-        print(f"  {L:5.0f} m  cut-in {s.cut_in_ms:.2f}/2.86  full-force {s.full_force_ms[i]:5.2f}/"
-              f"{full_force[i]:5.2f} ({ff_err[i]:+.1f} %)  full-power {s.full_power_ms[i]:5.2f}/"
+        print(f"  {L:5.0f} m  cut-in {s.cut_in_mps:.2f}/2.86  full-force {s.full_force_mps[i]:5.2f}/"
+              f"{full_force[i]:5.2f} ({ff_err[i]:+.1f} %)  full-power {s.full_power_mps[i]:5.2f}/"
               f"{full_power[i]:5.2f} ({fp_err[i]:+.1f} %)")
-    assert s.cut_in_ms == pytest.approx(2.86, abs=0.005)
+    assert s.cut_in_mps == pytest.approx(2.86, abs=0.005)
     assert np.abs(ff_err).max() < 2.0 and np.abs(fp_err).max() < 2.0
 
 
@@ -87,7 +87,7 @@ def test_cycle_mean_by_hand(seed_design):
     wind = np.array([0.0, 2.0, 3.0, 3.5, 4.0, 10.0, 23.09, 30.0])
     c = cycle_curves(wind, seed_design, cycle)
     assert "".join(c.active.zone) == "AABBCCDD"
-    v_l = c.active.reel_out_ms
+    v_l = c.active.reel_out_mps
     force = 2 * c.active.force_per_line_N
     # (F s − T_r s) / (s/V_L + s/V_in) = (F − T_r) V_L V_in / (V_L + V_in)
     expected = (force - c.reel_in_force_N) * v_l * 17.5 / (v_l + 17.5)
@@ -107,7 +107,7 @@ def test_efficiencies_weigh_generated_and_consumed_energy(seed_design):
     wind = np.array([10.0, 30.0])
     ideal = cycle_curves(wind, seed_design)
     lossy = cycle_curves(wind, seed_design, Cycle(eta_e=0.8, eta_c=0.7))
-    v_l = ideal.active.reel_out_ms
+    v_l = ideal.active.reel_out_mps
     force = 2 * ideal.active.force_per_line_N
     expected = (0.8 * force - ideal.reel_in_force_N / 0.7) * v_l * 17.5 / (v_l + 17.5)
     assert lossy.power_W == pytest.approx(expected, rel=1e-12)
@@ -117,7 +117,7 @@ def test_cycle_power_never_negative(seed_design):
     """A recovery dearer than the stroke leaves the machine off: P = 0, not negative."""
     wind = np.linspace(0.0, 40.0, 81)
     c = cycle_curves(wind, seed_design, Cycle(reel_in_cd0=10.0))
-    raw = (2 * c.active.force_per_line_N - c.reel_in_force_N) * c.active.reel_out_ms
+    raw = (2 * c.active.force_per_line_N - c.reel_in_force_N) * c.active.reel_out_mps
     assert np.any(raw < 0) and np.all(c.power_W >= 0)
     assert np.all(c.power_W[raw < 0] == 0)
 
@@ -137,20 +137,20 @@ def test_seed_case_rated_power(seed_design):
     assert active == pytest.approx(4.05e6)
     assert 2.0e6 < rated < cap
     for v_in in (15.0, 20.0):
-        assert 1.9e6 < rated_power_W(seed_design, Cycle(reel_in_ms=v_in)) < 2.5e6
+        assert 1.9e6 < rated_power_W(seed_design, Cycle(reel_in_mps=v_in)) < 2.5e6
 
 
 def test_rated_power_is_the_curve_maximum_at_full_power(seed_design):
     rated = rated_power_W(seed_design)
     dense = cycle_curves(np.linspace(0.0, 60.0, 60001), seed_design).power_W
     assert dense.max() <= rated * (1 + 1e-12)
-    v_fp = characteristic_speeds(seed_design).full_power_ms
+    v_fp = characteristic_speeds(seed_design).full_power_mps
     assert rated == pytest.approx(cycle_curves(v_fp, seed_design).power_W, rel=1e-12)
     per_length = operating_design(seed_design, ISA(), SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG)
     assert rated_power_W(per_length).shape == SEED_LENGTHS_M.shape
 
 
-@pytest.mark.parametrize("field, value", [("stroke_m", 0.0), ("reel_in_ms", -1.0),
+@pytest.mark.parametrize("field, value", [("stroke_m", 0.0), ("reel_in_mps", -1.0),
                                           ("reel_in_cd0", -0.1), ("eta_e", 0.0),
                                           ("eta_c", 1.5), ("eta_e", float("nan"))])
 def test_cycle_rejects_bad_values(field, value):

@@ -50,8 +50,8 @@ class FakeSolver:
         self.steps.append((state.t, h))
         return FakeState(state.t + h, np.full(2, self.tension(state.t + h)))
 
-    def reeled(self, state, length_m, reel_ms):
-        self.reels.append((state.t, length_m, reel_ms))
+    def reeled(self, state, length_m, reel_mps):
+        self.reels.append((state.t, length_m, reel_mps))
         self.model = replace(self.model, length_m=length_m)
         return state
 
@@ -136,7 +136,7 @@ def test_reel_schedule_lengths_energy_and_stop():
     assert fake.reels == [(1.0, 100.5, 2.0), (1.25, 101.0, 2.0)]
     np.testing.assert_array_equal(run.time_s, np.arange(7) * 0.25)
     np.testing.assert_array_equal(run.series["length_m"], [100.0] * 5 + [100.5, 101.0])
-    np.testing.assert_array_equal(run.series["reel_out_ms"], [0.0] * 5 + [2.0, 2.0])
+    np.testing.assert_array_equal(run.series["reel_out_mps"], [0.0] * 5 + [2.0, 2.0])
     assert run.series["winch_energy_J"][-1] == 2 * 0.25 * 2.0 * 500.0
     assert run.snapshot_time_s[-1] == 1.5
 
@@ -151,15 +151,15 @@ def test_the_step_after_reeling_stops_is_reeled_at_zero_speed():
 
 
 def test_restart_threshold():
-    assert not protocol.speed_jumped(5.0, 5.0 + 0.5 * protocol.RESTART_JUMP_MS)
-    assert protocol.speed_jumped(5.0, 5.0 - 2.0 * protocol.RESTART_JUMP_MS)
+    assert not protocol.speed_jumped(5.0, 5.0 + 0.5 * protocol.RESTART_JUMP_MPS)
+    assert protocol.speed_jumped(5.0, 5.0 - 2.0 * protocol.RESTART_JUMP_MPS)
 
 
 # the real solvers ----------------------------------------------------------------------------
 def _cfg(**time):
-    return load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8},
+    return load_config(overrides={"tether": {"length_m": 300.0}, "fe": {"elements": 8, "dt_s": 0.2},
                                   "fd": {"segments": 12, "dt_s": 0.1},
-                                  "time": {"dt_s": 0.2, "average_periods": 1, **time}})
+                                  "time": {"average_periods": 1, **time}})
 
 
 @pytest.mark.parametrize("solver", ["fe", "fd"])

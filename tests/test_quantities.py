@@ -61,7 +61,7 @@ def sweep_file(tmp_path_factory):
 
 
 def test_every_dataset_of_a_run_file_has_units_and_a_description(tmp_path):
-    cfg = load_config(overrides={"fe": {"elements": 8}, "time": {"dt_s": 0.2, "average_periods": 1}})
+    cfg = load_config(overrides={"fe": {"elements": 8, "dt_s": 0.2}, "time": {"average_periods": 1}})
     path = write_run_hdf5(simulate(cfg), tmp_path / "run.h5")
     with h5py.File(path) as f:
         items = _walk(f)

@@ -26,8 +26,8 @@ def test_default_bands_and_bins():
     r = weibull_resource()
     assert [(b.low_m, b.high_m) for b in r.bands] == SEED_BANDS
     band = r.bands[0]
-    assert band.edges_ms[0] == 0.0 and band.edges_ms[-1] == 40.0
-    assert np.diff(band.edges_ms) == pytest.approx(0.5)
+    assert band.edges_mps[0] == 0.0 and band.edges_mps[-1] == 40.0
+    assert np.diff(band.edges_mps) == pytest.approx(0.5)
     for b in r.bands:       # bins + remainder hold all the probability
         assert np.all(b.probability >= 0)
         assert b.probability.sum() + b.remainder == pytest.approx(1.0, abs=1e-12)
@@ -37,11 +37,11 @@ def test_default_bands_and_bins():
 @pytest.mark.parametrize("k", [1.5, 2.0, 2.12, 3.0])
 def test_weibull_mean_recovered_from_the_bins(k):
     """Means follow the De Bilt annual log law at the band centres (10.07 m/s at 350 m)."""
-    r = weibull_resource(weibull_k=k, max_speed_ms=80.0)
+    r = weibull_resource(weibull_k=k, max_speed_mps=80.0)
     for b in r.bands:
-        target = float(DE_BILT_ANNUAL.speed_ms(b.centre_m))
-        assert b.mean_ms == pytest.approx(target, rel=1e-3)
-    assert r.bands[0].mean_ms == pytest.approx(10.07, abs=0.01)
+        target = float(DE_BILT_ANNUAL.speed_mps(b.centre_m))
+        assert b.mean_mps == pytest.approx(target, rel=1e-3)
+    assert r.bands[0].mean_mps == pytest.approx(10.07, abs=0.01)
 
 
 def test_weibull_probabilities_by_hand():
@@ -72,14 +72,14 @@ def test_band_for_length_uses_the_mean_kite_altitude():
 
 
 def test_csv_round_trip(tmp_path):
-    resource = weibull_resource(weibull_k=2.12, max_speed_ms=80.0)
+    resource = weibull_resource(weibull_k=2.12, max_speed_mps=80.0)
     path = write_resource_csv(resource, tmp_path / "wind.csv")
     assert path.read_text().splitlines()[0] == ",".join(COLUMNS)
     back = read_resource_csv(path)
     assert len(back.bands) == len(resource.bands) and back.source == str(path)
     for a, b in zip(resource.bands, back.bands):
         assert (a.low_m, a.high_m) == (b.low_m, b.high_m)
-        np.testing.assert_array_equal(a.edges_ms, b.edges_ms)
+        np.testing.assert_array_equal(a.edges_mps, b.edges_mps)
         np.testing.assert_array_equal(a.probability, b.probability)
 
 
@@ -89,7 +89,7 @@ def test_write_refuses_a_band_with_missing_mass(tmp_path):
         write_resource_csv(weibull_resource(), tmp_path / "wind.csv")
 
 
-HEADER = "band_low_m,band_high_m,bin_low_ms,bin_high_ms,probability"
+HEADER = "band_low_m,band_high_m,bin_low_mps,bin_high_mps,probability"
 GOOD = [HEADER,
         "200,500,0,5,0.25", "200,500,5,10,0.5", "200,500,10,20,0.25",
         "500,800,0,10,0.4", "500,800,10,20,0.6"]
@@ -103,12 +103,12 @@ def _write(tmp_path, lines):
 
 def test_read_good_csv(tmp_path):
     # columns in any order, surrounding blanks in the header, bands in any order
-    lines = ["probability, bin_low_ms ,bin_high_ms,band_low_m,band_high_m",
+    lines = ["probability, bin_low_mps ,bin_high_mps,band_low_m,band_high_m",
              "0.4,0,10,500,800", "0.6,10,20,500,800",
              "0.25,0,5,200,500", "0.5,5,10,200,500", "0.25,10,20,200,500"]
     r = read_resource_csv(_write(tmp_path, lines))
     assert [(b.low_m, b.high_m) for b in r.bands] == [(200, 500), (500, 800)]
-    np.testing.assert_array_equal(r.bands[0].edges_ms, [0, 5, 10, 20])
+    np.testing.assert_array_equal(r.bands[0].edges_mps, [0, 5, 10, 20])
     np.testing.assert_array_equal(r.bands[0].probability, [0.25, 0.5, 0.25])
     assert r.bands[1].remainder == pytest.approx(0.0, abs=1e-15)
 
@@ -123,10 +123,10 @@ def _with(line_no, text):
 @pytest.mark.parametrize("lines, message", [
     (_with(3, "200,500,5,10,abc"), "wind.csv line 3: probability 'abc' is not a number"),
     (_with(3, "200,500,5,10,"), "wind.csv line 3: probability '' is not a number"),
-    (_with(3, "200,500,5,nan,0.5"), "wind.csv line 3: bin_high_ms 'nan' is not finite"),
+    (_with(3, "200,500,5,nan,0.5"), "wind.csv line 3: bin_high_mps 'nan' is not finite"),
     (_with(4, "200,500,10,20,-0.1"), "wind.csv line 4: probability -0.1 is negative"),
-    (_with(2, "200,500,-1,5,0.25"), "wind.csv line 2: bin_low_ms -1 is negative"),
-    (_with(3, "200,500,5,4,0.5"), "wind.csv line 3: bin 5–4 m/s: bin_high_ms must exceed"),
+    (_with(2, "200,500,-1,5,0.25"), "wind.csv line 2: bin_low_mps -1 is negative"),
+    (_with(3, "200,500,5,4,0.5"), "wind.csv line 3: bin 5–4 m/s: bin_high_mps must exceed"),
     (_with(3, "200,500,6,10,0.5"), "wind.csv line 3: bin starts at 6 m/s but the previous bin "
                                    "ends at 5 m/s"),
     (_with(4, "200,500,10,20,0.2"), "wind.csv lines 2–4: band 200–500 m probabilities sum to "
@@ -138,7 +138,7 @@ def _with(line_no, text):
     (_with(2, "500,200,0,5,0.25"), "wind.csv line 2: band 500–200 m: band_high_m must exceed"),
     (_with(3, "200,500,5,10"), "wind.csv line 3: expected 5 fields"),
     (_with(3, "200,500,5,10,0.5,7"), "wind.csv line 3: expected 5 fields"),
-    (_with(1, "band_low_m,band_high_m,bin_low_ms,bin_high_ms"),
+    (_with(1, "band_low_m,band_high_m,bin_low_mps,bin_high_mps"),
      "wind.csv line 1: missing column\\(s\\) probability"),
     (_with(1, HEADER + ",notes"), "wind.csv line 1: unknown column\\(s\\) notes"),
     ([HEADER], "wind.csv: no rows after the header"),

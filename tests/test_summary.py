@@ -14,8 +14,8 @@ from fem_tether.summary import run_summary
 def test_summary_of_a_short_run():
     """The summary's numbers computed independently from the run's series and
     the closed-form G_e (seed 000 eq. 5.1) with the ISA density at L cos(theta0)."""
-    cfg = load_config(overrides={"tether": {"length_m": 500.0}, "fe": {"elements": 10},
-                                 "time": {"dt_s": 0.2, "average_periods": 1}})
+    cfg = load_config(overrides={"tether": {"length_m": 500.0}, "fe": {"elements": 10, "dt_s": 0.2},
+                                 "time": {"average_periods": 1}})
     run = simulate(cfg)
     s = run_summary(run, cfg)
     window = run.time_s >= run.average_start_s - 1e-9

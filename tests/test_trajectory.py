@@ -24,7 +24,7 @@ def test_from_config_reads_kite_and_tether():
     e = cfg.eight
     assert e.length_m == 1500.0
     assert e.theta0_rad == pytest.approx(np.pi / 4)
-    assert (e.width_m, e.height_m, e.speed_ms) == (190.0, 95.0, 80.0)
+    assert (e.width_m, e.height_m, e.speed_mps) == (190.0, 95.0, 80.0)
     assert cfg.with_length(700.0).eight.length_m == 700.0
 
 
@@ -32,7 +32,7 @@ def test_from_config_reads_kite_and_tether():
 def test_speed_is_constant(eight, scale):
     _, v, _ = eight.state(one_period(eight), radius_m=scale * eight.length_m)
     speed = np.linalg.norm(v, axis=-1)
-    np.testing.assert_allclose(speed, scale * eight.speed_ms, rtol=1e-6)
+    np.testing.assert_allclose(speed, scale * eight.speed_mps, rtol=1e-6)
 
 
 def test_position_stays_on_sphere(eight):
@@ -69,7 +69,7 @@ def test_period_is_loop_length_over_speed(eight):
     theta, phi = eight.angle_derivatives(tau)
     p = eight.length_m * direction(theta[0], phi[0])
     loop_m = np.linalg.norm(np.diff(p, axis=0), axis=-1).sum()
-    assert eight.period_s == pytest.approx(loop_m / eight.speed_ms, rel=1e-6)
+    assert eight.period_s == pytest.approx(loop_m / eight.speed_mps, rel=1e-6)
 
 
 def test_parameter_follows_arc_length(eight):
@@ -80,7 +80,7 @@ def test_parameter_follows_arc_length(eight):
     assert tau[-1] == pytest.approx(2 * np.pi, rel=1e-12)
     h = 1e-4
     rate = (eight.parameter(t + h) - eight.parameter(t - h)) / (2 * h)
-    np.testing.assert_allclose(rate, eight.speed_ms / eight.arc_rate(tau)[0], rtol=1e-6)
+    np.testing.assert_allclose(rate, eight.speed_mps / eight.arc_rate(tau)[0], rtol=1e-6)
 
 
 @pytest.mark.parametrize("length_m", [500.0, 1000.0, 3000.0])

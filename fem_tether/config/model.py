@@ -6,7 +6,7 @@ checked object (:meth:`Config.replace`, :meth:`Config.with_length`), never an
 edited one.
 
 >>> cfg = load_config(overrides={"tether": {"length_m": 3000.0}})
->>> cfg.tether.length_m, cfg.kite.speed_ms
+>>> cfg.tether.length_m, cfg.kite.speed_mps
 (3000.0, 80.0)
 >>> cfg.with_length(1500.0).tether.length_m
 1500.0
@@ -26,8 +26,8 @@ from fem_tether.errors import ConfigError
 from fem_tether.trajectory import FigureEight
 
 from . import rules
-from .sections import (FD, FE, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, Tether, Time,
-                       Wind, Winch)
+from .sections import (FD, FE, MOVED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, Tether,
+                       Time, Wind, Winch)
 from .tomlio import read_toml, resolve_paths, section_toml
 
 
@@ -66,6 +66,9 @@ class Config:
                 raise ConfigError(f"[{name}]: unknown section (known: {', '.join(known)})")
             if not isinstance(values, dict):
                 raise ConfigError(f"[{name}]: expected a table of keys")
+            for key in values:
+                if (name, key) in MOVED:
+                    raise ConfigError("[{}] {}: now [{}] {}".format(name, key, *MOVED[name, key]))
             changed[name] = getattr(self, name).replace(**values)
         return dataclasses.replace(self, **changed)
 

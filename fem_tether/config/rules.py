@@ -25,7 +25,7 @@ CEILING_M = 11000.0
 #: FE generalised-alpha errs +2.2 % at 40 steps, +4.0 % at 30, +10 % at 20;
 #: FD BDF2 errs +1.9 % at 72 steps, +6.1 % at 36.  The limits keep the
 #: coarsest admissible step near the cross-check's 2 % (docs/numerics.md).
-MIN_STEPS_PER_PERIOD = {("time", "dt_s"): 36, ("fd", "dt_s"): 72}
+MIN_STEPS_PER_PERIOD = {("fe", "dt_s"): 36, ("fd", "dt_s"): 72}
 
 #: Keys that name files: a relative name in a file is read relative to that file.
 FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"))
@@ -52,10 +52,10 @@ def check(cfg: Config) -> None:
     resolve its period (:data:`MIN_STEPS_PER_PERIOD`).
     """
     _check_winch(cfg)
-    fe = cfg.fe
-    if not fe.max_element_m > 2.0 * fe.min_element_m:
-        raise ConfigError(f"[fe] max_element_m = {fe.max_element_m:g}: must exceed twice "
-                          f"[fe] min_element_m = {fe.min_element_m:g}")
+    winch = cfg.winch
+    if not winch.max_element_m > 2.0 * winch.min_element_m:
+        raise ConfigError(f"[winch] max_element_m = {winch.max_element_m:g}: must exceed twice "
+                          f"[winch] min_element_m = {winch.min_element_m:g}")
     _check_eight(cfg)
 
 

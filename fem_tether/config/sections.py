@@ -7,7 +7,7 @@ checked on creation; the rules across sections are in :mod:`.rules`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 from .settings import (Section, at_least, between, count_between, non_negative, one_of, positive,
                        setting)
@@ -57,7 +57,7 @@ class Wind(Section):
     NAME = "wind"
     profile: str = setting("log", "-", "'log' (De Bilt), 'power' or 'none'", one_of("log", "power", "none"))
     season: str = setting("annual", "-", "De Bilt log-law season", one_of("winter", "summer", "annual"))
-    reference_speed_ms: float = setting(9.5, "m/s", "power law: speed at reference_height_m", non_negative)
+    reference_speed_mps: float = setting(9.5, "m/s", "power law: speed at reference_height_m", non_negative)
     reference_height_m: float = setting(20.0, "m", "power law: reference height", positive)
     alpha: float = setting(0.2, "-", "power law: shear exponent", between(0.0, 1.0, (True, False)))
 
@@ -68,7 +68,7 @@ class Kite(Section):
     area_m2: float = setting(120.0, "m2", "kite reference area A", positive)
     cl: float = setting(1.0, "-", "lift coefficient C_l", positive)
     efficiency: float = setting(28.0, "-", "aerodynamic efficiency E = C_l/C_d", positive)
-    speed_ms: float = setting(80.0, "m/s", "crosswind flight speed V_k on the eight", positive)
+    speed_mps: float = setting(80.0, "m/s", "crosswind flight speed V_k on the eight", positive)
     theta0_deg: float = setting(45.0, "deg", "polar angle of the eight's centre, from the vertical",
                                 between(0.0, 90.0))
     eight_width_m: float = setting(190.0, "m", "crosswind width W of the eight", positive)
@@ -76,7 +76,7 @@ class Kite(Section):
     design_phi_deg: float = setting(11.0, "deg", "azimuth used by the characteristic curves",
                                     between(-90.0, 90.0))
     nominal_force_N: float = setting(300000.0, "N", "nominal traction force (all lines)", positive)
-    max_reel_out_ms: float = setting(13.5, "m/s", "maximum reel-out speed", positive)
+    max_reel_out_mps: float = setting(13.5, "m/s", "maximum reel-out speed", positive)
     air_density_kg_m3: float = setting(1.0, "kg/m3", "density of the characteristic curves (seed: 1 kg/m3)",
                                        positive)
     radius_m: float = setting(0.0, "m", "kite distance for [winch] mode = 'prescribed' (0: unset)",
@@ -91,10 +91,14 @@ class Winch(Section):
     ground_tension_N: float = setting(150000.0, "N", "tension held by the winch, per line", positive)
     reel_out: str = setting("none", "-", "reeling during flight: 'none', 'constant', 'table' or 'controlled'",
                             one_of("none", "constant", "table", "controlled"))
-    reel_out_speed_ms: float = setting(0.0, "m/s", "reel_out = 'constant': V_L (< 0 reels in)")
-    reel_out_table: str = setting("", "-", "reel_out = 'table': CSV time_s,speed_ms from the start of reeling")
+    reel_out_speed_mps: float = setting(0.0, "m/s", "reel_out = 'constant': V_L (< 0 reels in)")
+    reel_out_table: str = setting("", "-", "reel_out = 'table': CSV time_s,speed_mps from the start of reeling")
     reel_out_stop_m: float = setting(0.0, "m", "stop reeling and the run at this length (0: run the periods)",
                                      non_negative)
+    min_element_m: float = setting(2.0, "m", "reeling: the winch element (FE) or segment (FD) merges with its "
+                                   "neighbour below this", positive)
+    max_element_m: float = setting(100.0, "m", "reeling: the winch element (FE) or segment (FD) splits above "
+                                   "this (into halves of it)", positive)
 
 
 @dataclass(frozen=True)
@@ -104,24 +108,20 @@ class FE(Section):
                         "'uniform', 'graded' or a meshio file of [0, 1] (e.g. meshes/graded_40.vtu)")
     elements: int = setting(40, "-", "elements of a generated mesh", count_between(2, MAX_ELEMENTS))
     grading: float = setting(4.0, "-", "first/last element size of a graded mesh (kite end finer)", positive)
-    min_element_m: float = setting(2.0, "m", "reeling: the winch element merges with its neighbour below this",
-                                   positive)
-    max_element_m: float = setting(100.0, "m",
-                                   "reeling: the winch element splits above this (into halves of it)",
-                                   positive)
-
-
-@dataclass(frozen=True)
-class Time(Section):
-    NAME = "time"
-    dt_s: float = setting(0.05, "s", "time step (rounded down to a whole number of steps per period)", positive)
-    scheme: str = setting("generalized-alpha", "-", "'generalized-alpha', 'hht' or 'newmark'",
+    dt_s: float = setting(0.05, "s", "FE time step (rounded down to a whole number of steps per period)",
+                          positive)
+    scheme: str = setting("generalized-alpha", "-", "FE time scheme: 'generalized-alpha', 'hht' or 'newmark'",
                           one_of("generalized-alpha", "hht", "newmark"))
     rho_inf: float = setting(0.8, "-", "generalized-alpha spectral radius at infinity",
                              between(0.0, 1.0, (True, True)))
     hht_alpha: float = setting(-0.1, "-", "HHT alpha", between(-1.0 / 3.0, 0.0, (True, True)))
     beta: float = setting(0.25, "-", "Newmark beta", positive)
     gamma: float = setting(0.5, "-", "Newmark gamma", positive)
+
+
+@dataclass(frozen=True)
+class Time(Section):
+    NAME = "time"
     spinup_periods: int = setting(1, "-", "periods of the eight flown before averaging", at_least(0))
     average_periods: int = setting(2, "-", "whole periods averaged", at_least(1))
     newton_tol: float = setting(1e-10, "-", "Newton tolerance on residuals scaled by the tension", positive)
@@ -152,7 +152,7 @@ class Crosscheck(Section):
 class Cycle(Section):
     NAME = "cycle"
     stroke_m: float = setting(450.0, "m", "line reeled out per active phase, then reeled in", positive)
-    reel_in_ms: float = setting(17.5, "m/s", "reel-in speed of the side-slip recovery", positive)
+    reel_in_mps: float = setting(17.5, "m/s", "reel-in speed of the side-slip recovery", positive)
     reel_in_cd0: float = setting(0.1, "-", "drag coefficient of the side-slipping wing (seed 004 eq. 3.24)",
                                  non_negative)
     eta_e: float = setting(1.0, "-", "efficiency of the generated energy (seed 001: 0.8)",
@@ -169,8 +169,8 @@ class Resource(Section):
     band_bottom_m: float = setting(200.0, "m", "lowest altitude of the bands", non_negative)
     band_top_m: float = setting(2300.0, "m", "highest altitude of the bands", positive)
     band_width_m: float = setting(300.0, "m", "altitude band width", positive)
-    bin_width_ms: float = setting(0.5, "m/s", "wind-speed bin width", positive)
-    max_speed_ms: float = setting(50.0, "m/s", "last wind-speed bin edge", positive)
+    bin_width_mps: float = setting(0.5, "m/s", "wind-speed bin width", positive)
+    max_speed_mps: float = setting(50.0, "m/s", "last wind-speed bin edge", positive)
 
 
 @dataclass(frozen=True)
@@ -182,3 +182,11 @@ class Output(Section):
 #: The sections in the order of a configuration file.
 SECTIONS: tuple[type[Section], ...] = (Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
                                         Resource, Output)
+
+#: Keys of earlier versions and where they are now: (section, key) -> (section, key).
+MOVED = {
+    **{("time", key): ("fe", key) for key in ("dt_s", "scheme", "rho_inf", "hht_alpha", "beta", "gamma")},
+    **{("fe", key): ("winch", key) for key in ("min_element_m", "max_element_m")},
+    **{(s.NAME, f.name[:-4] + "_ms"): (s.NAME, f.name) for s in SECTIONS for f in fields(s)
+       if f.name.endswith("_mps")},
+}

@@ -28,10 +28,10 @@ winch pays the line out (V_L > 0) or reels it in (V_L < 0).  Nodes 1..M are
 material points; node 0 is the drum's exit, fixed at the origin, and the
 winch segment h_0 takes the length change: L_{n+1} = L_n + h V_L with V_L
 taken at the start of the step, then the implicit step on the grid with the
-new h_0 (:func:`reeled`).  When h_0 would exceed ``[fe] max_element_m`` a
+new h_0 (:func:`reeled`).  When h_0 would exceed ``[winch] max_element_m`` a
 material node is inserted on it ``max_element_m / 2`` from node 1 (position,
 velocity and acceleration interpolated along the segment, the line leaving the
-drum at V_L tau_{1/2}); below ``[fe] min_element_m`` node 1 is removed (the
+drum at V_L tau_{1/2}); below ``[winch] min_element_m`` node 1 is removed (the
 winch segment merges with the next one).  The node-1 equation then has unequal
 half-segments on its two sides (:mod:`.system`: mass mu (h_0 + h_1)/2), and
 the lumped masses always sum to mu L(t).  After a change of the grid or a
@@ -41,8 +41,8 @@ the sphere of the current L.  The same law as the FE solver, written
 independently.
 
 Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler");
-reeling uses ``[winch]`` and the segment bounds ``[fe] min_element_m`` and
-``[fe] max_element_m``.
+reeling uses ``[winch]`` and the segment bounds ``[winch] min_element_m`` and
+``[winch] max_element_m``.
 """
 
 from __future__ import annotations
@@ -71,7 +71,7 @@ class FDModel(TetherCase):
 
     eq: TetherFD
     scheme: str                   # "bdf2" or "euler"
-    reel_ms: float = 0.0          # winch speed V_L during the current step
+    reel_mps: float = 0.0          # winch speed V_L during the current step
 
     @property
     def grid(self) -> Grid:
@@ -92,7 +92,7 @@ class State:
 
 def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysics:
     """``physics`` with gravity (g = 0) and/or drag (C_d = 0) switched off."""
-    return replace(physics, gravity_ms2=physics.gravity_ms2 if gravity else 0.0,
+    return replace(physics, gravity_mps2=physics.gravity_mps2 if gravity else 0.0,
                    drag=physics.drag if drag else ConstantDrag(0.0))
 
 
@@ -276,7 +276,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         r = _nodes(model, r_int, R, e)
         v, acc = kinematics(r)
         try:
-            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_ms=model.reel_ms)
+            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_mps=model.reel_mps)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
         stats.newton_iterations += 1
@@ -303,7 +303,7 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     """
     g, ph = model.grid, model.eq.physics
     r, v = state.r, state.v
-    loads = model.eq.line_loads(r, v, model.reel_ms)
+    loads = model.eq.line_loads(r, v, model.reel_mps)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     seg = np.linalg.norm(np.diff(r, axis=0), axis=1)
@@ -318,22 +318,22 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     if not fields:
         return series
     z_mid = 0.5 * (r[1:, 2] + r[:-1, 2])
-    vn_mid = 0.5 * (loads.vn_ms[1:] + loads.vn_ms[:-1])
+    vn_mid = 0.5 * (loads.vn_mps[1:] + loads.vn_mps[:-1])
     re_mid = ph.air.density_kg_m3(z_mid) * np.maximum(vn_mid, 1e-30) * ph.diameter_m \
         / ph.air.viscosity_Pa_s(z_mid)
     return series | {
         "s_m": model.grid.s_m.copy(),
         "position_m": r.copy(),
-        "velocity_ms": v.copy(),
+        "velocity_mps": v.copy(),
         "tension_N": state.T.copy(),
-        "vn_ms": vn_mid,
+        "vn_mps": vn_mid,
         "reynolds": re_mid,
         "cd": np.asarray(ph.drag.cd(re_mid), dtype=float),
         "drag_N_m": 0.5 * (loads.force[1:] + loads.force[:-1]),
     }
 
 
-def reeled(model: FDModel, prev: State | None, state: State, length_m: float, reel_ms: float,
+def reeled(model: FDModel, prev: State | None, state: State, length_m: float, reel_mps: float,
            min_segment_m: float, max_segment_m: float) -> tuple[FDModel, State | None, State]:
     """Model, BDF2 history and state with the line paid out (or reeled in) to ``length_m``.
 
@@ -357,7 +357,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     if h0 > max_segment_m and h0 > g.h[0]:
         half = 0.5 * max_segment_m
         f = (g.h[0] - half) / g.h[0]            # new node's fraction of the way to node 1
-        drum = reel_ms * r[1] / np.linalg.norm(r[1])
+        drum = reel_mps * r[1] / np.linalg.norm(r[1])
         r = np.insert(r, 1, f * r[1], axis=0)
         v = np.insert(v, 1, (1.0 - f) * drum + f * v[1], axis=0)
         a = np.insert(a, 1, f * a[1], axis=0)
@@ -369,11 +369,11 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         grid = Grid.from_lengths(np.concatenate([[h0 + g.h[1]], g.h[2:]]), g.tension_mode)
     else:
         grid = g.with_first_length(h0)
-    restart = grid.M != g.M or speed_jumped(model.reel_ms, reel_ms)
+    restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
     model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=length_m,
-                    reel_ms=reel_ms, end=end_at_length(model.end, length_m))
+                    reel_mps=reel_mps, end=end_at_length(model.end, length_m))
     if restart:
-        v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_ms)
+        v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_mps)
         prev = None
     return model, prev, State(state.t, r, v, a, T, state.R)
 
@@ -400,8 +400,8 @@ class FDSolver:
         self.prev = state
         return new
 
-    def reeled(self, state: State, length_m: float, reel_ms: float) -> State:
-        self.model, self.prev, state = reeled(self.model, self.prev, state, length_m, reel_ms,
+    def reeled(self, state: State, length_m: float, reel_mps: float) -> State:
+        self.model, self.prev, state = reeled(self.model, self.prev, state, length_m, reel_mps,
                                               *self.segment_bounds_m)
         return state
 
@@ -425,8 +425,8 @@ def simulate(cfg, progress=False) -> TetherRun:
     """Run the configured case with the FD solver (time step ``[fd] dt_s``).
 
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch
-    segment stays within ``[fe] min_element_m`` .. ``[fe] max_element_m``.
+    segment stays within ``[winch] min_element_m`` .. ``[winch] max_element_m``.
     """
-    fe = cfg.fe
-    solver = FDSolver(build_model(cfg), (fe.min_element_m, fe.max_element_m))
+    winch = cfg.winch
+    solver = FDSolver(build_model(cfg), (winch.min_element_m, winch.max_element_m))
     return protocol.simulate(solver, cfg, cfg.fd.dt_s, progress)

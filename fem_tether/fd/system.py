@@ -70,7 +70,7 @@ class NodalLoads:
     """Drag at a set of nodes and what produced it."""
 
     force: np.ndarray      # (n, 3) N/m
-    vn_ms: np.ndarray
+    vn_mps: np.ndarray
     re: np.ndarray
     cd: np.ndarray
     tangent: np.ndarray
@@ -243,25 +243,25 @@ class TetherFD:
     def nodal_drag(self, r, v, tangent, jacobian=False):
         ph = self.physics
         z = r[:, 2]
-        v_rel = ph.wind.velocity_ms(z) - v
+        v_rel = ph.wind.velocity_mps(z) - v
         return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
-    def line_loads(self, r, v, reel_ms=0.0) -> NodalLoads:
+    def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
         """Drag at every node 0..M; one-sided tangents at the two ends.
 
-        With reeling (``reel_ms`` = V_L) the line leaves the winch node with
+        With reeling (``reel_mps`` = V_L) the line leaves the winch node with
         the material velocity V_L tau_{1/2}."""
         tangent = np.empty_like(r)
         tangent[1:-1] = r[2:] - r[:-2]
         tangent[0] = r[1] - r[0]
         tangent[-1] = r[-1] - r[-2]
         tangent, _ = _unit(tangent)
-        if reel_ms:
+        if reel_mps:
             v = v.copy()
-            v[0] = reel_ms * tangent[0]
+            v[0] = reel_mps * tangent[0]
         load = self.nodal_drag(r, v, tangent)
-        return NodalLoads(load.force, load.vn_ms, load.re, load.cd, tangent)
+        return NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent)
 
     # --- equations ---------------------------------------------------------------
     @property
@@ -270,11 +270,11 @@ class TetherFD:
         return self.physics.linear_density_kg_m * self.grid.trap_weights
 
     def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
-                 jacobian=True, reel_ms=0.0) -> Evaluation:
+                 jacobian=True, reel_mps=0.0) -> Evaluation:
         """Scaled residual (and banded Jacobian) at nodal r, v, a (M+1, 3) and tensions T (M,).
 
         ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for
-        statics).  ``reel_ms`` is the winch speed V_L: node 0 stays at the
+        statics).  ``reel_mps`` is the winch speed V_L: node 0 stays at the
         winch, the line leaves it with the velocity V_L tau_{1/2}.  That
         velocity only enters the winch segment's strain rate,
         ``tau_{1/2} . (v_1 - V_L tau_{1/2}) = tau_{1/2} . v_1 - V_L``, whose
@@ -285,9 +285,9 @@ class TetherFD:
         mu = ph.linear_density_kg_m
         d = r[1:] - r[:-1]
         tau, ell = _unit(d)
-        if reel_ms:
+        if reel_mps:
             v = v.copy()
-            v[0] = reel_ms * tau[0]
+            v[0] = reel_mps * tau[0]
         flux = T[:, None] * tau
         # nodal drag at interior nodes with the central tangent
         dn = r[2:] - r[:-2]
@@ -342,7 +342,7 @@ class TetherFD:
         out.ab = g.assemble(values, kite_dir)
         return out
 
-    def consistent_velocity(self, r, v_guess, R, kite, reel_ms=0.0):
+    def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0):
         """Velocities of the inextensible line on its constraints, closest to
         ``v_guess`` in the kinetic-energy norm.
 
@@ -376,7 +376,7 @@ class TetherFD:
         body = full[: 4 * M - 4].reshape(M - 1, 4)
         body[:, 1:] = m[:, None] * v_guess[1:-1]
         con = np.zeros(M)
-        con[0] = reel_ms
+        con[0] = reel_mps
         con[-1] -= tau[-1] @ (R * e_dot)        # the kite's known velocity R e'
         body[:, 0] = con[:-1]
         full[4 * M - 4] = con[-1]

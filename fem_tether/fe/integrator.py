@@ -49,20 +49,20 @@ class Scheme:
     @classmethod
     def newmark(cls, beta=0.25, gamma=0.5):
         if not (gamma >= 0.5 and beta >= 0.25 * (gamma + 0.5) ** 2 - 1e-15):
-            raise SchemeError(f"[time] beta = {beta}, gamma = {gamma}: Newmark needs gamma >= 1/2 "
+            raise SchemeError(f"[fe] beta = {beta}, gamma = {gamma}: Newmark needs gamma >= 1/2 "
                               "and beta >= (gamma + 1/2)^2/4 for unconditional stability")
         return cls("newmark", 0.0, 0.0, beta, gamma)
 
     @classmethod
     def hht(cls, alpha=-0.1):
         if not -1.0 / 3.0 <= alpha <= 0.0:
-            raise SchemeError(f"[time] hht_alpha = {alpha}: must be in [-1/3, 0]")
+            raise SchemeError(f"[fe] hht_alpha = {alpha}: must be in [-1/3, 0]")
         return cls("hht", 0.0, -alpha, 0.25 * (1.0 - alpha) ** 2, 0.5 - alpha)
 
     @classmethod
     def generalized_alpha(cls, rho_inf=0.8):
         if not 0.0 <= rho_inf <= 1.0:
-            raise SchemeError(f"[time] rho_inf = {rho_inf}: must be in [0, 1]")
+            raise SchemeError(f"[fe] rho_inf = {rho_inf}: must be in [0, 1]")
         am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0)
         af = rho_inf / (rho_inf + 1.0)
         gamma = 0.5 + af - am
@@ -97,10 +97,10 @@ class Kinematics:
         return Kinematics(q_new, v_new, a_new, qdd_new)
 
 
-def scheme_from_config(time) -> Scheme:
-    """The scheme named by the ``[time]`` section's ``scheme``, with its parameters."""
-    if time.scheme == "newmark":
-        return Scheme.newmark(time.beta, time.gamma)
-    if time.scheme == "hht":
-        return Scheme.hht(time.hht_alpha)
-    return Scheme.generalized_alpha(time.rho_inf)
+def scheme_from_config(fe) -> Scheme:
+    """The scheme named by the ``[fe]`` section's ``scheme``, with its parameters."""
+    if fe.scheme == "newmark":
+        return Scheme.newmark(fe.beta, fe.gamma)
+    if fe.scheme == "hht":
+        return Scheme.hht(fe.hht_alpha)
+    return Scheme.generalized_alpha(fe.rho_inf)

@@ -43,7 +43,7 @@ class FEModel(TetherCase):
 
     system: TetherSystem
     scheme: Scheme
-    reel_ms: float = 0.0          # winch speed V_L during the current step
+    reel_mps: float = 0.0          # winch speed V_L during the current step
 
 
 @dataclass
@@ -79,7 +79,7 @@ def build_model(cfg, end=None, physics=None) -> FEModel:
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
     return FEModel(system=TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"]),
-                   scheme=scheme_from_config(cfg.time), **case)
+                   scheme=scheme_from_config(cfg.fe), **case)
 
 
 def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:
@@ -120,7 +120,7 @@ def initial_guess(model: FEModel, t=0.0):
     s_mid = model.system.spaces.s_mid_m
     e0 = model.end.state(t, 1.0)[0]
     ph = model.system.physics
-    w = max(ph.linear_density_kg_m * ph.gravity_ms2, 1e-12)
+    w = max(ph.linear_density_kg_m * ph.gravity_mps2, 1e-12)
     if model.tension_mode:
         R = _winch_chord_m(model, e0, w)
         if R is None:
@@ -262,7 +262,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
         kin = state.kin.advance(r, h, model.scheme)
         try:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
-                               f_ref, c_a, c_v, reel_ms=model.reel_ms)
+                               f_ref, c_a, c_v, reel_mps=model.reel_mps)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
         stats.newton_iterations += 1
@@ -301,16 +301,16 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
     return series | {
         "s_m": sys_.spaces.s_m,
         "position_m": r.copy(),
-        "velocity_ms": v.copy(),
+        "velocity_mps": v.copy(),
         "tension_N": state.T.copy(),
-        "vn_ms": ev.load.vn_ms,
+        "vn_mps": ev.load.vn_mps,
         "reynolds": ev.load.re,
         "cd": ev.load.cd,
         "drag_N_m": ev.load.force,
     }
 
 
-def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
+def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
            min_element_m: float, max_element_m: float) -> tuple[FEModel, State]:
     """Model and state with the line paid out (or reeled in) to ``length_m``.
 
@@ -335,7 +335,7 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
     if growth > 0 and sp.h_m[0] + growth > max_element_m:
         s1 = sp.h_m[0]
         f = (s1 - 0.5 * max_element_m) / s1         # new node's fraction of the way to node 1
-        winch = reel_ms * (kin.q[1] / s1)           # material velocity leaving the drum
+        winch = reel_mps * (kin.q[1] / s1)           # material velocity leaving the drum
         rows = {"q": f * kin.q[1], "v": (1 - f) * winch + f * kin.v[1], "a": f * kin.a[1],
                 "qdd": f * kin.qdd[1]}
         kin = Kinematics(*(np.insert(getattr(kin, k), 1, rows[k], axis=0) for k in ("q", "v", "a", "qdd")))
@@ -349,13 +349,13 @@ def reeled(model: FEModel, state: State, length_m: float, reel_ms: float,
         system = TetherSystem(spaces, model.system.physics, model.tension_mode)
     else:
         system = model.system
-    restart = system is not model.system or speed_jumped(model.reel_ms, reel_ms)
+    restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
-    model = replace(model, system=system, length_m=length_m, reel_ms=reel_ms,
+    model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
                     end=end_at_length(model.end, length_m))
     if restart:
         v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
-                                            model.ground_tension_N, reel_ms, free_radius=True)
+                                            model.ground_tension_N, reel_mps, free_radius=True)
         kin = Kinematics(kin.q, v, qdd, qdd.copy())
     return model, State(state.t, kin, T, state.R)
 
@@ -375,8 +375,8 @@ class FESolver:
     def step(self, state: State, h: float, stats: Statistics) -> State:
         return _step(self.model, state, h, stats)
 
-    def reeled(self, state: State, length_m: float, reel_ms: float) -> State:
-        self.model, state = reeled(self.model, state, length_m, reel_ms, *self.element_bounds_m)
+    def reeled(self, state: State, length_m: float, reel_mps: float) -> State:
+        self.model, state = reeled(self.model, state, length_m, reel_mps, *self.element_bounds_m)
         return state
 
     def line_state(self, state: State, fields: bool) -> dict:
@@ -396,7 +396,11 @@ class FESolver:
 
 
 def simulate(cfg, progress=False) -> TetherRun:
-    """Run the configured case with the FE solver (time step ``[time] dt_s``)."""
-    fe = cfg.fe
-    solver = FESolver(build_model(cfg), (fe.min_element_m, fe.max_element_m))
-    return protocol.simulate(solver, cfg, cfg.time.dt_s, progress)
+    """Run the configured case with the FE solver (time step ``[fe] dt_s``).
+
+    Reeling (``[winch] reel_out``) starts after the spin-up; the winch
+    element stays within ``[winch] min_element_m`` .. ``max_element_m``.
+    """
+    winch = cfg.winch
+    solver = FESolver(build_model(cfg), (winch.min_element_m, winch.max_element_m))
+    return protocol.simulate(solver, cfg, cfg.fe.dt_s, progress)

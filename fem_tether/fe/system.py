@@ -120,11 +120,11 @@ class TetherSystem:
 
     # --- equations --------------------------------------------------------
     def evaluate(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
-                 force_ref_N, c_a=0.0, c_v=0.0, jacobian=True, reel_ms=0.0) -> Evaluation:
+                 force_ref_N, c_a=0.0, c_v=0.0, jacobian=True, reel_mps=0.0) -> Evaluation:
         """Scaled residual (and banded Jacobian) at positions r, velocities v.
 
         ``c_a = dqdd/dr`` and ``c_v = dv/dr`` come from the time integrator
-        (both 0 for a static solve with frozen velocities).  ``reel_ms`` is the
+        (both 0 for a static solve with frozen velocities).  ``reel_mps`` is the
         winch's reel-out speed V_L: the line leaves the winch node, which stays
         at the origin, with the material velocity V_L tau_0.
         """
@@ -134,13 +134,13 @@ class TetherSystem:
         dr = sp.D @ r
         length = np.linalg.norm(dr, axis=1)
         tau = dr / length[:, None]
-        if reel_ms:
+        if reel_mps:
             v = v.copy()
-            v[0] = reel_ms * tau[0]
+            v[0] = reel_mps * tau[0]
         r_mid = 0.5 * (r[1:] + r[:-1])
         v_mid = 0.5 * (v[1:] + v[:-1])
         z = r_mid[:, 2]
-        v_rel = ph.wind.velocity_ms(z) - v_mid
+        v_rel = ph.wind.velocity_mps(z) - v_mid
         load = crossflow_drag(v_rel, tau, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
         force = sp.mass_kg[:, None] * qdd + sp.D.T @ (T[:, None] * tau) \
@@ -160,10 +160,10 @@ class TetherSystem:
         out = Evaluation(res, k_s, tau, length, r_mid, load)
         if jacobian:
             out.ab, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir,
-                                               reel_ms)
+                                               reel_mps)
         return out
 
-    def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir, reel_ms=0.0):
+    def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir, reel_mps=0.0):
         sp, ph = self.spaces, self.physics
         n_el = sp.n_elements
         eye = np.eye(3)
@@ -183,8 +183,8 @@ class TetherSystem:
         block = (sgn[None, :, None, None, None] * sgn[None, None, :, None, None]) * k_geo[:, None, None] \
             - w[:, :, None, None, None] * (sgn[None, None, :, None, None] * d_tau[:, None, None]
                                            + d_mid[:, None, None])
-        if reel_ms:   # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1), not 1/2 (v_0 + v_1)
-            turn = (0.5 * reel_ms / length[0]) * (load.d_dvrel[0] @ proj[0])
+        if reel_mps:   # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1), not 1/2 (v_0 + v_1)
+            turn = (0.5 * reel_mps / length[0]) * (load.d_dvrel[0] @ proj[0])
             block[0] += (sgn[None, :, None, None] * w[0, :, None, None, None]) * turn
             block[0, :, 0] -= w[0, :, None, None] * (0.5 * c_v) * load.d_dvrel[0]
         node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
@@ -211,7 +211,7 @@ class TetherSystem:
         r_col[-3:] = -k_s * kite_dir
         return ab, r_col
 
-    def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_ms=0.0,
+    def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_mps=0.0,
                          free_radius=False):
         """Velocities and accelerations on the constraint manifold.
 
@@ -222,7 +222,7 @@ class TetherSystem:
             M qdd + B^T T = Q (f_t + w), B qdd = -(|Dv|^2 - (tau.Dv)^2)/|Dr|
 
         with v_0 = qdd_0 = 0 at the winch node, the winch element growing at
-        the reel-out speed V_L = ``reel_ms``, and the kite end on its trajectory
+        the reel-out speed V_L = ``reel_mps``, and the kite end on its trajectory
         (``kite = (e, e_dot, e_ddot)``; its radius rate dR/dt = 0 at the start,
         or free with ``free_radius`` for a restart during reeling; d2R/dt2 closed
         by T_0 = T_ground in tension mode).  Starting (or restarting, after the
@@ -257,14 +257,14 @@ class TetherSystem:
         node = m * v_guess
         node[0], node[-1] = 0.0, R * e_dot
         constraint = np.zeros(sp.n_elements)
-        constraint[0] = reel_ms
+        constraint[0] = reel_mps
         v, _, R_dot = solve(node, constraint, self.n - 5 if free_radius else None, 0.0)
         dv = sp.D @ v
         curvature = (np.einsum("ij,ij->i", dv, dv) - np.einsum("ij,ij->i", tau, dv) ** 2) / length
         v_mid = 0.5 * (v[1:] + v[:-1])
-        v_mid[0] += 0.5 * reel_ms * tau[0]
+        v_mid[0] += 0.5 * reel_mps * tau[0]
         z = 0.5 * (r[1:, 2] + r[:-1, 2])
-        load = crossflow_drag(ph.wind.velocity_ms(z) - v_mid, tau, ph.air.density_kg_m3(z),
+        load = crossflow_drag(ph.wind.velocity_mps(z) - v_mid, tau, ph.air.density_kg_m3(z),
                               ph.air.viscosity_Pa_s(z), ph.diameter_m, ph.drag, ph.skin_friction_cf)
         node = (sp.Q @ (load.force + self.weight)) * self.interior[:, None]
         node[-1] = R * e_ddot + 2.0 * R_dot * e_dot
