@@ -38,34 +38,23 @@ class _Parser(argparse.ArgumentParser):
                   if self.prog != "fem-tether" else f"fem-tether: error: {message}\n")
 
 
-def _positive_int(text):
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} must be at least 1")
-    return value
+def _option(kind, what: str, admissible, requirement: str):
+    """An argparse ``type``: ``text`` read as ``kind`` (else "is not WHAT") and
+    ``admissible`` (else "must be REQUIREMENT")."""
+    def parse(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not {what}") from None
+        if not admissible(value):
+            raise argparse.ArgumentTypeError(f"{text!r} must be {requirement}")
+        return value
+    return parse
 
 
-def _azimuth_deg(text):
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not -90.0 < value < 90.0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be an azimuth in (-90, 90) degrees")
-    return value
-
-
-def _positive_float(text):
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not np.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive number")
-    return value
+_positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
+_azimuth_deg = _option(float, "a number", lambda v: -90.0 < v < 90.0, "an azimuth in (-90, 90) degrees")
+_positive_float = _option(float, "a number", lambda v: np.isfinite(v) and v > 0, "a positive number")
 
 
 def _float_list(text):

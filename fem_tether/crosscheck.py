@@ -21,9 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.config import Config, Crosscheck, steps_per_period
+from fem_tether.config import Config, Crosscheck
 from fem_tether.errors import ConfigError
-from fem_tether.results import TetherRun, period_average
+from fem_tether.results import TetherRun, period_average, steps_per_period
 
 QUANTITIES = (("drag", "drag_N"), ("ground_tension", "ground_tension_N"),
               ("kite_tension", "kite_tension_N"))

@@ -120,27 +120,27 @@ def experimental_dcd_dre(re):
     return slope * experimental_cd(re) / re
 
 
+def _two_branches(re, low_branch, high_branch):
+    """``low_branch`` below Re = BELAN_TORDELLA_MAX_RE, ``high_branch`` from there on."""
+    re = _reynolds(re)
+    low = re < BELAN_TORDELLA_MAX_RE
+    out = np.empty_like(re)
+    out[low] = low_branch(re[low])
+    out[~low] = high_branch(re[~low])
+    return out[()]
+
+
 @dataclass(frozen=True)
 class CylinderDrag:
     """C_d,c(Re): Belan-Tordella below Re = 40, the experimental curve above."""
 
     def cd(self, re):
         """C_d,c(Re) for Re >= 0 (inf at Re = 0)."""
-        re = _reynolds(re)
-        low = re < BELAN_TORDELLA_MAX_RE
-        out = np.empty_like(re)
-        out[low] = belan_tordella_cd(re[low])
-        out[~low] = experimental_cd(re[~low])
-        return out[()]
+        return _two_branches(re, belan_tordella_cd, experimental_cd)
 
     def dcd_dre(self, re):
         """dC_d,c/dRe of the same two branches (-inf at Re = 0)."""
-        re = _reynolds(re)
-        low = re < BELAN_TORDELLA_MAX_RE
-        out = np.empty_like(re)
-        out[low] = belan_tordella_dcd_dre(re[low])
-        out[~low] = experimental_dcd_dre(re[~low])
-        return out[()]
+        return _two_branches(re, belan_tordella_dcd_dre, experimental_dcd_dre)
 
 
 @dataclass(frozen=True)

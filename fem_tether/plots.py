@@ -18,10 +18,24 @@ from .power import SEED_GE, SEED_LENGTHS_M, CycleCurves  # noqa: E402
 
 
 def save_atomically(fig, path) -> Path:
-    """Save ``fig`` as PNG at ``path`` through a temporary file in the same directory."""
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=150)
-    return Path(path)
+    """Save ``fig`` as PNG at ``path`` through a temporary file in the same
+    directory, and close it."""
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, format="png", dpi=150)
+        return Path(path)
+    finally:
+        plt.close(fig)
+
+
+def _label_axes(ax, xlabel: str, ylabel: str, title: str, legend_loc: str = "best") -> None:
+    """Axis labels, y from zero, a light grid, the legend and a small title."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend(loc=legend_loc)
+    ax.set_title(title, fontsize=10)
 
 
 def plot_characteristic_curves(kitegen: CharacteristicCurves, loyd: PowerCurves, path,
@@ -64,10 +78,7 @@ def plot_characteristic_curves(kitegen: CharacteristicCurves, loyd: PowerCurves,
     text = (f"cut-in {s.cut_in_mps:.2f} m/s, full force {s.full_force_mps:.2f} m/s, "
             f"full power {s.full_power_mps:.2f} m/s")
     fig.suptitle(text if title is None else f"{title}\n{text}", fontsize=10)
-    try:
-        return save_atomically(fig, path)
-    finally:
-        plt.close(fig)
+    return save_atomically(fig, path)
 
 
 #: seed 000's colours: straight lines dashed blue squares, flexible ropes red circles (Figs. 5.1, 5.6)
@@ -88,16 +99,8 @@ def _plot_by_length(lengths_m, values_by_case, scale, ylabel, title, path, refer
         style = _case_style(case, i)
         ax.plot(ref_lengths, np.asarray(ref_values) * scale, ls="none", marker=style["marker"],
                 ms=11, mfc="none", mec=style["color"], mew=1.2, label=f"{case}, seed 000 Tab. 5.1")
-    ax.set_xlabel("cable length $L$ [m]")
-    ax.set_ylabel(ylabel)
-    ax.set_ylim(bottom=0.0)
-    ax.grid(alpha=0.3)
-    ax.legend()
-    ax.set_title(title, fontsize=10)
-    try:
-        return save_atomically(fig, path)
-    finally:
-        plt.close(fig)
+    _label_axes(ax, "cable length $L$ [m]", ylabel, title)
+    return save_atomically(fig, path)
 
 
 def plot_drag(lengths_m, drag_by_case: Mapping[str, np.ndarray], path) -> Path:
@@ -128,16 +131,9 @@ def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
         best = np.argmax(r.aep_MWh)
         ax.plot(r.length_m[best], r.aep_MWh[best] * 1e-3, "*", ms=16, color=style["color"],
                 mec="k", mew=0.6, zorder=5)
-    ax.set_xlabel("cable length $L$ [m]")
-    ax.set_ylabel("annual energy production [GWh]")
-    ax.set_ylim(bottom=0.0)
-    ax.grid(alpha=0.3)
-    ax.legend()
-    ax.set_title("AEP with the cycle-mean power curve (seed 000 eq. 5.2, Fig. 5.6)", fontsize=10)
-    try:
-        return save_atomically(fig, path)
-    finally:
-        plt.close(fig)
+    _label_axes(ax, "cable length $L$ [m]", "annual energy production [GWh]",
+                "AEP with the cycle-mean power curve (seed 000 eq. 5.2, Fig. 5.6)")
+    return save_atomically(fig, path)
 
 
 def plot_power_curves(curves_by_label: Mapping[str, CycleCurves], path) -> Path:
@@ -149,18 +145,10 @@ def plot_power_curves(curves_by_label: Mapping[str, CycleCurves], path) -> Path:
         ax.plot(c.active.wind_mps, c.power_W * 1e-6, "-", color=color, lw=2, label=label)
     ax.plot([], [], "--", color="0.4", lw=1.2, label="active phase")
     ax.plot([], [], "-", color="0.4", lw=2, label="cycle mean")
-    ax.set_xlabel("wind speed $V_w$ [m/s]")
-    ax.set_ylabel("power [MW]")
     ax.set_xlim(left=0.0)
-    ax.set_ylim(bottom=0.0)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="lower right")
-    ax.set_title("power curves: active phase and cycle mean with side-slip recovery",
-                 fontsize=10)
-    try:
-        return save_atomically(fig, path)
-    finally:
-        plt.close(fig)
+    _label_axes(ax, "wind speed $V_w$ [m/s]", "power [MW]",
+                "power curves: active phase and cycle mean with side-slip recovery", "lower right")
+    return save_atomically(fig, path)
 
 
 def plot_reel_drag(run_curve, path, sweep_points=None, straight_curve=None,
@@ -179,13 +167,6 @@ def plot_reel_drag(run_curve, path, sweep_points=None, straight_curve=None,
     if straight_curve is not None:
         ax.plot(straight_curve[0], np.asarray(straight_curve[1]) * 1e-3, "--", color="C0",
                 label="straight line")
-    ax.set_xlabel("cable length $L$ [m]")
-    ax.set_ylabel("line drag $F_t$ per line [kN]")
-    ax.set_ylim(bottom=0.0)
-    ax.grid(alpha=0.3)
-    ax.legend()
-    ax.set_title("cable drag while the line is paid out (seed 000 eq. 4.1)", fontsize=10)
-    try:
-        return save_atomically(fig, path)
-    finally:
-        plt.close(fig)
+    _label_axes(ax, "cable length $L$ [m]", "line drag $F_t$ per line [kN]",
+                "cable drag while the line is paid out (seed 000 eq. 4.1)")
+    return save_atomically(fig, path)

@@ -88,11 +88,17 @@ def winch_values(length_m, reel_mps, ground_tension_N, energy_J) -> dict:
             "winch_power_W": reel_mps * ground_tension_N, "winch_energy_J": energy_J}
 
 
+def steps_per_period(period_s: float, dt_s: float) -> int:
+    """Whole steps of at most ``dt_s`` in a period, ceil(period / dt) (at least
+    one): the one rounding rule of both solvers and of the configuration's checks."""
+    return max(1, math.ceil(period_s / dt_s - 1e-9))
+
+
 def time_grid(period_s: float, dt_s: float, spinup_periods: int, average_periods: int):
-    """Step ``h = period / ceil(period / dt)`` (a whole number of steps per
+    """Step ``h = period / steps_per_period`` (a whole number of steps per
     period, none longer than ``dt_s``) and the number of steps of the run."""
-    steps_per_period = max(1, math.ceil(period_s / dt_s - 1e-9))
-    return period_s / steps_per_period, (spinup_periods + average_periods) * steps_per_period
+    steps = steps_per_period(period_s, dt_s)
+    return period_s / steps, (spinup_periods + average_periods) * steps
 
 
 class Recorder:

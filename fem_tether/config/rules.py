@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from fem_tether.errors import ConfigError
+from fem_tether.results import steps_per_period
 
 from .settings import toml_value
 
@@ -32,12 +33,6 @@ FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"))
 
 #: Values of file keys that are not files.
 NOT_FILES = ("", "uniform", "graded")
-
-
-def steps_per_period(period_s: float, dt_s: float) -> int:
-    """Whole steps of at most ``dt_s`` in a period: the step is rounded down so
-    that they fill it (the one rounding rule of both solvers)."""
-    return math.ceil(period_s / dt_s - 1e-9)
 
 
 def check(cfg: Config) -> None:
