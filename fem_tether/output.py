@@ -43,7 +43,6 @@ from __future__ import annotations
 
 import os
 import shutil
-import tomllib
 import xml.etree.ElementTree as ET
 from datetime import datetime, timezone
 from pathlib import Path
@@ -136,7 +135,7 @@ def read_run_hdf5(path) -> TetherRun:
             snapshot_time_s=snapshots["time_s"][()],
             snapshots={k: v[()] for k, v in snapshots.items() if k != "time_s"},
             average_start_s=float(f.attrs["average_start_s"]),
-            config=Config.from_dict(tomllib.loads(f.attrs["config_toml"])),
+            config=Config.from_stored(f.attrs["config_toml"]) if f.attrs["config_toml"] else None,
             wall_s=float(f.attrs["wall_s"]),
             extra={k: _python(v) for k, v in f["extra"].attrs.items() if k != "description"},
         )

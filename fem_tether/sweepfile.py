@@ -25,7 +25,6 @@ per length with its configuration and status as attributes and subgroups
 from __future__ import annotations
 
 import datetime as _dt
-import tomllib
 from pathlib import Path
 
 import h5py
@@ -117,7 +116,7 @@ def read_sweep(path: str | Path) -> dict:
             data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
             data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
             data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
-            data["config"] = Config.from_dict(tomllib.loads(f.attrs["config_toml"]))
+            data["config"] = Config.from_stored(f.attrs["config_toml"])
             data["attrs"] = {k: f.attrs[k] for k in f.attrs}
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such file") from None

@@ -97,3 +97,11 @@ def test_every_key_has_a_unit_and_a_meaning():
         for name, default, unit, doc in section.describe():
             assert unit and doc, f"[{section.NAME}] {name}"
             assert not name.endswith("_ms"), f"[{section.NAME}] {name}: m/s is spelled _mps"
+
+
+def test_a_stored_configuration_of_an_earlier_version_reads_with_its_keys_moved():
+    """Result files keep their configuration; keys written by an earlier version
+    are read where they are now (a user file with them is an error instead)."""
+    cfg = Config.from_stored('[time]\ndt_s = 0.1\naverage_periods = 1\n[kite]\nspeed_ms = 70.0\n')
+    assert cfg.fe.dt_s == 0.1 and cfg.time.average_periods == 1 and cfg.kite.speed_mps == 70.0
+    assert Config.from_stored(Config().to_toml()) == Config()

@@ -17,6 +17,7 @@ edited one.
 from __future__ import annotations
 
 import dataclasses
+import tomllib
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -56,6 +57,17 @@ class Config:
     def from_dict(cls, data: dict[str, Any]) -> Config:
         """The configuration of nested tables ``{section: {key: value}}`` over the defaults."""
         return cls().replace(**data)
+
+    @classmethod
+    def from_stored(cls, text: str) -> Config:
+        """The configuration stored in a result file (its ``config_toml``), with
+        keys an earlier version kept elsewhere moved to where they are now."""
+        data: dict[str, dict[str, Any]] = {}
+        for section, values in tomllib.loads(text).items():
+            for key, value in values.items():
+                new_section, new_key = MOVED.get((section, key), (section, key))
+                data.setdefault(new_section, {})[new_key] = value
+        return cls.from_dict(data)
 
     def replace(self, **sections: dict[str, Any]) -> Config:
         """A checked copy with some keys changed: ``cfg.replace(fe={"elements": 20})``."""
