@@ -56,15 +56,23 @@ class Job:
     def tasks(self) -> list[Task]:
         return [Task(L, s) for L in self.lengths_m for s in self.solvers]
 
+    @cached_property
+    def configs(self) -> dict[float, Config]:
+        """Each length's configuration (with enough snapshots for the cross-check),
+        checked once."""
+        def at(length_m):
+            cfg = self.config.with_length(length_m)
+            return checkable(cfg) if self.crosscheck else cfg
+        return {L: at(L) for L in self.lengths_m}
+
     def config_for(self, length_m: float) -> Config:
-        """The configuration of one length (with enough snapshots for the cross-check)."""
-        cfg = self.config.with_length(length_m)
-        return checkable(cfg) if self.crosscheck else cfg
+        """The configuration of one of the job's lengths."""
+        return self.configs[float(length_m)]
 
     @cached_property
     def case_tomls(self) -> dict[float, str]:
         """Each length's configuration as TOML (written into, and keying, every assembly)."""
-        return {L: self.config_for(L).to_toml() for L in self.lengths_m}
+        return {L: cfg.to_toml() for L, cfg in self.configs.items()}
 
 
 def _job_error(key, value, problem):
@@ -110,8 +118,7 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
     cfg = load_config(base_dir / base if base else None, resolve_paths(data, base_dir))
     job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
               sweep.get("straight", True), cfg, text)
-    for length in job.lengths_m:
-        job.config_for(length)          # every length's case is checked now, not in the sweep
+    job.configs                         # every length's case is checked now, not in the sweep
     return job
 
 
