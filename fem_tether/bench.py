@@ -119,33 +119,3 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
                     "fit_max_rel_dev": float(np.max(np.abs(intercept + slope * n_el - wall) / wall))},
     }
 
-
-def format_report(result: dict) -> str:
-    ref, fd_ref = result["reference"], result["fd_reference"]
-    tol = 100 * result["tolerance"]
-    lines = [f"fem-tether bench: {result['case']} ({result['simulated_s']:.1f} s simulated)",
-             f"reference: FE {ref['elements']} elements, dt = {ref['dt_s']:.4f} s: "
-             f"F_t = {ref['drag_N']:.2f} N ({ref['wall_s']:.2f} s)",
-             f"           FD {fd_ref['segments']} segments, dt = {fd_ref['dt_s']:.4f} s: "
-             f"F_t = {fd_ref['drag_N']:.2f} N ({fd_ref['wall_s']:.2f} s)",
-             "",
-             " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)"]
-    for r in result["rows"]:
-        lines.append(f" {r['solver']:6s}  {r['elements']:17d}  {r['dt_s']:6.4f}  {r['steps']:5d}  "
-                     f"{r['wall_s']:9.3f}  {r['drag_N']:9.1f}  {100 * r['rel_error']:5.2f} %  "
-                     f"{r['us_per_element_step']:8.1f}")
-    lines.append("")
-    for label, c in (("FE", result["cheapest"]), ("FD", result["fd_cheapest"])):
-        if c is None:
-            lines.append(f"{label}: no setting within {tol:.1f} % of the reference")
-        else:
-            lines.append(f"{label} cheapest within {tol:.1f} %: {c['elements']} elements/segments, "
-                         f"dt = {c['dt_s']:.4f} s: {c['wall_s']:.3f} s wall, error {100 * c['rel_error']:.2f} %")
-    if result["fd_over_fe_wall"] is not None:
-        lines.append(f"FD wall / FE wall at equal accuracy ({tol:.1f} %): {result['fd_over_fe_wall']:.1f}")
-    s = result["scaling"]
-    lines.append(f"cost vs elements at dt = {s['dt_s']} s: " + ", ".join(
-        f"{r['elements']} el {r['wall_s']:.2f} s" for r in s["runs"]))
-    lines.append(f"linear fit wall = {s['fit_intercept_s']:.3f} s + {1e3 * s['fit_s_per_element']:.3f} ms "
-                 f"x elements (largest deviation {100 * s['fit_max_rel_dev']:.1f} %)")
-    return "\n".join(lines)

@@ -158,10 +158,10 @@ def cmd_run(args):
 
 
 def cmd_bench(args):
-    from fem_tether.bench import bench, format_report
+    from fem_tether.bench import bench
 
     result = bench(repeats=args.repeats)
-    print(report.json_text(result) if args.json else format_report(result))
+    print(report.json_text(result) if args.json else report.bench_text(result))
     return 0
 
 

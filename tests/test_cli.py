@@ -139,3 +139,31 @@ def test_winch_too_weak_for_the_line_is_a_solver_failure(capsys, tmp_path, comma
         code, _, err = run_cli(capsys, command, str(cfg), "--json")
     assert code == 1 and err.count("\n") == 1
     assert err.startswith("fem-tether: solver failed: ") and re.search(cause, err)
+
+
+def test_bench_prints_its_table_from_report(capsys, monkeypatch):
+    """``fem-tether bench`` prints report.bench_text of the result (a stand-in result
+    here: the real benchmark takes minutes)."""
+    row = {"solver": "fd", "elements": 25, "dt_s": 0.1, "steps": 288, "wall_s": 0.5, "drag_N": 40000.0,
+           "rel_error": 0.003}
+    result = {"case": "L = 3000 m", "simulated_s": 28.8, "tolerance": 0.005,
+              "reference": {"elements": 320, "dt_s": 0.0125, "drag_N": 40123.456, "wall_s": 12.3},
+              "fd_reference": {"segments": 400, "dt_s": 0.00625, "drag_N": 40111.1, "wall_s": 30.2},
+              "rows": [row | {"us_per_element_step": 69.4}], "cheapest": None, "fd_cheapest": row,
+              "fd_over_fe_wall": None,
+              "scaling": {"dt_s": 0.1, "runs": [{"elements": 20, "steps": 288, "wall_s": 0.3}],
+                          "fit_intercept_s": 0.0333, "fit_s_per_element": 0.01333, "fit_max_rel_dev": 0.0}}
+    monkeypatch.setattr("fem_tether.bench.bench", lambda repeats: result)
+    code, out, _ = run_cli(capsys, "bench")
+    assert code == 0 and out.splitlines() == [
+        "fem-tether bench: L = 3000 m (28.8 s simulated)",
+        "reference: FE 320 elements, dt = 0.0125 s: F_t = 40123.46 N (12.30 s)",
+        "           FD 400 segments, dt = 0.0063 s: F_t = 40111.10 N (30.20 s)",
+        "",
+        " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)",
+        " fd                     25  0.1000    288      0.500    40000.0   0.30 %      69.4",
+        "",
+        "FE: no setting within 0.5 % of the reference",
+        "FD cheapest within 0.5 %: 25 elements/segments, dt = 0.1000 s: 0.500 s wall, error 0.30 %",
+        "cost vs elements at dt = 0.1 s: 20 el 0.30 s",
+        "linear fit wall = 0.033 s + 13.330 ms x elements (largest deviation 0.0 %)"]
