@@ -3,6 +3,7 @@
 import pytest
 
 from fem_tether.config import load_config
+from fem_tether.jobs import load_job
 
 #: A sweep job small enough for the suite: coarse meshes and steps, one averaged period.
 TINY_JOB = """[sweep]
@@ -26,3 +27,22 @@ QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},
 def quiet_cfg():
     """Quiet air, rho = 1.2, C_d = 1.2 (the issue's benchmark physics)."""
     return load_config(overrides=QUIET)
+
+
+@pytest.fixture
+def tiny_job(tmp_path):
+    """:data:`TINY_JOB` loaded from a file in ``tmp_path``."""
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY_JOB)
+    return load_job(path)
+
+
+@pytest.fixture
+def tiny_cfg(tiny_job):
+    """The tiny job's 400 m case (one FE run in ~0.5 s)."""
+    return tiny_job.config_for(400.0)
+
+
+def is_png(path) -> bool:
+    """Whether ``path`` holds a PNG image (by its signature)."""
+    return path.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
