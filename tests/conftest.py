@@ -46,3 +46,20 @@ def tiny_cfg(tiny_job):
 def is_png(path) -> bool:
     """Whether ``path`` holds a PNG image (by its signature)."""
     return path.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+
+
+@pytest.fixture
+def unrun_sweep(tiny_job, tmp_path):
+    """The tiny job's result file with no run: 400 m pending, both tasks of 800 m
+    failed (only the straight line evaluated); no solver runs."""
+    from fem_tether.jobs import Task
+    from fem_tether.store import PartsStore
+    from fem_tether.sweepfile import assemble
+
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    store.directory.mkdir()
+    for solver in tiny_job.solvers:
+        store.write_failure(Task(800.0, solver), tiny_job.config_for(800.0), store.inputs_key(800.0),
+                            f"{solver.upper()}: time step did not converge")
+    assemble(store, n_ranks=3)
+    return store.out
