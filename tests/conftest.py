@@ -1,9 +1,13 @@
 """Shared fixtures: small configurations that keep the suite fast."""
 
+import numpy as np
 import pytest
 
 from fem_tether.config import load_config
-from fem_tether.jobs import load_job
+from fem_tether.jobs import Task, load_job
+from fem_tether.results import SERIES, TetherRun
+from fem_tether.store import PartsStore
+from fem_tether.sweepfile import assemble
 
 #: A sweep job small enough for the suite: coarse meshes and steps, one averaged period.
 TINY_JOB = """[sweep]
@@ -52,10 +56,6 @@ def is_png(path) -> bool:
 def unrun_sweep(tiny_job, tmp_path):
     """The tiny job's result file with no run: 400 m pending, both tasks of 800 m
     failed (only the straight line evaluated); no solver runs."""
-    from fem_tether.jobs import Task
-    from fem_tether.store import PartsStore
-    from fem_tether.sweepfile import assemble
-
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     store.directory.mkdir()
     for solver in tiny_job.solvers:
@@ -63,3 +63,10 @@ def unrun_sweep(tiny_job, tmp_path):
                             f"{solver.upper()}: time step did not converge")
     assemble(store, n_ranks=3)
     return store.out
+
+
+def series_run(time_s, series, average_start_s, period_s=1.0):
+    """A 100 m run with the given series (the others zero) and one empty snapshot."""
+    full = {k: np.zeros_like(time_s) for k in SERIES} | series
+    return TetherRun("fake", 100.0, period_s, time_s, full, np.zeros(1),
+                     {"s_m": np.zeros((1, 2))}, average_start_s, None)

@@ -3,12 +3,13 @@
 import numpy as np
 import pytest
 
+from conftest import series_run
+
 from fem_tether.results import (
     CELL_FIELDS,
     NODE_FIELDS,
     SERIES,
     Recorder,
-    TetherRun,
     period_average,
     period_mean,
     steps_per_period,
@@ -42,18 +43,11 @@ def test_period_mean_of_analytic_signals():
     assert period_mean(t, 2 * t + 1) == pytest.approx(4.0, rel=1e-15)
 
 
-def _run(time_s, series, average_start_s, period_s=1.0):
-    """A run with the given series (the others zero) and one empty snapshot."""
-    full = {k: np.zeros_like(time_s) for k in SERIES} | series
-    return TetherRun("fake", 100.0, period_s, time_s, full, np.zeros(1),
-                     {"s_m": np.zeros((1, 2))}, average_start_s, None)
-
-
 def test_run_means_over_the_averaging_window():
     """Spin-up [0, 1) of value 5 left out; the window [1, 3] of a linear ramp has its midpoint mean."""
     t = np.arange(13) * 0.25
     y = np.where(t < 1.0, 5.0, t)
-    run = _run(t, {"drag_N": y}, average_start_s=1.0)
+    run = series_run(t, {"drag_N": y}, average_start_s=1.0)
     assert run.periods == 2
     assert run.average_window.sum() == 9
     assert run.mean("drag_N") == pytest.approx(2.0, rel=1e-15)
@@ -92,7 +86,7 @@ def test_period_average_of_a_sine_during_a_reel_out():
     n, h = 8, 0.125                                  # 8 steps per 1 s period
     t = np.arange(3 * n + 1) * h
     length = 400.0 + 10.0 * t
-    run = _run(t, {"drag_N": 7.0 + np.sin(2 * np.pi * t), "length_m": length}, average_start_s=1.0)
+    run = series_run(t, {"drag_N": 7.0 + np.sin(2 * np.pi * t), "length_m": length}, average_start_s=1.0)
     L, mean = period_average(run, "drag_N")
     assert mean.shape == (n + 1,)                   # windows starting at t = 1, 1.125, ..., 2
     np.testing.assert_allclose(mean, 7.0, rtol=0, atol=1e-14)
