@@ -1,8 +1,13 @@
 """Shared fixtures: small configurations that keep the suite fast."""
 
+import numpy as np
 import pytest
 
 from fem_tether.config import load_config
+from fem_tether.jobs import Task, load_job
+from fem_tether.results import SERIES, TetherRun
+from fem_tether.store import PartsStore
+from fem_tether.sweepfile import assemble
 
 #: A sweep job small enough for the suite: coarse meshes and steps, one averaged period.
 TINY_JOB = """[sweep]
@@ -26,3 +31,42 @@ QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},
 def quiet_cfg():
     """Quiet air, rho = 1.2, C_d = 1.2 (the issue's benchmark physics)."""
     return load_config(overrides=QUIET)
+
+
+@pytest.fixture
+def tiny_job(tmp_path):
+    """:data:`TINY_JOB` loaded from a file in ``tmp_path``."""
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY_JOB)
+    return load_job(path)
+
+
+@pytest.fixture
+def tiny_cfg(tiny_job):
+    """The tiny job's 400 m case (one FE run in ~0.5 s)."""
+    return tiny_job.config_for(400.0)
+
+
+def is_png(path) -> bool:
+    """Whether ``path`` holds a PNG image (by its signature)."""
+    return path.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+
+
+@pytest.fixture
+def unrun_sweep(tiny_job, tmp_path):
+    """The tiny job's result file with no run: 400 m pending, both tasks of 800 m
+    failed (only the straight line evaluated); no solver runs."""
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    store.directory.mkdir()
+    for solver in tiny_job.solvers:
+        store.write_failure(Task(800.0, solver), tiny_job.config_for(800.0), store.inputs_key(800.0),
+                            f"{solver.upper()}: time step did not converge")
+    assemble(store, n_ranks=3)
+    return store.out
+
+
+def series_run(time_s, series, average_start_s, period_s=1.0):
+    """A 100 m run with the given series (the others zero) and one empty snapshot."""
+    full = {k: np.zeros_like(time_s) for k in SERIES} | series
+    return TetherRun("fake", 100.0, period_s, time_s, full, np.zeros(1),
+                     {"s_m": np.zeros((1, 2))}, average_start_s, None)

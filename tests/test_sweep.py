@@ -33,13 +33,6 @@ THREE = TINY.replace("lengths_m = [400, 800]", "lengths_m = [400, 800, 1200]")
 CLI = [sys.executable, "-m", "fem_tether.cli"]
 
 
-@pytest.fixture
-def tiny_job(tmp_path):
-    path = tmp_path / "tiny.toml"
-    path.write_text(TINY)
-    return load_job(path)
-
-
 def _self_comm():
     from mpi4py import MPI
     return MPI.COMM_SELF
