@@ -70,7 +70,10 @@ class TetherSolver(Protocol):
     """
 
     name: str                     # "fe" or "fd": TetherRun.solver
-    model: TetherCase
+
+    @property
+    def model(self) -> TetherCase:
+        """The current case (a solver's own model type: read-only here)."""
 
     def initial_state(self):
         """The solved state at the start (static equilibrium)."""

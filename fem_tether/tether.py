@@ -14,6 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.atmosphere import AirModel
+from fem_tether.drag_coefficient import DragModel
+from fem_tether.wind import WindProfile
 from fem_tether.loads import G_MPS2, gravity_N_m
 
 
@@ -21,9 +24,9 @@ from fem_tether.loads import G_MPS2, gravity_N_m
 class TetherPhysics:
     """Line constants and leaf-model objects (``air``, ``drag``, ``wind``)."""
 
-    air: object
-    drag: object
-    wind: object
+    air: AirModel
+    drag: DragModel
+    wind: WindProfile
     diameter_m: float
     linear_density_kg_m: float
     compliance_per_N: float = 0.0      # 1/EA (0: inextensible)

@@ -123,7 +123,11 @@ def _nodes(model: FDModel, r_int, R, e):
     return r
 
 
-def _apply(model: FDModel, dx, r_int, T, R, step=1.0):
+#: The unknowns of a Newton iteration: interior nodes, tensions, kite distance.
+Unknowns = tuple[np.ndarray, np.ndarray, float]
+
+
+def _apply(model: FDModel, dx, r_int, T, R, step=1.0) -> Unknowns:
     dr, dT, dR = model.grid.expand(dx)
     if model.tension_mode:
         dT[0] = 0.0
@@ -153,12 +157,12 @@ def _trial_norm(evaluate, x) -> tuple[float, str]:
     """2-norm of the residual at ``x = (r_int, T, R)`` without the Jacobian, or
     infinity and the cause where the iterate leaves the atmosphere's range."""
     try:
-        return np.linalg.norm(evaluate(*x, jacobian=False).residual), ""
+        return float(np.linalg.norm(evaluate(*x, jacobian=False).residual)), ""
     except AltitudeError as exc:
         return math.inf, left_atmosphere(exc)
 
 
-def _static_newton(model: FDModel, evaluate, x, max_iter):
+def _static_newton(model: FDModel, evaluate, x: Unknowns, max_iter) -> Unknowns:
     """Backtracking Newton on ``x = (r_int, T, R)`` to ``max |residual| <= newton_tol``.
 
     A step is halved until the residual's 2-norm falls (Armijo; trial

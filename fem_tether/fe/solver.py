@@ -28,7 +28,7 @@ from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
-from fem_tether.fe.system import TetherSystem
+from fem_tether.fe.system import Evaluation, TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
@@ -54,7 +54,7 @@ class State:
     kin: Kinematics               # nodal r, v, a, qdd (n_nodes, 3)
     T: np.ndarray                 # element tensions
     R: float                      # kite distance
-    ev: object = None             # the converged evaluation at t, if any
+    ev: Evaluation | None = None  # the converged evaluation at t, if any
 
 
 def unit_mesh_from_config(fe) -> np.ndarray:
@@ -139,7 +139,7 @@ def _residual_norm(evaluate, x) -> tuple[float, str]:
     """The 2-norm of ``evaluate(x, jacobian=False).residual``, or infinity and
     the cause where the iterate leaves the atmosphere's range."""
     try:
-        return np.linalg.norm(evaluate(x, jacobian=False).residual), ""
+        return float(np.linalg.norm(evaluate(x, jacobian=False).residual)), ""
     except AltitudeError as exc:
         return math.inf, left_atmosphere(exc)
 
