@@ -14,6 +14,8 @@ from typing import Any, ClassVar, Protocol
 
 import numpy as np
 
+from fem_tether.config import Config
+
 
 class EndMotion(Protocol):
     """The kite end's prescribed motion, as the solvers use it: a dataclass
@@ -57,7 +59,7 @@ def end_at_length(end: EndMotion, length_m: float) -> EndMotion:
     return replace(end, length_m=length_m) if hasattr(end, "length_m") else end
 
 
-def case_fields(cfg, end=None) -> dict:
+def case_fields(cfg: Config, end: EndMotion | None = None) -> dict:
     """:class:`TetherCase` fields of the configuration ``cfg`` (``end``: default its eight)."""
     t = cfg.time
     return dict(end=end or cfg.eight, length_m=cfg.tether.length_m,

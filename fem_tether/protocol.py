@@ -173,7 +173,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     )
 
 
-def simulate(solver: TetherSolver, cfg, dt_s: float, progress: bool = False) -> TetherRun:
+def simulate(solver: TetherSolver, cfg: Config, dt_s: float, progress: bool = False) -> TetherRun:
     """:func:`run` as ``cfg`` configures it (``[time]`` periods, ``[output] every``,
     reeling from ``[winch]`` after the spin-up), with the time step ``dt_s``."""
     t = cfg.time

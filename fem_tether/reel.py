@@ -32,6 +32,7 @@ import numpy as np
 
 from fem_tether import atmosphere, kite, wind
 from fem_tether.atmosphere import AirModel
+from fem_tether.config import Config
 from fem_tether.wind import WindProfile
 from fem_tether.errors import ConfigError, InputError
 
@@ -140,7 +141,7 @@ class TractionLaw:
         return float(np.clip(v_l, 0.0, self.max_reel_out_mps))
 
 
-def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
+def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
     """The reeling law of ``cfg.winch`` (validated by :func:`config.validate`),
     starting at ``start_s``."""
     w = cfg.winch
