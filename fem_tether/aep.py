@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import atmosphere, wind
+from .config import Config
 from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
@@ -158,7 +159,7 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
     )
 
 
-def sweep_resource(cfg, wind_csv=None) -> WindResource:
+def sweep_resource(cfg: Config, wind_csv=None) -> WindResource:
     """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
     return resource_from_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
 

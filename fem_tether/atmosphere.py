@@ -13,8 +13,10 @@ array([1.225, 1.112])
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+import numpy.typing as npt
 
 from fem_tether.errors import InputError
 
@@ -61,6 +63,19 @@ def sutherland_viscosity_Pa_s(temperature):
     """mu = beta T^1.5 / (T + S), beta = 1.458e-6 kg/(m s K^0.5), S = 110.4 K (ISA)."""
     t = np.asarray(temperature, dtype=float)
     return SUTHERLAND_BETA * t**1.5 / (t + SUTHERLAND_S_K)
+
+
+class AirModel(Protocol):
+    """Air properties against altitude z (m), as the loads use them (:class:`ISA`,
+    :class:`ConstantAir`)."""
+
+    def density_kg_m3(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def viscosity_Pa_s(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def density_gradient_kg_m4(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def viscosity_gradient_Pa_s_m(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
 
 @dataclass(frozen=True)

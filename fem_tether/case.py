@@ -10,15 +10,32 @@ and its derivatives: a :class:`~fem_tether.trajectory.FigureEight` or a
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any, ClassVar, Protocol
 
 import numpy as np
+
+from fem_tether.config import Config
+
+
+class EndMotion(Protocol):
+    """The kite end's prescribed motion, as the solvers use it: a dataclass
+    (:func:`end_at_length` replaces its ``length_m``, where it has one)."""
+
+    __dataclass_fields__: ClassVar[dict[str, Any]]
+
+    @property
+    def period_s(self) -> float:
+        """The time unit of spin-up and averaging (one loop of an eight)."""
+
+    def state(self, t_s, radius_m: float = ...) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration of R e(t) at times ``t_s``."""
 
 
 @dataclass
 class TetherCase:
     """Boundary conditions and solver controls of one run."""
 
-    end: object
+    end: EndMotion
     length_m: float
     tension_mode: bool
     ground_tension_N: float       # tension mode: T(0, t)
@@ -36,13 +53,13 @@ class TetherCase:
         return max(float(np.max(np.abs(tension_N))), physics.weight_N(self.length_m), 1.0)
 
 
-def end_at_length(end, length_m: float):
+def end_at_length(end: EndMotion, length_m: float) -> EndMotion:
     """The end motion flown on the sphere of a line of ``length_m`` (an end that
     does not depend on the length, such as a Stationary one, unchanged)."""
     return replace(end, length_m=length_m) if hasattr(end, "length_m") else end
 
 
-def case_fields(cfg, end=None) -> dict:
+def case_fields(cfg: Config, end: EndMotion | None = None) -> dict:
     """:class:`TetherCase` fields of the configuration ``cfg`` (``end``: default its eight)."""
     t = cfg.time
     return dict(end=end or cfg.eight, length_m=cfg.tether.length_m,

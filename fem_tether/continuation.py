@@ -32,6 +32,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from fem_tether.drag_coefficient import DragModel
 from fem_tether.tether import TetherPhysics
 
 #: Smallest load step before the continuation gives up (2^-20 ~ 1e-6 of the load).
@@ -66,7 +67,7 @@ class ContinuationFailed(Exception):
 class ScaledDrag:
     """A drag-coefficient model times a load factor: C_d(Re) -> lambda C_d(Re)."""
 
-    base: object
+    base: DragModel
     factor: float
 
     def cd(self, re):

@@ -123,9 +123,10 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: Crosscheck) -> CrossCheck:
     for run in (fe, fd):
         per_period = run.period_s / np.max(np.diff(run.snapshot_time_s))
         if per_period < MIN_SNAPSHOTS_PER_PERIOD:
-            raise ConfigError(f"[output] every = {run.config.output.every}: the cross-check "
-                              f"needs at least {MIN_SNAPSHOTS_PER_PERIOD} snapshots per period of "
-                              f"the eight ({run.solver.upper()} stores {per_period:.1f})")
+            every = f"[output] every = {run.config.output.every}: " if run.config else ""
+            raise ConfigError(f"{every}the cross-check needs at least {MIN_SNAPSHOTS_PER_PERIOD} "
+                              f"snapshots per period of the eight ({run.solver.upper()} stores "
+                              f"{per_period:.1f})")
     fe_means = {key: fe.mean(key) for _, key in QUANTITIES}
     fd_means = {key: fd.mean(key) for _, key in QUANTITIES}
     if np.ptp(fe.series["length_m"]) > 0 or np.ptp(fd.series["length_m"]) > 0:

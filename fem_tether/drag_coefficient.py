@@ -21,8 +21,10 @@ array([2.71, 0.95, 0.31])
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+import numpy.typing as npt
 
 BELAN_TORDELLA_MAX_RE = 40.0
 
@@ -118,6 +120,14 @@ def experimental_dcd_dre(re):
     """dC_d/dRe = s_i C_d / Re on the interval (right-hand slope at the nodes); 0 above 1e7."""
     slope = np.where(np.log(re) < _LOG_RE[-1], _SLOPE[_segment(re)], 0.0)
     return slope * experimental_cd(re) / re
+
+
+class DragModel(Protocol):
+    """A cross-flow drag coefficient C_d,c(Re) and its derivative, as the loads use it."""
+
+    def cd(self, re: npt.ArrayLike) -> np.ndarray: ...
+
+    def dcd_dre(self, re: npt.ArrayLike) -> np.ndarray: ...
 
 
 def _two_branches(re, low_branch, high_branch):

@@ -12,6 +12,7 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from fem_tether.config import Config
 from fem_tether import fd, straight
 from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import SolverDivergedError
@@ -28,7 +29,7 @@ def simulator(solver: str):
     return fe_solver.simulate if solver == "fe" else fd.simulate
 
 
-def run_crosscheck(cfg, progress=False, fd_cfg=None):
+def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):
     """Run the FE and the FD solver on the configured case and compare them.
 
     ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);

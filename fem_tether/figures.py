@@ -12,6 +12,7 @@ import numpy as np
 
 from fem_tether import atmosphere, plots, straight
 from fem_tether.aep import SweepAep
+from fem_tether.config import Config
 from fem_tether.kite import KiteGenDesign
 from fem_tether.power import Cycle, cycle_curves, operating_design
 from fem_tether.results import period_average
@@ -45,7 +46,7 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
     return files
 
 
-def reel_drag_plot(run, cfg, path, sweep_file=None) -> Path:
+def reel_drag_plot(run, cfg: Config, path, sweep_file=None) -> Path:
     """F_t(L) of a reel-out run beside the straight line and, if given, a sweep's FE points."""
     curve = period_average(run, "drag_N")
     lengths = np.linspace(run.series["length_m"].min(), run.series["length_m"].max(), 30)

@@ -134,11 +134,12 @@ class KiteGenDesign:
 
 @dataclass(frozen=True)
 class CharacteristicSpeeds:
-    """Wind speeds [m/s] where zones B, C and D begin (seed 000 §2.4, Tab. 5.3)."""
+    """Wind speeds [m/s] where zones B, C and D begin (seed 000 §2.4, Tab. 5.3);
+    arrays where the design's fields are."""
 
-    cut_in_mps: float
-    full_force_mps: float
-    full_power_mps: float
+    cut_in_mps: float | np.ndarray
+    full_force_mps: float | np.ndarray
+    full_power_mps: float | np.ndarray
 
 
 def characteristic_speeds(design: KiteGenDesign, seed_cut_in: bool = True) -> CharacteristicSpeeds:

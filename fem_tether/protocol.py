@@ -70,7 +70,10 @@ class TetherSolver(Protocol):
     """
 
     name: str                     # "fe" or "fd": TetherRun.solver
-    model: TetherCase
+
+    @property
+    def model(self) -> TetherCase:
+        """The current case (a solver's own model type: read-only here)."""
 
     def initial_state(self):
         """The solved state at the start (static equilibrium)."""
@@ -170,7 +173,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     )
 
 
-def simulate(solver: TetherSolver, cfg, dt_s: float, progress: bool = False) -> TetherRun:
+def simulate(solver: TetherSolver, cfg: Config, dt_s: float, progress: bool = False) -> TetherRun:
     """:func:`run` as ``cfg`` configures it (``[time]`` periods, ``[output] every``,
     reeling from ``[winch]`` after the spin-up), with the time step ``dt_s``."""
     t = cfg.time

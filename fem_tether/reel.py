@@ -31,6 +31,9 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import atmosphere, kite, wind
+from fem_tether.atmosphere import AirModel
+from fem_tether.config import Config
+from fem_tether.wind import WindProfile
 from fem_tether.errors import ConfigError, InputError
 
 
@@ -50,7 +53,8 @@ def read_speed_table(path) -> tuple[np.ndarray, np.ndarray]:
         raise SpeedTableError(f"{path}: cannot read: {exc}") from None
     if not rows or [c.strip() for c in rows[0]] != ["time_s", "speed_mps"]:
         raise SpeedTableError(f"{path} line 1: expected the header 'time_s,speed_mps'")
-    t, v = [], []
+    t: list[float] = []
+    v: list[float] = []
     for line, row in enumerate(rows[1:], start=2):
         if not row or not "".join(row).strip():
             continue
@@ -93,7 +97,9 @@ class Reel:
         if self.mode == "constant":
             return self.speed
         if self.mode == "table":
+            assert self.table is not None, "a table Reel needs its table"
             return float(np.interp(t_s - self.start_s, *self.table))
+        assert self.law is not None, "a controlled Reel needs its traction law"
         return self.law.reel_out_mps(np.asarray(kite_position_m, dtype=float))
 
     def next_length(self, length_m: float, speed_mps: float, h_s: float) -> float:
@@ -116,8 +122,8 @@ class Reel:
 class TractionLaw:
     """Reel-out speed at which the kite pulls the lines' nominal force (eq. 4.17)."""
 
-    air: object
-    wind: object
+    air: AirModel
+    wind: WindProfile
     area_m2: float
     cl: float
     efficiency: float
@@ -135,7 +141,7 @@ class TractionLaw:
         return float(np.clip(v_l, 0.0, self.max_reel_out_mps))
 
 
-def reel_from_config(cfg, start_s: float = 0.0) -> Reel:
+def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
     """The reeling law of ``cfg.winch`` (validated by :func:`config.validate`),
     starting at ``start_s``."""
     w = cfg.winch

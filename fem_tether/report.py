@@ -11,6 +11,7 @@ import json
 
 import numpy as np
 
+from fem_tether.config import Config
 from fem_tether.crosscheck import QUANTITIES, CrossCheck, limits_of
 
 
@@ -28,7 +29,7 @@ def _best_length(best_straight, best_fe) -> str:
             + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
 
 
-def straight_table(cfg, rows: list[dict], with_wind: bool) -> str:
+def straight_table(cfg: Config, rows: list[dict], with_wind: bool) -> str:
     """``fem-tether straight``: F_t per length, integral beside closed form."""
     lines = [f"straight-line tether drag F_t per line, theta = {cfg.kite.theta0_deg:g} deg, "
              f"d = {1e3 * cfg.tether.diameter_m:g} mm, V_k = {cfg.kite.speed_mps:g} m/s, "
@@ -63,7 +64,7 @@ def curves_text(data: dict) -> str:
     return "\n".join(lines)
 
 
-def simulate_text(s: dict, cfg, written: bool) -> str:
+def simulate_text(s: dict, cfg: Config, written: bool) -> str:
     """``fem-tether simulate``: the run's summary (:func:`fem_tether.summary.run_summary`)
     and, if ``written``, its files."""
     lines = [f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements (at the end), "

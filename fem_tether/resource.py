@@ -171,8 +171,8 @@ def read_resource_csv(path) -> WindResource:
     missing = [c for c in COLUMNS if c not in header]
     unknown = [c for c in header if c not in COLUMNS]
     if missing or unknown:
-        problem = "; ".join(filter(None, [missing and f"missing column(s) {', '.join(missing)}",
-                                          unknown and f"unknown column(s) {', '.join(unknown)}"]))
+        problem = "; ".join(filter(None, [f"missing column(s) {', '.join(missing)}" if missing else "",
+                                          f"unknown column(s) {', '.join(unknown)}" if unknown else ""]))
         raise ResourceError(f"{name} line 1: {problem} (expected {','.join(COLUMNS)})")
     reader.fieldnames = header
 

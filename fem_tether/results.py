@@ -107,7 +107,10 @@ class Recorder:
 
     def __init__(self, n_steps: int, output_every: int):
         self.n_steps, self.output_every = n_steps, output_every
-        self.times, self.rows, self.snap_t, self.snaps = [], [], [], []
+        self.times: list[float] = []
+        self.rows: list[list] = []
+        self.snap_t: list[float] = []
+        self.snaps: list[dict] = []
 
     def snapshot_due(self, step: int, last: bool = False) -> bool:
         """Whether step ``step`` stores the whole line (``last``: the run ends early)."""

@@ -11,13 +11,14 @@ import shutil
 from pathlib import Path
 
 from fem_tether.atomic import check_writable
+from fem_tether.config import Config
 from fem_tether.fe.solver import simulate
 from fem_tether.figures import reel_drag_plot
 from fem_tether.output import write_paraview, write_run_hdf5
 from fem_tether.summary import run_summary
 
 
-def simulate_case(cfg, out=None, sweep_file=None, progress=True) -> dict:
+def simulate_case(cfg: Config, out=None, sweep_file=None, progress=True) -> dict:
     """Run the case, write it below ``out`` if given, return its summary
     (:func:`fem_tether.summary.run_summary`) with the paths written."""
     if out:

@@ -23,6 +23,7 @@ from functools import partial
 import numpy as np
 
 from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.config import Config
 from fem_tether.loads import crossflow_drag
 from fem_tether.moment import drag_moment_Nm
 
@@ -85,7 +86,7 @@ def straight_line_drag(length_m, theta_rad, diameter_m, speed_mps, air, drag,
     )
 
 
-def line_of_config(cfg, with_wind=False) -> Callable[[float], StraightLineDrag]:
+def line_of_config(cfg: Config, with_wind=False) -> Callable[[float], StraightLineDrag]:
     """F_t of the configured straight line as a function of its length L
     (quiet air unless ``with_wind``)."""
     return partial(
@@ -99,12 +100,12 @@ def line_of_config(cfg, with_wind=False) -> Callable[[float], StraightLineDrag]:
     )
 
 
-def from_config(cfg, with_wind=False) -> StraightLineDrag:
+def from_config(cfg: Config, with_wind=False) -> StraightLineDrag:
     """Straight-line F_t of the configured case (quiet air unless ``with_wind``)."""
     return line_of_config(cfg, with_wind)(cfg.tether.length_m)
 
 
-def comparison(cfg, lengths, with_wind=False, closed_form=False, rho=None, cd=None) -> list[dict]:
+def comparison(cfg: Config, lengths, with_wind=False, closed_form=False, rho=None, cd=None) -> list[dict]:
     """Integral and closed-form F_t of each length, as ``fem-tether straight`` reports them.
 
     Each length's case is checked first (:meth:`Config.with_length`).  The closed form takes ``rho`` and

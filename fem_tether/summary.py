@@ -11,10 +11,11 @@ from __future__ import annotations
 import numpy as np
 
 from fem_tether import atmosphere, kite, straight
+from fem_tether.config import Config
 from fem_tether.power import operating_altitude_m
 
 
-def operating_ge(cfg, drag_N) -> float:
+def operating_ge(cfg: Config, drag_N) -> float:
     """G_e (seed 000 eq. 5.1) of the configured case with tether drag ``drag_N``
     per line, rho at the operating altitude L cos(theta0)."""
     k = cfg.kite
@@ -24,7 +25,7 @@ def operating_ge(cfg, drag_N) -> float:
                                         cfg.tether.lines))
 
 
-def run_summary(run, cfg) -> dict:
+def run_summary(run, cfg: Config) -> dict:
     """Period means, straight-line comparison and G_e of one tether run."""
     means = run.means()
     ge = operating_ge(cfg, means["mean_drag_N"])

@@ -14,6 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_tether import atmosphere, drag_coefficient, wind
+from fem_tether.atmosphere import AirModel
+from fem_tether.config import Config
+from fem_tether.drag_coefficient import DragModel
+from fem_tether.wind import WindProfile
 from fem_tether.loads import G_MPS2, gravity_N_m
 
 
@@ -21,9 +25,9 @@ from fem_tether.loads import G_MPS2, gravity_N_m
 class TetherPhysics:
     """Line constants and leaf-model objects (``air``, ``drag``, ``wind``)."""
 
-    air: object
-    drag: object
-    wind: object
+    air: AirModel
+    drag: DragModel
+    wind: WindProfile
     diameter_m: float
     linear_density_kg_m: float
     compliance_per_N: float = 0.0      # 1/EA (0: inextensible)
@@ -41,7 +45,7 @@ class TetherPhysics:
         return self.linear_density_kg_m * self.gravity_mps2 * length_m
 
 
-def physics_from_config(cfg) -> TetherPhysics:
+def physics_from_config(cfg: Config) -> TetherPhysics:
     """The physics of ``cfg``'s [tether], [air], [drag] and [wind] sections."""
     tether = cfg.tether
     elastic = tether.elasticity == "elastic"

@@ -13,8 +13,20 @@ and ``velocity_mps(z)``, the vector (V, 0, 0) with shape ``z.shape + (3,)``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+import numpy.typing as npt
+
+
+class WindProfile(Protocol):
+    """A wind profile as the loads use it: speed, shear and velocity against z (m)."""
+
+    def speed_mps(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def shear_per_s(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def velocity_mps(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
 
 class _Profile:

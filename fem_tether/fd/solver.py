@@ -52,9 +52,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from fem_tether.case import TetherCase, case_fields, end_at_length
+from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.atmosphere import AltitudeError
+from fem_tether.config import Config
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd.system import Grid, TetherFD
@@ -96,7 +97,7 @@ def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysic
                    drag=physics.drag if drag else ConstantDrag(0.0))
 
 
-def build_model(cfg, end=None, gravity=True, drag=True,
+def build_model(cfg: Config, end: EndMotion | None = None, gravity=True, drag=True,
                 physics: TetherPhysics | None = None) -> FDModel:
     """FD model of the configured case (``[fd] segments`` and ``scheme``).
 
@@ -123,7 +124,11 @@ def _nodes(model: FDModel, r_int, R, e):
     return r
 
 
-def _apply(model: FDModel, dx, r_int, T, R, step=1.0):
+#: The unknowns of a Newton iteration: interior nodes, tensions, kite distance.
+Unknowns = tuple[np.ndarray, np.ndarray, float]
+
+
+def _apply(model: FDModel, dx, r_int, T, R, step=1.0) -> Unknowns:
     dr, dT, dR = model.grid.expand(dx)
     if model.tension_mode:
         dT[0] = 0.0
@@ -153,12 +158,12 @@ def _trial_norm(evaluate, x) -> tuple[float, str]:
     """2-norm of the residual at ``x = (r_int, T, R)`` without the Jacobian, or
     infinity and the cause where the iterate leaves the atmosphere's range."""
     try:
-        return np.linalg.norm(evaluate(*x, jacobian=False).residual), ""
+        return float(np.linalg.norm(evaluate(*x, jacobian=False).residual)), ""
     except AltitudeError as exc:
         return math.inf, left_atmosphere(exc)
 
 
-def _static_newton(model: FDModel, evaluate, x, max_iter):
+def _static_newton(model: FDModel, evaluate, x: Unknowns, max_iter) -> Unknowns:
     """Backtracking Newton on ``x = (r_int, T, R)`` to ``max |residual| <= newton_tol``.
 
     A step is halved until the residual's 2-norm falls (Armijo; trial
@@ -421,7 +426,7 @@ class FDSolver:
         return {"segments": self.model.grid.M, "scheme": self.model.scheme}
 
 
-def simulate(cfg, progress=False) -> TetherRun:
+def simulate(cfg: Config, progress=False) -> TetherRun:
     """Run the configured case with the FD solver (time step ``[fd] dt_s``).
 
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch

@@ -20,20 +20,20 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from fem_tether.case import TetherCase, case_fields, end_at_length
+from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
-from fem_tether.config import MAX_ELEMENTS, ConfigError, toml_value
+from fem_tether.config import MAX_ELEMENTS, Config, ConfigError, toml_value
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
-from fem_tether.fe.system import TetherSystem
+from fem_tether.fe.system import Evaluation, TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
 from fem_tether.protocol import Statistics, speed_jumped
-from fem_tether.tether import physics_from_config
+from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.results import TetherRun
 
 
@@ -54,7 +54,7 @@ class State:
     kin: Kinematics               # nodal r, v, a, qdd (n_nodes, 3)
     T: np.ndarray                 # element tensions
     R: float                      # kite distance
-    ev: object = None             # the converged evaluation at t, if any
+    ev: Evaluation | None = None  # the converged evaluation at t, if any
 
 
 def unit_mesh_from_config(fe) -> np.ndarray:
@@ -73,7 +73,8 @@ def unit_mesh_from_config(fe) -> np.ndarray:
     return nodes
 
 
-def build_model(cfg, end=None, physics=None) -> FEModel:
+def build_model(cfg: Config, end: EndMotion | None = None,
+                physics: TetherPhysics | None = None) -> FEModel:
     """FE model of the configured case; ``end`` overrides the figure-eight."""
     case = case_fields(cfg, end)
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
@@ -139,7 +140,7 @@ def _residual_norm(evaluate, x) -> tuple[float, str]:
     """The 2-norm of ``evaluate(x, jacobian=False).residual``, or infinity and
     the cause where the iterate leaves the atmosphere's range."""
     try:
-        return np.linalg.norm(evaluate(x, jacobian=False).residual), ""
+        return float(np.linalg.norm(evaluate(x, jacobian=False).residual)), ""
     except AltitudeError as exc:
         return math.inf, left_atmosphere(exc)
 
@@ -395,7 +396,7 @@ class FESolver:
         return {"elements": self.model.system.spaces.n_elements}
 
 
-def simulate(cfg, progress=False) -> TetherRun:
+def simulate(cfg: Config, progress=False) -> TetherRun:
     """Run the configured case with the FE solver (time step ``[fe] dt_s``).
 
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch

@@ -299,6 +299,7 @@ class TetherSystem:
         The last equation is ``T_0 = T_ground`` (tension mode, row e_3 with no
         R entry) or ``R = R_prescribed`` (row with only the R entry).
         """
+        assert ev.r_col is not None, "newton_step needs an evaluation with the Jacobian"
         b = -ev.residual
         y, zc = solve_banded((BAND, BAND), ev.ab, np.column_stack([b[:-1], ev.r_col]),
                              check_finite=False).T
