@@ -25,13 +25,15 @@ import copy
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import solve_banded
+from scipy.linalg.lapack import dgbsv
 
 from fem_tether.fe.spaces import TetherSpaces
 from fem_tether.loads import CrossflowDrag, crossflow_drag
 from fem_tether.tether import TetherPhysics
 
 BAND = 6
+_SGN = np.array([-1.0, 1.0])
+_SGN_B = _SGN[None, None, :, None, None]   # sgn_b of an element's node b
 
 
 @dataclass
@@ -44,8 +46,25 @@ class Evaluation:
     length_m: np.ndarray               # |D r| per element
     r_mid: np.ndarray                  # (n_el, 3)
     load: CrossflowDrag                # drag at the element midpoints
-    ab: np.ndarray | None = None       # banded Jacobian without R row/column
+    band: np.ndarray | None = None     # Jacobian without R row/column, LAPACK gbsv storage
     r_col: np.ndarray | None = None    # column of R (rows 0..n-2)
+
+    @property
+    def ab(self) -> np.ndarray:
+        """The banded Jacobian in ``solve_banded`` storage: ``ab[BAND + i - j, j] = J[i, j]``."""
+        assert self.band is not None, "an evaluation without the Jacobian, or one already factorised"
+        return self.band[BAND:]
+
+
+def solve_band(band: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Solve the banded system in LAPACK ``gbsv`` storage (``BAND`` rows of LU
+    fill-in above ``solve_banded``'s layout), overwriting ``band`` with its
+    factors: ``solve_banded``'s own call without its input checks and copies.
+    Raises ``LinAlgError`` on a singular matrix."""
+    _, _, x, info = dgbsv(BAND, BAND, band, rhs, overwrite_ab=1, overwrite_b=1)
+    if info > 0:
+        raise np.linalg.LinAlgError("singular matrix")
+    return x
 
 
 @dataclass
@@ -65,13 +84,29 @@ class TetherSystem:
         interior[1:-1] = 1.0
         self.interior = interior
         self._idx = self._band_indices()
+        node_interior = interior[np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)]
+        sgn = np.array([-1.0, 1.0])
+        # sgn_a sgn_b and sgn_a of an element's node a in the rows of interior nodes only
+        self._sgn_ab = (sgn[:, None] * sgn[None, :] * node_interior[:, :, None])[:, :, :, None, None]
+        self._sgn_a = sgn[None, :, None] * node_interior[:, :, None]
+        self._interior_ab = node_interior
+        self._scatter = np.concatenate([self._idx[k].ravel() for k in ("rr", "rT", "Tr", "TT", "mass")]) \
+            + BAND * (self.n - 1)
+        self._set_lengths()
+
+    def _set_lengths(self):
+        """The constants of the element lengths: Q's weights, masses, mean length."""
+        sp = self.spaces
         self.load_weights = self._load_weights()
+        self._interior_weights = (self.load_weights * self._interior_ab)[:, :, None, None, None]
+        self._interior_mass = (sp.mass_kg * self.interior)[:, None] * np.ones(3)
+        self._h_mean = sp.h_m.mean()
 
     def with_spaces(self, spaces: TetherSpaces) -> "TetherSystem":
         """This system on other spaces of the same topology (reeling changes lengths)."""
         other = copy.copy(self)
         other.spaces = spaces
-        other.load_weights = other._load_weights()
+        other._set_lengths()
         return other
 
     def _load_weights(self) -> np.ndarray:
@@ -126,13 +161,14 @@ class TetherSystem:
         ``c_a = dqdd/dr`` and ``c_v = dv/dr`` come from the time integrator
         (both 0 for a static solve with frozen velocities).  ``reel_mps`` is the
         winch's reel-out speed V_L: the line leaves the winch node, which stays
-        at the origin, with the material velocity V_L tau_0.
+        at the origin, with the material velocity V_L tau_0.  The operators act
+        element by element: ``(D r)_e = r_{e+1} - r_e``, ``D^T`` gives node i
+        ``y_{i-1} - y_i`` and ``Q`` gives it ``Q_{i,i-1} f_{i-1} + Q_{i,i} f_i``.
         """
-        sp, ph = self.spaces, self.physics
-        h = sp.h_m
-        k_s = force_ref_N / h.mean()
-        dr = sp.D @ r
-        length = np.linalg.norm(dr, axis=1)
+        ph = self.physics
+        k_s = force_ref_N / self._h_mean
+        dr = r[1:] - r[:-1]
+        length = np.sqrt(np.add.reduce(dr * dr, axis=1))
         tau = dr / length[:, None]
         if reel_mps:
             v = v.copy()
@@ -143,32 +179,53 @@ class TetherSystem:
         v_rel = ph.wind.velocity_mps(z) - v_mid
         load = crossflow_drag(v_rel, tau, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
-        force = sp.mass_kg[:, None] * qdd + sp.D.T @ (T[:, None] * tau) \
-            - sp.Q @ (load.force + self.weight)
-        dv = sp.D @ v
-        constraint = length - h * (1.0 + ph.compliance_per_N * T)
-        if ph.damping_time_s:
-            constraint = constraint + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
-
-        node_res = force * self.interior[:, None]
+        res = np.empty(self.n)
+        node_res = res.reshape(-1, 4)[:, :3]
+        internal = self._nodal_difference(T[:, None] * tau)
+        line_load = self._nodal_load(load.force + self.weight)
+        np.subtract(self.spaces.mass_kg[:, None] * qdd + internal, line_load, out=node_res)
+        node_res *= self.interior[:, None]
         node_res[0] = k_s * r[0]
         node_res[-1] = k_s * (r[-1] - R * kite_dir)
-        res = np.empty(self.n)
-        res.reshape(-1, 4)[:, :3] = node_res
+        dv = v[1:] - v[:-1] if ph.damping_time_s else None
+        constraint = length - self.spaces.h_m * (1.0 + ph.compliance_per_N * T)
+        if dv is not None:
+            constraint = constraint + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
         res[3:-1:4] = k_s * constraint
         res[-1] = (T[0] - ground_tension_N) if self.tension_mode else k_s * (R - radius_m)
         out = Evaluation(res, k_s, tau, length, r_mid, load)
         if jacobian:
-            out.ab, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir,
-                                               reel_mps)
+            out.band, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir,
+                                                 reel_mps)
+        return out
+
+    @staticmethod
+    def _nodal_difference(y):
+        """``D^T y``: node i gets ``y_{i-1} - y_i`` (the missing neighbour counts 0)."""
+        out = np.zeros((y.shape[0] + 1, 3))
+        out[:-1] -= y
+        out[1:] += y
+        return out
+
+    def _nodal_load(self, f):
+        """``Q f``: node i gets ``Q_{i,i-1} f_{i-1} + Q_{i,i} f_i``."""
+        w = self.load_weights
+        out = np.zeros((f.shape[0] + 1, 3))
+        out[:-1] = w[:, 0, None] * f
+        out[1:] += w[:, 1, None] * f
         return out
 
     def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir, reel_mps=0.0):
-        sp, ph = self.spaces, self.physics
-        n_el = sp.n_elements
+        """Banded Jacobian in LAPACK ``gbsv`` storage and the R column.
+
+        Element e with nodes a, b (sgn = -1, +1) and Q's weights w_a puts on
+        node a's rows, column of node b, ``sgn_a sgn_b K_geo - w_a (sgn_b F_tau + F_mid)``,
+        only where node a is interior; its constraint row is ``k_s sgn_b c_e^T``
+        (c_e = tau_e plus Kelvin-Voigt terms) and node a's column of T_e is ``sgn_a tau_e``.
+        """
+        ph = self.physics
         eye = np.eye(3)
-        sgn = np.array([-1.0, 1.0])
-        proj = eye - np.einsum("ni,nj->nij", tau, tau)
+        proj = eye - tau[:, :, None] * tau[:, None, :]
         # geometric stiffness of D^T (T tau): sgn_a sgn_b T/|dr| (I - tau tau^T)
         k_geo = (T / length)[:, None, None] * proj
         # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dz_mid,
@@ -179,37 +236,33 @@ class TetherSystem:
         d_tau = load.d_dtau @ proj / length[:, None, None]
         d_mid = -0.5 * c_v * load.d_dvrel
         d_mid[:, :, 2] += 0.5 * df_dz
-        w = self.load_weights
-        block = (sgn[None, :, None, None, None] * sgn[None, None, :, None, None]) * k_geo[:, None, None] \
-            - w[:, :, None, None, None] * (sgn[None, None, :, None, None] * d_tau[:, None, None]
-                                           + d_mid[:, None, None])
+        w = self._interior_weights
+        block = self._sgn_ab * k_geo[:, None, None] \
+            - w * (_SGN_B * d_tau[:, None, None] + d_mid[:, None, None])
         if reel_mps:   # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1), not 1/2 (v_0 + v_1)
             turn = (0.5 * reel_mps / length[0]) * (load.d_dvrel[0] @ proj[0])
-            block[0] += (sgn[None, :, None, None] * w[0, :, None, None, None]) * turn
-            block[0, :, 0] -= w[0, :, None, None] * (0.5 * c_v) * load.d_dvrel[0]
-        node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
-        block *= self.interior[node][:, :, None, None, None]
-        rT = sgn[None, :, None] * tau[:, None, :] * self.interior[node][:, :, None]
+            block[0] += (_SGN_B[0] * w[0]) * turn
+            block[0, :, 0] -= w[0, :, 0] * (0.5 * c_v) * load.d_dvrel[0]
+        rT = self._sgn_a * tau[:, None, :]
         # constraint rows: d|dr|/dr_b = sgn_b tau, plus Kelvin-Voigt terms
-        c_row = tau.copy()
-        if ph.damping_time_s:
+        c_row = tau
+        if dv is not None:
             c_row = c_row + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / length[:, None]
                                                  + c_v * tau)
-        Tr = k_s * sgn[None, :, None] * c_row[:, None, :]
-        TT = np.full(n_el, -k_s * ph.compliance_per_N) * sp.h_m
-        mass = c_a * (sp.mass_kg * self.interior)[:, None] * np.ones(3)
+        Tr = k_s * _SGN[None, :, None] * c_row[:, None, :]
+        TT = (-k_s * ph.compliance_per_N) * self.spaces.h_m
+        mass = c_a * self._interior_mass
         mass[0] = k_s
         mass[-1] = k_s
-        idx = self._idx
         m = self.n - 1
-        ab = np.bincount(
-            np.concatenate([idx["rr"], idx["rT"].ravel(), idx["Tr"].ravel(), idx["TT"], idx["mass"].ravel()]),
+        band = np.bincount(
+            self._scatter,
             weights=np.concatenate([block.ravel(), rT.ravel(), Tr.ravel(), TT, mass.ravel()]),
-            minlength=(2 * BAND + 1) * m,
-        ).reshape(2 * BAND + 1, m)
+            minlength=(3 * BAND + 1) * m,
+        ).reshape(3 * BAND + 1, m)
         r_col = np.zeros(m)
         r_col[-3:] = -k_s * kite_dir
-        return ab, r_col
+        return band, r_col
 
     def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_mps=0.0,
                          free_radius=False):
@@ -237,7 +290,7 @@ class TetherSystem:
         dr = sp.D @ r
         length = np.linalg.norm(dr, axis=1)
         tau = dr / length[:, None]
-        ab = self._saddle(tau)
+        band = self._saddle(tau)
         m = sp.mass_kg[:, None] * self.interior[:, None]
         r_col = np.zeros(self.n - 1)
         r_col[-3:] = -e
@@ -248,8 +301,7 @@ class TetherSystem:
             b = np.zeros(self.n)
             b.reshape(-1, 4)[:, :3] = node_rhs
             b[3:-1:4] = constraint_rhs
-            y, zc = solve_banded((BAND, BAND), ab, np.column_stack([b[:-1], r_col]),
-                                 check_finite=False).T
+            y, zc = solve_band(band.copy(), np.column_stack([b[:-1], r_col])).T
             last = 0.0 if border_index is None else (border_rhs - y[border_index]) / (-zc[border_index])
             return self.unpack(np.append(y - zc * last, last))
 
@@ -277,7 +329,8 @@ class TetherSystem:
         return v, qdd, T
 
     def _saddle(self, tau):
-        """Banded [M B^T; B 0] with identity rows for the two kinematic end nodes."""
+        """Banded [M B^T; B 0] with identity rows for the two kinematic end nodes,
+        in LAPACK ``gbsv`` storage."""
         n_el = self.spaces.n_elements
         node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
         sgn = np.array([-1.0, 1.0])
@@ -288,21 +341,23 @@ class TetherSystem:
         idx = self._idx
         m = self.n - 1
         return np.bincount(
-            np.concatenate([idx["rT"].ravel(), idx["Tr"].ravel(), idx["mass"].ravel()]),
+            np.concatenate([idx["rT"].ravel(), idx["Tr"].ravel(), idx["mass"].ravel()]) + BAND * m,
             weights=np.concatenate([rT.ravel(), Tr.ravel(), mass.ravel()]),
-            minlength=(2 * BAND + 1) * m,
-        ).reshape(2 * BAND + 1, m)
+            minlength=(3 * BAND + 1) * m,
+        ).reshape(3 * BAND + 1, m)
 
     def newton_step(self, ev: Evaluation) -> np.ndarray:
         """Solve J dx = -residual by a banded LU bordered with the R row/column.
 
         The last equation is ``T_0 = T_ground`` (tension mode, row e_3 with no
-        R entry) or ``R = R_prescribed`` (row with only the R entry).
+        R entry) or ``R = R_prescribed`` (row with only the R entry).  The LU
+        overwrites the evaluation's Jacobian, so each evaluation takes one step.
         """
-        assert ev.r_col is not None, "newton_step needs an evaluation with the Jacobian"
+        assert ev.band is not None and ev.r_col is not None, \
+            "newton_step needs an evaluation with the Jacobian, not yet factorised"
         b = -ev.residual
-        y, zc = solve_banded((BAND, BAND), ev.ab, np.column_stack([b[:-1], ev.r_col]),
-                             check_finite=False).T
+        band, ev.band = ev.band, None
+        y, zc = solve_band(band, np.column_stack([b[:-1], ev.r_col])).T
         dR = (b[-1] - y[3]) / (-zc[3]) if self.tension_mode else b[-1] / ev.k_s
         dx = np.empty(self.n)
         dx[:-1] = y - zc * dR
