@@ -23,6 +23,12 @@ G_MPS2 = 9.81
 """Gravitational acceleration used by seed 000 (docs/physics.md §6)."""
 
 _TINY_MPS = 1e-30
+_EYE = np.eye(3)
+
+
+def _outer(x, y):
+    """Outer products x_n y_n^T of two (n, 3) arrays, shape (n, 3, 3)."""
+    return x[:, :, None] * y[:, None, :]
 
 
 def gravity_N_m(linear_density_kg_m: float, g_mps2: float = G_MPS2) -> np.ndarray:
@@ -79,7 +85,8 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     vn = v_rel - a[:, None] * tau
     n = np.sqrt(np.einsum("ij,ij->i", vn, vn))
     n_safe = np.maximum(n, _TINY_MPS)
-    re = rho * n_safe * diameter_m / np.asarray(mu_air, dtype=float)
+    mu_air = np.asarray(mu_air, dtype=float)
+    re = rho * n_safe * diameter_m / mu_air
     cd = drag_model.cd(re)
     c = 0.5 * rho * diameter_m * cd * n_safe
     force = c[:, None] * vn
@@ -90,21 +97,17 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     if not jacobian:
         return out
 
-    eye = np.eye(3)
     re_dcd = re * drag_model.dcd_dre(re)
     dc_dn = 0.5 * rho * diameter_m * (cd + re_dcd)
     out.d_drho = (0.5 * diameter_m * n_safe * (cd + re_dcd))[:, None] * vn
-    out.d_dmu = -(0.5 * rho * diameter_m * n_safe * re_dcd / np.asarray(mu_air, dtype=float))[:, None] * vn
+    out.d_dmu = -(0.5 * rho * diameter_m * n_safe * re_dcd / mu_air)[:, None] * vn
     unit = vn / n_safe[:, None]
-    df_dvn = c[:, None, None] * eye + (dc_dn * n)[:, None, None] * np.einsum("ni,nj->nij", unit, unit)
-    proj = eye - np.einsum("ni,nj->nij", tau, tau)
-    dvn_dtau = -a[:, None, None] * eye - np.einsum("ni,nj->nij", tau, v_rel)
-    out.d_dvrel = df_dvn @ proj
-    out.d_dtau = df_dvn @ dvn_dtau
+    df_dvn = c[:, None, None] * _EYE + (dc_dn * n)[:, None, None] * _outer(unit, unit)
+    tau_v = _outer(tau, v_rel)
+    out.d_dvrel = df_dvn @ (_EYE - _outer(tau, tau))
+    out.d_dtau = df_dvn @ (-a[:, None, None] * _EYE - tau_v)
     if skin_friction_cf:
-        tt = np.einsum("ni,nj->nij", tau, tau)
-        out.d_dvrel = out.d_dvrel + (2 * k_s * np.abs(a))[:, None, None] * tt
-        out.d_dtau = out.d_dtau + (k_s * np.abs(a))[:, None, None] * (
-            2 * np.einsum("ni,nj->nij", tau, v_rel) + a[:, None, None] * eye)
+        out.d_dvrel = out.d_dvrel + (2 * k_s * np.abs(a))[:, None, None] * _outer(tau, tau)
+        out.d_dtau = out.d_dtau + (k_s * np.abs(a))[:, None, None] * (2 * tau_v + a[:, None, None] * _EYE)
         out.d_drho = out.d_drho + ((k_s / rho) * np.abs(a) * a)[:, None] * tau
     return out

@@ -32,6 +32,7 @@ from fem_tether.loads import CrossflowDrag, crossflow_drag
 from fem_tether.tether import TetherPhysics
 
 BAND = 6
+_EYE = np.eye(3)
 _SGN = np.array([-1.0, 1.0])
 _SGN_B = _SGN[None, None, :, None, None]   # sgn_b of an element's node b
 
@@ -224,8 +225,7 @@ class TetherSystem:
         (c_e = tau_e plus Kelvin-Voigt terms) and node a's column of T_e is ``sgn_a tau_e``.
         """
         ph = self.physics
-        eye = np.eye(3)
-        proj = eye - tau[:, :, None] * tau[:, None, :]
+        proj = _EYE - tau[:, :, None] * tau[:, None, :]
         # geometric stiffness of D^T (T tau): sgn_a sgn_b T/|dr| (I - tau tau^T)
         k_geo = (T / length)[:, None, None] * proj
         # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dz_mid,
