@@ -44,7 +44,7 @@ class AltitudeError(InputError):
 
 def _altitude(z_m) -> np.ndarray:
     z = np.asarray(z_m, dtype=float)
-    if np.any(z > TROPOPAUSE_M):
+    if (z > TROPOPAUSE_M).any():
         raise AltitudeError(float(np.max(z)))
     return z
 
@@ -56,7 +56,15 @@ def temperature_K(z_m):
 
 def pressure_Pa(z_m):
     """p = p0 (T/T0)^(g0/(R L)), p0 = 101325 Pa (ISA, ICAO Doc 7488)."""
-    return SEA_LEVEL_PRESSURE_PA * (temperature_K(z_m) / SEA_LEVEL_TEMPERATURE_K) ** PRESSURE_EXPONENT
+    return _pressure_at(temperature_K(z_m))
+
+
+def _pressure_at(temperature):
+    return SEA_LEVEL_PRESSURE_PA * (temperature / SEA_LEVEL_TEMPERATURE_K) ** PRESSURE_EXPONENT
+
+
+def _density_at(temperature):
+    return _pressure_at(temperature) / (GAS_CONSTANT_J_KG_K * temperature)
 
 
 def sutherland_viscosity_Pa_s(temperature):
@@ -84,7 +92,7 @@ class ISA:
 
     def density_kg_m3(self, z_m):
         """rho = p / (R T) (ideal gas; ISA, ICAO Doc 7488)."""
-        return pressure_Pa(z_m) / (GAS_CONSTANT_J_KG_K * temperature_K(z_m))
+        return _density_at(temperature_K(z_m))
 
     def viscosity_Pa_s(self, z_m):
         """mu(T(z)) by Sutherland's law."""
@@ -92,7 +100,8 @@ class ISA:
 
     def density_gradient_kg_m4(self, z_m):
         """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
-        return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * self.density_kg_m3(z_m) / temperature_K(z_m)
+        t = temperature_K(z_m)
+        return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * _density_at(t) / t
 
     def viscosity_gradient_Pa_s_m(self, z_m):
         """d mu/dz = -L mu (1.5/T - 1/(T + S)), differentiating Sutherland's law."""

@@ -104,22 +104,28 @@ def belan_tordella_dcd_dre(re):
         return 4.0 * np.sqrt(np.pi / re) * (5.1e-3 - 3.8e-5 * re - belan_tordella_b(re) / (2.0 * re))
 
 
-def _segment(re):
-    """Index i of the interval [Re_i, Re_i+1) holding each Re (clipped to the table)."""
-    return np.clip(np.searchsorted(_LOG_RE, np.log(re), side="right") - 1, 0, len(_SLOPE) - 1)
+def _segment(log_re):
+    """Index i of the interval [Re_i, Re_i+1) holding each ln Re (clipped to the table)."""
+    return np.minimum(np.maximum(np.searchsorted(_LOG_RE, log_re, side="right") - 1, 0), len(_SLOPE) - 1)
+
+
+def _power_law(log_re, i):
+    """C_i (Re/Re_i)^s_i on interval i (the last value above the table)."""
+    return np.exp(_LOG_CD[i] + _SLOPE[i] * (np.minimum(log_re, _LOG_RE[-1]) - _LOG_RE[i]))
 
 
 def experimental_cd(re):
     """C_d = C_i (Re/Re_i)^s_i, s_i = ln(C_i+1/C_i) / ln(Re_i+1/Re_i); last value above 1e7."""
-    log_re = np.minimum(np.log(re), _LOG_RE[-1])
-    i = _segment(re)
-    return np.exp(_LOG_CD[i] + _SLOPE[i] * (log_re - _LOG_RE[i]))
+    log_re = np.log(re)
+    return _power_law(log_re, _segment(log_re))
 
 
 def experimental_dcd_dre(re):
     """dC_d/dRe = s_i C_d / Re on the interval (right-hand slope at the nodes); 0 above 1e7."""
-    slope = np.where(np.log(re) < _LOG_RE[-1], _SLOPE[_segment(re)], 0.0)
-    return slope * experimental_cd(re) / re
+    log_re = np.log(re)
+    i = _segment(log_re)
+    slope = np.where(log_re < _LOG_RE[-1], _SLOPE[i], 0.0)
+    return slope * _power_law(log_re, i) / re
 
 
 class DragModel(Protocol):

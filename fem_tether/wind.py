@@ -73,11 +73,19 @@ class MeanOfProfiles(_Profile):
 
     def speed_mps(self, z_m):
         """V = (1/n) sum_i V_i(z)."""
-        return np.mean([p.speed_mps(z_m) for p in self.profiles], axis=0)
+        return _mean([p.speed_mps(z_m) for p in self.profiles])
 
     def shear_per_s(self, z_m):
         """dV/dz = (1/n) sum_i dV_i/dz."""
-        return np.mean([p.shear_per_s(z_m) for p in self.profiles], axis=0)
+        return _mean([p.shear_per_s(z_m) for p in self.profiles])
+
+
+def _mean(values: list) -> np.ndarray:
+    """(v_1 + ... + v_n) / n, summed in order (as ``np.mean`` over the first axis)."""
+    total = values[0]
+    for v in values[1:]:
+        total = total + v
+    return total / len(values)
 
 
 @dataclass(frozen=True)
