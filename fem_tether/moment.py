@@ -12,13 +12,24 @@ from __future__ import annotations
 import numpy as np
 
 
+def cross(a, b) -> np.ndarray:
+    """a x b over the last axis (length 3), component by component as
+    ``np.cross`` computes it, without its axis handling (it is called every step)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
+
+
 def drag_moment_Nm(points_m, force_N_m, weights_m):
     """M_d = sum_i w_i r_i x f_i: quadrature of eq. 4.1 over the line.
 
     ``points_m`` (..., n, 3) positions, ``force_N_m`` (..., n, 3) drag per unit
     length there, ``weights_m`` (n,) quadrature weights in arc length.
     """
-    return np.einsum("...ij,i->...j", np.cross(points_m, force_N_m), weights_m)
+    return np.einsum("...ij,i->...j", cross(points_m, force_N_m), weights_m)
 
 
 def equivalent_force(moment_Nm, kite_position_m, kite_velocity_mps=None):
@@ -35,7 +46,7 @@ def equivalent_force(moment_Nm, kite_position_m, kite_velocity_mps=None):
     if kite_velocity_mps is None:
         return drag_N, None
     e_r = r / r_k[..., None]
-    f_perp = np.cross(moment_Nm, e_r) / r_k[..., None]
+    f_perp = cross(moment_Nm, e_r) / r_k[..., None]
     v = np.asarray(kite_velocity_mps, dtype=float)
     v_hat = v / np.linalg.norm(v, axis=-1)[..., None]
     return drag_N, -np.einsum("...i,...i->...", f_perp, v_hat)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fem_tether.moment import drag_moment_Nm, equivalent_force
+from fem_tether.moment import cross, drag_moment_Nm, equivalent_force
 
 
 def test_point_force_at_the_kite_is_recovered():
@@ -23,3 +23,11 @@ def test_uniform_load_on_a_rod_acts_at_half_length_equivalent():
     f = np.tile([0.0, 2.0, 0.0], (s.size, 1))
     drag, _ = equivalent_force(drag_moment_Nm(r, f, w), r[-1])
     assert drag == pytest.approx(2.0 * 10 / 2, rel=1e-8)
+
+
+def test_cross_is_numpys_to_the_bit():
+    """moment.cross computes each component as np.cross does (same products, same order)."""
+    rng = np.random.default_rng(3)
+    a, b = rng.normal(size=(50, 3)), rng.normal(size=(50, 3))
+    np.testing.assert_array_equal(cross(a, b), np.cross(a, b))
+    np.testing.assert_array_equal(cross(a[0], b), np.cross(a[0], b))
