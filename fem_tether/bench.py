@@ -26,8 +26,6 @@ from __future__ import annotations
 
 import multiprocessing
 import os
-import resource
-import sys
 import time
 from dataclasses import asdict, dataclass
 
@@ -36,6 +34,7 @@ import numpy as np
 from fem_tether import fd
 from fem_tether.config import load_config
 from fem_tether.fe import solver as fe
+from fem_tether.sweep import peak_rss_MiB
 
 BENCH_CASE = {
     "tether": {"length_m": 3000.0},
@@ -53,10 +52,6 @@ FD_TIME_STEPS_S = (0.1, 0.05, 0.025)
 SCALING_ELEMENTS = (20, 80, 320, 1280)
 SCALING_DT_S = 0.1
 TOLERANCE = 0.005
-
-
-#: ``ru_maxrss`` is in KiB on Linux, in bytes on macOS.
-_MAXRSS_BYTES = 1 if sys.platform == "darwin" else 1024
 
 
 @dataclass(frozen=True)
@@ -96,14 +91,10 @@ class BenchRow:
                                "real_time_factor": self.real_time_factor}
 
 
-def _maxrss_MiB() -> float:
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * _MAXRSS_BYTES / 2**20
-
-
 def _measure(solver, resolution, dt_s, repeats, base_MiB=0.0) -> dict:
     """One setting in this process: best-of-``repeats`` wall time, the run's
     figures and the peak RSS (see the module docstring)."""
-    at_start = _maxrss_MiB()
+    at_start = peak_rss_MiB()
     cfg = load_config(overrides=BENCH_CASE)
     if solver == "fe":
         cfg = cfg.replace(fe={"elements": resolution, "dt_s": dt_s})
@@ -116,7 +107,7 @@ def _measure(solver, resolution, dt_s, repeats, base_MiB=0.0) -> dict:
         run = simulate(cfg)
         best = min(best, time.perf_counter() - t0)
     assert run is not None
-    run_MiB = _maxrss_MiB() - at_start
+    run_MiB = peak_rss_MiB() - at_start
     return {"solver": solver, "elements": resolution, "dt_s": run.extra["dt_s"],
             "steps": run.time_s.size - 1, "wall_s": best, "drag_N": run.mean("drag_N"),
             "newton_iterations": int(run.extra["newton_iterations"]),
@@ -139,7 +130,7 @@ def _run(solver, resolution, dt_s, repeats) -> dict:
     segment count."""
     ctx = multiprocessing.get_context("fork")
     parent, child = ctx.Pipe(duplex=False)
-    base = _maxrss_MiB()             # this process runs no solver: its peak is its imports
+    base = peak_rss_MiB()             # this process runs no solver: its peak is its imports
     process = ctx.Process(target=_child, args=(child, (solver, resolution, dt_s, repeats, base)))
     process.start()
     child.close()
@@ -189,7 +180,7 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
         "case": "L = 3000 m, quiet air, rho = 1.2, C_d = 1.2, tension mode, 1 + 3 periods",
         "simulated_s": ref_run["simulated_s"],
         "cpu_count": os.cpu_count(),
-        "memory": (f"peak RSS: this process with its imports ({_maxrss_MiB():.0f} MiB) plus the "
+        "memory": (f"peak RSS: this process with its imports ({peak_rss_MiB():.0f} MiB) plus the "
                    "increase (run) of a child forked per setting"),
         "reference": {"elements": 4 * max(elements), "dt_s": ref_run["dt_s"],
                       "drag_N": ref, "wall_s": ref_run["wall_s"], "peak_rss_MiB": ref_run["peak_rss_MiB"]},

@@ -160,10 +160,20 @@ def reused(outcome) -> str:
             f"{outcome.tasks - outcome.reused} run")
 
 
+def peak_memory(outcome) -> str:
+    """The peak RSS of each rank and the largest (empty if not measured)."""
+    peaks = getattr(outcome, "peak_rss_MiB", ())
+    return (f"peak memory (RSS) per rank: {', '.join(f'{p:.0f}' for p in peaks)} MiB "
+            f"(max {max(peaks):.0f} MiB)") if peaks else ""
+
+
 def sweep_summary(outcome, out) -> dict:
     """``fem-tether sweep --json``: the outcome, non-finite values as null."""
+    peaks = getattr(outcome, "peak_rss_MiB", ())
     return {"file": str(out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
-            "reused_tasks": outcome.reused, "lengths": [
+            "reused_tasks": outcome.reused,
+            **({"peak_rss_MiB_per_rank": list(peaks), "peak_rss_MiB": max(peaks)} if peaks else {}),
+            "lengths": [
                 {"length_m": r.length_m, "status": r.status, "error": r.error,
                  **{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
                     for k, v in r.values.items()}}
@@ -179,7 +189,7 @@ def sweep_text(outcome, out) -> str:
                      f"straight {v['drag_straight_N']:9.1f} N, cross-check "
                      f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
                      + (f"  [{r.error}]" if r.status != "ok" else ""))
-    return "\n".join(lines)
+    return "\n".join(lines + [m for m in (peak_memory(outcome),) if m])
 
 
 def aep_text(result: dict) -> str:
@@ -239,5 +249,6 @@ def main_job_text(result) -> str:
     return "\n".join([summary_table(result.data, result.energy), "",
                       f"{len(outcome.lengths)} lengths on {outcome.n_ranks} rank(s) in "
                       f"{result.seconds:.1f} s ({reused(outcome)})",
+                      *(m for m in (peak_memory(outcome),) if m),
                       f"results: {result.h5}",
                       *(f"{name}: {path}" for name, path in result.files.items())])

@@ -13,12 +13,14 @@ the finished tasks and says how to resume.
 
 from __future__ import annotations
 
+import resource
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from fem_tether.atomic import OutputError
+from fem_tether.errors import InputError
 from fem_tether.evaluate import LengthResult, run_task
 from fem_tether.jobs import Job
 from fem_tether.progress import Progress
@@ -27,6 +29,13 @@ from fem_tether.store import PartsStore
 from fem_tether.sweepfile import assemble, check_out
 
 EXIT_ABORT = 3
+#: ``ru_maxrss`` is in KiB on Linux, in bytes on macOS.
+_MAXRSS_BYTES = 1 if sys.platform == "darwin" else 1024
+
+
+def peak_rss_MiB() -> float:
+    """This process's peak resident set size so far (``getrusage`` ``ru_maxrss``) [MiB]."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * _MAXRSS_BYTES / 2**20
 
 
 @dataclass(frozen=True)
@@ -37,6 +46,8 @@ class SweepOutcome:
     tasks: int
     reused: int
     n_ranks: int
+    #: Peak RSS of each rank's process at the end of the sweep [MiB], rank 0 first.
+    peak_rss_MiB: tuple[float, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -51,11 +62,14 @@ class SweepInterrupted(KeyboardInterrupt):
         super().__init__(f"{kept} of {total} tasks kept in {directory}; run the same command to resume")
 
 
-def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepOutcome | None:
+def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
+          check: Callable[[], object] | None = None) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
     Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
     ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are kept).
+    ``check``, if given, runs on rank 0 before any task (a check of what
+    follows the sweep); the :class:`InputError` it raises is raised on every rank.
     """
     if comm is None:
         from mpi4py import MPI
@@ -63,15 +77,17 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepO
     out = Path(out)
     rank, size = comm.Get_rank(), comm.Get_size()
     store = PartsStore(job, out)
-    problem = None
+    problem: InputError | None = None
     if rank == 0:
         try:
             check_out(out)
-        except OutputError as exc:
-            problem = str(exc)
+            if check is not None:
+                check()
+        except InputError as exc:
+            problem = exc
     problem = comm.bcast(problem, root=0)
     if problem:
-        raise OutputError(problem)
+        raise problem
     tasks = job.tasks
     mine = assign([task_cost(job, t) for t in tasks], size)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
@@ -98,8 +114,9 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepO
         comm.Abort(EXIT_ABORT)
     reused = comm.reduce(reused, root=0)
     if rank != 0:
+        comm.gather(peak_rss_MiB(), root=0)
         return None
     results = assemble(store, size)
     bar.update(len(tasks))
     bar.close()
-    return SweepOutcome(results, len(tasks), reused, size)
+    return SweepOutcome(results, len(tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))
