@@ -8,6 +8,7 @@ summary table is :func:`fem_tether.report.summary_table`.
 
 from __future__ import annotations
 
+import importlib
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -42,7 +43,9 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     h5 = out / "sweep.h5"
     # a bad resource fails now, not after the sweep (checked on rank 0 only: the
     # other ranks need not import scipy.stats)
-    outcome = sweep(job, h5, check=lambda: sweep_resource(job.config))
+    # rank 0 imports the plotting while it waits for the other ranks' tasks
+    outcome = sweep(job, h5, check=lambda: sweep_resource(job.config),
+                    idle=lambda: importlib.import_module("fem_tether.plots"))
     if outcome is None:
         return None
     data = read_sweep(h5)

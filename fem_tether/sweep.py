@@ -21,8 +21,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fem_tether.errors import InputError
-from fem_tether.evaluate import LengthResult, run_task
-from fem_tether.jobs import Job
+from fem_tether.evaluate import LengthResult, evaluate_length, run_task
+from fem_tether.jobs import Job, Task
 from fem_tether.progress import Progress
 from fem_tether.schedule import assign, task_cost
 from fem_tether.store import PartsStore
@@ -54,6 +54,13 @@ class SweepOutcome:
         return all(r.status == "ok" for r in self.lengths)
 
 
+def _combine_complete(store: PartsStore) -> None:
+    """Combine (and remember) the lengths whose parts are all present."""
+    for length_m in store.job.lengths_m:
+        if all(store.path(Task(length_m, s)).exists() for s in store.job.solvers):
+            evaluate_length(store, length_m)
+
+
 class SweepInterrupted(KeyboardInterrupt):
     """Ctrl-C during a sweep; the message says what is kept and how to resume."""
 
@@ -63,13 +70,17 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
-          check: Callable[[], object] | None = None) -> SweepOutcome | None:
+          check: Callable[[], object] | None = None,
+          idle: Callable[[], object] | None = None) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
     Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
     ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are kept).
     ``check``, if given, runs on rank 0 before any task (a check of what
     follows the sweep); the :class:`InputError` it raises is raised on every rank.
+    While rank 0 waits for the other ranks' tasks it combines the lengths they
+    complete (so that its final assembly finds them combined) and calls
+    ``idle`` once (work that would otherwise follow the sweep).
     """
     if comm is None:
         from mpi4py import MPI
@@ -102,9 +113,16 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
             if rank == 0:
                 bar.update(store.done())
         request = comm.Ibarrier()
+        seen = -1
         while not request.Test():
             if rank == 0:
-                bar.update(store.done())
+                if store.done() != seen:
+                    seen = store.done()
+                    bar.update(seen)
+                    _combine_complete(store)
+                if idle is not None:
+                    idle()
+                    idle = None
             time.sleep(0.05)
     except KeyboardInterrupt:
         bar.close()
