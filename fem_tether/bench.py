@@ -9,10 +9,22 @@ of the finest time step, in the same process (a refined FD run is printed
 beside it: the two limits agree).  Wall times are the best of ``repeats`` runs
 on one core (both solvers are single-threaded).  The FD/FE ratio compares the
 cheapest setting of each within the tolerance, measured in this one run.
+
+Each setting runs in a child process of its own, forked for it (the parent
+runs no solver), so its memory figures are its own: ``run_rss_MiB`` is how
+much the child's peak resident set size (``ru_maxrss``) exceeds its resident
+set at the fork, i.e. what the run itself added (its arrays, snapshots and
+solver state), and ``peak_rss_MiB`` is the peak of a process running it: the
+parent's resident set (Python and the imported libraries, ``base_rss_MiB``)
+plus that increase.  (The child's own ``ru_maxrss`` would undercount: the
+library pages it shares with the parent count only once touched.)
+Newton iterations per step and the real-time factor (simulated s / wall s)
+come from the same runs.
 """
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import time
 from dataclasses import asdict, dataclass
@@ -22,6 +34,7 @@ import numpy as np
 from fem_tether import fd
 from fem_tether.config import load_config
 from fem_tether.fe import solver as fe
+from fem_tether.sweep import peak_rss_MiB
 
 BENCH_CASE = {
     "tether": {"length_m": 3000.0},
@@ -50,15 +63,38 @@ class BenchRow:
     wall_s: float
     drag_N: float
     rel_error: float
+    newton_iterations: int = 0
+    simulated_s: float = 0.0
+    peak_rss_MiB: float = 0.0
+    run_rss_MiB: float = 0.0
 
     @property
     def us_per_element_step(self) -> float:
         return 1e6 * self.wall_s / (self.elements * self.steps)
 
+    @property
+    def us_per_step(self) -> float:
+        return 1e6 * self.wall_s / self.steps
 
-def _run(solver, resolution, dt_s, repeats):
-    """Best-of-``repeats`` wall time of one setting; ``resolution`` is the FE
-    element count or the FD segment count."""
+    @property
+    def newton_per_step(self) -> float:
+        return self.newton_iterations / self.steps
+
+    @property
+    def real_time_factor(self) -> float:
+        """Simulated seconds per wall-clock second."""
+        return self.simulated_s / self.wall_s
+
+    def as_dict(self) -> dict:
+        return asdict(self) | {"us_per_element_step": self.us_per_element_step,
+                               "us_per_step": self.us_per_step, "newton_per_step": self.newton_per_step,
+                               "real_time_factor": self.real_time_factor}
+
+
+def _measure(solver, resolution, dt_s, repeats, base_MiB=0.0) -> dict:
+    """One setting in this process: best-of-``repeats`` wall time, the run's
+    figures and the peak RSS (see the module docstring)."""
+    at_start = peak_rss_MiB()
     cfg = load_config(overrides=BENCH_CASE)
     if solver == "fe":
         cfg = cfg.replace(fe={"elements": resolution, "dt_s": dt_s})
@@ -70,49 +106,94 @@ def _run(solver, resolution, dt_s, repeats):
         t0 = time.perf_counter()
         run = simulate(cfg)
         best = min(best, time.perf_counter() - t0)
-    return run, best
+    assert run is not None
+    run_MiB = peak_rss_MiB() - at_start
+    return {"solver": solver, "elements": resolution, "dt_s": run.extra["dt_s"],
+            "steps": run.time_s.size - 1, "wall_s": best, "drag_N": run.mean("drag_N"),
+            "newton_iterations": int(run.extra["newton_iterations"]),
+            "simulated_s": float(run.time_s[-1] - run.time_s[0]),
+            "peak_rss_MiB": base_MiB + run_MiB, "run_rss_MiB": run_MiB}
+
+
+def _child(conn, args) -> None:
+    try:
+        conn.send(_measure(*args))
+    except BaseException as exc:      # the parent raises it
+        conn.send(exc)
+    finally:
+        conn.close()
+
+
+def _run(solver, resolution, dt_s, repeats) -> dict:
+    """:func:`_measure` of one setting in a child process forked for it (so that
+    its peak RSS is its own); ``resolution`` is the FE element count or the FD
+    segment count."""
+    ctx = multiprocessing.get_context("fork")
+    parent, child = ctx.Pipe(duplex=False)
+    base = peak_rss_MiB()             # this process runs no solver: its peak is its imports
+    process = ctx.Process(target=_child, args=(child, (solver, resolution, dt_s, repeats, base)))
+    process.start()
+    child.close()
+    try:
+        result = parent.recv()
+    finally:
+        process.join()
+    if isinstance(result, BaseException):
+        raise result
+    return result
+
+
+def _row(m: dict, reference_N: float) -> BenchRow:
+    return BenchRow(rel_error=abs(m["drag_N"] / reference_N - 1.0), **m)
 
 
 def _grid(solver, resolutions, time_steps_s, reference_N, repeats):
-    rows = []
-    for n in resolutions:
-        for dt in time_steps_s:
-            run, wall = _run(solver, n, dt, repeats)
-            drag = run.mean("drag_N")
-            rows.append(BenchRow(solver, n, run.extra["dt_s"], run.time_s.size - 1, wall, drag,
-                                 abs(drag / reference_N - 1.0)))
+    rows = [_row(_run(solver, n, dt, repeats), reference_N)
+            for n in resolutions for dt in time_steps_s]
     ok = [r for r in rows if r.rel_error <= TOLERANCE]
     return rows, (min(ok, key=lambda r: r.wall_s) if ok else None)
+
+
+def memory(elements: int, dt_s: float = SCALING_DT_S) -> dict:
+    """``fem-tether bench --memory N``: wall time and peak RSS of one FE run of
+    the benchmark case with ``elements`` elements (in a child process)."""
+    return _run("fe", elements, dt_s, 1) | {
+        "case": "L = 3000 m, quiet air, rho = 1.2, C_d = 1.2, tension mode, 1 + 3 periods"}
 
 
 def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
           fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=3) -> dict:
     """Run both grids and the references; return the tables and the summary."""
-    ref_run, ref_wall = _run("fe", 4 * max(elements), min(time_steps_s) / 4, 1)
-    ref = ref_run.mean("drag_N")
-    fd_ref_run, fd_ref_wall = _run("fd", 4 * max(fd_segments), min(fd_time_steps_s) / 4, 1)
+    ref_run = _run("fe", 4 * max(elements), min(time_steps_s) / 4, 1)
+    ref = ref_run["drag_N"]
+    fd_ref_run = _run("fd", 4 * max(fd_segments), min(fd_time_steps_s) / 4, 1)
     rows, cheapest = _grid("fe", elements, time_steps_s, ref, repeats)
     fd_rows, fd_cheapest = _grid("fd", fd_segments, fd_time_steps_s, ref, repeats)
     scaling = []
     for n in scaling_elements:
-        run, wall = _run("fe", n, SCALING_DT_S, 1)
-        scaling.append({"elements": n, "steps": run.time_s.size - 1, "wall_s": wall})
+        m = _run("fe", n, SCALING_DT_S, 1)
+        scaling.append({k: m[k] for k in ("elements", "steps", "wall_s", "peak_rss_MiB")})
     n_el = np.array([r["elements"] for r in scaling], dtype=float)
     wall = np.array([r["wall_s"] for r in scaling])
     slope, intercept = np.polyfit(n_el, wall, 1)
     return {
         "case": "L = 3000 m, quiet air, rho = 1.2, C_d = 1.2, tension mode, 1 + 3 periods",
-        "simulated_s": float(ref_run.time_s[-1]),
+        "simulated_s": ref_run["simulated_s"],
         "cpu_count": os.cpu_count(),
-        "reference": {"elements": 4 * max(elements), "dt_s": ref_run.extra["dt_s"],
-                      "drag_N": ref, "wall_s": ref_wall},
-        "fd_reference": {"segments": 4 * max(fd_segments), "dt_s": fd_ref_run.extra["dt_s"],
-                         "drag_N": fd_ref_run.mean("drag_N"), "wall_s": fd_ref_wall},
-        "rows": [asdict(r) | {"us_per_element_step": r.us_per_element_step} for r in rows + fd_rows],
-        "cheapest": None if cheapest is None else asdict(cheapest),
-        "fd_cheapest": None if fd_cheapest is None else asdict(fd_cheapest),
+        "memory": (f"peak RSS: this process with its imports ({peak_rss_MiB():.0f} MiB) plus the "
+                   "increase (run) of a child forked per setting"),
+        "reference": {"elements": 4 * max(elements), "dt_s": ref_run["dt_s"],
+                      "drag_N": ref, "wall_s": ref_run["wall_s"], "peak_rss_MiB": ref_run["peak_rss_MiB"]},
+        "fd_reference": {"segments": 4 * max(fd_segments), "dt_s": fd_ref_run["dt_s"],
+                         "drag_N": fd_ref_run["drag_N"], "wall_s": fd_ref_run["wall_s"],
+                         "peak_rss_MiB": fd_ref_run["peak_rss_MiB"]},
+        "rows": [r.as_dict() for r in rows + fd_rows],
+        "cheapest": None if cheapest is None else cheapest.as_dict(),
+        "fd_cheapest": None if fd_cheapest is None else fd_cheapest.as_dict(),
         "fd_over_fe_wall": (fd_cheapest.wall_s / cheapest.wall_s
                             if cheapest and fd_cheapest else None),
+        "fe_us_per_step": None if cheapest is None else cheapest.us_per_step,
+        "real_time_factor": None if cheapest is None else cheapest.real_time_factor,
         "tolerance": TOLERANCE,
         "scaling": {"dt_s": SCALING_DT_S, "runs": scaling, "fit_intercept_s": float(intercept),
                     "fit_s_per_element": float(slope),

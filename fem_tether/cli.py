@@ -158,9 +158,13 @@ def cmd_run(args):
 
 
 def cmd_bench(args):
-    from fem_tether.bench import bench
+    from fem_tether import bench
 
-    result = bench(repeats=args.repeats)
+    if args.memory:
+        result = bench.memory(args.memory)
+        print(report.json_text(result) if args.json else report.bench_memory_text(result))
+        return 0
+    result = bench.bench(repeats=args.repeats)
     print(report.json_text(result) if args.json else report.bench_text(result))
     return 0
 
@@ -250,6 +254,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False)
     c.add_argument("--repeats", type=_positive_int, default=3, help="best of N runs per setting")
+    c.add_argument("--memory", type=_positive_int, metavar="N",
+                   help="instead: wall time and peak RSS of one FE run with N elements (e.g. 5000)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False)

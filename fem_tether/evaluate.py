@@ -94,17 +94,18 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
     v["crosscheck_ok"] = 0
     v["mean_phi_deg"] = cfg.eight.mean_abs_phi_deg()
     runs, parts, errors, pending = {}, {}, [], False
+    status = {solver: store.status(Task(length_m, solver), key) for solver in job.solvers}
+    compared = status.get("fe") == status.get("fd") == "ok"    # only then are snapshots read
     for solver in job.solvers:
         task = Task(length_m, solver)
-        status = store.status(task, key)
-        if status is None:
+        if status[solver] is None:
             pending = True
             continue
         parts[solver] = store.path(task)
-        if status != "ok":
+        if status[solver] != "ok":
             errors.append(store.error(task))
             continue
-        runs[solver] = store.read(task)
+        runs[solver] = store.read(task, snapshots=compared)
     if "fe" in runs:
         v["drag_fe_N"] = runs["fe"].mean("drag_N")
         v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")

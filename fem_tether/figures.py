@@ -1,7 +1,9 @@
 """The figures of results: a sweep's four and a reel-out run's F_t(L).
 
 What to draw from a sweep result or a run (the curves and the points beside
-them); the drawing itself is :mod:`fem_tether.plots`.
+them); the drawing itself is :mod:`fem_tether.plots`, imported where a figure
+is drawn: importing matplotlib takes about half a second, which the ranks of
+a sweep that only run tasks need not spend.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether import atmosphere, plots, straight
+from fem_tether import atmosphere, straight
 from fem_tether.aep import SweepAep
 from fem_tether.config import Config
 from fem_tether.kite import KiteGenDesign
@@ -21,6 +23,8 @@ from fem_tether.sweepfile import read_sweep
 
 def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
     """F_t, G_e, power curves (shortest and longest line) and AEP against L."""
+    from fem_tether import plots
+
     cfg = data["config"]
     lengths = np.asarray(data["length_m"])
     cases = {"straight": ("drag_straight_N", "ge_straight"), "flexible": ("drag_fe_N", "ge_fe")}
@@ -48,6 +52,8 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
 
 def reel_drag_plot(run, cfg: Config, path, sweep_file=None) -> Path:
     """F_t(L) of a reel-out run beside the straight line and, if given, a sweep's FE points."""
+    from fem_tether import plots
+
     curve = period_average(run, "drag_N")
     lengths = np.linspace(run.series["length_m"].min(), run.series["length_m"].max(), 30)
     line = straight.line_of_config(cfg, with_wind=True)

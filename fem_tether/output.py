@@ -122,20 +122,28 @@ def _python(value):
     return value.item() if isinstance(value, np.generic) else value
 
 
-def read_run_hdf5(path) -> TetherRun:
-    """Read a run written by :func:`write_run_hdf5` (``extra_attrs`` are not restored)."""
+def read_run_hdf5(path, config: Config | None = None, snapshots: bool = True) -> TetherRun:
+    """Read a run written by :func:`write_run_hdf5` (``extra_attrs`` are not restored).
+
+    ``config``: the run's configuration if the caller has it (the stored one is
+    then not parsed again); ``snapshots=False`` leaves the snapshots out (empty)
+    when only the series are wanted."""
     with h5py.File(path, "r") as f:
-        snapshots = f["snapshots"]
+        stored = f["snapshots"]
+        if not snapshots:
+            stored = {"time_s": stored["time_s"]}
+        if config is None and f.attrs["config_toml"]:
+            config = Config.from_stored(f.attrs["config_toml"])
         return TetherRun(
             solver=f.attrs["solver"],
             length_m=float(f.attrs["length_m"]),
             period_s=float(f.attrs["period_s"]),
             time_s=f["series/time_s"][()],
             series={k: v[()] for k, v in f["series"].items() if k != "time_s"},
-            snapshot_time_s=snapshots["time_s"][()],
-            snapshots={k: v[()] for k, v in snapshots.items() if k != "time_s"},
+            snapshot_time_s=stored["time_s"][()],
+            snapshots={k: v[()] for k, v in stored.items() if k != "time_s"},
             average_start_s=float(f.attrs["average_start_s"]),
-            config=Config.from_stored(f.attrs["config_toml"]) if f.attrs["config_toml"] else None,
+            config=config,
             wall_s=float(f.attrs["wall_s"]),
             extra={k: _python(v) for k, v in f["extra"].attrs.items() if k != "description"},
         )

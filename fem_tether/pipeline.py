@@ -8,15 +8,16 @@ summary table is :func:`fem_tether.report.summary_table`.
 
 from __future__ import annotations
 
+import importlib
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from fem_tether.aep import SweepAep, sweep_aep, sweep_resource
 from fem_tether.atomic import write_json
 from fem_tether.figures import write_plots
 from fem_tether.jobs import load_job
-from fem_tether.sweep import SweepOutcome, sweep
+from fem_tether.sweep import SweepOutcome, peak_rss_MiB, sweep
 from fem_tether.sweepfile import read_sweep
 
 
@@ -40,12 +41,16 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     job = load_job(job_file)
     out = Path(out)
     h5 = out / "sweep.h5"
-    sweep_resource(job.config)       # a bad resource fails now, not after the sweep
-    outcome = sweep(job, h5)
+    # a bad resource fails now, not after the sweep (checked on rank 0 only: the
+    # other ranks need not import scipy.stats)
+    # rank 0 imports the plotting while it waits for the other ranks' tasks
+    outcome = sweep(job, h5, check=lambda: sweep_resource(job.config),
+                    idle=lambda: importlib.import_module("fem_tether.plots"))
     if outcome is None:
         return None
     data = read_sweep(h5)
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     files = write_plots(data, energy, out)
     files["aep_json"] = write_json(out / "aep.json", energy.as_dict())
+    outcome = replace(outcome, peak_rss_MiB=(peak_rss_MiB(),) + outcome.peak_rss_MiB[1:])  # with the plots
     return MainJob(outcome, data, energy, h5, files, time.perf_counter() - t0)

@@ -104,8 +104,8 @@ def crosscheck_text(check: CrossCheck, fe_run) -> str:
 
 
 def bench_text(result: dict) -> str:
-    """``fem-tether bench``: the references, the cost and error of every setting, the
-    cheapest setting of each solver within the tolerance, and the cost against elements."""
+    """``fem-tether bench``: the references, the cost, error and memory of every setting,
+    the cheapest setting of each solver within the tolerance, and the cost against elements."""
     ref, fd_ref = result["reference"], result["fd_reference"]
     tol = 100 * result["tolerance"]
     lines = [f"fem-tether bench: {result['case']} ({result['simulated_s']:.1f} s simulated)",
@@ -114,18 +114,24 @@ def bench_text(result: dict) -> str:
              f"           FD {fd_ref['segments']} segments, dt = {fd_ref['dt_s']:.4f} s: "
              f"F_t = {fd_ref['drag_N']:.2f} N ({fd_ref['wall_s']:.2f} s)",
              "",
-             " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)"]
+             " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)"
+             "  us/step  Newton/step  sim/wall  peak RSS [MiB] (run)"]
     for r in result["rows"]:
         lines.append(f" {r['solver']:6s}  {r['elements']:17d}  {r['dt_s']:6.4f}  {r['steps']:5d}  "
                      f"{r['wall_s']:9.3f}  {r['drag_N']:9.1f}  {100 * r['rel_error']:5.2f} %  "
-                     f"{r['us_per_element_step']:8.1f}")
+                     f"{r['us_per_element_step']:17.1f}  {r['us_per_step']:7.0f}  "
+                     f"{r['newton_per_step']:11.2f}  {r['real_time_factor']:8.1f}  "
+                     f"{r['peak_rss_MiB']:14.0f} ({r['run_rss_MiB']:.1f})")
+    lines.append(f" ({result['memory']})")
     lines.append("")
     for label, c in (("FE", result["cheapest"]), ("FD", result["fd_cheapest"])):
         if c is None:
             lines.append(f"{label}: no setting within {tol:.1f} % of the reference")
         else:
             lines.append(f"{label} cheapest within {tol:.1f} %: {c['elements']} elements/segments, "
-                         f"dt = {c['dt_s']:.4f} s: {c['wall_s']:.3f} s wall, error {100 * c['rel_error']:.2f} %")
+                         f"dt = {c['dt_s']:.4f} s: {c['wall_s']:.3f} s wall, error {100 * c['rel_error']:.2f} %, "
+                         f"{c['us_per_step']:.0f} us/step, {c['newton_per_step']:.2f} Newton/step, "
+                         f"{c['real_time_factor']:.1f} x real time")
     if result["fd_over_fe_wall"] is not None:
         lines.append(f"FD wall / FE wall at equal accuracy ({tol:.1f} %): {result['fd_over_fe_wall']:.1f}")
     s = result["scaling"]
@@ -133,7 +139,19 @@ def bench_text(result: dict) -> str:
         f"{r['elements']} el {r['wall_s']:.2f} s" for r in s["runs"]))
     lines.append(f"linear fit wall = {s['fit_intercept_s']:.3f} s + {1e3 * s['fit_s_per_element']:.3f} ms "
                  f"x elements (largest deviation {100 * s['fit_max_rel_dev']:.1f} %)")
+    lines.append("peak RSS vs elements: " + ", ".join(
+        f"{r['elements']} el {r['peak_rss_MiB']:.0f} MiB" for r in s["runs"]))
     return "\n".join(lines)
+
+
+def bench_memory_text(result: dict) -> str:
+    """``fem-tether bench --memory N``: one FE run's cost and peak memory."""
+    return (f"fem-tether bench --memory: {result['case']}, FE {result['elements']} elements, "
+            f"dt = {result['dt_s']:.4f} s, {result['steps']} steps: {result['wall_s']:.2f} s wall, "
+            f"{1e6 * result['wall_s'] / result['steps']:.0f} us/step, "
+            f"{result['newton_iterations'] / result['steps']:.2f} Newton/step\n"
+            f"peak RSS {result['peak_rss_MiB']:.0f} MiB: the process with its imports plus "
+            f"{result['run_rss_MiB']:.1f} MiB the run added (measured in a child forked for it)")
 
 
 def reused(outcome) -> str:
@@ -142,10 +160,20 @@ def reused(outcome) -> str:
             f"{outcome.tasks - outcome.reused} run")
 
 
+def peak_memory(outcome) -> str:
+    """The peak RSS of each rank and the largest (empty if not measured)."""
+    peaks = getattr(outcome, "peak_rss_MiB", ())
+    return (f"peak memory (RSS) per rank: {', '.join(f'{p:.0f}' for p in peaks)} MiB "
+            f"(max {max(peaks):.0f} MiB)") if peaks else ""
+
+
 def sweep_summary(outcome, out) -> dict:
     """``fem-tether sweep --json``: the outcome, non-finite values as null."""
+    peaks = getattr(outcome, "peak_rss_MiB", ())
     return {"file": str(out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
-            "reused_tasks": outcome.reused, "lengths": [
+            "reused_tasks": outcome.reused,
+            **({"peak_rss_MiB_per_rank": list(peaks), "peak_rss_MiB": max(peaks)} if peaks else {}),
+            "lengths": [
                 {"length_m": r.length_m, "status": r.status, "error": r.error,
                  **{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
                     for k, v in r.values.items()}}
@@ -161,7 +189,7 @@ def sweep_text(outcome, out) -> str:
                      f"straight {v['drag_straight_N']:9.1f} N, cross-check "
                      f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
                      + (f"  [{r.error}]" if r.status != "ok" else ""))
-    return "\n".join(lines)
+    return "\n".join(lines + [m for m in (peak_memory(outcome),) if m])
 
 
 def aep_text(result: dict) -> str:
@@ -221,5 +249,6 @@ def main_job_text(result) -> str:
     return "\n".join([summary_table(result.data, result.energy), "",
                       f"{len(outcome.lengths)} lengths on {outcome.n_ranks} rank(s) in "
                       f"{result.seconds:.1f} s ({reused(outcome)})",
+                      *(m for m in (peak_memory(outcome),) if m),
                       f"results: {result.h5}",
                       *(f"{name}: {path}" for name, path in result.files.items())])

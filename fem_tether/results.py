@@ -103,12 +103,16 @@ def time_grid(period_s: float, dt_s: float, spinup_periods: int, average_periods
 
 class Recorder:
     """Collects the series every step and the snapshots every ``output_every``
-    steps (and at the last step) of a run, then builds its :class:`TetherRun`."""
+    steps (and at the last step) of a run, then builds its :class:`TetherRun`.
+
+    The series go into arrays allocated for the whole run (``n_steps + 1``
+    samples), so memory grows with simulated time only by the snapshots."""
 
     def __init__(self, n_steps: int, output_every: int):
         self.n_steps, self.output_every = n_steps, output_every
-        self.times: list[float] = []
-        self.rows: list[list] = []
+        self.count = 0
+        self.times = np.empty(n_steps + 1)
+        self.rows = np.empty((n_steps + 1, len(SERIES)))
         self.snap_t: list[float] = []
         self.snaps: list[dict] = []
 
@@ -119,17 +123,18 @@ class Recorder:
     def add(self, step: int, t: float, values: dict, last: bool = False) -> None:
         """Record ``values`` at step ``step``: the SERIES always, the NODE_FIELDS and
         CELL_FIELDS when :meth:`snapshot_due`; ``last`` marks a run's last step."""
-        self.times.append(t)
-        self.rows.append([values[k] for k in SERIES])
+        self.times[self.count] = t
+        self.rows[self.count] = [values[k] for k in SERIES]
+        self.count += 1
         if self.snapshot_due(step, last):
             self.snap_t.append(t)
             self.snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
 
     def run(self, **fields) -> TetherRun:
         """The :class:`TetherRun`; ``fields`` are its remaining attributes."""
-        series = np.asarray(self.rows)
+        series = self.rows[:self.count].copy()
         return TetherRun(
-            time_s=np.asarray(self.times),
+            time_s=self.times[:self.count].copy(),
             series={k: series[:, j] for j, k in enumerate(SERIES)},
             snapshot_time_s=np.asarray(self.snap_t),
             snapshots={k: _padded([s[k] for s in self.snaps]) for k in NODE_FIELDS + CELL_FIELDS},

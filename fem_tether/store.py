@@ -78,8 +78,11 @@ class PartsStore:
         with h5py.File(self.path(task), "r") as f:
             return str(f.attrs["error"])
 
-    def read(self, task: Task) -> TetherRun:
-        return read_run_hdf5(self.path(task))
+    def read(self, task: Task, snapshots: bool = True) -> TetherRun:
+        """The stored run of a task whose part matches the job's inputs (its
+        configuration is the job's, not parsed again); ``snapshots=False``: the
+        series only."""
+        return read_run_hdf5(self.path(task), self.job.config_for(task.length_m), snapshots)
 
     def write_run(self, task: Task, run: TetherRun, key: str) -> None:
         write_run_hdf5(run, self.path(task), extra_attrs={"status": "ok", "inputs_key": key})

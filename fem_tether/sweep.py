@@ -13,20 +13,29 @@ the finished tasks and says how to resume.
 
 from __future__ import annotations
 
+import resource
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from fem_tether.atomic import OutputError
-from fem_tether.evaluate import LengthResult, run_task
-from fem_tether.jobs import Job
+from fem_tether.errors import InputError
+from fem_tether.evaluate import LengthResult, evaluate_length, run_task
+from fem_tether.jobs import Job, Task
 from fem_tether.progress import Progress
 from fem_tether.schedule import assign, task_cost
 from fem_tether.store import PartsStore
 from fem_tether.sweepfile import assemble, check_out
 
 EXIT_ABORT = 3
+#: ``ru_maxrss`` is in KiB on Linux, in bytes on macOS.
+_MAXRSS_BYTES = 1 if sys.platform == "darwin" else 1024
+
+
+def peak_rss_MiB() -> float:
+    """This process's peak resident set size so far (``getrusage`` ``ru_maxrss``) [MiB]."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * _MAXRSS_BYTES / 2**20
 
 
 @dataclass(frozen=True)
@@ -37,10 +46,19 @@ class SweepOutcome:
     tasks: int
     reused: int
     n_ranks: int
+    #: Peak RSS of each rank's process at the end of the sweep [MiB], rank 0 first.
+    peak_rss_MiB: tuple[float, ...] = ()
 
     @property
     def ok(self) -> bool:
         return all(r.status == "ok" for r in self.lengths)
+
+
+def _combine_complete(store: PartsStore) -> None:
+    """Combine (and remember) the lengths whose parts are all present."""
+    for length_m in store.job.lengths_m:
+        if all(store.path(Task(length_m, s)).exists() for s in store.job.solvers):
+            evaluate_length(store, length_m)
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -51,11 +69,18 @@ class SweepInterrupted(KeyboardInterrupt):
         super().__init__(f"{kept} of {total} tasks kept in {directory}; run the same command to resume")
 
 
-def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepOutcome | None:
+def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
+          check: Callable[[], object] | None = None,
+          idle: Callable[[], object] | None = None) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
     Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
     ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are kept).
+    ``check``, if given, runs on rank 0 before any task (a check of what
+    follows the sweep); the :class:`InputError` it raises is raised on every rank.
+    While rank 0 waits for the other ranks' tasks it combines the lengths they
+    complete (so that its final assembly finds them combined) and calls
+    ``idle`` once (work that would otherwise follow the sweep).
     """
     if comm is None:
         from mpi4py import MPI
@@ -63,15 +88,17 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepO
     out = Path(out)
     rank, size = comm.Get_rank(), comm.Get_size()
     store = PartsStore(job, out)
-    problem = None
+    problem: InputError | None = None
     if rank == 0:
         try:
             check_out(out)
-        except OutputError as exc:
-            problem = str(exc)
+            if check is not None:
+                check()
+        except InputError as exc:
+            problem = exc
     problem = comm.bcast(problem, root=0)
     if problem:
-        raise OutputError(problem)
+        raise problem
     tasks = job.tasks
     mine = assign([task_cost(job, t) for t in tasks], size)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
@@ -86,9 +113,16 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepO
             if rank == 0:
                 bar.update(store.done())
         request = comm.Ibarrier()
+        seen = -1
         while not request.Test():
             if rank == 0:
-                bar.update(store.done())
+                if store.done() != seen:
+                    seen = store.done()
+                    bar.update(seen)
+                    _combine_complete(store)
+                if idle is not None:
+                    idle()
+                    idle = None
             time.sleep(0.05)
     except KeyboardInterrupt:
         bar.close()
@@ -98,8 +132,9 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True) -> SweepO
         comm.Abort(EXIT_ABORT)
     reused = comm.reduce(reused, root=0)
     if rank != 0:
+        comm.gather(peak_rss_MiB(), root=0)
         return None
     results = assemble(store, size)
     bar.update(len(tasks))
     bar.close()
-    return SweepOutcome(results, len(tasks), reused, size)
+    return SweepOutcome(results, len(tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))

@@ -143,15 +143,19 @@ def test_winch_too_weak_for_the_line_is_a_solver_failure(capsys, tmp_path, comma
 
 def test_bench_prints_its_table_from_report(capsys, monkeypatch):
     """``fem-tether bench`` prints report.bench_text of the result (a stand-in result
-    here: the real benchmark takes minutes)."""
+    here: the real benchmark takes minutes): per setting the cost, error, us per
+    step, Newton iterations per step, real-time factor and peak memory."""
     row = {"solver": "fd", "elements": 25, "dt_s": 0.1, "steps": 288, "wall_s": 0.5, "drag_N": 40000.0,
-           "rel_error": 0.003}
+           "rel_error": 0.003, "newton_iterations": 864, "simulated_s": 28.8, "peak_rss_MiB": 95.4,
+           "run_rss_MiB": 3.21, "us_per_step": 1736.1, "newton_per_step": 3.0, "real_time_factor": 57.6}
     result = {"case": "L = 3000 m", "simulated_s": 28.8, "tolerance": 0.005,
+              "memory": "peak RSS: how measured",
               "reference": {"elements": 320, "dt_s": 0.0125, "drag_N": 40123.456, "wall_s": 12.3},
               "fd_reference": {"segments": 400, "dt_s": 0.00625, "drag_N": 40111.1, "wall_s": 30.2},
               "rows": [row | {"us_per_element_step": 69.4}], "cheapest": None, "fd_cheapest": row,
               "fd_over_fe_wall": None,
-              "scaling": {"dt_s": 0.1, "runs": [{"elements": 20, "steps": 288, "wall_s": 0.3}],
+              "scaling": {"dt_s": 0.1, "runs": [{"elements": 20, "steps": 288, "wall_s": 0.3,
+                                                 "peak_rss_MiB": 93.0}],
                           "fit_intercept_s": 0.0333, "fit_s_per_element": 0.01333, "fit_max_rel_dev": 0.0}}
     monkeypatch.setattr("fem_tether.bench.bench", lambda repeats: result)
     code, out, _ = run_cli(capsys, "bench")
@@ -160,10 +164,39 @@ def test_bench_prints_its_table_from_report(capsys, monkeypatch):
         "reference: FE 320 elements, dt = 0.0125 s: F_t = 40123.46 N (12.30 s)",
         "           FD 400 segments, dt = 0.0063 s: F_t = 40111.10 N (30.20 s)",
         "",
-        " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)",
-        " fd                     25  0.1000    288      0.500    40000.0   0.30 %      69.4",
+        " solver  elements/segments  dt [s]  steps   wall [s]    F_t [N]   error  us/(element step)"
+        "  us/step  Newton/step  sim/wall  peak RSS [MiB] (run)",
+        " fd                     25  0.1000    288      0.500    40000.0   0.30 %               69.4"
+        "     1736         3.00      57.6              95 (3.2)",
+        " (peak RSS: how measured)",
         "",
         "FE: no setting within 0.5 % of the reference",
-        "FD cheapest within 0.5 %: 25 elements/segments, dt = 0.1000 s: 0.500 s wall, error 0.30 %",
+        "FD cheapest within 0.5 %: 25 elements/segments, dt = 0.1000 s: 0.500 s wall, error 0.30 %, "
+        "1736 us/step, 3.00 Newton/step, 57.6 x real time",
         "cost vs elements at dt = 0.1 s: 20 el 0.30 s",
-        "linear fit wall = 0.033 s + 13.330 ms x elements (largest deviation 0.0 %)"]
+        "linear fit wall = 0.033 s + 13.330 ms x elements (largest deviation 0.0 %)",
+        "peak RSS vs elements: 20 el 93 MiB"]
+
+
+def test_bench_json_has_the_cheapest_fe_settings_cost_and_real_time_factor(capsys, monkeypatch):
+    """``fem-tether bench --json`` carries ``fe_us_per_step`` and ``real_time_factor``
+    (of the FE cheapest setting) from bench()."""
+    monkeypatch.setattr("fem_tether.bench.bench",
+                        lambda repeats: {"fe_us_per_step": 1234.5, "real_time_factor": 20.0})
+    code, out, _ = run_cli(capsys, "bench", "--json")
+    assert code == 0 and json.loads(out) == {"fe_us_per_step": 1234.5, "real_time_factor": 20.0}
+
+
+def test_bench_memory_runs_one_fe_setting(capsys, monkeypatch):
+    """``fem-tether bench --memory N`` reports one FE run of N elements: its cost and
+    peak RSS (bench.memory replaced here)."""
+    result = {"case": "L = 3000 m", "solver": "fe", "elements": 5000, "dt_s": 0.1, "steps": 290,
+              "wall_s": 29.0, "drag_N": 1.0, "newton_iterations": 1160, "simulated_s": 29.0,
+              "peak_rss_MiB": 180.2, "run_rss_MiB": 90.04}
+    monkeypatch.setattr("fem_tether.bench.memory", lambda elements: result | {"elements": elements})
+    code, out, _ = run_cli(capsys, "bench", "--memory", "5000")
+    assert code == 0 and out.splitlines() == [
+        "fem-tether bench --memory: L = 3000 m, FE 5000 elements, dt = 0.1000 s, 290 steps: "
+        "29.00 s wall, 100000 us/step, 4.00 Newton/step",
+        "peak RSS 180 MiB: the process with its imports plus 90.0 MiB the run added "
+        "(measured in a child forked for it)"]

@@ -33,3 +33,13 @@ def test_reel_drag_plot_of_a_reel_out_run(unrun_sweep, tmp_path):
     path = reel_drag_plot(run, load_config(), tmp_path / "reel.png", sweep_file=unrun_sweep)
     assert path == tmp_path / "reel.png" and is_png(path)
     assert is_png(reel_drag_plot(run, load_config(), tmp_path / "alone.png"))
+
+
+def test_the_ranks_of_a_sweep_do_not_import_matplotlib():
+    """Importing the main job (what every rank of ``fem-tether run`` imports) leaves
+    matplotlib unimported; it is imported where a figure is drawn."""
+    import subprocess
+    import sys
+    code = "import sys, fem_tether.cli, fem_tether.pipeline; print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -113,3 +113,11 @@ def test_summary_table_of_a_passed_and_a_failed_cross_check(data):
     assert "      4.00" in lines[2] and lines[2].endswith("  ok")
     assert lines[3].endswith("  FAILED (5.1 % on F_t)")
     assert lines[-1] == "kept without a passed cross-check (--allow-unchecked): 800 m"
+
+
+def test_peak_memory_per_rank_in_the_sweep_texts():
+    outcome = _outcome()
+    outcome.peak_rss_MiB = (180.4, 201.6)
+    assert sweep_text(outcome, "r.h5").splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
+    summary = sweep_summary(outcome, "r.h5")
+    assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6

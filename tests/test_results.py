@@ -91,3 +91,12 @@ def test_period_average_of_a_sine_during_a_reel_out():
     assert mean.shape == (n + 1,)                   # windows starting at t = 1, 1.125, ..., 2
     np.testing.assert_allclose(mean, 7.0, rtol=0, atol=1e-14)
     np.testing.assert_allclose(L, 400.0 + 10.0 * (1.5 + h * np.arange(n + 1)), rtol=1e-15)
+
+
+def test_recorder_allocates_the_series_of_the_whole_run_at_once():
+    """Memory grows with simulated time only by the snapshots: the series arrays are
+    allocated for every step when the recorder is made."""
+    rec = Recorder(n_steps=7, output_every=100)
+    times, rows = rec.times, rec.rows
+    assert times.shape == (8,) and rows.shape == (8, len(SERIES))
+    assert rec.times is times and rec.rows is rows

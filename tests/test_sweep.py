@@ -291,3 +291,17 @@ def test_a_failed_solve_is_recorded_quietly(tmp_path):
     assert "FD: at t = " in data["error"][0] and "the line went slack" in data["error"][0]
     assert np.isnan(data["drag_fe_N"][0]) and np.isnan(data["drag_fd_N"][0])
     assert "not run; FE: time step did not converge" in table and "nan %" not in table
+
+
+def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_sweep(tiny_job, tmp_path):
+    """The outcome has the peak RSS of each rank (one here); a ``check`` that raises an
+    InputError stops the sweep before any task, with that error."""
+    from fem_tether.errors import InputError
+    outcome = sw.sweep(tiny_job, tmp_path / "r.h5", comm=_self_comm(), progress=False)
+    assert len(outcome.peak_rss_MiB) == 1 and outcome.peak_rss_MiB[0] == pytest.approx(sw.peak_rss_MiB())
+
+    def bad():
+        raise InputError("bad resource")
+    with pytest.raises(InputError, match="bad resource"):
+        sw.sweep(tiny_job, tmp_path / "s.h5", comm=_self_comm(), progress=False, check=bad)
+    assert not (tmp_path / "s.h5").exists() and not list(parts_dir(tmp_path / "s.h5").glob("*.h5"))
