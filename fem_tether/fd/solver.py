@@ -58,6 +58,7 @@ from fem_tether.atmosphere import AltitudeError
 from fem_tether.config import Config
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
+from fem_tether.loads import CrossflowDrag
 from fem_tether.fd.system import Grid, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
@@ -81,7 +82,8 @@ class FDModel(TetherCase):
 
 @dataclass
 class State:
-    """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance."""
+    """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance,
+    and the drag at the interior nodes where a time step computed it."""
 
     t: float
     r: np.ndarray
@@ -89,6 +91,7 @@ class State:
     a: np.ndarray
     T: np.ndarray
     R: float
+    drag: CrossflowDrag | None = None   # at the interior nodes, as the step's equations had it
 
 
 def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysics:
@@ -276,25 +279,36 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
             acc = a0 * (v - cur.v)
         return v, acc
 
-    worst = math.inf
+    worst = last = math.inf            # last: the residual before; expect this iterate to converge (no drag derivatives)?
     for _ in range(model.max_newton):
         r = _nodes(model, r_int, R, e)
         v, acc = kinematics(r)
         try:
-            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_mps=model.reel_mps)
+            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0,
+                                   jacobian=not _expect_converged(worst, last, model.newton_tol),
+                                   reel_mps=model.reel_mps)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
         stats.newton_iterations += 1
-        worst = float(np.max(np.abs(ev.residual)))
+        worst, last = float(np.max(np.abs(ev.residual))), worst
         if not np.isfinite(worst):
             break
         if worst <= model.newton_tol:
-            return State(t_new, r, v, acc, T, float(R))
+            return State(t_new, r, v, acc, T, float(R), ev.drag)
         try:
             r_int, T, R = _apply(model, model.grid.solve(ev.ab, -ev.residual), r_int, T, R)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)
+
+
+def _expect_converged(worst: float, before: float, tol: float) -> bool:
+    """Whether the Newton iterate after residuals ``before`` and then ``worst``
+    (max norms) is expected within ``tol``: quadratic convergence,
+    ``worst^2 / before^2`` times ``worst`` below a tenth of it.  Only decides
+    whether the drag's derivatives are evaluated with the residual (a wrong
+    guess costs one drag evaluation, never a different answer)."""
+    return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
 
 
 def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
@@ -308,7 +322,7 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     """
     g, ph = model.grid, model.eq.physics
     r, v = state.r, state.v
-    loads = model.eq.line_loads(r, v, model.reel_mps)
+    loads = model.eq.line_loads(r, v, model.reel_mps, state.drag)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     seg = np.linalg.norm(np.diff(r, axis=0), axis=1)

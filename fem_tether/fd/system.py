@@ -48,7 +48,7 @@ import copy
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import solve_banded
+from scipy.linalg import lapack
 
 from fem_tether.loads import crossflow_drag
 from fem_tether.tether import TetherPhysics
@@ -221,15 +221,44 @@ class Grid:
         return ab.reshape(self._band_shape)
 
     def solve(self, ab, rhs):
-        return solve_banded((self.lower, self.upper), ab, rhs, overwrite_ab=True,
-                            check_finite=False)
+        """Solution of the banded system ``ab`` (solve_banded storage) for ``rhs``.
+
+        LAPACK ``gbsv`` on a copy of ``ab`` with the ``lower`` rows of fill-in
+        above it: what :func:`scipy.linalg.solve_banded` does, without its
+        per-call checks.  Raises :class:`numpy.linalg.LinAlgError` if singular.
+        """
+        lu = np.zeros((2 * self.lower + self.upper + 1, self.n))
+        lu[self.lower:] = ab
+        _, _, x, info = lapack.dgbsv(self.lower, self.upper, lu, rhs, overwrite_ab=True)
+        if info > 0:
+            raise np.linalg.LinAlgError("singular matrix")
+        if info < 0:
+            raise ValueError(f"illegal value in argument {-info} of gbsv")
+        return x
 
 
-@dataclass
 class Evaluation:
-    residual: np.ndarray          # scaled, rows in layout order (4M-3)
-    length_m: np.ndarray          # (M,)
-    ab: np.ndarray | None = None
+    """Scaled residual of the equations at one iterate, and their banded Jacobian.
+
+    ``residual`` (rows in layout order, 4M - 3) and ``length_m`` (the segment
+    lengths l_k, (M,)) are computed at once; the Jacobian ``ab``
+    (:func:`scipy.linalg.solve_banded` storage) when first asked for, so that
+    a Newton iteration that has converged does not assemble it; ``drag`` is
+    the drag at the interior nodes.
+    """
+
+    def __init__(self, residual, length_m, drag, jacobian):
+        self.residual = residual
+        self.length_m = length_m
+        self.drag = drag                  # at the interior nodes (central tangents)
+        self._jacobian = jacobian
+        self._ab = None
+
+    @property
+    def ab(self) -> np.ndarray:
+        if self._ab is None:
+            self._ab = self._jacobian()
+        return self._ab
 
 
 class TetherFD:
@@ -247,11 +276,13 @@ class TetherFD:
         return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
-    def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
+    def line_loads(self, r, v, reel_mps=0.0, interior=None) -> NodalLoads:
         """Drag at every node 0..M; one-sided tangents at the two ends.
 
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
-        the material velocity V_L tau_{1/2}."""
+        the material velocity V_L tau_{1/2}.  ``interior`` is the drag at the
+        interior nodes if known (:attr:`Evaluation.drag` of these r and v);
+        then only the two ends are evaluated."""
         tangent = np.empty_like(r)
         tangent[1:-1] = r[2:] - r[:-2]
         tangent[0] = r[1] - r[0]
@@ -260,8 +291,20 @@ class TetherFD:
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tangent[0]
-        load = self.nodal_drag(r, v, tangent)
-        return NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent)
+        if interior is None:
+            load = self.nodal_drag(r, v, tangent)
+            return NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent)
+        ends = [0, -1]
+        end = self.nodal_drag(r[ends], v[ends], tangent[ends])
+
+        def join(at_ends, inside):
+            out = np.empty((r.shape[0],) + inside.shape[1:])
+            out[1:-1] = inside
+            out[ends] = at_ends
+            return out
+
+        return NodalLoads(join(end.force, interior.force), join(end.vn_mps, interior.vn_mps),
+                          join(end.re, interior.re), join(end.cd, interior.cd), tangent)
 
     # --- equations ---------------------------------------------------------------
     @property
@@ -271,7 +314,13 @@ class TetherFD:
 
     def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
                  jacobian=True, reel_mps=0.0) -> Evaluation:
-        """Scaled residual (and banded Jacobian) at nodal r, v, a (M+1, 3) and tensions T (M,).
+        """Scaled residual and banded Jacobian at nodal r, v, a (M+1, 3) and tensions T (M,).
+
+        The Jacobian is assembled when the result's ``ab`` is first read.
+        ``jacobian`` says whether the drag's derivatives are evaluated with the
+        residual (for an iterate whose Jacobian will be needed) or, if ``ab``
+        is read, only then (drag evaluated twice; for an iterate expected to
+        converge or a trial point of a line search).
 
         ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for
         statics).  ``reel_mps`` is the winch speed V_L: node 0 stays at the
@@ -304,10 +353,21 @@ class TetherFD:
         res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / h[:-1]
         res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm[:, None]
         res[4 * M - 4] = con[-1] / h[-1]
-        out = Evaluation(res, ell)
-        if not jacobian:
-            return out
 
+        def build():
+            drag = load if with_derivatives else \
+                self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=True)
+            return self._jacobian(r, T, tau, ell, dv, tau_n, dn_len, drag, sm, kite_dir, c_a, c_v)
+
+        with_derivatives = jacobian
+        return Evaluation(res, ell, load, build)
+
+    def _jacobian(self, r, T, tau, ell, dv, tau_n, dn_len, load, sm, kite_dir, c_a, c_v):
+        """Banded Jacobian of :meth:`evaluate`'s residual (its intermediate values
+        and the drag ``load`` with its derivatives)."""
+        g, ph = self.grid, self.physics
+        h, hbar = g.h, g.hbar
+        mu = ph.linear_density_kg_m
         proj = _EYE - _outer(tau, tau)                         # (M, 3, 3)
         K = (T / ell)[:, None, None] * proj                    # d F_{k+1/2} / d r_{k+1}
         hb3 = hbar[:, None, None]
@@ -339,8 +399,7 @@ class TetherFD:
             (B_plus * sm[:, None]).ravel(), (B_minus * sm[:, None]).ravel(),
             (c_row * sg[:, None]).ravel(), (-c_row * sg[:, None]).ravel(), D * sg,
         ])
-        out.ab = g.assemble(values, kite_dir)
-        return out
+        return g.assemble(values, kite_dir)
 
     def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0):
         """Velocities of the inextensible line on its constraints, closest to
