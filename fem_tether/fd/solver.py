@@ -58,8 +58,7 @@ from fem_tether.atmosphere import AltitudeError
 from fem_tether.config import Config
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
-from fem_tether.loads import CrossflowDrag
-from fem_tether.fd.system import Grid, TetherFD
+from fem_tether.fd.system import Grid, NodalLoads, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
@@ -83,7 +82,7 @@ class FDModel(TetherCase):
 @dataclass
 class State:
     """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance,
-    and the drag at the interior nodes where a time step computed it."""
+    and the drag along it where a time step computed it (:meth:`TetherFD.line_loads`)."""
 
     t: float
     r: np.ndarray
@@ -91,7 +90,7 @@ class State:
     a: np.ndarray
     T: np.ndarray
     R: float
-    drag: CrossflowDrag | None = None   # at the interior nodes, as the step's equations had it
+    drag: NodalLoads | None = None   # at every node, where the step's Newton solve gave it
 
 
 def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysics:
@@ -322,7 +321,7 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     """
     g, ph = model.grid, model.eq.physics
     r, v = state.r, state.v
-    loads = model.eq.line_loads(r, v, model.reel_mps, state.drag)
+    loads = state.drag if state.drag is not None else model.eq.line_loads(r, v, model.reel_mps)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     seg = np.linalg.norm(np.diff(r, axis=0), axis=1)

@@ -244,13 +244,13 @@ class Evaluation:
     lengths l_k, (M,)) are computed at once; the Jacobian ``ab``
     (:func:`scipy.linalg.solve_banded` storage) when first asked for, so that
     a Newton iteration that has converged does not assemble it; ``drag`` is
-    the drag at the interior nodes.
+    the drag at every node (:meth:`TetherFD.line_loads` of the same r and v).
     """
 
     def __init__(self, residual, length_m, drag, jacobian):
         self.residual = residual
         self.length_m = length_m
-        self.drag = drag                  # at the interior nodes (central tangents)
+        self.drag = drag                  # at every node, as line_loads has it
         self._jacobian = jacobian
         self._ab = None
 
@@ -276,35 +276,28 @@ class TetherFD:
         return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
-    def line_loads(self, r, v, reel_mps=0.0, interior=None) -> NodalLoads:
-        """Drag at every node 0..M; one-sided tangents at the two ends.
-
-        With reeling (``reel_mps`` = V_L) the line leaves the winch node with
-        the material velocity V_L tau_{1/2}.  ``interior`` is the drag at the
-        interior nodes if known (:attr:`Evaluation.drag` of these r and v);
-        then only the two ends are evaluated."""
+    @staticmethod
+    def _tangents(r):
+        """Unit tangents at every node 0..M (central inside, one-sided at the
+        ends) and the lengths they were normalised by."""
         tangent = np.empty_like(r)
         tangent[1:-1] = r[2:] - r[:-2]
         tangent[0] = r[1] - r[0]
         tangent[-1] = r[-1] - r[-2]
-        tangent, _ = _unit(tangent)
+        return _unit(tangent)
+
+    def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
+        """Drag at every node 0..M; one-sided tangents at the two ends.
+
+        With reeling (``reel_mps`` = V_L) the line leaves the winch node with
+        the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
+        same for the r and v of an evaluation.)"""
+        tangent, _ = self._tangents(r)
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tangent[0]
-        if interior is None:
-            load = self.nodal_drag(r, v, tangent)
-            return NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent)
-        ends = [0, -1]
-        end = self.nodal_drag(r[ends], v[ends], tangent[ends])
-
-        def join(at_ends, inside):
-            out = np.empty((r.shape[0],) + inside.shape[1:])
-            out[1:-1] = inside
-            out[ends] = at_ends
-            return out
-
-        return NodalLoads(join(end.force, interior.force), join(end.vn_mps, interior.vn_mps),
-                          join(end.re, interior.re), join(end.cd, interior.cd), tangent)
+        load = self.nodal_drag(r, v, tangent)
+        return NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent)
 
     # --- equations ---------------------------------------------------------------
     @property
@@ -338,11 +331,12 @@ class TetherFD:
             v = v.copy()
             v[0] = reel_mps * tau[0]
         flux = T[:, None] * tau
-        # nodal drag at interior nodes with the central tangent
-        dn = r[2:] - r[:-2]
-        tau_n, dn_len = _unit(dn)
-        load = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=jacobian)
-        f = load.force
+        # drag at the interior nodes with the central tangent (the equations'),
+        # and at the two ends with the one-sided ones (for line_loads)
+        tangent, tangent_len = self._tangents(r)
+        tau_n, dn_len = tangent[1:-1], tangent_len[1:-1]
+        load = self.nodal_drag(r, v, tangent, jacobian=jacobian)
+        f = load.force[1:-1]
         mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / hbar[:, None] - ph.weight_N_m - f
         dv = v[1:] - v[:-1]
         con = ell - h * (1.0 + ph.compliance_per_N * T)
@@ -355,16 +349,24 @@ class TetherFD:
         res[4 * M - 4] = con[-1] / h[-1]
 
         def build():
-            drag = load if with_derivatives else \
-                self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=True)
-            return self._jacobian(r, T, tau, ell, dv, tau_n, dn_len, drag, sm, kite_dir, c_a, c_v)
+            if with_derivatives:
+                d_dvrel, d_dtau = load.d_dvrel[1:-1], load.d_dtau[1:-1]
+                d_drho, d_dmu = load.d_drho[1:-1], load.d_dmu[1:-1]
+            else:
+                inner = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=True)
+                d_dvrel, d_dtau, d_drho, d_dmu = inner.d_dvrel, inner.d_dtau, inner.d_drho, inner.d_dmu
+            return self._jacobian(r, T, tau, ell, dv, tau_n, dn_len, (d_dvrel, d_dtau, d_drho, d_dmu),
+                                  sm, kite_dir, c_a, c_v)
 
         with_derivatives = jacobian
-        return Evaluation(res, ell, load, build)
+        return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
+                          build)
 
-    def _jacobian(self, r, T, tau, ell, dv, tau_n, dn_len, load, sm, kite_dir, c_a, c_v):
-        """Banded Jacobian of :meth:`evaluate`'s residual (its intermediate values
-        and the drag ``load`` with its derivatives)."""
+    def _jacobian(self, r, T, tau, ell, dv, tau_n, dn_len, drag_derivatives, sm, kite_dir, c_a, c_v):
+        """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate
+        values and the derivatives of the drag at the interior nodes
+        (df/dV_rel, df/dtau, df/drho, df/dmu_air)."""
+        d_dvrel, d_dtau, d_drho, d_dmu = drag_derivatives
         g, ph = self.grid, self.physics
         h, hbar = g.h, g.hbar
         mu = ph.linear_density_kg_m
@@ -375,13 +377,13 @@ class TetherFD:
         A_next = -K[1:] / hb3
         A_prev = -K[:-1] / hb3
         z = r[1:-1, 2]
-        df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
-            + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
-        d_self = -c_v * load.d_dvrel
+        df_dz = d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
+            + d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
+            + d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
+        d_self = -c_v * d_dvrel
         d_self[:, :, 2] += df_dz
         proj_n = _EYE - _outer(tau_n, tau_n)
-        d_next = load.d_dtau @ proj_n / dn_len[:, None, None]
+        d_next = d_dtau @ proj_n / dn_len[:, None, None]
         A_self = A_self - d_self
         A_next = A_next - d_next
         A_prev = A_prev + d_next
