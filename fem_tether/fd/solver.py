@@ -266,22 +266,29 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
     e = model.end.state(t_new, 1.0)[0]
     a0, a2 = _coefficients(model, prev, cur, h)
     f_ref = model.force_ref_N(cur.T, model.eq.physics)
-    r_int = (cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1]
-    T, R = cur.T.copy(), cur.R
+    g = model.grid
+    # the unknowns in one vector of the full layout (views r_int, T, R into it);
+    # the Newton update adds to its active part in place
+    x = g.pack((cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1], cur.T, cur.R)
+    r_int, T, _ = g.split(x)
+    active = g.active(x)
+    r_old, v_old = cur.r, cur.v
+    if a2:                           # the history's parts of v and a, fixed within the step
+        v_hist = a2 * (prev.r - cur.r)
+        a_hist = a2 * (prev.v - cur.v)
+    r = np.zeros_like(r_old)         # r_0 = 0 (the winch)
 
-    def kinematics(r):
-        v = a0 * (r - cur.r)
-        if a2:
-            v += a2 * (prev.r - cur.r)
-            acc = a0 * (v - cur.v) + a2 * (prev.v - cur.v)
-        else:
-            acc = a0 * (v - cur.v)
-        return v, acc
-
-    worst = last = math.inf            # last: the residual before; expect this iterate to converge (no drag derivatives)?
+    worst = last = math.inf            # last: the residual before worst
     for _ in range(model.max_newton):
-        r = _nodes(model, r_int, R, e)
-        v, acc = kinematics(r)
+        R = x[-1]
+        r[1:-1] = r_int
+        r[-1] = R * e
+        v = a0 * (r - r_old)
+        if a2:
+            v += v_hist
+            acc = a0 * (v - v_old) + a_hist
+        else:
+            acc = a0 * (v - v_old)
         try:
             ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0,
                                    jacobian=not _expect_converged(worst, last, model.newton_tol),
@@ -293,9 +300,9 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         if not np.isfinite(worst):
             break
         if worst <= model.newton_tol:
-            return State(t_new, r, v, acc, T, float(R), ev.drag)
+            return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
         try:
-            r_int, T, R = _apply(model, model.grid.solve(ev.ab, -ev.residual), r_int, T, R)
+            active += g.solve(ev.ab, -ev.residual)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)

@@ -170,17 +170,6 @@ class Grid:
         rows = np.concatenate(rows)
         cols = np.concatenate(cols)
         self._kite_entry = np.concatenate(kite)
-        # component of each node column (for the e(t) multiplier of the R column)
-        comp = np.concatenate([
-            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
-            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
-            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
-            np.zeros(2 * 3 * (M - 1), dtype=np.int64),
-            np.broadcast_to(np.arange(3), (M, 3)).ravel(),
-            np.broadcast_to(np.arange(3), (M, 3)).ravel(),
-            np.zeros(M, dtype=np.int64),
-        ])
-        self._comp = comp
         # map full columns to active columns
         if self.tension_mode:           # T_{1/2} known: drop column 0
             act = cols - 1
@@ -197,6 +186,13 @@ class Grid:
         self._dump = nb * self.n                               # sink for dropped entries
         self._flat = np.where(keep, flat, self._dump)
         self._band_shape = (nb, self.n)
+        # tension mode: the kite node's three entries of a row add up in the R
+        # column (times e(t)); each such group is three consecutive entries
+        kite_at = np.flatnonzero(self._kite_entry & keep)
+        self._kite_groups = kite_at[::3, None] + np.arange(3)
+        self._kite_target = self._flat[kite_at[::3]]
+        self._put = self._flat.copy()
+        self._put[kite_at] = self._dump
 
     # --- packing -------------------------------------------------------------
     def expand(self, dx_active):
@@ -212,13 +208,32 @@ class Grid:
         dT[-1] = full[4 * self.M - 4]
         return body[:, 1:], dT, full[-1]
 
+    def pack(self, r_int, T, R) -> np.ndarray:
+        """The unknowns interior nodes (M-1, 3), tensions (M,) and kite distance
+        R in one vector of the full layout (4M - 2)."""
+        x = np.empty(self.n_full)
+        body = x[: 4 * self.M - 4].reshape(self.M - 1, 4)
+        body[:, 1:] = r_int
+        x[0: 4 * self.M - 3: 4] = T
+        x[-1] = R
+        return x
+
+    def split(self, x):
+        """Views (r_int (M-1, 3), T (M,)) into a full-layout vector, and R."""
+        return x[: 4 * self.M - 4].reshape(self.M - 1, 4)[:, 1:], x[0: 4 * self.M - 3: 4], float(x[-1])
+
+    def active(self, x):
+        """The view of the active unknowns (the Newton update's) in a full-layout vector."""
+        return x[1:] if self.tension_mode else x[:-1]
+
     def assemble(self, values, kite_dir):
         """Banded matrix (solve_banded storage) from the entry values in layout order."""
-        w = values
-        if self.tension_mode:
-            w = np.where(self._kite_entry, values * np.asarray(kite_dir)[self._comp], values)
-        ab = np.bincount(self._flat, weights=w, minlength=self._dump + 1)[: self._dump]
-        return ab.reshape(self._band_shape)
+        ab = np.zeros(self._dump + 1)
+        ab[self._put] = values
+        if self._kite_groups.size:
+            w = values[self._kite_groups] * np.asarray(kite_dir)
+            ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
+        return ab[: self._dump].reshape(self._band_shape)
 
     def solve(self, ab, rhs):
         """Solution of the banded system ``ab`` (solve_banded storage) for ``rhs``.
