@@ -18,7 +18,7 @@ def drag_moment_Nm(points_m, force_N_m, weights_m):
     ``points_m`` (..., n, 3) positions, ``force_N_m`` (..., n, 3) drag per unit
     length there, ``weights_m`` (n,) quadrature weights in arc length.
     """
-    return np.einsum("...ij,i->...j", np.cross(points_m, force_N_m), weights_m)
+    return np.einsum("...ij,i->...j", _cross(points_m, force_N_m), weights_m)
 
 
 def equivalent_force(moment_Nm, kite_position_m, kite_velocity_mps=None):
@@ -35,7 +35,21 @@ def equivalent_force(moment_Nm, kite_position_m, kite_velocity_mps=None):
     if kite_velocity_mps is None:
         return drag_N, None
     e_r = r / r_k[..., None]
-    f_perp = np.cross(moment_Nm, e_r) / r_k[..., None]
+    f_perp = _cross(moment_Nm, e_r) / r_k[..., None]
     v = np.asarray(kite_velocity_mps, dtype=float)
     v_hat = v / np.linalg.norm(v, axis=-1)[..., None]
     return drag_N, -np.einsum("...i,...i->...", f_perp, v_hat)
+
+
+def _cross(a, b) -> np.ndarray:
+    """a x b over the last axis (length 3): the products and differences of
+    :func:`numpy.cross`, so the same numbers, without its per-call axis handling."""
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out

@@ -113,6 +113,7 @@ class Grid:
         self.length_m = float(s_m[-1])
         self.ds = self.length_m / self.M         # mean segment length
         self.hbar = 0.5 * (h[1:] + h[:-1])       # control-volume length of the interior nodes
+        self.hbar_col = self.hbar[:, None]
         self.trap_weights = np.empty(self.M + 1)  # ... of all nodes (mass mu * these)
         self.trap_weights[1:-1] = self.hbar
         self.trap_weights[0] = 0.5 * h[0]
@@ -282,6 +283,7 @@ class TetherFD:
     def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
+        self._weight = physics.weight_N_m
 
     # --- loads -----------------------------------------------------------------
     def nodal_drag(self, r, v, tangent, jacobian=False):
@@ -292,13 +294,16 @@ class TetherFD:
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
     @staticmethod
-    def _tangents(r):
+    def _tangents(r, d=None):
         """Unit tangents at every node 0..M (central inside, one-sided at the
-        ends) and the lengths they were normalised by."""
+        ends) and the lengths they were normalised by; ``d`` is ``r[1:] - r[:-1]``
+        if known."""
+        if d is None:
+            d = r[1:] - r[:-1]
         tangent = np.empty_like(r)
-        tangent[1:-1] = r[2:] - r[:-2]
-        tangent[0] = r[1] - r[0]
-        tangent[-1] = r[-1] - r[-2]
+        np.subtract(r[2:], r[:-2], out=tangent[1:-1])
+        tangent[0] = d[0]
+        tangent[-1] = d[-1]
         return _unit(tangent)
 
     def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
@@ -348,19 +353,20 @@ class TetherFD:
         flux = T[:, None] * tau
         # drag at the interior nodes with the central tangent (the equations'),
         # and at the two ends with the one-sided ones (for line_loads)
-        tangent, tangent_len = self._tangents(r)
+        tangent, tangent_len = self._tangents(r, d)
         tau_n, dn_len = tangent[1:-1], tangent_len[1:-1]
         load = self.nodal_drag(r, v, tangent, jacobian=jacobian)
         f = load.force[1:-1]
-        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / hbar[:, None] - ph.weight_N_m - f
+        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / g.hbar_col - self._weight - f
         dv = v[1:] - v[:-1]
         con = ell - h * (1.0 + ph.compliance_per_N * T)
         if ph.damping_time_s:
             con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
         sm = hbar / force_ref_N
         res = np.empty(g.n)
-        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / h[:-1]
-        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm[:, None]
+        body = res[0: 4 * M - 4].reshape(M - 1, 4)
+        np.divide(con[:-1], h[:-1], out=body[:, 0])
+        np.multiply(mom, sm[:, None], out=body[:, 1:])
         res[4 * M - 4] = con[-1] / h[-1]
 
         def build():
@@ -402,8 +408,8 @@ class TetherFD:
         A_self = A_self - d_self
         A_next = A_next - d_next
         A_prev = A_prev + d_next
-        B_plus = -tau[1:] / hbar[:, None]
-        B_minus = tau[:-1] / hbar[:, None]
+        B_plus = -tau[1:] / g.hbar_col
+        B_minus = tau[:-1] / g.hbar_col
         c_row = tau
         if ph.damping_time_s:
             c_row = tau + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None]
