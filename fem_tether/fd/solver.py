@@ -273,7 +273,8 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
     r_int, T, _ = g.split(x)
     active = g.active(x)
     r_old, v_old = cur.r, cur.v
-    if a2:                           # the history's parts of v and a, fixed within the step
+    v_hist = a_hist = None           # the history's parts of v and a, fixed within the step
+    if a2 and prev is not None:
         v_hist = a2 * (prev.r - cur.r)
         a_hist = a2 * (prev.v - cur.v)
     r = np.zeros_like(r_old)         # r_0 = 0 (the winch)
@@ -284,7 +285,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         r[1:-1] = r_int
         r[-1] = R * e
         v = a0 * (r - r_old)
-        if a2:
+        if v_hist is not None:
             v += v_hist
             acc = a0 * (v - v_old) + a_hist
         else:
