@@ -114,6 +114,7 @@ class Grid:
         self.ds = self.length_m / self.M         # mean segment length
         self.hbar = 0.5 * (h[1:] + h[:-1])       # control-volume length of the interior nodes
         self.hbar_col = self.hbar[:, None]
+        self.inv_h_col = (1.0 / h)[:, None]
         self.trap_weights = np.empty(self.M + 1)  # ... of all nodes (mass mu * these)
         self.trap_weights[1:-1] = self.hbar
         self.trap_weights[0] = 0.5 * h[0]
@@ -284,6 +285,7 @@ class TetherFD:
         self.grid = grid
         self.physics = physics
         self._weight = physics.weight_N_m
+        self._constraint_T: np.ndarray | None = None
 
     # --- loads -----------------------------------------------------------------
     def nodal_drag(self, r, v, tangent, jacobian=False):
@@ -389,11 +391,11 @@ class TetherFD:
         (df/dV_rel, df/dtau, df/drho, df/dmu_air)."""
         d_dvrel, d_dtau, d_drho, d_dmu = drag_derivatives
         g, ph = self.grid, self.physics
-        h, hbar = g.h, g.hbar
+        h = g.h
         mu = ph.linear_density_kg_m
         proj = _EYE - _outer(tau, tau)                         # (M, 3, 3)
         K = (T / ell)[:, None, None] * proj                    # d F_{k+1/2} / d r_{k+1}
-        hb3 = hbar[:, None, None]
+        hb3 = g.hbar_col[:, :, None]
         A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / hb3
         A_next = -K[1:] / hb3
         A_prev = -K[:-1] / hb3
@@ -414,13 +416,15 @@ class TetherFD:
         if ph.damping_time_s:
             c_row = tau + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None]
                                                + c_v * tau)
-        D = -h * ph.compliance_per_N
-        sg = 1.0 / h
-        sm3 = sm[:, None, None]
+        if self._constraint_T is None:       # d g_k / d T_{k+1/2}, scaled: fixed on a grid
+            self._constraint_T = (-h * ph.compliance_per_N) * (1.0 / h)
+        sm2 = sm[:, None]
+        sm3 = sm2[:, :, None]
+        c_row_scaled = c_row * g.inv_h_col
         values = np.concatenate([
             (A_self * sm3).ravel(), (A_next * sm3).ravel(), (A_prev * sm3).ravel(),
-            (B_plus * sm[:, None]).ravel(), (B_minus * sm[:, None]).ravel(),
-            (c_row * sg[:, None]).ravel(), (-c_row * sg[:, None]).ravel(), D * sg,
+            (B_plus * sm2).ravel(), (B_minus * sm2).ravel(),
+            c_row_scaled.ravel(), (-c_row_scaled).ravel(), self._constraint_T,
         ])
         return g.assemble(values, kite_dir)
 
