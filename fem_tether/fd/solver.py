@@ -58,7 +58,7 @@ from fem_tether.atmosphere import AltitudeError
 from fem_tether.config import Config
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
-from fem_tether.fd.system import Grid, TetherFD
+from fem_tether.fd.system import Grid, NodalLoads, TetherFD
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
@@ -81,7 +81,8 @@ class FDModel(TetherCase):
 
 @dataclass
 class State:
-    """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance."""
+    """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance,
+    and the drag along it where a time step computed it (:meth:`TetherFD.line_loads`)."""
 
     t: float
     r: np.ndarray
@@ -89,6 +90,7 @@ class State:
     a: np.ndarray
     T: np.ndarray
     R: float
+    drag: NodalLoads | None = None   # at every node, where the step's Newton solve gave it
 
 
 def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysics:
@@ -264,37 +266,56 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
     e = model.end.state(t_new, 1.0)[0]
     a0, a2 = _coefficients(model, prev, cur, h)
     f_ref = model.force_ref_N(cur.T, model.eq.physics)
-    r_int = (cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1]
-    T, R = cur.T.copy(), cur.R
+    g = model.grid
+    # the unknowns in one vector of the full layout (views r_int, T, R into it);
+    # the Newton update adds to its active part in place
+    x = g.pack((cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1], cur.T, cur.R)
+    r_int, T, _ = g.split(x)
+    active = g.active(x)
+    r_old, v_old = cur.r, cur.v
+    v_hist = a_hist = None           # the history's parts of v and a, fixed within the step
+    if a2 and prev is not None:
+        v_hist = a2 * (prev.r - cur.r)
+        a_hist = a2 * (prev.v - cur.v)
+    r = np.zeros_like(r_old)         # r_0 = 0 (the winch)
 
-    def kinematics(r):
-        v = a0 * (r - cur.r)
-        if a2:
-            v += a2 * (prev.r - cur.r)
-            acc = a0 * (v - cur.v) + a2 * (prev.v - cur.v)
-        else:
-            acc = a0 * (v - cur.v)
-        return v, acc
-
-    worst = math.inf
+    worst = last = math.inf            # last: the residual before worst
     for _ in range(model.max_newton):
-        r = _nodes(model, r_int, R, e)
-        v, acc = kinematics(r)
+        R = x[-1]
+        r[1:-1] = r_int
+        r[-1] = R * e
+        v = a0 * (r - r_old)
+        if v_hist is not None:
+            v += v_hist
+            acc = a0 * (v - v_old) + a_hist
+        else:
+            acc = a0 * (v - v_old)
         try:
-            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0, reel_mps=model.reel_mps)
+            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0,
+                                   jacobian=not _expect_converged(worst, last, model.newton_tol),
+                                   reel_mps=model.reel_mps)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
         stats.newton_iterations += 1
-        worst = float(np.max(np.abs(ev.residual)))
+        worst, last = float(np.max(np.abs(ev.residual))), worst
         if not np.isfinite(worst):
             break
         if worst <= model.newton_tol:
-            return State(t_new, r, v, acc, T, float(R))
+            return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
         try:
-            r_int, T, R = _apply(model, model.grid.solve(ev.ab, -ev.residual), r_int, T, R)
+            active += g.solve(ev.ab, -ev.residual)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)
+
+
+def _expect_converged(worst: float, before: float, tol: float) -> bool:
+    """Whether the Newton iterate after residuals ``before`` and then ``worst``
+    (max norms) is expected within ``tol``: quadratic convergence,
+    ``worst^2 / before^2`` times ``worst`` below a tenth of it.  Only decides
+    whether the drag's derivatives are evaluated with the residual (a wrong
+    guess costs one drag evaluation, never a different answer)."""
+    return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
 
 
 def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
@@ -308,7 +329,7 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     """
     g, ph = model.grid, model.eq.physics
     r, v = state.r, state.v
-    loads = model.eq.line_loads(r, v, model.reel_mps)
+    loads = state.drag if state.drag is not None else model.eq.line_loads(r, v, model.reel_mps)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
     seg = np.linalg.norm(np.diff(r, axis=0), axis=1)

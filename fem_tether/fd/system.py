@@ -48,7 +48,7 @@ import copy
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import solve_banded
+from scipy.linalg import lapack
 
 from fem_tether.loads import crossflow_drag
 from fem_tether.tether import TetherPhysics
@@ -113,6 +113,8 @@ class Grid:
         self.length_m = float(s_m[-1])
         self.ds = self.length_m / self.M         # mean segment length
         self.hbar = 0.5 * (h[1:] + h[:-1])       # control-volume length of the interior nodes
+        self.hbar_col = self.hbar[:, None]
+        self.inv_h_col = (1.0 / h)[:, None]
         self.trap_weights = np.empty(self.M + 1)  # ... of all nodes (mass mu * these)
         self.trap_weights[1:-1] = self.hbar
         self.trap_weights[0] = 0.5 * h[0]
@@ -170,17 +172,6 @@ class Grid:
         rows = np.concatenate(rows)
         cols = np.concatenate(cols)
         self._kite_entry = np.concatenate(kite)
-        # component of each node column (for the e(t) multiplier of the R column)
-        comp = np.concatenate([
-            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
-            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
-            np.broadcast_to(np.arange(3), (M - 1, 3, 3)).ravel(),
-            np.zeros(2 * 3 * (M - 1), dtype=np.int64),
-            np.broadcast_to(np.arange(3), (M, 3)).ravel(),
-            np.broadcast_to(np.arange(3), (M, 3)).ravel(),
-            np.zeros(M, dtype=np.int64),
-        ])
-        self._comp = comp
         # map full columns to active columns
         if self.tension_mode:           # T_{1/2} known: drop column 0
             act = cols - 1
@@ -197,6 +188,13 @@ class Grid:
         self._dump = nb * self.n                               # sink for dropped entries
         self._flat = np.where(keep, flat, self._dump)
         self._band_shape = (nb, self.n)
+        # tension mode: the kite node's three entries of a row add up in the R
+        # column (times e(t)); each such group is three consecutive entries
+        kite_at = np.flatnonzero(self._kite_entry & keep)
+        self._kite_groups = kite_at[::3, None] + np.arange(3)
+        self._kite_target = self._flat[kite_at[::3]]
+        self._put = self._flat.copy()
+        self._put[kite_at] = self._dump
 
     # --- packing -------------------------------------------------------------
     def expand(self, dx_active):
@@ -212,24 +210,72 @@ class Grid:
         dT[-1] = full[4 * self.M - 4]
         return body[:, 1:], dT, full[-1]
 
+    def pack(self, r_int, T, R) -> np.ndarray:
+        """The unknowns interior nodes (M-1, 3), tensions (M,) and kite distance
+        R in one vector of the full layout (4M - 2)."""
+        x = np.empty(self.n_full)
+        body = x[: 4 * self.M - 4].reshape(self.M - 1, 4)
+        body[:, 1:] = r_int
+        x[0: 4 * self.M - 3: 4] = T
+        x[-1] = R
+        return x
+
+    def split(self, x):
+        """Views (r_int (M-1, 3), T (M,)) into a full-layout vector, and R."""
+        return x[: 4 * self.M - 4].reshape(self.M - 1, 4)[:, 1:], x[0: 4 * self.M - 3: 4], float(x[-1])
+
+    def active(self, x):
+        """The view of the active unknowns (the Newton update's) in a full-layout vector."""
+        return x[1:] if self.tension_mode else x[:-1]
+
     def assemble(self, values, kite_dir):
         """Banded matrix (solve_banded storage) from the entry values in layout order."""
-        w = values
-        if self.tension_mode:
-            w = np.where(self._kite_entry, values * np.asarray(kite_dir)[self._comp], values)
-        ab = np.bincount(self._flat, weights=w, minlength=self._dump + 1)[: self._dump]
-        return ab.reshape(self._band_shape)
+        ab = np.zeros(self._dump + 1)
+        ab[self._put] = values
+        if self._kite_groups.size:
+            w = values[self._kite_groups] * np.asarray(kite_dir)
+            ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
+        return ab[: self._dump].reshape(self._band_shape)
 
     def solve(self, ab, rhs):
-        return solve_banded((self.lower, self.upper), ab, rhs, overwrite_ab=True,
-                            check_finite=False)
+        """Solution of the banded system ``ab`` (solve_banded storage) for ``rhs``.
+
+        LAPACK ``gbsv`` on a copy of ``ab`` with the ``lower`` rows of fill-in
+        above it: what :func:`scipy.linalg.solve_banded` does, without its
+        per-call checks.  Raises :class:`numpy.linalg.LinAlgError` if singular.
+        """
+        lu = np.zeros((2 * self.lower + self.upper + 1, self.n))
+        lu[self.lower:] = ab
+        _, _, x, info = lapack.dgbsv(self.lower, self.upper, lu, rhs, overwrite_ab=True)
+        if info > 0:
+            raise np.linalg.LinAlgError("singular matrix")
+        if info < 0:
+            raise ValueError(f"illegal value in argument {-info} of gbsv")
+        return x
 
 
-@dataclass
 class Evaluation:
-    residual: np.ndarray          # scaled, rows in layout order (4M-3)
-    length_m: np.ndarray          # (M,)
-    ab: np.ndarray | None = None
+    """Scaled residual of the equations at one iterate, and their banded Jacobian.
+
+    ``residual`` (rows in layout order, 4M - 3) and ``length_m`` (the segment
+    lengths l_k, (M,)) are computed at once; the Jacobian ``ab``
+    (:func:`scipy.linalg.solve_banded` storage) when first asked for, so that
+    a Newton iteration that has converged does not assemble it; ``drag`` is
+    the drag at every node (:meth:`TetherFD.line_loads` of the same r and v).
+    """
+
+    def __init__(self, residual, length_m, drag, jacobian):
+        self.residual = residual
+        self.length_m = length_m
+        self.drag = drag                  # at every node, as line_loads has it
+        self._jacobian = jacobian
+        self._ab = None
+
+    @property
+    def ab(self) -> np.ndarray:
+        if self._ab is None:
+            self._ab = self._jacobian()
+        return self._ab
 
 
 class TetherFD:
@@ -238,6 +284,8 @@ class TetherFD:
     def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
+        self._weight = physics.weight_N_m
+        self._constraint_T: np.ndarray | None = None
 
     # --- loads -----------------------------------------------------------------
     def nodal_drag(self, r, v, tangent, jacobian=False):
@@ -247,16 +295,26 @@ class TetherFD:
         return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
+    @staticmethod
+    def _tangents(r, d=None):
+        """Unit tangents at every node 0..M (central inside, one-sided at the
+        ends) and the lengths they were normalised by; ``d`` is ``r[1:] - r[:-1]``
+        if known."""
+        if d is None:
+            d = r[1:] - r[:-1]
+        tangent = np.empty_like(r)
+        np.subtract(r[2:], r[:-2], out=tangent[1:-1])
+        tangent[0] = d[0]
+        tangent[-1] = d[-1]
+        return _unit(tangent)
+
     def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
         """Drag at every node 0..M; one-sided tangents at the two ends.
 
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
-        the material velocity V_L tau_{1/2}."""
-        tangent = np.empty_like(r)
-        tangent[1:-1] = r[2:] - r[:-2]
-        tangent[0] = r[1] - r[0]
-        tangent[-1] = r[-1] - r[-2]
-        tangent, _ = _unit(tangent)
+        the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
+        same for the r and v of an evaluation.)"""
+        tangent, _ = self._tangents(r)
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tangent[0]
@@ -271,7 +329,13 @@ class TetherFD:
 
     def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
                  jacobian=True, reel_mps=0.0) -> Evaluation:
-        """Scaled residual (and banded Jacobian) at nodal r, v, a (M+1, 3) and tensions T (M,).
+        """Scaled residual and banded Jacobian at nodal r, v, a (M+1, 3) and tensions T (M,).
+
+        The Jacobian is assembled when the result's ``ab`` is first read.
+        ``jacobian`` says whether the drag's derivatives are evaluated with the
+        residual (for an iterate whose Jacobian will be needed) or, if ``ab``
+        is read, only then (drag evaluated twice; for an iterate expected to
+        converge or a trial point of a line search).
 
         ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for
         statics).  ``reel_mps`` is the winch speed V_L: node 0 stays at the
@@ -289,58 +353,80 @@ class TetherFD:
             v = v.copy()
             v[0] = reel_mps * tau[0]
         flux = T[:, None] * tau
-        # nodal drag at interior nodes with the central tangent
-        dn = r[2:] - r[:-2]
-        tau_n, dn_len = _unit(dn)
-        load = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=jacobian)
-        f = load.force
-        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / hbar[:, None] - ph.weight_N_m - f
+        # drag at the interior nodes with the central tangent (the equations'),
+        # and at the two ends with the one-sided ones (for line_loads)
+        tangent, tangent_len = self._tangents(r, d)
+        tau_n, dn_len = tangent[1:-1], tangent_len[1:-1]
+        load = self.nodal_drag(r, v, tangent, jacobian=jacobian)
+        f = load.force[1:-1]
+        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / g.hbar_col - self._weight - f
         dv = v[1:] - v[:-1]
         con = ell - h * (1.0 + ph.compliance_per_N * T)
         if ph.damping_time_s:
             con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
         sm = hbar / force_ref_N
         res = np.empty(g.n)
-        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 0] = con[:-1] / h[:-1]
-        res[0: 4 * M - 4].reshape(M - 1, 4)[:, 1:] = mom * sm[:, None]
+        body = res[0: 4 * M - 4].reshape(M - 1, 4)
+        np.divide(con[:-1], h[:-1], out=body[:, 0])
+        np.multiply(mom, sm[:, None], out=body[:, 1:])
         res[4 * M - 4] = con[-1] / h[-1]
-        out = Evaluation(res, ell)
-        if not jacobian:
-            return out
 
+        def build():
+            if with_derivatives:
+                d_dvrel, d_dtau = load.d_dvrel[1:-1], load.d_dtau[1:-1]
+                d_drho, d_dmu = load.d_drho[1:-1], load.d_dmu[1:-1]
+            else:
+                inner = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=True)
+                d_dvrel, d_dtau, d_drho, d_dmu = inner.d_dvrel, inner.d_dtau, inner.d_drho, inner.d_dmu
+            return self._jacobian(r, T, tau, ell, dv, tau_n, dn_len, (d_dvrel, d_dtau, d_drho, d_dmu),
+                                  sm, kite_dir, c_a, c_v)
+
+        with_derivatives = jacobian
+        return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
+                          build)
+
+    def _jacobian(self, r, T, tau, ell, dv, tau_n, dn_len, drag_derivatives, sm, kite_dir, c_a, c_v):
+        """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate
+        values and the derivatives of the drag at the interior nodes
+        (df/dV_rel, df/dtau, df/drho, df/dmu_air)."""
+        d_dvrel, d_dtau, d_drho, d_dmu = drag_derivatives
+        g, ph = self.grid, self.physics
+        h = g.h
+        mu = ph.linear_density_kg_m
         proj = _EYE - _outer(tau, tau)                         # (M, 3, 3)
         K = (T / ell)[:, None, None] * proj                    # d F_{k+1/2} / d r_{k+1}
-        hb3 = hbar[:, None, None]
+        hb3 = g.hbar_col[:, :, None]
         A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / hb3
         A_next = -K[1:] / hb3
         A_prev = -K[:-1] / hb3
         z = r[1:-1, 2]
-        df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
-            + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
-        d_self = -c_v * load.d_dvrel
+        df_dz = d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
+            + d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
+            + d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
+        d_self = -c_v * d_dvrel
         d_self[:, :, 2] += df_dz
         proj_n = _EYE - _outer(tau_n, tau_n)
-        d_next = load.d_dtau @ proj_n / dn_len[:, None, None]
+        d_next = d_dtau @ proj_n / dn_len[:, None, None]
         A_self = A_self - d_self
         A_next = A_next - d_next
         A_prev = A_prev + d_next
-        B_plus = -tau[1:] / hbar[:, None]
-        B_minus = tau[:-1] / hbar[:, None]
+        B_plus = -tau[1:] / g.hbar_col
+        B_minus = tau[:-1] / g.hbar_col
         c_row = tau
         if ph.damping_time_s:
             c_row = tau + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None]
                                                + c_v * tau)
-        D = -h * ph.compliance_per_N
-        sg = 1.0 / h
-        sm3 = sm[:, None, None]
+        if self._constraint_T is None:       # d g_k / d T_{k+1/2}, scaled: fixed on a grid
+            self._constraint_T = (-h * ph.compliance_per_N) * (1.0 / h)
+        sm2 = sm[:, None]
+        sm3 = sm2[:, :, None]
+        c_row_scaled = c_row * g.inv_h_col
         values = np.concatenate([
             (A_self * sm3).ravel(), (A_next * sm3).ravel(), (A_prev * sm3).ravel(),
-            (B_plus * sm[:, None]).ravel(), (B_minus * sm[:, None]).ravel(),
-            (c_row * sg[:, None]).ravel(), (-c_row * sg[:, None]).ravel(), D * sg,
+            (B_plus * sm2).ravel(), (B_minus * sm2).ravel(),
+            c_row_scaled.ravel(), (-c_row_scaled).ravel(), self._constraint_T,
         ])
-        out.ab = g.assemble(values, kite_dir)
-        return out
+        return g.assemble(values, kite_dir)
 
     def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0):
         """Velocities of the inextensible line on its constraints, closest to
