@@ -44,7 +44,7 @@ class AltitudeError(InputError):
 
 def _altitude(z_m) -> np.ndarray:
     z = np.asarray(z_m, dtype=float)
-    if (z > TROPOPAUSE_M).any():
+    if z.size and z.max() > TROPOPAUSE_M:
         raise AltitudeError(float(np.max(z)))
     return z
 
@@ -73,6 +73,17 @@ def sutherland_viscosity_Pa_s(temperature):
     return SUTHERLAND_BETA * t**1.5 / (t + SUTHERLAND_S_K)
 
 
+@dataclass(frozen=True)
+class AirState:
+    """Air density rho [kg/m3] and viscosity mu [Pa s] at a set of altitudes and,
+    when asked for, their gradients d rho/dz [kg/m4] and d mu/dz [Pa s/m]."""
+
+    density_kg_m3: np.ndarray
+    viscosity_Pa_s: np.ndarray
+    density_gradient_kg_m4: np.ndarray | None = None
+    viscosity_gradient_Pa_s_m: np.ndarray | None = None
+
+
 class AirModel(Protocol):
     """Air properties against altitude z (m), as the loads use them (:class:`ISA`,
     :class:`ConstantAir`)."""
@@ -84,6 +95,18 @@ class AirModel(Protocol):
     def density_gradient_kg_m4(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
     def viscosity_gradient_Pa_s_m(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def state(self, z_m: npt.ArrayLike, gradients: bool = False) -> AirState: ...
+
+
+def _density_gradient_at(temperature, density):
+    """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
+    return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * density / temperature
+
+
+def _viscosity_gradient_at(temperature, viscosity):
+    """d mu/dz = -L mu (1.5/T - 1/(T + S)), differentiating Sutherland's law."""
+    return -LAPSE_RATE_K_M * viscosity * (1.5 / temperature - 1.0 / (temperature + SUTHERLAND_S_K))
 
 
 @dataclass(frozen=True)
@@ -101,12 +124,20 @@ class ISA:
     def density_gradient_kg_m4(self, z_m):
         """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
         t = temperature_K(z_m)
-        return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * _density_at(t) / t
+        return _density_gradient_at(t, _density_at(t))
 
     def viscosity_gradient_Pa_s_m(self, z_m):
         """d mu/dz = -L mu (1.5/T - 1/(T + S)), differentiating Sutherland's law."""
         t = temperature_K(z_m)
-        return -LAPSE_RATE_K_M * sutherland_viscosity_Pa_s(t) * (1.5 / t - 1.0 / (t + SUTHERLAND_S_K))
+        return _viscosity_gradient_at(t, sutherland_viscosity_Pa_s(t))
+
+    def state(self, z_m, gradients=False):
+        """rho, mu (and d rho/dz, d mu/dz) as the methods above, from one T(z)."""
+        t = temperature_K(z_m)
+        rho, mu = _density_at(t), sutherland_viscosity_Pa_s(t)
+        if not gradients:
+            return AirState(rho, mu)
+        return AirState(rho, mu, _density_gradient_at(t, rho), _viscosity_gradient_at(t, mu))
 
 
 @dataclass(frozen=True)
@@ -131,6 +162,13 @@ class ConstantAir:
     def viscosity_gradient_Pa_s_m(self, z_m):
         """d mu/dz = 0."""
         return np.zeros(np.shape(z_m))
+
+    def state(self, z_m, gradients=False):
+        """rho, mu (and their zero gradients)."""
+        if not gradients:
+            return AirState(self.density_kg_m3(z_m), self.viscosity_Pa_s(z_m))
+        return AirState(self.density_kg_m3(z_m), self.viscosity_Pa_s(z_m),
+                        self.density_gradient_kg_m4(z_m), self.viscosity_gradient_Pa_s_m(z_m))
 
 
 def from_config(air) -> ISA | ConstantAir:

@@ -76,6 +76,10 @@ class ScaledDrag:
     def dcd_dre(self, re):
         return self.factor * self.base.dcd_dre(re)
 
+    def cd_and_dcd_dre(self, re):
+        cd, dcd = self.base.cd_and_dcd_dre(re)
+        return self.factor * cd, self.factor * dcd
+
 
 def with_load_factor(physics: TetherPhysics, load_factor: float) -> TetherPhysics:
     """``physics`` with its aerodynamic force per unit length (cross-flow drag and

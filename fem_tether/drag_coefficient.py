@@ -80,7 +80,7 @@ _SLOPE = np.diff(_LOG_CD) / np.diff(_LOG_RE)
 
 def _reynolds(re) -> np.ndarray:
     re = np.asarray(re, dtype=float)
-    if np.any(re < 0.0):
+    if (re < 0.0).any():
         raise ValueError(f"Reynolds number {np.min(re)} is negative")
     return re
 
@@ -90,18 +90,35 @@ def belan_tordella_b(re):
     return 1.16 + 5.1e-3 * re - 1.9e-5 * re**2
 
 
+def _belan_tordella_parts(re):
+    """4 (pi/Re)^(1/2) and B(Re), the factors both Belan-Tordella formulas share."""
+    with np.errstate(divide="ignore"):
+        return 4.0 * np.sqrt(np.pi / re), belan_tordella_b(re)
+
+
 def belan_tordella_cd(re):
     """C_d,c = 4 (pi/Re)^(1/2) B(Re) (seed 000 eqs. 4.4-4.5); inf at Re = 0."""
-    re = np.asarray(re, dtype=float)
-    with np.errstate(divide="ignore"):
-        return 4.0 * np.sqrt(np.pi / re) * belan_tordella_b(re)
+    scale, b = _belan_tordella_parts(np.asarray(re, dtype=float))
+    return scale * b
+
+
+def _belan_tordella_slope(re, scale, b):
+    """4 (pi/Re)^(1/2) (B'(Re) - B(Re) / (2 Re)) from the shared factors."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return scale * (5.1e-3 - 3.8e-5 * re - b / (2.0 * re))
 
 
 def belan_tordella_dcd_dre(re):
     """dC_d,c/dRe = 4 (pi/Re)^(1/2) (B'(Re) - B(Re) / (2 Re)), B' = 5.1e-3 - 3.8e-5 Re."""
     re = np.asarray(re, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return 4.0 * np.sqrt(np.pi / re) * (5.1e-3 - 3.8e-5 * re - belan_tordella_b(re) / (2.0 * re))
+    return _belan_tordella_slope(re, *_belan_tordella_parts(re))
+
+
+def belan_tordella_cd_and_dcd_dre(re):
+    """(C_d,c, dC_d,c/dRe) of the Belan-Tordella branch, sharing (pi/Re)^(1/2) and B(Re)."""
+    re = np.asarray(re, dtype=float)
+    scale, b = _belan_tordella_parts(re)
+    return scale * b, _belan_tordella_slope(re, scale, b)
 
 
 def _segment(log_re):
@@ -122,10 +139,16 @@ def experimental_cd(re):
 
 def experimental_dcd_dre(re):
     """dC_d/dRe = s_i C_d / Re on the interval (right-hand slope at the nodes); 0 above 1e7."""
+    return experimental_cd_and_dcd_dre(re)[1]
+
+
+def experimental_cd_and_dcd_dre(re):
+    """(C_d, dC_d/dRe) of the experimental curve, sharing ln Re, the interval and C_d."""
     log_re = np.log(re)
     i = _segment(log_re)
+    cd = _power_law(log_re, i)
     slope = np.where(log_re < _LOG_RE[-1], _SLOPE[i], 0.0)
-    return slope * _power_law(log_re, i) / re
+    return cd, slope * cd / re
 
 
 class DragModel(Protocol):
@@ -135,15 +158,27 @@ class DragModel(Protocol):
 
     def dcd_dre(self, re: npt.ArrayLike) -> np.ndarray: ...
 
+    def cd_and_dcd_dre(self, re: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]: ...
+
 
 def _two_branches(re, low_branch, high_branch):
-    """``low_branch`` below Re = BELAN_TORDELLA_MAX_RE, ``high_branch`` from there on."""
+    """``low_branch`` below Re = BELAN_TORDELLA_MAX_RE, ``high_branch`` from there on;
+    each branch returns a tuple of arrays, and so does this.
+
+    A branch holding every Re is evaluated on the whole array; otherwise the
+    high branch is evaluated on max(Re, BELAN_TORDELLA_MAX_RE) (its own Re
+    unchanged) and the low one's values replace it where Re is below.
+    """
     re = _reynolds(re)
     low = re < BELAN_TORDELLA_MAX_RE
-    out = np.empty_like(re)
-    out[low] = low_branch(re[low])
-    out[~low] = high_branch(re[~low])
-    return out[()]
+    if not low.any():
+        return tuple(part[()] for part in high_branch(re))
+    if low.all():
+        return tuple(part[()] for part in low_branch(re))
+    outs = high_branch(np.maximum(re, BELAN_TORDELLA_MAX_RE))
+    for out, low_part in zip(outs, low_branch(re[low])):
+        out[low] = low_part
+    return outs
 
 
 @dataclass(frozen=True)
@@ -152,11 +187,16 @@ class CylinderDrag:
 
     def cd(self, re):
         """C_d,c(Re) for Re >= 0 (inf at Re = 0)."""
-        return _two_branches(re, belan_tordella_cd, experimental_cd)
+        return _two_branches(re, lambda r: (belan_tordella_cd(r),), lambda r: (experimental_cd(r),))[0]
 
     def dcd_dre(self, re):
         """dC_d,c/dRe of the same two branches (-inf at Re = 0)."""
-        return _two_branches(re, belan_tordella_dcd_dre, experimental_dcd_dre)
+        return _two_branches(re, lambda r: (belan_tordella_dcd_dre(r),),
+                             lambda r: (experimental_dcd_dre(r),))[0]
+
+    def cd_and_dcd_dre(self, re):
+        """(C_d,c(Re), dC_d,c/dRe) with one branch split, as :meth:`cd` and :meth:`dcd_dre`."""
+        return _two_branches(re, belan_tordella_cd_and_dcd_dre, experimental_cd_and_dcd_dre)
 
 
 @dataclass(frozen=True)
@@ -172,6 +212,10 @@ class ConstantDrag:
     def dcd_dre(self, re):
         """dC_d,c/dRe = 0."""
         return np.zeros(np.shape(re))
+
+    def cd_and_dcd_dre(self, re):
+        """(C_d,c, dC_d,c/dRe) = (value, 0)."""
+        return self.cd(re), self.dcd_dre(re)
 
 
 def from_config(drag) -> CylinderDrag | ConstantDrag:

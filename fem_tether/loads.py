@@ -68,7 +68,8 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     tau : (n, 3) unit tangent
     rho, mu_air : (n,) air density [kg/m3] and dynamic viscosity [Pa s]
     diameter_m : line diameter d
-    drag_model : object with ``cd(re)`` and ``dcd_dre(re)``
+    drag_model : a :class:`~fem_tether.drag_coefficient.DragModel` (``cd(re)``;
+        ``cd_and_dcd_dre(re)`` when the Jacobian is asked for)
     skin_friction_cf : tangential friction coefficient c_f (0: none)
     jacobian : also return df/dV_rel and df/dtau
 
@@ -87,7 +88,10 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     n_safe = np.maximum(n, _TINY_MPS)
     mu_air = np.asarray(mu_air, dtype=float)
     re = rho * n_safe * diameter_m / mu_air
-    cd = drag_model.cd(re)
+    if jacobian:
+        cd, dcd_dre = drag_model.cd_and_dcd_dre(re)
+    else:
+        cd = drag_model.cd(re)
     c = 0.5 * rho * diameter_m * cd * n_safe
     force = c[:, None] * vn
     k_s = 0.5 * rho * np.pi * diameter_m * skin_friction_cf
@@ -97,7 +101,7 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     if not jacobian:
         return out
 
-    re_dcd = re * drag_model.dcd_dre(re)
+    re_dcd = re * dcd_dre
     dc_dn = 0.5 * rho * diameter_m * (cd + re_dcd)
     out.d_drho = (0.5 * diameter_m * n_safe * (cd + re_dcd))[:, None] * vn
     out.d_dmu = -(0.5 * rho * diameter_m * n_safe * re_dcd / mu_air)[:, None] * vn

@@ -12,7 +12,7 @@ and ``velocity_mps(z)``, the vector (V, 0, 0) with shape ``z.shape + (3,)``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
@@ -49,20 +49,24 @@ class LogWind(_Profile):
     v0_mps: float
     z0_m: float
     zr_m: float
+    _log_z0_zr: float = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "_log_z0_zr", np.log(self.z0_m / self.zr_m))
 
     def speed_mps(self, z_m):
         """V = V0 ln(z/z_r) / ln(z0/z_r) for z > z_r, else 0."""
         z = np.asarray(z_m, dtype=float)
         above = z > self.zr_m
         ratio = np.where(above, z, self.zr_m) / self.zr_m
-        return np.where(above, self.v0_mps * np.log(ratio) / np.log(self.z0_m / self.zr_m), 0.0)
+        return np.where(above, self.v0_mps * np.log(ratio) / self._log_z0_zr, 0.0)
 
     def shear_per_s(self, z_m):
         """dV/dz = V0 / (z ln(z0/z_r)) for z > z_r, else 0."""
         z = np.asarray(z_m, dtype=float)
         above = z > self.zr_m
         z_safe = np.where(above, z, self.zr_m)
-        return np.where(above, self.v0_mps / (z_safe * np.log(self.z0_m / self.zr_m)), 0.0)
+        return np.where(above, self.v0_mps / (z_safe * self._log_z0_zr), 0.0)
 
 
 @dataclass(frozen=True)

@@ -292,7 +292,8 @@ class TetherFD:
         ph = self.physics
         z = r[:, 2]
         v_rel = ph.wind.velocity_mps(z) - v
-        return crossflow_drag(v_rel, tangent, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
+        air = ph.air.state(z)
+        return crossflow_drag(v_rel, tangent, air.density_kg_m3, air.viscosity_Pa_s,
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
     @staticmethod
@@ -400,9 +401,10 @@ class TetherFD:
         A_next = -K[1:] / hb3
         A_prev = -K[:-1] / hb3
         z = r[1:-1, 2]
+        air = ph.air.state(z, gradients=True)
         df_dz = d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
-            + d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
+            + d_drho * air.density_gradient_kg_m4[:, None] \
+            + d_dmu * air.viscosity_gradient_Pa_s_m[:, None]
         d_self = -c_v * d_dvrel
         d_self[:, :, 2] += df_dz
         proj_n = _EYE - _outer(tau_n, tau_n)

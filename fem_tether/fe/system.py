@@ -178,7 +178,8 @@ class TetherSystem:
         v_mid = 0.5 * (v[1:] + v[:-1])
         z = r_mid[:, 2]
         v_rel = ph.wind.velocity_mps(z) - v_mid
-        load = crossflow_drag(v_rel, tau, ph.air.density_kg_m3(z), ph.air.viscosity_Pa_s(z),
+        air = ph.air.state(z, gradients=jacobian)
+        load = crossflow_drag(v_rel, tau, air.density_kg_m3, air.viscosity_Pa_s,
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
         res = np.empty(self.n)
         node_res = res.reshape(-1, 4)[:, :3]
@@ -196,8 +197,8 @@ class TetherSystem:
         res[-1] = (T[0] - ground_tension_N) if self.tension_mode else k_s * (R - radius_m)
         out = Evaluation(res, k_s, tau, length, r_mid, load)
         if jacobian:
-            out.band, out.r_col = self._jacobian(T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir,
-                                                 reel_mps)
+            out.band, out.r_col = self._jacobian(T, tau, length, dv, z, air, load, k_s, c_a, c_v,
+                                                 kite_dir, reel_mps)
         return out
 
     @staticmethod
@@ -216,7 +217,7 @@ class TetherSystem:
         out[1:] += w[:, 1, None] * f
         return out
 
-    def _jacobian(self, T, tau, length, dv, z, load, k_s, c_a, c_v, kite_dir, reel_mps=0.0):
+    def _jacobian(self, T, tau, length, dv, z, air, load, k_s, c_a, c_v, kite_dir, reel_mps=0.0):
         """Banded Jacobian in LAPACK ``gbsv`` storage and the R column.
 
         Element e with nodes a, b (sgn = -1, +1) and Q's weights w_a puts on
@@ -231,8 +232,8 @@ class TetherSystem:
         # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dz_mid,
         # df/dv_b = -1/2 df/dV_rel; altitude enters through wind(z), rho(z), mu(z)
         df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + load.d_drho * ph.air.density_gradient_kg_m4(z)[:, None] \
-            + load.d_dmu * ph.air.viscosity_gradient_Pa_s_m(z)[:, None]
+            + load.d_drho * air.density_gradient_kg_m4[:, None] \
+            + load.d_dmu * air.viscosity_gradient_Pa_s_m[:, None]
         d_tau = load.d_dtau @ proj / length[:, None, None]
         d_mid = -0.5 * c_v * load.d_dvrel
         d_mid[:, :, 2] += 0.5 * df_dz
@@ -316,8 +317,9 @@ class TetherSystem:
         v_mid = 0.5 * (v[1:] + v[:-1])
         v_mid[0] += 0.5 * reel_mps * tau[0]
         z = 0.5 * (r[1:, 2] + r[:-1, 2])
-        load = crossflow_drag(ph.wind.velocity_mps(z) - v_mid, tau, ph.air.density_kg_m3(z),
-                              ph.air.viscosity_Pa_s(z), ph.diameter_m, ph.drag, ph.skin_friction_cf)
+        air = ph.air.state(z)
+        load = crossflow_drag(ph.wind.velocity_mps(z) - v_mid, tau, air.density_kg_m3,
+                              air.viscosity_Pa_s, ph.diameter_m, ph.drag, ph.skin_friction_cf)
         node = (sp.Q @ (load.force + self.weight)) * self.interior[:, None]
         node[-1] = R * e_ddot + 2.0 * R_dot * e_dot
         if ph.compliance_per_N:
