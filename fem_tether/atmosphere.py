@@ -73,7 +73,7 @@ def sutherland_viscosity_Pa_s(temperature):
     return SUTHERLAND_BETA * t**1.5 / (t + SUTHERLAND_S_K)
 
 
-@dataclass(frozen=True)
+@dataclass
 class AirState:
     """Air density rho [kg/m3] and viscosity mu [Pa s] at a set of altitudes and,
     when asked for, their gradients d rho/dz [kg/m4] and d mu/dz [Pa s/m]."""

@@ -92,19 +92,21 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
         cd, dcd_dre = drag_model.cd_and_dcd_dre(re)
     else:
         cd = drag_model.cd(re)
-    c = 0.5 * rho * diameter_m * cd * n_safe
+    half_rho_d = 0.5 * rho * diameter_m
+    c = half_rho_d * cd * n_safe
     force = c[:, None] * vn
-    k_s = 0.5 * rho * np.pi * diameter_m * skin_friction_cf
     if skin_friction_cf:
+        k_s = 0.5 * rho * np.pi * diameter_m * skin_friction_cf
         force = force + (k_s * np.abs(a) * a)[:, None] * tau
     out = CrossflowDrag(force=force, vn=vn, vn_mps=n, re=re, cd=cd)
     if not jacobian:
         return out
 
     re_dcd = re * dcd_dre
-    dc_dn = 0.5 * rho * diameter_m * (cd + re_dcd)
-    out.d_drho = (0.5 * diameter_m * n_safe * (cd + re_dcd))[:, None] * vn
-    out.d_dmu = -(0.5 * rho * diameter_m * n_safe * re_dcd / mu_air)[:, None] * vn
+    cd_re_dcd = cd + re_dcd
+    dc_dn = half_rho_d * cd_re_dcd
+    out.d_drho = (0.5 * diameter_m * n_safe * cd_re_dcd)[:, None] * vn
+    out.d_dmu = -(half_rho_d * n_safe * re_dcd / mu_air)[:, None] * vn
     unit = vn / n_safe[:, None]
     df_dvn = c[:, None, None] * _EYE + (dc_dn * n)[:, None, None] * _outer(unit, unit)
     tau_v = _outer(tau, v_rel)
