@@ -55,8 +55,11 @@ class TetherCase:
 
 def end_at_length(end: EndMotion, length_m: float) -> EndMotion:
     """The end motion flown on the sphere of a line of ``length_m`` (an end that
-    does not depend on the length, such as a Stationary one, unchanged)."""
-    return replace(end, length_m=length_m) if hasattr(end, "length_m") else end
+    does not depend on the length, such as a Stationary one, or one already at
+    ``length_m``, unchanged)."""
+    if getattr(end, "length_m", length_m) == length_m:
+        return end
+    return replace(end, length_m=length_m)
 
 
 def case_fields(cfg: Config, end: EndMotion | None = None) -> dict:

@@ -32,6 +32,7 @@ in radians unless the name says otherwise.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -81,17 +82,22 @@ def gerono(tau, width_m, height_m):
     return u, w
 
 
+@functools.cache
 def gauss_legendre_nodes(n_intervals, n_points):
     """Nodes and weights of composite Gauss–Legendre on [0, 2π].
 
     Returns (knots, nodes, weights): the n_intervals + 1 knots, and nodes and
-    weights of shape (n_intervals, n_points).
+    weights of shape (n_intervals, n_points); computed once per (n_intervals,
+    n_points) and read-only.
     """
     x, wx = np.polynomial.legendre.leggauss(n_points)
     knots = np.linspace(0.0, 2.0 * np.pi, n_intervals + 1)
     half = 0.5 * np.diff(knots)[:, None]
     nodes = 0.5 * (knots[:-1, None] + knots[1:, None]) + half * x
-    return knots, nodes, half * wx
+    out = knots, nodes, half * wx
+    for array in out:
+        array.flags.writeable = False
+    return out
 
 
 def quintic_hermite(x, y, dy, d2y):
