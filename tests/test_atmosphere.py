@@ -69,3 +69,14 @@ def test_from_config():
     air = atmosphere.from_config(cfg.air)
     assert air == ConstantAir(1.0, 1.789e-5)
     assert air.density_kg_m3(300.0) == 1.0
+
+
+@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5)])
+def test_state_is_the_single_properties(air):
+    z = np.array([0.0, 250.0, 3000.0])
+    state = air.state(z, gradients=True)
+    np.testing.assert_array_equal(state.density_kg_m3, air.density_kg_m3(z))
+    np.testing.assert_array_equal(state.viscosity_Pa_s, air.viscosity_Pa_s(z))
+    np.testing.assert_array_equal(state.density_gradient_kg_m4, air.density_gradient_kg_m4(z))
+    np.testing.assert_array_equal(state.viscosity_gradient_Pa_s_m, air.viscosity_gradient_Pa_s_m(z))
+    assert air.state(z).density_gradient_kg_m4 is None

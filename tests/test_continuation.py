@@ -76,6 +76,7 @@ def test_with_load_factor_scales_the_aerodynamic_force_only():
     re = 2e4
     assert scaled.drag.cd(re) == 0.25 * physics.drag.cd(re)
     assert scaled.drag.dcd_dre(re) == 0.25 * physics.drag.dcd_dre(re)
+    assert scaled.drag.cd_and_dcd_dre(re) == (scaled.drag.cd(re), scaled.drag.dcd_dre(re))
     assert scaled.skin_friction_cf == 0.25 * 0.01
     unchanged = {"drag", "skin_friction_cf"}
     for f in dataclasses.fields(physics):

@@ -109,3 +109,13 @@ def test_from_config():
     assert drag_coefficient.from_config(load_config().drag) == CylinderDrag()
     cfg = load_config(overrides={"drag": {"model": "constant", "cd": 1.1}})
     assert drag_coefficient.from_config(cfg.drag) == ConstantDrag(1.1)
+
+
+@pytest.mark.parametrize("re", [np.array([0.0, 5.0, 39.9, 40.0, 1e3, 5e5, 2e7]), np.array([1e3, 2e5]),
+                                np.array([0.5, 20.0]), 1e4, 10.0])
+@pytest.mark.parametrize("drag", [CD, ConstantDrag(1.1)])
+def test_cd_and_dcd_dre_is_cd_and_dcd_dre(drag, re):
+    with np.errstate(divide="ignore"):
+        cd, dcd = drag.cd_and_dcd_dre(re)
+        np.testing.assert_array_equal(cd, drag.cd(re))
+        np.testing.assert_array_equal(dcd, drag.dcd_dre(re))
