@@ -34,7 +34,7 @@ import numpy as np
 from fem_tether import fd
 from fem_tether.config import load_config
 from fem_tether.fe import solver as fe
-from fem_tether.sweep import peak_rss_MiB
+from fem_tether.memory import peak_rss_MiB
 
 BENCH_CASE = {
     "tether": {"length_m": 3000.0},

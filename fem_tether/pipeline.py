@@ -17,7 +17,8 @@ from fem_tether.aep import SweepAep, sweep_aep, sweep_resource
 from fem_tether.atomic import write_json
 from fem_tether.figures import write_plots
 from fem_tether.jobs import load_job
-from fem_tether.sweep import SweepOutcome, peak_rss_MiB, sweep
+from fem_tether.memory import peak_rss_MiB
+from fem_tether.sweep import SweepOutcome, sweep
 from fem_tether.sweepfile import read_sweep
 
 

@@ -13,7 +13,6 @@ the finished tasks and says how to resume.
 
 from __future__ import annotations
 
-import resource
 import sys
 import time
 from collections.abc import Callable
@@ -23,19 +22,13 @@ from pathlib import Path
 from fem_tether.errors import InputError
 from fem_tether.evaluate import LengthResult, evaluate_length, run_task
 from fem_tether.jobs import Job, Task
+from fem_tether.memory import peak_rss_MiB
 from fem_tether.progress import Progress
 from fem_tether.schedule import assign, task_cost
 from fem_tether.store import PartsStore
 from fem_tether.sweepfile import assemble, check_out
 
 EXIT_ABORT = 3
-#: ``ru_maxrss`` is in KiB on Linux, in bytes on macOS.
-_MAXRSS_BYTES = 1 if sys.platform == "darwin" else 1024
-
-
-def peak_rss_MiB() -> float:
-    """This process's peak resident set size so far (``getrusage`` ``ru_maxrss``) [MiB]."""
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * _MAXRSS_BYTES / 2**20
 
 
 @dataclass(frozen=True)
