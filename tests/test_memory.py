@@ -19,10 +19,10 @@ def test_peak_rss_never_falls():
     assert 10.0 < first <= peak_rss_MiB()
 
 
-def test_peak_rss_sees_a_touched_256_MiB_array():
-    """In a fresh process a 256 MiB array raises the
-    peak by more than half of it (the peak of the imports may exceed what stays
-    resident after them; 256 MiB is well above that)."""
+def test_peak_rss_sees_a_touched_256_MiB_array_in_MiB():
+    """A process holding a touched 256 MiB array reports a peak above 256 MiB
+    and well below 4 GiB (a KiB/byte mix-up would be off by 1024).  Only bounds:
+    on Linux a child's peak starts at its parent's (``ru_maxrss`` survives exec)."""
     out = subprocess.run([sys.executable, "-c", GROWTH], capture_output=True, text=True, check=True)
     before, after = map(float, out.stdout.split())
-    assert after - before > 128.0
+    assert before <= after and 256.0 < after < 4096.0
