@@ -22,7 +22,8 @@ import numpy as np
 G_MPS2 = 9.81
 """Gravitational acceleration used by seed 000 (docs/physics.md §6)."""
 
-_TINY_MPS = 1e-30
+TINY_MPS = 1e-30
+"""Floor of |V_n| in Re and in the drag's magnitude (no division by zero in still air)."""
 _EYE = np.eye(3)
 
 
@@ -85,7 +86,7 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model,
     a = np.einsum("ij,ij->i", v_rel, tau)                # V_rel . tau
     vn = v_rel - a[:, None] * tau
     n = np.sqrt(np.einsum("ij,ij->i", vn, vn))
-    n_safe = np.maximum(n, _TINY_MPS)
+    n_safe = np.maximum(n, TINY_MPS)
     mu_air = np.asarray(mu_air, dtype=float)
     re = rho * n_safe * diameter_m / mu_air
     if jacobian:

@@ -117,6 +117,9 @@ class FE(Section):
     hht_alpha: float = setting(-0.1, "-", "HHT alpha", between(-1.0 / 3.0, 0.0, (True, True)))
     beta: float = setting(0.25, "-", "Newmark beta", positive)
     gamma: float = setting(0.5, "-", "Newmark gamma", positive)
+    kernel: str = setting("compiled", "-", "FE equations evaluated by 'compiled' loops (numba) or by "
+                          "'numpy' array expressions (the reference; same numbers to ~1e-14)",
+                          one_of("compiled", "numpy"))
 
 
 @dataclass(frozen=True)

@@ -79,8 +79,9 @@ def build_model(cfg: Config, end: EndMotion | None = None,
     case = case_fields(cfg, end)
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
-    return FEModel(system=TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"]),
-                   scheme=scheme_from_config(cfg.fe), **case)
+    system = TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"],
+                          compiled=cfg.fe.kernel == "compiled")
+    return FEModel(system=system, scheme=scheme_from_config(cfg.fe), **case)
 
 
 def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:
@@ -342,12 +343,12 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
         kin = Kinematics(*(np.insert(getattr(kin, k), 1, rows[k], axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.insert(T, 0, T[0])
         spaces = build_spaces(np.insert(sp.s_m, 1, f * s1) / model.length_m, model.length_m, mu)
-        system = TetherSystem(spaces, model.system.physics, model.tension_mode)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled)
     elif growth < 0 and sp.h_m[0] + growth < min_element_m and sp.n_elements > 1:
         kin = Kinematics(*(np.delete(getattr(kin, k), 1, axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.delete(T, 0)
         spaces = build_spaces(np.delete(sp.s_m, 1) / model.length_m, model.length_m, mu)
-        system = TetherSystem(spaces, model.system.physics, model.tension_mode)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled)
     else:
         system = model.system
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)

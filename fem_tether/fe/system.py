@@ -27,11 +27,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg.lapack import dgbsv
 
+from fem_tether.fe import kernel
+from fem_tether.fe.kernel import BAND
 from fem_tether.fe.spaces import TetherSpaces
 from fem_tether.loads import CrossflowDrag, crossflow_drag
 from fem_tether.tether import TetherPhysics
 
-BAND = 6
 _EYE = np.eye(3)
 _SGN = np.array([-1.0, 1.0])
 _SGN_B = _SGN[None, None, :, None, None]   # sgn_b of an element's node b
@@ -70,11 +71,16 @@ def solve_band(band: np.ndarray, rhs: np.ndarray) -> np.ndarray:
 
 @dataclass
 class TetherSystem:
-    """Discrete tether on a mesh: evaluates residuals and solves Newton steps."""
+    """Discrete tether on a mesh: evaluates residuals and solves Newton steps.
+
+    ``compiled`` evaluates the equations with the compiled loops of
+    :mod:`.kernel`; otherwise with the NumPy array expressions below, the
+    reference the kernels are tested against."""
 
     spaces: TetherSpaces
     physics: TetherPhysics
     tension_mode: bool
+    compiled: bool = True
     _idx: dict = field(init=False, repr=False)
 
     def __post_init__(self):
@@ -166,6 +172,9 @@ class TetherSystem:
         element by element: ``(D r)_e = r_{e+1} - r_e``, ``D^T`` gives node i
         ``y_{i-1} - y_i`` and ``Q`` gives it ``Q_{i,i-1} f_{i-1} + Q_{i,i} f_i``.
         """
+        if self.compiled:
+            return self._evaluate_compiled(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
+                                           force_ref_N, c_a, c_v, jacobian, reel_mps)
         ph = self.physics
         k_s = force_ref_N / self._h_mean
         dr = r[1:] - r[:-1]
@@ -199,6 +208,46 @@ class TetherSystem:
         if jacobian:
             out.band, out.r_col = self._jacobian(T, tau, length, dv, z, air, load, k_s, c_a, c_v,
                                                  kite_dir, reel_mps)
+        return out
+
+    def _evaluate_compiled(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
+                           force_ref_N, c_a, c_v, jacobian, reel_mps) -> Evaluation:
+        """:meth:`evaluate` by the kernels of :mod:`.kernel`, the leaf physics between them."""
+        ph = self.physics
+        sp = self.spaces
+        n_el = sp.n_elements
+        k_s = force_ref_N / self._h_mean
+        length, tau, r_mid, v_mid, dv = (np.empty(n_el), np.empty((n_el, 3)), np.empty((n_el, 3)),
+                                         np.empty((n_el, 3)), np.empty((n_el, 3)))
+        kernel.midpoints(r, v, float(reel_mps), length, tau, r_mid, v_mid, dv)
+        z = r_mid[:, 2]
+        v_rel = ph.wind.velocity_mps(z) - v_mid
+        air = ph.air.state(z, gradients=jacobian)
+        along, vn, vn_mps, re = np.empty(n_el), np.empty((n_el, 3)), np.empty(n_el), np.empty(n_el)
+        kernel.normal_flow(v_rel, tau, air.density_kg_m3, air.viscosity_Pa_s, ph.diameter_m,
+                           along, vn, vn_mps, re)
+        if jacobian:
+            cd, dcd_dre = ph.drag.cd_and_dcd_dre(re)
+        else:
+            cd = ph.drag.cd(re)
+        force = np.empty((n_el, 3))
+        kernel.drag_force(air.density_kg_m3, ph.diameter_m, cd, vn, vn_mps, tau, along,
+                          ph.skin_friction_cf, force)
+        res = np.empty(self.n)
+        kernel.residual(r, dv, qdd, T, R, kite_dir, tau, length, force, self.weight, sp.mass_kg,
+                        self.interior, self.load_weights, sp.h_m, k_s, ph.compliance_per_N,
+                        ph.damping_time_s, self.tension_mode, ground_tension_N, radius_m, res)
+        out = Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
+        if jacobian:
+            out.band = np.empty((3 * BAND + 1, self.n - 1))
+            kernel.jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre,
+                            air.density_kg_m3, air.viscosity_Pa_s, air.density_gradient_kg_m4,
+                            air.viscosity_gradient_Pa_s_m, ph.wind.shear_per_s(z), sp.mass_kg,
+                            self.interior, self.load_weights, sp.h_m, ph.diameter_m,
+                            ph.skin_friction_cf, k_s, ph.compliance_per_N, ph.damping_time_s,
+                            c_a, c_v, float(reel_mps), out.band)
+            out.r_col = np.zeros(self.n - 1)
+            out.r_col[-3:] = -k_s * kite_dir
         return out
 
     @staticmethod

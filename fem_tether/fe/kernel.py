@@ -1,0 +1,225 @@
+"""Compiled kernels of the FE tether equations: residual and banded Jacobian, loop by loop.
+
+The same equations as :meth:`.system.TetherSystem.evaluate` (whose NumPy
+implementation is the reference, and the tests hold the two together), written
+as loops over elements that numba compiles to machine code.  On the small
+systems of a tether (tens of elements) the NumPy version spends its time in the
+overhead of ~150 array operations per Newton iteration; compiled, an iteration
+costs about as much as a few of them.  The leaf physics (wind, air, drag
+coefficient) stays in NumPy and is called between the kernels: geometry
+(:func:`midpoints`) gives the altitudes the wind and the air need, the normal
+flow (:func:`normal_flow`) the Reynolds numbers the drag coefficient needs,
+and :func:`assemble` the rest.
+
+Notation as in :mod:`.system`: element e joins nodes e and e + 1, sgn = (-1, +1)
+for its nodes a = 0, 1; ``w[e, a]`` are Q's weights; rows and columns in the
+interleaved ordering ``[r_0, T_0, r_1, T_1, ..., r_N, R]``; the band in LAPACK
+``gbsv`` storage, ``band[2 BAND + i - j, j] = J[i, j]``.
+
+Compiled on first use and cached on disk next to this file (numba's
+``cache=True``), so only the first run after an install pays the compile time.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from fem_tether.loads import TINY_MPS
+
+BAND = 6
+"""Sub- and super-diagonals of the Jacobian without the R row and column."""
+
+V, M, F, B = "f8[:]", "f8[:, :]", "f8", "b1"     # vector, matrix (any layout), float, bool
+
+
+def jit(*types):
+    """Compile for one signature (any array layout): one compilation per kernel."""
+    return numba.njit(f"void({', '.join(types)})", cache=True)
+
+
+@jit(M, M, F, V, M, M, M, M)
+def midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv):
+    """Element lengths ``|r_{e+1} - r_e|`` and tangents, midpoint positions and
+    velocities, and velocity differences ``(D v)_e``; node 0 moves with
+    ``V_L tau_0`` while reeling (the line leaves the winch)."""
+    for e in range(tau.shape[0]):
+        s = 0.0
+        for i in range(3):
+            d = r[e + 1, i] - r[e, i]
+            tau[e, i] = d
+            s += d * d
+        length[e] = math.sqrt(s)
+        for i in range(3):
+            tau[e, i] = tau[e, i] / length[e]
+            r_mid[e, i] = 0.5 * (r[e + 1, i] + r[e, i])
+            v_a = reel_mps * tau[0, i] if (e == 0 and reel_mps != 0.0) else v[e, i]
+            v_mid[e, i] = 0.5 * (v[e + 1, i] + v_a)
+            dv[e, i] = v[e + 1, i] - v_a
+
+
+@jit(M, M, V, V, F, V, M, V, V)
+def normal_flow(v_rel, tau, rho, mu_air, diameter_m, along, vn, vn_mps, re):
+    """``V_n = V_rel - (V_rel . tau) tau``, its magnitude and
+    ``Re = rho |V_n| d / mu`` (seed 000 eq. 4.10); ``along = V_rel . tau``."""
+    for e in range(v_rel.shape[0]):
+        a = v_rel[e, 0] * tau[e, 0] + v_rel[e, 1] * tau[e, 1] + v_rel[e, 2] * tau[e, 2]
+        along[e] = a
+        s = 0.0
+        for i in range(3):
+            x = v_rel[e, i] - a * tau[e, i]
+            vn[e, i] = x
+            s += x * x
+        vn_mps[e] = math.sqrt(s)
+        re[e] = rho[e] * max(vn_mps[e], TINY_MPS) * diameter_m / mu_air[e]
+
+
+@jit(V, F, V, M, V, M, V, F, M)
+def drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force):
+    """``f_t = 1/2 rho d C_d |V_n| V_n`` (eq. 4.9) plus the skin friction
+    ``1/2 rho pi d c_f |V_tau| V_tau``, per element."""
+    for e in range(vn.shape[0]):
+        c = 0.5 * rho[e] * diameter_m * cd[e] * max(vn_mps[e], TINY_MPS)
+        k = 0.5 * rho[e] * math.pi * diameter_m * skin_friction_cf * abs(along[e]) * along[e]
+        for i in range(3):
+            force[e, i] = c * vn[e, i] + k * tau[e, i]
+
+
+@jit(M, M, M, V, F, V, M, V, M, V, V, V, M, V, F, F, F, B, F, F, V)
+def residual(r, dv, qdd, T, R, kite_dir, tau, length, force, weight, mass, interior, w, h,
+             k_s, compliance_per_N, damping_time_s, tension_mode, ground_tension_N, radius_m, res):
+    """The scaled residual (module docstring of :mod:`.system`): node rows
+    ``m qdd + D^T (T tau) - Q (f_t + w)`` at interior nodes, kinematic rows
+    ``k r_0`` and ``k (r_N - R e)``, constraint rows
+    ``k (|D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e)`` and the closing row."""
+    n_el = tau.shape[0]
+    for i in range(n_el + 1):
+        for k in range(3):
+            internal = 0.0
+            load = 0.0
+            if i < n_el:
+                internal -= T[i] * tau[i, k]
+                load = w[i, 0] * (force[i, k] + weight[k])
+            if i > 0:
+                internal += T[i - 1] * tau[i - 1, k]
+                load += w[i - 1, 1] * (force[i - 1, k] + weight[k])
+            res[4 * i + k] = (mass[i] * qdd[i, k] + internal - load) * interior[i]
+    for k in range(3):
+        res[k] = k_s * r[0, k]
+        res[4 * n_el + k] = k_s * (r[n_el, k] - R * kite_dir[k])
+    for e in range(n_el):
+        g = length[e] - h[e] * (1.0 + compliance_per_N * T[e])
+        if damping_time_s:
+            g += damping_time_s * (tau[e, 0] * dv[e, 0] + tau[e, 1] * dv[e, 1] + tau[e, 2] * dv[e, 2])
+        res[4 * e + 3] = k_s * g
+    res[4 * n_el + 3] = (T[0] - ground_tension_N) if tension_mode else k_s * (R - radius_m)
+
+
+@numba.njit(cache=True)
+def _drag_derivatives(e, v_rel, tau, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, diameter_m,
+                      skin_friction_cf, proj, d_dvrel, d_dtau, d_drho, d_dmu):
+    """df/dV_rel, df/dtau, df/drho and df/dmu of element e's drag (the formulas of
+    :func:`fem_tether.loads.crossflow_drag`), into the 3 x 3 and 3-vector work arrays."""
+    n = vn_mps[e]
+    n_safe = max(n, TINY_MPS)
+    half_rho_d = 0.5 * rho[e] * diameter_m
+    c = half_rho_d * cd[e] * n_safe
+    re_dcd = re[e] * dcd_dre[e]
+    dc_dn_n = half_rho_d * (cd[e] + re_dcd) * n
+    a = along[e]
+    k_s = 0.5 * rho[e] * math.pi * diameter_m * skin_friction_cf * abs(a)
+    for i in range(3):
+        d_drho[i] = 0.5 * diameter_m * n_safe * (cd[e] + re_dcd) * vn[e, i] + (k_s / rho[e]) * a * tau[e, i]
+        d_dmu[i] = -(half_rho_d * n_safe * re_dcd / mu_air[e]) * vn[e, i]
+        for j in range(3):
+            # df/dV_n = c I + c'(n) n u u^T, u = V_n / n
+            d_dvrel[i, j] = 0.0
+            d_dtau[i, j] = 0.0
+            for k in range(3):
+                f_vn = dc_dn_n * (vn[e, i] / n_safe) * (vn[e, k] / n_safe) + (c if i == k else 0.0)
+                d_dvrel[i, j] += f_vn * proj[k, j]
+                d_dtau[i, j] += f_vn * (-(a if k == j else 0.0) - tau[e, k] * v_rel[e, j])
+            d_dvrel[i, j] += 2.0 * k_s * tau[e, i] * tau[e, j]
+            d_dtau[i, j] += k_s * (2.0 * tau[e, i] * v_rel[e, j] + (a if i == j else 0.0))
+
+
+@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, V, V, M, V, F, F, F, F, F, F, F, F, M)
+def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
+             density_gradient, viscosity_gradient, shear, mass, interior, w, h, diameter_m,
+             skin_friction_cf, k_s, compliance_per_N, damping_time_s, c_a, c_v, reel_mps, band):
+    """The banded Jacobian without the R row and column (:meth:`.system.TetherSystem._jacobian`),
+    accumulated into ``band`` (zeroed here).
+
+    Element e puts on node a's rows (a interior), node b's columns,
+    ``sgn_a sgn_b T/|dr| P - w_a (sgn_b df/dtau P/|dr| + df/dr_mid)`` with
+    ``P = I - tau tau^T`` and ``df/dr_mid = -c_v/2 df/dV_rel + 1/2 df/dz e_z^T``;
+    node a's rows of column T_e get ``sgn_a tau_e``; row T_e gets
+    ``k sgn_b c_e^T`` (c_e = tau_e plus the Kelvin-Voigt terms) and
+    ``-k h_e / EA`` on its diagonal; the diagonal of node i's rows
+    ``c_a m_i`` (interior) or ``k`` (kinematic ends).
+    """
+    band[:] = 0.0
+    diag = 2 * BAND
+    n_el = tau.shape[0]
+    proj = np.empty((3, 3))
+    d_dvrel = np.empty((3, 3))
+    d_dtau = np.empty((3, 3))
+    d_drho = np.empty(3)
+    d_dmu = np.empty(3)
+    d_mid = np.empty((3, 3))
+    c_row = np.empty(3)
+    sgn = (-1.0, 1.0)
+    for e in range(n_el):
+        for i in range(3):
+            for j in range(3):
+                proj[i, j] = (1.0 if i == j else 0.0) - tau[e, i] * tau[e, j]
+        _drag_derivatives(e, v_rel, tau, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, diameter_m,
+                          skin_friction_cf, proj, d_dvrel, d_dtau, d_drho, d_dmu)
+        for i in range(3):
+            df_dz = d_dvrel[i, 0] * shear[e] + d_drho[i] * density_gradient[e] \
+                + d_dmu[i] * viscosity_gradient[e]
+            for j in range(3):
+                d_mid[i, j] = -0.5 * c_v * d_dvrel[i, j] + (0.5 * df_dz if j == 2 else 0.0)
+        geo = T[e] / length[e]
+        turn = 0.5 * reel_mps / length[e] if e == 0 else 0.0
+        for a in range(2):
+            node_a = e + a
+            if interior[node_a] == 0.0:
+                continue
+            w_a = w[e, a]
+            for b in range(2):
+                col0 = 4 * (e + b)
+                for i in range(3):
+                    row = 4 * node_a + i
+                    for j in range(3):
+                        d_tau = 0.0
+                        d_turn = 0.0
+                        for k in range(3):
+                            d_tau += d_dtau[i, k] * proj[k, j]
+                            d_turn += d_dvrel[i, k] * proj[k, j]
+                        value = sgn[a] * sgn[b] * geo * proj[i, j] \
+                            - w_a * (sgn[b] * d_tau / length[e] + d_mid[i, j])
+                        if turn != 0.0:
+                            # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1)
+                            value += sgn[b] * w_a * turn * d_turn
+                            if b == 0:
+                                value -= w_a * 0.5 * c_v * d_dvrel[i, j]
+                        band[diag + row - (col0 + j), col0 + j] += value
+            for i in range(3):
+                band[diag + 4 * node_a + i - (4 * e + 3), 4 * e + 3] += sgn[a] * tau[e, i]
+        for j in range(3):
+            c_row[j] = tau[e, j]
+            if damping_time_s:
+                p_dv = proj[j, 0] * dv[e, 0] + proj[j, 1] * dv[e, 1] + proj[j, 2] * dv[e, 2]
+                c_row[j] += damping_time_s * (p_dv / length[e] + c_v * tau[e, j])
+        for b in range(2):
+            for j in range(3):
+                col = 4 * (e + b) + j
+                band[diag + 4 * e + 3 - col, col] += k_s * sgn[b] * c_row[j]
+        band[diag, 4 * e + 3] += -k_s * compliance_per_N * h[e]
+    for node in range(n_el + 1):
+        m = k_s if (node == 0 or node == n_el) else c_a * mass[node] * interior[node]
+        for k in range(3):
+            band[diag, 4 * node + k] += m
