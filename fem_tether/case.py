@@ -30,6 +30,9 @@ class EndMotion(Protocol):
     def state(self, t_s, radius_m: float = ...) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration of R e(t) at times ``t_s``."""
 
+    def direction_at(self, t_s) -> np.ndarray:
+        """The unit direction e(t) at times ``t_s`` (``state(t, 1)[0]``, cheaper)."""
+
 
 @dataclass
 class TetherCase:

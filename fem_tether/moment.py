@@ -41,12 +41,17 @@ def equivalent_force(moment_Nm, kite_position_m, kite_velocity_mps=None):
     """
     moment_Nm = np.asarray(moment_Nm, dtype=float)
     r = np.asarray(kite_position_m, dtype=float)
-    r_k = np.linalg.norm(r, axis=-1)
-    drag_N = np.linalg.norm(moment_Nm, axis=-1) / r_k
+    r_k = _length(r)
+    drag_N = _length(moment_Nm) / r_k
     if kite_velocity_mps is None:
         return drag_N, None
     e_r = r / r_k[..., None]
     f_perp = cross(moment_Nm, e_r) / r_k[..., None]
     v = np.asarray(kite_velocity_mps, dtype=float)
-    v_hat = v / np.linalg.norm(v, axis=-1)[..., None]
-    return drag_N, -np.einsum("...i,...i->...", f_perp, v_hat)
+    v_hat = v / _length(v)[..., None]
+    return drag_N, -np.add.reduce(f_perp * v_hat, axis=-1)
+
+
+def _length(x):
+    """|x| over the last axis (``np.linalg.norm(x, axis=-1)``'s sum, without its checks)."""
+    return np.sqrt(np.add.reduce(x * x, axis=-1))

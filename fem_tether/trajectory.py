@@ -210,6 +210,11 @@ class FigureEight:
         theta, phi = self.angle_derivatives(self.parameter(t_s))
         return theta[0], phi[0]
 
+    def direction_at(self, t_s):
+        """ê(ϑ(t), φ(t)): the kite's direction alone (a time step's boundary
+        condition), equal to ``state(t, 1.0)[0]``."""
+        return direction(*self.angles(t_s))
+
     def state(self, t_s, radius_m=None):
         """Position, velocity, acceleration of R ê(ϑ(t), φ(t)).
 
@@ -262,6 +267,10 @@ class Stationary:
 
     direction: tuple[float, float, float]
     period_s: float = 1.0
+
+    def direction_at(self, t_s):
+        """ê at times ``t_s``: the fixed direction, normalised."""
+        return self.state(t_s)[0]
 
     def state(self, t_s, radius_m=1.0):
         e = np.asarray(self.direction, dtype=float)

@@ -24,7 +24,8 @@ CASES = {
 def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
     """At perturbed states (positions, velocities, accelerations, tensions, R):
     residual, banded Jacobian and R column within 1e-13 of the largest entry,
-    drag, Reynolds number and C_d within 1e-13 relative."""
+    drag, Reynolds number and C_d within 1e-13 relative; the Newton step (the
+    kernel's band LU against LAPACK's ``dgbsv``) within 1e-11 of its largest entry."""
     cfg = load_config(overrides={"tether": {"length_m": 1000.0}} | overrides)
     model = fe.build_model(cfg)
     st = fe.initial_state(model)
@@ -42,6 +43,8 @@ def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
         b = numpy_sys.evaluate(*args, reel_mps=reel_mps)
         for x, y in ((a.residual, b.residual), (a.band, b.band), (a.r_col, b.r_col)):
             assert np.max(np.abs(x - y)) <= 1e-13 * np.max(np.abs(y))
+        dx_a, dx_b = compiled_sys.newton_step(a), numpy_sys.newton_step(b)
+        assert np.max(np.abs(dx_a - dx_b)) <= 1e-11 * np.max(np.abs(dx_b))
         for x, y in ((a.load.force, b.load.force), (a.load.re, b.load.re), (a.load.cd, b.load.cd),
                      (a.tau, b.tau), (a.length_m, b.length_m), (a.r_mid, b.r_mid)):
             np.testing.assert_allclose(x, y, rtol=1e-13, atol=1e-13 * np.max(np.abs(y)))
@@ -62,3 +65,16 @@ def test_runs_with_either_kernel_agree():
 def test_compiled_is_the_default():
     assert load_config().fe.kernel == "compiled"
     assert fe.build_model(load_config()).system.compiled
+
+
+@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
+def test_singular_jacobian_raises(kernel):
+    """A singular band (here: all zero) is a LinAlgError from either solver."""
+    model = fe.build_model(load_config(overrides={"fe": {"elements": 4, "kernel": kernel}}))
+    st = fe.initial_state(model)
+    sys_ = model.system
+    ev = sys_.evaluate(st.kin.q, st.kin.v, st.kin.qdd, st.T, st.R, model.end.state(0.0, 1.0)[0],
+                       150e3, 0.0, 1e5, 1.0, 1.0)
+    ev.band[:] = 0.0
+    with pytest.raises(np.linalg.LinAlgError):
+        sys_.newton_step(ev)

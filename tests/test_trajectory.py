@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_tether.config import load_config
-from fem_tether.trajectory import FigureEight, direction
+from fem_tether.trajectory import FigureEight, Stationary, direction
 
 #: Roselli 2016 (seed 000) Tab. 5.2, L [m] -> mean |φ| [deg].
 TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.47, 3000: 1.28}
@@ -122,3 +122,13 @@ def test_mean_abs_phi_against_table_5_2():
     assert mean[500] / mean[3000] == pytest.approx(6.0, rel=0.01)
     for L, ref in TABLE_5_2.items():
         assert ref / 1.5 < mean[L] < 1.5 * ref
+
+
+def test_direction_at_is_the_unit_state():
+    """``direction_at(t)`` is ``state(t, 1)[0]`` bitwise, for scalars and arrays,
+    for the eight and a stationary end."""
+    eight = FigureEight(1000.0, np.radians(45.0), 190.0, 95.0, 80.0)
+    still = Stationary((1.0, 0.0, 2.0))
+    for end in (eight, still):
+        for t in (0.0, 1.234, np.linspace(0.0, 20.0, 7)):
+            assert np.array_equal(end.direction_at(t), end.state(t, 1.0)[0])

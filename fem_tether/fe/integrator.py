@@ -87,14 +87,40 @@ class Kinematics:
         """Constant-acceleration predictor of q_{n+1}."""
         return self.q + h * self.v + 0.5 * h * h * self.a
 
+    def step(self, h, scheme: Scheme) -> "Step":
+        """The step of size ``h`` from here: the kinematics at t_{n+1} as functions of q_{n+1}."""
+        return Step(self, h, scheme)
+
     def advance(self, q_new, h, scheme: Scheme) -> "Kinematics":
         """Kinematics at t_{n+1} implied by the new positions ``q_new``."""
-        b, g = scheme.beta, scheme.gamma
-        a_new = (q_new - self.q - h * self.v - h * h * (0.5 - b) * self.a) / (b * h * h)
-        v_new = self.v + h * ((1.0 - g) * self.a + g * a_new)
-        qdd_new = ((1.0 - scheme.alpha_m) * a_new + scheme.alpha_m * self.a
-                   - scheme.alpha_f * self.qdd) / (1.0 - scheme.alpha_f)
-        return Kinematics(q_new, v_new, a_new, qdd_new)
+        return self.step(h, scheme).kinematics(q_new)
+
+
+class Step:
+    """One step of size h from the kinematics ``kin`` at t_n, solved for q_{n+1}.
+
+    The module docstring's three relations, with their terms known at t_n
+    gathered once per step (each Newton iterate then costs three array updates)::
+
+        a_{n+1}   = (q_{n+1} - q_n - h v_n - h^2 (1/2 - beta) a_n) / (beta h^2)
+        v_{n+1}   = v_n + h (1 - gamma) a_n + h gamma a_{n+1}
+        qdd_{n+1} = ((1 - alpha_m) a_{n+1} + alpha_m a_n - alpha_f qdd_n) / (1 - alpha_f)
+    """
+
+    def __init__(self, kin: Kinematics, h: float, scheme: Scheme):
+        b, g, am, af = scheme.beta, scheme.gamma, scheme.alpha_m, scheme.alpha_f
+        self._q_known = kin.q + h * kin.v + h * h * (0.5 - b) * kin.a
+        self._a_per_q = 1.0 / (b * h * h)
+        self._v_known = kin.v + h * (1.0 - g) * kin.a
+        self._v_per_a = h * g
+        self._qdd_known = (am * kin.a - af * kin.qdd) / (1.0 - af)
+        self._qdd_per_a = (1.0 - am) / (1.0 - af)
+
+    def kinematics(self, q_new) -> Kinematics:
+        """Kinematics at t_{n+1} implied by the new positions ``q_new``."""
+        a_new = (q_new - self._q_known) * self._a_per_q
+        return Kinematics(q_new, self._v_known + self._v_per_a * a_new, a_new,
+                          self._qdd_known + self._qdd_per_a * a_new)
 
 
 def scheme_from_config(fe) -> Scheme:

@@ -223,3 +223,76 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
         m = k_s if (node == 0 or node == n_el) else c_a * mass[node] * interior[node]
         for k in range(3):
             band[diag, 4 * node + k] += m
+
+
+@numba.njit(cache=True)
+def _band_factor(band):
+    """LU factors with partial pivoting of the band in LAPACK ``gbsv`` storage,
+    in place (LAPACK's unblocked ``dgbtf2``, which ``dgbsv`` runs for
+    ``kl = ku = BAND``); returns the pivots, or None for a zero pivot."""
+    n = band.shape[1]
+    kv = 2 * BAND
+    ipiv = np.empty(n, np.int64)
+    ju = 0
+    for j in range(n):
+        km = min(BAND, n - 1 - j)
+        jp = 0
+        for i in range(1, km + 1):
+            if abs(band[kv + i, j]) > abs(band[kv + jp, j]):
+                jp = i
+        ipiv[j] = j + jp
+        pivot = band[kv + jp, j]
+        if pivot == 0.0:
+            return None
+        ju = max(ju, min(j + BAND + jp, n - 1))
+        if jp != 0:
+            for c in range(j, ju + 1):
+                band[kv + j - c, c], band[kv + j + jp - c, c] = band[kv + j + jp - c, c], band[kv + j - c, c]
+        for i in range(1, km + 1):
+            band[kv + i, j] /= band[kv, j]
+        for c in range(j + 1, ju + 1):
+            u = band[kv + j - c, c]
+            if u != 0.0:
+                for i in range(1, km + 1):
+                    band[kv + j + i - c, c] -= band[kv + i, j] * u
+    return ipiv
+
+
+@numba.njit(cache=True)
+def _band_solve(band, ipiv, b):
+    """Solve with the factors of :func:`_band_factor`, ``b`` in place (``dgbtrs``)."""
+    n = band.shape[1]
+    kv = 2 * BAND
+    for j in range(n - 1):
+        km = min(BAND, n - 1 - j)
+        p = ipiv[j]
+        if p != j:
+            b[j], b[p] = b[p], b[j]
+        for i in range(1, km + 1):
+            b[j + i] -= band[kv + i, j] * b[j]
+    for j in range(n - 1, -1, -1):
+        b[j] /= band[kv, j]
+        for i in range(max(0, j - kv), j):
+            b[i] -= band[kv + i - j, j] * b[j]
+
+
+@jit(M, V, V, B, F, V)
+def newton_step(band, residual, r_col, tension_mode, k_s, dx):
+    """``J dx = -residual`` by the band LU bordered with the R row and column
+    (:meth:`.system.TetherSystem.newton_step`): with ``J0 y = -residual[:-1]``
+    and ``J0 z = r_col``, ``dx = y - z dR``, where the last row gives dR
+    (``T_0 = T_ground``: ``dT_0 = 0``; prescribed R: ``k dR = -residual[-1]``).
+    The band is overwritten by its factors; a singular band leaves ``dx`` NaN."""
+    ipiv = _band_factor(band)
+    if ipiv is None:
+        dx[:] = np.nan
+        return
+    n = residual.shape[0]
+    y = -residual[:n - 1]
+    z = r_col.copy()
+    _band_solve(band, ipiv, y)
+    _band_solve(band, ipiv, z)
+    dR = (-residual[n - 1] - y[3]) / (-z[3]) if tension_mode else -residual[n - 1] / k_s
+    for i in range(n - 1):
+        dx[i] = y[i] - z[i] * dR
+    dx[n - 1] = dR

@@ -255,13 +255,14 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     ``stats``); raises :class:`NotConverged`."""
     sys_ = model.system
     t_new = state.t + h
-    e = model.end.state(t_new, 1.0)[0]
+    e = model.end.direction_at(t_new)
     c_a, c_v = model.scheme.coefficients(h)
     f_ref = model.force_ref_N(state.T, sys_.physics)
     r, T, R = state.kin.predict(h), state.T.copy(), state.R
     worst = math.inf
+    step = state.kin.step(h, model.scheme)
     for _ in range(model.max_newton):
-        kin = state.kin.advance(r, h, model.scheme)
+        kin = step.kinematics(r)
         try:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, reel_mps=model.reel_mps)

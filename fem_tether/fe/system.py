@@ -406,8 +406,14 @@ class TetherSystem:
         """
         assert ev.band is not None and ev.r_col is not None, \
             "newton_step needs an evaluation with the Jacobian, not yet factorised"
-        b = -ev.residual
         band, ev.band = ev.band, None
+        if self.compiled:
+            dx = np.empty(self.n)
+            kernel.newton_step(band, ev.residual, ev.r_col, self.tension_mode, ev.k_s, dx)
+            if np.isnan(dx[0]):
+                raise np.linalg.LinAlgError("singular matrix")
+            return dx
+        b = -ev.residual
         y, zc = solve_band(band, np.column_stack([b[:-1], ev.r_col])).T
         dR = (b[-1] - y[3]) / (-zc[3]) if self.tension_mode else b[-1] / ev.k_s
         dx = np.empty(self.n)
