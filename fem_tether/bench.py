@@ -49,7 +49,7 @@ ELEMENTS = (10, 20, 40, 80)
 TIME_STEPS_S = (0.2, 0.1, 0.05)
 FD_SEGMENTS = (25, 50, 100)
 FD_TIME_STEPS_S = (0.1, 0.05, 0.025)
-SCALING_ELEMENTS = (20, 80, 320, 1280)
+SCALING_ELEMENTS = (20, 80, 320, 1280, 5120)
 SCALING_DT_S = 0.1
 TOLERANCE = 0.005
 
@@ -193,6 +193,8 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
         "fd_over_fe_wall": (fd_cheapest.wall_s / cheapest.wall_s
                             if cheapest and fd_cheapest else None),
         "fe_us_per_step": None if cheapest is None else cheapest.us_per_step,
+        "fe_us_per_step_10_to_40": [f(r.us_per_step for r in rows if 10 <= r.elements <= 40)
+                                    for f in (min, max)],
         "real_time_factor": None if cheapest is None else cheapest.real_time_factor,
         "tolerance": TOLERANCE,
         "scaling": {"dt_s": SCALING_DT_S, "runs": scaling, "fit_intercept_s": float(intercept),

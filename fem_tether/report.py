@@ -132,6 +132,8 @@ def bench_text(result: dict) -> str:
                          f"dt = {c['dt_s']:.4f} s: {c['wall_s']:.3f} s wall, error {100 * c['rel_error']:.2f} %, "
                          f"{c['us_per_step']:.0f} us/step, {c['newton_per_step']:.2f} Newton/step, "
                          f"{c['real_time_factor']:.1f} x real time")
+    low, high = result["fe_us_per_step_10_to_40"]
+    lines.append(f"FE cost per step at 10-40 elements (every time step): {low:.0f}-{high:.0f} us")
     if result["fd_over_fe_wall"] is not None:
         lines.append(f"FD wall / FE wall at equal accuracy ({tol:.1f} %): {result['fd_over_fe_wall']:.1f}")
     s = result["scaling"]

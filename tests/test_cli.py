@@ -153,7 +153,7 @@ def test_bench_prints_its_table_from_report(capsys, monkeypatch):
               "reference": {"elements": 320, "dt_s": 0.0125, "drag_N": 40123.456, "wall_s": 12.3},
               "fd_reference": {"segments": 400, "dt_s": 0.00625, "drag_N": 40111.1, "wall_s": 30.2},
               "rows": [row | {"us_per_element_step": 69.4}], "cheapest": None, "fd_cheapest": row,
-              "fd_over_fe_wall": None,
+              "fd_over_fe_wall": None, "fe_us_per_step_10_to_40": [301.4, 450.6],
               "scaling": {"dt_s": 0.1, "runs": [{"elements": 20, "steps": 288, "wall_s": 0.3,
                                                  "peak_rss_MiB": 93.0}],
                           "fit_intercept_s": 0.0333, "fit_s_per_element": 0.01333, "fit_max_rel_dev": 0.0}}
@@ -173,6 +173,7 @@ def test_bench_prints_its_table_from_report(capsys, monkeypatch):
         "FE: no setting within 0.5 % of the reference",
         "FD cheapest within 0.5 %: 25 elements/segments, dt = 0.1000 s: 0.500 s wall, error 0.30 %, "
         "1736 us/step, 3.00 Newton/step, 57.6 x real time",
+        "FE cost per step at 10-40 elements (every time step): 301-451 us",
         "cost vs elements at dt = 0.1 s: 20 el 0.30 s",
         "linear fit wall = 0.033 s + 13.330 ms x elements (largest deviation 0.0 %)",
         "peak RSS vs elements: 20 el 93 MiB"]

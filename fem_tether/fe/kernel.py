@@ -37,7 +37,7 @@ V, M, F, B = "f8[:]", "f8[:, :]", "f8", "b1"     # vector, matrix (any layout), 
 
 def jit(*types):
     """Compile for one signature (any array layout): one compilation per kernel."""
-    return numba.njit(f"void({', '.join(types)})", cache=True)
+    return numba.njit(f"void({', '.join(types)})", cache=True, error_model="numpy")
 
 
 @jit(M, M, F, V, M, M, M, M)
@@ -117,7 +117,7 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, force, weight, mass, inter
     res[4 * n_el + 3] = (T[0] - ground_tension_N) if tension_mode else k_s * (R - radius_m)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _drag_derivatives(e, v_rel, tau, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, diameter_m,
                       skin_friction_cf, proj, d_dvrel, d_dtau, d_drho, d_dmu):
     """df/dV_rel, df/dtau, df/drho and df/dmu of element e's drag (the formulas of
@@ -225,7 +225,7 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
             band[diag, 4 * node + k] += m
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _band_factor(band):
     """LU factors with partial pivoting of the band in LAPACK ``gbsv`` storage,
     in place (LAPACK's unblocked ``dgbtf2``, which ``dgbsv`` runs for
@@ -258,7 +258,7 @@ def _band_factor(band):
     return ipiv
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def _band_solve(band, ipiv, b):
     """Solve with the factors of :func:`_band_factor`, ``b`` in place (``dgbtrs``)."""
     n = band.shape[1]

@@ -239,7 +239,7 @@ class TetherSystem:
                         ph.damping_time_s, self.tension_mode, ground_tension_N, radius_m, res)
         out = Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
         if jacobian:
-            out.band = np.empty((3 * BAND + 1, self.n - 1))
+            out.band = np.empty((3 * BAND + 1, self.n - 1), order="F")
             kernel.jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre,
                             air.density_kg_m3, air.viscosity_Pa_s, air.density_gradient_kg_m4,
                             air.viscosity_gradient_Pa_s_m, ph.wind.shear_per_s(z), sp.mass_kg,
