@@ -60,11 +60,14 @@ def midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv):
             dv[e, i] = v[e + 1, i] - v_a
 
 
-@jit(M, M, V, V, F, V, M, V, V)
-def normal_flow(v_rel, tau, rho, mu_air, diameter_m, along, vn, vn_mps, re):
-    """``V_n = V_rel - (V_rel . tau) tau``, its magnitude and
-    ``Re = rho |V_n| d / mu`` (seed 000 eq. 4.10); ``along = V_rel . tau``."""
-    for e in range(v_rel.shape[0]):
+@jit(M, V, M, V, V, F, M, V, M, V, V)
+def normal_flow(v_mid, wind_speed_mps, tau, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re):
+    """``V_rel = V_w(z) e_x - v_mid``, ``V_n = V_rel - (V_rel . tau) tau``, its
+    magnitude and ``Re = rho |V_n| d / mu`` (seed 000 eq. 4.10); ``along = V_rel . tau``."""
+    for e in range(v_mid.shape[0]):
+        v_rel[e, 0] = wind_speed_mps[e] - v_mid[e, 0]
+        v_rel[e, 1] = -v_mid[e, 1]
+        v_rel[e, 2] = -v_mid[e, 2]
         a = v_rel[e, 0] * tau[e, 0] + v_rel[e, 1] * tau[e, 1] + v_rel[e, 2] * tau[e, 2]
         along[e] = a
         s = 0.0
@@ -76,8 +79,8 @@ def normal_flow(v_rel, tau, rho, mu_air, diameter_m, along, vn, vn_mps, re):
         re[e] = rho[e] * max(vn_mps[e], TINY_MPS) * diameter_m / mu_air[e]
 
 
-@jit(V, F, V, M, V, M, V, F, M)
-def drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force):
+@numba.njit(cache=True, error_model="numpy")
+def _drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force):
     """``f_t = 1/2 rho d C_d |V_n| V_n`` (eq. 4.9) plus the skin friction
     ``1/2 rho pi d c_f |V_tau| V_tau``, per element."""
     for e in range(vn.shape[0]):
@@ -87,13 +90,15 @@ def drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, fo
             force[e, i] = c * vn[e, i] + k * tau[e, i]
 
 
-@jit(M, M, M, V, F, V, M, V, M, V, V, V, M, V, F, F, F, B, F, F, V)
-def residual(r, dv, qdd, T, R, kite_dir, tau, length, force, weight, mass, interior, w, h,
-             k_s, compliance_per_N, damping_time_s, tension_mode, ground_tension_N, radius_m, res):
-    """The scaled residual (module docstring of :mod:`.system`): node rows
-    ``m qdd + D^T (T tau) - Q (f_t + w)`` at interior nodes, kinematic rows
-    ``k r_0`` and ``k (r_N - R e)``, constraint rows
-    ``k (|D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e)`` and the closing row."""
+@jit(M, M, M, V, F, V, M, V, V, V, M, V, V, F, F, V, V, V, M, V, F, F, F, B, F, F, M, V)
+def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
+             skin_friction_cf, weight, mass, interior, w, h, k_s, compliance_per_N, damping_time_s,
+             tension_mode, ground_tension_N, radius_m, force, res):
+    """The drag ``force`` (:func:`_drag_force`) and the scaled residual (module
+    docstring of :mod:`.system`): node rows ``m qdd + D^T (T tau) - Q (f_t + w)``
+    at interior nodes, kinematic rows ``k r_0`` and ``k (r_N - R e)``, constraint
+    rows ``k (|D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e)`` and the closing row."""
+    _drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force)
     n_el = tau.shape[0]
     for i in range(n_el + 1):
         for k in range(3):

@@ -221,22 +221,20 @@ class TetherSystem:
                                          np.empty((n_el, 3)), np.empty((n_el, 3)))
         kernel.midpoints(r, v, float(reel_mps), length, tau, r_mid, v_mid, dv)
         z = r_mid[:, 2]
-        v_rel = ph.wind.velocity_mps(z) - v_mid
         air = ph.air.state(z, gradients=jacobian)
-        along, vn, vn_mps, re = np.empty(n_el), np.empty((n_el, 3)), np.empty(n_el), np.empty(n_el)
-        kernel.normal_flow(v_rel, tau, air.density_kg_m3, air.viscosity_Pa_s, ph.diameter_m,
-                           along, vn, vn_mps, re)
+        v_rel, along, vn, vn_mps, re = (np.empty((n_el, 3)), np.empty(n_el), np.empty((n_el, 3)),
+                                        np.empty(n_el), np.empty(n_el))
+        kernel.normal_flow(v_mid, ph.wind.speed_mps(z), tau, air.density_kg_m3, air.viscosity_Pa_s,
+                           ph.diameter_m, v_rel, along, vn, vn_mps, re)
         if jacobian:
             cd, dcd_dre = ph.drag.cd_and_dcd_dre(re)
         else:
             cd = ph.drag.cd(re)
-        force = np.empty((n_el, 3))
-        kernel.drag_force(air.density_kg_m3, ph.diameter_m, cd, vn, vn_mps, tau, along,
-                          ph.skin_friction_cf, force)
-        res = np.empty(self.n)
-        kernel.residual(r, dv, qdd, T, R, kite_dir, tau, length, force, self.weight, sp.mass_kg,
+        force, res = np.empty((n_el, 3)), np.empty(self.n)
+        kernel.residual(r, dv, qdd, T, R, kite_dir, tau, length, air.density_kg_m3, cd, vn, vn_mps,
+                        along, ph.diameter_m, ph.skin_friction_cf, self.weight, sp.mass_kg,
                         self.interior, self.load_weights, sp.h_m, k_s, ph.compliance_per_N,
-                        ph.damping_time_s, self.tension_mode, ground_tension_N, radius_m, res)
+                        ph.damping_time_s, self.tension_mode, ground_tension_N, radius_m, force, res)
         out = Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
         if jacobian:
             out.band = np.empty((3 * BAND + 1, self.n - 1), order="F")
