@@ -1,6 +1,8 @@
 """The compiled kernels evaluate the same equations as the NumPy reference."""
 
 import dataclasses
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -78,3 +80,17 @@ def test_singular_jacobian_raises(kernel):
     ev.band[:] = 0.0
     with pytest.raises(np.linalg.LinAlgError):
         sys_.newton_step(ev)
+
+
+def test_numba_is_imported_only_by_a_compiled_system():
+    """The CLI and the FE package import without numba; making a compiled
+    system imports the kernels (a fresh interpreter checks it)."""
+    code = ("import sys\n"
+            "import fem_tether.cli, fem_tether.fe.solver as fe\n"
+            "from fem_tether.config import load_config\n"
+            "assert 'numba' not in sys.modules\n"
+            "fe.build_model(load_config(overrides={'fe': {'kernel': 'numpy'}}))\n"
+            "assert 'numba' not in sys.modules\n"
+            "fe.build_model(load_config())\n"
+            "assert 'numba' in sys.modules and 'fem_tether.fe.kernel' in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -27,10 +27,8 @@ import math
 import numba
 import numpy as np
 
+from fem_tether.fe.system import BAND
 from fem_tether.loads import TINY_MPS
-
-BAND = 6
-"""Sub- and super-diagonals of the Jacobian without the R row and column."""
 
 V, M, F, B = "f8[:]", "f8[:, :]", "f8", "b1"     # vector, matrix (any layout), float, bool
 

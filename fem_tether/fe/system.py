@@ -22,17 +22,19 @@ rows are multiplied by ``k = F_ref / h_mean`` so all rows are forces.
 from __future__ import annotations
 
 import copy
+import importlib
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.linalg.lapack import dgbsv
 
-from fem_tether.fe import kernel
-from fem_tether.fe.kernel import BAND
 from fem_tether.fe.spaces import TetherSpaces
 from fem_tether.loads import CrossflowDrag, crossflow_drag
 from fem_tether.tether import TetherPhysics
 
+BAND = 6
+"""Sub- and super-diagonals of the Jacobian without the R row and column."""
 _EYE = np.eye(3)
 _SGN = np.array([-1.0, 1.0])
 _SGN_B = _SGN[None, None, :, None, None]   # sgn_b of an element's node b
@@ -74,14 +76,16 @@ class TetherSystem:
     """Discrete tether on a mesh: evaluates residuals and solves Newton steps.
 
     ``compiled`` evaluates the equations with the compiled loops of
-    :mod:`.kernel`; otherwise with the NumPy array expressions below, the
-    reference the kernels are tested against."""
+    :mod:`.kernel` (imported, and so compiled or loaded from numba's cache,
+    when the first such system is made); otherwise with the NumPy array
+    expressions below, the reference the kernels are tested against."""
 
     spaces: TetherSpaces
     physics: TetherPhysics
     tension_mode: bool
     compiled: bool = True
     _idx: dict = field(init=False, repr=False)
+    _kernel: Any = field(init=False, repr=False)      # the module fem_tether.fe.kernel, if compiled
 
     def __post_init__(self):
         n_el = self.spaces.n_elements
@@ -97,6 +101,7 @@ class TetherSystem:
         self._sgn_ab = (sgn[:, None] * sgn[None, :] * node_interior[:, :, None])[:, :, :, None, None]
         self._sgn_a = sgn[None, :, None] * node_interior[:, :, None]
         self._interior_ab = node_interior
+        self._kernel = importlib.import_module("fem_tether.fe.kernel") if self.compiled else None
         self._scatter = np.concatenate([self._idx[k].ravel() for k in ("rr", "rT", "Tr", "TT", "mass")]) \
             + BAND * (self.n - 1)
         self._set_lengths()
@@ -219,31 +224,32 @@ class TetherSystem:
         k_s = force_ref_N / self._h_mean
         length, tau, r_mid, v_mid, dv = (np.empty(n_el), np.empty((n_el, 3)), np.empty((n_el, 3)),
                                          np.empty((n_el, 3)), np.empty((n_el, 3)))
-        kernel.midpoints(r, v, float(reel_mps), length, tau, r_mid, v_mid, dv)
+        self._kernel.midpoints(r, v, float(reel_mps), length, tau, r_mid, v_mid, dv)
         z = r_mid[:, 2]
         air = ph.air.state(z, gradients=jacobian)
         v_rel, along, vn, vn_mps, re = (np.empty((n_el, 3)), np.empty(n_el), np.empty((n_el, 3)),
                                         np.empty(n_el), np.empty(n_el))
-        kernel.normal_flow(v_mid, ph.wind.speed_mps(z), tau, air.density_kg_m3, air.viscosity_Pa_s,
-                           ph.diameter_m, v_rel, along, vn, vn_mps, re)
+        self._kernel.normal_flow(v_mid, ph.wind.speed_mps(z), tau, air.density_kg_m3,
+                                 air.viscosity_Pa_s, ph.diameter_m, v_rel, along, vn, vn_mps, re)
         if jacobian:
             cd, dcd_dre = ph.drag.cd_and_dcd_dre(re)
         else:
             cd = ph.drag.cd(re)
         force, res = np.empty((n_el, 3)), np.empty(self.n)
-        kernel.residual(r, dv, qdd, T, R, kite_dir, tau, length, air.density_kg_m3, cd, vn, vn_mps,
-                        along, ph.diameter_m, ph.skin_friction_cf, self.weight, sp.mass_kg,
-                        self.interior, self.load_weights, sp.h_m, k_s, ph.compliance_per_N,
-                        ph.damping_time_s, self.tension_mode, ground_tension_N, radius_m, force, res)
+        self._kernel.residual(r, dv, qdd, T, R, kite_dir, tau, length, air.density_kg_m3, cd, vn,
+                              vn_mps, along, ph.diameter_m, ph.skin_friction_cf, self.weight,
+                              sp.mass_kg, self.interior, self.load_weights, sp.h_m, k_s,
+                              ph.compliance_per_N, ph.damping_time_s, self.tension_mode,
+                              ground_tension_N, radius_m, force, res)
         out = Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
         if jacobian:
             out.band = np.empty((3 * BAND + 1, self.n - 1), order="F")
-            kernel.jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre,
-                            air.density_kg_m3, air.viscosity_Pa_s, air.density_gradient_kg_m4,
-                            air.viscosity_gradient_Pa_s_m, ph.wind.shear_per_s(z), sp.mass_kg,
-                            self.interior, self.load_weights, sp.h_m, ph.diameter_m,
-                            ph.skin_friction_cf, k_s, ph.compliance_per_N, ph.damping_time_s,
-                            c_a, c_v, float(reel_mps), out.band)
+            self._kernel.jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre,
+                                  air.density_kg_m3, air.viscosity_Pa_s, air.density_gradient_kg_m4,
+                                  air.viscosity_gradient_Pa_s_m, ph.wind.shear_per_s(z), sp.mass_kg,
+                                  self.interior, self.load_weights, sp.h_m, ph.diameter_m,
+                                  ph.skin_friction_cf, k_s, ph.compliance_per_N, ph.damping_time_s,
+                                  c_a, c_v, float(reel_mps), out.band)
             out.r_col = np.zeros(self.n - 1)
             out.r_col[-3:] = -k_s * kite_dir
         return out
@@ -407,7 +413,7 @@ class TetherSystem:
         band, ev.band = ev.band, None
         if self.compiled:
             dx = np.empty(self.n)
-            kernel.newton_step(band, ev.residual, ev.r_col, self.tension_mode, ev.k_s, dx)
+            self._kernel.newton_step(band, ev.residual, ev.r_col, self.tension_mode, ev.k_s, dx)
             if np.isnan(dx[0]):
                 raise np.linalg.LinAlgError("singular matrix")
             return dx
