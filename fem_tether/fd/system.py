@@ -65,6 +65,25 @@ def _outer(a, b):
     return np.einsum("ni,nj->nij", a, b)
 
 
+class Directions:
+    """Unit tangents of the line r_0 .. r_M, normalised in one go: of the segments,
+    ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k`` (``tau``, ``ell``: (M,)), and at the
+    nodes 0..M, central inside and one-sided at the ends, with the lengths they
+    were normalised by (``tangent``, ``tangent_len``: (M+1,)); ``unit`` holds
+    both, the segments' rows first."""
+
+    def __init__(self, r):
+        M = r.shape[0] - 1
+        d = np.empty((2 * M + 1, 3))
+        np.subtract(r[1:], r[:-1], out=d[:M])
+        np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
+        d[M] = d[0]
+        d[2 * M] = d[M - 1]
+        self.unit, length = _unit(d)
+        self.tau, self.ell = self.unit[:M], length[:M]
+        self.tangent, self.tangent_len = self.unit[M:], length[M:]
+
+
 @dataclass
 class NodalLoads:
     """Drag at a set of nodes and what produced it."""
@@ -93,6 +112,7 @@ class Grid:
         self.tension_mode = bool(tension_mode)
         self.n_full = 4 * M - 2
         self.n = 4 * M - 3                       # active unknowns = equations
+        self.eye_stack = np.tile(_EYE, (2 * M + 1, 1, 1))    # I per row of Directions.unit
         ds = float(length_m) / M
         self._set_lengths(np.full(M, ds), np.linspace(0.0, float(length_m), M + 1))
         self._layout()
@@ -306,26 +326,13 @@ class TetherFD:
         return crossflow_drag(v_rel, tangent, air.density_kg_m3, air.viscosity_Pa_s,
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
 
-    @staticmethod
-    def _tangents(r, d=None):
-        """Unit tangents at every node 0..M (central inside, one-sided at the
-        ends) and the lengths they were normalised by; ``d`` is ``r[1:] - r[:-1]``
-        if known."""
-        if d is None:
-            d = r[1:] - r[:-1]
-        tangent = np.empty_like(r)
-        np.subtract(r[2:], r[:-2], out=tangent[1:-1])
-        tangent[0] = d[0]
-        tangent[-1] = d[-1]
-        return _unit(tangent)
-
     def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
         """Drag at every node 0..M; one-sided tangents at the two ends.
 
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
         the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
         same for the r and v of an evaluation.)"""
-        tangent, _ = self._tangents(r)
+        tangent = Directions(r).tangent
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tangent[0]
@@ -358,15 +365,14 @@ class TetherFD:
         g, ph = self.grid, self.physics
         h, M = g.h, g.M
         mu = ph.linear_density_kg_m
-        d = r[1:] - r[:-1]
-        tau, ell = _unit(d)
+        dirs = Directions(r)
+        tau, ell, tangent = dirs.tau, dirs.ell, dirs.tangent
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tau[0]
         flux = T[:, None] * tau
         # drag at the interior nodes with the central tangent (the equations'),
         # and at the two ends with the one-sided ones (for line_loads)
-        tangent, tangent_len = self._tangents(r, d)
         air = ph.air.state(r[:, 2], gradients=jacobian)
         load = self.nodal_drag(r, v, tangent, air, jacobian=jacobian)
         f = load.force[1:-1]
@@ -381,18 +387,18 @@ class TetherFD:
         res[4 * M - 4] = con[-1] / h[-1]
 
         def build():
-            line = r, v, T, tau, ell, tangent[1:-1], tangent_len[1:-1]
             if jacobian:        # the drag's derivatives came with the residual, at every node
-                return self._jacobian(*line, load, air, slice(1, -1), force_ref_N, kite_dir, c_a, c_v)
-            inner_air = ph.air.state(r[1:-1, 2], gradients=True)
-            inner = self.nodal_drag(r[1:-1], v[1:-1], tangent[1:-1], inner_air, jacobian=True)
-            return self._jacobian(*line, inner, inner_air, slice(None), force_ref_N, kite_dir, c_a, c_v)
+                drag, drag_air, inner = load, air, slice(1, -1)
+            else:               # ... or are evaluated now, at the interior nodes
+                drag_air = ph.air.state(r[1:-1, 2], gradients=True)
+                drag = self.nodal_drag(r[1:-1], v[1:-1], tangent[1:-1], drag_air, jacobian=True)
+                inner = slice(None)
+            return self._jacobian(r, v, T, dirs, drag, drag_air, inner, force_ref_N, kite_dir, c_a, c_v)
 
         return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
                           build)
 
-    def _jacobian(self, r, v, T, tau, ell, tau_n, dn_len, drag, air, inner, force_ref_N, kite_dir,
-                  c_a, c_v):
+    def _jacobian(self, r, v, T, dirs, drag, air, inner, force_ref_N, kite_dir, c_a, c_v):
         """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate values.
 
         ``drag`` and ``air`` (the drag with its derivatives and the air's state
@@ -413,7 +419,9 @@ class TetherFD:
         """
         g = self.grid
         M = g.M
-        proj = _EYE - _outer(tau, tau)
+        tau, ell = dirs.tau, dirs.ell
+        projections = g.eye_stack - _outer(dirs.unit, dirs.unit)     # I - tau tau^T
+        proj = projections[:M]
         K = (T / ell)[:, None, None] * proj
         values = np.empty(33 * (M - 1) + 7 * M)          # in layout order (Grid._layout)
         momentum = values[: 33 * (M - 1)]
@@ -424,7 +432,7 @@ class TetherFD:
         blocks[0] -= self._drag_derivative(r[1:-1, 2], drag, air, inner, c_v)
         np.divide(K[1:], g.hbar_blocks, out=blocks[1])
         np.divide(K[:-1], g.hbar_blocks, out=blocks[2])
-        d_next = drag.d_dtau[inner] @ (_EYE - _outer(tau_n, tau_n)) / dn_len[:, None, None]
+        d_next = drag.d_dtau[inner] @ projections[M + 1: 2 * M] / dirs.tangent_len[1:-1, None, None]
         blocks[1] += d_next
         blocks[2] -= d_next
         tensions = momentum[27 * (M - 1):].reshape(2, M - 1, 3)         # T_{i+1/2}, T_{i-1/2}
