@@ -112,7 +112,7 @@ class Grid:
         self.tension_mode = bool(tension_mode)
         self.n_full = 4 * M - 2
         self.n = 4 * M - 3                       # active unknowns = equations
-        self.eye_stack = np.tile(_EYE, (2 * M + 1, 1, 1))    # I per row of Directions.unit
+        self.eye_stack = np.tile(_EYE, (2 * M + 1, 1, 1))    # I, once per row of Directions.unit
         ds = float(length_m) / M
         self._set_lengths(np.full(M, ds), np.linspace(0.0, float(length_m), M + 1))
         self._layout()
@@ -428,7 +428,7 @@ class TetherFD:
         blocks = momentum[: 27 * (M - 1)].reshape(3, M - 1, 3, 3)    # r_i, r_{i+1}, r_{i-1}
         np.add(K[1:], K[:-1], out=blocks[0])
         blocks[0] /= g.hbar_blocks
-        blocks[0] += (self.physics.linear_density_kg_m * c_a) * _EYE
+        blocks[0] += (self.physics.linear_density_kg_m * c_a) * g.eye_stack[: M - 1]
         blocks[0] -= self._drag_derivative(r[1:-1, 2], drag, air, inner, c_v)
         np.divide(K[1:], g.hbar_blocks, out=blocks[1])
         np.divide(K[:-1], g.hbar_blocks, out=blocks[2])
