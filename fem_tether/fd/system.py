@@ -269,9 +269,11 @@ class Grid:
 
         LAPACK ``gbsv`` on a copy of ``ab`` with the ``lower`` rows of fill-in
         above it: what :func:`scipy.linalg.solve_banded` does, without its
-        per-call checks.  Raises :class:`numpy.linalg.LinAlgError` if singular.
+        per-call checks.  The copy is in Fortran order, so that LAPACK factors
+        it in place (no second copy).  Raises :class:`numpy.linalg.LinAlgError`
+        if singular.
         """
-        lu = np.zeros((2 * self.lower + self.upper + 1, self.n))
+        lu = np.zeros((2 * self.lower + self.upper + 1, self.n), order="F")
         lu[self.lower:] = ab
         _, _, x, info = lapack.dgbsv(self.lower, self.upper, lu, rhs, overwrite_ab=True)
         if info > 0:
