@@ -313,7 +313,7 @@ class TetherFD:
     def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
-        self._weight = physics.weight_N_m
+        self._weight = np.tile(physics.weight_N_m, (grid.M - 1, 1))   # w at each interior node
         self._constraint_T: np.ndarray | None = None
 
     # --- loads -----------------------------------------------------------------
