@@ -133,19 +133,27 @@ class Grid:
         self.length_m = float(s_m[-1])
         self.ds = self.length_m / self.M         # mean segment length
         self.hbar = 0.5 * (h[1:] + h[:-1])       # control-volume length of the interior nodes
-        # hbar_i per vector component and per 3x3 block entry, 1/h_k per component
-        # (full-shape operands: faster than broadcasting the (n, 1) columns)
-        self.hbar_rows = np.repeat(self.hbar, 3).reshape(self.M - 1, 3)
-        self.hbar_blocks = np.repeat(self.hbar, 9).reshape(self.M - 1, 3, 3)
-        self.inv_h_rows = np.repeat(1.0 / h, 3).reshape(self.M, 3)
-        # hbar_i of every momentum entry of the Jacobian in layout order, signed as
-        # TetherFD._jacobian's blocks are: r_i +, r_{i+1} -, r_{i-1} -, T_{i+1/2} -, T_{i-1/2} +
-        w9, w3 = np.repeat(self.hbar, 9), np.repeat(self.hbar, 3)
-        self.momentum_weights = np.concatenate([w9, -w9, -w9, -w3, w3])
         self.trap_weights = np.empty(self.M + 1)  # ... of all nodes (mass mu * these)
         self.trap_weights[1:-1] = self.hbar
         self.trap_weights[0] = 0.5 * h[0]
         self.trap_weights[-1] = 0.5 * h[-1]
+        # hbar_i of every momentum entry of the Jacobian in layout order, signed as
+        # TetherFD._jacobian's blocks are: r_i +, r_{i+1} -, r_{i-1} -, T_{i+1/2} -,
+        # T_{i-1/2} +; views of it give hbar_i per 3x3 block entry and per vector
+        # component, and 1/h_k per component is stored likewise (full-shape
+        # operands: faster than broadcasting (n, 1) columns)
+        n = self.M - 1
+        self.momentum_weights = np.empty(33 * n)
+        blocks = self.momentum_weights[: 27 * n].reshape(3, n, 9)
+        rows = self.momentum_weights[27 * n:].reshape(2, n, 3)
+        blocks[0] = self.hbar[:, None]
+        blocks[1:] = -blocks[0]
+        rows[1] = self.hbar[:, None]
+        rows[0] = -rows[1]
+        self.hbar_blocks = blocks[0].reshape(n, 3, 3)
+        self.hbar_rows = rows[1]
+        self.inv_h_rows = np.empty((self.M, 3))
+        self.inv_h_rows[:] = (1.0 / h)[:, None]
 
     def with_first_length(self, h0_m: float) -> "Grid":
         """The same grid with the winch segment ``h_0`` changed to ``h0_m`` (the
@@ -313,7 +321,8 @@ class TetherFD:
     def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
-        self._weight = np.tile(physics.weight_N_m, (grid.M - 1, 1))   # w at each interior node
+        self._weight = np.empty((grid.M - 1, 3))      # w at each interior node
+        self._weight[:] = physics.weight_N_m
         self._constraint_T: np.ndarray | None = None
 
     # --- loads -----------------------------------------------------------------
