@@ -297,13 +297,13 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
         stats.newton_iterations += 1
-        worst, last = float(np.max(np.abs(ev.residual))), worst
-        if not np.isfinite(worst):
+        worst, last = float(np.abs(ev.residual).max()), worst
+        if not math.isfinite(worst):
             break
         if worst <= model.newton_tol:
             return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
         try:
-            active += g.solve(ev.ab, -ev.residual)
+            active -= g.solve(ev.ab, ev.residual)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)
@@ -332,14 +332,15 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     loads = state.drag if state.drag is not None else model.eq.line_loads(r, v, model.reel_mps)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
-    seg = np.linalg.norm(np.diff(r, axis=0), axis=1)
+    d = r[1:] - r[:-1]
+    seg = np.sqrt((d * d).sum(axis=1))           # |r_{k+1} - r_k|
     series = {
         "ground_tension_N": float(state.T[0]),
         "kite_tension_N": float(state.T[-1]),
-        "kite_radius_m": float(np.linalg.norm(r[-1])),
+        "kite_radius_m": math.sqrt(r[-1].dot(r[-1])),
         "drag_N": float(drag),
         "drag_against_N": float(against) if against is not None else 0.0,
-        "max_strain": float(np.max(np.abs(seg / g.h - 1.0))),
+        "max_strain": float(np.abs(seg / g.h - 1.0).max()),
     }
     if not fields:
         return series

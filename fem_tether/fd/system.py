@@ -65,6 +65,25 @@ def _outer(a, b):
     return np.einsum("ni,nj->nij", a, b)
 
 
+class Directions:
+    """Unit tangents of the line r_0 .. r_M, normalised in one go: of the segments,
+    ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k`` (``tau``, ``ell``: (M,)), and at the
+    nodes 0..M, central inside and one-sided at the ends, with the lengths they
+    were normalised by (``tangent``, ``tangent_len``: (M+1,)); ``unit`` holds
+    both, the segments' rows first."""
+
+    def __init__(self, r):
+        M = r.shape[0] - 1
+        d = np.empty((2 * M + 1, 3))
+        np.subtract(r[1:], r[:-1], out=d[:M])
+        np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
+        d[M] = d[0]
+        d[2 * M] = d[M - 1]
+        self.unit, length = _unit(d)
+        self.tau, self.ell = self.unit[:M], length[:M]
+        self.tangent, self.tangent_len = self.unit[M:], length[M:]
+
+
 @dataclass
 class NodalLoads:
     """Drag at a set of nodes and what produced it."""
@@ -93,6 +112,7 @@ class Grid:
         self.tension_mode = bool(tension_mode)
         self.n_full = 4 * M - 2
         self.n = 4 * M - 3                       # active unknowns = equations
+        self.eye_stack = np.tile(_EYE, (2 * M + 1, 1, 1))    # I, once per row of Directions.unit
         ds = float(length_m) / M
         self._set_lengths(np.full(M, ds), np.linspace(0.0, float(length_m), M + 1))
         self._layout()
@@ -113,12 +133,27 @@ class Grid:
         self.length_m = float(s_m[-1])
         self.ds = self.length_m / self.M         # mean segment length
         self.hbar = 0.5 * (h[1:] + h[:-1])       # control-volume length of the interior nodes
-        self.hbar_col = self.hbar[:, None]
-        self.inv_h_col = (1.0 / h)[:, None]
         self.trap_weights = np.empty(self.M + 1)  # ... of all nodes (mass mu * these)
         self.trap_weights[1:-1] = self.hbar
         self.trap_weights[0] = 0.5 * h[0]
         self.trap_weights[-1] = 0.5 * h[-1]
+        # hbar_i of every momentum entry of the Jacobian in layout order, signed as
+        # TetherFD._jacobian's blocks are: r_i +, r_{i+1} -, r_{i-1} -, T_{i+1/2} -,
+        # T_{i-1/2} +; views of it give hbar_i per 3x3 block entry and per vector
+        # component, and 1/h_k per component is stored likewise (full-shape
+        # operands: faster than broadcasting (n, 1) columns)
+        n = self.M - 1
+        self.momentum_weights = np.empty(33 * n)
+        blocks = self.momentum_weights[: 27 * n].reshape(3, n, 9)
+        rows = self.momentum_weights[27 * n:].reshape(2, n, 3)
+        blocks[0] = self.hbar[:, None]
+        blocks[1:] = -blocks[0]
+        rows[1] = self.hbar[:, None]
+        rows[0] = -rows[1]
+        self.hbar_blocks = blocks[0].reshape(n, 3, 3)
+        self.hbar_rows = rows[1]
+        self.inv_h_rows = np.empty((self.M, 3))
+        self.inv_h_rows[:] = (1.0 / h)[:, None]
 
     def with_first_length(self, h0_m: float) -> "Grid":
         """The same grid with the winch segment ``h_0`` changed to ``h0_m`` (the
@@ -242,9 +277,11 @@ class Grid:
 
         LAPACK ``gbsv`` on a copy of ``ab`` with the ``lower`` rows of fill-in
         above it: what :func:`scipy.linalg.solve_banded` does, without its
-        per-call checks.  Raises :class:`numpy.linalg.LinAlgError` if singular.
+        per-call checks.  The copy is in Fortran order, so that LAPACK factors
+        it in place (no second copy).  Raises :class:`numpy.linalg.LinAlgError`
+        if singular.
         """
-        lu = np.zeros((2 * self.lower + self.upper + 1, self.n))
+        lu = np.zeros((2 * self.lower + self.upper + 1, self.n), order="F")
         lu[self.lower:] = ab
         _, _, x, info = lapack.dgbsv(self.lower, self.upper, lu, rhs, overwrite_ab=True)
         if info > 0:
@@ -284,30 +321,21 @@ class TetherFD:
     def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
-        self._weight = physics.weight_N_m
+        self._weight = np.empty((grid.M - 1, 3))      # w at each interior node
+        self._weight[:] = physics.weight_N_m
         self._constraint_T: np.ndarray | None = None
 
     # --- loads -----------------------------------------------------------------
-    def nodal_drag(self, r, v, tangent, jacobian=False):
+    def nodal_drag(self, r, v, tangent, air=None, jacobian=False):
+        """Drag at nodes r moving with v, with unit tangents ``tangent``; ``air``
+        is the air's state at their altitudes, if known."""
         ph = self.physics
         z = r[:, 2]
         v_rel = ph.wind.velocity_mps(z) - v
-        air = ph.air.state(z)
+        if air is None:
+            air = ph.air.state(z)
         return crossflow_drag(v_rel, tangent, air.density_kg_m3, air.viscosity_Pa_s,
                               ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
-
-    @staticmethod
-    def _tangents(r, d=None):
-        """Unit tangents at every node 0..M (central inside, one-sided at the
-        ends) and the lengths they were normalised by; ``d`` is ``r[1:] - r[:-1]``
-        if known."""
-        if d is None:
-            d = r[1:] - r[:-1]
-        tangent = np.empty_like(r)
-        np.subtract(r[2:], r[:-2], out=tangent[1:-1])
-        tangent[0] = d[0]
-        tangent[-1] = d[-1]
-        return _unit(tangent)
 
     def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
         """Drag at every node 0..M; one-sided tangents at the two ends.
@@ -315,7 +343,7 @@ class TetherFD:
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
         the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
         same for the r and v of an evaluation.)"""
-        tangent, _ = self._tangents(r)
+        tangent = Directions(r).tangent
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tangent[0]
@@ -346,89 +374,112 @@ class TetherFD:
         derivative in r is the same as without reeling.
         """
         g, ph = self.grid, self.physics
-        h, hbar, M = g.h, g.hbar, g.M
+        h, M = g.h, g.M
         mu = ph.linear_density_kg_m
-        d = r[1:] - r[:-1]
-        tau, ell = _unit(d)
+        dirs = Directions(r)
+        tau, ell, tangent = dirs.tau, dirs.ell, dirs.tangent
         if reel_mps:
             v = v.copy()
             v[0] = reel_mps * tau[0]
         flux = T[:, None] * tau
         # drag at the interior nodes with the central tangent (the equations'),
         # and at the two ends with the one-sided ones (for line_loads)
-        tangent, tangent_len = self._tangents(r, d)
-        tau_n, dn_len = tangent[1:-1], tangent_len[1:-1]
-        load = self.nodal_drag(r, v, tangent, jacobian=jacobian)
+        air = ph.air.state(r[:, 2], gradients=jacobian)
+        load = self.nodal_drag(r, v, tangent, air, jacobian=jacobian)
         f = load.force[1:-1]
-        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / g.hbar_col - self._weight - f
-        dv = v[1:] - v[:-1]
+        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / g.hbar_rows - self._weight - f
         con = ell - h * (1.0 + ph.compliance_per_N * T)
         if ph.damping_time_s:
-            con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
-        sm = hbar / force_ref_N
+            con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, v[1:] - v[:-1])
         res = np.empty(g.n)
         body = res[0: 4 * M - 4].reshape(M - 1, 4)
         np.divide(con[:-1], h[:-1], out=body[:, 0])
-        np.multiply(mom, sm[:, None], out=body[:, 1:])
+        np.multiply(mom, g.hbar_rows / force_ref_N, out=body[:, 1:])
         res[4 * M - 4] = con[-1] / h[-1]
 
         def build():
-            if with_derivatives:
-                d_dvrel, d_dtau = load.d_dvrel[1:-1], load.d_dtau[1:-1]
-                d_drho, d_dmu = load.d_drho[1:-1], load.d_dmu[1:-1]
-            else:
-                inner = self.nodal_drag(r[1:-1], v[1:-1], tau_n, jacobian=True)
-                d_dvrel, d_dtau, d_drho, d_dmu = inner.d_dvrel, inner.d_dtau, inner.d_drho, inner.d_dmu
-            return self._jacobian(r, T, tau, ell, dv, tau_n, dn_len, (d_dvrel, d_dtau, d_drho, d_dmu),
-                                  sm, kite_dir, c_a, c_v)
+            if jacobian:        # the drag's derivatives came with the residual, at every node
+                drag, drag_air, inner = load, air, slice(1, -1)
+            else:               # ... or are evaluated now, at the interior nodes
+                drag_air = ph.air.state(r[1:-1, 2], gradients=True)
+                drag = self.nodal_drag(r[1:-1], v[1:-1], tangent[1:-1], drag_air, jacobian=True)
+                inner = slice(None)
+            return self._jacobian(r, v, T, dirs, drag, drag_air, inner, force_ref_N, kite_dir, c_a, c_v)
 
-        with_derivatives = jacobian
         return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
                           build)
 
-    def _jacobian(self, r, T, tau, ell, dv, tau_n, dn_len, drag_derivatives, sm, kite_dir, c_a, c_v):
-        """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate
-        values and the derivatives of the drag at the interior nodes
-        (df/dV_rel, df/dtau, df/drho, df/dmu_air)."""
-        d_dvrel, d_dtau, d_drho, d_dmu = drag_derivatives
-        g, ph = self.grid, self.physics
-        h = g.h
-        mu = ph.linear_density_kg_m
-        proj = _EYE - _outer(tau, tau)                         # (M, 3, 3)
-        K = (T / ell)[:, None, None] * proj                    # d F_{k+1/2} / d r_{k+1}
-        hb3 = g.hbar_col[:, :, None]
-        A_self = (mu * c_a) * _EYE + (K[1:] + K[:-1]) / hb3
-        A_next = -K[1:] / hb3
-        A_prev = -K[:-1] / hb3
-        z = r[1:-1, 2]
-        air = ph.air.state(z, gradients=True)
-        df_dz = d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + d_drho * air.density_gradient_kg_m4[:, None] \
-            + d_dmu * air.viscosity_gradient_Pa_s_m[:, None]
-        d_self = -c_v * d_dvrel
-        d_self[:, :, 2] += df_dz
-        proj_n = _EYE - _outer(tau_n, tau_n)
-        d_next = d_dtau @ proj_n / dn_len[:, None, None]
-        A_self = A_self - d_self
-        A_next = A_next - d_next
-        A_prev = A_prev + d_next
-        B_plus = -tau[1:] / g.hbar_col
-        B_minus = tau[:-1] / g.hbar_col
-        c_row = tau
-        if ph.damping_time_s:
-            c_row = tau + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None]
-                                               + c_v * tau)
+    def _jacobian(self, r, v, T, dirs, drag, air, inner, force_ref_N, kite_dir, c_a, c_v):
+        """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate values.
+
+        ``drag`` and ``air`` (the drag with its derivatives and the air's state
+        with its gradients) are taken at the interior nodes ``inner`` of theirs.
+        With ``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)``
+        (= dF_{k+1/2}/dr_{k+1}) and the derivative through the nodal tangent
+        ``D_i = df/dtau_i (I - tau_i tau_i^T) / |r_{i+1} - r_{i-1}|``, the momentum
+        rows (before their scale hbar_i / F_ref) are::
+
+            dm_i/dr_i         = mu c_a I + (K_i + K_{i-1}) / hbar_i - df_i/dr_i
+            dm_i/dr_{i+1}     = -(K_i / hbar_i + D_i)
+            dm_i/dr_{i-1}     = -(K_{i-1} / hbar_i - D_i)
+            dm_i/dT_{i+1/2}   = -tau_{i+1/2} / hbar_i,   dm_i/dT_{i-1/2} = tau_{i-1/2} / hbar_i
+
+        (the signs go with the scale, :attr:`Grid.momentum_weights`); the
+        constraint rows (scale 1/h_k) are ``dg_k/dr_{k+1} = -dg_k/dr_k = c_k``
+        (:meth:`_constraint_row`) and ``dg_k/dT_{k+1/2} = -h_k / EA``.
+        """
+        g = self.grid
+        M = g.M
+        tau, ell = dirs.tau, dirs.ell
+        projections = g.eye_stack - _outer(dirs.unit, dirs.unit)     # I - tau tau^T
+        proj = projections[:M]
+        K = (T / ell)[:, None, None] * proj
+        values = np.empty(33 * (M - 1) + 7 * M)          # in layout order (Grid._layout)
+        momentum = values[: 33 * (M - 1)]
+        blocks = momentum[: 27 * (M - 1)].reshape(3, M - 1, 3, 3)    # r_i, r_{i+1}, r_{i-1}
+        np.add(K[1:], K[:-1], out=blocks[0])
+        blocks[0] /= g.hbar_blocks
+        blocks[0] += (self.physics.linear_density_kg_m * c_a) * g.eye_stack[: M - 1]
+        blocks[0] -= self._drag_derivative(r[1:-1, 2], drag, air, inner, c_v)
+        np.divide(K[1:], g.hbar_blocks, out=blocks[1])
+        np.divide(K[:-1], g.hbar_blocks, out=blocks[2])
+        d_next = drag.d_dtau[inner] @ projections[M + 1: 2 * M] / dirs.tangent_len[1:-1, None, None]
+        blocks[1] += d_next
+        blocks[2] -= d_next
+        tensions = momentum[27 * (M - 1):].reshape(2, M - 1, 3)         # T_{i+1/2}, T_{i-1/2}
+        np.divide(tau[1:], g.hbar_rows, out=tensions[0])
+        np.divide(tau[:-1], g.hbar_rows, out=tensions[1])
+        momentum *= g.momentum_weights / force_ref_N
+        nodes = values[33 * (M - 1): -M].reshape(2, M, 3)               # r_{k+1}, r_k
+        np.multiply(self._constraint_row(tau, proj, ell, v, c_v), g.inv_h_rows, out=nodes[0])
+        np.negative(nodes[0], out=nodes[1])
         if self._constraint_T is None:       # d g_k / d T_{k+1/2}, scaled: fixed on a grid
-            self._constraint_T = (-h * ph.compliance_per_N) * (1.0 / h)
-        sm2 = sm[:, None]
-        sm3 = sm2[:, :, None]
-        c_row_scaled = c_row * g.inv_h_col
-        values = np.concatenate([
-            (A_self * sm3).ravel(), (A_next * sm3).ravel(), (A_prev * sm3).ravel(),
-            (B_plus * sm2).ravel(), (B_minus * sm2).ravel(),
-            c_row_scaled.ravel(), (-c_row_scaled).ravel(), self._constraint_T,
-        ])
+            self._constraint_T = (-g.h * self.physics.compliance_per_N) * (1.0 / g.h)
+        values[-M:] = self._constraint_T
         return g.assemble(values, kite_dir)
+
+    def _drag_derivative(self, z, drag, air, inner, c_v):
+        """df_i/dr_i of the drag at the interior nodes (altitudes z), through the
+        velocity v_i = c_v r_i + .. (``-c_v df/dV_rel``) and through the
+        altitude, in the z column: ``df/dz = df/dV_rel e_x V_w'(z) + df/drho rho'(z)
+        + df/dmu mu_air'(z)``."""
+        ph = self.physics
+        d_dvrel = drag.d_dvrel[inner]
+        df_dz = d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
+            + drag.d_drho[inner] * air.density_gradient_kg_m4[inner, None] \
+            + drag.d_dmu[inner] * air.viscosity_gradient_Pa_s_m[inner, None]
+        df_dr = -c_v * d_dvrel
+        df_dr[:, :, 2] += df_dz
+        return df_dr
+
+    def _constraint_row(self, tau, proj, ell, v, c_v):
+        """c_k = dg_k/dr_{k+1} of the constraint ``l_k - h_k (1 + T/EA) + eta tau . dv``:
+        ``tau`` and, with damping, ``eta ((I - tau tau^T) dv / l_k + c_v tau)``."""
+        eta = self.physics.damping_time_s
+        if not eta:
+            return tau
+        dv = v[1:] - v[:-1]
+        return tau + eta * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None] + c_v * tau)
 
     def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0):
         """Velocities of the inextensible line on its constraints, closest to
