@@ -28,6 +28,7 @@ discretisation, Newton iteration, static start and remeshing.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import Protocol
@@ -50,6 +51,15 @@ RESTART_JUMP_MPS = 0.1
 def speed_jumped(before_mps: float, after_mps: float) -> bool:
     """Whether a change of the reel speed restarts the integration (:data:`RESTART_JUMP_MPS`)."""
     return abs(after_mps - before_mps) > RESTART_JUMP_MPS
+
+
+def expect_converged(worst: float, before: float, tol: float) -> bool:
+    """Whether the Newton iterate after residuals ``before`` and then ``worst``
+    (max norms) is expected within ``tol``: quadratic convergence,
+    ``worst^2 / before^2`` times ``worst`` below a tenth of it.  A solver uses
+    it to skip the Jacobian of an evaluation that will most likely end the
+    iteration (a wrong guess costs one more evaluation, never a different answer)."""
+    return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
 
 
 @dataclass

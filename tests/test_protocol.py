@@ -4,6 +4,7 @@ both real solvers run through it as simulate runs them."""
 
 from dataclasses import dataclass, field, replace
 
+import math
 import numpy as np
 import pytest
 
@@ -190,3 +191,14 @@ def test_real_solvers_halve_steps_when_newton_is_short(solver):
     adapter = FESolver(build_model(cfg)) if solver == "fe" else fd.FDSolver(fd.build_model(cfg))
     run = protocol.run(adapter, 1.0, 1, 1)
     assert run.extra["halvings"] > 0 and np.all(np.isfinite(run.series["drag_N"]))
+
+
+def test_expect_converged_is_quadratic_convergence_with_margin():
+    """After residuals 1e-3 then 1e-6, quadratic convergence predicts ~1e-12:
+    expected within 1e-10; not after 1e-3 then 1e-4 (linear), nor on the first
+    iterate or a growing residual."""
+    from fem_tether.protocol import expect_converged
+    assert expect_converged(1e-6, 1e-3, 1e-10)
+    assert not expect_converged(1e-4, 1e-3, 1e-10)
+    assert not expect_converged(1e-6, math.inf, 1e-10)
+    assert not expect_converged(1e-3, 1e-6, 1e-10)

@@ -32,7 +32,7 @@ from fem_tether.fe.system import Evaluation, TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
-from fem_tether.protocol import Statistics, speed_jumped
+from fem_tether.protocol import Statistics, expect_converged, speed_jumped
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.results import TetherRun
 
@@ -265,21 +265,27 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     c_a, c_v = model.scheme.coefficients(h)
     f_ref = model.force_ref_N(state.T, sys_.physics)
     r, T, R = state.kin.predict(h), state.T.copy(), state.R
-    worst = math.inf
+    worst = last = math.inf            # last: the residual before worst
     step = state.kin.step(h, model.scheme)
-    for _ in range(model.max_newton):
-        kin = step.kinematics(r)
+
+    def evaluate(jacobian):
         try:
-            ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
-                               f_ref, c_a, c_v, reel_mps=model.reel_mps)
+            return sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
+                                 f_ref, c_a, c_v, jacobian=jacobian, reel_mps=model.reel_mps)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
+
+    for _ in range(model.max_newton):
+        kin = step.kinematics(r)
+        ev = evaluate(not expect_converged(worst, last, model.newton_tol))
         stats.newton_iterations += 1
-        worst = float(np.max(np.abs(ev.residual))) / f_ref
-        if not np.isfinite(worst):
+        worst, last = float(np.abs(ev.residual).max()) / f_ref, worst
+        if not math.isfinite(worst):
             break
         if worst <= model.newton_tol:
             return State(t_new, kin, T, R, ev)
+        if ev.band is None:              # expected converged, but not: the Jacobian after all
+            ev = evaluate(True)
         try:
             dr, dT, dR = sys_.unpack(sys_.newton_step(ev))
         except np.linalg.LinAlgError:     # singular Jacobian (a folded or slack line)
