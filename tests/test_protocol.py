@@ -2,9 +2,9 @@
 windows, step halving, the statistics, the slack checks and the reel schedule;
 both real solvers run through it as simulate runs them."""
 
+import math
 from dataclasses import dataclass, field, replace
 
-import math
 import numpy as np
 import pytest
 
