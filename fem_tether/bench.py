@@ -11,7 +11,7 @@ on one core (both solvers are single-threaded).  The FD/FE ratio compares the
 cheapest setting of each within the tolerance, measured in this one run.
 
 Each setting runs in a child process of its own, forked for it (the parent
-runs no solver), so its memory figures are its own: ``run_rss_MiB`` is how
+runs no solver, but has loaded the compiled kernels), so its memory figures are its own: ``run_rss_MiB`` is how
 much the child's peak resident set size (``ru_maxrss``) exceeds its resident
 set at the fork, i.e. what the run itself added (its arrays, snapshots and
 solver state), and ``peak_rss_MiB`` is the peak of a process running it: the
@@ -24,6 +24,7 @@ come from the same runs.
 
 from __future__ import annotations
 
+import importlib
 import multiprocessing
 import os
 import time
@@ -127,7 +128,9 @@ def _child(conn, args) -> None:
 def _run(solver, resolution, dt_s, repeats) -> dict:
     """:func:`_measure` of one setting in a child process forked for it (so that
     its peak RSS is its own); ``resolution`` is the FE element count or the FD
-    segment count."""
+    segment count.  The compiled kernels are loaded here first, so the child
+    inherits them and no setting's time or memory counts their one-time loading."""
+    importlib.import_module("fem_tether.fe.kernel")
     ctx = multiprocessing.get_context("fork")
     parent, child = ctx.Pipe(duplex=False)
     base = peak_rss_MiB()             # this process runs no solver: its peak is its imports
