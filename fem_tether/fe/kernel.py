@@ -172,6 +172,8 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     d_drho = np.empty(3)
     d_dmu = np.empty(3)
     d_mid = np.empty((3, 3))
+    d_tau = np.empty((3, 3))          # df/dtau P / |dr|: f's change with a node through the tangent
+    d_turn = np.zeros((3, 3))         # reeling: df/dV_rel P V_L / (2 |dr|), element 0 only
     c_row = np.empty(3)
     sgn = (-1.0, 1.0)
     for e in range(n_el):
@@ -180,13 +182,21 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
                 proj[i, j] = (1.0 if i == j else 0.0) - tau[e, i] * tau[e, j]
         _drag_derivatives(e, v_rel, tau, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, diameter_m,
                           skin_friction_cf, proj, d_dvrel, d_dtau, d_drho, d_dmu)
+        turn = e == 0 and reel_mps != 0.0
         for i in range(3):
             df_dz = d_dvrel[i, 0] * shear[e] + d_drho[i] * density_gradient[e] \
                 + d_dmu[i] * viscosity_gradient[e]
             for j in range(3):
                 d_mid[i, j] = -0.5 * c_v * d_dvrel[i, j] + (0.5 * df_dz if j == 2 else 0.0)
+                x = 0.0
+                y = 0.0
+                for k in range(3):
+                    x += d_dtau[i, k] * proj[k, j]
+                    y += d_dvrel[i, k] * proj[k, j]
+                d_tau[i, j] = x / length[e]
+                if turn:
+                    d_turn[i, j] = (0.5 * reel_mps / length[e]) * y
         geo = T[e] / length[e]
-        turn = 0.5 * reel_mps / length[e] if e == 0 else 0.0
         for a in range(2):
             node_a = e + a
             if interior[node_a] == 0.0:
@@ -197,16 +207,11 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
                 for i in range(3):
                     row = 4 * node_a + i
                     for j in range(3):
-                        d_tau = 0.0
-                        d_turn = 0.0
-                        for k in range(3):
-                            d_tau += d_dtau[i, k] * proj[k, j]
-                            d_turn += d_dvrel[i, k] * proj[k, j]
                         value = sgn[a] * sgn[b] * geo * proj[i, j] \
-                            - w_a * (sgn[b] * d_tau / length[e] + d_mid[i, j])
-                        if turn != 0.0:
+                            - w_a * (sgn[b] * d_tau[i, j] + d_mid[i, j])
+                        if turn:
                             # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1)
-                            value += sgn[b] * w_a * turn * d_turn
+                            value += sgn[b] * w_a * d_turn[i, j]
                             if b == 0:
                                 value -= w_a * 0.5 * c_v * d_dvrel[i, j]
                         band[diag + row - (col0 + j), col0 + j] += value
@@ -263,20 +268,23 @@ def _band_factor(band):
 
 @numba.njit(cache=True, error_model="numpy")
 def _band_solve(band, ipiv, b):
-    """Solve with the factors of :func:`_band_factor`, ``b`` in place (``dgbtrs``)."""
+    """Solve with the factors of :func:`_band_factor` for the columns of ``b``,
+    in place (``dgbtrs``)."""
     n = band.shape[1]
     kv = 2 * BAND
     for j in range(n - 1):
         km = min(BAND, n - 1 - j)
         p = ipiv[j]
-        if p != j:
-            b[j], b[p] = b[p], b[j]
-        for i in range(1, km + 1):
-            b[j + i] -= band[kv + i, j] * b[j]
+        for c in range(b.shape[1]):
+            if p != j:
+                b[j, c], b[p, c] = b[p, c], b[j, c]
+            for i in range(1, km + 1):
+                b[j + i, c] -= band[kv + i, j] * b[j, c]
     for j in range(n - 1, -1, -1):
-        b[j] /= band[kv, j]
-        for i in range(max(0, j - kv), j):
-            b[i] -= band[kv + i - j, j] * b[j]
+        for c in range(b.shape[1]):
+            b[j, c] /= band[kv, j]
+            for i in range(max(0, j - kv), j):
+                b[i, c] -= band[kv + i - j, j] * b[j, c]
 
 
 @jit(M, V, V, B, F, V)
@@ -291,11 +299,12 @@ def newton_step(band, residual, r_col, tension_mode, k_s, dx):
         dx[:] = np.nan
         return
     n = residual.shape[0]
-    y = -residual[:n - 1]
-    z = r_col.copy()
-    _band_solve(band, ipiv, y)
-    _band_solve(band, ipiv, z)
-    dR = (-residual[n - 1] - y[3]) / (-z[3]) if tension_mode else -residual[n - 1] / k_s
+    yz = np.empty((n - 1, 2))
     for i in range(n - 1):
-        dx[i] = y[i] - z[i] * dR
+        yz[i, 0] = -residual[i]
+        yz[i, 1] = r_col[i]
+    _band_solve(band, ipiv, yz)
+    dR = (-residual[n - 1] - yz[3, 0]) / (-yz[3, 1]) if tension_mode else -residual[n - 1] / k_s
+    for i in range(n - 1):
+        dx[i] = yz[i, 0] - yz[i, 1] * dR
     dx[n - 1] = dR
