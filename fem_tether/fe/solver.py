@@ -264,7 +264,9 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     e = model.end.direction_at(t_new)
     c_a, c_v = model.scheme.coefficients(h)
     f_ref = model.force_ref_N(state.T, sys_.physics)
-    r, T, R = state.kin.predict(h), state.T.copy(), state.R
+    # the unknowns in one vector, r and T views into it; each Newton update adds in place
+    x = sys_.pack(state.kin.predict(h), state.T, state.R)
+    r, T, _ = sys_.unpack(x)
     worst = last = math.inf            # last: the residual before worst
     step = state.kin.step(h, model.scheme)
 
@@ -276,6 +278,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
             raise NotConverged(worst, left_atmosphere(exc)) from None
 
     for _ in range(model.max_newton):
+        R = float(x[-1])
         kin = step.kinematics(r)
         ev = evaluate(not expect_converged(worst, last, model.newton_tol))
         stats.newton_iterations += 1
@@ -287,10 +290,9 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
         if ev.band is None:              # expected converged, but not: the Jacobian after all
             ev = evaluate(True)
         try:
-            dr, dT, dR = sys_.unpack(sys_.newton_step(ev))
+            x += sys_.newton_step(ev)
         except np.linalg.LinAlgError:     # singular Jacobian (a folded or slack line)
             break
-        r, T, R = r + dr, T + dT, R + dR
     raise NotConverged(worst)
 
 
