@@ -17,8 +17,8 @@ Notation and layout as in :mod:`.system`: nodes 0..M, segments
 constraint ``g_{k+1/2}``, rows ``4(i-1) + 1 .. 4(i-1) + 3`` the momentum
 ``m_i``; full columns ``4k`` (T_{k+1/2}), ``4(j-1) + 1 + c`` (node j) and
 ``4M - 3`` (R), of which tension mode drops column 0 and prescribed mode the
-last.  The band is in :func:`scipy.linalg.solve_banded` storage,
-``ab[upper + i - j, j] = J[i, j]``.
+last.  The Jacobian's entries are computed in the order of
+:meth:`.system.Grid.assemble`, which puts them in the band.
 
 Compiled on first use and cached on disk next to this file (numba's
 ``cache=True``), so only the first run after an install pays the compile time.
@@ -33,7 +33,7 @@ import numpy as np
 
 from fem_tether.loads import TINY_MPS
 
-V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
+V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
 
 
 def jit(*types):
@@ -141,12 +141,13 @@ def _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dr
     dc_dn_n = half_rho_d * (cd[i] + re_dcd) * n
     a = along[i]
     k_s = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(a)
+    u = vn[i] / n_safe
     for p in range(3):
         d_drho[p] = 0.5 * diameter_m * n_safe * (cd[i] + re_dcd) * vn[i, p] \
             + (k_s / rho[i]) * a * tangent[i, p]
         d_dmu[p] = -(half_rho_d * n_safe * re_dcd / mu_air[i]) * vn[i, p]
         for m in range(3):
-            df_dvn[p, m] = (c if p == m else 0.0) + dc_dn_n * (vn[i, p] / n_safe) * (vn[i, m] / n_safe)
+            df_dvn[p, m] = (c if p == m else 0.0) + dc_dn_n * u[p] * u[m]
     for p in range(3):
         for q in range(3):
             dvrel = 0.0
@@ -165,57 +166,32 @@ def _stiffness(T, unit, length, k, out):
     out *= T[k] / length[k]
 
 
-@numba.njit(cache=True, error_model="numpy")
-def _put_node(ab, upper, tension_mode, kite_dir, row, node, values):
-    """Row ``row``'s entries ``values`` (3,) in the columns of node ``node``: none
-    for the winch node; for the kite node ``R e`` their sum along e in the R
-    column (tension mode) or none (prescribed R)."""
-    n_seg = (ab.shape[1] + 3) // 4
-    if node == 0:
-        return
-    if node == n_seg:
-        if tension_mode:
-            col = 4 * n_seg - 4
-            ab[upper + row - col, col] = values[0] * kite_dir[0] + values[1] * kite_dir[1] \
-                + values[2] * kite_dir[2]
-        return
-    first = 4 * node - 3 - (1 if tension_mode else 0)
-    for c in range(3):
-        ab[upper + row - first - c, first + c] = values[c]
-
-
-@numba.njit(cache=True, error_model="numpy")
-def _put_tension(ab, upper, tension_mode, row, k, value):
-    """Row ``row``'s entry ``value`` in the column of T_{k+1/2} (none for the known
-    T_{1/2} of tension mode)."""
-    if tension_mode and k == 0:
-        return
-    col = 4 * k - (1 if tension_mode else 0)
-    ab[upper + row - col, col] = value
-
-
-@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, F, F, F, F, F, F, F, F, V, V, V, B, I, M)
+@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, F, F, F, F, F, F, F, F, V, V, VC)
 def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
              density_gradient, viscosity_gradient, shear, diameter_m, skin_friction_cf, mu,
-             compliance_per_N, damping_time_s, c_a, c_v, force_ref_N, hbar, h, kite_dir,
-             tension_mode, upper, ab):
-    """The banded Jacobian of :func:`residual` (:meth:`.system.TetherFD._jacobian`),
-    written into ``ab`` (zeroed here).  ``unit`` and ``length`` are the rows of
-    :func:`directions`; the nodal flow and drag coefficient, the air and the
-    wind shear are given at every node.
+             compliance_per_N, damping_time_s, c_a, c_v, force_ref_N, hbar, h, values):
+    """The entries of the banded Jacobian of :func:`residual`
+    (:meth:`.system.TetherFD._jacobian`) in the layout order of
+    :meth:`.system.Grid.assemble`, into ``values``.  ``unit`` and ``length`` are
+    the rows of :func:`directions`; the nodal flow and drag coefficient, the
+    air and the wind shear are given at every node.
 
     With ``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)`` and
     ``D_i = df/dtau_i (I - tau_i tau_i^T) / |r_{i+1} - r_{i-1}|``, momentum row
-    i (scale ``s = hbar_i / F_ref``) gets ``((K_i + K_{i-1}) / hbar_i + mu c_a I - df_i/dr_i) s``
+    i (scale ``s = hbar_i / F_ref``) has ``((K_i + K_{i-1}) / hbar_i + mu c_a I - df_i/dr_i) s``
     at r_i, ``-(K_i / hbar_i + D_i) s`` at r_{i+1}, ``-(K_{i-1} / hbar_i - D_i) s``
     at r_{i-1}, ``-tau_{i+1/2} / hbar_i s`` at T_{i+1/2} and ``tau_{i-1/2} / hbar_i s``
     at T_{i-1/2}, where ``df_i/dr_i = -c_v df/dV_rel + (df/dV_rel e_x V_w' + df/drho rho'
-    + df/dmu mu_air') e_z^T``; constraint row k gets ``+-c_k / h_k`` at r_{k+1}, r_k
+    + df/dmu mu_air') e_z^T``; constraint row k has ``+-c_k / h_k`` at r_{k+1}, r_k
     (c_k = tau_{k+1/2} plus the Kelvin-Voigt terms ``eta ((I - tau tau^T) dv / l_k + c_v tau)``)
     and ``-h_k / EA / h_k`` at T_{k+1/2}.
     """
-    ab[:] = 0.0
     n_seg = T.shape[0]
+    n = n_seg - 1
+    blocks = values[: 27 * n].reshape((3, n, 3, 3))                 # r_i, r_{i+1}, r_{i-1}
+    tensions = values[27 * n: 33 * n].reshape((2, n, 3))            # T_{i+1/2}, T_{i-1/2}
+    nodes = values[33 * n: 33 * n + 6 * n_seg].reshape((2, n_seg, 3))  # r_{k+1}, r_k
+    own_tension = values[33 * n + 6 * n_seg:]
     k_prev = np.empty((3, 3))
     k_next = np.empty((3, 3))
     proj = np.empty((3, 3))
@@ -224,9 +200,6 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     d_dtau = np.empty((3, 3))
     d_drho = np.empty(3)
     d_dmu = np.empty(3)
-    own = np.empty(3)
-    nxt = np.empty(3)
-    before = np.empty(3)
     _stiffness(T, unit, length, 0, k_next)
     tangent = unit[n_seg:]
     for i in range(1, n_seg):
@@ -235,9 +208,9 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
         _projection(tangent, i, proj)
         _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
                           diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu)
-        hb = hbar[i - 1]
-        scale = hb / force_ref_N
-        row0 = 4 * i - 3
+        inv_hb = 1.0 / hbar[i - 1]
+        inv_tangent_len = 1.0 / length[n_seg + i]
+        scale = hbar[i - 1] / force_ref_N
         for p in range(3):
             df_dz = d_dvrel[p, 0] * shear[i] + d_drho[p] * density_gradient[i] \
                 + d_dmu[p] * viscosity_gradient[i]
@@ -245,16 +218,14 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
                 d = 0.0
                 for m in range(3):
                     d += d_dtau[p, m] * proj[m, q]
-                d = d / length[n_seg + i]
+                d *= inv_tangent_len
                 df_dr = -c_v * d_dvrel[p, q] + (df_dz if q == 2 else 0.0)
-                own[q] = ((k_next[p, q] + k_prev[p, q]) / hb + (mu * c_a if p == q else 0.0) - df_dr) * scale
-                nxt[q] = (k_next[p, q] / hb + d) * -scale
-                before[q] = (k_prev[p, q] / hb - d) * -scale
-            _put_node(ab, upper, tension_mode, kite_dir, row0 + p, i, own)
-            _put_node(ab, upper, tension_mode, kite_dir, row0 + p, i + 1, nxt)
-            _put_node(ab, upper, tension_mode, kite_dir, row0 + p, i - 1, before)
-            _put_tension(ab, upper, tension_mode, row0 + p, i, (unit[i, p] / hb) * -scale)
-            _put_tension(ab, upper, tension_mode, row0 + p, i - 1, (unit[i - 1, p] / hb) * scale)
+                blocks[0, i - 1, p, q] = ((k_next[p, q] + k_prev[p, q]) * inv_hb
+                                          + (mu * c_a if p == q else 0.0) - df_dr) * scale
+                blocks[1, i - 1, p, q] = (k_next[p, q] * inv_hb + d) * -scale
+                blocks[2, i - 1, p, q] = (k_prev[p, q] * inv_hb - d) * -scale
+            tensions[0, i - 1, p] = unit[i, p] * inv_hb * -scale
+            tensions[1, i - 1, p] = unit[i - 1, p] * inv_hb * scale
     for k in range(n_seg):
         inv_h = 1.0 / h[k]
         _projection(unit, k, proj)
@@ -265,8 +236,6 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
                 for m in range(3):
                     p_dv += proj[q, m] * (v[k + 1, m] - v[k, m])
                 c = c + damping_time_s * (p_dv / length[k] + c_v * unit[k, q])
-            nxt[q] = c * inv_h
-            before[q] = -nxt[q]
-        _put_node(ab, upper, tension_mode, kite_dir, 4 * k, k + 1, nxt)
-        _put_node(ab, upper, tension_mode, kite_dir, 4 * k, k, before)
-        _put_tension(ab, upper, tension_mode, 4 * k, k, (-h[k] * compliance_per_N) * inv_h)
+            nodes[0, k, q] = c * inv_h
+            nodes[1, k, q] = -nodes[0, k, q]
+        own_tension[k] = (-h[k] * compliance_per_N) * inv_h

@@ -458,15 +458,14 @@ class TetherFD:
             else:           # ... or are evaluated now
                 drag_air = ph.air.state(z, gradients=True)
                 drag_cd, drag_dcd = ph.drag.cd_and_dcd_dre(re)
-            ab = np.empty(g._band_shape)
+            values = np.empty(33 * (M - 1) + 7 * M)          # in layout order (Grid._layout)
             kernel.jacobian(T, dirs.unit, dirs.length, v, v_rel, along, vn, vn_mps, re, drag_cd, drag_dcd,
                             drag_air.density_kg_m3, drag_air.viscosity_Pa_s,
                             drag_air.density_gradient_kg_m4, drag_air.viscosity_gradient_Pa_s_m,
                             ph.wind.shear_per_s(z), ph.diameter_m, ph.skin_friction_cf,
                             ph.linear_density_kg_m, ph.compliance_per_N, ph.damping_time_s, c_a, c_v,
-                            force_ref_N, g.hbar, g.h, np.asarray(kite_dir, dtype=float), g.tension_mode,
-                            g.upper, ab)
-            return ab
+                            force_ref_N, g.hbar, g.h, values)
+            return g.assemble(values, kite_dir)
 
         return Evaluation(res, dirs.ell, NodalLoads(force, vn_mps, re, cd, dirs.tangent), build)
 
