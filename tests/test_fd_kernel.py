@@ -46,7 +46,9 @@ def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
     number and C_d within 1e-13 relative (Re and C_d where |V_n| is not
     round-off: not at the winch node leaving the drum at V_L tau_{1/2}, in
     still air there); the Jacobian assembled when first read after a
-    residual without the drag's derivatives is bitwise the same."""
+    residual without the drag's derivatives is bitwise the same; the Newton
+    step (the kernel's band LU against LAPACK's ``gbsv``) within 1e-11 of its
+    largest entry."""
     compiled, reference = (_model(overrides, reel_mps, k) for k in ("compiled", "numpy"))
     assert compiled.eq.compiled and not reference.eq.compiled
     st = fd.static_equilibrium(reference)
@@ -74,6 +76,7 @@ def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
                          (x.drag.tangent, y.drag.tangent)):
                 np.testing.assert_allclose(p, q, rtol=1e-13, atol=1e-13 * np.max(np.abs(q)))
             assert np.array_equal(compiled.eq.evaluate(*args, jacobian=False, reel_mps=reel_mps).ab, x.ab)
+            _close(compiled.eq.solve(x.ab, x.residual), reference.eq.solve(y.ab, y.residual), 1e-11)
 
 
 @pytest.mark.parametrize("scheme, overrides", [
@@ -97,6 +100,34 @@ def test_runs_with_either_kernel_agree(scheme, overrides):
 def test_compiled_is_the_default():
     assert load_config().fd.kernel == "compiled"
     assert fd.build_model(load_config()).eq.compiled
+
+
+@pytest.mark.parametrize("mode", ["tension", "prescribed"])
+@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
+def test_singular_jacobian_raises(kernel, mode):
+    """A singular band (here: all zero but one diagonal entry) is a LinAlgError
+    from either solver, in either band layout."""
+    model = fd.build_model(load_config(overrides={"fd": {"segments": 4, "kernel": kernel},
+                                                  "winch": {"mode": mode}, "kite": {"radius_m": 900.0}}))
+    g = model.grid
+    ab = np.zeros((g.lower + g.upper + 1, g.n))
+    ab[g.upper, 0] = 1.0
+    with pytest.raises(np.linalg.LinAlgError):
+        model.eq.solve(ab, np.ones(g.n))
+
+
+def test_band_solve_of_small_grids():
+    """The kernel's band LU (its widths padded to the widest layout's) solves
+    the bands of 2 and 3 segments, narrower than those of longer lines, as
+    LAPACK does."""
+    rng = np.random.default_rng(3)
+    for M in (2, 3):
+        for tension_mode in (True, False):
+            g = Grid(100.0, M, tension_mode)
+            ab = rng.normal(size=(g.lower + g.upper + 1, g.n))
+            rhs = rng.normal(size=g.n)
+            eq = TetherFD(g, fd.solver.physics_from_config(load_config()))
+            _close(eq.solve(ab, rhs), g.solve(ab, rhs), 1e-11)
 
 
 def test_numba_is_imported_only_by_a_compiled_line():

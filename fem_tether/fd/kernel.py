@@ -1,4 +1,4 @@
-"""Compiled kernels of the FD tether equations: residual and banded Jacobian, loop by loop.
+"""Compiled kernels of the FD tether equations: residual, banded Jacobian and its solve.
 
 The same equations as :meth:`.system.TetherFD.evaluate` (whose NumPy
 implementation is the reference, and the tests hold the two together), written
@@ -8,17 +8,15 @@ Newton iteration of the NumPy version spends its time in the overhead of
 them.  The leaf physics (wind, air, drag coefficient) stays in NumPy and is
 called between the kernels: :func:`directions` gives the tangents the relative
 flow needs, :func:`normal_flow` the Reynolds numbers the drag coefficient
-needs, and :func:`residual` and :func:`jacobian` the rest.  Written for the FD
-grid on its own (the FE solver's kernels are not used: the FD solver is their
-independent reference).
+needs, and :func:`drag_force`, :func:`residual` and :func:`jacobian` the rest;
+:func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``.
+Written for the FD grid on its own: the FE solver's kernels are not used (the
+FD solver is their independent reference).
 
-Notation and layout as in :mod:`.system`: nodes 0..M, segments
-``k + 1/2`` (k = 0..M-1), interior nodes i = 1..M-1; row ``4k`` is the
-constraint ``g_{k+1/2}``, rows ``4(i-1) + 1 .. 4(i-1) + 3`` the momentum
-``m_i``; full columns ``4k`` (T_{k+1/2}), ``4(j-1) + 1 + c`` (node j) and
-``4M - 3`` (R), of which tension mode drops column 0 and prescribed mode the
-last.  The Jacobian's entries are computed in the order of
-:meth:`.system.Grid.assemble`, which puts them in the band.
+Notation as in :mod:`.system`: nodes 0..M, segments ``k + 1/2``
+(k = 0..M-1), interior nodes i = 1..M-1.  The Jacobian's entries are computed
+in the layout order of :meth:`.system.Grid.assemble`, which puts them in the
+band (``solve_banded`` storage).
 
 Compiled on first use and cached on disk next to this file (numba's
 ``cache=True``), so only the first run after an install pays the compile time.
@@ -239,3 +237,81 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
             nodes[0, k, q] = c * inv_h
             nodes[1, k, q] = -nodes[0, k, q]
         own_tension[k] = (-h[k] * compliance_per_N) * inv_h
+
+
+LOWER, UPPER = 7, 6
+"""Sub- and super-diagonals the band LU works with: the widest of the layouts
+(7 / 5 in tension mode, 6 / 6 in prescribed mode), as compile-time constants,
+so that its loops have fixed lengths (~30 % faster than with the widths as
+arguments); a narrower band is padded with zero diagonals, and the matrix
+with ``LOWER`` rows and columns of the identity, so that every column has
+``LOWER`` entries below the diagonal."""
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _band_factor(lu, ipiv):
+    """LU factors with partial pivoting of the band in place: LAPACK's unblocked
+    ``dgbtf2`` (which ``dgbsv`` runs for bands this narrow) on the transpose
+    of its storage, ``lu[j, LOWER + UPPER + i - j] = A[i, j]`` (each column
+    contiguous, ``LOWER`` entries of fill-in above the ``UPPER`` ones).
+    Returns False for a zero pivot."""
+    kv = LOWER + UPPER
+    n = lu.shape[0]
+    ju = 0
+    for j in range(n - LOWER):
+        jp = 0
+        for i in range(1, LOWER + 1):
+            if abs(lu[j, kv + i]) > abs(lu[j, kv + jp]):
+                jp = i
+        ipiv[j] = j + jp
+        if lu[j, kv + jp] == 0.0:
+            return False
+        ju = max(ju, min(j + UPPER + jp, n - 1))
+        if jp != 0:
+            for c in range(j, ju + 1):
+                lu[c, kv + j - c], lu[c, kv + j + jp - c] = lu[c, kv + j + jp - c], lu[c, kv + j - c]
+        inv_pivot = 1.0 / lu[j, kv]
+        for i in range(1, LOWER + 1):
+            lu[j, kv + i] *= inv_pivot
+        for c in range(j + 1, ju + 1):
+            u = lu[c, kv + j - c]
+            for i in range(1, LOWER + 1):
+                lu[c, kv + j + i - c] -= lu[j, kv + i] * u
+    return True
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _band_solve(lu, ipiv, x):
+    """Solve with the factors of :func:`_band_factor`, ``x`` (n) in place (``dgbtrs``)."""
+    n = x.shape[0]
+    kv = LOWER + UPPER
+    for j in range(n - 1):
+        p = ipiv[j]
+        if p != j:
+            x[j], x[p] = x[p], x[j]
+        for i in range(1, min(LOWER, n - 1 - j) + 1):
+            x[j + i] -= lu[j, kv + i] * x[j]
+    for j in range(n - 1, -1, -1):
+        x[j] /= lu[j, kv]
+        for i in range(max(0, j - kv), j):
+            x[i] -= lu[j, kv + i - j] * x[j]
+
+
+@numba.njit("b1(f8[:, :], i8, f8[:], f8[:])", cache=True, error_model="numpy")
+def solve(ab, upper, rhs, x):
+    """``x`` = the solution of the banded system ``ab`` (``solve_banded`` storage
+    with ``upper`` super-diagonals, at most ``LOWER`` / ``UPPER`` diagonals;
+    left unchanged) for ``rhs``; False if singular."""
+    n = ab.shape[1]
+    lu = np.zeros((n + LOWER, 2 * LOWER + UPPER + 1))
+    first = LOWER + UPPER - upper
+    lu[:n, first: first + ab.shape[0]] = ab.T
+    for j in range(max(0, n - LOWER), n):   # the storage below the last row: unused
+        lu[j, max(LOWER + UPPER + n - j, first):] = 0.0
+    lu[n:, LOWER + UPPER] = 1.0
+    ipiv = np.empty(n, np.int64)
+    if not _band_factor(lu, ipiv):
+        return False
+    x[:] = rhs
+    _band_solve(lu, ipiv, x)
+    return True

@@ -183,7 +183,7 @@ def _static_newton(model: FDModel, evaluate, x: Unknowns, max_iter) -> Unknowns:
         if worst <= model.newton_tol:
             return x
         try:
-            dx = model.grid.solve(ev.ab, -ev.residual)
+            dx = model.eq.solve(ev.ab, -ev.residual)
         except np.linalg.LinAlgError:
             break
         norm = np.linalg.norm(ev.residual)
@@ -304,7 +304,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         if worst <= model.newton_tol:
             return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
         try:
-            active -= g.solve(ev.ab, ev.residual)
+            active -= model.eq.solve(ev.ab, ev.residual)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)

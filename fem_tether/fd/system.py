@@ -326,11 +326,11 @@ class Evaluation:
 class TetherFD:
     """The discrete equations of one line: residual, Jacobian, nodal loads.
 
-    ``compiled`` evaluates the equations with the compiled loops of
-    :mod:`.kernel` (imported, and so compiled or loaded from numba's cache,
-    when the first such line is made); otherwise with the NumPy array
-    expressions below, the reference the kernels are tested against.  Either
-    way the Newton systems are solved by LAPACK (:meth:`Grid.solve`)."""
+    ``compiled`` evaluates the equations and solves the Newton systems with the
+    compiled loops of :mod:`.kernel` (imported, and so compiled or loaded from
+    numba's cache, when the first such line is made); otherwise with the NumPy
+    array expressions below and LAPACK (:meth:`Grid.solve`), the reference the
+    kernels are tested against."""
 
     def __init__(self, grid: Grid, physics: TetherPhysics, compiled: bool = True):
         self.grid = grid
@@ -469,6 +469,17 @@ class TetherFD:
 
         return Evaluation(res, dirs.ell, NodalLoads(force, vn_mps, re, cd, dirs.tangent), build)
 
+    def solve(self, ab, rhs):
+        """Solution of the banded system ``ab`` (:meth:`Grid.assemble`'s storage)
+        for ``rhs``: by the compiled band LU of :mod:`.kernel` or by LAPACK
+        (:meth:`Grid.solve`).  Raises :class:`numpy.linalg.LinAlgError` if singular."""
+        if not self.compiled:
+            return self.grid.solve(ab, rhs)
+        x = np.empty(self.grid.n)
+        if not self._kernel.solve(ab, self.grid.upper, rhs, x):
+            raise np.linalg.LinAlgError("singular matrix")
+        return x
+
     def _jacobian(self, r, v, T, dirs, drag, air, inner, force_ref_N, kite_dir, c_a, c_v):
         """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate values.
 
@@ -579,7 +590,7 @@ class TetherFD:
         con[-1] -= tau[-1] @ (R * e_dot)        # the kite's known velocity R e'
         body[:, 0] = con[:-1]
         full[4 * M - 4] = con[-1]
-        x = g.solve(ab, full[:-1])                # rows: all 4M - 3 equations
+        x = self.solve(ab, full[:-1])             # rows: all 4M - 3 equations
         dv, _, r_dot = g.expand(x)
         if not g.tension_mode:
             r_dot = 0.0
