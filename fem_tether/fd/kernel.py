@@ -239,6 +239,20 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
         own_tension[k] = (-h[k] * compliance_per_N) * inv_h
 
 
+@jit(VC, "i8[:]", "i8[:]", "i8[:]", V, VC)
+def assemble(values, put, kite_first, kite_target, kite_dir, flat):
+    """The band of :meth:`.system.Grid.assemble`, flattened, from the entries
+    ``values`` in layout order: ``flat[put] = values`` (dropped entries into
+    the last element), and in tension mode each row's three entries of the
+    kite node ``R e``, from ``kite_first``, summed along e into ``kite_target``."""
+    flat[:] = 0.0
+    for k in range(values.shape[0]):
+        flat[put[k]] = values[k]
+    for g in range(kite_first.shape[0]):
+        j = kite_first[g]
+        flat[kite_target[g]] = values[j] * kite_dir[0] + values[j + 1] * kite_dir[1] + values[j + 2] * kite_dir[2]
+
+
 LOWER, UPPER = 7, 6
 """Sub- and super-diagonals the band LU works with: the widest of the layouts
 (7 / 5 in tension mode, 6 / 6 in prescribed mode), as compile-time constants,

@@ -234,8 +234,9 @@ class Grid:
         # tension mode: the kite node's three entries of a row add up in the R
         # column (times e(t)); each such group is three consecutive entries
         kite_at = np.flatnonzero(self._kite_entry & keep)
-        self._kite_groups = kite_at[::3, None] + np.arange(3)
-        self._kite_target = self._flat[kite_at[::3]]
+        self._kite_first = kite_at[::3]
+        self._kite_groups = self._kite_first[:, None] + np.arange(3)
+        self._kite_target = self._flat[self._kite_first]
         self._put = self._flat.copy()
         self._put[kite_at] = self._dump
 
@@ -271,13 +272,20 @@ class Grid:
         """The view of the active unknowns (the Newton update's) in a full-layout vector."""
         return x[1:] if self.tension_mode else x[:-1]
 
-    def assemble(self, values, kite_dir):
-        """Banded matrix (solve_banded storage) from the entry values in layout order."""
-        ab = np.zeros(self._dump + 1)
-        ab[self._put] = values
-        if self._kite_groups.size:
-            w = values[self._kite_groups] * np.asarray(kite_dir)
-            ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
+    def assemble(self, values, kite_dir, kernel=None):
+        """Banded matrix (solve_banded storage) from the entry values in layout
+        order; with ``kernel`` (:mod:`.kernel`) by its compiled loop, else by
+        array operations (the same numbers)."""
+        ab = np.empty(self._dump + 1)
+        if kernel is not None:
+            kernel.assemble(values, self._put, self._kite_first, self._kite_target,
+                            np.asarray(kite_dir, dtype=float), ab)
+        else:
+            ab[:] = 0.0
+            ab[self._put] = values
+            if self._kite_groups.size:
+                w = values[self._kite_groups] * np.asarray(kite_dir)
+                ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
         return ab[: self._dump].reshape(self._band_shape)
 
     def solve(self, ab, rhs):
@@ -465,7 +473,7 @@ class TetherFD:
                             ph.wind.shear_per_s(z), ph.diameter_m, ph.skin_friction_cf,
                             ph.linear_density_kg_m, ph.compliance_per_N, ph.damping_time_s, c_a, c_v,
                             force_ref_N, g.hbar, g.h, values)
-            return g.assemble(values, kite_dir)
+            return g.assemble(values, kite_dir, kernel)
 
         return Evaluation(res, dirs.ell, NodalLoads(force, vn_mps, re, cd, dirs.tangent), build)
 
