@@ -89,8 +89,8 @@ def drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf
     for i in range(vn.shape[0]):
         c = 0.5 * rho[i] * diameter_m * cd[i] * max(vn_mps[i], TINY_MPS)
         k = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(along[i]) * along[i]
-        for c3 in range(3):
-            force[i, c3] = c * vn[i, c3] + k * tangent[i, c3]
+        for j in range(3):
+            force[i, j] = c * vn[i, j] + k * tangent[i, j]
 
 
 @jit(M, M, V, M, V, M, V, V, V, F, F, F, F, V)

@@ -40,7 +40,8 @@ and BDF2 restarts with an implicit-Euler step.  The kite flies the eight on
 the sphere of the current L.  The same law as the FE solver, written
 independently.
 
-Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler");
+Configuration: ``[fd] segments``, ``[fd] scheme`` ("bdf2" or "euler") and
+``[fd] kernel`` ("compiled" or "numpy", :class:`~.system.TetherFD`);
 reeling uses ``[winch]`` and the segment bounds ``[winch] min_element_m`` and
 ``[winch] max_element_m``.
 """

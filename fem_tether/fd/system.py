@@ -366,7 +366,8 @@ class TetherFD:
 
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
         the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
-        same for the r and v of an evaluation.)"""
+        same for the r and v of an evaluation, to round-off with the compiled
+        kernel.)"""
         tangent = Directions(r).tangent
         if reel_mps:
             v = v.copy()
