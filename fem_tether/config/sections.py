@@ -139,6 +139,9 @@ class FD(Section):
     scheme: str = setting("bdf2", "-", "FD time scheme: 'bdf2' or 'euler' (the seed's)", one_of("bdf2", "euler"))
     dt_s: float = setting(0.025, "s", "FD time step (BDF2's error constant is larger than generalized-alpha's)",
                           positive)
+    kernel: str = setting("compiled", "-", "FD equations evaluated and solved by 'compiled' loops (numba) or "
+                          "by 'numpy' array expressions and LAPACK (the reference; same numbers to ~1e-14)",
+                          one_of("compiled", "numpy"))
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,8 @@ tensions, central differences, drag at the nodes, implicit Euler or BDF2 in
 time, Newton with an analytic banded Jacobian.  It shares only the leaf
 physics, the reeling law and the post-processing with the FE solver.
 
-Modules: :mod:`.system` (grid, residual, banded Jacobian),
+Modules: :mod:`.system` (grid, residual, banded Jacobian), :mod:`.kernel`
+(their compiled loops and band LU),
 :mod:`.solver` (static start, Newton, the time step, reeling, line values;
 the run protocol of :mod:`fem_tether.protocol` drives it as an
 :class:`~fem_tether.fd.solver.FDSolver`).

@@ -40,7 +40,8 @@ and BDF2 restarts with an implicit-Euler step.  The kite flies the eight on
 the sphere of the current L.  The same law as the FE solver, written
 independently.
 
-Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler");
+Configuration: ``[fd] segments``, ``[fd] scheme`` ("bdf2" or "euler") and
+``[fd] kernel`` ("compiled" or "numpy", :class:`~.system.TetherFD`);
 reeling uses ``[winch]`` and the segment bounds ``[winch] min_element_m`` and
 ``[winch] max_element_m``.
 """
@@ -101,14 +102,15 @@ def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysic
 
 def build_model(cfg: Config, end: EndMotion | None = None, gravity=True, drag=True,
                 physics: TetherPhysics | None = None) -> FDModel:
-    """FD model of the configured case (``[fd] segments`` and ``scheme``).
+    """FD model of the configured case (``[fd] segments``, ``scheme`` and ``kernel``).
 
     ``end`` overrides the figure-eight (e.g. ``trajectory.Stationary``);
     ``gravity=False`` / ``drag=False`` switch those loads off (the mass stays).
     """
     case = case_fields(cfg, end)
     grid = Grid(case["length_m"], cfg.fd.segments, case["tension_mode"])
-    return FDModel(eq=TetherFD(grid, physics or _switched(physics_from_config(cfg), gravity, drag)),
+    return FDModel(eq=TetherFD(grid, physics or _switched(physics_from_config(cfg), gravity, drag),
+                               cfg.fd.kernel == "compiled"),
                    scheme=cfg.fd.scheme, **case)
 
 
@@ -182,7 +184,7 @@ def _static_newton(model: FDModel, evaluate, x: Unknowns, max_iter) -> Unknowns:
         if worst <= model.newton_tol:
             return x
         try:
-            dx = model.grid.solve(ev.ab, -ev.residual)
+            dx = model.eq.solve(ev.ab, -ev.residual)
         except np.linalg.LinAlgError:
             break
         norm = np.linalg.norm(ev.residual)
@@ -232,7 +234,7 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     f_ref = model.force_ref_N(T, model.eq.physics)
 
     def solve(load_factor, x):
-        eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor))
+        eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor), model.eq.compiled)
 
         def evaluate(r_int, T, R, jacobian=True):
             return eq.evaluate(_nodes(model, r_int, R, e), v, zero, T, e, f_ref, jacobian=jacobian)
@@ -263,7 +265,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
     """One implicit step of size h after ``cur`` (``prev``: the BDF2 history) solved by
     Newton (iterations counted in ``stats``); raises :class:`NotConverged`."""
     t_new = cur.t + h
-    e = model.end.state(t_new, 1.0)[0]
+    e = model.end.direction_at(t_new)
     a0, a2 = _coefficients(model, prev, cur, h)
     f_ref = model.force_ref_N(cur.T, model.eq.physics)
     g = model.grid
@@ -303,7 +305,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         if worst <= model.newton_tol:
             return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
         try:
-            active -= g.solve(ev.ab, ev.residual)
+            active -= model.eq.solve(ev.ab, ev.residual)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)
@@ -397,7 +399,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     else:
         grid = g.with_first_length(h0)
     restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
-    model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=length_m,
+    model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
                     reel_mps=reel_mps, end=end_at_length(model.end, length_m))
     if restart:
         v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_mps)

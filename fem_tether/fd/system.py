@@ -45,7 +45,9 @@ entries: ``x[4k] = T_{k+1/2}`` (k < M), ``x[4k+1 : 4k+4] = r_{k+1}``
 from __future__ import annotations
 
 import copy
+import importlib
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.linalg import lapack
@@ -70,17 +72,23 @@ class Directions:
     ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k`` (``tau``, ``ell``: (M,)), and at the
     nodes 0..M, central inside and one-sided at the ends, with the lengths they
     were normalised by (``tangent``, ``tangent_len``: (M+1,)); ``unit`` holds
-    both, the segments' rows first."""
+    both, the segments' rows first.  With ``kernel`` (:mod:`.kernel`) computed
+    by its compiled loop, else by array operations."""
 
-    def __init__(self, r):
+    def __init__(self, r, kernel=None):
         M = r.shape[0] - 1
-        d = np.empty((2 * M + 1, 3))
-        np.subtract(r[1:], r[:-1], out=d[:M])
-        np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
-        d[M] = d[0]
-        d[2 * M] = d[M - 1]
-        self.unit, length = _unit(d)
+        if kernel is None:
+            d = np.empty((2 * M + 1, 3))
+            np.subtract(r[1:], r[:-1], out=d[:M])
+            np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
+            d[M] = d[0]
+            d[2 * M] = d[M - 1]
+            self.unit, length = _unit(d)
+        else:
+            self.unit, length = np.empty((2 * M + 1, 3)), np.empty(2 * M + 1)
+            kernel.directions(r, self.unit, length)
         self.tau, self.ell = self.unit[:M], length[:M]
+        self.length = length
         self.tangent, self.tangent_len = self.unit[M:], length[M:]
 
 
@@ -226,8 +234,9 @@ class Grid:
         # tension mode: the kite node's three entries of a row add up in the R
         # column (times e(t)); each such group is three consecutive entries
         kite_at = np.flatnonzero(self._kite_entry & keep)
-        self._kite_groups = kite_at[::3, None] + np.arange(3)
-        self._kite_target = self._flat[kite_at[::3]]
+        self._kite_first = kite_at[::3]
+        self._kite_groups = self._kite_first[:, None] + np.arange(3)
+        self._kite_target = self._flat[self._kite_first]
         self._put = self._flat.copy()
         self._put[kite_at] = self._dump
 
@@ -263,13 +272,20 @@ class Grid:
         """The view of the active unknowns (the Newton update's) in a full-layout vector."""
         return x[1:] if self.tension_mode else x[:-1]
 
-    def assemble(self, values, kite_dir):
-        """Banded matrix (solve_banded storage) from the entry values in layout order."""
-        ab = np.zeros(self._dump + 1)
-        ab[self._put] = values
-        if self._kite_groups.size:
-            w = values[self._kite_groups] * np.asarray(kite_dir)
-            ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
+    def assemble(self, values, kite_dir, kernel=None):
+        """Banded matrix (solve_banded storage) from the entry values in layout
+        order; with ``kernel`` (:mod:`.kernel`) by its compiled loop, else by
+        array operations (the same numbers)."""
+        ab = np.empty(self._dump + 1)
+        if kernel is not None:
+            kernel.assemble(values, self._put, self._kite_first, self._kite_target,
+                            np.asarray(kite_dir, dtype=float), ab)
+        else:
+            ab[:] = 0.0
+            ab[self._put] = values
+            if self._kite_groups.size:
+                w = values[self._kite_groups] * np.asarray(kite_dir)
+                ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
         return ab[: self._dump].reshape(self._band_shape)
 
     def solve(self, ab, rhs):
@@ -316,11 +332,19 @@ class Evaluation:
 
 
 class TetherFD:
-    """The discrete equations of one line: residual, Jacobian, nodal loads."""
+    """The discrete equations of one line: residual, Jacobian, nodal loads.
 
-    def __init__(self, grid: Grid, physics: TetherPhysics):
+    ``compiled`` evaluates the equations and solves the Newton systems with the
+    compiled loops of :mod:`.kernel` (imported, and so compiled or loaded from
+    numba's cache, when the first such line is made); otherwise with the NumPy
+    array expressions below and LAPACK (:meth:`Grid.solve`), the reference the
+    kernels are tested against."""
+
+    def __init__(self, grid: Grid, physics: TetherPhysics, compiled: bool = True):
         self.grid = grid
         self.physics = physics
+        self.compiled = compiled
+        self._kernel: Any = importlib.import_module("fem_tether.fd.kernel") if compiled else None
         self._weight = np.empty((grid.M - 1, 3))      # w at each interior node
         self._weight[:] = physics.weight_N_m
         self._constraint_T: np.ndarray | None = None
@@ -342,7 +366,8 @@ class TetherFD:
 
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
         the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
-        same for the r and v of an evaluation.)"""
+        same for the r and v of an evaluation, to round-off with the compiled
+        kernel.)"""
         tangent = Directions(r).tangent
         if reel_mps:
             v = v.copy()
@@ -373,6 +398,8 @@ class TetherFD:
         ``tau_{1/2} . (v_1 - V_L tau_{1/2}) = tau_{1/2} . v_1 - V_L``, whose
         derivative in r is the same as without reeling.
         """
+        if self.compiled:
+            return self._evaluate_compiled(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, jacobian, reel_mps)
         g, ph = self.grid, self.physics
         h, M = g.h, g.M
         mu = ph.linear_density_kg_m
@@ -408,6 +435,59 @@ class TetherFD:
 
         return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
                           build)
+
+    def _evaluate_compiled(self, r, v, a, T, kite_dir, force_ref_N, c_a, c_v, jacobian,
+                           reel_mps) -> Evaluation:
+        """:meth:`evaluate` by the kernels of :mod:`.kernel`, the leaf physics between them."""
+        g, ph, kernel = self.grid, self.physics, self._kernel
+        M = g.M
+        dirs = Directions(r, kernel)
+        if reel_mps:
+            v = v.copy()
+            v[0] = reel_mps * dirs.tau[0]
+        z = r[:, 2]
+        air = ph.air.state(z, gradients=jacobian)
+        v_rel, along, vn, vn_mps, re = (np.empty((M + 1, 3)), np.empty(M + 1), np.empty((M + 1, 3)),
+                                        np.empty(M + 1), np.empty(M + 1))
+        kernel.normal_flow(v, ph.wind.speed_mps(z), dirs.tangent, air.density_kg_m3, air.viscosity_Pa_s,
+                           ph.diameter_m, v_rel, along, vn, vn_mps, re)
+        if jacobian:
+            cd, dcd_dre = ph.drag.cd_and_dcd_dre(re)
+        else:
+            cd = ph.drag.cd(re)
+        force, res = np.empty((M + 1, 3)), np.empty(g.n)
+        kernel.drag_force(air.density_kg_m3, ph.diameter_m, cd, vn, vn_mps, dirs.tangent, along,
+                          ph.skin_friction_cf, force)
+        kernel.residual(a, v, T, dirs.tau, dirs.ell, force, ph.weight_N_m, g.hbar, g.h,
+                        ph.linear_density_kg_m, ph.compliance_per_N, ph.damping_time_s, force_ref_N, res)
+
+        def build():
+            if jacobian:    # the drag's derivatives came with the residual
+                drag_air, drag_cd, drag_dcd = air, cd, dcd_dre
+            else:           # ... or are evaluated now
+                drag_air = ph.air.state(z, gradients=True)
+                drag_cd, drag_dcd = ph.drag.cd_and_dcd_dre(re)
+            values = np.empty(33 * (M - 1) + 7 * M)          # in layout order (Grid._layout)
+            kernel.jacobian(T, dirs.unit, dirs.length, v, v_rel, along, vn, vn_mps, re, drag_cd, drag_dcd,
+                            drag_air.density_kg_m3, drag_air.viscosity_Pa_s,
+                            drag_air.density_gradient_kg_m4, drag_air.viscosity_gradient_Pa_s_m,
+                            ph.wind.shear_per_s(z), ph.diameter_m, ph.skin_friction_cf,
+                            ph.linear_density_kg_m, ph.compliance_per_N, ph.damping_time_s, c_a, c_v,
+                            force_ref_N, g.hbar, g.h, values)
+            return g.assemble(values, kite_dir, kernel)
+
+        return Evaluation(res, dirs.ell, NodalLoads(force, vn_mps, re, cd, dirs.tangent), build)
+
+    def solve(self, ab, rhs):
+        """Solution of the banded system ``ab`` (:meth:`Grid.assemble`'s storage)
+        for ``rhs``: by the compiled band LU of :mod:`.kernel` or by LAPACK
+        (:meth:`Grid.solve`).  Raises :class:`numpy.linalg.LinAlgError` if singular."""
+        if not self.compiled:
+            return self.grid.solve(ab, rhs)
+        x = np.empty(self.grid.n)
+        if not self._kernel.solve(ab, self.grid.upper, rhs, x):
+            raise np.linalg.LinAlgError("singular matrix")
+        return x
 
     def _jacobian(self, r, v, T, dirs, drag, air, inner, force_ref_N, kite_dir, c_a, c_v):
         """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate values.
@@ -519,7 +599,7 @@ class TetherFD:
         con[-1] -= tau[-1] @ (R * e_dot)        # the kite's known velocity R e'
         body[:, 0] = con[:-1]
         full[4 * M - 4] = con[-1]
-        x = g.solve(ab, full[:-1])                # rows: all 4M - 3 equations
+        x = self.solve(ab, full[:-1])             # rows: all 4M - 3 equations
         dv, _, r_dot = g.expand(x)
         if not g.tension_mode:
             r_dot = 0.0

@@ -1,0 +1,331 @@
+"""Compiled kernels of the FD tether equations: residual, banded Jacobian and its solve.
+
+The same equations as :meth:`.system.TetherFD.evaluate` (whose NumPy
+implementation is the reference, and the tests hold the two together), written
+as loops over nodes and segments that numba compiles to machine code.  A
+Newton iteration of the NumPy version spends its time in the overhead of
+~100 small array operations; compiled, it costs about as much as a few of
+them.  The leaf physics (wind, air, drag coefficient) stays in NumPy and is
+called between the kernels: :func:`directions` gives the tangents the relative
+flow needs, :func:`normal_flow` the Reynolds numbers the drag coefficient
+needs, and :func:`drag_force`, :func:`residual` and :func:`jacobian` the rest;
+:func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``.
+Written for the FD grid on its own: the FE solver's kernels are not used (the
+FD solver is their independent reference).
+
+Notation as in :mod:`.system`: nodes 0..M, segments ``k + 1/2``
+(k = 0..M-1), interior nodes i = 1..M-1.  The Jacobian's entries are computed
+in the layout order of :meth:`.system.Grid.assemble`, which puts them in the
+band (``solve_banded`` storage).
+
+Compiled on first use and cached on disk next to this file (numba's
+``cache=True``), so only the first run after an install pays the compile time.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from fem_tether.loads import TINY_MPS
+
+V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
+
+
+def jit(*types):
+    """Compile for one signature (any array layout): one compilation per kernel."""
+    return numba.njit(f"void({', '.join(types)})", cache=True, error_model="numpy")
+
+
+@jit(M, M, V)
+def directions(r, unit, length):
+    """Unit tangents of the line r_0 .. r_M (:class:`.system.Directions`): rows
+    0..M-1 ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k``, rows M..2M the nodal
+    tangents, ``(r_{i+1} - r_{i-1}) / |r_{i+1} - r_{i-1}|`` inside and the end
+    segments' at the two ends; ``length`` the norms they were divided by."""
+    n_seg = r.shape[0] - 1
+    for row in range(2 * n_seg + 1):
+        if row < n_seg:
+            a, b = row + 1, row
+        else:
+            node = row - n_seg
+            a, b = min(node + 1, n_seg), max(node - 1, 0)
+        s = 0.0
+        for c in range(3):
+            d = r[a, c] - r[b, c]
+            unit[row, c] = d
+            s += d * d
+        length[row] = math.sqrt(s)
+        for c in range(3):
+            unit[row, c] = unit[row, c] / length[row]
+
+
+@jit(M, V, M, V, V, F, M, V, M, V, V)
+def normal_flow(v, wind_speed_mps, tangent, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re):
+    """At every node: ``V_rel = V_w(z) e_x - v``, ``along = V_rel . tau``,
+    ``V_n = V_rel - along tau``, ``|V_n|`` and ``Re = rho |V_n| d / mu`` (seed 000
+    eq. 4.10), with the nodal tangent tau."""
+    for i in range(v.shape[0]):
+        v_rel[i, 0] = wind_speed_mps[i] - v[i, 0]
+        v_rel[i, 1] = -v[i, 1]
+        v_rel[i, 2] = -v[i, 2]
+        a = v_rel[i, 0] * tangent[i, 0] + v_rel[i, 1] * tangent[i, 1] + v_rel[i, 2] * tangent[i, 2]
+        along[i] = a
+        s = 0.0
+        for c in range(3):
+            x = v_rel[i, c] - a * tangent[i, c]
+            vn[i, c] = x
+            s += x * x
+        vn_mps[i] = math.sqrt(s)
+        re[i] = rho[i] * max(vn_mps[i], TINY_MPS) * diameter_m / mu_air[i]
+
+
+@jit(V, F, V, M, V, M, V, F, M)
+def drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf, force):
+    """``f_t = 1/2 rho d C_d |V_n| V_n`` (eq. 4.9) plus the skin friction
+    ``1/2 rho pi d c_f |V_tau| V_tau``, at every node."""
+    for i in range(vn.shape[0]):
+        c = 0.5 * rho[i] * diameter_m * cd[i] * max(vn_mps[i], TINY_MPS)
+        k = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(along[i]) * along[i]
+        for j in range(3):
+            force[i, j] = c * vn[i, j] + k * tangent[i, j]
+
+
+@jit(M, M, V, M, V, M, V, V, V, F, F, F, F, V)
+def residual(a, v, T, tau, ell, force, weight, hbar, h, mu, compliance_per_N, damping_time_s,
+             force_ref_N, res):
+    """The scaled residual (module docstring of :mod:`.system`, seed 000 eqs. 4.13-4.16):
+    momentum rows ``(mu a_i - (F_{i+1/2} - F_{i-1/2}) / hbar_i - w - f_i) hbar_i / F_ref``
+    with ``F = T tau``, constraint rows ``(l_k - h_k (1 + T/EA) + eta tau . (v_{k+1} - v_k)) / h_k``."""
+    n_seg = T.shape[0]
+    for i in range(1, n_seg):
+        scale = hbar[i - 1] / force_ref_N
+        for c in range(3):
+            flux = (T[i] * tau[i, c] - T[i - 1] * tau[i - 1, c]) / hbar[i - 1]
+            res[4 * (i - 1) + 1 + c] = (mu * a[i, c] - flux - weight[c] - force[i, c]) * scale
+    for k in range(n_seg):
+        con = ell[k] - h[k] * (1.0 + compliance_per_N * T[k])
+        if damping_time_s:
+            con = con + damping_time_s * (tau[k, 0] * (v[k + 1, 0] - v[k, 0])
+                                          + tau[k, 1] * (v[k + 1, 1] - v[k, 1])
+                                          + tau[k, 2] * (v[k + 1, 2] - v[k, 2]))
+        res[4 * k] = con / h[k]
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _projection(unit, row, out):
+    """``I - tau tau^T`` of the unit vector ``unit[row]`` into ``out``."""
+    for p in range(3):
+        for q in range(3):
+            out[p, q] = (1.0 if p == q else 0.0) - unit[row, p] * unit[row, q]
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
+                      diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu):
+    """df/dV_rel, df/dtau, df/drho and df/dmu of node i's drag (the formulas of
+    :func:`fem_tether.loads.crossflow_drag`), ``proj = I - tau tau^T`` of its
+    tangent, into the 3 x 3 and 3-vector work arrays: with
+    ``df/dV_n = c I + c'(n) n u u^T`` (u = V_n / n),
+    ``d_dvrel = df/dV_n (I - tau tau^T)`` and ``d_dtau = df/dV_n (-(tau.V_rel) I - tau V_rel^T)``,
+    plus the skin friction's terms."""
+    n = vn_mps[i]
+    n_safe = max(n, TINY_MPS)
+    half_rho_d = 0.5 * rho[i] * diameter_m
+    c = half_rho_d * cd[i] * n_safe
+    re_dcd = re[i] * dcd_dre[i]
+    dc_dn_n = half_rho_d * (cd[i] + re_dcd) * n
+    a = along[i]
+    k_s = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(a)
+    u = vn[i] / n_safe
+    for p in range(3):
+        d_drho[p] = 0.5 * diameter_m * n_safe * (cd[i] + re_dcd) * vn[i, p] \
+            + (k_s / rho[i]) * a * tangent[i, p]
+        d_dmu[p] = -(half_rho_d * n_safe * re_dcd / mu_air[i]) * vn[i, p]
+        for m in range(3):
+            df_dvn[p, m] = (c if p == m else 0.0) + dc_dn_n * u[p] * u[m]
+    for p in range(3):
+        for q in range(3):
+            dvrel = 0.0
+            dtau = 0.0
+            for m in range(3):
+                dvrel += df_dvn[p, m] * proj[m, q]
+                dtau += df_dvn[p, m] * (-(a if m == q else 0.0) - tangent[i, m] * v_rel[i, q])
+            d_dvrel[p, q] = dvrel + 2.0 * k_s * tangent[i, p] * tangent[i, q]
+            d_dtau[p, q] = dtau + k_s * (2.0 * tangent[i, p] * v_rel[i, q] + (a if p == q else 0.0))
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _stiffness(T, unit, length, k, out):
+    """``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)`` (= dF_{k+1/2}/dr_{k+1}) into ``out``."""
+    _projection(unit, k, out)
+    out *= T[k] / length[k]
+
+
+@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, F, F, F, F, F, F, F, F, V, V, VC)
+def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
+             density_gradient, viscosity_gradient, shear, diameter_m, skin_friction_cf, mu,
+             compliance_per_N, damping_time_s, c_a, c_v, force_ref_N, hbar, h, values):
+    """The entries of the banded Jacobian of :func:`residual`
+    (:meth:`.system.TetherFD._jacobian`) in the layout order of
+    :meth:`.system.Grid.assemble`, into ``values``.  ``unit`` and ``length`` are
+    the rows of :func:`directions`; the nodal flow and drag coefficient, the
+    air and the wind shear are given at every node.
+
+    With ``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)`` and
+    ``D_i = df/dtau_i (I - tau_i tau_i^T) / |r_{i+1} - r_{i-1}|``, momentum row
+    i (scale ``s = hbar_i / F_ref``) has ``((K_i + K_{i-1}) / hbar_i + mu c_a I - df_i/dr_i) s``
+    at r_i, ``-(K_i / hbar_i + D_i) s`` at r_{i+1}, ``-(K_{i-1} / hbar_i - D_i) s``
+    at r_{i-1}, ``-tau_{i+1/2} / hbar_i s`` at T_{i+1/2} and ``tau_{i-1/2} / hbar_i s``
+    at T_{i-1/2}, where ``df_i/dr_i = -c_v df/dV_rel + (df/dV_rel e_x V_w' + df/drho rho'
+    + df/dmu mu_air') e_z^T``; constraint row k has ``+-c_k / h_k`` at r_{k+1}, r_k
+    (c_k = tau_{k+1/2} plus the Kelvin-Voigt terms ``eta ((I - tau tau^T) dv / l_k + c_v tau)``)
+    and ``-h_k / EA / h_k`` at T_{k+1/2}.
+    """
+    n_seg = T.shape[0]
+    n = n_seg - 1
+    blocks = values[: 27 * n].reshape((3, n, 3, 3))                 # r_i, r_{i+1}, r_{i-1}
+    tensions = values[27 * n: 33 * n].reshape((2, n, 3))            # T_{i+1/2}, T_{i-1/2}
+    nodes = values[33 * n: 33 * n + 6 * n_seg].reshape((2, n_seg, 3))  # r_{k+1}, r_k
+    own_tension = values[33 * n + 6 * n_seg:]
+    k_prev = np.empty((3, 3))
+    k_next = np.empty((3, 3))
+    proj = np.empty((3, 3))
+    df_dvn = np.empty((3, 3))
+    d_dvrel = np.empty((3, 3))
+    d_dtau = np.empty((3, 3))
+    d_drho = np.empty(3)
+    d_dmu = np.empty(3)
+    _stiffness(T, unit, length, 0, k_next)
+    tangent = unit[n_seg:]
+    for i in range(1, n_seg):
+        k_prev[:, :] = k_next
+        _stiffness(T, unit, length, i, k_next)
+        _projection(tangent, i, proj)
+        _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
+                          diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu)
+        inv_hb = 1.0 / hbar[i - 1]
+        inv_tangent_len = 1.0 / length[n_seg + i]
+        scale = hbar[i - 1] / force_ref_N
+        for p in range(3):
+            df_dz = d_dvrel[p, 0] * shear[i] + d_drho[p] * density_gradient[i] \
+                + d_dmu[p] * viscosity_gradient[i]
+            for q in range(3):
+                d = 0.0
+                for m in range(3):
+                    d += d_dtau[p, m] * proj[m, q]
+                d *= inv_tangent_len
+                df_dr = -c_v * d_dvrel[p, q] + (df_dz if q == 2 else 0.0)
+                blocks[0, i - 1, p, q] = ((k_next[p, q] + k_prev[p, q]) * inv_hb
+                                          + (mu * c_a if p == q else 0.0) - df_dr) * scale
+                blocks[1, i - 1, p, q] = (k_next[p, q] * inv_hb + d) * -scale
+                blocks[2, i - 1, p, q] = (k_prev[p, q] * inv_hb - d) * -scale
+            tensions[0, i - 1, p] = unit[i, p] * inv_hb * -scale
+            tensions[1, i - 1, p] = unit[i - 1, p] * inv_hb * scale
+    for k in range(n_seg):
+        inv_h = 1.0 / h[k]
+        _projection(unit, k, proj)
+        for q in range(3):
+            c = unit[k, q]
+            if damping_time_s:
+                p_dv = 0.0
+                for m in range(3):
+                    p_dv += proj[q, m] * (v[k + 1, m] - v[k, m])
+                c = c + damping_time_s * (p_dv / length[k] + c_v * unit[k, q])
+            nodes[0, k, q] = c * inv_h
+            nodes[1, k, q] = -nodes[0, k, q]
+        own_tension[k] = (-h[k] * compliance_per_N) * inv_h
+
+
+@jit(VC, "i8[:]", "i8[:]", "i8[:]", V, VC)
+def assemble(values, put, kite_first, kite_target, kite_dir, flat):
+    """The band of :meth:`.system.Grid.assemble`, flattened, from the entries
+    ``values`` in layout order: ``flat[put] = values`` (dropped entries into
+    the last element), and in tension mode each row's three entries of the
+    kite node ``R e``, from ``kite_first``, summed along e into ``kite_target``."""
+    flat[:] = 0.0
+    for k in range(values.shape[0]):
+        flat[put[k]] = values[k]
+    for g in range(kite_first.shape[0]):
+        j = kite_first[g]
+        flat[kite_target[g]] = values[j] * kite_dir[0] + values[j + 1] * kite_dir[1] + values[j + 2] * kite_dir[2]
+
+
+LOWER, UPPER = 7, 6
+"""Sub- and super-diagonals the band LU works with: the widest of the layouts
+(7 / 5 in tension mode, 6 / 6 in prescribed mode), as compile-time constants,
+so that its loops have fixed lengths (~30 % faster than with the widths as
+arguments); a narrower band is padded with zero diagonals, and the matrix
+with ``LOWER`` rows and columns of the identity, so that every column has
+``LOWER`` entries below the diagonal."""
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _band_factor(lu, ipiv):
+    """LU factors with partial pivoting of the band in place: LAPACK's unblocked
+    ``dgbtf2`` (which ``dgbsv`` runs for bands this narrow) on the transpose
+    of its storage, ``lu[j, LOWER + UPPER + i - j] = A[i, j]`` (each column
+    contiguous, ``LOWER`` entries of fill-in above the ``UPPER`` ones).
+    Returns False for a zero pivot."""
+    kv = LOWER + UPPER
+    n = lu.shape[0]
+    ju = 0
+    for j in range(n - LOWER):
+        jp = 0
+        for i in range(1, LOWER + 1):
+            if abs(lu[j, kv + i]) > abs(lu[j, kv + jp]):
+                jp = i
+        ipiv[j] = j + jp
+        if lu[j, kv + jp] == 0.0:
+            return False
+        ju = max(ju, min(j + UPPER + jp, n - 1))
+        if jp != 0:
+            for c in range(j, ju + 1):
+                lu[c, kv + j - c], lu[c, kv + j + jp - c] = lu[c, kv + j + jp - c], lu[c, kv + j - c]
+        inv_pivot = 1.0 / lu[j, kv]
+        for i in range(1, LOWER + 1):
+            lu[j, kv + i] *= inv_pivot
+        for c in range(j + 1, ju + 1):
+            u = lu[c, kv + j - c]
+            for i in range(1, LOWER + 1):
+                lu[c, kv + j + i - c] -= lu[j, kv + i] * u
+    return True
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _band_solve(lu, ipiv, x):
+    """Solve with the factors of :func:`_band_factor`, ``x`` (n) in place (``dgbtrs``)."""
+    n = x.shape[0]
+    kv = LOWER + UPPER
+    for j in range(n - 1):
+        p = ipiv[j]
+        if p != j:
+            x[j], x[p] = x[p], x[j]
+        for i in range(1, min(LOWER, n - 1 - j) + 1):
+            x[j + i] -= lu[j, kv + i] * x[j]
+    for j in range(n - 1, -1, -1):
+        x[j] /= lu[j, kv]
+        for i in range(max(0, j - kv), j):
+            x[i] -= lu[j, kv + i - j] * x[j]
+
+
+@numba.njit("b1(f8[:, :], i8, f8[:], f8[:])", cache=True, error_model="numpy")
+def solve(ab, upper, rhs, x):
+    """``x`` = the solution of the banded system ``ab`` (``solve_banded`` storage
+    with ``upper`` super-diagonals, at most ``LOWER`` / ``UPPER`` diagonals;
+    left unchanged) for ``rhs``; False if singular."""
+    n = ab.shape[1]
+    lu = np.zeros((n + LOWER, 2 * LOWER + UPPER + 1))
+    first = LOWER + UPPER - upper
+    lu[:n, first: first + ab.shape[0]] = ab.T
+    for j in range(max(0, n - LOWER), n):   # the storage below the last row: unused
+        lu[j, max(LOWER + UPPER + n - j, first):] = 0.0
+    lu[n:, LOWER + UPPER] = 1.0
+    ipiv = np.empty(n, np.int64)
+    if not _band_factor(lu, ipiv):
+        return False
+    x[:] = rhs
+    _band_solve(lu, ipiv, x)
+    return True
