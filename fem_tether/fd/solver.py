@@ -64,7 +64,7 @@ from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
-from fem_tether.protocol import Statistics, speed_jumped
+from fem_tether.protocol import Statistics, expect_converged, speed_jumped
 from fem_tether.results import TetherRun
 
 @dataclass
@@ -294,7 +294,7 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
             acc = a0 * (v - v_old)
         try:
             ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0,
-                                   jacobian=not _expect_converged(worst, last, model.newton_tol),
+                                   jacobian=not expect_converged(worst, last, model.newton_tol),
                                    reel_mps=model.reel_mps)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
@@ -309,15 +309,6 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)
-
-
-def _expect_converged(worst: float, before: float, tol: float) -> bool:
-    """Whether the Newton iterate after residuals ``before`` and then ``worst``
-    (max norms) is expected within ``tol``: quadratic convergence,
-    ``worst^2 / before^2`` times ``worst`` below a tenth of it.  Only decides
-    whether the drag's derivatives are evaluated with the residual (a wrong
-    guess costs one drag evaluation, never a different answer)."""
-    return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
 
 
 def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
