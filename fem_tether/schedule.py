@@ -1,7 +1,8 @@
 """Which rank runs which task: estimated costs, longest processing time first.
 
 Tasks are assigned to ranks by longest processing time first on an estimated
-cost (unknowns x time steps); the assignment only decides where a task runs,
+cost (time steps x a measured per-step cost of each solver, linear in its
+points); the assignment only decides where a task runs,
 never what it computes, so every number is the same whatever the number of
 ranks.
 """
@@ -11,19 +12,20 @@ from __future__ import annotations
 from fem_tether.jobs import Job, Task
 from fem_tether.results import time_grid
 
-#: Per-step cost of both solvers ~ overhead + nodes / NODES_PER_OVERHEAD (a
-#: per-step overhead of a few ms plus about 10 us per node on one core).
-NODES_PER_OVERHEAD = 250.0
+#: Cost of one time step of each solver, ``overhead + per_point x points`` in
+#: microseconds, measured on 2026-11-30 with the compiled kernels (default
+#: physics at 1768 m, one period): FE 707, 930, 1906, 4384 us at 20, 40, 160,
+#: 640 elements; FD 1478, 1453, 2461, 8452 us at 50, 100, 400, 1600 segments.
+#: Only the ratios matter (they order and balance the tasks).
+STEP_COST_US = {"fe": (600.0, 6.0), "fd": (1000.0, 4.7)}
 
 
 def task_cost(job: Job, task: Task) -> float:
-    """Estimated cost in step overheads: time steps x (1 + nodes / NODES_PER_OVERHEAD).
-
-    Only the ratios matter (they order and balance the tasks).  With the
-    default job the estimate puts an FD run at 2.4 FE runs; measured on
-    2026-11-30 it was 1.75 (13.4 s of FD against 7.6 s of FE over the seven
-    lengths), as the FD steps became cheaper.  The longest-first assignment of
-    fourteen tasks stays within about 7 % of an even split with that error."""
+    """Estimated cost in microseconds: time steps x (overhead + per_point x points)
+    (:data:`STEP_COST_US`).  With the default job the estimate puts an FD run
+    at 3.5 FE runs; measured in the same session it was 2.9 (1.3 s against
+    0.45 s per length).  The longest-first assignment of the fourteen tasks stays
+    within a few per cent of an even split with that error."""
     from fem_tether.fe.solver import unit_mesh_from_config
 
     cfg = job.config_for(task.length_m)
@@ -31,7 +33,8 @@ def task_cost(job: Job, task: Task) -> float:
     dt = cfg.fe.dt_s if task.solver == "fe" else cfg.fd.dt_s
     steps = time_grid(cfg.eight.period_s, dt, t.spinup_periods, t.average_periods)[1]
     points = unit_mesh_from_config(cfg.fe).size if task.solver == "fe" else cfg.fd.segments + 1
-    return float(steps * (1.0 + points / NODES_PER_OVERHEAD))
+    overhead_us, per_point_us = STEP_COST_US[task.solver]
+    return float(steps * (overhead_us + per_point_us * points))
 
 
 def assign(costs: list[float], n_ranks: int) -> list[list[int]]:
