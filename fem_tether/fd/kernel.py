@@ -161,7 +161,10 @@ def _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dr
 def _stiffness(T, unit, length, k, out):
     """``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)`` (= dF_{k+1/2}/dr_{k+1}) into ``out``."""
     _projection(unit, k, out)
-    out *= T[k] / length[k]
+    scale = T[k] / length[k]
+    for p in range(3):
+        for q in range(3):
+            out[p, q] *= scale
 
 
 @jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, F, F, F, F, F, F, F, F, V, V, VC)
