@@ -8,18 +8,21 @@ Newton iteration of the NumPy version spends its time in the overhead of
 them.  The leaf physics (wind, air, drag coefficient) stays in NumPy and is
 called between the kernels: :func:`directions` gives the tangents the relative
 flow needs, :func:`normal_flow` the Reynolds numbers the drag coefficient
-needs, and :func:`drag_force`, :func:`residual` and :func:`jacobian` the rest;
+needs, and :func:`drag_force`, :func:`residual` and :func:`jacobian` the rest
+(the drag's loops, per point, are the leaf physics of
+:mod:`fem_tether.loads_kernel`, shared with the FE kernels);
 :func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``.
 Written for the FD grid on its own: the FE solver's kernels are not used (the
-FD solver is their independent reference).
+FD solver is their independent reference); only the leaf physics is shared.
 
 Notation as in :mod:`.system`: nodes 0..M, segments ``k + 1/2``
 (k = 0..M-1), interior nodes i = 1..M-1.  The Jacobian's entries are computed
 in the layout order of :meth:`.system.Grid.assemble`, which puts them in the
 band (``solve_banded`` storage).
 
-Compiled on first use and cached on disk next to this file (numba's
-``cache=True``), so only the first run after an install pays the compile time.
+Compiled when first imported (one signature per kernel) and cached on disk
+next to this file (numba's ``cache=True``), so only the first run after an
+install pays the compile time.
 """
 
 from __future__ import annotations
@@ -29,7 +32,9 @@ import math
 import numba
 import numpy as np
 
-from fem_tether.loads import TINY_MPS
+from fem_tether.loads_kernel import drag_derivatives, drag_force, normal_flow
+
+__all__ = ["assemble", "directions", "drag_force", "jacobian", "normal_flow", "residual", "solve"]
 
 V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
 
@@ -62,37 +67,6 @@ def directions(r, unit, length):
             unit[row, c] = unit[row, c] / length[row]
 
 
-@jit(M, V, M, V, V, F, M, V, M, V, V)
-def normal_flow(v, wind_speed_mps, tangent, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re):
-    """At every node: ``V_rel = V_w(z) e_x - v``, ``along = V_rel . tau``,
-    ``V_n = V_rel - along tau``, ``|V_n|`` and ``Re = rho |V_n| d / mu`` (seed 000
-    eq. 4.10), with the nodal tangent tau."""
-    for i in range(v.shape[0]):
-        v_rel[i, 0] = wind_speed_mps[i] - v[i, 0]
-        v_rel[i, 1] = -v[i, 1]
-        v_rel[i, 2] = -v[i, 2]
-        a = v_rel[i, 0] * tangent[i, 0] + v_rel[i, 1] * tangent[i, 1] + v_rel[i, 2] * tangent[i, 2]
-        along[i] = a
-        s = 0.0
-        for c in range(3):
-            x = v_rel[i, c] - a * tangent[i, c]
-            vn[i, c] = x
-            s += x * x
-        vn_mps[i] = math.sqrt(s)
-        re[i] = rho[i] * max(vn_mps[i], TINY_MPS) * diameter_m / mu_air[i]
-
-
-@jit(V, F, V, M, V, M, V, F, M)
-def drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf, force):
-    """``f_t = 1/2 rho d C_d |V_n| V_n`` (eq. 4.9) plus the skin friction
-    ``1/2 rho pi d c_f |V_tau| V_tau``, at every node."""
-    for i in range(vn.shape[0]):
-        c = 0.5 * rho[i] * diameter_m * cd[i] * max(vn_mps[i], TINY_MPS)
-        k = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(along[i]) * along[i]
-        for j in range(3):
-            force[i, j] = c * vn[i, j] + k * tangent[i, j]
-
-
 @jit(M, M, V, M, V, M, V, V, V, F, F, F, F, V)
 def residual(a, v, T, tau, ell, force, weight, hbar, h, mu, compliance_per_N, damping_time_s,
              force_ref_N, res):
@@ -120,41 +94,6 @@ def _projection(unit, row, out):
     for p in range(3):
         for q in range(3):
             out[p, q] = (1.0 if p == q else 0.0) - unit[row, p] * unit[row, q]
-
-
-@numba.njit(cache=True, error_model="numpy")
-def _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
-                      diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu):
-    """df/dV_rel, df/dtau, df/drho and df/dmu of node i's drag (the formulas of
-    :func:`fem_tether.loads.crossflow_drag`), ``proj = I - tau tau^T`` of its
-    tangent, into the 3 x 3 and 3-vector work arrays: with
-    ``df/dV_n = c I + c'(n) n u u^T`` (u = V_n / n),
-    ``d_dvrel = df/dV_n (I - tau tau^T)`` and ``d_dtau = df/dV_n (-(tau.V_rel) I - tau V_rel^T)``,
-    plus the skin friction's terms."""
-    n = vn_mps[i]
-    n_safe = max(n, TINY_MPS)
-    half_rho_d = 0.5 * rho[i] * diameter_m
-    c = half_rho_d * cd[i] * n_safe
-    re_dcd = re[i] * dcd_dre[i]
-    dc_dn_n = half_rho_d * (cd[i] + re_dcd) * n
-    a = along[i]
-    k_s = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(a)
-    u = vn[i] / n_safe
-    for p in range(3):
-        d_drho[p] = 0.5 * diameter_m * n_safe * (cd[i] + re_dcd) * vn[i, p] \
-            + (k_s / rho[i]) * a * tangent[i, p]
-        d_dmu[p] = -(half_rho_d * n_safe * re_dcd / mu_air[i]) * vn[i, p]
-        for m in range(3):
-            df_dvn[p, m] = (c if p == m else 0.0) + dc_dn_n * u[p] * u[m]
-    for p in range(3):
-        for q in range(3):
-            dvrel = 0.0
-            dtau = 0.0
-            for m in range(3):
-                dvrel += df_dvn[p, m] * proj[m, q]
-                dtau += df_dvn[p, m] * (-(a if m == q else 0.0) - tangent[i, m] * v_rel[i, q])
-            d_dvrel[p, q] = dvrel + 2.0 * k_s * tangent[i, p] * tangent[i, q]
-            d_dtau[p, q] = dtau + k_s * (2.0 * tangent[i, p] * v_rel[i, q] + (a if p == q else 0.0))
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -207,7 +146,7 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
         k_prev[:, :] = k_next
         _stiffness(T, unit, length, i, k_next)
         _projection(tangent, i, proj)
-        _drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
+        drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
                           diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu)
         inv_hb = 1.0 / hbar[i - 1]
         inv_tangent_len = 1.0 / length[n_seg + i]

@@ -9,15 +9,18 @@ costs about as much as a few of them.  The leaf physics (wind, air, drag
 coefficient) stays in NumPy and is called between the kernels: geometry
 (:func:`midpoints`) gives the altitudes the wind and the air need, the normal
 flow (:func:`normal_flow`) the Reynolds numbers the drag coefficient needs,
-and :func:`assemble` the rest.
+and :func:`residual`, :func:`jacobian` and :func:`newton_step` the rest.  The
+drag's own loops, per point, are leaf physics shared with the FD kernels
+(:mod:`fem_tether.loads_kernel`).
 
 Notation as in :mod:`.system`: element e joins nodes e and e + 1, sgn = (-1, +1)
 for its nodes a = 0, 1; ``w[e, a]`` are Q's weights; rows and columns in the
 interleaved ordering ``[r_0, T_0, r_1, T_1, ..., r_N, R]``; the band in LAPACK
 ``gbsv`` storage, ``band[2 BAND + i - j, j] = J[i, j]``.
 
-Compiled on first use and cached on disk next to this file (numba's
-``cache=True``), so only the first run after an install pays the compile time.
+Compiled when first imported (one signature per kernel) and cached on disk
+next to this file (numba's ``cache=True``), so only the first run after an
+install pays the compile time.
 """
 
 from __future__ import annotations
@@ -28,7 +31,9 @@ import numba
 import numpy as np
 
 from fem_tether.fe.system import BAND
-from fem_tether.loads import TINY_MPS
+from fem_tether.loads_kernel import drag_derivatives, drag_force, normal_flow
+
+__all__ = ["jacobian", "midpoints", "newton_step", "normal_flow", "residual"]
 
 V, M, F, B = "f8[:]", "f8[:, :]", "f8", "b1"     # vector, matrix (any layout), float, bool
 
@@ -58,45 +63,15 @@ def midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv):
             dv[e, i] = v[e + 1, i] - v_a
 
 
-@jit(M, V, M, V, V, F, M, V, M, V, V)
-def normal_flow(v_mid, wind_speed_mps, tau, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re):
-    """``V_rel = V_w(z) e_x - v_mid``, ``V_n = V_rel - (V_rel . tau) tau``, its
-    magnitude and ``Re = rho |V_n| d / mu`` (seed 000 eq. 4.10); ``along = V_rel . tau``."""
-    for e in range(v_mid.shape[0]):
-        v_rel[e, 0] = wind_speed_mps[e] - v_mid[e, 0]
-        v_rel[e, 1] = -v_mid[e, 1]
-        v_rel[e, 2] = -v_mid[e, 2]
-        a = v_rel[e, 0] * tau[e, 0] + v_rel[e, 1] * tau[e, 1] + v_rel[e, 2] * tau[e, 2]
-        along[e] = a
-        s = 0.0
-        for i in range(3):
-            x = v_rel[e, i] - a * tau[e, i]
-            vn[e, i] = x
-            s += x * x
-        vn_mps[e] = math.sqrt(s)
-        re[e] = rho[e] * max(vn_mps[e], TINY_MPS) * diameter_m / mu_air[e]
-
-
-@numba.njit(cache=True, error_model="numpy")
-def _drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force):
-    """``f_t = 1/2 rho d C_d |V_n| V_n`` (eq. 4.9) plus the skin friction
-    ``1/2 rho pi d c_f |V_tau| V_tau``, per element."""
-    for e in range(vn.shape[0]):
-        c = 0.5 * rho[e] * diameter_m * cd[e] * max(vn_mps[e], TINY_MPS)
-        k = 0.5 * rho[e] * math.pi * diameter_m * skin_friction_cf * abs(along[e]) * along[e]
-        for i in range(3):
-            force[e, i] = c * vn[e, i] + k * tau[e, i]
-
-
 @jit(M, M, M, V, F, V, M, V, V, V, M, V, V, F, F, V, V, V, M, V, F, F, F, B, F, F, M, V)
 def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
              skin_friction_cf, weight, mass, interior, w, h, k_s, compliance_per_N, damping_time_s,
              tension_mode, ground_tension_N, radius_m, force, res):
-    """The drag ``force`` (:func:`_drag_force`) and the scaled residual (module
+    """The drag ``force`` (:func:`~fem_tether.loads_kernel.drag_force`) and the scaled residual (module
     docstring of :mod:`.system`): node rows ``m qdd + D^T (T tau) - Q (f_t + w)``
     at interior nodes, kinematic rows ``k r_0`` and ``k (r_N - R e)``, constraint
     rows ``k (|D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e)`` and the closing row."""
-    _drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force)
+    drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force)
     n_el = tau.shape[0]
     for i in range(n_el + 1):
         for k in range(3):
@@ -120,34 +95,6 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along
     res[4 * n_el + 3] = (T[0] - ground_tension_N) if tension_mode else k_s * (R - radius_m)
 
 
-@numba.njit(cache=True, error_model="numpy")
-def _drag_derivatives(e, v_rel, tau, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, diameter_m,
-                      skin_friction_cf, proj, d_dvrel, d_dtau, d_drho, d_dmu):
-    """df/dV_rel, df/dtau, df/drho and df/dmu of element e's drag (the formulas of
-    :func:`fem_tether.loads.crossflow_drag`), into the 3 x 3 and 3-vector work arrays."""
-    n = vn_mps[e]
-    n_safe = max(n, TINY_MPS)
-    half_rho_d = 0.5 * rho[e] * diameter_m
-    c = half_rho_d * cd[e] * n_safe
-    re_dcd = re[e] * dcd_dre[e]
-    dc_dn_n = half_rho_d * (cd[e] + re_dcd) * n
-    a = along[e]
-    k_s = 0.5 * rho[e] * math.pi * diameter_m * skin_friction_cf * abs(a)
-    for i in range(3):
-        d_drho[i] = 0.5 * diameter_m * n_safe * (cd[e] + re_dcd) * vn[e, i] + (k_s / rho[e]) * a * tau[e, i]
-        d_dmu[i] = -(half_rho_d * n_safe * re_dcd / mu_air[e]) * vn[e, i]
-        for j in range(3):
-            # df/dV_n = c I + c'(n) n u u^T, u = V_n / n
-            d_dvrel[i, j] = 0.0
-            d_dtau[i, j] = 0.0
-            for k in range(3):
-                f_vn = dc_dn_n * (vn[e, i] / n_safe) * (vn[e, k] / n_safe) + (c if i == k else 0.0)
-                d_dvrel[i, j] += f_vn * proj[k, j]
-                d_dtau[i, j] += f_vn * (-(a if k == j else 0.0) - tau[e, k] * v_rel[e, j])
-            d_dvrel[i, j] += 2.0 * k_s * tau[e, i] * tau[e, j]
-            d_dtau[i, j] += k_s * (2.0 * tau[e, i] * v_rel[e, j] + (a if i == j else 0.0))
-
-
 @jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, V, V, M, V, F, F, F, F, F, F, F, F, M)
 def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
              density_gradient, viscosity_gradient, shear, mass, interior, w, h, diameter_m,
@@ -167,6 +114,7 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     diag = 2 * BAND
     n_el = tau.shape[0]
     proj = np.empty((3, 3))
+    df_dvn = np.empty((3, 3))
     d_dvrel = np.empty((3, 3))
     d_dtau = np.empty((3, 3))
     d_drho = np.empty(3)
@@ -180,8 +128,8 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
         for i in range(3):
             for j in range(3):
                 proj[i, j] = (1.0 if i == j else 0.0) - tau[e, i] * tau[e, j]
-        _drag_derivatives(e, v_rel, tau, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, diameter_m,
-                          skin_friction_cf, proj, d_dvrel, d_dtau, d_drho, d_dmu)
+        drag_derivatives(e, tau, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
+                         diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu)
         turn = e == 0 and reel_mps != 0.0
         for i in range(3):
             df_dz = d_dvrel[i, 0] * shear[e] + d_drho[i] * density_gradient[e] \
