@@ -8,6 +8,7 @@ straight line into the values of the sweep result (F_t, G_e, cross-check).
 
 from __future__ import annotations
 
+import importlib
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,6 +28,19 @@ def simulator(solver: str):
     """The ``simulate`` of the solver ``"fe"`` or ``"fd"``, looked up at each call
     (so that a replaced solver function is the one that runs)."""
     return fe_solver.simulate if solver == "fe" else fd.simulate
+
+
+#: The compiled kernels of each solver (numba compiles them on the first import
+#: after an install and caches them; a later import loads them).
+KERNEL_MODULES = {"fe": "fem_tether.fe.kernel", "fd": "fem_tether.fd.kernel"}
+
+
+def load_kernels(cfg: Config, solvers) -> None:
+    """Import the compiled kernels of those ``solvers`` whose section of ``cfg``
+    asks for them (``kernel = "compiled"``): compiled now, or loaded from the cache."""
+    for solver in solvers:
+        if getattr(cfg, solver).kernel == "compiled":
+            importlib.import_module(KERNEL_MODULES[solver])
 
 
 def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):

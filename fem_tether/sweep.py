@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fem_tether.errors import InputError
-from fem_tether.evaluate import LengthResult, evaluate_length, run_task
+from fem_tether.evaluate import LengthResult, evaluate_length, load_kernels, run_task
 from fem_tether.jobs import Job, Task
 from fem_tether.memory import peak_rss_MiB
 from fem_tether.progress import Progress
@@ -92,6 +92,11 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
     problem = comm.bcast(problem, root=0)
     if problem:
         raise problem
+    # after an install the first import of a solver's kernels compiles them: each
+    # rank compiles one solver's (not all of them, all at once), then loads the others' cached
+    load_kernels(job.config, [job.solvers[rank % len(job.solvers)]])
+    comm.Barrier()
+    load_kernels(job.config, job.solvers)
     tasks = job.tasks
     mine = assign([task_cost(job, t) for t in tasks], size)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
