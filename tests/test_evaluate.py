@@ -10,3 +10,19 @@ def test_default_case_at_1000_m_passes():
           f"differences {check.rel_diff}")
     assert check.ok
     assert check.rel_diff["drag"] < 0.005 and check.rel_diff["shape"] < 0.001
+
+
+def test_load_kernels_imports_only_the_compiled_solvers_kernels():
+    """``load_kernels`` imports a solver's kernels only where its section asks for
+    them (a fresh interpreter checks which modules it loaded)."""
+    import subprocess
+    import sys
+    code = ("import sys\n"
+            "from fem_tether.config import load_config\n"
+            "from fem_tether.evaluate import load_kernels\n"
+            "load_kernels(load_config(overrides={'fe': {'kernel': 'numpy'}, 'fd': {'kernel': 'numpy'}}),"
+            " ['fe', 'fd'])\n"
+            "assert 'numba' not in sys.modules\n"
+            "load_kernels(load_config(overrides={'fd': {'kernel': 'numpy'}}), ['fe', 'fd'])\n"
+            "assert 'fem_tether.fe.kernel' in sys.modules and 'fem_tether.fd.kernel' not in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)
