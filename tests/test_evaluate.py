@@ -1,5 +1,8 @@
 """Evaluation of one length: the FE <-> FD cross-check run passes on the default case."""
 
+import subprocess
+import sys
+
 from fem_tether.config import load_config
 from fem_tether.evaluate import run_crosscheck
 
@@ -15,8 +18,6 @@ def test_default_case_at_1000_m_passes():
 def test_load_kernels_imports_only_the_compiled_solvers_kernels():
     """``load_kernels`` imports a solver's kernels only where its section asks for
     them (a fresh interpreter checks which modules it loaded)."""
-    import subprocess
-    import sys
     code = ("import sys\n"
             "from fem_tether.config import load_config\n"
             "from fem_tether.evaluate import load_kernels\n"
