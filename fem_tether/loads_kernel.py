@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from fem_tether.loads import TINY_MPS
 
@@ -90,3 +91,11 @@ def drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre
                 dtau += df_dvn[p, m] * (-(a if m == q else 0.0) - tangent[i, m] * v_rel[i, q])
             d_dvrel[p, q] = dvrel + 2.0 * k_s * tangent[i, p] * tangent[i, q]
             d_dtau[p, q] = dtau + k_s * (2.0 * tangent[i, p] * v_rel[i, q] + (a if p == q else 0.0))
+
+
+@numba.njit(cache=True, error_model="numpy")
+def derivative_work():
+    """Work arrays for :func:`drag_derivatives`: ``proj``, ``df_dvn``, ``d_dvrel``,
+    ``d_dtau`` (3 x 3) and ``d_drho``, ``d_dmu`` (3), made once per Jacobian."""
+    return (np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)),
+            np.empty(3), np.empty(3))

@@ -32,7 +32,7 @@ import math
 import numba
 import numpy as np
 
-from fem_tether.loads_kernel import drag_derivatives, drag_force, normal_flow
+from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
 
 __all__ = ["assemble", "directions", "drag_force", "jacobian", "normal_flow", "residual", "solve"]
 
@@ -134,12 +134,7 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     own_tension = values[33 * n + 6 * n_seg:]
     k_prev = np.empty((3, 3))
     k_next = np.empty((3, 3))
-    proj = np.empty((3, 3))
-    df_dvn = np.empty((3, 3))
-    d_dvrel = np.empty((3, 3))
-    d_dtau = np.empty((3, 3))
-    d_drho = np.empty(3)
-    d_dmu = np.empty(3)
+    proj, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu = derivative_work()
     _stiffness(T, unit, length, 0, k_next)
     tangent = unit[n_seg:]
     for i in range(1, n_seg):

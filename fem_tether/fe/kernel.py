@@ -31,7 +31,7 @@ import numba
 import numpy as np
 
 from fem_tether.fe.system import BAND
-from fem_tether.loads_kernel import drag_derivatives, drag_force, normal_flow
+from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
 
 __all__ = ["jacobian", "midpoints", "newton_step", "normal_flow", "residual"]
 
@@ -113,12 +113,7 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     band[:] = 0.0
     diag = 2 * BAND
     n_el = tau.shape[0]
-    proj = np.empty((3, 3))
-    df_dvn = np.empty((3, 3))
-    d_dvrel = np.empty((3, 3))
-    d_dtau = np.empty((3, 3))
-    d_drho = np.empty(3)
-    d_dmu = np.empty(3)
+    proj, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu = derivative_work()
     d_mid = np.empty((3, 3))
     d_tau = np.empty((3, 3))          # df/dtau P / |dr|: f's change with a node through the tangent
     d_turn = np.zeros((3, 3))         # reeling: df/dV_rel P V_L / (2 |dr|), element 0 only
