@@ -24,7 +24,6 @@ come from the same runs.
 
 from __future__ import annotations
 
-import importlib
 import multiprocessing
 import os
 import time
@@ -34,6 +33,7 @@ import numpy as np
 
 from fem_tether import fd
 from fem_tether.config import load_config
+from fem_tether.evaluate import load_kernels
 from fem_tether.fe import solver as fe
 from fem_tether.memory import peak_rss_MiB
 
@@ -130,7 +130,7 @@ def _run(solver, resolution, dt_s, repeats) -> dict:
     its peak RSS is its own); ``resolution`` is the FE element count or the FD
     segment count.  The compiled kernels are loaded here first, so the child
     inherits them and no setting's time or memory counts their one-time loading."""
-    importlib.import_module("fem_tether.fe.kernel")
+    load_kernels(load_config(overrides=BENCH_CASE), ("fe", "fd"))
     ctx = multiprocessing.get_context("fork")
     parent, child = ctx.Pipe(duplex=False)
     base = peak_rss_MiB()             # this process runs no solver: its peak is its imports
