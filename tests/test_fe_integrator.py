@@ -30,9 +30,10 @@ def _oscillator(scheme, omega, h, t_end):
     for _ in range(int(round(t_end / h))):
         # residual qdd(q) + omega^2 q = 0 is linear in q: one Newton step is exact
         q0 = kin.predict(h)
-        trial = kin.advance(q0, h, scheme)
+        step = kin.step(h, scheme)
+        trial = step.kinematics(q0)
         q = q0 - (trial.qdd + omega**2 * q0) / (c_a + omega**2)
-        kin = kin.advance(q, h, scheme)
+        kin = step.kinematics(q)
     return kin
 
 

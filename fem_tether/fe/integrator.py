@@ -91,10 +91,6 @@ class Kinematics:
         """The step of size ``h`` from here: the kinematics at t_{n+1} as functions of q_{n+1}."""
         return Step(self, h, scheme)
 
-    def advance(self, q_new, h, scheme: Scheme) -> "Kinematics":
-        """Kinematics at t_{n+1} implied by the new positions ``q_new``."""
-        return self.step(h, scheme).kinematics(q_new)
-
 
 class Step:
     """One step of size h from the kinematics ``kin`` at t_n, solved for q_{n+1}.
