@@ -73,9 +73,10 @@ EXPERIMENTAL_CURVE = np.array([
     (1e7, 0.70),
 ])
 
-_LOG_RE = np.log(EXPERIMENTAL_CURVE[:, 0])
-_LOG_CD = np.log(EXPERIMENTAL_CURVE[:, 1])
-_SLOPE = np.diff(_LOG_CD) / np.diff(_LOG_RE)
+#: ln Re_i, ln C_i and the slopes s_i = ln(C_i+1/C_i) / ln(Re_i+1/Re_i) of the curve's intervals
+LOG_RE = np.log(EXPERIMENTAL_CURVE[:, 0])
+LOG_CD = np.log(EXPERIMENTAL_CURVE[:, 1])
+SLOPE = np.diff(LOG_CD) / np.diff(LOG_RE)
 
 
 def _reynolds(re) -> np.ndarray:
@@ -123,12 +124,12 @@ def belan_tordella_cd_and_dcd_dre(re):
 
 def _segment(log_re):
     """Index i of the interval [Re_i, Re_i+1) holding each ln Re (clipped to the table)."""
-    return np.minimum(np.maximum(np.searchsorted(_LOG_RE, log_re, side="right") - 1, 0), len(_SLOPE) - 1)
+    return np.minimum(np.maximum(np.searchsorted(LOG_RE, log_re, side="right") - 1, 0), len(SLOPE) - 1)
 
 
 def _power_law(log_re, i):
     """C_i (Re/Re_i)^s_i on interval i (the last value above the table)."""
-    return np.exp(_LOG_CD[i] + _SLOPE[i] * (np.minimum(log_re, _LOG_RE[-1]) - _LOG_RE[i]))
+    return np.exp(LOG_CD[i] + SLOPE[i] * (np.minimum(log_re, LOG_RE[-1]) - LOG_RE[i]))
 
 
 def experimental_cd(re):
@@ -147,7 +148,7 @@ def experimental_cd_and_dcd_dre(re):
     log_re = np.log(re)
     i = _segment(log_re)
     cd = _power_law(log_re, i)
-    slope = np.where(log_re < _LOG_RE[-1], _SLOPE[i], 0.0)
+    slope = np.where(log_re < LOG_RE[-1], SLOPE[i], 0.0)
     return cd, slope * cd / re
 
 
