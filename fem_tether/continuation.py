@@ -30,9 +30,9 @@ supplies its own Newton solve as ``solve(load_factor, x)``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
-from fem_tether.drag_coefficient import DragModel
+from fem_tether.drag_coefficient import ScaledDrag
 from fem_tether.tether import TetherPhysics
 
 #: Smallest load step before the continuation gives up (2^-20 ~ 1e-6 of the load).
@@ -61,24 +61,6 @@ class ContinuationFailed(Exception):
         """What a solver's error message says after naming the case."""
         return (f"no convergence beyond {self.load_factor:.6g} of the wind and drag load: "
                 + (self.cause or f"scaled residual {self.residual:.3e}"))
-
-
-@dataclass(frozen=True)
-class ScaledDrag:
-    """A drag-coefficient model times a load factor: C_d(Re) -> lambda C_d(Re)."""
-
-    base: DragModel
-    factor: float
-
-    def cd(self, re):
-        return self.factor * self.base.cd(re)
-
-    def dcd_dre(self, re):
-        return self.factor * self.base.dcd_dre(re)
-
-    def cd_and_dcd_dre(self, re):
-        cd, dcd = self.base.cd_and_dcd_dre(re)
-        return self.factor * cd, self.factor * dcd
 
 
 def with_load_factor(physics: TetherPhysics, load_factor: float) -> TetherPhysics:

@@ -219,6 +219,28 @@ class ConstantDrag:
         return self.cd(re), self.dcd_dre(re)
 
 
+@dataclass(frozen=True)
+class ScaledDrag:
+    """A drag-coefficient model times a factor: C_d(Re) -> lambda C_d(Re) (the
+    load continuation's ramp, :mod:`fem_tether.continuation`)."""
+
+    base: DragModel
+    factor: float
+
+    def cd(self, re):
+        """lambda C_d(Re)."""
+        return self.factor * self.base.cd(re)
+
+    def dcd_dre(self, re):
+        """lambda dC_d/dRe."""
+        return self.factor * self.base.dcd_dre(re)
+
+    def cd_and_dcd_dre(self, re):
+        """(lambda C_d, lambda dC_d/dRe)."""
+        cd, dcd = self.base.cd_and_dcd_dre(re)
+        return self.factor * cd, self.factor * dcd
+
+
 def from_config(drag) -> CylinderDrag | ConstantDrag:
     """The drag model of the ``[drag]`` section: ``model = "cylinder"`` or
     ``"constant"`` (uses ``cd``)."""

@@ -17,7 +17,9 @@ A model as numbers:
   mean (:class:`~fem_tether.wind.MeanOfProfiles`; one row for a single
   profile): ``[WIND_NONE, 0, 0, 0]``, ``[WIND_LOG, V0, z_r, ln(z0/z_r)]`` or
   ``[WIND_POWER, V_ref, z_ref, alpha]``;
-* drag coefficient: ``[DRAG_CONSTANT, C_d]`` or ``[DRAG_CYLINDER, 0]``.
+* drag coefficient: ``[DRAG_CONSTANT, C_d, lambda]`` or ``[DRAG_CYLINDER, 0, lambda]``,
+  the coefficient times lambda (1, or the factor of a
+  :class:`~fem_tether.drag_coefficient.ScaledDrag`).
 
 Imported only with a solver's kernels, so numba is loaded only by a process
 that runs them.
@@ -48,7 +50,7 @@ def _air_table(air) -> np.ndarray:
         return np.array([AIR_ISA, 0.0, 0.0])
     if isinstance(air, atmosphere.ConstantAir):
         return np.array([AIR_CONSTANT, air.rho_kg_m3, air.mu_Pa_s])
-    raise TypeError(f"no compiled twin of the air model {air!r}")
+    raise TypeError(f"no compiled twin of the air model {air!r} (the NumPy kernel runs any model)")
 
 
 def _wind_rows(profile) -> list:
@@ -60,15 +62,17 @@ def _wind_rows(profile) -> list:
         return [[WIND_LOG, profile.v0_mps, profile.zr_m, profile._log_z0_zr]]
     if isinstance(profile, wind.PowerWind):
         return [[WIND_POWER, profile.reference_speed_mps, profile.reference_height_m, profile.alpha]]
-    raise TypeError(f"no compiled twin of the wind profile {profile!r}")
+    raise TypeError(f"no compiled twin of the wind profile {profile!r} (the NumPy kernel runs any model)")
 
 
 def _drag_table(drag) -> np.ndarray:
+    if isinstance(drag, drag_coefficient.ScaledDrag) and not isinstance(drag.base, drag_coefficient.ScaledDrag):
+        return _drag_table(drag.base) * np.array([1.0, 1.0, drag.factor])
     if isinstance(drag, drag_coefficient.CylinderDrag):
-        return np.array([DRAG_CYLINDER, 0.0])
+        return np.array([DRAG_CYLINDER, 0.0, 1.0])
     if isinstance(drag, drag_coefficient.ConstantDrag):
-        return np.array([DRAG_CONSTANT, drag.value])
-    raise TypeError(f"no compiled twin of the drag model {drag!r}")
+        return np.array([DRAG_CONSTANT, drag.value, 1.0])
+    raise TypeError(f"no compiled twin of the drag model {drag!r} (the NumPy kernel runs any model)")
 
 
 def tables(physics) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -79,7 +83,8 @@ def tables(physics) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     would weigh them differently, and none is configurable)."""
     if isinstance(physics.wind, wind.MeanOfProfiles) and any(
             isinstance(p, wind.MeanOfProfiles) for p in physics.wind.profiles):
-        raise TypeError("no compiled twin of a mean of means of wind profiles")
+        raise TypeError("no compiled twin of a mean of means of wind profiles "
+                        "(the NumPy kernel runs any model)")
     return _air_table(physics.air), np.array(_wind_rows(physics.wind)), _drag_table(physics.drag)
 
 
@@ -144,26 +149,28 @@ def wind_state(rows, z_m, speed_mps, shear_per_s):
         shear_per_s[i] = shear / n
 
 
+@numba.njit(cache=True, error_model="numpy")
+def _coefficient(drag, r):
+    """(C_d,c, dC_d,c/dRe) of the table's model at Re = r."""
+    if drag[0] == DRAG_CONSTANT:
+        return drag[1], 0.0
+    if r < BELAN_TORDELLA_MAX_RE:          # 4 (pi/Re)^(1/2) B(Re)
+        scale = 4.0 * math.sqrt(math.pi / r)
+        b = 1.16 + 5.1e-3 * r - 1.9e-5 * r**2
+        return scale * b, scale * (5.1e-3 - 3.8e-5 * r - b / (2.0 * r))
+    log_re = math.log(r)                   # C_i (Re/Re_i)^s_i on interval i
+    k = min(max(np.searchsorted(LOG_RE, log_re, side="right") - 1, 0), SLOPE.shape[0] - 1)
+    cd = math.exp(LOG_CD[k] + SLOPE[k] * (min(log_re, LOG_RE[-1]) - LOG_RE[k]))
+    return cd, (SLOPE[k] if log_re < LOG_RE[-1] else 0.0) * cd / r
+
+
 @jit(f"void({V}, {V}, {V}, {V})")
 def drag_coefficient_state(drag, re, cd, dcd_dre):
-    """C_d,c(Re) and dC_d,c/dRe at the Reynolds numbers ``re``
-    (:class:`~fem_tether.drag_coefficient.CylinderDrag`: Belan-Tordella below
-    Re = 40, the experimental curve's power laws above; or
+    """C_d,c(Re) and dC_d,c/dRe at the Reynolds numbers ``re``, times the
+    table's factor (:class:`~fem_tether.drag_coefficient.CylinderDrag`:
+    Belan-Tordella below Re = 40, the experimental curve's power laws above; or
     :class:`~fem_tether.drag_coefficient.ConstantDrag`)."""
-    last = SLOPE.shape[0] - 1
     for i in range(re.shape[0]):
-        if drag[0] == DRAG_CONSTANT:
-            cd[i] = drag[1]
-            dcd_dre[i] = 0.0
-            continue
-        r = re[i]
-        if r < BELAN_TORDELLA_MAX_RE:      # 4 (pi/Re)^(1/2) B(Re)
-            scale = 4.0 * math.sqrt(math.pi / r)
-            b = 1.16 + 5.1e-3 * r - 1.9e-5 * r**2
-            cd[i] = scale * b
-            dcd_dre[i] = scale * (5.1e-3 - 3.8e-5 * r - b / (2.0 * r))
-            continue
-        log_re = math.log(r)               # C_i (Re/Re_i)^s_i on interval i
-        k = min(max(np.searchsorted(LOG_RE, log_re, side="right") - 1, 0), last)
-        cd[i] = math.exp(LOG_CD[k] + SLOPE[k] * (min(log_re, LOG_RE[-1]) - LOG_RE[k]))
-        dcd_dre[i] = (SLOPE[k] if log_re < LOG_RE[-1] else 0.0) * cd[i] / r
+        value, slope = _coefficient(drag, re[i])
+        cd[i] = drag[2] * value
+        dcd_dre[i] = drag[2] * slope

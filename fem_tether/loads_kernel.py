@@ -75,7 +75,7 @@ def drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre
     dc_dn_n = half_rho_d * (cd[i] + re_dcd) * n
     a = along[i]
     k_s = 0.5 * rho[i] * math.pi * diameter_m * skin_friction_cf * abs(a)
-    u = vn[i] / n_safe
+    u = (vn[i, 0] / n_safe, vn[i, 1] / n_safe, vn[i, 2] / n_safe)
     for p in range(3):
         d_drho[p] = 0.5 * diameter_m * n_safe * (cd[i] + re_dcd) * vn[i, p] \
             + (k_s / rho[i]) * a * tangent[i, p]

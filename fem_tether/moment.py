@@ -16,7 +16,7 @@ def cross(a, b) -> np.ndarray:
     """a x b over the last axis (length 3), component by component as
     ``np.cross`` computes it, without its axis handling (it is called every step)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))
     out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
     out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
     out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]

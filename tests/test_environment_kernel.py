@@ -5,7 +5,7 @@ import pytest
 
 from fem_tether import environment_kernel as ek
 from fem_tether.atmosphere import ISA, TROPOPAUSE_M, ConstantAir
-from fem_tether.drag_coefficient import ConstantDrag, CylinderDrag
+from fem_tether.drag_coefficient import ConstantDrag, CylinderDrag, ScaledDrag
 from fem_tether.tether import TetherPhysics
 from fem_tether.wind import DE_BILT, DE_BILT_ANNUAL, MeanOfProfiles, NoWind, PowerWind
 
@@ -53,7 +53,8 @@ def test_wind_state_equals_the_profile(profile):
     close(shear, profile.shear_per_s(z))
 
 
-@pytest.mark.parametrize("drag", [CylinderDrag(), ConstantDrag(1.1)])
+@pytest.mark.parametrize("drag", [CylinderDrag(), ConstantDrag(1.1), ScaledDrag(CylinderDrag(), 0.37),
+                                  ScaledDrag(ConstantDrag(1.1), 0.0)])
 def test_drag_coefficient_state_equals_the_model(drag):
     """C_d,c and dC_d,c/dRe at 400 Reynolds numbers from 1e-3 to 1e8, at the
     branch switch Re = 40 and on the curve's nodes."""
@@ -66,7 +67,9 @@ def test_drag_coefficient_state_equals_the_model(drag):
     close(dcd, ref_dcd)
 
 
-def test_a_mean_of_means_has_no_twin():
+def test_models_without_a_twin_are_named():
     nested = MeanOfProfiles((DE_BILT_ANNUAL, DE_BILT["winter"]))
     with pytest.raises(TypeError, match="mean of means"):
         ek.tables(physics(wind=nested))
+    with pytest.raises(TypeError, match="drag model ScaledDrag.*NumPy kernel"):
+        ek.tables(physics(drag=ScaledDrag(ScaledDrag(CylinderDrag(), 0.5), 0.5)))

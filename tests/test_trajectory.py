@@ -132,3 +132,15 @@ def test_direction_at_is_the_unit_state():
     for end in (eight, still):
         for t in (0.0, 1.234, np.linspace(0.0, 20.0, 7)):
             assert np.array_equal(end.direction_at(t), end.state(t, 1.0)[0])
+
+
+def test_one_point_of_a_piecewise_polynomial_equals_the_bpoly(eight):
+    """The arc length s(tau) and its inverse at 200 single points (inside, on
+    the knots and just beyond both ends, as a Newton iterate may be): Horner on
+    the power basis equals scipy's Bernstein evaluation to 1e-14 of the loop
+    length (resp. of 2 pi)."""
+    for poly, ends, scale in ((eight._arc_m, (0.0, 2 * np.pi), eight._loop_m),
+                              (eight._tau_of_arc, (0.0, eight._loop_m), 2 * np.pi)):
+        points = np.concatenate([np.linspace(ends[0] - 1e-6, ends[1] + 1e-6, 190), poly.bpoly.x[::60]])
+        one_by_one = np.array([poly(float(p)) for p in points])
+        np.testing.assert_allclose(one_by_one, poly(points), rtol=0, atol=1e-14 * scale)

@@ -30,17 +30,23 @@ import math
 import numba
 import numpy as np
 
+from fem_tether.environment_kernel import air_state, drag_coefficient_state, wind_state
 from fem_tether.fe.system import BAND
 from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
+from fem_tether.protocol_kernel import expect_converged
 
-__all__ = ["jacobian", "midpoints", "newton_step", "normal_flow", "residual"]
+__all__ = ["evaluate", "jacobian", "midpoints", "newton_step", "normal_flow", "residual", "solve_step"]
 
-V, M, F, B = "f8[:]", "f8[:, :]", "f8", "b1"     # vector, matrix (any layout), float, bool
+V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
+X = "f8[::1]"                                             # contiguous vector
+
+CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE = 0, 1, 2
+"""What :func:`solve_step` returns."""
 
 
-def jit(*types):
+def jit(*types, returns="void"):
     """Compile for one signature (any array layout): one compilation per kernel."""
-    return numba.njit(f"void({', '.join(types)})", cache=True, error_model="numpy")
+    return numba.njit(f"{returns}({', '.join(types)})", cache=True, error_model="numpy")
 
 
 @jit(M, M, F, V, M, M, M, M)
@@ -110,7 +116,9 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     ``-k h_e / EA`` on its diagonal; the diagonal of node i's rows
     ``c_a m_i`` (interior) or ``k`` (kinematic ends).
     """
-    band[:] = 0.0
+    for col in range(band.shape[1]):      # column by column: the band is in Fortran order
+        for row in range(band.shape[0]):
+            band[row, col] = 0.0
     diag = 2 * BAND
     n_el = tau.shape[0]
     proj, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu = derivative_work()
@@ -199,8 +207,9 @@ def _band_factor(band):
         if jp != 0:
             for c in range(j, ju + 1):
                 band[kv + j - c, c], band[kv + j + jp - c, c] = band[kv + j + jp - c, c], band[kv + j - c, c]
+        scale = 1.0 / band[kv, j]
         for i in range(1, km + 1):
-            band[kv + i, j] /= band[kv, j]
+            band[kv + i, j] *= scale
         for c in range(j + 1, ju + 1):
             u = band[kv + j - c, c]
             if u != 0.0:
@@ -251,3 +260,151 @@ def newton_step(band, residual, r_col, tension_mode, k_s, dx):
     for i in range(n - 1):
         dx[i] = yz[i, 0] - yz[i, 1] * dR
     dx[n - 1] = dR
+
+
+#: The arguments of :func:`evaluate` after its outputs' inputs: the models as numbers
+#: (:func:`fem_tether.environment_kernel.tables`), then the line's constants.
+LINE = (V, M, V, F, F, V, V, V, M, V, F, F, B)
+#: :func:`evaluate`'s outputs: residual, tau, |D r|, r_mid, f_t, V_n, |V_n|, Re, C_d,c, band.
+OUTPUTS = (V, M, V, M, M, M, V, V, V, M)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
+              with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
+              compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn, vn_mps,
+              re, cd, band):
+    """:func:`evaluate`'s work (returns the same)."""
+    n_el = tau.shape[0]
+    v_mid, dv, v_rel = np.empty((n_el, 3)), np.empty((n_el, 3)), np.empty((n_el, 3))
+    speed, shear, along, dcd_dre = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
+    rho, mu, drho_dz, dmu_dz = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
+    midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv)
+    z = r_mid[:, 2]
+    above = air_state(air, z, rho, mu, drho_dz, dmu_dz)
+    if above >= 0:
+        return above
+    wind_state(wind, z, speed, shear)
+    normal_flow(v_mid, speed, tau, rho, mu, diameter_m, v_rel, along, vn, vn_mps, re)
+    drag_coefficient_state(drag, re, cd, dcd_dre)
+    residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
+             skin_friction_cf, weight, mass, interior, w, h, k_s, compliance_per_N, damping_time_s,
+             tension_mode, ground_tension_N, radius_m, force, res)
+    if with_jacobian:
+        jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu, drho_dz, dmu_dz,
+                 shear, mass, interior, w, h, diameter_m, skin_friction_cf, k_s, compliance_per_N,
+                 damping_time_s, c_a, c_v, reel_mps, band)
+    return -1
+
+
+@jit(M, M, M, V, F, V, F, F, F, F, F, F, B, *LINE, *OUTPUTS, returns=I)
+def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
+             with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
+             compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn, vn_mps,
+             re, cd, band):
+    """One evaluation of the equations (:meth:`.system.TetherSystem.evaluate`) in one call:
+    :func:`midpoints`, the air, wind and C_d,c there
+    (:mod:`fem_tether.environment_kernel`), :func:`normal_flow`, :func:`residual`
+    and, ``with_jacobian``, :func:`jacobian`.  Returns -1, or the index of a
+    midpoint above the ISA troposphere (the outputs then incomplete)."""
+    return _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
+                     with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior,
+                     w, h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force,
+                     vn, vn_mps, re, cd, band)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _max_abs(x):
+    """max |x_i|, NaN if any is (as NumPy's max)."""
+    out = 0.0
+    for value in x:
+        a = abs(value)
+        if a > out or a != a:
+            out = a
+    return out
+
+
+@jit(X, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, returns=I)
+def solve_step(x, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
+               ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, reel_mps, newton_tol, max_newton,
+               air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
+               damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
+               info):
+    """One generalised-alpha time step of size ``dt_s`` from the state
+    ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as the
+    NumPy path of :func:`fem_tether.fe.solver._step` takes it.
+
+    The unknowns ``x`` (interleaved ordering) start from the predictor
+    ``q_n + dt v_n + dt^2/2 a_n`` with ``T_n`` and ``R_n``
+    (:meth:`~fem_tether.fe.integrator.Kinematics.predict`) and end at the
+    solution.  Each iterate's kinematics are affine in its positions q (the
+    terms of :class:`~fem_tether.fe.integrator.Step`, computed here as there):
+    ``a = (q - q_known) / (beta dt^2)``, ``v = v_known + dt gamma a``,
+    ``qdd = qdd_known + (1 - alpha_m)/(1 - alpha_f) a``, into ``v``, ``a``,
+    ``qdd``.  Each iteration evaluates the equations (:func:`evaluate`;
+    without the Jacobian when the iterate is expected converged,
+    :func:`~fem_tether.protocol_kernel.expect_converged`), stops when the largest
+    residual is within ``newton_tol`` of ``force_ref_N``, and otherwise takes
+    :func:`newton_step`.  Returns :data:`CONVERGED` (the last evaluation's
+    outputs are the solution's), :data:`NOT_CONVERGED` (no convergence within
+    ``max_newton`` iterations, a non-finite residual or a singular Jacobian) or
+    :data:`LEFT_ATMOSPHERE` (a midpoint of ``r_mid`` above the ISA troposphere);
+    ``info`` = (iterations, last scaled residual).  ``x`` is contiguous (r and
+    T are views into it)."""
+    n = x.shape[0]
+    nodes = x.reshape((n // 4, 4))
+    r = nodes[:, :3]
+    T = x[3:n - 1:4]
+    q_known, v_known, qdd_known = np.empty_like(v), np.empty_like(v), np.empty_like(v)
+    for i in range(r.shape[0]):
+        for k in range(3):
+            r[i, k] = q_n[i, k] + dt_s * v_n[i, k] + 0.5 * dt_s * dt_s * a_n[i, k]
+            q_known[i, k] = q_n[i, k] + dt_s * v_n[i, k] + dt_s * dt_s * (0.5 - beta) * a_n[i, k]
+            v_known[i, k] = v_n[i, k] + dt_s * (1.0 - gamma) * a_n[i, k]
+            qdd_known[i, k] = (alpha_m * a_n[i, k] - alpha_f * qdd_n[i, k]) / (1.0 - alpha_f)
+    T[:] = T_n
+    x[n - 1] = R_n
+    a_per_q = 1.0 / (beta * dt_s * dt_s)
+    v_per_a = dt_s * gamma
+    qdd_per_a = (1.0 - alpha_m) / (1.0 - alpha_f)
+    band = np.empty((n - 1, 3 * BAND + 1)).T
+    r_col = np.zeros(n - 1)
+    for k in range(3):
+        r_col[n - 4 + k] = -k_s * kite_dir[k]
+    dx = np.empty(n)
+
+    def evaluate_here(R, with_jacobian):
+        return _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
+                         with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass,
+                         interior, w, h, compliance_per_N, damping_time_s, tension_mode, res, tau, length,
+                         r_mid, force, vn, vn_mps, re, cd, band)
+
+    worst = last = math.inf
+    info[0] = 0.0
+    for _ in range(max_newton):
+        R = x[n - 1]
+        for i in range(r.shape[0]):
+            for k in range(3):
+                a[i, k] = (r[i, k] - q_known[i, k]) * a_per_q
+                v[i, k] = v_known[i, k] + v_per_a * a[i, k]
+                qdd[i, k] = qdd_known[i, k] + qdd_per_a * a[i, k]
+        with_jacobian = not expect_converged(worst, last, newton_tol)
+        info[1] = worst
+        if evaluate_here(R, with_jacobian) >= 0:
+            return LEFT_ATMOSPHERE
+        info[0] += 1.0
+        worst, last = _max_abs(res) / force_ref_N, worst
+        info[1] = worst
+        if not math.isfinite(worst):
+            return NOT_CONVERGED
+        if worst <= newton_tol:
+            return CONVERGED
+        # expected converged, but not: the Jacobian after all
+        if not with_jacobian and evaluate_here(R, True) >= 0:
+            return LEFT_ATMOSPHERE
+        newton_step(band, res, r_col, tension_mode, k_s, dx)
+        if math.isnan(dx[0]):
+            return NOT_CONVERGED
+        for i in range(n):
+            x[i] += dx[i]
+    return NOT_CONVERGED

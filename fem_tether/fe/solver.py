@@ -258,17 +258,26 @@ def initial_state(model: FEModel, t=0.0) -> State:
 
 def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     """One generalised-alpha step of size h solved by Newton (iterations counted in
-    ``stats``); raises :class:`NotConverged`."""
+    ``stats``); raises :class:`NotConverged`.  A compiled system takes the whole
+    step in one call (:meth:`TetherSystem.solve_step`); the NumPy iteration below
+    is its reference."""
     sys_ = model.system
     t_new = state.t + h
     e = model.end.direction_at(t_new)
-    c_a, c_v = model.scheme.coefficients(h)
     f_ref = model.force_ref_N(state.T, sys_.physics)
+    kin = state.kin
+    if sys_.compiled:
+        x, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h, model.scheme,
+                                           e, model.ground_tension_N, model.radius_m, f_ref, model.reel_mps,
+                                           model.newton_tol, model.max_newton, stats)
+        r, T, R = sys_.unpack(x)
+        return State(t_new, Kinematics(r, v, a, qdd), T, float(R), ev)
+    c_a, c_v = model.scheme.coefficients(h)
     # the unknowns in one vector, r and T views into it; each Newton update adds in place
-    x = sys_.pack(state.kin.predict(h), state.T, state.R)
+    x = sys_.pack(kin.predict(h), state.T, state.R)
     r, T, _ = sys_.unpack(x)
+    step = kin.step(h, model.scheme)
     worst = last = math.inf            # last: the residual before worst
-    step = state.kin.step(h, model.scheme)
 
     def evaluate(jacobian):
         try:

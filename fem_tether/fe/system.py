@@ -29,6 +29,9 @@ from typing import Any
 import numpy as np
 from scipy.linalg.lapack import dgbsv
 
+from fem_tether.atmosphere import AltitudeError
+from fem_tether.continuation import NotConverged
+from fem_tether.errors import left_atmosphere
 from fem_tether.fe.spaces import TetherSpaces
 from fem_tether.loads import CrossflowDrag, crossflow_drag
 from fem_tether.tether import TetherPhysics
@@ -86,6 +89,7 @@ class TetherSystem:
     compiled: bool = True
     _idx: dict = field(init=False, repr=False)
     _kernel: Any = field(init=False, repr=False)      # the module fem_tether.fe.kernel, if compiled
+    _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag tables
 
     def __post_init__(self):
         n_el = self.spaces.n_elements
@@ -101,7 +105,11 @@ class TetherSystem:
         self._sgn_ab = (sgn[:, None] * sgn[None, :] * node_interior[:, :, None])[:, :, :, None, None]
         self._sgn_a = sgn[None, :, None] * node_interior[:, :, None]
         self._interior_ab = node_interior
-        self._kernel = importlib.import_module("fem_tether.fe.kernel") if self.compiled else None
+        if self.compiled:
+            self._kernel = importlib.import_module("fem_tether.fe.kernel")
+            self._kernel_env = importlib.import_module("fem_tether.environment_kernel").tables(self.physics)
+        else:
+            self._kernel, self._kernel_env = None, ()
         self._scatter = np.concatenate([self._idx[k].ravel() for k in ("rr", "rT", "Tr", "TT", "mass")]) \
             + BAND * (self.n - 1)
         self._set_lengths()
@@ -215,44 +223,69 @@ class TetherSystem:
                                                  kite_dir, reel_mps)
         return out
 
+    def _line_constants(self) -> tuple:
+        """The compiled kernels' models and line constants (:data:`.kernel.LINE`)."""
+        ph, sp = self.physics, self.spaces
+        return (*self._kernel_env, ph.diameter_m, ph.skin_friction_cf, self.weight, sp.mass_kg,
+                self.interior, self.load_weights, sp.h_m, ph.compliance_per_N, ph.damping_time_s,
+                self.tension_mode)
+
+    def _outputs(self) -> tuple:
+        """Fresh arrays for a compiled evaluation's outputs (:data:`.kernel.OUTPUTS`, without the band)."""
+        n_el = self.spaces.n_elements
+        return (np.empty(self.n), np.empty((n_el, 3)), np.empty(n_el), np.empty((n_el, 3)),
+                np.empty((n_el, 3)), np.empty((n_el, 3)), np.empty(n_el), np.empty(n_el), np.empty(n_el))
+
+    def _evaluation(self, k_s, outputs) -> Evaluation:
+        res, tau, length, r_mid, force, vn, vn_mps, re, cd = outputs
+        return Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
+
     def _evaluate_compiled(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
                            force_ref_N, c_a, c_v, jacobian, reel_mps) -> Evaluation:
-        """:meth:`evaluate` by the kernels of :mod:`.kernel`, the leaf physics between them."""
-        ph = self.physics
-        sp = self.spaces
-        n_el = sp.n_elements
+        """:meth:`evaluate` by :func:`.kernel.evaluate`, in one call."""
         k_s = force_ref_N / self._h_mean
-        length, tau, r_mid, v_mid, dv = (np.empty(n_el), np.empty((n_el, 3)), np.empty((n_el, 3)),
-                                         np.empty((n_el, 3)), np.empty((n_el, 3)))
-        self._kernel.midpoints(r, v, float(reel_mps), length, tau, r_mid, v_mid, dv)
-        z = r_mid[:, 2]
-        air = ph.air.state(z, gradients=jacobian)
-        v_rel, along, vn, vn_mps, re = (np.empty((n_el, 3)), np.empty(n_el), np.empty((n_el, 3)),
-                                        np.empty(n_el), np.empty(n_el))
-        self._kernel.normal_flow(v_mid, ph.wind.speed_mps(z), tau, air.density_kg_m3,
-                                 air.viscosity_Pa_s, ph.diameter_m, v_rel, along, vn, vn_mps, re)
+        outputs = self._outputs()
+        band = np.empty((3 * BAND + 1, self.n - 1), order="F")
+        above = self._kernel.evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v,
+                                      float(reel_mps), jacobian, *self._line_constants(), *outputs, band)
+        if above >= 0:
+            raise AltitudeError(float(np.max(outputs[3][:, 2])))
+        out = self._evaluation(k_s, outputs)
         if jacobian:
-            cd, dcd_dre = ph.drag.cd_and_dcd_dre(re)
-        else:
-            cd = ph.drag.cd(re)
-        force, res = np.empty((n_el, 3)), np.empty(self.n)
-        self._kernel.residual(r, dv, qdd, T, R, kite_dir, tau, length, air.density_kg_m3, cd, vn,
-                              vn_mps, along, ph.diameter_m, ph.skin_friction_cf, self.weight,
-                              sp.mass_kg, self.interior, self.load_weights, sp.h_m, k_s,
-                              ph.compliance_per_N, ph.damping_time_s, self.tension_mode,
-                              ground_tension_N, radius_m, force, res)
-        out = Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
-        if jacobian:
-            out.band = np.empty((3 * BAND + 1, self.n - 1), order="F")
-            self._kernel.jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre,
-                                  air.density_kg_m3, air.viscosity_Pa_s, air.density_gradient_kg_m4,
-                                  air.viscosity_gradient_Pa_s_m, ph.wind.shear_per_s(z), sp.mass_kg,
-                                  self.interior, self.load_weights, sp.h_m, ph.diameter_m,
-                                  ph.skin_friction_cf, k_s, ph.compliance_per_N, ph.damping_time_s,
-                                  c_a, c_v, float(reel_mps), out.band)
+            out.band = band
             out.r_col = np.zeros(self.n - 1)
             out.r_col[-3:] = -k_s * kite_dir
         return out
+
+    def solve_step(self, q, v, a, qdd, T, R, dt_s, scheme, kite_dir, ground_tension_N, radius_m,
+                   force_ref_N, reel_mps, newton_tol, max_newton, stats):
+        """One time step of size ``dt_s`` from the kinematics ``(q, v, a, qdd)``
+        and ``T``, ``R``, by the compiled :func:`.kernel.solve_step` (the
+        generalised-alpha ``scheme``'s predictor, kinematics and Newton's
+        iteration in one call).
+
+        Returns ``(x, v, a, qdd, evaluation)`` at the solution (``x`` the
+        unknowns in the interleaved ordering); raises
+        :class:`~fem_tether.continuation.NotConverged` as the NumPy iteration
+        does (with the altitude when an iterate left the atmosphere).  The
+        iterations are added to ``stats.newton_iterations``."""
+        x = np.empty(self.n)
+        v_new, a_new, qdd_new = np.empty_like(v), np.empty_like(v), np.empty_like(v)
+        k_s = force_ref_N / self._h_mean
+        c_a, c_v = scheme.coefficients(dt_s)
+        outputs = self._outputs()
+        info = np.zeros(2)
+        status = self._kernel.solve_step(
+            x, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma, kite_dir,
+            ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol, max_newton,
+            *self._line_constants(), v_new, a_new, qdd_new, *outputs, info)
+        stats.newton_iterations += int(info[0])
+        if status == self._kernel.CONVERGED:
+            return x, v_new, a_new, qdd_new, self._evaluation(k_s, outputs)
+        if status == self._kernel.LEFT_ATMOSPHERE:
+            raise NotConverged(float(info[1]),
+                               left_atmosphere(AltitudeError(float(np.max(outputs[3][:, 2])))))
+        raise NotConverged(float(info[1]))
 
     @staticmethod
     def _nodal_difference(y):

@@ -1,0 +1,17 @@
+"""The compiled Newton rule equals fem_tether.protocol.expect_converged."""
+
+import math
+
+import numpy as np
+
+from fem_tether import protocol, protocol_kernel
+
+
+def test_expect_converged_equals_the_protocols_rule():
+    """Over residual pairs from 1e-16 to 1e4, infinite and NaN: the same answer."""
+    values = np.concatenate([np.geomspace(1e-16, 1e4, 60), [0.0, math.inf, math.nan]])
+    for worst in values:
+        for before in values:
+            for tol in (1e-10, 1e-8):
+                assert protocol_kernel.expect_converged(worst, before, tol) \
+                    == protocol.expect_converged(worst, before, tol)
