@@ -192,6 +192,7 @@ def _band_factor(band):
     n = band.shape[1]
     kv = 2 * BAND
     ipiv = np.empty(n, np.int64)
+    multiplier = np.empty(BAND + 1)      # column j's multipliers below the pivot, 1..km
     ju = 0
     for j in range(n):
         km = min(BAND, n - 1 - j)
@@ -210,11 +211,16 @@ def _band_factor(band):
         scale = 1.0 / band[kv, j]
         for i in range(1, km + 1):
             band[kv + i, j] *= scale
+            multiplier[i] = band[kv + i, j]
         for c in range(j + 1, ju + 1):
             u = band[kv + j - c, c]
             if u != 0.0:
-                for i in range(1, km + 1):
-                    band[kv + j + i - c, c] -= band[kv + i, j] * u
+                if km == BAND:            # a loop of fixed length, unrolled by the compiler
+                    for i in range(1, BAND + 1):
+                        band[kv + j + i - c, c] -= multiplier[i] * u
+                else:
+                    for i in range(1, km + 1):
+                        band[kv + j + i - c, c] -= multiplier[i] * u
     return ipiv
 
 
