@@ -30,23 +30,22 @@ install pays the compile time.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
 import numba
 import numpy as np
 
-from fem_tether.continuation import ScaledDrag
 from fem_tether.environment_kernel import air_state, drag_coefficient_state, tables, wind_state
 from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
+from fem_tether.protocol_kernel import expect_converged
 
-__all__ = ["assemble", "directions", "evaluate", "expect_converged", "jacobian", "physics_tables",
-           "residual", "solve", "solve_step"]
+__all__ = ["assemble", "directions", "evaluate", "jacobian", "physics_tables", "residual", "solve",
+           "solve_step"]
 
 V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
-PHYSICS = f"Tuple(({V}, {M}, {V}, {V}, UniTuple({F}, 6)))"
+PHYSICS = f"Tuple(({V}, {M}, {V}, {V}, UniTuple({F}, 5)))"
 """A line's physics (:func:`physics_tables`): the air, wind and
 drag-coefficient tables of :func:`fem_tether.environment_kernel.tables`, the
-weight w per length (3) and ``(mu, 1/EA, eta, d, c_f, C_d scale)``."""
+weight w per length (3) and ``(mu, 1/EA, eta, d, c_f)``."""
 
 
 GRID = f"Tuple(({V}, {V}, i8[:], i8[:], i8[:], i8, i8))"
@@ -58,16 +57,10 @@ vectors and lengths), and the drag force, |V_n|, Re and C_d."""
 
 
 def physics_tables(physics) -> tuple:
-    """A :class:`~fem_tether.tether.TetherPhysics` as :data:`PHYSICS`; a load
-    factor's drag coefficient (:class:`~fem_tether.continuation.ScaledDrag`,
-    static solves) as its model's table and the factor."""
-    scaled = physics.drag
-    drag, cd_scale = (scaled.base, scaled.factor) if isinstance(scaled, ScaledDrag) else (scaled, 1.0)
-    air, wind_rows, drag_table = tables(replace(physics, drag=drag))
-    return (air, wind_rows, drag_table, np.asarray(physics.weight_N_m, dtype=float),
+    """A :class:`~fem_tether.tether.TetherPhysics` as :data:`PHYSICS`."""
+    return (*tables(physics), np.asarray(physics.weight_N_m, dtype=float),
             tuple(float(c) for c in (physics.linear_density_kg_m, physics.compliance_per_N,
-                                     physics.damping_time_s, physics.diameter_m, physics.skin_friction_cf,
-                                     cd_scale)))
+                                     physics.damping_time_s, physics.diameter_m, physics.skin_friction_cf)))
 
 
 
@@ -314,7 +307,7 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     their derivatives.  Returns -1, or the index of the first node above the
     ISA troposphere (then nothing after the air is computed)."""
     air, wind_rows, drag, weight, line = physics
-    mu, compliance_per_N, damping_time_s, diameter_m, skin_friction_cf, cd_scale = line
+    mu, compliance_per_N, damping_time_s, diameter_m, skin_friction_cf = line
     hbar, h, put, kite_first, kite_target, _, _ = grid
     unit, length, force, vn_mps, re, cd = nodal
     n_nodes, n_seg = r.shape[0], T.shape[0]
@@ -334,9 +327,6 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     v_rel, vn = np.empty((n_nodes, 3)), np.empty((n_nodes, 3))
     normal_flow(v_line, wind_mps, tangent, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re)
     drag_coefficient_state(drag, re, cd, dcd_dre)
-    for i in range(n_nodes):            # a load factor's C_d (continuation.ScaledDrag)
-        cd[i] *= cd_scale
-        dcd_dre[i] *= cd_scale
     drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf, force)
     residual(a, v_line, T, unit[:n_seg], length[:n_seg], force, weight, hbar, h, mu, compliance_per_N,
              damping_time_s, force_ref_N, res)
@@ -347,15 +337,6 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
                  c_a, c_v, force_ref_N, hbar, h, values)
         assemble(values, put, kite_first, kite_target, kite_dir, band)
     return -1
-
-
-@numba.njit("b1(f8, f8, f8)", cache=True, error_model="numpy")
-def expect_converged(worst, before, tol):
-    """Twin of :func:`fem_tether.protocol.expect_converged` (the tests hold the
-    two together): whether the Newton iterate after residuals ``before`` and then
-    ``worst`` (max norms) is expected within ``tol``, ``worst^2 / before^2``
-    times ``worst`` below a tenth of it."""
-    return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -422,7 +403,7 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
 
     From the predictor (:func:`_predictor`), each iteration evaluates the
     equations (:func:`evaluate`; the Jacobian skipped where the iterate is
-    expected to converge, :func:`expect_converged`, and evaluated after all
+    expected to converge, :func:`fem_tether.protocol_kernel.expect_converged`, and evaluated after all
     where it then does not) and subtracts the Newton update from the active
     unknowns (T_{1/2} known in tension mode, R otherwise), up to
     ``max_newton`` times; it stops at ``max |residual| <= newton_tol``, on a
