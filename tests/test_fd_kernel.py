@@ -8,7 +8,10 @@ import numpy as np
 import pytest
 
 import fem_tether.fd as fd
+from fem_tether import protocol
+from fem_tether.bench import BENCH_CASE
 from fem_tether.config import load_config
+from fem_tether.continuation import NotConverged
 from fem_tether.fd import kernel
 from fem_tether.fd.system import Grid, TetherFD
 
@@ -34,6 +37,16 @@ def _model(overrides, reel_mps, kernel):
     return model
 
 
+def _static_state(model, reel_mps):
+    """The static equilibrium of ``model`` (for a reeling model, from the
+    straight line on its unequal grid)."""
+    st = fd.static_equilibrium(model)
+    if reel_mps:
+        st = fd.static_equilibrium(model, guess=(model.grid.s_m[:, None] * st.r[-1] / st.R,
+                                                 np.full(model.grid.M, st.T[0]), st.R))
+    return st
+
+
 def _close(x, y, rel):
     """Within ``rel`` of y's largest entry."""
     assert np.max(np.abs(x - y)) <= rel * np.max(np.abs(y))
@@ -52,10 +65,7 @@ def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
     largest entry."""
     compiled, reference = (_model(overrides, reel_mps, k) for k in ("compiled", "numpy"))
     assert compiled.eq.compiled and not reference.eq.compiled
-    st = fd.static_equilibrium(reference)
-    if reel_mps:
-        st = fd.static_equilibrium(reference, guess=(reference.grid.s_m[:, None] * st.r[-1] / st.R,
-                                                     np.full(20, st.T[0]), st.R))
+    st = _static_state(reference, reel_mps)
     rng = np.random.default_rng(7)
     e = reference.end.state(0.7, 1.0)[0]
     for h in (0.05, 0.025, 0.2):
@@ -78,6 +88,73 @@ def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
                 np.testing.assert_allclose(p, q, rtol=1e-13, atol=1e-13 * np.max(np.abs(q)))
             assert np.array_equal(compiled.eq.evaluate(*args, jacobian=False, reel_mps=reel_mps).ab, x.ab)
             _close(compiled.eq.solve(x.ab, x.residual), reference.eq.solve(y.ab, y.residual), 1e-11)
+
+
+STEP_CASES = CASES | {
+    "bench physics: BENCH_CASE's air, drag and wind": (
+        {k: BENCH_CASE[k] for k in ("air", "drag", "wind")}, 0.0),
+}
+
+
+@pytest.mark.parametrize("overrides, reel_mps", STEP_CASES.values(), ids=STEP_CASES.keys())
+def test_compiled_step_equals_the_numpy_step(overrides, reel_mps):
+    """A whole implicit step (Euler, then BDF2 with that history) by the
+    compiled Newton loop and by the Python one from the same states: positions,
+    tensions, R and the reported drag within 1e-12 of their largest entry
+    (the velocities and accelerations, a0 = 1/h or 1.5/h times the positions'
+    and velocities' differences, follow), the same Newton iterations.  On the default
+    physics (ISA, De Bilt annual log wind, C_d(Re)), BENCH_CASE's, a reeling
+    step on an unequal grid with skin friction and an elastic Kelvin-Voigt line
+    paid in at a prescribed radius."""
+    compiled, reference = (replace(_model(overrides, reel_mps, k), scheme="bdf2") for k in ("compiled", "numpy"))
+    st0 = _static_state(reference, reel_mps)
+    st1 = fd.solver._step(reference, None, st0, 0.05, protocol.Statistics())
+    for prev, cur in ((None, st0), (st0, st1)):
+        results = []
+        for model in (compiled, reference):
+            stats = protocol.Statistics()
+            results.append((fd.solver._step(model, prev, cur, 0.05, stats), stats.newton_iterations))
+        (x, n_x), (y, n_y) = results
+        assert n_x == n_y >= 2
+        for p, q in ((x.r, y.r), (x.T, y.T), (x.R, y.R),
+                     (x.drag.force, y.drag.force), (x.drag.tangent, y.drag.tangent)):
+            _close(np.asarray(p), np.asarray(q), 1e-12)
+
+
+def _failed_step(model, st, h):
+    """The NotConverged of a step of ``model`` from ``st`` and the iterations it counted."""
+    stats = protocol.Statistics()
+    with pytest.raises(NotConverged) as failure:
+        fd.solver._step(model, None, st, h, stats)
+    return failure.value, stats.newton_iterations
+
+
+def test_compiled_step_reports_an_iterate_above_the_troposphere():
+    """A predictor above 11000 m (an upward velocity of 1e5 m/s at one node):
+    the compiled step raises the NotConverged of the NumPy step, the line
+    having left the atmosphere at the same altitude, after no iteration."""
+    failures = []
+    for k in ("compiled", "numpy"):
+        model = _model({}, 0.0, k)
+        st = fd.static_equilibrium(model)
+        st.v[7, 2] = 1e5
+        failures.append(_failed_step(model, st, 0.2))
+    (x, n_x), (y, n_y) = failures
+    assert "left the atmosphere" in x.cause and x.cause == y.cause
+    assert x.residual == y.residual == np.inf and n_x == n_y == 0
+
+
+def test_compiled_step_reports_no_convergence():
+    """Newton cut off after two iterations: both loops raise NotConverged with
+    the same last residual (within 1e-6 relative: it is ~1e-6 of F_ref) after
+    the same iterations."""
+    failures = []
+    for k in ("compiled", "numpy"):
+        model = replace(_model({}, 0.0, k), max_newton=2)
+        failures.append(_failed_step(model, fd.static_equilibrium(model), 0.05))
+    (x, n_x), (y, n_y) = failures
+    assert x.cause == y.cause == "" and n_x == n_y == 2
+    assert 0.0 < x.residual and abs(x.residual - y.residual) <= 1e-6 * y.residual
 
 
 @pytest.mark.parametrize("scheme, overrides", [
@@ -119,12 +196,14 @@ def test_singular_jacobian_raises(kernel, mode):
 
 @pytest.mark.parametrize("tension_mode", [True, False])
 def test_compiled_assembly_is_bitwise_the_numpy_one(tension_mode):
-    """Grid.assemble by the kernel's loop: the same band, bit for bit (the kite
-    node's entries summed along e(t) in tension mode)."""
+    """The kernel's assembly loop gives Grid.assemble's band, bit for bit (the
+    kite node's entries summed along e(t) in tension mode)."""
     g = Grid.from_lengths([13.0, 50.0, 37.0, 50.0, 61.0], tension_mode)
     values = np.random.default_rng(5).normal(size=33 * (g.M - 1) + 7 * g.M)
     e = np.array([0.6, 0.0, 0.8])
-    assert np.array_equal(g.assemble(values, e, kernel), g.assemble(values, e))
+    flat = g.empty_band()
+    kernel.assemble(values, *g.kernel_layout()[2:5], e, flat)
+    assert np.array_equal(g.band(flat), g.assemble(values, e))
 
 
 def test_band_solve_of_small_grids():

@@ -1,19 +1,21 @@
-"""Compiled kernels of the FD tether equations: residual, banded Jacobian and its solve.
+"""Compiled kernels of the FD tether equations: residual, banded Jacobian, their solve, a whole step.
 
 The same equations as :meth:`.system.TetherFD.evaluate` (whose NumPy
 implementation is the reference, and the tests hold the two together), written
 as loops over nodes and segments that numba compiles to machine code.  A
 Newton iteration of the NumPy version spends its time in the overhead of
 ~100 small array operations; compiled, it costs about as much as a few of
-them.  The leaf physics (wind, air, drag coefficient) stays in NumPy and is
-called between the kernels: :func:`directions` gives the tangents the relative
-flow needs, :func:`normal_flow` the Reynolds numbers the drag coefficient
-needs, and :func:`drag_force`, :func:`residual` and :func:`jacobian` the rest
-(the drag's loops, per point, are the leaf physics of
-:mod:`fem_tether.loads_kernel`, shared with the FE kernels);
-:func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``.
-Written for the FD grid on its own: the FE solver's kernels are not used (the
-FD solver is their independent reference); only the leaf physics is shared.
+them.  :func:`evaluate` is one evaluation of the equations: the tangents
+(:func:`directions`), the leaf physics at the nodes by its compiled twins
+(air, wind and drag coefficient, :mod:`fem_tether.environment_kernel`; the
+drag's loops, :mod:`fem_tether.loads_kernel`, shared with the FE kernels),
+the residual (:func:`residual`) and, when asked, the Jacobian's entries
+(:func:`jacobian`) assembled into the band (:func:`assemble`).
+:func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``;
+:func:`solve_step` runs the Newton iteration of one implicit time step
+(:func:`.solver._step`) in one call.  Written for the FD grid on its own: the
+FE solver's kernels are not used (the FD solver is their independent
+reference); only the leaf physics is shared.
 
 Notation as in :mod:`.system`: nodes 0..M, segments ``k + 1/2``
 (k = 0..M-1), interior nodes i = 1..M-1.  The Jacobian's entries are computed
@@ -32,11 +34,34 @@ import math
 import numba
 import numpy as np
 
+from fem_tether.environment_kernel import air_state, drag_coefficient_state, tables, wind_state
 from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
+from fem_tether.protocol_kernel import expect_converged
 
-__all__ = ["assemble", "directions", "drag_force", "jacobian", "normal_flow", "residual", "solve"]
+__all__ = ["assemble", "directions", "evaluate", "jacobian", "physics_tables", "residual", "solve",
+           "solve_step"]
 
 V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
+PHYSICS = f"Tuple(({V}, {M}, {V}, {V}, UniTuple({F}, 5)))"
+"""A line's physics (:func:`physics_tables`): the air, wind and
+drag-coefficient tables of :func:`fem_tether.environment_kernel.tables`, the
+weight w per length (3) and ``(mu, 1/EA, eta, d, c_f)``."""
+
+
+GRID = f"Tuple(({V}, {V}, i8[:], i8[:], i8[:], i8, i8))"
+"""A grid's lengths and band layout (:meth:`.system.Grid.kernel_layout`): hbar, h,
+the arguments of :func:`assemble` and the band's lower and upper widths."""
+NODAL = f"Tuple(({M}, {V}, {M}, {V}, {V}, {V}))"
+"""What an evaluation leaves at the nodes: the rows of :func:`directions` (unit
+vectors and lengths), and the drag force, |V_n|, Re and C_d."""
+
+
+def physics_tables(physics) -> tuple:
+    """A :class:`~fem_tether.tether.TetherPhysics` as :data:`PHYSICS`."""
+    return (*tables(physics), np.asarray(physics.weight_N_m, dtype=float),
+            tuple(float(c) for c in (physics.linear_density_kg_m, physics.compliance_per_N,
+                                     physics.damping_time_s, physics.diameter_m, physics.skin_friction_cf)))
+
 
 
 def jit(*types):
@@ -266,3 +291,164 @@ def solve(ab, upper, rhs, x):
     x[:] = rhs
     _band_solve(lu, ipiv, x)
     return True
+
+
+@numba.njit(f"i8({M}, {M}, {M}, {V}, {V}, {F}, {F}, {F}, {F}, b1, {PHYSICS}, {GRID}, {NODAL}, {V}, {VC})",
+            cache=True, error_model="numpy")
+def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobian, physics, grid, nodal,
+             res, band):
+    """One evaluation of the equations (:meth:`.system.TetherFD.evaluate`) at nodal
+    r, v, a (M+1, 3) and tensions T (M,): the scaled residual into ``res`` and,
+    ``with_jacobian``, the banded Jacobian (time coefficients ``c_a = da/dr``,
+    ``c_v = dv/dr``) into ``band`` (:meth:`.system.Grid.assemble`'s storage,
+    flattened, with the sink entry after it); the tangents and the drag at every
+    node into ``nodal``.  The line leaves the winch node at ``V_L tau_{1/2}``
+    (``reel_mps`` = V_L).  The air, wind and C_d(Re) at the nodes come with
+    their derivatives.  Returns -1, or the index of the first node above the
+    ISA troposphere (then nothing after the air is computed)."""
+    air, wind_rows, drag, weight, line = physics
+    mu, compliance_per_N, damping_time_s, diameter_m, skin_friction_cf = line
+    hbar, h, put, kite_first, kite_target, _, _ = grid
+    unit, length, force, vn_mps, re, cd = nodal
+    n_nodes, n_seg = r.shape[0], T.shape[0]
+    directions(r, unit, length)
+    tangent = unit[n_seg:]
+    v_line = v.copy()                   # the winch node moving with the line
+    if reel_mps:
+        for c in range(3):
+            v_line[0, c] = reel_mps * unit[0, c]
+    z = r[:, 2]
+    rho, mu_air, drho_dz, dmu_dz = np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes)
+    above = air_state(air, z, rho, mu_air, drho_dz, dmu_dz)
+    if above >= 0:
+        return above
+    wind_mps, shear_per_s, along, dcd_dre = np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes)
+    wind_state(wind_rows, z, wind_mps, shear_per_s)
+    v_rel, vn = np.empty((n_nodes, 3)), np.empty((n_nodes, 3))
+    normal_flow(v_line, wind_mps, tangent, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re)
+    drag_coefficient_state(drag, re, cd, dcd_dre)
+    drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf, force)
+    residual(a, v_line, T, unit[:n_seg], length[:n_seg], force, weight, hbar, h, mu, compliance_per_N,
+             damping_time_s, force_ref_N, res)
+    if with_jacobian:
+        values = np.empty(33 * (n_seg - 1) + 7 * n_seg)          # in layout order (Grid._layout)
+        jacobian(T, unit, length, v_line, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, drho_dz,
+                 dmu_dz, shear_per_s, diameter_m, skin_friction_cf, mu, compliance_per_N, damping_time_s,
+                 c_a, c_v, force_ref_N, hbar, h, values)
+        assemble(values, put, kite_first, kite_target, kite_dir, band)
+    return -1
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _max_abs(x):
+    """max |x_i|; NaN if any x_i is."""
+    worst = 0.0
+    for i in range(x.shape[0]):
+        if math.isnan(x[i]):
+            return x[i]
+        worst = max(worst, abs(x[i]))
+    return worst
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _predictor(r, v, a, T, R, h):
+    """The unknowns in the full layout (:meth:`.system.Grid.pack`): the interior
+    nodes predicted at ``r + h v + h^2/2 a``, the tensions T and the kite distance R."""
+    n_seg = T.shape[0]
+    x = np.empty(4 * n_seg - 2)
+    half_h2 = 0.5 * h * h
+    for i in range(1, n_seg):
+        x[4 * (i - 1)] = T[i - 1]
+        for c in range(3):
+            x[4 * (i - 1) + 1 + c] = r[i, c] + h * v[i, c] + half_h2 * a[i, c]
+    x[4 * n_seg - 4] = T[n_seg - 1]
+    x[4 * n_seg - 3] = R
+    return x
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc):
+    """Nodes, velocities and accelerations of the unknowns ``x`` (full layout):
+    ``r_0 = 0``, ``r_M = R e``; ``v = a0 (r - r_n) + a2 (r_{n-1} - r_n)`` and
+    ``a = a0 (v - v_n) + a2 (v_{n-1} - v_n)`` (the history's terms where a2 != 0)."""
+    n_seg = r.shape[0] - 1
+    for c in range(3):
+        r[0, c] = 0.0
+        r[n_seg, c] = x[4 * n_seg - 3] * kite_dir[c]
+    for i in range(1, n_seg):
+        for c in range(3):
+            r[i, c] = x[4 * (i - 1) + 1 + c]
+    for i in range(n_seg + 1):
+        for c in range(3):
+            v[i, c] = a0 * (r[i, c] - r_old[i, c])
+            if a2:
+                v[i, c] += a2 * (r_prev[i, c] - r_old[i, c])
+            acc[i, c] = a0 * (v[i, c] - v_old[i, c])
+            if a2:
+                acc[i, c] += a2 * (v_prev[i, c] - v_old[i, c])
+
+
+CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE = 0.0, 1.0, 2.0
+"""Outcomes of :func:`solve_step` (its ``status[0]``)."""
+
+
+@numba.njit(f"i8(Tuple(({M}, {M}, {M}, {V}, {F})), Tuple(({M}, {M})), {V}, {F}, {F}, {F}, {F}, {F}, {F}, i8, b1, "
+            f"{PHYSICS}, {GRID}, {NODAL}, Tuple(({M}, {M}, {M}, {V})), {V})", cache=True, error_model="numpy")
+def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_tol, max_newton,
+               tension_mode, physics, grid, nodal, new, status):
+    """The Newton iteration of one implicit step of size h (:func:`.solver._step`)
+    from ``cur = (r, v, a, T, R)``, with the BDF2 history ``(r_{n-1}, v_{n-1})``
+    where ``a2`` != 0, the coefficients a0, a2 of the velocity and acceleration
+    formulas (:func:`_iterate`) and the kite's direction e at the new time.
+
+    From the predictor (:func:`_predictor`), each iteration evaluates the
+    equations (:func:`evaluate`; the Jacobian skipped where the iterate is
+    expected to converge, :func:`fem_tether.protocol_kernel.expect_converged`, and evaluated after all
+    where it then does not) and subtracts the Newton update from the active
+    unknowns (T_{1/2} known in tension mode, R otherwise), up to
+    ``max_newton`` times; it stops at ``max |residual| <= newton_tol``, on a
+    non-finite residual, a singular band or an iterate above the troposphere.
+    The last iterate's r, v, a and T are left in ``new`` and its tangents and
+    drag in ``nodal``; ``status`` gets the outcome (:data:`CONVERGED`,
+    :data:`NOT_CONVERGED` or :data:`LEFT_ATMOSPHERE`), the last max residual
+    (of the iterate before, if it left the atmosphere), R and the iterate's
+    highest altitude.  Returns the number of evaluated iterations."""
+    r_old, v_old, a_old, T_old, R_old = cur
+    r_prev, v_prev = history
+    r, v, acc, T = new
+    lower, upper = grid[5], grid[6]
+    n_seg = T_old.shape[0]
+    n = 4 * n_seg - 3
+    x = _predictor(r_old, v_old, a_old, T_old, R_old, h)
+    active = x[1:] if tension_mode else x[:n]
+    res, dx = np.empty(n), np.empty(n)
+    band = np.empty((lower + upper + 1) * n + 1)
+    ab = band[: (lower + upper + 1) * n].reshape((lower + upper + 1, n))
+    worst = last = math.inf
+    iterations = 0
+    status[:] = NOT_CONVERGED
+    for _ in range(max_newton):
+        _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc)
+        T[:] = x[0: n: 4]
+        with_jacobian = not expect_converged(worst, last, newton_tol)
+        if evaluate(r, v, acc, T, kite_dir, force_ref_N, a0 * a0, a0, reel_mps, with_jacobian, physics,
+                    grid, nodal, res, band) >= 0:
+            status[0] = LEFT_ATMOSPHERE
+            break
+        iterations += 1
+        worst, last = _max_abs(res), worst
+        if not math.isfinite(worst):
+            break
+        if worst <= newton_tol:
+            status[0] = CONVERGED
+            break
+        if not with_jacobian:
+            evaluate(r, v, acc, T, kite_dir, force_ref_N, a0 * a0, a0, reel_mps, True, physics, grid, nodal,
+                     res, band)
+        if not solve(ab, upper, res, dx):
+            break
+        active -= dx
+    status[1] = worst
+    status[2] = x[-1]
+    status[3] = np.max(r[:, 2])
+    return iterations

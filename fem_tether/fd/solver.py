@@ -263,11 +263,22 @@ def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):
 
 def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
     """One implicit step of size h after ``cur`` (``prev``: the BDF2 history) solved by
-    Newton (iterations counted in ``stats``); raises :class:`NotConverged`."""
+    Newton (iterations counted in ``stats``); raises :class:`NotConverged`.  The
+    compiled line runs the whole iteration in one kernel call
+    (:meth:`TetherFD.solve_step`), the NumPy line the loop below."""
     t_new = cur.t + h
     e = model.end.direction_at(t_new)
     a0, a2 = _coefficients(model, prev, cur, h)
     f_ref = model.force_ref_N(cur.T, model.eq.physics)
+    if model.eq.compiled:
+        history = (prev.r, prev.v) if a2 and prev is not None else (cur.r, cur.v)
+        r, v, acc, T, R, drag, iterations, failure = model.eq.solve_step(
+            (cur.r, cur.v, cur.a, cur.T, float(cur.R)), history, e, h, a0, a2, f_ref, model.reel_mps,
+            model.newton_tol, model.max_newton)
+        stats.newton_iterations += iterations
+        if failure is not None:
+            raise failure
+        return State(t_new, r, v, acc, T, float(R), drag)
     g = model.grid
     # the unknowns in one vector of the full layout (views r_int, T, R into it);
     # the Newton update adds to its active part in place

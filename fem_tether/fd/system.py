@@ -52,6 +52,9 @@ from typing import Any
 import numpy as np
 from scipy.linalg import lapack
 
+from fem_tether.atmosphere import AltitudeError
+from fem_tether.continuation import NotConverged
+from fem_tether.errors import left_atmosphere
 from fem_tether.loads import crossflow_drag
 from fem_tether.tether import TetherPhysics
 
@@ -72,21 +75,16 @@ class Directions:
     ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k`` (``tau``, ``ell``: (M,)), and at the
     nodes 0..M, central inside and one-sided at the ends, with the lengths they
     were normalised by (``tangent``, ``tangent_len``: (M+1,)); ``unit`` holds
-    both, the segments' rows first.  With ``kernel`` (:mod:`.kernel`) computed
-    by its compiled loop, else by array operations."""
+    both, the segments' rows first."""
 
-    def __init__(self, r, kernel=None):
+    def __init__(self, r):
         M = r.shape[0] - 1
-        if kernel is None:
-            d = np.empty((2 * M + 1, 3))
-            np.subtract(r[1:], r[:-1], out=d[:M])
-            np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
-            d[M] = d[0]
-            d[2 * M] = d[M - 1]
-            self.unit, length = _unit(d)
-        else:
-            self.unit, length = np.empty((2 * M + 1, 3)), np.empty(2 * M + 1)
-            kernel.directions(r, self.unit, length)
+        d = np.empty((2 * M + 1, 3))
+        np.subtract(r[1:], r[:-1], out=d[:M])
+        np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
+        d[M] = d[0]
+        d[2 * M] = d[M - 1]
+        self.unit, length = _unit(d)
         self.tau, self.ell = self.unit[:M], length[:M]
         self.length = length
         self.tangent, self.tangent_len = self.unit[M:], length[M:]
@@ -272,21 +270,29 @@ class Grid:
         """The view of the active unknowns (the Newton update's) in a full-layout vector."""
         return x[1:] if self.tension_mode else x[:-1]
 
-    def assemble(self, values, kite_dir, kernel=None):
-        """Banded matrix (solve_banded storage) from the entry values in layout
-        order; with ``kernel`` (:mod:`.kernel`) by its compiled loop, else by
-        array operations (the same numbers)."""
-        ab = np.empty(self._dump + 1)
-        if kernel is not None:
-            kernel.assemble(values, self._put, self._kite_first, self._kite_target,
-                            np.asarray(kite_dir, dtype=float), ab)
-        else:
-            ab[:] = 0.0
-            ab[self._put] = values
-            if self._kite_groups.size:
-                w = values[self._kite_groups] * np.asarray(kite_dir)
-                ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
-        return ab[: self._dump].reshape(self._band_shape)
+    def assemble(self, values, kite_dir):
+        """Banded matrix (solve_banded storage) from the entry values in layout order."""
+        ab = np.zeros(self._dump + 1)
+        ab[self._put] = values
+        if self._kite_groups.size:
+            w = values[self._kite_groups] * np.asarray(kite_dir)
+            ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
+        return self.band(ab)
+
+    def empty_band(self) -> np.ndarray:
+        """A flattened band to assemble into: its entries and, after them, the
+        sink of the dropped ones (:func:`.kernel.assemble`)."""
+        return np.empty(self._dump + 1)
+
+    def band(self, flat):
+        """The band (solve_banded storage) in a flattened one (:meth:`empty_band`)."""
+        return flat[: self._dump].reshape(self._band_shape)
+
+    def kernel_layout(self) -> tuple:
+        """The lengths and band layout as :data:`.kernel.GRID`: hbar, h, the
+        destinations of the entries (:meth:`assemble`), the kite node's groups
+        and their targets, and the band's lower and upper widths."""
+        return (self.hbar, self.h, self._put, self._kite_first, self._kite_target, self.lower, self.upper)
 
     def solve(self, ab, rhs):
         """Solution of the banded system ``ab`` (solve_banded storage) for ``rhs``.
@@ -344,7 +350,11 @@ class TetherFD:
         self.grid = grid
         self.physics = physics
         self.compiled = compiled
-        self._kernel: Any = importlib.import_module("fem_tether.fd.kernel") if compiled else None
+        self._kernel: Any = None
+        self._kernel_args: tuple = ()        # the line's physics and grid as the kernels take them
+        if compiled:
+            self._kernel = importlib.import_module("fem_tether.fd.kernel")
+            self._kernel_args = (self._kernel.physics_tables(physics), grid.kernel_layout())
         self._weight = np.empty((grid.M - 1, 3))      # w at each interior node
         self._weight[:] = physics.weight_N_m
         self._constraint_T: np.ndarray | None = None
@@ -436,47 +446,58 @@ class TetherFD:
         return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
                           build)
 
+    def _nodal(self) -> tuple:
+        """Arrays for what a compiled evaluation leaves at the nodes (:data:`.kernel.NODAL`)."""
+        n = self.grid.M + 1
+        return np.empty((2 * n - 1, 3)), np.empty(2 * n - 1), np.empty((n, 3)), np.empty(n), np.empty(n), np.empty(n)
+
+    def _nodal_loads(self, nodal) -> NodalLoads:
+        unit, _, force, vn_mps, re, cd = nodal
+        return NodalLoads(force, vn_mps, re, cd, unit[self.grid.M:])
+
     def _evaluate_compiled(self, r, v, a, T, kite_dir, force_ref_N, c_a, c_v, jacobian,
                            reel_mps) -> Evaluation:
-        """:meth:`evaluate` by the kernels of :mod:`.kernel`, the leaf physics between them."""
-        g, ph, kernel = self.grid, self.physics, self._kernel
-        M = g.M
-        dirs = Directions(r, kernel)
-        if reel_mps:
-            v = v.copy()
-            v[0] = reel_mps * dirs.tau[0]
-        z = r[:, 2]
-        air = ph.air.state(z, gradients=jacobian)
-        v_rel, along, vn, vn_mps, re = (np.empty((M + 1, 3)), np.empty(M + 1), np.empty((M + 1, 3)),
-                                        np.empty(M + 1), np.empty(M + 1))
-        kernel.normal_flow(v, ph.wind.speed_mps(z), dirs.tangent, air.density_kg_m3, air.viscosity_Pa_s,
-                           ph.diameter_m, v_rel, along, vn, vn_mps, re)
-        if jacobian:
-            cd, dcd_dre = ph.drag.cd_and_dcd_dre(re)
-        else:
-            cd = ph.drag.cd(re)
-        force, res = np.empty((M + 1, 3)), np.empty(g.n)
-        kernel.drag_force(air.density_kg_m3, ph.diameter_m, cd, vn, vn_mps, dirs.tangent, along,
-                          ph.skin_friction_cf, force)
-        kernel.residual(a, v, T, dirs.tau, dirs.ell, force, ph.weight_N_m, g.hbar, g.h,
-                        ph.linear_density_kg_m, ph.compliance_per_N, ph.damping_time_s, force_ref_N, res)
+        """:meth:`evaluate` by :func:`.kernel.evaluate`; a Jacobian not asked for
+        now by a second call (the same values again, and the band) when first read."""
+        g = self.grid
+        nodal, res, band = self._nodal(), np.empty(g.n), g.empty_band()
+
+        def run(with_jacobian):
+            if self._kernel.evaluate(r, v, a, T, np.asarray(kite_dir, dtype=float), float(force_ref_N),
+                                     float(c_a), float(c_v), float(reel_mps), with_jacobian,
+                                     *self._kernel_args, nodal, res, band) >= 0:
+                raise AltitudeError(float(np.max(r[:, 2])))
 
         def build():
-            if jacobian:    # the drag's derivatives came with the residual
-                drag_air, drag_cd, drag_dcd = air, cd, dcd_dre
-            else:           # ... or are evaluated now
-                drag_air = ph.air.state(z, gradients=True)
-                drag_cd, drag_dcd = ph.drag.cd_and_dcd_dre(re)
-            values = np.empty(33 * (M - 1) + 7 * M)          # in layout order (Grid._layout)
-            kernel.jacobian(T, dirs.unit, dirs.length, v, v_rel, along, vn, vn_mps, re, drag_cd, drag_dcd,
-                            drag_air.density_kg_m3, drag_air.viscosity_Pa_s,
-                            drag_air.density_gradient_kg_m4, drag_air.viscosity_gradient_Pa_s_m,
-                            ph.wind.shear_per_s(z), ph.diameter_m, ph.skin_friction_cf,
-                            ph.linear_density_kg_m, ph.compliance_per_N, ph.damping_time_s, c_a, c_v,
-                            force_ref_N, g.hbar, g.h, values)
-            return g.assemble(values, kite_dir, kernel)
+            if not jacobian:
+                run(True)
+            return g.band(band)
 
-        return Evaluation(res, dirs.ell, NodalLoads(force, vn_mps, re, cd, dirs.tangent), build)
+        run(jacobian)
+        return Evaluation(res, nodal[1][: g.M], self._nodal_loads(nodal), build)
+
+    def solve_step(self, cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_tol,
+                   max_newton) -> tuple:
+        """The Newton iteration of one implicit step by :func:`.kernel.solve_step`
+        (the arguments are its), from ``cur = (r, v, a, T, R)`` with the BDF2
+        history ``(r_{n-1}, v_{n-1})`` (any, where a2 = 0).  Returns the last
+        iterate's r, v, a, T and R, its drag at every node (:class:`NodalLoads`),
+        the number of iterations and, if it did not converge, the
+        :class:`~fem_tether.continuation.NotConverged` to raise (the line left
+        the atmosphere if an iterate rose above it), else None."""
+        kernel, r = self._kernel, cur[0]
+        r, v, a, T = new = np.empty_like(r), np.empty_like(r), np.empty_like(r), np.empty(self.grid.M)
+        nodal, status = self._nodal(), np.empty(4)
+        iterations = kernel.solve_step(
+            cur, history, np.asarray(kite_dir, dtype=float), h, a0, a2, float(force_ref_N), float(reel_mps),
+            float(newton_tol), int(max_newton), self.grid.tension_mode, *self._kernel_args, nodal, new, status)
+        outcome, worst, R, top_m = status
+        failure = None
+        if outcome == kernel.LEFT_ATMOSPHERE:
+            failure = NotConverged(worst, left_atmosphere(AltitudeError(top_m)))
+        elif outcome == kernel.NOT_CONVERGED:
+            failure = NotConverged(worst)
+        return r, v, a, T, R, self._nodal_loads(nodal), iterations, failure
 
     def solve(self, ab, rhs):
         """Solution of the banded system ``ab`` (:meth:`Grid.assemble`'s storage)
