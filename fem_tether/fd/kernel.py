@@ -163,7 +163,9 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     _stiffness(T, unit, length, 0, k_next)
     tangent = unit[n_seg:]
     for i in range(1, n_seg):
-        k_prev[:, :] = k_next
+        for p in range(3):
+            for q in range(3):
+                k_prev[p, q] = k_next[p, q]
         _stiffness(T, unit, length, i, k_next)
         _projection(tangent, i, proj)
         drag_derivatives(i, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
@@ -281,14 +283,17 @@ def solve(ab, upper, rhs, x):
     n = ab.shape[1]
     lu = np.zeros((n + LOWER, 2 * LOWER + UPPER + 1))
     first = LOWER + UPPER - upper
-    lu[:n, first: first + ab.shape[0]] = ab.T
+    for j in range(n):
+        for d in range(ab.shape[0]):
+            lu[j, first + d] = ab[d, j]
     for j in range(max(0, n - LOWER), n):   # the storage below the last row: unused
         lu[j, max(LOWER + UPPER + n - j, first):] = 0.0
     lu[n:, LOWER + UPPER] = 1.0
     ipiv = np.empty(n, np.int64)
     if not _band_factor(lu, ipiv):
         return False
-    x[:] = rhs
+    for j in range(n):
+        x[j] = rhs[j]
     _band_solve(lu, ipiv, x)
     return True
 
@@ -429,7 +434,8 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
     status[:] = NOT_CONVERGED
     for _ in range(max_newton):
         _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc)
-        T[:] = x[0: n: 4]
+        for k in range(n_seg):
+            T[k] = x[4 * k]
         with_jacobian = not expect_converged(worst, last, newton_tol)
         if evaluate(r, v, acc, T, kite_dir, force_ref_N, a0 * a0, a0, reel_mps, with_jacobian, physics,
                     grid, nodal, res, band) >= 0:
@@ -447,8 +453,11 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
                      res, band)
         if not solve(ab, upper, res, dx):
             break
-        active -= dx
+        for k in range(n):
+            active[k] -= dx[k]
     status[1] = worst
     status[2] = x[-1]
-    status[3] = np.max(r[:, 2])
+    status[3] = -math.inf
+    for node in range(r.shape[0]):
+        status[3] = max(status[3], r[node, 2])
     return iterations

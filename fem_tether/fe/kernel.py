@@ -38,7 +38,6 @@ from fem_tether.protocol_kernel import expect_converged
 __all__ = ["evaluate", "jacobian", "midpoints", "newton_step", "normal_flow", "residual", "solve_step"]
 
 V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
-X = "f8[::1]"                                             # contiguous vector
 
 CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE = 0, 1, 2
 """What :func:`solve_step` returns."""
@@ -49,7 +48,7 @@ def jit(*types, returns="void"):
     return numba.njit(f"{returns}({', '.join(types)})", cache=True, error_model="numpy")
 
 
-@jit(M, M, F, V, M, M, M, M)
+@numba.njit(cache=True, error_model="numpy")
 def midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv):
     """Element lengths ``|r_{e+1} - r_e|`` and tangents, midpoint positions and
     velocities, and velocity differences ``(D v)_e``; node 0 moves with
@@ -69,7 +68,7 @@ def midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv):
             dv[e, i] = v[e + 1, i] - v_a
 
 
-@jit(M, M, M, V, F, V, M, V, V, V, M, V, V, F, F, V, V, V, M, V, F, F, F, B, F, F, M, V)
+@numba.njit(cache=True, error_model="numpy")
 def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
              skin_friction_cf, weight, mass, interior, w, h, k_s, compliance_per_N, damping_time_s,
              tension_mode, ground_tension_N, radius_m, force, res):
@@ -101,7 +100,7 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along
     res[4 * n_el + 3] = (T[0] - ground_tension_N) if tension_mode else k_s * (R - radius_m)
 
 
-@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, V, V, M, V, F, F, F, F, F, F, F, F, M)
+@numba.njit(cache=True, error_model="numpy")
 def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
              density_gradient, viscosity_gradient, shear, mass, interior, w, h, diameter_m,
              skin_friction_cf, k_s, compliance_per_N, damping_time_s, c_a, c_v, reel_mps, band):
@@ -275,12 +274,16 @@ LINE = (V, M, V, F, F, V, V, V, M, V, F, F, B)
 OUTPUTS = (V, M, V, M, M, M, V, V, V, M)
 
 
-@numba.njit(cache=True, error_model="numpy")
-def _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-              with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
-              compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn, vn_mps,
-              re, cd, band):
-    """:func:`evaluate`'s work (returns the same)."""
+@jit(M, M, M, V, F, V, F, F, F, F, F, F, B, *LINE, *OUTPUTS, returns=I)
+def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
+             with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
+             compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn, vn_mps,
+             re, cd, band):
+    """One evaluation of the equations (:meth:`.system.TetherSystem.evaluate`) in one call:
+    :func:`midpoints`, the air, wind and C_d,c there
+    (:mod:`fem_tether.environment_kernel`), :func:`normal_flow`, :func:`residual`
+    and, ``with_jacobian``, :func:`jacobian`.  Returns -1, or the index of a
+    midpoint above the ISA troposphere (the outputs then incomplete)."""
     n_el = tau.shape[0]
     v_mid, dv, v_rel = np.empty((n_el, 3)), np.empty((n_el, 3)), np.empty((n_el, 3))
     speed, shear, along, dcd_dre = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
@@ -303,22 +306,6 @@ def _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c
     return -1
 
 
-@jit(M, M, M, V, F, V, F, F, F, F, F, F, B, *LINE, *OUTPUTS, returns=I)
-def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-             with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
-             compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn, vn_mps,
-             re, cd, band):
-    """One evaluation of the equations (:meth:`.system.TetherSystem.evaluate`) in one call:
-    :func:`midpoints`, the air, wind and C_d,c there
-    (:mod:`fem_tether.environment_kernel`), :func:`normal_flow`, :func:`residual`
-    and, ``with_jacobian``, :func:`jacobian`.  Returns -1, or the index of a
-    midpoint above the ISA troposphere (the outputs then incomplete)."""
-    return _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-                     with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior,
-                     w, h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force,
-                     vn, vn_mps, re, cd, band)
-
-
 @numba.njit(cache=True, error_model="numpy")
 def _max_abs(x):
     """max |x_i|, NaN if any is (as NumPy's max)."""
@@ -330,8 +317,8 @@ def _max_abs(x):
     return out
 
 
-@jit(X, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, returns=I)
-def solve_step(x, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
+@jit(M, V, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, returns=I)
+def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
                ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, reel_mps, newton_tol, max_newton,
                air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
                damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
@@ -340,7 +327,7 @@ def solve_step(x, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, 
     ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as the
     NumPy path of :func:`fem_tether.fe.solver._step` takes it.
 
-    The unknowns ``x`` (interleaved ordering) start from the predictor
+    The unknowns ``r``, ``T`` and R start from the predictor
     ``q_n + dt v_n + dt^2/2 a_n`` with ``T_n`` and ``R_n``
     (:meth:`~fem_tether.fe.integrator.Kinematics.predict`) and end at the
     solution.  Each iterate's kinematics are affine in its positions q (the
@@ -355,12 +342,9 @@ def solve_step(x, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, 
     outputs are the solution's), :data:`NOT_CONVERGED` (no convergence within
     ``max_newton`` iterations, a non-finite residual or a singular Jacobian) or
     :data:`LEFT_ATMOSPHERE` (a midpoint of ``r_mid`` above the ISA troposphere);
-    ``info`` = (iterations, last scaled residual).  ``x`` is contiguous (r and
-    T are views into it)."""
-    n = x.shape[0]
-    nodes = x.reshape((n // 4, 4))
-    r = nodes[:, :3]
-    T = x[3:n - 1:4]
+    ``info`` = (iterations, last scaled residual, R)."""
+    n_nodes = r.shape[0]
+    n = 4 * n_nodes
     q_known, v_known, qdd_known = np.empty_like(v), np.empty_like(v), np.empty_like(v)
     for i in range(r.shape[0]):
         for k in range(3):
@@ -368,8 +352,9 @@ def solve_step(x, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, 
             q_known[i, k] = q_n[i, k] + dt_s * v_n[i, k] + dt_s * dt_s * (0.5 - beta) * a_n[i, k]
             v_known[i, k] = v_n[i, k] + dt_s * (1.0 - gamma) * a_n[i, k]
             qdd_known[i, k] = (alpha_m * a_n[i, k] - alpha_f * qdd_n[i, k]) / (1.0 - alpha_f)
-    T[:] = T_n
-    x[n - 1] = R_n
+    for e in range(n_nodes - 1):
+        T[e] = T_n[e]
+    R = R_n
     a_per_q = 1.0 / (beta * dt_s * dt_s)
     v_per_a = dt_s * gamma
     qdd_per_a = (1.0 - alpha_m) / (1.0 - alpha_f)
@@ -378,39 +363,43 @@ def solve_step(x, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, 
     for k in range(3):
         r_col[n - 4 + k] = -k_s * kite_dir[k]
     dx = np.empty(n)
-
-    def evaluate_here(R, with_jacobian):
-        return _evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-                         with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass,
-                         interior, w, h, compliance_per_N, damping_time_s, tension_mode, res, tau, length,
-                         r_mid, force, vn, vn_mps, re, cd, band)
-
     worst = last = math.inf
     info[0] = 0.0
-    for _ in range(max_newton):
-        R = x[n - 1]
-        for i in range(r.shape[0]):
-            for k in range(3):
-                a[i, k] = (r[i, k] - q_known[i, k]) * a_per_q
-                v[i, k] = v_known[i, k] + v_per_a * a[i, k]
-                qdd[i, k] = qdd_known[i, k] + qdd_per_a * a[i, k]
-        with_jacobian = not expect_converged(worst, last, newton_tol)
+    again = False              # the iterate expected converged was not: evaluate it again, with the Jacobian
+    while info[0] < max_newton or again:
+        if not again:
+            for i in range(r.shape[0]):
+                for k in range(3):
+                    a[i, k] = (r[i, k] - q_known[i, k]) * a_per_q
+                    v[i, k] = v_known[i, k] + v_per_a * a[i, k]
+                    qdd[i, k] = qdd_known[i, k] + qdd_per_a * a[i, k]
+        with_jacobian = again or not expect_converged(worst, last, newton_tol)
         info[1] = worst
-        if evaluate_here(R, with_jacobian) >= 0:
+        info[2] = R
+        if evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
+                     with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w,
+                     h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn,
+                     vn_mps, re, cd, band) >= 0:
             return LEFT_ATMOSPHERE
-        info[0] += 1.0
-        worst, last = _max_abs(res) / force_ref_N, worst
-        info[1] = worst
-        if not math.isfinite(worst):
-            return NOT_CONVERGED
-        if worst <= newton_tol:
-            return CONVERGED
-        # expected converged, but not: the Jacobian after all
-        if not with_jacobian and evaluate_here(R, True) >= 0:
-            return LEFT_ATMOSPHERE
+        if not again:
+            info[0] += 1.0
+            worst, last = _max_abs(res) / force_ref_N, worst
+            info[1] = worst
+            if not math.isfinite(worst):
+                return NOT_CONVERGED
+            if worst <= newton_tol:
+                return CONVERGED
+            if not with_jacobian:
+                again = True
+                continue
+        again = False
         newton_step(band, res, r_col, tension_mode, k_s, dx)
         if math.isnan(dx[0]):
             return NOT_CONVERGED
-        for i in range(n):
-            x[i] += dx[i]
+        for i in range(n_nodes):
+            for k in range(3):
+                r[i, k] += dx[4 * i + k]
+            if i < n_nodes - 1:
+                T[i] += dx[4 * i + 3]
+        R += dx[n - 1]
     return NOT_CONVERGED

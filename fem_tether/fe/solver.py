@@ -267,11 +267,11 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     f_ref = model.force_ref_N(state.T, sys_.physics)
     kin = state.kin
     if sys_.compiled:
-        x, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h, model.scheme,
-                                           e, model.ground_tension_N, model.radius_m, f_ref, model.reel_mps,
-                                           model.newton_tol, model.max_newton, stats)
-        r, T, R = sys_.unpack(x)
-        return State(t_new, Kinematics(r, v, a, qdd), T, float(R), ev)
+        r, T, R, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h,
+                                                 model.scheme, e, model.ground_tension_N, model.radius_m,
+                                                 f_ref, model.reel_mps, model.newton_tol, model.max_newton,
+                                                 stats)
+        return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
     c_a, c_v = model.scheme.coefficients(h)
     # the unknowns in one vector, r and T views into it; each Newton update adds in place
     x = sys_.pack(kin.predict(h), state.T, state.R)

@@ -264,24 +264,24 @@ class TetherSystem:
         generalised-alpha ``scheme``'s predictor, kinematics and Newton's
         iteration in one call).
 
-        Returns ``(x, v, a, qdd, evaluation)`` at the solution (``x`` the
-        unknowns in the interleaved ordering); raises
+        Returns ``(r, T, R, v, a, qdd, evaluation)`` at the solution; raises
         :class:`~fem_tether.continuation.NotConverged` as the NumPy iteration
         does (with the altitude when an iterate left the atmosphere).  The
         iterations are added to ``stats.newton_iterations``."""
-        x = np.empty(self.n)
+        r_new = np.empty_like(q)
         v_new, a_new, qdd_new = np.empty_like(v), np.empty_like(v), np.empty_like(v)
+        T_new = np.empty_like(T)
         k_s = force_ref_N / self._h_mean
         c_a, c_v = scheme.coefficients(dt_s)
         outputs = self._outputs()
-        info = np.zeros(2)
+        info = np.zeros(3)
         status = self._kernel.solve_step(
-            x, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma, kite_dir,
-            ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol, max_newton,
-            *self._line_constants(), v_new, a_new, qdd_new, *outputs, info)
+            r_new, T_new, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma,
+            kite_dir, ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol,
+            max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, info)
         stats.newton_iterations += int(info[0])
         if status == self._kernel.CONVERGED:
-            return x, v_new, a_new, qdd_new, self._evaluation(k_s, outputs)
+            return r_new, T_new, float(info[2]), v_new, a_new, qdd_new, self._evaluation(k_s, outputs)
         if status == self._kernel.LEFT_ATMOSPHERE:
             raise NotConverged(float(info[1]),
                                left_atmosphere(AltitudeError(float(np.max(outputs[3][:, 2])))))
