@@ -26,6 +26,7 @@ from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
 from .resource import WindResource
+from .resource import check_config as check_resource_config
 from .resource import from_config as resource_from_config
 
 HOURS_PER_YEAR = 8760.0
@@ -162,6 +163,11 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
 def sweep_resource(cfg: Config, wind_csv=None) -> WindResource:
     """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
     return resource_from_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
+
+
+def check_resource(cfg: Config, wind_csv=None) -> None:
+    """Raise the error :func:`sweep_resource` would raise, without computing the resource."""
+    check_resource_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
 
 
 def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:

@@ -13,13 +13,24 @@ import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from fem_tether.aep import SweepAep, sweep_aep, sweep_resource
+from fem_tether.aep import SweepAep, check_resource, sweep_aep
 from fem_tether.atomic import write_json
 from fem_tether.figures import write_plots
 from fem_tether.jobs import load_job
 from fem_tether.memory import peak_rss_MiB
 from fem_tether.sweep import SweepOutcome, sweep
 from fem_tether.sweepfile import read_sweep
+
+
+#: Rank 0's idle work (importing matplotlib and scipy.stats: 1.1-1.2 s alone,
+#: about 1.5 s beside a rank running tasks) as a load in the unit of the task
+#: costs (:func:`~fem_tether.schedule.task_cost`, single-process estimates that
+#: the main job's tasks, with their file assemblies, take two to three times
+#: on two ranks of this machine's two cores).  Chosen by measurement on
+#: 2026-11-30: with 0.5e6 rank 0 still imported after the other rank's last
+#: task (exit at 8.4-9.5 s), with 1.3e6 it idled 3 s; with 0.75e6 the imports
+#: end before the other rank's tasks (exit at 8.4-9.1 s).
+IDLE_COST_US = 0.75e6
 
 
 @dataclass(frozen=True)
@@ -42,11 +53,12 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     job = load_job(job_file)
     out = Path(out)
     h5 = out / "sweep.h5"
-    # a bad resource fails now, not after the sweep (checked on rank 0 only: the
-    # other ranks need not import scipy.stats)
-    # rank 0 imports the plotting while it waits for the other ranks' tasks
-    outcome = sweep(job, h5, check=lambda: sweep_resource(job.config),
-                    idle=lambda: importlib.import_module("fem_tether.plots"))
+    # a bad resource fails now, not after the sweep (checked on rank 0, without
+    # scipy.stats); rank 0 imports the plotting and scipy.stats while it waits
+    # for the other ranks' tasks
+    outcome = sweep(job, h5, check=lambda: check_resource(job.config),
+                    idle=lambda: [importlib.import_module(m) for m in ("fem_tether.plots", "scipy.stats")],
+                    idle_cost_us=IDLE_COST_US)
     if outcome is None:
         return None
     data = read_sweep(h5)

@@ -114,15 +114,11 @@ def weibull_probabilities(edges_mps, mean_mps, shape_k):
     return np.diff(weibull_min(shape_k, scale=scale).cdf(np.asarray(edges_mps, dtype=float)))
 
 
-def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
-                     band_top_m=2300.0, band_width_m=300.0, bin_width_mps=0.5,
-                     max_speed_mps=40.0) -> WindResource:
-    """Weibull histograms whose means follow ``profile`` at the band centres (seed 000 §5).
-
-    Bands of ``band_width_m`` from ``band_bottom_m`` to ``band_top_m``; bins of
-    ``bin_width_mps`` from 0 to ``max_speed_mps``.  The mass above
-    ``max_speed_mps`` is each band's :attr:`Band.remainder`.
-    """
+def weibull_bands(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0, band_top_m=2300.0,
+                  band_width_m=300.0, bin_width_mps=0.5, max_speed_mps=40.0):
+    """The bands ``(low_m, high_m, mean_mps)`` and the bin edges of :func:`weibull_resource`,
+    checked (a :class:`ResourceError` names what is wrong) but without the
+    probabilities, whose Weibull CDF needs ``scipy.stats`` (~0.6 s to import)."""
     if not weibull_k > 0:
         raise ResourceError(f"Weibull shape k = {weibull_k!r}: must be > 0")
     band_edges = np.arange(band_bottom_m, band_top_m + 0.5 * band_width_m, band_width_m)
@@ -136,9 +132,24 @@ def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
         if not mean > 0:
             raise ResourceError(f"mean wind {mean} m/s at {0.5 * (low + high):g} m: "
                                 "a Weibull needs a positive mean")
-        bands.append(Band(float(low), float(high), edges,
-                          weibull_probabilities(edges, mean, weibull_k)))
-    return WindResource(tuple(bands), source=f"Weibull resource (k = {weibull_k:g})")
+        bands.append((float(low), float(high), mean))
+    return bands, edges
+
+
+def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
+                     band_top_m=2300.0, band_width_m=300.0, bin_width_mps=0.5,
+                     max_speed_mps=40.0) -> WindResource:
+    """Weibull histograms whose means follow ``profile`` at the band centres (seed 000 §5).
+
+    Bands of ``band_width_m`` from ``band_bottom_m`` to ``band_top_m``; bins of
+    ``bin_width_mps`` from 0 to ``max_speed_mps``.  The mass above
+    ``max_speed_mps`` is each band's :attr:`Band.remainder`.
+    """
+    bands, edges = weibull_bands(profile, weibull_k, band_bottom_m, band_top_m, band_width_m,
+                                 bin_width_mps, max_speed_mps)
+    return WindResource(tuple(Band(low, high, edges, weibull_probabilities(edges, mean, weibull_k))
+                              for low, high, mean in bands),
+                        source=f"Weibull resource (k = {weibull_k:g})")
 
 
 def _number(where: str, row: dict, column: str) -> float:
@@ -241,6 +252,17 @@ def write_resource_csv(resource: WindResource, path) -> Path:
             for v_low, v_high, p in zip(band.edges_mps[:-1], band.edges_mps[1:], band.probability):
                 writer.writerow([repr(float(x)) for x in (band.low_m, band.high_m, v_low, v_high, p)])
     return path
+
+
+def check_config(resource, wind_profile, csv_path=None) -> None:
+    """Raise the :class:`ResourceError` :func:`from_config` would raise, without
+    computing a Weibull resource's probabilities (a check before a sweep)."""
+    path = csv_path or resource.csv
+    if path:
+        read_resource_csv(path)
+    else:
+        weibull_bands(wind_profile, resource.weibull_k, resource.band_bottom_m, resource.band_top_m,
+                      resource.band_width_m, resource.bin_width_mps, resource.max_speed_mps)
 
 
 def from_config(resource, wind_profile, csv_path=None) -> WindResource:

@@ -13,19 +13,19 @@ from fem_tether.jobs import Job, Task
 from fem_tether.results import time_grid
 
 #: Cost of one time step of each solver, ``overhead + per_point x points`` in
-#: microseconds, measured on 2026-11-30 with the compiled kernels (default
-#: physics at 1768 m, one period): FE 707, 930, 1906, 4384 us at 20, 40, 160,
-#: 640 elements; FD 1478, 1453, 2461, 8452 us at 50, 100, 400, 1600 segments.
-#: Only the ratios matter (they order and balance the tasks).
-STEP_COST_US = {"fe": (600.0, 6.0), "fd": (1000.0, 4.7)}
+#: microseconds, measured on 2026-11-30 with the compiled whole-step kernels:
+#: in the default job (1 + 2 periods) an FE run of 41 nodes took 0.097 s for
+#: 436 steps (222 us/step) and an FD run of 101 nodes 0.317 s for 871 steps
+#: (364 us/step); at 640 elements and 1600 segments (default physics, 1768 m)
+#: 1.6-2.5 ms and 4.5-6.0 ms per step.  Only the ratios matter (they order and
+#: balance the tasks).
+STEP_COST_US = {"fe": (110.0, 2.7), "fd": (90.0, 2.7)}
 
 
 def task_cost(job: Job, task: Task) -> float:
     """Estimated cost in microseconds: time steps x (overhead + per_point x points)
     (:data:`STEP_COST_US`).  With the default job the estimate puts an FD run
-    at 3.5 FE runs; measured in the same session it was 2.9 (1.3 s against
-    0.45 s per length).  The longest-first assignment of the fourteen tasks stays
-    within a few per cent of an even split with that error."""
+    at 3.3 FE runs, as measured (0.32 s against 0.097 s per length)."""
     from fem_tether.fe.solver import unit_mesh_from_config
 
     cfg = job.config_for(task.length_m)
@@ -37,10 +37,11 @@ def task_cost(job: Job, task: Task) -> float:
     return float(steps * (overhead_us + per_point_us * points))
 
 
-def assign(costs: list[float], n_ranks: int) -> list[list[int]]:
+def assign(costs: list[float], n_ranks: int, rank0_load: float = 0.0) -> list[list[int]]:
     """Longest processing time first: each task, costliest first, to the least
-    loaded rank (ties to the lowest rank); deterministic."""
-    loads = [0.0] * n_ranks
+    loaded rank (ties to the lowest rank); deterministic.  Rank 0 starts with
+    ``rank0_load``, the cost of other work it does (in the costs' unit)."""
+    loads = [rank0_load] + [0.0] * (n_ranks - 1)
     owners: list[list[int]] = [[] for _ in range(n_ranks)]
     for i in sorted(range(len(costs)), key=lambda i: (-costs[i], i)):
         rank = min(range(n_ranks), key=lambda r: (loads[r], r))

@@ -64,7 +64,7 @@ class SweepInterrupted(KeyboardInterrupt):
 
 def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
           check: Callable[[], object] | None = None,
-          idle: Callable[[], object] | None = None) -> SweepOutcome | None:
+          idle: Callable[[], object] | None = None, idle_cost_us: float = 0.0) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
     Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
@@ -73,7 +73,10 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
     follows the sweep); the :class:`InputError` it raises is raised on every rank.
     While rank 0 waits for the other ranks' tasks it combines the lengths they
     complete (so that its final assembly finds them combined) and calls
-    ``idle`` once (work that would otherwise follow the sweep).
+    ``idle`` once (work that would otherwise follow the sweep); ``idle_cost_us``,
+    its estimated cost in the unit of :func:`~fem_tether.schedule.task_cost`,
+    is counted as rank 0's load when the tasks are assigned, so that with
+    several ranks it runs while the others finish their tasks.
     """
     if comm is None:
         from mpi4py import MPI
@@ -98,7 +101,7 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
     comm.Barrier()
     load_kernels(job.config, job.solvers)
     tasks = job.tasks
-    mine = assign([task_cost(job, t) for t in tasks], size)[rank]
+    mine = assign([task_cost(job, t) for t in tasks], size, idle_cost_us if idle else 0.0)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
     reused = 0

@@ -159,3 +159,29 @@ def test_sum_tolerance_is_1e_6(tmp_path):
 def test_missing_file(tmp_path):
     with pytest.raises(ResourceError, match="cannot read"):
         read_resource_csv(tmp_path / "nope.csv")
+
+
+def test_check_config_raises_what_from_config_raises_without_scipy_stats(tmp_path):
+    """The check before a sweep: the same ResourceError as building the resource
+    (no bins; still air's zero mean; an unreadable CSV), nothing for the default,
+    and scipy.stats not imported (a fresh interpreter checks it)."""
+    import subprocess
+    import sys
+    from types import SimpleNamespace
+
+    from fem_tether.resource import ResourceError, check_config, from_config
+
+    good = SimpleNamespace(csv="", weibull_k=2.0, band_bottom_m=200.0, band_top_m=2300.0,
+                           band_width_m=300.0, bin_width_mps=0.5, max_speed_mps=40.0)
+    check_config(good, DE_BILT_ANNUAL)
+    for section, profile, csv in ((SimpleNamespace(**{**vars(good), "max_speed_mps": 0.1}), DE_BILT_ANNUAL, None),
+                                  (good, NoWind(), None),
+                                  (good, DE_BILT_ANNUAL, tmp_path / "missing.csv")):
+        with pytest.raises(ResourceError) as built:
+            from_config(section, profile, csv)
+        with pytest.raises(ResourceError) as checked:
+            check_config(section, profile, csv)
+        assert str(checked.value) == str(built.value)
+    code = ("import sys\nfrom fem_tether.aep import check_resource\nfrom fem_tether.config import load_config\n"
+            "check_resource(load_config())\nassert 'scipy.stats' not in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)

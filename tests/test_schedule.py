@@ -21,3 +21,11 @@ def test_task_cost_is_steps_times_the_solvers_step_cost():
     fe, fd = task_cost(job, Task(500.0, "fe")), task_cost(job, Task(500.0, "fd"))
     assert fe == 435 * (STEP_COST_US["fe"][0] + 41 * STEP_COST_US["fe"][1])
     assert fd == 870 * (STEP_COST_US["fd"][0] + 101 * STEP_COST_US["fd"][1]) > fe
+
+
+def test_rank0_load_counts_as_work_already_assigned():
+    """A head start on rank 0 moves tasks to the other ranks: with 10 units of
+    other work, rank 0 takes the 3 and the 1 and rank 1 the 8 and the 5 (14 against 13)."""
+    costs = [8.0, 5.0, 3.0, 1.0]
+    assert assign(costs, 2, rank0_load=10.0) == [[2, 3], [0, 1]]
+    assert assign(costs, 2) == [[0, 3], [1, 2]]
