@@ -62,8 +62,9 @@ def test_compiled_step_equals_the_numpy_step(overrides, reel_mps):
     compiled step (predictor, kinematics and Newton in one call) against the
     NumPy iteration: positions, velocities, tensions, R and the drag within
     1e-12 of their largest entry, accelerations within 1e-9 (a = (q - q_known) /
-    (beta h^2) multiplies the positions' round-off by ~1e3 at h = 0.05 s), and
-    the same Newton iterations."""
+    (beta h^2) multiplies the positions' round-off by ~1e3 at h = 0.05 s), the
+    same Newton iterations, and the step's series values (the kernel's
+    ``line_series`` against the NumPy formulas of ``line_state``) within 1e-12."""
     cfg = load_config(overrides={"tether": {"length_m": 1000.0}} | overrides)
     compiled = fe.build_model(cfg)
     compiled = dataclasses.replace(compiled, reel_mps=reel_mps)
@@ -82,6 +83,10 @@ def test_compiled_step_equals_the_numpy_step(overrides, reel_mps):
                           (a.kin.a, b.kin.a, 1e-9), (a.kin.qdd, b.kin.qdd, 1e-9)):
             assert np.max(np.abs(x - y)) <= tol * np.max(np.abs(y))
         assert stats["compiled"].newton_iterations == stats["numpy"].newton_iterations
+        assert a.ev.series is not None and b.ev.series is None
+        sa, sb = fe.line_state(compiled, a, False), fe.line_state(reference, b, False)
+        for key in sb:
+            assert sa[key] == pytest.approx(sb[key], rel=1e-12, abs=1e-14), key
 
 
 @pytest.mark.parametrize("max_newton", [1, 2])

@@ -317,12 +317,40 @@ def _max_abs(x):
     return out
 
 
-@jit(M, V, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, returns=I)
+@numba.njit(cache=True, error_model="numpy")
+def line_series(r, v, r_mid, force, h, length, out):
+    """A solution's series values, the twin of the NumPy lines of
+    :func:`fem_tether.fe.solver.line_state` (the formulas of :mod:`fem_tether.moment`):
+    ``out = (F_t, F_against, |r_N|, max_e ||D r|_e / h_e - 1|)`` with the drag
+    moment ``M_d = sum_e h_e r_mid,e x f_e`` (seed 000 eq. 4.1), ``F_t = |M_d| / r_k``
+    and ``F_against = -((M_d x e_r) / r_k) . v_N / |v_N|`` (0 for a kite at rest)."""
+    m = np.zeros(3)
+    for e in range(r_mid.shape[0]):
+        m[0] += h[e] * (r_mid[e, 1] * force[e, 2] - r_mid[e, 2] * force[e, 1])
+        m[1] += h[e] * (r_mid[e, 2] * force[e, 0] - r_mid[e, 0] * force[e, 2])
+        m[2] += h[e] * (r_mid[e, 0] * force[e, 1] - r_mid[e, 1] * force[e, 0])
+    k = r.shape[0] - 1
+    r_k = math.sqrt(r[k, 0] * r[k, 0] + r[k, 1] * r[k, 1] + r[k, 2] * r[k, 2])
+    out[0] = math.sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]) / r_k
+    speed = math.sqrt(v[k, 0] * v[k, 0] + v[k, 1] * v[k, 1] + v[k, 2] * v[k, 2])
+    out[1] = 0.0
+    if speed > 0.0:
+        e_r = (r[k, 0] / r_k, r[k, 1] / r_k, r[k, 2] / r_k)
+        f_perp = ((m[1] * e_r[2] - m[2] * e_r[1]) / r_k, (m[2] * e_r[0] - m[0] * e_r[2]) / r_k,
+                  (m[0] * e_r[1] - m[1] * e_r[0]) / r_k)
+        out[1] = -(f_perp[0] * v[k, 0] + f_perp[1] * v[k, 1] + f_perp[2] * v[k, 2]) / speed
+    out[2] = r_k
+    out[3] = 0.0
+    for e in range(length.shape[0]):
+        out[3] = max(out[3], abs(length[e] / h[e] - 1.0))
+
+
+@jit(M, V, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, V, returns=I)
 def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
                ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, reel_mps, newton_tol, max_newton,
                air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
                damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
-               info):
+               series, info):
     """One generalised-alpha time step of size ``dt_s`` from the state
     ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as the
     NumPy path of :func:`fem_tether.fe.solver._step` takes it.
@@ -342,7 +370,8 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     outputs are the solution's), :data:`NOT_CONVERGED` (no convergence within
     ``max_newton`` iterations, a non-finite residual or a singular Jacobian) or
     :data:`LEFT_ATMOSPHERE` (a midpoint of ``r_mid`` above the ISA troposphere);
-    ``info`` = (iterations, last scaled residual, R)."""
+    ``info`` = (iterations, last scaled residual, R).  At the solution ``series``
+    gets its series values (:func:`line_series`)."""
     n_nodes = r.shape[0]
     n = 4 * n_nodes
     q_known, v_known, qdd_known = np.empty_like(v), np.empty_like(v), np.empty_like(v)
@@ -388,6 +417,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
             if not math.isfinite(worst):
                 return NOT_CONVERGED
             if worst <= newton_tol:
+                line_series(r, v, r_mid, force, h, length, series)
                 return CONVERGED
             if not with_jacobian:
                 again = True

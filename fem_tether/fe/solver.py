@@ -312,15 +312,21 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
     ev = state.ev or sys_.evaluate(r, v, state.kin.qdd, state.T, state.R,
                                    model.end.state(state.t, 1.0)[0], model.ground_tension_N,
                                    model.radius_m, 1.0, jacobian=False)
-    moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
-    drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
+    if ev.series is not None:      # a compiled step's (:func:`.kernel.line_series`, the same formulas)
+        drag, against, radius, strain = ev.series.tolist()
+    else:
+        moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
+        drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
+        against = 0.0 if against is None else float(against)
+        radius = float(np.linalg.norm(r[-1]))
+        strain = float(np.max(np.abs(ev.length_m / sys_.spaces.h_m - 1.0)))
     series = {
         "ground_tension_N": state.T[0],
         "kite_tension_N": state.T[-1],
-        "kite_radius_m": float(np.linalg.norm(r[-1])),
+        "kite_radius_m": radius,
         "drag_N": float(drag),
-        "drag_against_N": float(against) if against is not None else 0.0,
-        "max_strain": float(np.max(np.abs(ev.length_m / sys_.spaces.h_m - 1.0))),
+        "drag_against_N": against,
+        "max_strain": strain,
     }
     if not fields:
         return series

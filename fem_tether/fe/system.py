@@ -55,6 +55,7 @@ class Evaluation:
     load: CrossflowDrag                # drag at the element midpoints
     band: np.ndarray | None = None     # Jacobian without R row/column, LAPACK gbsv storage
     r_col: np.ndarray | None = None    # column of R (rows 0..n-2)
+    series: np.ndarray | None = None   # F_t, F_against, |r_N|, max strain, if a compiled step gave them
 
     @property
     def ab(self) -> np.ndarray:
@@ -264,7 +265,8 @@ class TetherSystem:
         generalised-alpha ``scheme``'s predictor, kinematics and Newton's
         iteration in one call).
 
-        Returns ``(r, T, R, v, a, qdd, evaluation)`` at the solution; raises
+        Returns ``(r, T, R, v, a, qdd, evaluation)`` at the solution (the
+        evaluation with its series values, :func:`.kernel.line_series`); raises
         :class:`~fem_tether.continuation.NotConverged` as the NumPy iteration
         does (with the altitude when an iterate left the atmosphere).  The
         iterations are added to ``stats.newton_iterations``."""
@@ -274,14 +276,16 @@ class TetherSystem:
         k_s = force_ref_N / self._h_mean
         c_a, c_v = scheme.coefficients(dt_s)
         outputs = self._outputs()
-        info = np.zeros(3)
+        series, info = np.empty(4), np.zeros(3)
         status = self._kernel.solve_step(
             r_new, T_new, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma,
             kite_dir, ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol,
-            max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, info)
+            max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, series, info)
         stats.newton_iterations += int(info[0])
         if status == self._kernel.CONVERGED:
-            return r_new, T_new, float(info[2]), v_new, a_new, qdd_new, self._evaluation(k_s, outputs)
+            evaluation = self._evaluation(k_s, outputs)
+            evaluation.series = series
+            return r_new, T_new, float(info[2]), v_new, a_new, qdd_new, evaluation
         if status == self._kernel.LEFT_ATMOSPHERE:
             raise NotConverged(float(info[1]),
                                left_atmosphere(AltitudeError(float(np.max(outputs[3][:, 2])))))
