@@ -62,6 +62,22 @@ def expect_converged(worst: float, before: float, tol: float) -> bool:
     return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
 
 
+#: A Newton step that cut the residual (max norm) by at least this factor lets
+#: the next iterate be solved with the same factors (:func:`reuse_factors`).
+CHORD_CONTRACTION = 0.1
+
+
+def reuse_factors(worst: float, before: float) -> bool:
+    """Whether the Newton iterate after residuals ``before`` and then ``worst``
+    (max norms) may take its step with the factors of an earlier iterate's
+    Jacobian (a chord step): the last step cut the residual by
+    :data:`CHORD_CONTRACTION` or more.  Such a step costs a residual and a
+    solve instead of a Jacobian and its factorisation; while the steps keep
+    contracting that fast they converge to the same tolerance (a slower one
+    brings a fresh Jacobian at the next iterate)."""
+    return math.isfinite(before) and worst <= CHORD_CONTRACTION * before
+
+
 @dataclass
 class Statistics:
     """Work of one run: residual evaluations of the Newton iterations (converged

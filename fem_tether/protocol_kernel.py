@@ -1,8 +1,9 @@
-"""The run protocol's Newton rule as a compiled function, for the solvers' whole-step kernels.
+"""The run protocol's Newton rules as compiled functions, for the solvers' whole-step kernels.
 
-:func:`expect_converged` is the twin of :func:`fem_tether.protocol.expect_converged`
-(the reference, and its docstring the rule's explanation):
-``tests/test_protocol_kernel.py`` holds the two together.
+:func:`expect_converged` and :func:`reuse_factors` are the twins of
+:func:`fem_tether.protocol.expect_converged` and :func:`fem_tether.protocol.reuse_factors`
+(the references, and their docstrings the rules' explanations):
+``tests/test_protocol_kernel.py`` holds them together.
 """
 
 from __future__ import annotations
@@ -11,9 +12,17 @@ import math
 
 import numba
 
+from fem_tether.protocol import CHORD_CONTRACTION
+
 
 @numba.njit("b1(f8, f8, f8)", cache=True, error_model="numpy")
 def expect_converged(worst, before, tol):
     """``worst^2 / before^2`` times ``worst`` below a tenth of ``tol``, after a
     finite residual ``before`` larger than ``worst``."""
     return math.isfinite(before) and worst < before and worst * (worst / before) ** 2 <= 0.1 * tol
+
+
+@numba.njit("b1(f8, f8)", cache=True, error_model="numpy")
+def reuse_factors(worst, before):
+    """``worst`` at most :data:`~fem_tether.protocol.CHORD_CONTRACTION` times a finite ``before``."""
+    return math.isfinite(before) and worst <= CHORD_CONTRACTION * before

@@ -1,4 +1,4 @@
-"""The compiled Newton rule equals fem_tether.protocol.expect_converged."""
+"""The compiled Newton rules equal those of fem_tether.protocol."""
 
 import math
 
@@ -15,3 +15,10 @@ def test_expect_converged_equals_the_protocols_rule():
             for tol in (1e-10, 1e-8):
                 assert protocol_kernel.expect_converged(worst, before, tol) \
                     == protocol.expect_converged(worst, before, tol)
+
+
+def test_reuse_factors_equals_the_protocols_rule():
+    values = np.concatenate([np.geomspace(1e-16, 1e4, 60), [0.0, math.inf, math.nan]])
+    for worst in values:
+        for before in values:
+            assert protocol_kernel.reuse_factors(worst, before) == protocol.reuse_factors(worst, before)

@@ -33,9 +33,10 @@ import numpy as np
 from fem_tether.environment_kernel import air_state, drag_coefficient_state, wind_state
 from fem_tether.fe.system import BAND
 from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
-from fem_tether.protocol_kernel import expect_converged
+from fem_tether.protocol_kernel import reuse_factors
 
-__all__ = ["evaluate", "jacobian", "midpoints", "newton_step", "normal_flow", "residual", "solve_step"]
+__all__ = ["bordered_step", "evaluate", "factorize", "jacobian", "line_series", "midpoints", "normal_flow",
+           "residual", "solve_step"]
 
 V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
 
@@ -184,13 +185,12 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _band_factor(band):
+def _band_factor(band, ipiv):
     """LU factors with partial pivoting of the band in LAPACK ``gbsv`` storage,
-    in place (LAPACK's unblocked ``dgbtf2``, which ``dgbsv`` runs for
-    ``kl = ku = BAND``); returns the pivots, or None for a zero pivot."""
+    in place (LAPACK's unblocked ``dgbtf2``, which ``dgbtrf`` runs for
+    ``kl = ku = BAND``), the pivots into ``ipiv``; False for a zero pivot."""
     n = band.shape[1]
     kv = 2 * BAND
-    ipiv = np.empty(n, np.int64)
     multiplier = np.empty(BAND + 1)      # column j's multipliers below the pivot, 1..km
     ju = 0
     for j in range(n):
@@ -202,7 +202,7 @@ def _band_factor(band):
         ipiv[j] = j + jp
         pivot = band[kv + jp, j]
         if pivot == 0.0:
-            return None
+            return False
         ju = max(ju, min(j + BAND + jp, n - 1))
         if jp != 0:
             for c in range(j, ju + 1):
@@ -220,50 +220,54 @@ def _band_factor(band):
                 else:
                     for i in range(1, km + 1):
                         band[kv + j + i - c, c] -= multiplier[i] * u
-    return ipiv
+    return True
 
 
 @numba.njit(cache=True, error_model="numpy")
 def _band_solve(band, ipiv, b):
-    """Solve with the factors of :func:`_band_factor` for the columns of ``b``,
-    in place (``dgbtrs``)."""
+    """Solve with the factors of :func:`_band_factor` for ``b``, in place (``dgbtrs``)."""
     n = band.shape[1]
     kv = 2 * BAND
     for j in range(n - 1):
         km = min(BAND, n - 1 - j)
         p = ipiv[j]
-        for c in range(b.shape[1]):
-            if p != j:
-                b[j, c], b[p, c] = b[p, c], b[j, c]
-            for i in range(1, km + 1):
-                b[j + i, c] -= band[kv + i, j] * b[j, c]
+        if p != j:
+            b[j], b[p] = b[p], b[j]
+        for i in range(1, km + 1):
+            b[j + i] -= band[kv + i, j] * b[j]
     for j in range(n - 1, -1, -1):
-        for c in range(b.shape[1]):
-            b[j, c] /= band[kv, j]
-            for i in range(max(0, j - kv), j):
-                b[i, c] -= band[kv + i - j, j] * b[j, c]
+        b[j] /= band[kv, j]
+        for i in range(max(0, j - kv), j):
+            b[i] -= band[kv + i - j, j] * b[j]
 
 
-@jit(M, V, V, B, F, V)
-def newton_step(band, residual, r_col, tension_mode, k_s, dx):
-    """``J dx = -residual`` by the band LU bordered with the R row and column
-    (:meth:`.system.TetherSystem.newton_step`): with ``J0 y = -residual[:-1]``
-    and ``J0 z = r_col``, ``dx = y - z dR``, where the last row gives dR
-    (``T_0 = T_ground``: ``dT_0 = 0``; prescribed R: ``k dR = -residual[-1]``).
-    The band is overwritten by its factors; a singular band leaves ``dx`` NaN."""
-    ipiv = _band_factor(band)
-    if ipiv is None:
-        dx[:] = np.nan
-        return
+@jit(M, V, "i8[:]", V, returns=B)
+def factorize(band, r_col, ipiv, z):
+    """The Newton matrix's factors (:meth:`.system.TetherSystem.factorize`): the
+    band (``J0``, without the R row and column) overwritten by its LU, the
+    pivots into ``ipiv``, and ``z = J0^-1 r_col`` (the R column's solve, which
+    every step with these factors shares).  False if ``J0`` is singular."""
+    if not _band_factor(band, ipiv):
+        return False
+    for i in range(z.shape[0]):
+        z[i] = r_col[i]
+    _band_solve(band, ipiv, z)
+    return True
+
+
+@jit(M, "i8[:]", V, V, B, F, V)
+def bordered_step(band, ipiv, z, residual, tension_mode, k_s, dx):
+    """``J dx = -residual`` with the factors of :func:`factorize`, bordered with
+    the R row and column (:meth:`.system.Factors.step`): with
+    ``J0 y = -residual[:-1]``, ``dx = y - z dR``, where the last row gives dR
+    (``T_0 = T_ground``: ``dT_0 = 0``; prescribed R: ``k dR = -residual[-1]``)."""
     n = residual.shape[0]
-    yz = np.empty((n - 1, 2))
     for i in range(n - 1):
-        yz[i, 0] = -residual[i]
-        yz[i, 1] = r_col[i]
-    _band_solve(band, ipiv, yz)
-    dR = (-residual[n - 1] - yz[3, 0]) / (-yz[3, 1]) if tension_mode else -residual[n - 1] / k_s
+        dx[i] = -residual[i]
+    _band_solve(band, ipiv, dx[:n - 1])
+    dR = (-residual[n - 1] - dx[3]) / (-z[3]) if tension_mode else -residual[n - 1] / k_s
     for i in range(n - 1):
-        dx[i] = yz[i, 0] - yz[i, 1] * dR
+        dx[i] -= z[i] * dR
     dx[n - 1] = dR
 
 
@@ -362,11 +366,12 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     terms of :class:`~fem_tether.fe.integrator.Step`, computed here as there):
     ``a = (q - q_known) / (beta dt^2)``, ``v = v_known + dt gamma a``,
     ``qdd = qdd_known + (1 - alpha_m)/(1 - alpha_f) a``, into ``v``, ``a``,
-    ``qdd``.  Each iteration evaluates the equations (:func:`evaluate`;
-    without the Jacobian when the iterate is expected converged,
-    :func:`~fem_tether.protocol_kernel.expect_converged`), stops when the largest
-    residual is within ``newton_tol`` of ``force_ref_N``, and otherwise takes
-    :func:`newton_step`.  Returns :data:`CONVERGED` (the last evaluation's
+    ``qdd``.  Each iteration evaluates the equations (:func:`evaluate`), stops
+    when the largest residual is within ``newton_tol`` of ``force_ref_N``, and
+    otherwise takes a Newton step (:func:`factorize`, :func:`bordered_step`):
+    with the factors of an earlier iterate, and so without the Jacobian, when
+    the last step contracted the residual fast enough
+    (:func:`~fem_tether.protocol_kernel.reuse_factors`).  Returns :data:`CONVERGED` (the last evaluation's
     outputs are the solution's), :data:`NOT_CONVERGED` (no convergence within
     ``max_newton`` iterations, a non-finite residual or a singular Jacobian) or
     :data:`LEFT_ATMOSPHERE` (a midpoint of ``r_mid`` above the ISA troposphere);
@@ -391,41 +396,37 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     r_col = np.zeros(n - 1)
     for k in range(3):
         r_col[n - 4 + k] = -k_s * kite_dir[k]
-    dx = np.empty(n)
+    ipiv, z, dx = np.empty(n - 1, np.int64), np.empty(n - 1), np.empty(n)
+    factored = False
     worst = last = math.inf
     info[0] = 0.0
-    again = False              # the iterate expected converged was not: evaluate it again, with the Jacobian
-    while info[0] < max_newton or again:
-        if not again:
-            for i in range(r.shape[0]):
-                for k in range(3):
-                    a[i, k] = (r[i, k] - q_known[i, k]) * a_per_q
-                    v[i, k] = v_known[i, k] + v_per_a * a[i, k]
-                    qdd[i, k] = qdd_known[i, k] + qdd_per_a * a[i, k]
-        with_jacobian = again or not expect_converged(worst, last, newton_tol)
+    for _ in range(max_newton):
+        for i in range(r.shape[0]):
+            for k in range(3):
+                a[i, k] = (r[i, k] - q_known[i, k]) * a_per_q
+                v[i, k] = v_known[i, k] + v_per_a * a[i, k]
+                qdd[i, k] = qdd_known[i, k] + qdd_per_a * a[i, k]
+        chord = factored and reuse_factors(worst, last)
         info[1] = worst
         info[2] = R
         if evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-                     with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w,
-                     h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn,
-                     vn_mps, re, cd, band) >= 0:
+                    not chord, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
+                    compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn,
+                    vn_mps, re, cd, band) >= 0:
             return LEFT_ATMOSPHERE
-        if not again:
-            info[0] += 1.0
-            worst, last = _max_abs(res) / force_ref_N, worst
-            info[1] = worst
-            if not math.isfinite(worst):
-                return NOT_CONVERGED
-            if worst <= newton_tol:
-                line_series(r, v, r_mid, force, h, length, series)
-                return CONVERGED
-            if not with_jacobian:
-                again = True
-                continue
-        again = False
-        newton_step(band, res, r_col, tension_mode, k_s, dx)
-        if math.isnan(dx[0]):
+        info[0] += 1.0
+        worst, last = _max_abs(res) / force_ref_N, worst
+        info[1] = worst
+        if not math.isfinite(worst):
             return NOT_CONVERGED
+        if worst <= newton_tol:
+            line_series(r, v, r_mid, force, h, length, series)
+            return CONVERGED
+        if not chord:
+            factored = factorize(band, r_col, ipiv, z)
+            if not factored:
+                return NOT_CONVERGED
+        bordered_step(band, ipiv, z, res, tension_mode, k_s, dx)
         for i in range(n_nodes):
             for k in range(3):
                 r[i, k] += dx[4 * i + k]

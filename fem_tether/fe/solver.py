@@ -32,7 +32,7 @@ from fem_tether.fe.system import Evaluation, TetherSystem
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
-from fem_tether.protocol import Statistics, expect_converged, speed_jumped
+from fem_tether.protocol import Statistics, reuse_factors, speed_jumped
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.results import TetherRun
 
@@ -278,30 +278,28 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     r, T, _ = sys_.unpack(x)
     step = kin.step(h, model.scheme)
     worst = last = math.inf            # last: the residual before worst
-
-    def evaluate(jacobian):
-        try:
-            return sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
-                                 f_ref, c_a, c_v, jacobian=jacobian, reel_mps=model.reel_mps)
-        except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
-            raise NotConverged(worst, left_atmosphere(exc)) from None
-
+    factors = None
     for _ in range(model.max_newton):
         R = float(x[-1])
         kin = step.kinematics(r)
-        ev = evaluate(not expect_converged(worst, last, model.newton_tol))
+        chord = factors is not None and reuse_factors(worst, last)
+        try:
+            ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
+                               f_ref, c_a, c_v, jacobian=not chord, reel_mps=model.reel_mps)
+        except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
+            raise NotConverged(worst, left_atmosphere(exc)) from None
         stats.newton_iterations += 1
         worst, last = float(np.abs(ev.residual).max()) / f_ref, worst
         if not math.isfinite(worst):
             break
         if worst <= model.newton_tol:
             return State(t_new, kin, T, R, ev)
-        if ev.band is None:              # expected converged, but not: the Jacobian after all
-            ev = evaluate(True)
-        try:
-            x += sys_.newton_step(ev)
-        except np.linalg.LinAlgError:     # singular Jacobian (a folded or slack line)
-            break
+        if factors is None or not chord:
+            try:
+                factors = sys_.factorize(ev)
+            except np.linalg.LinAlgError:     # singular Jacobian (a folded or slack line)
+                break
+        x += factors.step(ev.residual)
     raise NotConverged(worst)
 
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.linalg.lapack import dgbsv
+from scipy.linalg.lapack import dgbsv, dgbtrf, dgbtrs
 
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.continuation import NotConverged
@@ -438,26 +438,55 @@ class TetherSystem:
             minlength=(3 * BAND + 1) * m,
         ).reshape(3 * BAND + 1, m)
 
-    def newton_step(self, ev: Evaluation) -> np.ndarray:
-        """Solve J dx = -residual by a banded LU bordered with the R row/column.
-
-        The last equation is ``T_0 = T_ground`` (tension mode, row e_3 with no
-        R entry) or ``R = R_prescribed`` (row with only the R entry).  The LU
-        overwrites the evaluation's Jacobian, so each evaluation takes one step.
-        """
+    def factorize(self, ev: Evaluation) -> "Factors":
+        """The factors of the evaluation's Jacobian for :meth:`Factors.step`
+        (the band LU overwrites the evaluation's Jacobian).  Raises
+        ``LinAlgError`` on a singular Jacobian."""
         assert ev.band is not None and ev.r_col is not None, \
-            "newton_step needs an evaluation with the Jacobian, not yet factorised"
+            "factorize needs an evaluation with the Jacobian, not yet factorised"
         band, ev.band = ev.band, None
         if self.compiled:
-            dx = np.empty(self.n)
-            self._kernel.newton_step(band, ev.residual, ev.r_col, self.tension_mode, ev.k_s, dx)
-            if np.isnan(dx[0]):
+            ipiv, z = np.empty(self.n - 1, np.int64), np.empty(self.n - 1)
+            if not self._kernel.factorize(band, ev.r_col, ipiv, z):
                 raise np.linalg.LinAlgError("singular matrix")
+            return Factors(band, ipiv, z, self.tension_mode, ev.k_s, self._kernel)
+        lu, ipiv, info = dgbtrf(band, BAND, BAND, overwrite_ab=1)
+        if info > 0:
+            raise np.linalg.LinAlgError("singular matrix")
+        z, _ = dgbtrs(lu, BAND, BAND, ev.r_col, ipiv)
+        return Factors(lu, ipiv, z, self.tension_mode, ev.k_s)
+
+    def newton_step(self, ev: Evaluation) -> np.ndarray:
+        """Solve J dx = -residual with the evaluation's own Jacobian
+        (:meth:`factorize`, then :meth:`Factors.step`)."""
+        return self.factorize(ev).step(ev.residual)
+
+
+@dataclass
+class Factors:
+    """The LU of a Newton matrix without its R row and column, ``J0``, and
+    ``z = J0^-1 r_col``: what the Newton steps of several iterates can share.
+
+    :meth:`step` solves ``J dx = -residual`` bordered with the R row and column:
+    with ``J0 y = -residual[:-1]``, ``dx = y - z dR``, the last equation being
+    ``T_0 = T_ground`` (tension mode: ``dT_0 = 0``, row e_3 with no R entry) or
+    ``R = R_prescribed`` (``k dR = -residual[-1]``).  By LAPACK (``dgbtrf``,
+    ``dgbtrs``) or, with ``kernel``, by its compiled twin."""
+
+    lu: np.ndarray
+    ipiv: np.ndarray
+    z: np.ndarray
+    tension_mode: bool
+    k_s: float
+    kernel: Any = None
+
+    def step(self, residual: np.ndarray) -> np.ndarray:
+        dx = np.empty(residual.size)
+        if self.kernel is not None:
+            self.kernel.bordered_step(self.lu, self.ipiv, self.z, residual, self.tension_mode, self.k_s, dx)
             return dx
-        b = -ev.residual
-        y, zc = solve_band(band, np.column_stack([b[:-1], ev.r_col])).T
-        dR = (b[-1] - y[3]) / (-zc[3]) if self.tension_mode else b[-1] / ev.k_s
-        dx = np.empty(self.n)
-        dx[:-1] = y - zc * dR
+        y, _ = dgbtrs(self.lu, BAND, BAND, -residual[:-1], self.ipiv)
+        dR = (-residual[-1] - y[3]) / (-self.z[3]) if self.tension_mode else -residual[-1] / self.k_s
+        dx[:-1] = y - self.z * dR
         dx[-1] = dR
         return dx
