@@ -52,6 +52,8 @@ FD_SEGMENTS = (25, 50, 100)
 FD_TIME_STEPS_S = (0.1, 0.05, 0.025)
 SCALING_ELEMENTS = (20, 80, 320, 1280, 5120)
 SCALING_DT_S = 0.1
+SCALING_REPEATS = 3
+"""Best of this many runs per element count of the cost-vs-elements fit."""
 TOLERANCE = 0.005
 
 
@@ -165,7 +167,7 @@ def memory(elements: int, dt_s: float = SCALING_DT_S) -> dict:
 
 
 def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
-          fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=3) -> dict:
+          fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=5) -> dict:
     """Run both grids and the references; return the tables and the summary."""
     ref_run = _run("fe", 4 * max(elements), min(time_steps_s) / 4, 1)
     ref = ref_run["drag_N"]
@@ -174,7 +176,7 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
     fd_rows, fd_cheapest = _grid("fd", fd_segments, fd_time_steps_s, ref, repeats)
     scaling = []
     for n in scaling_elements:
-        m = _run("fe", n, SCALING_DT_S, 1)
+        m = _run("fe", n, SCALING_DT_S, SCALING_REPEATS)
         scaling.append({k: m[k] for k in ("elements", "steps", "wall_s", "peak_rss_MiB")})
     n_el = np.array([r["elements"] for r in scaling], dtype=float)
     wall = np.array([r["wall_s"] for r in scaling])

@@ -5,22 +5,27 @@ implementation is the reference, and the tests hold the two together), written
 as loops over elements that numba compiles to machine code.  On the small
 systems of a tether (tens of elements) the NumPy version spends its time in the
 overhead of ~150 array operations per Newton iteration; compiled, an iteration
-costs about as much as a few of them.  The leaf physics (wind, air, drag
-coefficient) stays in NumPy and is called between the kernels: geometry
-(:func:`midpoints`) gives the altitudes the wind and the air need, the normal
-flow (:func:`normal_flow`) the Reynolds numbers the drag coefficient needs,
-and :func:`residual`, :func:`jacobian` and :func:`newton_step` the rest.  The
-drag's own loops, per point, are leaf physics shared with the FD kernels
-(:mod:`fem_tether.loads_kernel`).
+costs about as much as a few of them.  Geometry (:func:`midpoints`) gives the
+altitudes where the leaf physics is evaluated, by its compiled twins
+(:mod:`fem_tether.environment_kernel`: air, wind, drag coefficient; the
+drag's own loops in :mod:`fem_tether.loads_kernel`, shared with the FD
+kernels); :func:`residual` and :func:`jacobian` assemble the equations, and
+:func:`factorize` and :func:`bordered_step` solve for a Newton step.
+:func:`evaluate` is one evaluation in one call, :func:`solve_step` a whole
+time step (predictor, kinematics, Newton's iteration and the step's series
+values, :func:`line_series`).
 
 Notation as in :mod:`.system`: element e joins nodes e and e + 1, sgn = (-1, +1)
 for its nodes a = 0, 1; ``w[e, a]`` are Q's weights; rows and columns in the
 interleaved ordering ``[r_0, T_0, r_1, T_1, ..., r_N, R]``; the band in LAPACK
 ``gbsv`` storage, ``band[2 BAND + i - j, j] = J[i, j]``.
 
-Compiled when first imported (one signature per kernel) and cached on disk
-next to this file (numba's ``cache=True``), so only the first run after an
-install pays the compile time.
+The functions called from Python are compiled when this module is first
+imported (one signature each) and cached on disk next to this file (numba's
+``cache=True``), so only the first run after an install pays the compile
+time; the others are compiled into them.  Array reshapes, array-to-slice
+assignments and array reductions are written as loops: numba would compile
+their error-message machinery too, which doubled the compile time.
 """
 
 from __future__ import annotations
