@@ -44,6 +44,7 @@ __all__ = ["bordered_step", "evaluate", "factorize", "jacobian", "line_series", 
            "residual", "solve_step"]
 
 V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
+BF = "f8[::1, :]"                                         # the band: Fortran order
 
 CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE = 0, 1, 2
 """What :func:`solve_step` returns."""
@@ -246,7 +247,7 @@ def _band_solve(band, ipiv, b):
             b[i] -= band[kv + i - j, j] * b[j]
 
 
-@jit(M, V, "i8[:]", V, returns=B)
+@jit(BF, V, "i8[:]", V, returns=B)
 def factorize(band, r_col, ipiv, z):
     """The Newton matrix's factors (:meth:`.system.TetherSystem.factorize`): the
     band (``J0``, without the R row and column) overwritten by its LU, the
@@ -260,7 +261,7 @@ def factorize(band, r_col, ipiv, z):
     return True
 
 
-@jit(M, "i8[:]", V, V, B, F, V)
+@jit(BF, "i8[:]", V, V, B, F, V)
 def bordered_step(band, ipiv, z, residual, tension_mode, k_s, dx):
     """``J dx = -residual`` with the factors of :func:`factorize`, bordered with
     the R row and column (:meth:`.system.Factors.step`): with
@@ -280,7 +281,7 @@ def bordered_step(band, ipiv, z, residual, tension_mode, k_s, dx):
 #: (:func:`fem_tether.environment_kernel.tables`), then the line's constants.
 LINE = (V, M, V, F, F, V, V, V, M, V, F, F, B)
 #: :func:`evaluate`'s outputs: residual, tau, |D r|, r_mid, f_t, V_n, |V_n|, Re, C_d,c, band.
-OUTPUTS = (V, M, V, M, M, M, V, V, V, M)
+OUTPUTS = (V, M, V, M, M, M, V, V, V, BF)
 
 
 @jit(M, M, M, V, F, V, F, F, F, F, F, F, B, *LINE, *OUTPUTS, returns=I)
