@@ -22,3 +22,13 @@ def test_reuse_factors_equals_the_protocols_rule():
     for worst in values:
         for before in values:
             assert protocol_kernel.reuse_factors(worst, before) == protocol.reuse_factors(worst, before)
+
+
+def test_max_abs_is_numpys_max_norm():
+    """The convergence test's norm: NumPy's max of |x|, NaN when any entry is."""
+    rng = np.random.default_rng(5)
+    x = rng.normal(size=50) * 1e3
+    assert protocol_kernel.max_abs(x) == np.abs(x).max()
+    assert protocol_kernel.max_abs(np.zeros(0)) == 0.0
+    x[7] = math.nan
+    assert math.isnan(protocol_kernel.max_abs(x))

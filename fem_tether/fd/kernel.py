@@ -36,7 +36,7 @@ import numpy as np
 
 from fem_tether.environment_kernel import air_state, drag_coefficient_state, tables, wind_state
 from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
-from fem_tether.protocol_kernel import expect_converged
+from fem_tether.protocol_kernel import expect_converged, max_abs
 
 __all__ = ["assemble", "directions", "evaluate", "jacobian", "physics_tables", "residual", "solve",
            "solve_step"]
@@ -345,17 +345,6 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _max_abs(x):
-    """max |x_i|; NaN if any x_i is."""
-    worst = 0.0
-    for i in range(x.shape[0]):
-        if math.isnan(x[i]):
-            return x[i]
-        worst = max(worst, abs(x[i]))
-    return worst
-
-
-@numba.njit(cache=True, error_model="numpy")
 def _predictor(r, v, a, T, R, h):
     """The unknowns in the full layout (:meth:`.system.Grid.pack`): the interior
     nodes predicted at ``r + h v + h^2/2 a``, the tensions T and the kite distance R."""
@@ -442,7 +431,7 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
             status[0] = LEFT_ATMOSPHERE
             break
         iterations += 1
-        worst, last = _max_abs(res), worst
+        worst, last = max_abs(res), worst
         if not math.isfinite(worst):
             break
         if worst <= newton_tol:

@@ -38,7 +38,7 @@ import numpy as np
 from fem_tether.environment_kernel import air_state, drag_coefficient_state, wind_state
 from fem_tether.fe.system import BAND
 from fem_tether.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
-from fem_tether.protocol_kernel import reuse_factors
+from fem_tether.protocol_kernel import max_abs, reuse_factors
 
 __all__ = ["bordered_step", "evaluate", "factorize", "jacobian", "line_series", "midpoints", "normal_flow",
            "residual", "solve_step"]
@@ -317,17 +317,6 @@ def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _max_abs(x):
-    """max |x_i|, NaN if any is (as NumPy's max)."""
-    out = 0.0
-    for value in x:
-        a = abs(value)
-        if a > out or a != a:
-            out = a
-    return out
-
-
-@numba.njit(cache=True, error_model="numpy")
 def line_series(r, v, r_mid, force, h, length, out):
     """A solution's series values, the twin of the NumPy lines of
     :func:`fem_tether.fe.solver.line_state` (the formulas of :mod:`fem_tether.moment`):
@@ -421,7 +410,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
                     vn_mps, re, cd, band) >= 0:
             return LEFT_ATMOSPHERE
         info[0] += 1.0
-        worst, last = _max_abs(res) / force_ref_N, worst
+        worst, last = max_abs(res) / force_ref_N, worst
         info[1] = worst
         if not math.isfinite(worst):
             return NOT_CONVERGED
