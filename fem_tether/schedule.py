@@ -14,18 +14,18 @@ from fem_tether.results import time_grid
 
 #: Cost of one time step of each solver, ``overhead + per_point x points`` in
 #: microseconds, measured on 2026-11-30 with the compiled whole-step kernels:
-#: in the default job (1 + 2 periods) an FE run of 41 nodes took 0.097 s for
-#: 436 steps (222 us/step) and an FD run of 101 nodes 0.317 s for 871 steps
-#: (364 us/step); at 640 elements and 1600 segments (default physics, 1768 m)
-#: 1.6-2.5 ms and 4.5-6.0 ms per step.  Only the ratios matter (they order and
-#: balance the tasks).
-STEP_COST_US = {"fe": (110.0, 2.7), "fd": (90.0, 2.7)}
+#: in the default job (1 + 2 periods) an FE run of 41 nodes took 0.050-0.063 s
+#: for 436 steps (115-145 us/step) and an FD run of 101 nodes 0.27-0.31 s for
+#: 871 steps (310-355 us/step); the bench case at 5000 elements 10-13 ms per
+#: FE step, at 1600 segments (default physics, 1768 m) 4.5-6.0 ms per FD step.
+#: Only the ratios matter (they order and balance the tasks).
+STEP_COST_US = {"fe": (60.0, 1.5), "fd": (90.0, 2.7)}
 
 
 def task_cost(job: Job, task: Task) -> float:
     """Estimated cost in microseconds: time steps x (overhead + per_point x points)
     (:data:`STEP_COST_US`).  With the default job the estimate puts an FD run
-    at 3.3 FE runs, as measured (0.32 s against 0.097 s per length)."""
+    at 6.0 FE runs; measured, 4.5-5.9 (0.27-0.31 s against 0.050-0.063 s per length)."""
     from fem_tether.fe.solver import unit_mesh_from_config
 
     cfg = job.config_for(task.length_m)
