@@ -278,7 +278,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     r, T, _ = sys_.unpack(x)
     step = kin.step(h, model.scheme)
     worst = last = math.inf            # last: the residual before worst
-    k_s = f_ref / sys_.spaces.h_m.mean()
+    k_s = sys_.row_scale(f_ref)
     factors = sys_.step_factors(h)     # the last step's LU, with this step's R column
     sys_.keep_step_factors(h, None)
     if factors is not None:

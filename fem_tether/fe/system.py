@@ -193,7 +193,7 @@ class TetherSystem:
             return self._evaluate_compiled(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
                                            force_ref_N, c_a, c_v, jacobian, reel_mps)
         ph = self.physics
-        k_s = force_ref_N / self._h_mean
+        k_s = self.row_scale(force_ref_N)
         dr = r[1:] - r[:-1]
         length = np.sqrt(np.add.reduce(dr * dr, axis=1))
         tau = dr / length[:, None]
@@ -226,6 +226,10 @@ class TetherSystem:
             out.band, out.r_col = self._jacobian(T, tau, length, dv, z, air, load, k_s, c_a, c_v,
                                                  kite_dir, reel_mps)
         return out
+
+    def row_scale(self, force_ref_N: float) -> float:
+        """``k = F_ref / h_mean`` [N/m], the scale of the kinematic and constraint rows."""
+        return force_ref_N / self._h_mean
 
     def r_column(self, kite_dir, k_s) -> np.ndarray:
         """The Jacobian's column of R (rows 0..n-2): ``-k e`` in the kite node's rows."""
@@ -264,7 +268,7 @@ class TetherSystem:
     def _evaluate_compiled(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
                            force_ref_N, c_a, c_v, jacobian, reel_mps) -> Evaluation:
         """:meth:`evaluate` by :func:`.kernel.evaluate`, in one call."""
-        k_s = force_ref_N / self._h_mean
+        k_s = self.row_scale(force_ref_N)
         outputs = self._outputs()
         band = np.empty((3 * BAND + 1, self.n - 1), order="F")
         above = self._kernel.evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v,
@@ -292,7 +296,7 @@ class TetherSystem:
         r_new = np.empty_like(q)
         v_new, a_new, qdd_new = np.empty_like(v), np.empty_like(v), np.empty_like(v)
         T_new = np.empty_like(T)
-        k_s = force_ref_N / self._h_mean
+        k_s = self.row_scale(force_ref_N)
         c_a, c_v = scheme.coefficients(dt_s)
         outputs = self._outputs()
         series, info = np.empty(4), np.zeros(4)
