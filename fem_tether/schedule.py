@@ -15,7 +15,7 @@ from fem_tether.results import time_grid
 #: Cost of one time step of each solver, ``overhead + per_point x points`` in
 #: microseconds, measured on 2026-11-30 with the compiled whole-step kernels:
 #: in the default job (1 + 2 periods) an FE run of 41 nodes took 0.050-0.063 s
-#: for 436 steps (115-145 us/step) and an FD run of 101 nodes 0.27-0.31 s for
+#: for 436 steps (115-145 us/step, with a variant since dropped that saved ~15 %) and an FD run of 101 nodes 0.27-0.31 s for
 #: 871 steps (310-355 us/step); the bench case at 5000 elements 10-13 ms per
 #: FE step, at 1600 segments (default physics, 1768 m) 4.5-6.0 ms per FD step.
 #: Only the ratios matter (they order and balance the tasks).

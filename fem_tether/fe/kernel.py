@@ -344,13 +344,12 @@ def line_series(r, v, r_mid, force, h, length, out):
         out[3] = max(out[3], abs(length[e] / h[e] - 1.0))
 
 
-@jit(M, V, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, BF, "i8[:]", B, M, M, M, *OUTPUTS[:-1], V, V,
-     returns=I)
+@jit(M, V, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, V, returns=I)
 def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
                ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, reel_mps, newton_tol, max_newton,
                air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
-               damping_time_s, tension_mode, band, ipiv, have_factors, v, a, qdd, res, tau, length, r_mid,
-               force, vn, vn_mps, re, cd, series, info):
+               damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
+               series, info):
     """One generalised-alpha time step of size ``dt_s`` from the state
     ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as the
     NumPy path of :func:`fem_tether.fe.solver._step` takes it.
@@ -367,15 +366,12 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     otherwise takes a Newton step (:func:`factorize`, :func:`bordered_step`):
     with the factors of an earlier iterate, and so without the Jacobian, when
     the last step contracted the residual fast enough
-    (:func:`~fem_tether.protocol_kernel.reuse_factors`), and on the LU of the
-    last step (``band`` and ``ipiv`` on entry, ``have_factors``) at its first
-    iterate.  Returns :data:`CONVERGED` (the last evaluation's
+    (:func:`~fem_tether.protocol_kernel.reuse_factors`).  Returns :data:`CONVERGED` (the last evaluation's
     outputs are the solution's), :data:`NOT_CONVERGED` (no convergence within
     ``max_newton`` iterations, a non-finite residual or a singular Jacobian) or
     :data:`LEFT_ATMOSPHERE` (a midpoint of ``r_mid`` above the ISA troposphere);
-    ``info`` = (iterations, last scaled residual, R, whether ``band`` and
-    ``ipiv`` hold valid factors on exit).  At the solution ``series`` gets its
-    series values (:func:`line_series`)."""
+    ``info`` = (iterations, last scaled residual, R).  At the solution ``series``
+    gets its series values (:func:`line_series`)."""
     n_nodes = r.shape[0]
     n = 4 * n_nodes
     q_known, v_known, qdd_known = np.empty_like(v), np.empty_like(v), np.empty_like(v)
@@ -391,18 +387,12 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     a_per_q = 1.0 / (beta * dt_s * dt_s)
     v_per_a = dt_s * gamma
     qdd_per_a = (1.0 - alpha_m) / (1.0 - alpha_f)
+    band = np.empty((n - 1, 3 * BAND + 1)).T
     r_col = np.zeros(n - 1)
     for k in range(3):
         r_col[n - 4 + k] = -k_s * kite_dir[k]
-    z, dx = np.empty(n - 1), np.empty(n)
-    jac = np.empty((n - 1, 3 * BAND + 1)).T     # an evaluation's Jacobian, copied to band to be factorised
-    factored = have_factors          # an earlier step's LU in band and ipiv: its R column solved anew
-    if factored:
-        for i in range(n - 1):
-            z[i] = r_col[i]
-        _band_solve(band, ipiv, z)
-    first = factored
-    info[3] = 1.0 if factored else 0.0
+    ipiv, z, dx = np.empty(n - 1, np.int64), np.empty(n - 1), np.empty(n)
+    factored = False
     worst = last = math.inf
     info[0] = 0.0
     for _ in range(max_newton):
@@ -411,14 +401,13 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
                 a[i, k] = (r[i, k] - q_known[i, k]) * a_per_q
                 v[i, k] = v_known[i, k] + v_per_a * a[i, k]
                 qdd[i, k] = qdd_known[i, k] + qdd_per_a * a[i, k]
-        chord = factored and (first or reuse_factors(worst, last))
-        first = False
+        chord = factored and reuse_factors(worst, last)
         info[1] = worst
         info[2] = R
         if evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
                     not chord, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
                     compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn,
-                    vn_mps, re, cd, jac) >= 0:
+                    vn_mps, re, cd, band) >= 0:
             return LEFT_ATMOSPHERE
         info[0] += 1.0
         worst, last = max_abs(res) / force_ref_N, worst
@@ -429,11 +418,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
             line_series(r, v, r_mid, force, h, length, series)
             return CONVERGED
         if not chord:
-            for col in range(n - 1):
-                for row in range(3 * BAND + 1):
-                    band[row, col] = jac[row, col]
             factored = factorize(band, r_col, ipiv, z)
-            info[3] = 1.0 if factored else 0.0
             if not factored:
                 return NOT_CONVERGED
         bordered_step(band, ipiv, z, res, tension_mode, k_s, dx)

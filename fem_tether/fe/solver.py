@@ -278,17 +278,11 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     r, T, _ = sys_.unpack(x)
     step = kin.step(h, model.scheme)
     worst = last = math.inf            # last: the residual before worst
-    k_s = sys_.row_scale(f_ref)
-    factors = sys_.step_factors(h)     # the last step's LU, with this step's R column
-    sys_.keep_step_factors(h, None)
-    if factors is not None:
-        factors = factors.with_column(sys_.r_column(e, k_s), k_s)
-    first = factors is not None
+    factors = None
     for _ in range(model.max_newton):
         R = float(x[-1])
         kin = step.kinematics(r)
-        chord = factors is not None and (first or reuse_factors(worst, last))
-        first = False
+        chord = factors is not None and reuse_factors(worst, last)
         try:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, jacobian=not chord, reel_mps=model.reel_mps)
@@ -299,7 +293,6 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
         if not math.isfinite(worst):
             break
         if worst <= model.newton_tol:
-            sys_.keep_step_factors(h, factors)
             return State(t_new, kin, T, R, ev)
         if factors is None or not chord:
             try:

@@ -91,7 +91,6 @@ class TetherSystem:
     _idx: dict = field(init=False, repr=False)
     _kernel: Any = field(init=False, repr=False)      # the module fem_tether.fe.kernel, if compiled
     _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag tables
-    _step_factors: tuple | None = field(init=False, repr=False)   # (dt_s, factors) of the last time step
 
     def __post_init__(self):
         n_el = self.spaces.n_elements
@@ -117,9 +116,7 @@ class TetherSystem:
         self._set_lengths()
 
     def _set_lengths(self):
-        """The constants of the element lengths: Q's weights, masses, mean length
-        (and no time step's factors: they belong to the old lengths)."""
-        self._step_factors = None
+        """The constants of the element lengths: Q's weights, masses, mean length."""
         sp = self.spaces
         self.load_weights = self._load_weights()
         self._interior_weights = (self.load_weights * self._interior_ab)[:, :, None, None, None]
@@ -231,23 +228,6 @@ class TetherSystem:
         """``k = F_ref / h_mean`` [N/m], the scale of the kinematic and constraint rows."""
         return force_ref_N / self._h_mean
 
-    def r_column(self, kite_dir, k_s) -> np.ndarray:
-        """The Jacobian's column of R (rows 0..n-2): ``-k e`` in the kite node's rows."""
-        r_col = np.zeros(self.n - 1)
-        r_col[-3:] = -k_s * np.asarray(kite_dir)
-        return r_col
-
-    def step_factors(self, dt_s: float):
-        """The factors the last time step left, if it had the size ``dt_s`` (else
-        None): the next step starts with a chord step on them (numerics §5)."""
-        if self._step_factors is not None and self._step_factors[0] == dt_s:
-            return self._step_factors[1]
-        return None
-
-    def keep_step_factors(self, dt_s: float, factors) -> None:
-        """Keep a converged step's factors (None forgets them)."""
-        self._step_factors = None if factors is None else (dt_s, factors)
-
     def _line_constants(self) -> tuple:
         """The compiled kernels' models and line constants (:data:`.kernel.LINE`)."""
         ph, sp = self.physics, self.spaces
@@ -278,7 +258,8 @@ class TetherSystem:
         out = self._evaluation(k_s, outputs)
         if jacobian:
             out.band = band
-            out.r_col = self.r_column(kite_dir, k_s)
+            out.r_col = np.zeros(self.n - 1)
+            out.r_col[-3:] = -k_s * kite_dir
         return out
 
     def solve_step(self, q, v, a, qdd, T, R, dt_s, scheme, kite_dir, ground_tension_N, radius_m,
@@ -299,20 +280,13 @@ class TetherSystem:
         k_s = self.row_scale(force_ref_N)
         c_a, c_v = scheme.coefficients(dt_s)
         outputs = self._outputs()
-        series, info = np.empty(4), np.zeros(4)
-        kept = self.step_factors(dt_s)
-        self.keep_step_factors(dt_s, None)
-        band, ipiv = kept if kept is not None else (np.empty((self.n - 1, 3 * BAND + 1)).T,
-                                                   np.empty(self.n - 1, np.int64))
+        series, info = np.empty(4), np.zeros(3)
         status = self._kernel.solve_step(
             r_new, T_new, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma,
             kite_dir, ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol,
-            max_newton, *self._line_constants(), band, ipiv, kept is not None, v_new, a_new, qdd_new,
-            *outputs, series, info)
+            max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, series, info)
         stats.newton_iterations += int(info[0])
         if status == self._kernel.CONVERGED:
-            if info[3]:
-                self.keep_step_factors(dt_s, (band, ipiv))
             evaluation = self._evaluation(k_s, outputs)
             evaluation.series = series
             return r_new, T_new, float(info[2]), v_new, a_new, qdd_new, evaluation
@@ -381,7 +355,9 @@ class TetherSystem:
             weights=np.concatenate([block.ravel(), rT.ravel(), Tr.ravel(), TT, mass.ravel()]),
             minlength=(3 * BAND + 1) * m,
         ).reshape(3 * BAND + 1, m)
-        return band, self.r_column(kite_dir, k_s)
+        r_col = np.zeros(m)
+        r_col[-3:] = -k_s * kite_dir
+        return band, r_col
 
     def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_mps=0.0,
                          free_radius=False):
@@ -507,12 +483,6 @@ class Factors:
     tension_mode: bool
     k_s: float
     kernel: Any = None
-
-    def with_column(self, r_col: np.ndarray, k_s: float) -> "Factors":
-        """These LU factors with another R column (another kite direction and
-        row scale): a later time step's (LAPACK only)."""
-        z, _ = dgbtrs(self.lu, BAND, BAND, r_col, self.ipiv)
-        return Factors(self.lu, self.ipiv, z, self.tension_mode, k_s)
 
     def step(self, residual: np.ndarray) -> np.ndarray:
         dx = np.empty(residual.size)
