@@ -14,18 +14,19 @@ from fem_tether.results import time_grid
 
 #: Cost of one time step of each solver, ``overhead + per_point x points`` in
 #: microseconds, measured on 2026-11-30 with the compiled whole-step kernels:
-#: in the default job (1 + 2 periods) an FE run of 41 nodes took 0.050-0.063 s
-#: for 436 steps (115-145 us/step, with a variant since dropped that saved ~15 %) and an FD run of 101 nodes 0.27-0.31 s for
-#: 871 steps (310-355 us/step); the bench case at 5000 elements 10-13 ms per
-#: FE step, at 1600 segments (default physics, 1768 m) 4.5-6.0 ms per FD step.
-#: Only the ratios matter (they order and balance the tasks).
-STEP_COST_US = {"fe": (60.0, 1.5), "fd": (90.0, 2.7)}
+#: in the default job (1 + 2 periods), in one slow window of this machine, an
+#: FE run of 41 nodes took 0.093-0.124 s for 436 steps and an FD run of 101
+#: nodes 0.39-0.59 s for 871 steps (an FD run 4.2-5.5 FE runs); the bench case
+#: at 5000 elements 10-13 ms per FE step, at 1600 segments (default physics,
+#: 1768 m) 4.5-6.0 ms per FD step.  Only the ratios matter (they order and
+#: balance the tasks).
+STEP_COST_US = {"fe": (70.0, 1.8), "fd": (90.0, 2.7)}
 
 
 def task_cost(job: Job, task: Task) -> float:
     """Estimated cost in microseconds: time steps x (overhead + per_point x points)
     (:data:`STEP_COST_US`).  With the default job the estimate puts an FD run
-    at 6.0 FE runs; measured, 4.5-5.9 (0.27-0.31 s against 0.050-0.063 s per length)."""
+    at 5.0 FE runs, as measured (4.2-5.5)."""
     from fem_tether.fe.solver import unit_mesh_from_config
 
     cfg = job.config_for(task.length_m)
