@@ -228,6 +228,12 @@ class TetherSystem:
         """``k = F_ref / h_mean`` [N/m], the scale of the kinematic and constraint rows."""
         return force_ref_N / self._h_mean
 
+    def r_column(self, kite_dir, k_s) -> np.ndarray:
+        """The Jacobian's column of R (rows 0..n-2): ``-k e`` in the kite node's rows."""
+        r_col = np.zeros(self.n - 1)
+        r_col[-3:] = -k_s * np.asarray(kite_dir)
+        return r_col
+
     def _line_constants(self) -> tuple:
         """The compiled kernels' models and line constants (:data:`.kernel.LINE`)."""
         ph, sp = self.physics, self.spaces
@@ -258,8 +264,7 @@ class TetherSystem:
         out = self._evaluation(k_s, outputs)
         if jacobian:
             out.band = band
-            out.r_col = np.zeros(self.n - 1)
-            out.r_col[-3:] = -k_s * kite_dir
+            out.r_col = self.r_column(kite_dir, k_s)
         return out
 
     def solve_step(self, q, v, a, qdd, T, R, dt_s, scheme, kite_dir, ground_tension_N, radius_m,
@@ -355,9 +360,7 @@ class TetherSystem:
             weights=np.concatenate([block.ravel(), rT.ravel(), Tr.ravel(), TT, mass.ravel()]),
             minlength=(3 * BAND + 1) * m,
         ).reshape(3 * BAND + 1, m)
-        r_col = np.zeros(m)
-        r_col[-3:] = -k_s * kite_dir
-        return band, r_col
+        return band, self.r_column(kite_dir, k_s)
 
     def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_mps=0.0,
                          free_radius=False):
@@ -387,8 +390,7 @@ class TetherSystem:
         tau = dr / length[:, None]
         band = self._saddle(tau)
         m = sp.mass_kg[:, None] * self.interior[:, None]
-        r_col = np.zeros(self.n - 1)
-        r_col[-3:] = -e
+        r_col = self.r_column(e, 1.0)
 
         def solve(node_rhs, constraint_rhs, border_index, border_rhs):
             """Bordered solve; the last unknown (dR/dt or d2R/dt2) is zero when
