@@ -65,12 +65,20 @@ def _float_list(text):
 
 
 def _config(args, length_m=None):
-    return load_config(args.config, {"tether": {"length_m": length_m}} if length_m else None)
+    return load_config(args.config, {"tether": {"length_m": length_m}} if length_m else None, args.system)
 
 
 # --- commands ---------------------------------------------------------------------
 def cmd_config(args):
-    print(load_config(args.config).to_toml(), end="")
+    print(_config(args).to_toml(), end="")
+    return 0
+
+
+def cmd_systems(args):
+    from fem_tether.systems import catalog
+
+    rows = catalog.summaries()
+    print(report.json_text({"systems": rows}) if args.json else report.systems_text(rows))
     return 0
 
 
@@ -113,7 +121,8 @@ def cmd_crosscheck(args):
     from fem_tether.evaluate import run_crosscheck
 
     cfg = _config(args, args.length)
-    fd_cfg = _config(argparse.Namespace(config=args.fd_config), args.length) if args.fd_config else None
+    fd_cfg = _config(argparse.Namespace(config=args.fd_config, system=args.system), args.length) \
+        if args.fd_config else None
     check, fe_run, _ = run_crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
     print(report.json_text(check.as_dict()) if args.json else report.crosscheck_text(check, fe_run))
     return 0 if check.ok else EXIT_FAILED
@@ -129,7 +138,7 @@ def cmd_sweep(args):
     from fem_tether.jobs import load_job
     from fem_tether.sweep import sweep
 
-    outcome = sweep(load_job(args.job), args.out, progress=not args.json)
+    outcome = sweep(load_job(args.job, args.system), args.out, progress=not args.json)
     if outcome is None:
         return 0
     print(report.json_text(report.sweep_summary(outcome, args.out)) if args.json
@@ -150,7 +159,7 @@ def cmd_aep(args):
 def cmd_run(args):
     from fem_tether.pipeline import main_job
 
-    result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete)
+    result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete, args.system)
     if result is None:
         return 0
     print(report.main_job_text(result))
@@ -189,15 +198,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"fem-tether {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
-    def command(name, func, help_text, config=True):
+    def command(name, func, help_text, config=True, system=True):
         c = sub.add_parser(name, help=help_text, description=help_text)
         if config:
             c.add_argument("config", nargs="?",
                            help="TOML configuration (default: the embedded KiteGen case of Roselli 2016)")
+        if system:
+            c.add_argument("--system", metavar="NAME",
+                           help="a system preset as the base configuration ('fem-tether systems' lists them)")
         c.set_defaults(func=func)
         return c
 
     command("config", cmd_config, "print the effective configuration as TOML, each key with its meaning")
+
+    c = command("systems", cmd_systems, "list the system presets (--system NAME), one line each",
+                config=False, system=False)
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("straight", cmd_straight, "straight-line tether drag F_t per line (Roselli 2016, §4.1)")
     g = c.add_mutually_exclusive_group()
@@ -252,13 +268,13 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--allow-incomplete", action="store_true",
                    help="compute the AEP even if lengths are pending (else exit 2 naming them)")
 
-    c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False)
+    c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False, system=False)
     c.add_argument("--repeats", type=_positive_int, default=5, help="best of N runs per setting")
     c.add_argument("--memory", type=_positive_int, metavar="N",
                    help="instead: wall time and peak RSS of one FE run with N elements (e.g. 5000)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
-    c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False)
+    c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False, system=False)
     c.add_argument("out", help="output file (.vtu, .xdmf, .vtk, ...)")
     c.add_argument("--elements", type=_positive_int, required=True, help="number of elements (>= 2)")
     c.add_argument("--grading", type=_positive_float, default=1.0,

@@ -16,9 +16,10 @@ from pathlib import Path
 
 from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
 from fem_tether.crosscheck import checkable
+from fem_tether.systems import catalog
 
-DEFAULT_LENGTHS_M = (500.0, 919.0, 1343.0, 1768.0, 2192.0, 2616.0, 3000.0)
-DEFAULT_JOB = {"sweep": {"lengths_m": list(DEFAULT_LENGTHS_M), "crosscheck": True, "straight": True}}
+#: The system whose preset job runs when no job is given: seed 000's KiteGen at its seven lengths.
+DEFAULT_SYSTEM = "kitegen"
 
 
 def length_tag(length_m: float) -> str:
@@ -79,9 +80,10 @@ def _job_error(key, value, problem):
     return ConfigError(f"[sweep] {key} = {toml_value(value)}: {problem}")
 
 
-def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job:
+def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system: str | None = None) -> Job:
     """Validate a job table: ``[sweep]`` keys plus configuration sections (file
-    names relative to ``base_dir``); every length's case is validated."""
+    names relative to ``base_dir``) over the preset of ``system`` if given;
+    every length's case is validated."""
     data = dict(data)
     if "sweep" not in data:
         raise ConfigError("[sweep]: missing; a job needs a [sweep] table with its cable lengths, "
@@ -115,24 +117,20 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "") -> Job
         where = base_dir / base
         raise _job_error("base", base, f"not a file ({where})" if where.exists()
                          else f"no such file ({where})")
-    cfg = load_config(base_dir / base if base else None, resolve_paths(data, base_dir))
+    cfg = load_config(base_dir / base if base else None, resolve_paths(data, base_dir), system)
     job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
               sweep.get("straight", True), cfg, text)
     job.configs                         # every length's case is checked now, not in the sweep
     return job
 
 
-def load_job(path: str | Path | None = None) -> Job:
-    """The job in the TOML file ``path``, or the embedded default job."""
+def load_job(path: str | Path | None = None, system: str | None = None) -> Job:
+    """The job in the TOML file ``path`` (over the preset of ``system`` if given),
+    else the preset job of ``system`` (default :data:`DEFAULT_SYSTEM`)."""
     if path is None:
-        return job_from_dict(DEFAULT_JOB, text=_job_text(DEFAULT_JOB))
+        path = catalog.path(system or DEFAULT_SYSTEM)
+        return job_from_dict(read_toml(path), path.parent, path.read_text())
     path = Path(path)
     data = read_toml(path)
-    return job_from_dict(data, path.parent, path.read_text())
+    return job_from_dict(data, path.parent, path.read_text(), system)
 
-
-def _job_text(data: dict) -> str:
-    s = data["sweep"]
-    lengths = ", ".join(f"{v:g}" for v in s["lengths_m"])
-    return (f"[sweep]\nlengths_m = [{lengths}]\ncrosscheck = {str(s['crosscheck']).lower()}\n"
-            f"straight = {str(s['straight']).lower()}\n")

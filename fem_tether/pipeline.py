@@ -46,11 +46,12 @@ class MainJob:
 
 
 def main_job(job_file=None, out="results", allow_unchecked=False,
-             allow_incomplete=False) -> MainJob | None:
-    """Run the job in ``job_file`` (default: the embedded default job) into the
+             allow_incomplete=False, system=None) -> MainJob | None:
+    """Run the job in ``job_file`` (over the preset of ``system``; default: the
+    preset job of ``system``, else the embedded default job) into the
     directory ``out``; ``None`` on the MPI ranks other than 0."""
     t0 = time.perf_counter()
-    job = load_job(job_file)
+    job = load_job(job_file, system)
     out = Path(out)
     h5 = out / "sweep.h5"
     # a bad resource fails now, not after the sweep (checked on rank 0, without

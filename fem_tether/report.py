@@ -29,6 +29,16 @@ def _best_length(best_straight, best_fe) -> str:
             + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
 
 
+def systems_text(rows: list[dict]) -> str:
+    """``fem-tether systems``: one line per preset."""
+    width = max(len(r["name"]) for r in rows)
+    lines = [f"{'system':{width}s}  {'model':8s}  {'tether':>22s}  description"]
+    for r in rows:
+        tether = f"{r['lines']} x {1e3 * r['diameter_m']:g} mm, {r['length_m']:g} m"
+        lines.append(f"{r['name']:{width}s}  {r['model']:8s}  {tether:>22s}  {r['description']}")
+    return "\n".join(lines) + "\n\nUse one with --system NAME; 'fem-tether config --system NAME' shows all its keys."
+
+
 def straight_table(cfg: Config, rows: list[dict], with_wind: bool) -> str:
     """``fem-tether straight``: F_t per length, integral beside closed form."""
     lines = [f"straight-line tether drag F_t per line, theta = {cfg.kite.theta0_deg:g} deg, "

@@ -5,14 +5,15 @@ from pathlib import Path
 import pytest
 
 from fem_tether.config import ConfigError
-from fem_tether.jobs import DEFAULT_LENGTHS_M, load_job
+from fem_tether.jobs import load_job
+from fem_tether.power import SEED_LENGTHS_M
 
 ROOT = Path(__file__).parents[1]
 
 
 def test_default_job_file_is_the_embedded_default():
     embedded, shipped = load_job(), load_job(ROOT / "sweeps" / "default.toml")
-    assert embedded.lengths_m == shipped.lengths_m == DEFAULT_LENGTHS_M
+    assert embedded.lengths_m == shipped.lengths_m == tuple(SEED_LENGTHS_M)
     assert embedded.config == shipped.config and embedded.crosscheck and embedded.straight
 
 

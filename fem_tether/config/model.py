@@ -24,11 +24,12 @@ from pathlib import Path
 from typing import Any
 
 from fem_tether.errors import ConfigError
+from fem_tether.systems import catalog
 from fem_tether.trajectory import FigureEight
 
 from . import rules
-from .sections import (FD, FE, MOVED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, Tether,
-                       Time, Wind, Winch)
+from .sections import (FD, FE, MOVED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, System,
+                       Tether, Time, Wind, Winch)
 from .tomlio import read_toml, resolve_paths, section_toml
 
 
@@ -36,6 +37,7 @@ from .tomlio import read_toml, resolve_paths, section_toml
 class Config:
     """A checked case: every section, and the rules across them."""
 
+    system: System = field(default_factory=System)
     tether: Tether = field(default_factory=Tether)
     air: Air = field(default_factory=Air)
     drag: Drag = field(default_factory=Drag)
@@ -101,13 +103,23 @@ class Config:
         return "\n".join(section_toml(getattr(self, f.name)) for f in dataclasses.fields(self))
 
 
-def load_config(path: str | Path | None = None, overrides: dict | None = None) -> Config:
-    """Defaults, then the TOML file at ``path``, then ``overrides``.  File names
-    in the file are relative to the file, and must exist."""
-    data = resolve_paths(read_toml(path), Path(path).parent) if path is not None else {}
-    for name, values in (overrides or {}).items():
+def merged(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:
+    """Tables of ``over`` over those of ``base``, key by key."""
+    data = dict(base)
+    for name, values in over.items():
         both = isinstance(data.get(name), dict) and isinstance(values, dict)
         data[name] = {**data[name], **values} if both else values
-    cfg = Config.from_dict(data)
+    return data
+
+
+def load_config(path: str | Path | None = None, overrides: dict | None = None,
+                system: str | None = None) -> Config:
+    """Defaults, then the preset of ``system`` (:mod:`fem_tether.systems.catalog`),
+    then the TOML file at ``path``, then ``overrides``.  File names in the
+    file are relative to the file, and must exist."""
+    data = catalog.config_tables(system) if system is not None else {}
+    if path is not None:
+        data = merged(data, resolve_paths(read_toml(path), Path(path).parent))
+    cfg = Config.from_dict(merged(data, overrides or {}))
     rules.check_files(cfg)
     return cfg

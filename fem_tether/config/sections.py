@@ -18,6 +18,22 @@ from .settings import (Section, at_least, between, count_between, non_negative, 
 MAX_ELEMENTS = 10000
 
 
+#: The power models of :mod:`fem_tether.systems`, by the name ``[system] model`` takes.
+SYSTEM_MODELS = ("kitegen", "ke-yoyo", "unified", "loyd")
+
+
+@dataclass(frozen=True)
+class System(Section):
+    NAME = "system"
+    name: str = setting("kitegen", "-", "the system's name (a preset's, 'fem-tether systems' lists them)")
+    model: str = setting("kitegen", "-", "power model: 'kitegen' (Roselli 2016), 'ke-yoyo' (Fagiano et al. "
+                         "2010), 'unified' (Trevisi 2019: ground-gen/fly-gen) or 'loyd' (Lourenco 2014)",
+                         one_of(*SYSTEM_MODELS))
+    description: str = setting("KiteGen ground-gen, 120 m² wing, two 11 mm lines, 4 zones + side-slip recovery "
+                               "(Roselli 2016)", "-",
+                               "one line saying what the system is")
+
+
 @dataclass(frozen=True)
 class Tether(Section):
     NAME = "tether"
@@ -186,7 +202,7 @@ class Output(Section):
 
 
 #: The sections in the order of a configuration file.
-SECTIONS: tuple[type[Section], ...] = (Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
+SECTIONS: tuple[type[Section], ...] = (System, Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
                                         Resource, Output)
 
 #: Keys of earlier versions and where they are now: (section, key) -> (section, key).
