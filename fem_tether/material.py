@@ -93,3 +93,21 @@ def choose_diameter_m(load_N, safety_factor=1.0):
         raise ValueError(f"load {np.max(required)} N (with safety factor {safety_factor}) exceeds "
                          f"the strongest SK99 rope, {SK99.breaking_load_N[-1]} N")
     return SK99.diameter_m[np.searchsorted(SK99.breaking_load_N, required, side="left")]
+
+
+def tether_diameter_m(tension_N, working_stress_Pa):
+    """d = 2 √(T / (π σ)): the round tether that carries T at the working stress σ.
+
+    Seed 003 (Lourenço, *Technical evaluation and modelling of a cross wind
+    kite based on Loyd's model*) eq. 3.7: T/σ is the cross-section, equated to
+    π d²/4.
+
+    >>> round(float(tether_diameter_m(3.2e6, 345e6)), 4)   # seed 003: 10.87 cm
+    0.1087
+    """
+    tension = np.asarray(tension_N, dtype=float)
+    if np.any(tension < 0):
+        raise ValueError(f"tension_N {np.min(tension)} N is negative")
+    if not working_stress_Pa > 0:
+        raise ValueError(f"working_stress_Pa {working_stress_Pa} Pa is not positive")
+    return 2.0 * np.sqrt(tension / (np.pi * working_stress_Pa))

@@ -53,3 +53,31 @@ def test_choose_diameter():
 def test_choose_diameter_rejects_excessive_load():
     with pytest.raises(ValueError, match="exceeds"):
         material.choose_diameter_m(400e3, safety_factor=1.2)
+
+
+def test_tether_diameter_from_working_stress_seed_003():
+    """Seed 003 eq. 3.7 against its own numbers, to the 0.01 cm they are printed with:
+    10.87 cm for 3.2 MN and 9.39 cm for 2.39 MN at 345 MPa (Table 3.3, Table 4.2),
+    and Table 3.3's thickness row from its peak tensions (3, 5, 5.5, 6, 8 rpm)."""
+    assert material.tether_diameter_m(3.2e6, 345e6) == pytest.approx(0.1087, abs=5e-5)
+    assert material.tether_diameter_m(2.39e6, 345e6) == pytest.approx(0.0939, abs=5e-5)
+    tensions_N = np.array([1.347, 2.161, 2.581, 3.086, 4.855]) * 1e6
+    np.testing.assert_allclose(material.tether_diameter_m(tensions_N, 345e6),
+                               [0.0705, 0.0893, 0.0976, 0.1067, 0.1339], atol=5e-5)
+
+
+def test_seed_003_m600_tether_thickness_contradicts_eq_3_7():
+    """Seed 003 Table 4.2 prints 4.08 cm for the M600 (0.486 MN at 2137 MPa): eq. 3.7 gives
+    1.70 cm.  A 4.08 cm tether at 2137 MPa carries σ π d²/4 = 2.79 MN (the seed's text says
+    2.69 MN for the same product).  Not a target: this test records the contradiction."""
+    d = material.tether_diameter_m(0.486e6, 2137e6)
+    assert d == pytest.approx(0.0170, abs=5e-5)
+    assert abs(d / 0.0408 - 1.0) > 0.5
+    assert 2137e6 * np.pi * 0.0408**2 / 4.0 == pytest.approx(2.79e6, rel=2e-3)
+
+
+def test_tether_diameter_names_bad_input():
+    with pytest.raises(ValueError, match="tension_N"):
+        material.tether_diameter_m(-1.0, 345e6)
+    with pytest.raises(ValueError, match="working_stress_Pa"):
+        material.tether_diameter_m(1.0, 0.0)
