@@ -13,16 +13,29 @@ import numpy as np
 from fem_tether import atmosphere, kite, straight
 from fem_tether.config import Config
 from fem_tether.power import operating_altitude_m
+from fem_tether.systems.tether_drag import flexible_tether_cd
+
+
+def operating_density_kg_m3(cfg: Config) -> float:
+    """ρ of the configured air at the operating altitude L cos(theta0) (seed 000 §5)."""
+    z = operating_altitude_m(cfg.tether.length_m, np.radians(cfg.kite.theta0_deg))
+    return float(atmosphere.from_config(cfg.air).density_kg_m3(np.array(z)))
 
 
 def operating_ge(cfg: Config, drag_N) -> float:
     """G_e (seed 000 eq. 5.1) of the configured case with tether drag ``drag_N``
     per line, rho at the operating altitude L cos(theta0)."""
     k = cfg.kite
-    z = operating_altitude_m(cfg.tether.length_m, np.radians(k.theta0_deg))
-    rho = float(atmosphere.from_config(cfg.air).density_kg_m3(np.array(z)))
-    return float(kite.global_efficiency(drag_N, rho, k.area_m2, k.cl, k.efficiency, k.speed_mps,
-                                        cfg.tether.lines))
+    return float(kite.global_efficiency(drag_N, operating_density_kg_m3(cfg), k.area_m2, k.cl, k.efficiency,
+                                        k.speed_mps, cfg.tether.lines))
+
+
+def operating_tether_cd(cfg: Config, drag_N) -> float:
+    """C_D,t = lines F_t / (½ ρ A V_k²) of the configured case with tether drag
+    ``drag_N`` per line (:mod:`fem_tether.systems.tether_drag`), ρ as :func:`operating_ge`'s."""
+    k = cfg.kite
+    return float(flexible_tether_cd(drag_N, cfg.tether.lines, operating_density_kg_m3(cfg), k.area_m2,
+                                    k.speed_mps))
 
 
 def run_summary(run, cfg: Config) -> dict:

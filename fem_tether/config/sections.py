@@ -32,6 +32,15 @@ class System(Section):
     description: str = setting("KiteGen ground-gen, 120 m² wing, two 11 mm lines, 4 zones + side-slip recovery "
                                "(Roselli 2016)", "-",
                                "one line saying what the system is")
+    rated_power_W: float = setting(0.0, "W", "rated (electrical) power the power model holds above its rated "
+                                   "wind (0: none; the kitegen model's comes from [kite] nominal_force_N and "
+                                   "max_reel_out_mps)", non_negative)
+    cut_out_mps: float = setting(0.0, "m/s", "wind speed above which the system stops (0: never)", non_negative)
+    cycle_efficiency: float = setting(1.0, "-", "ke-yoyo: eta_c of Fagiano et al. eq. 20, multiplies the mean "
+                                      "power (not [cycle] eta_c, which divides the recovery energy)",
+                                      between(0.0, 1.0, (False, True)))
+    kite_mass_kg: float = setting(0.0, "kg", "mass of the kite (and on-board turbines); the kitegen model "
+                                  "neglects it", non_negative)
 
 
 @dataclass(frozen=True)

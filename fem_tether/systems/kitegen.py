@@ -1,0 +1,98 @@
+"""KiteGen (seed 000): the four-zone active phase and the side-slip recovery as operating points.
+
+The physics is :mod:`fem_tether.kite` (zones A–D, seed 000 eqs. 2.55–2.57)
+and :mod:`fem_tether.power` (the cycle with seed 004 eq. 3.24's recovery);
+this module feeds it a tether drag coefficient C_D,t
+(:mod:`fem_tether.systems.tether_drag`) through the global efficiency
+
+    G_e = C_l / (C_l/E + C_D,t),                                             (1)
+
+which is seed 000 eq. 5.1, G_e = L / (D_k + lines·F_t), divided by ½ρAV_k²,
+and answers with :class:`~fem_tether.systems.operating_point.OperatingPoint`.
+
+>>> from fem_tether.kite import KiteGenDesign
+>>> from fem_tether.config import load_config
+>>> cfg = load_config()
+>>> system = KiteGenSystem(KiteGenDesign.from_config(cfg.kite, 2, phi_deg=1.28, rho_kg_m3=0.91), straight_cd=0.13)
+>>> round(global_efficiency(system.design.cl, system.design.efficiency, 0.13), 3)
+6.034
+>>> point = operating_point(system, 20.0)
+>>> point.mode, round(point.gamma_out, 3), round(point.electrical_power_W / 1e6, 3)
+('ground-gen', 0.105, 0.551)
+>>> operating_point(system, 12.0).mode             # zone B: the lines are held, no stroke
+'off'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from fem_tether.kite import KiteGenDesign
+from fem_tether.power import Cycle, cycle_curves
+
+from .operating_point import OperatingPoint
+
+
+def global_efficiency(cl, wing_efficiency, tether_cd):
+    """G_e = C_l / (C_l/E + C_D,t): the wing's E with the tether's drag (eq. 1; seed 000 eq. 5.1)."""
+    return cl / (cl / wing_efficiency + tether_cd)
+
+
+@dataclass(frozen=True)
+class KiteGenSystem:
+    """A KiteGen flown on one line length.
+
+    ``design`` carries the wing's E, the air density at the operating altitude
+    and the mean |φ| of the eight (:func:`fem_tether.power.operating_design`);
+    ``straight_cd`` is the straight-line lumping seed 000 used (its eq. 4.1
+    integral, :mod:`fem_tether.straight`) as a C_D,t.
+    """
+
+    design: KiteGenDesign
+    straight_cd: float
+    cycle: Cycle = field(default_factory=Cycle)
+
+
+def power_curve(system: KiteGenSystem, wind_mps, tether_cd=None) -> list[OperatingPoint]:
+    """The operating point at each wind speed (the cycle of :func:`fem_tether.power.cycle_curves`).
+
+    ``tether_cd`` None: the straight line (``system.straight_cd``).  Mode
+    "off" where the cycle yields nothing (zones A, B, or a recovery dearer
+    than the stroke).  Mechanical power: (E_out − E_in)/(t_out + t_in);
+    electrical: with η_e and η_c of the cycle; γ_in = V_in/V_w while
+    generating.
+    """
+    cd_t = system.straight_cd if tether_cd is None else float(tether_cd)
+    if not cd_t >= 0:
+        raise ValueError(f"tether_cd = {tether_cd!r}: must be >= 0")
+    design = system.design
+    ge = global_efficiency(design.cl, design.efficiency, cd_t)
+    flown = replace(design, efficiency=ge, kite_efficiency=design.efficiency)
+    w = np.atleast_1d(np.asarray(wind_mps, dtype=float))
+    curves = cycle_curves(w, flown, system.cycle)
+    active = curves.active
+    force = active.force_per_line_N * design.lines
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cycle_time = curves.reel_out_time_s + curves.reel_in_time_s
+        mechanical = (force - curves.reel_in_force_N) * system.cycle.stroke_m / cycle_time
+    v_er = w * design.projection - active.reel_out_mps
+    points = []
+    for i in range(w.size):
+        if not curves.power_W[i] > 0:
+            points.append(OperatingPoint("off", float(w[i]), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cd_t))
+            continue
+        points.append(OperatingPoint(
+            mode="ground-gen", wind_mps=float(w[i]), mechanical_power_W=float(mechanical[i]),
+            electrical_power_W=float(curves.power_W[i]), tether_force_N=float(force[i]),
+            reel_out_mps=float(active.reel_out_mps[i]),
+            apparent_speed_mps=float(v_er[i] * np.sqrt(1.0 + ge**2)),
+            gamma_out=float(active.reel_out_mps[i] / w[i]),
+            gamma_in=float(system.cycle.reel_in_mps / w[i]), gamma_t=0.0, tether_cd=cd_t))
+    return points
+
+
+def operating_point(system: KiteGenSystem, wind_mps, tether_cd=None) -> OperatingPoint:
+    """The KiteGen at one wind speed: :func:`power_curve` at ``wind_mps``."""
+    return power_curve(system, [wind_mps], tether_cd)[0]
