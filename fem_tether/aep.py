@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import atmosphere, wind
+from . import wind
 from .config import Config
 from .errors import InputError
 from .kite import KiteGenDesign
@@ -64,10 +64,26 @@ class AepByLength:
         return float(self.length_m[np.argmax(self.aep_MWh)]) if self.length_m.size else None
 
 
+def _by_length(lengths, theta_rad, resource: WindResource, power_and_rated) -> AepByLength:
+    """Eq. 5.2 per length: ``power_and_rated(i, edges_mps)`` gives length i's power at
+    its band's bin edges and its rated power; the band holds z = L cosϑ0."""
+    rows = []
+    for i, length in enumerate(lengths):
+        band = resource.band_for_length(length, theta_rad)
+        power_W, rated_W = power_and_rated(i, band.edges_mps)
+        rows.append((band.low_m, band.high_m, annual_energy_Wh(power_W, band.probability), rated_W,
+                     band.remainder))
+    low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float)
+                                          for col in (zip(*rows) if rows else [()] * 5))
+    return AepByLength(length_m=lengths, band_low_m=low, band_high_m=high, aep_MWh=aep_Wh / 1e6,
+                       rated_power_W=rated, capacity_factor=capacity_factor(aep_Wh, rated),
+                       unbinned_probability=unbinned)
+
+
 def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean_phi_deg,
                   resource: WindResource, cycle: Cycle = Cycle()) -> AepByLength:
     """AEP (eq. 5.2) and capacity factor of ``design`` flown on each length, with
-    its G_e and mean φ.
+    its G_e and mean φ (seed 000 Tab. 5.1–5.2 values, for instance).
 
     The design's ρ is that of ``air`` at z = L cosϑ0, the band the one holding
     z (:meth:`WindResource.band_for_length`).
@@ -75,18 +91,32 @@ def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean
     lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
     ge = np.broadcast_to(global_efficiency, lengths.shape)
     phi = np.broadcast_to(mean_phi_deg, lengths.shape)
-    rows = []
-    for length, g, p in zip(lengths, ge, phi):
-        flown = operating_design(design, air, length, g, p)
-        band = resource.band_for_length(length, design.theta_rad)
-        aep = annual_energy_Wh(cycle_curves(band.edges_mps, flown, cycle).power_W,
-                               band.probability)
-        rows.append((band.low_m, band.high_m, aep, rated_power_W(flown, cycle), band.remainder))
-    low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float)
-                                          for col in (zip(*rows) if rows else [()] * 5))
-    return AepByLength(length_m=lengths, band_low_m=low, band_high_m=high, aep_MWh=aep_Wh / 1e6,
-                       rated_power_W=rated, capacity_factor=capacity_factor(aep_Wh, rated),
-                       unbinned_probability=unbinned)
+
+    def power_and_rated(i, edges_mps):
+        flown = operating_design(design, air, lengths[i], ge[i], phi[i])
+        return cycle_curves(edges_mps, flown, cycle).power_W, rated_power_W(flown, cycle)
+
+    return _by_length(lengths, design.theta_rad, resource, power_and_rated)
+
+
+def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource) -> AepByLength:
+    """AEP (eq. 5.2) and capacity factor of the configured system (any ``[system]
+    model``, :mod:`fem_tether.systems.configured`) on each length, with the tether
+    drag F_t per line of that length as its C_D,t
+    (:func:`fem_tether.summary.operating_tether_cd`)."""
+    from .summary import operating_tether_cd
+    from .systems.configured import from_config
+
+    lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
+    drags = np.broadcast_to(drag_N, lengths.shape)
+
+    def power_and_rated(i, edges_mps):
+        case = cfg.with_length(lengths[i])
+        cd = operating_tether_cd(case, drags[i])
+        system = from_config(case)
+        return system.electrical_power_W(edges_mps, cd), system.rated_power_W(cd)
+
+    return _by_length(lengths, np.radians(cfg.kite.theta0_deg), resource, power_and_rated)
 
 
 class IncompleteSweepError(InputError):
@@ -122,7 +152,7 @@ class SweepAep:
                 "pending_m": list(self.pending_m)}
 
 
-def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
+def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
                  allow_unchecked: bool = False, allow_incomplete: bool = False) -> SweepAep:
     """AEP for the lengths of a sweep result (:func:`fem_tether.sweepfile.read_sweep`).
 
@@ -134,7 +164,6 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
     (then they are listed in ``pending_m`` and gated like the others).
     """
     cfg = sweep_data["config"]
-    design, air = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines), atmosphere.from_config(cfg.air)
     lengths = np.asarray(sweep_data["length_m"], dtype=float)
     pending = np.asarray(sweep_data["status"]) == "pending"
     if pending.any() and not allow_incomplete:
@@ -143,17 +172,15 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource, cycle: Cycle,
             f"{lengths.size} lengths pending ({', '.join(f'{v:g}' for v in lengths[pending])} m); "
             "run the same sweep again to finish it, or allow an incomplete sweep "
             "(--allow-incomplete)")
-    phi = np.asarray(sweep_data["mean_phi_deg"], dtype=float)
-    ge_fe = np.asarray(sweep_data["ge_fe"], dtype=float)
-    ge_straight = np.asarray(sweep_data["ge_straight"], dtype=float)
+    drag_fe = np.asarray(sweep_data["drag_fe_N"], dtype=float)
+    drag_straight = np.asarray(sweep_data["drag_straight_N"], dtype=float)
     checked = np.asarray(sweep_data["crosscheck_ok"]) == 1
-    has_fe = np.isfinite(ge_fe)
+    has_fe = np.isfinite(drag_fe)
     keep = has_fe & (checked | allow_unchecked)
-    has_straight = np.isfinite(ge_straight)
+    has_straight = np.isfinite(drag_straight)
     return SweepAep(
-        straight=aep_by_length(design, air, lengths[has_straight], ge_straight[has_straight],
-                               phi[has_straight], resource, cycle),
-        flexible=aep_by_length(design, air, lengths[keep], ge_fe[keep], phi[keep], resource, cycle),
+        straight=aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource),
+        flexible=aep_of_system(cfg, lengths[keep], drag_fe[keep], resource),
         excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),
@@ -171,7 +198,7 @@ def check_resource(cfg: Config, wind_csv=None) -> None:
 
 
 def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
-    """AEP of a sweep result with the configured (or given) wind resource and cycle."""
+    """AEP of a sweep result with the configured (or given) wind resource."""
     cfg = data["config"]
-    return aep_of_sweep(data, sweep_resource(cfg, wind_csv), Cycle(**cfg.cycle.to_dict()),
+    return aep_of_sweep(data, sweep_resource(cfg, wind_csv),
                         allow_unchecked, allow_incomplete)

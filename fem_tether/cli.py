@@ -55,6 +55,7 @@ def _option(kind, what: str, admissible, requirement: str):
 _positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
 _azimuth_deg = _option(float, "a number", lambda v: -90.0 < v < 90.0, "an azimuth in (-90, 90) degrees")
 _positive_float = _option(float, "a number", lambda v: np.isfinite(v) and v > 0, "a positive number")
+_non_negative_float = _option(float, "a number", lambda v: np.isfinite(v) and v >= 0, "a number >= 0")
 
 
 def _float_list(text):
@@ -105,6 +106,26 @@ def cmd_curves(args):
         data["plot"] = str(plot_characteristic_curves(curves, kite.loyd_curves(curves.wind_mps, design),
                                                       args.plot))
     print(report.json_text(data) if args.json else report.curves_text(data))
+    return 0
+
+
+def cmd_power(args):
+    from fem_tether.systems import comparison, flexible
+
+    cfg = _config(args)
+    flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg.tether.length_m) if args.flexible else None
+    speeds = [args.wind_speed] if args.wind_speed is not None else comparison.curve_speeds(cfg)
+    data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m,
+            "points": comparison.compare(cfg, speeds, flexible_cd)}
+    if args.flexible:
+        data["flexible_file"] = args.flexible
+    if args.plot:
+        from fem_tether.plots import plot_system_power
+
+        fine = comparison.curve_speeds(cfg, comparison.CURVE_STEP_MPS / 4)
+        title = f"{cfg.system.name} ({cfg.system.model} model), tether {cfg.tether.length_m:g} m"
+        data["plot"] = str(plot_system_power(comparison.compare(cfg, fine, flexible_cd), title, args.plot))
+    print(report.json_text(data) if args.json else report.power_text(data))
     return 0
 
 
@@ -230,6 +251,15 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--phi-deg", type=_azimuth_deg,
                    help="azimuth [deg] in (-90, 90) (default [kite] design_phi_deg)")
     c.add_argument("--plot", metavar="FILE.png", help="write reel-out speed, force, power vs wind")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
+    c = command("power", cmd_power, "the system's operating points: power, tether force, reel-out, "
+                "optimised factors; straight against flexible tether")
+    c.add_argument("--wind-speed", type=_non_negative_float, metavar="V",
+                   help="one wind speed at the kite [m/s] (default: the power curve)")
+    c.add_argument("--flexible", metavar="FILE.h5",
+                   help="the flexible tether's drag from a sweep result or an FE run (simulate --out)")
+    c.add_argument("--plot", metavar="FILE.png", help="write power, force and reel-out speed vs wind")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("simulate", cmd_simulate, "FE tether dynamics on the figure-eight")

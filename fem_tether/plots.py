@@ -170,3 +170,25 @@ def plot_reel_drag(run_curve, path, sweep_points=None, straight_curve=None,
     _label_axes(ax, "cable length $L$ [m]", "line drag $F_t$ per line [kN]",
                 "cable drag while the line is paid out (seed 000 eq. 4.1)")
     return save_atomically(fig, path)
+
+
+def plot_system_power(rows: list[dict], title: str, path) -> Path:
+    """A system's power curve, tether force and reel-out speed against wind speed,
+    straight line (dashed) and flexible tether (solid) where given."""
+    fig, axes = plt.subplots(3, 1, figsize=(7.0, 8.0), sharex=True, constrained_layout=True)
+    wind = np.array([r["wind_mps"] for r in rows])
+    quantities = (("electrical_power_W", 1e-6, "electrical power [MW]"),
+                  ("tether_force_N", 1e-3, "tether force, all lines [kN]"),
+                  ("reel_out_mps", 1.0, "reel-out speed [m/s]"))
+    for ax, (key, scale, label) in zip(axes, quantities):
+        for case, style in (("straight", {"ls": "--", "color": "C0"}), ("flexible", {"ls": "-", "color": "C3"})):
+            if case in rows[0]:
+                ax.plot(wind, np.array([r[case][key] for r in rows]) * scale, lw=1.8,
+                        label=f"{case} tether", **style)
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(loc="upper left")
+    axes[0].set_title(title)
+    axes[-1].set_xlabel("wind speed at the kite $V_w$ [m/s]")
+    axes[-1].set_xlim(left=0.0)
+    return save_atomically(fig, path)

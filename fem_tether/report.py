@@ -39,6 +39,30 @@ def systems_text(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n\nUse one with --system NAME; 'fem-tether config --system NAME' shows all its keys."
 
 
+def _point_text(p: dict) -> str:
+    return (f"{p['mode']:10s} {p['mechanical_power_W'] / 1e6:9.3f} {p['electrical_power_W'] / 1e6:9.3f} "
+            f"{p['tether_force_N'] / 1e3:9.1f} {p['reel_out_mps']:7.2f} {p['gamma_out']:6.3f} "
+            f"{p['gamma_in']:6.3f} {p['gamma_t']:6.3f} {p['tether_cd']:8.4f}")
+
+
+def power_text(data: dict) -> str:
+    """``fem-tether power``: operating points, straight and (if given) flexible tether."""
+    head = (f"{data['system']} ({data['model']} model), tether {data['length_m']:g} m: operating points "
+            "at the kite's wind speed")
+    columns = (f"{'V_w m/s':>8s} {'tether':9s} {'mode':10s} {'P_mech MW':>9s} {'P_el MW':>9s} "
+               f"{'force kN':>9s} {'V_L m/s':>7s} {'g_out':>6s} {'g_in':>6s} {'g_t':>6s} {'C_D,t':>8s}")
+    lines = [head, columns]
+    for row in data["points"]:
+        for case in ("straight", "flexible"):
+            if case in row:
+                lines.append(f"{row['wind_mps']:8.2f} {case:9s} {_point_text(row[case])}")
+    if "flexible_file" in data:
+        lines.append(f"flexible: C_D,t from the FE result {data['flexible_file']}")
+    if "plot" in data:
+        lines.append(f"wrote {data['plot']}")
+    return "\n".join(lines)
+
+
 def straight_table(cfg: Config, rows: list[dict], with_wind: bool) -> str:
     """``fem-tether straight``: F_t per length, integral beside closed form."""
     lines = [f"straight-line tether drag F_t per line, theta = {cfg.kite.theta0_deg:g} deg, "

@@ -19,17 +19,15 @@ import numpy as np
 
 from fem_tether.config import Config
 
-from .configured import from_config
+from .configured import from_config, top_mps
 
 #: Wind speeds of a power curve's table [m/s] (the plot samples them 4 times finer).
 CURVE_STEP_MPS = 1.0
-#: Highest wind speed of a power curve without a cut-out [m/s].
-CURVE_TOP_MPS = 30.0
 
 
 def curve_speeds(cfg: Config, step_mps: float = CURVE_STEP_MPS) -> np.ndarray:
-    """0 to the cut-out speed (or :data:`CURVE_TOP_MPS`) in steps of ``step_mps``."""
-    top = cfg.system.cut_out_mps or CURVE_TOP_MPS
+    """0 to the cut-out speed (:func:`.configured.top_mps`) in steps of ``step_mps``."""
+    top = top_mps(cfg)
     return np.arange(0.0, top + 0.5 * step_mps, step_mps)
 
 

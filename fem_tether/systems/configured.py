@@ -27,7 +27,7 @@ from fem_tether.kite import KiteGenDesign
 from fem_tether.power import Cycle, operating_design
 from fem_tether.summary import operating_density_kg_m3, operating_tether_cd
 
-from . import ke_yoyo, kitegen
+from . import ke_yoyo, kitegen, loyd
 from .operating_point import OperatingPoint
 
 
@@ -44,6 +44,8 @@ class ConfiguredSystem:
     parameters: object
     straight_cd: float
     curve: Callable[..., list[OperatingPoint]]
+    top_mps: float
+    rated: Callable[[float], float] | None = None
 
     def power_curve(self, wind_mps, tether_cd=None) -> list[OperatingPoint]:
         """One operating point per wind speed; ``tether_cd`` None: the straight line."""
@@ -52,6 +54,29 @@ class ConfiguredSystem:
 
     def operating_point(self, wind_mps: float, tether_cd=None) -> OperatingPoint:
         return self.power_curve([wind_mps], tether_cd)[0]
+
+    def electrical_power_W(self, wind_mps, tether_cd=None) -> np.ndarray:
+        """The electrical (cycle-mean) power at each wind speed."""
+        return np.array([p.electrical_power_W for p in self.power_curve(wind_mps, tether_cd)])
+
+    def rated_power_W(self, tether_cd=None) -> float:
+        """P_rated: the model's own where it has one, else the largest electrical
+        power from calm air to the cut-out speed (:data:`RATED_POINTS` speeds)."""
+        cd = self.straight_cd if tether_cd is None else tether_cd
+        if self.rated is not None:
+            return self.rated(cd)
+        return float(self.electrical_power_W(np.linspace(0.0, self.top_mps, RATED_POINTS), cd).max())
+
+
+#: Wind speeds sampled for a rated power the model does not state.
+RATED_POINTS = 601
+#: Top of a power curve without a cut-out speed [m/s].
+TOP_MPS = 30.0
+
+
+def top_mps(cfg: Config) -> float:
+    """The cut-out speed, or :data:`TOP_MPS`."""
+    return cfg.system.cut_out_mps or TOP_MPS
 
 
 def _kitegen(cfg: Config) -> ConfiguredSystem:
@@ -64,7 +89,8 @@ def _kitegen(cfg: Config) -> ConfiguredSystem:
     params = kitegen.KiteGenSystem(design, operating_tether_cd(cfg, straight.from_config(cfg, True).drag_N),
                                    Cycle(**cfg.cycle.to_dict()))
     return ConfiguredSystem("kitegen", params, params.straight_cd,
-                            lambda w, cd: kitegen.power_curve(params, w, cd))
+                            lambda w, cd: kitegen.power_curve(params, w, cd), top_mps(cfg),
+                            lambda cd: kitegen.rated_power_W(params, cd))
 
 
 def _ke_yoyo(cfg: Config) -> ConfiguredSystem:
@@ -83,10 +109,33 @@ def _ke_yoyo(cfg: Config) -> ConfiguredSystem:
         rated_power_W=cfg.system.rated_power_W or math.inf, cut_out_mps=cfg.system.cut_out_mps or math.inf,
         theta_rad=math.radians(k.theta0_deg), phi_rad=math.radians(k.design_phi_deg))
     return ConfiguredSystem("ke-yoyo", params, float(ke_yoyo.line_drag_coefficient(params)),
-                            lambda w, cd: ke_yoyo.power_curve(params, w, tether_cd=cd))
+                            lambda w, cd: ke_yoyo.power_curve(params, w, tether_cd=cd), top_mps(cfg))
 
 
-BUILDERS: dict[str, Callable[[Config], ConfiguredSystem]] = {"kitegen": _kitegen, "ke-yoyo": _ke_yoyo}
+def _loyd(cfg: Config) -> ConfiguredSystem:
+    """Seed 003's drag-power kite: ``[kite]`` area, C_L, L/D = efficiency,
+    zenith angle = theta0_deg; ``[tether]`` length R, lines, ρ_T = μ/(π d²/4);
+    C_DT = ``[drag] cd`` / (2√π), so that the FE line of diameter d drags as
+    Loyd's faired one of width 4√A_T = 2√π d (eq. 2.17); ``[system]``
+    working_stress_Pa, design_wind_mps; ρ at the operating altitude.
+    Straight line: eq. 2.17 of the tether sized at the design wind."""
+    t, k = cfg.tether, cfg.kite
+    params = loyd.LoydSystem(
+        area_m2=k.area_m2, cl=k.cl, lift_to_drag=k.efficiency, tether_length_m=t.length_m,
+        working_stress_Pa=cfg.system.working_stress_Pa,
+        tether_density_kg_m3=t.linear_density_kg_m / (math.pi * t.diameter_m**2 / 4.0),
+        tether_cd_ref=cfg.drag.cd / LOYD_WIDTH_RATIO, lines=t.lines, zenith_rad=math.radians(k.theta0_deg),
+        design_wind_mps=cfg.system.design_wind_mps)
+    rho = operating_density_kg_m3(cfg)
+    return ConfiguredSystem("loyd", params, loyd.size_tether(params, rho).tether_cd,
+                            lambda w, cd: loyd.power_curve(params, w, rho, cd), top_mps(cfg))
+
+
+#: Loyd's reference width of a tether over its diameter: 4√A_T / d = 2√π (seed 003 eq. 2.17).
+LOYD_WIDTH_RATIO = 2.0 * math.sqrt(math.pi)
+
+BUILDERS: dict[str, Callable[[Config], ConfiguredSystem]] = {"kitegen": _kitegen, "ke-yoyo": _ke_yoyo,
+                                                             "loyd": _loyd}
 
 
 def from_config(cfg: Config) -> ConfiguredSystem:

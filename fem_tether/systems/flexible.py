@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import h5py
 import numpy as np
 
 from fem_tether.config import Config, ConfigError

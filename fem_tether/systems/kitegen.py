@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from fem_tether.kite import KiteGenDesign
+from fem_tether import power
 from fem_tether.power import Cycle, cycle_curves
 
 from .operating_point import OperatingPoint
@@ -55,6 +56,21 @@ class KiteGenSystem:
     cycle: Cycle = field(default_factory=Cycle)
 
 
+def flown_design(system: KiteGenSystem, tether_cd=None) -> KiteGenDesign:
+    """The design with G_e of eq. (1) in its force law (``tether_cd`` None: the straight line)."""
+    cd_t = system.straight_cd if tether_cd is None else float(tether_cd)
+    if not cd_t >= 0:
+        raise ValueError(f"tether_cd = {tether_cd!r}: must be >= 0")
+    design = system.design
+    return replace(design, efficiency=global_efficiency(design.cl, design.efficiency, cd_t),
+                   kite_efficiency=design.efficiency)
+
+
+def rated_power_W(system: KiteGenSystem, tether_cd=None) -> float:
+    """P_rated of the cycle with this tether (:func:`fem_tether.power.rated_power_W`)."""
+    return float(power.rated_power_W(flown_design(system, tether_cd), system.cycle))
+
+
 def power_curve(system: KiteGenSystem, wind_mps, tether_cd=None) -> list[OperatingPoint]:
     """The operating point at each wind speed (the cycle of :func:`fem_tether.power.cycle_curves`).
 
@@ -65,11 +81,8 @@ def power_curve(system: KiteGenSystem, wind_mps, tether_cd=None) -> list[Operati
     generating.
     """
     cd_t = system.straight_cd if tether_cd is None else float(tether_cd)
-    if not cd_t >= 0:
-        raise ValueError(f"tether_cd = {tether_cd!r}: must be >= 0")
-    design = system.design
-    ge = global_efficiency(design.cl, design.efficiency, cd_t)
-    flown = replace(design, efficiency=ge, kite_efficiency=design.efficiency)
+    design, flown = system.design, flown_design(system, tether_cd)
+    ge = flown.efficiency
     w = np.atleast_1d(np.asarray(wind_mps, dtype=float))
     curves = cycle_curves(w, flown, system.cycle)
     active = curves.active
