@@ -115,8 +115,9 @@ def cmd_power(args):
     cfg = _config(args)
     flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg.tether.length_m) if args.flexible else None
     speeds = [args.wind_speed] if args.wind_speed is not None else comparison.curve_speeds(cfg)
-    data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m,
-            "points": comparison.compare(cfg, speeds, flexible_cd)}
+    rows = comparison.compare(cfg, speeds, flexible_cd)
+    data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m}
+    data |= rows[0] if args.wind_speed is not None else {"points": rows}
     if args.flexible:
         data["flexible_file"] = args.flexible
     if args.plot:

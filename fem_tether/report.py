@@ -52,7 +52,7 @@ def power_text(data: dict) -> str:
     columns = (f"{'V_w m/s':>8s} {'tether':9s} {'mode':10s} {'P_mech MW':>9s} {'P_el MW':>9s} "
                f"{'force kN':>9s} {'V_L m/s':>7s} {'g_out':>6s} {'g_in':>6s} {'g_t':>6s} {'C_D,t':>8s}")
     lines = [head, columns]
-    for row in data["points"]:
+    for row in data.get("points", [data]):
         for case in ("straight", "flexible"):
             if case in row:
                 lines.append(f"{row['wind_mps']:8.2f} {case:9s} {_point_text(row[case])}")

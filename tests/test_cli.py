@@ -11,6 +11,7 @@ import warnings
 
 import pytest
 
+from conftest import is_png
 from fem_tether.cli import build_parser, main
 
 
@@ -201,3 +202,30 @@ def test_bench_memory_runs_one_fe_setting(capsys, monkeypatch):
         "29.00 s wall, 100000 us/step, 4.00 Newton/step",
         "peak RSS 180 MiB: the process with its imports plus 90.0 MiB the run added "
         "(measured in a child forked for it)"]
+
+
+def test_systems_lists_every_preset(capsys):
+    code, out, _ = run_cli(capsys, "systems")
+    assert code == 0 and "ke-yoyo" in out and "2 x 30 mm, 875 m" in out
+    code, out, _ = run_cli(capsys, "systems", "--json")
+    assert code == 0 and "makani-m600" in [r["name"] for r in json.loads(out)["systems"]]
+
+
+def test_power_at_one_wind_speed_and_the_curve(capsys, tmp_path):
+    code, out, _ = run_cli(capsys, "power", "--system", "ke-yoyo", "--wind-speed", "10", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["system"] == "ke-yoyo" and data["wind_mps"] == 10.0
+    assert {"power_W", "tether_force_N", "mode", "gamma_out", "gamma_t"} <= set(data["straight"])
+    png = tmp_path / "p.png"
+    code, out, _ = run_cli(capsys, "power", "--system", "makani-m600", "--plot", str(png))
+    assert code == 0 and "fly-gen" in out and is_png(png)
+
+
+def test_power_with_a_flexible_file_that_lacks_the_length(capsys, unrun_sweep):
+    code, _, err = run_cli(capsys, "power", "--flexible", str(unrun_sweep))
+    assert code == 2 and "no length 1000 m in this sweep" in err and err.count("\n") == 1
+
+
+def test_unknown_system_is_a_one_line_error(capsys):
+    code, _, err = run_cli(capsys, "config", "--system", "nope")
+    assert code == 2 and err.startswith("fem-tether: error: --system nope: unknown system")

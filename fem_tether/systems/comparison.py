@@ -7,6 +7,8 @@
 >>> rows = compare(cfg, [25.0], flexible_cd=0.03)
 >>> sorted(rows[0])
 ['flexible', 'straight', 'wind_mps']
+>>> rows[0]["straight"]["power_W"] == rows[0]["straight"]["electrical_power_W"]
+True
 >>> rows[0]["flexible"]["electrical_power_W"] > rows[0]["straight"]["electrical_power_W"]
 True
 """
@@ -20,6 +22,7 @@ import numpy as np
 from fem_tether.config import Config
 
 from .configured import from_config, top_mps
+from .operating_point import OperatingPoint
 
 #: Wind speeds of a power curve's table [m/s] (the plot samples them 4 times finer).
 CURVE_STEP_MPS = 1.0
@@ -37,5 +40,10 @@ def compare(cfg: Config, wind_mps, flexible_cd: float | None = None) -> list[dic
     system = from_config(cfg)
     cases = {"straight": None} | ({"flexible": flexible_cd} if flexible_cd is not None else {})
     points = {name: system.power_curve(wind_mps, cd) for name, cd in cases.items()}
-    return [{"wind_mps": float(w)} | {name: dataclasses.asdict(p[i]) for name, p in points.items()}
+    return [{"wind_mps": float(w)} | {name: point_dict(p[i]) for name, p in points.items()}
             for i, w in enumerate(np.atleast_1d(wind_mps))]
+
+
+def point_dict(point: OperatingPoint) -> dict:
+    """The operating point's fields, and ``power_W``: the electrical power, what the grid gets."""
+    return dataclasses.asdict(point) | {"power_W": point.electrical_power_W}
