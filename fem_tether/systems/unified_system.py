@@ -354,8 +354,8 @@ def _kite_inclination(system: UnifiedSystem, beta: float, balance) -> float | No
 
 def _free_factors(system: UnifiedSystem, recovery: bool) -> list[tuple[str, ...]]:
     """The factor sets to optimise: pure GG, pure FG, then both together."""
-    ground = ("gamma_out", "gamma_in") if recovery else ("gamma_out",)
-    sets = {"ground-gen": [ground], "fly-gen": [("gamma_t",)],
+    ground: tuple[str, ...] = ("gamma_out", "gamma_in") if recovery else ("gamma_out",)
+    sets: dict[str, list[tuple[str, ...]]] = {"ground-gen": [ground], "fly-gen": [("gamma_t",)],
             "both": [ground, ("gamma_t",), ground + ("gamma_t",)]}
     return sets[system.modes]
 
@@ -373,9 +373,11 @@ def operating_point(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1
     optimum exceeds P_rated, the power is held at P_rated and, of the
     factors that deliver it, those of least tether force are taken (the
     seed leaves the choice to its AEP optimiser; the least load makes it
-    unique).  SLSQP from the best points of a grid of factors, or from
-    ``starts`` (γ_out, γ_in, γ_t), each factor set of a "both" system
-    separately and then together.  No positive power: mode "off", zeros.
+    unique).  SLSQP from ``starts`` (γ_out, γ_in, γ_t; the factors a set
+    does not free are zeroed), or, if none given or none ends feasible, from
+    the best points of a grid of factors; a "both" system optimises pure
+    GG, pure FG, then all three from their optima.  No positive power: mode
+    "off", zeros.
     """
     if not wind_mps >= 0:
         raise ValueError(f"wind_mps = {wind_mps!r}: must be >= 0")
@@ -386,18 +388,17 @@ def operating_point(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1
     scale = max(float(loyd_power_bound_W(rho_kg_m3, system.area_m2, cd, system.cl / cd, wind_mps,
                                          system.elevation_rad, bounds["gamma_t"][1])), 1e-300)
     problem = _Problem(system, wind_mps, rho_kg_m3, c_t, mass_losses, recovery, scale)
-    best: dict[str, float] | None = None
+    found: list[dict[str, float]] = []
     for free in _free_factors(system, recovery):
-        if starts is not None:
-            points = [dict(zip(FACTORS, s)) for s in starts]
-        else:
-            points = _grid_starts(problem, free, bounds)
-        if best is not None:
-            points = [best] + points
-        for point in points:
-            candidate = problem.maximise(free, bounds, point)
-            if candidate is not None and (best is None or problem.power(candidate) > problem.power(best)):
-                best = candidate
+        points = [] if starts is None else [
+            dict(problem.zero, **{n: float(v) for n, v in zip(FACTORS, s) if n in free}) for s in starts]
+        points += _merged_starts(found, problem.power) if len(free) == 3 else []
+        candidates = [c for c in map(lambda p: problem.maximise(free, bounds, p), points) if c is not None]
+        if not candidates:
+            candidates = [c for c in (problem.maximise(free, bounds, p)
+                                      for p in _grid_starts(problem, free, bounds)) if c is not None]
+        found += candidates
+    best = max(found, key=problem.power, default=None)
     if best is not None and problem.power(best) > system.rated_power_W:
         best = problem.hold_rated(_free_factors(system, recovery)[-1], bounds, best)
     if best is None or not problem.power(best) > 0:
@@ -416,6 +417,16 @@ def power_curve(system: UnifiedSystem, wind_mps, rho_kg_m3: float = 1.225,
     """:func:`operating_point` at every wind speed of ``wind_mps`` (cut-in where the power turns positive)."""
     return [operating_point(system, float(w), rho_kg_m3, tether_cd, mass_losses, recovery)
             for w in np.atleast_1d(np.asarray(wind_mps, dtype=float))]
+
+
+def _merged_starts(found: list[dict[str, float]], power) -> list[dict[str, float]]:
+    """Starts for γ_out, γ_in and γ_t together from the optima found so far: each, and the
+    best pure-GG optimum with half of each pure-FG optimum's γ_t."""
+    ground = max((p for p in found if p["gamma_t"] == 0), key=power, default=None)
+    if ground is None:
+        return list(found)
+    return [p for p in found if p["gamma_out"] > 0] + [
+        dict(ground, gamma_t=0.5 * p["gamma_t"]) for p in found if p["gamma_out"] == 0]
 
 
 def _grid_starts(problem: _Problem, free: tuple[str, ...], bounds, keep: int = 2) -> list[dict[str, float]]:
