@@ -1,0 +1,532 @@
+"""A ground-gen / fly-gen kite system of seed 004 and its operating point per wind speed.
+
+:class:`UnifiedSystem` holds what seed 004's unified model needs (Trevisi,
+*Configuration optimisation of kite-based wind turbines*, Ch. 3 and §5.1);
+:func:`power_at_factors` evaluates the cycle at given factors γ_out, γ_in,
+γ_t (eqs. 3.15–3.19, 3.21–3.30, 3.40–3.50, 3.74–3.89, with the sag solved
+together with the tether force); :func:`operating_point` optimises the
+factors at one wind speed under the rated-power and tether-force limits
+(seed 004 §5.1.2) with :mod:`scipy.optimize`; :func:`power_curve` repeats it
+over wind speeds.  Usage::
+
+    system = UnifiedSystem.table_3_1()
+    power_at_factors(system, 10.0, gamma_out=0.33, gamma_in=2.0, gamma_t=0.0).ground_power_W
+    curve = power_curve(system, np.linspace(0, 30, 31))
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq, minimize
+
+from ..power import reel_in_force_N
+from .crosswind import (OSWALD_EFFICIENCY, conductor_area_m2, drag_coefficient, kite_inclination_rad,
+                        sag_coefficient_per_m, tether_mass_per_length_kg_m)
+from .mass_losses import BALANCES, force_scale_N, mass_angle_rad, mass_efficiency, weight_term_N
+from .operating_point import OperatingPoint
+from .tether_drag import straight_tether_cd
+from .unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W, disc_induction_factor,
+                      ground_power_W, loyd_power_bound_W, onboard_power_W, reel_in_force_exact_N,
+                      reel_in_power_W)
+
+#: generation modes a system may be allowed (seed 004 §3.3: GG, FG or both)
+SYSTEM_MODES = ("ground-gen", "fly-gen", "both")
+FACTORS = ("gamma_out", "gamma_in", "gamma_t")
+
+
+@dataclass(frozen=True)
+class UnifiedSystem:
+    """Parameters of a crosswind kite system of seed 004's unified model, SI units.
+
+    Defaults are the means of seed 004's Table 5.4 ranges (its nominal
+    system, §5.6) where it gives one, else stated as ours.
+
+    - ``area_m2`` A, ``cl`` C_L flown (held, not optimised), ``aspect_ratio``
+      AR (``inf``: no induced drag), ``oswald`` e = 0.9 (§3.1.2), ``cd0``
+      C_d0 (Tab. 5.4: 0.01–0.1).
+    - ``mass_kg`` flying mass m in the force balance 3.74 (the tether's own
+      weight enters through the sag, not through m).
+    - ``elevation_rad`` β of the tether at the ground (Fig. 3.3).
+    - tether: ``tether_lines`` (seed: 1), ``tether_diameter_m`` d,
+      ``tether_length_m`` r, ``tether_cd_perp`` C_⊥ (Tab. 5.4: 0.6–1.2),
+      ``tether_density_kg_m3`` ρ_σ (ours: Dyneema, 970), strength
+      ``tether_strength_Pa`` σ_lim = 1.5 GPa (§5.1.2) with
+      ``tether_safety_factor`` (Tab. 5.4: 1.1–2), ``max_tether_force_N`` an
+      extra cap (winch, drum; ``inf``: the tether's strength alone).
+    - conductor (fly-gen, eq. 5.1): ``line_voltage_V`` (Tab. 5.4: 2–40 kV),
+      ``transmission_loss`` share of the rated power lost in the cable (ours:
+      5 %; the seed gives none), ``conductor_resistivity_ohm_m`` and
+      ``conductor_density_kg_m3`` (aluminium, Ch. 6), ``insulation_factor``
+      η_is of eq. 3.16 (ours: 1, no insulation mass; the seed gives none).
+    - on-board rotors: ``turbine_area_m2`` A_turb, ``min_disc_efficiency``
+      η_d^min (eqs. 3.65–3.69; Tab. 5.4: 0.8–0.95), which bounds the
+      induction a ≤ 1 − η_d^min and so γ_t.
+    - ``rated_power_W`` P_rated, limit of the cycle-mean electrical power
+      and of the reel-in power (§5.1.2).
+    - ``eta_out`` = η_gen η_tr (eq. 3.28; Tab. 5.4: 0.75–0.9), ``eta_in`` =
+      η_mot η_batt (eq. 3.29; 0.3–0.85), ``eta_t`` on-board generation and
+      transmission (§3.2.3; 0.7–0.85).
+    - ``modes``: "ground-gen", "fly-gen" or "both" allowed.
+    - ``mass_balance``: "seed" or "exact" reading of eq. 3.74
+      (:mod:`.mass_losses`); ``exact_reel_in``: eq. 3.23 instead of 3.24.
+    - ``max_gamma_in``: upper bound of γ_in in the optimisation (ours; the
+      seed bounds its design variables without printing the bounds).
+    """
+
+    area_m2: float
+    cl: float
+    aspect_ratio: float
+    mass_kg: float
+    elevation_rad: float
+    tether_diameter_m: float
+    tether_length_m: float
+    rated_power_W: float
+    modes: str = "both"
+    cd0: float = 0.055
+    oswald: float = OSWALD_EFFICIENCY
+    tether_lines: int = 1
+    tether_cd_perp: float = 0.9
+    tether_density_kg_m3: float = 970.0
+    tether_strength_Pa: float = 1.5e9
+    tether_safety_factor: float = 1.55
+    max_tether_force_N: float = math.inf
+    line_voltage_V: float = 21e3
+    transmission_loss: float = 0.05
+    conductor_resistivity_ohm_m: float = 2.65e-8
+    conductor_density_kg_m3: float = 2700.0
+    insulation_factor: float = 1.0
+    turbine_area_m2: float = 0.0
+    min_disc_efficiency: float = 0.875
+    eta_out: float = 0.825
+    eta_in: float = 0.575
+    eta_t: float = 0.775
+    mass_balance: str = "exact"
+    exact_reel_in: bool = False
+    max_gamma_in: float = 10.0
+
+    def __post_init__(self):
+        positive = ("area_m2", "cl", "aspect_ratio", "oswald", "tether_diameter_m", "tether_length_m",
+                    "rated_power_W", "tether_strength_Pa", "tether_safety_factor",
+                    "max_tether_force_N", "line_voltage_V", "conductor_resistivity_ohm_m",
+                    "max_gamma_in")
+        non_negative = ("mass_kg", "cd0", "tether_cd_perp", "tether_density_kg_m3",
+                        "transmission_loss", "conductor_density_kg_m3", "turbine_area_m2")
+        for name in positive:
+            if not getattr(self, name) > 0:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: must be > 0")
+        for name in non_negative:
+            if not getattr(self, name) >= 0:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: must be >= 0")
+        for name in ("eta_out", "eta_in", "eta_t"):
+            if not 0 < getattr(self, name) <= 1:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: must be in (0, 1]")
+        if not 0.5 <= self.min_disc_efficiency <= 1:
+            raise ValueError(f"min_disc_efficiency = {self.min_disc_efficiency!r}: must be in "
+                             "[0.5, 1] (induction a = 1 - it must not exceed 1/2)")
+        if not self.insulation_factor >= 1:
+            raise ValueError(f"insulation_factor = {self.insulation_factor!r}: must be >= 1")
+        if not 0 <= self.elevation_rad < math.pi / 2:
+            raise ValueError(f"elevation_rad = {self.elevation_rad!r}: must be in [0, pi/2)")
+        if isinstance(self.tether_lines, bool) or not isinstance(self.tether_lines, int) \
+                or self.tether_lines < 1:
+            raise ValueError(f"tether_lines = {self.tether_lines!r}: must be an integer >= 1")
+        if self.modes not in SYSTEM_MODES:
+            raise ValueError(f"modes = {self.modes!r}: must be one of {', '.join(SYSTEM_MODES)}")
+        if self.mass_balance not in BALANCES:
+            raise ValueError(f"mass_balance = {self.mass_balance!r}: must be one of "
+                             f"{', '.join(BALANCES)}")
+        if self.modes != "ground-gen":
+            if not self.turbine_area_m2 > 0:
+                raise ValueError(f"turbine_area_m2 = {self.turbine_area_m2!r}: must be > 0 for "
+                                 f"modes {self.modes!r}")
+            if not math.isfinite(self.rated_power_W):
+                raise ValueError(f"rated_power_W = {self.rated_power_W!r}: must be finite for "
+                                 f"modes {self.modes!r} (it sizes the conductor, eq. 5.1)")
+            if not self.transmission_loss > 0:
+                raise ValueError(f"transmission_loss = {self.transmission_loss!r}: must be > 0 "
+                                 f"for modes {self.modes!r}")
+        if not self.structural_area_m2 > 0:
+            raise ValueError(f"tether_diameter_m = {self.tether_diameter_m!r}: the conductor "
+                             f"({self.conductor_area_m2:.3g} m²) leaves no load-bearing section")
+
+    @classmethod
+    def table_3_1(cls) -> UnifiedSystem:
+        """Seed 004's Table 3.1 example as a system: θ = 20°, G_e = 10, C_d = 0.15, A = 100 m², m = 2000 kg.
+
+        The table gives the aggregates only, for the seed's §3.1 idealisation
+        of a straight massless tether whose drag is inside the "system drag
+        coefficient".  Completed as: C_L = G_e C_d = 1.5, C_d0 = 0.15 with
+        no induced drag (AR = ∞) and a drag-free (C_⊥ = 0), weightless
+        tether, so C_d = 0.15 and θ = β = 20° at any force; d = 3 cm and
+        r = 500 m are ours and enter nothing but the tether's strength; no
+        rated power or force cap (``inf``, ground-gen conductor-free).  The
+        rotors are sized by eq. 3.68 for the example's γ_t = ½ at
+        a = 1 − η_d^min: A_turb = A γ_t C_d / (4a(1 − a)); ``modes`` is
+        "ground-gen" to keep the conductor out (pass ``replace(...,
+        modes="both", rated_power_W=...)`` to fly the turbines too).
+        """
+        eta_d = 0.875
+        a = 1.0 - eta_d
+        return cls(area_m2=100.0, cl=1.5, aspect_ratio=math.inf, mass_kg=2000.0,
+                   elevation_rad=math.radians(20.0), tether_diameter_m=0.03, tether_length_m=500.0,
+                   rated_power_W=math.inf, modes="ground-gen", cd0=0.15, tether_cd_perp=0.0, mass_balance="seed",
+                   tether_density_kg_m3=0.0, min_disc_efficiency=eta_d,
+                   turbine_area_m2=100.0 * 0.5 * 0.15 / (4.0 * a * (1.0 - a)))
+
+    @property
+    def conductor_area_m2(self) -> float:
+        """A_el of eq. 5.1 at the rated on-board power; 0 for ground generation."""
+        if self.modes == "ground-gen":
+            return 0.0
+        return float(conductor_area_m2(self.rated_power_W, self.line_voltage_V,
+                                       self.transmission_loss * self.rated_power_W,
+                                       self.tether_length_m, self.conductor_resistivity_ohm_m))
+
+    @property
+    def structural_area_m2(self) -> float:
+        """A_σ = π d²/4 − A_el per line, the load-bearing section (seed 004 eq. 5.2)."""
+        return math.pi * self.tether_diameter_m**2 / 4.0 - self.conductor_area_m2 / self.tether_lines
+
+    @property
+    def tether_mass_per_length_kg_m(self) -> float:
+        """m_r of all lines (eq. 3.16; the conductor split over the lines)."""
+        return self.tether_lines * float(tether_mass_per_length_kg_m(
+            self.structural_area_m2, self.tether_density_kg_m3,
+            self.conductor_area_m2 / self.tether_lines, self.conductor_density_kg_m3,
+            self.insulation_factor))
+
+    @property
+    def force_limit_N(self) -> float:
+        """min(cap, lines σ_lim A_σ / SF): the tether force allowed (seed 004 eq. 5.2)."""
+        strength = self.tether_lines * self.tether_strength_Pa * self.structural_area_m2 \
+            / self.tether_safety_factor
+        return min(self.max_tether_force_N, strength)
+
+    @property
+    def straight_tether_cd(self) -> float:
+        """C_⊥ d r lines/(4A): the straight tether's drag coefficient (seed 004 eq. 3.14)."""
+        return float(straight_tether_cd(self.tether_lines, self.tether_cd_perp, self.tether_diameter_m,
+                                        self.tether_length_m, self.area_m2))
+
+    def max_gamma_t(self, cd: float) -> float:
+        """γ_t at the induction a = 1 − η_d^min: A_turb 4a(1 − a)/(A C_d)  (eqs. 3.66, 3.68)."""
+        if self.modes == "ground-gen":
+            return 0.0
+        a = 1.0 - self.min_disc_efficiency
+        return self.turbine_area_m2 * 4.0 * a * (1.0 - a) / (self.area_m2 * cd)
+
+
+@dataclass(frozen=True)
+class CyclePower:
+    """The unified model at given factors and one wind speed (SI units).
+
+    ``flies`` is False where no equilibrium exists (the weight cannot be
+    carried, or the tether sags to the vertical); the powers are then 0.
+    Production powers are those of the reel-out phase: ``ground_power_W``
+    P_gr with η_Δ (eq. 3.86), ``onboard_power_W`` P_ob (eq. 3.87, before
+    the disc loss (1 − a)); the cycle means are mechanical (η = 1) and
+    electrical (η_out, η_in, η_t).
+    """
+
+    flies: bool
+    theta_rad: float
+    delta_rad: float
+    eta_delta: float
+    cd: float
+    ge: float
+    tether_cd: float
+    tether_force_N: float
+    apparent_speed_mps: float
+    ground_power_W: float
+    onboard_power_W: float
+    disc_induction: float
+    reel_in_force_N: float
+    reel_in_power_W: float
+    mechanical_power_W: float
+    electrical_power_W: float
+
+
+def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_in: float,
+                     gamma_t: float, rho_kg_m3: float = 1.225, tether_cd: float | None = None,
+                     mass_losses: bool = True, recovery: bool = True) -> CyclePower:
+    """The cycle of ``system`` at V_w and (γ_out, γ_in, γ_t): seed 004 eqs. 3.15–3.30, 3.40–3.50, 3.74–3.89.
+
+    - C_d = C_d0 + C_L²/(π AR e) + C_d,t (eq. 3.15), C_d,t = ``tether_cd``
+      or, if None, the straight tether's (eq. 3.14); G_e = C_L/C_d.
+    - The inclination θ at the kite and the tether force T solve each
+      other: θ = arctan(tanβ + a r cosβ), a = m_r g/(2T) (eqs. 3.16–3.19),
+      T = η_Δ R_a(θ + Δ) (eqs. 3.77–3.84; Δ = 0, η_Δ = 1 without
+      ``mass_losses``).  Of the equilibria the one of largest T (least sag)
+      is taken.
+    - Reel-out P_gr (3.86), on-board P_ob (3.87), reel-in T_r at β (3.24,
+      or 3.23 with ``system.exact_reel_in``) and P_r = T_r γ_in V_w (3.25).
+    - Cycle means with the shares 3.26: mechanical τ_out (P_gr + (1 − a) P_ob)
+      − τ_in P_r, electrical τ_out (η_out P_gr + η_t (1 − a) P_ob) − τ_in P_r/η_in
+      (eqs. 3.30, 3.89 with the reel-in sign a minus), a from eq. 3.70.
+    - ``recovery=False`` is the production phase alone (τ_out = 1: a recovery
+      costing neither time nor energy, seed 004 §3.1 assumption 3).
+    """
+    for name, value in (("wind_mps", wind_mps), ("gamma_out", gamma_out), ("gamma_in", gamma_in),
+                        ("gamma_t", gamma_t), ("rho_kg_m3", rho_kg_m3)):
+        if not value >= 0:
+            raise ValueError(f"{name} = {value!r}: must be >= 0")
+    c_t = system.straight_tether_cd if tether_cd is None else float(tether_cd)
+    if not c_t >= 0:
+        raise ValueError(f"tether_cd = {tether_cd!r}: must be >= 0")
+    cd = float(drag_coefficient(system.cd0, system.cl, system.aspect_ratio, c_t, system.oswald))
+    ge = system.cl / cd
+    beta = system.elevation_rad
+    thrust_coefficient = system.area_m2 * gamma_t * cd / system.turbine_area_m2 if gamma_t > 0 else 0.0
+    if thrust_coefficient > 1 + 1e-12:
+        raise ValueError(f"gamma_t = {gamma_t!r}: the rotors' thrust coefficient "
+                         f"{thrust_coefficient:.3g} exceeds the actuator disc's 1 (eq. 3.70)")
+    thrust_coefficient = min(thrust_coefficient, 1.0)
+    aero = (rho_kg_m3, system.area_m2, cd, ge, wind_mps)
+
+    def balance(theta):
+        """(Δ, η_Δ, T) at inclination θ: eqs. 3.77–3.84."""
+        if mass_losses:
+            ratio = weight_term_N(system.mass_kg, theta) / force_scale_N(*aero, gamma_t) \
+                if wind_mps > 0 else math.inf
+            delta = float(mass_angle_rad(ratio, theta, gamma_out, system.mass_balance))
+            eta = float(mass_efficiency(delta, theta, system.mass_balance))
+        else:
+            delta, eta = 0.0, 1.0
+        if not (math.cos(theta + delta) > gamma_out and eta > 0):
+            return delta, eta, 0.0
+        return delta, eta, eta * float(aerodynamic_force_N(*aero, theta + delta, gamma_out, gamma_t))
+
+    theta = _kite_inclination(system, beta, balance)
+    delta, eta, force = balance(theta) if theta is not None else (math.nan, math.nan, 0.0)
+    if not force > 0:
+        return CyclePower(False, math.nan if theta is None else theta, delta, eta, cd, ge, c_t,
+                          0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    assert theta is not None
+    phi = theta + delta
+    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=eta))
+    p_ob = float(onboard_power_W(*aero, phi, gamma_out, gamma_t))
+    a = float(disc_induction_factor(thrust_coefficient))
+    reeling = recovery and gamma_out > 0
+    reel_in = reel_in_force_exact_N if system.exact_reel_in else reel_in_force_N
+    t_r = float(reel_in(rho_kg_m3, system.area_m2, system.cd0, wind_mps, gamma_in * wind_mps, beta)) \
+        if reeling else 0.0
+    p_r = float(reel_in_power_W(t_r, wind_mps, gamma_in))
+    g_in = gamma_in if reeling else 0.0
+    mechanical = float(cycle_power_W(p_gr + (1.0 - a) * p_ob, p_r, gamma_out if reeling else 0.0, g_in))
+    electrical = float(cycle_power_W(system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob,
+                                     p_r / system.eta_in, gamma_out if reeling else 0.0, g_in))
+    return CyclePower(True, theta, delta, eta, cd, ge, c_t, force,
+                      float(apparent_speed_mps(wind_mps, ge, phi, gamma_out, gamma_t)), p_gr, p_ob, a,
+                      t_r, p_r, mechanical, electrical)
+
+
+def _kite_inclination(system: UnifiedSystem, beta: float, balance) -> float | None:
+    """θ with θ = θ_sag(T(θ)) (eqs. 3.17–3.19), the root of largest T; None: no equilibrium.
+
+    With the unknown T: h(T) = T_aero(θ_sag(T)) − T is negative for
+    T ≥ T_aero(β) (sag only tilts the line up and lowers the force) and
+    positive below the stable equilibrium; halving T from T_aero(β) brackets
+    the largest root.
+    """
+    m_r = system.tether_mass_per_length_kg_m
+    top = balance(beta)[2]
+    if m_r == 0 or not top > 0:
+        return beta if top > 0 else None
+
+    def sag_theta(force):
+        return float(kite_inclination_rad(beta, system.tether_length_m, sag_coefficient_per_m(m_r, force)))
+
+    def excess(force):
+        return balance(sag_theta(force))[2] - force
+
+    upper = top
+    for _ in range(60):
+        lower = 0.5 * upper
+        if excess(lower) > 0:
+            force = brentq(excess, lower, upper, xtol=1e-12 * top, rtol=1e-13)
+            return sag_theta(force) if abs(excess(force)) <= 1e-8 * top else None
+        upper = lower
+    return None
+
+
+def _free_factors(system: UnifiedSystem, recovery: bool) -> list[tuple[str, ...]]:
+    """The factor sets to optimise: pure GG, pure FG, then both together."""
+    ground: tuple[str, ...] = ("gamma_out", "gamma_in") if recovery else ("gamma_out",)
+    sets: dict[str, list[tuple[str, ...]]] = {"ground-gen": [ground], "fly-gen": [("gamma_t",)],
+            "both": [ground, ("gamma_t",), ground + ("gamma_t",)]}
+    return sets[system.modes]
+
+
+def operating_point(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1.225,
+                    tether_cd: float | None = None, mass_losses: bool = True, recovery: bool = True,
+                    starts: list[tuple[float, float, float]] | None = None) -> OperatingPoint:
+    """The best cycle of ``system`` at one wind speed: γ_out, γ_in, γ_t optimised (seed 004 §5.1).
+
+    Maximises the cycle-mean electrical power of :func:`power_at_factors`
+    (eq. 3.89) over the factors the system's ``modes`` allows, bounded by
+    0 ≤ γ_out ≤ cosβ, 0 ≤ γ_in ≤ ``max_gamma_in``, 0 ≤ γ_t ≤ γ_t,max (the
+    rotors' induction limit, :meth:`UnifiedSystem.max_gamma_t`), subject to
+    T ≤ and T_r ≤ the force limit and P_r/η_in ≤ P_rated (§5.1.2).  If the
+    optimum exceeds P_rated, the power is held at P_rated and, of the
+    factors that deliver it, those of least tether force are taken (the
+    seed leaves the choice to its AEP optimiser; the least load makes it
+    unique).  SLSQP from ``starts`` (γ_out, γ_in, γ_t; the factors a set
+    does not free are zeroed), or, if none given or none ends feasible, from
+    the best points of a grid of factors; a "both" system optimises pure
+    GG, pure FG, then all three from their optima.  No positive power: mode
+    "off", zeros.
+    """
+    if not wind_mps >= 0:
+        raise ValueError(f"wind_mps = {wind_mps!r}: must be >= 0")
+    c_t = system.straight_tether_cd if tether_cd is None else float(tether_cd)
+    cd = float(drag_coefficient(system.cd0, system.cl, system.aspect_ratio, c_t, system.oswald))
+    bounds = {"gamma_out": (0.0, math.cos(system.elevation_rad)), "gamma_in": (0.0, system.max_gamma_in),
+              "gamma_t": (0.0, system.max_gamma_t(cd))}
+    scale = max(float(loyd_power_bound_W(rho_kg_m3, system.area_m2, cd, system.cl / cd, wind_mps,
+                                         system.elevation_rad, bounds["gamma_t"][1])), 1e-300)
+    problem = _Problem(system, wind_mps, rho_kg_m3, c_t, mass_losses, recovery, scale)
+    found: list[dict[str, float]] = []
+    for free in _free_factors(system, recovery):
+        points = [] if starts is None else [
+            dict(problem.zero, **{n: float(v) for n, v in zip(FACTORS, s) if n in free}) for s in starts]
+        points += _merged_starts(found, problem.power) if len(free) == 3 else []
+        candidates = [c for c in map(lambda p: problem.maximise(free, bounds, p), points) if c is not None]
+        if not candidates:
+            candidates = [c for c in (problem.maximise(free, bounds, p)
+                                      for p in _grid_starts(problem, free, bounds)) if c is not None]
+        found += candidates
+    best = max(found, key=problem.power, default=None)
+    if best is not None and problem.power(best) > system.rated_power_W:
+        best = problem.hold_rated(_free_factors(system, recovery)[-1], bounds, best)
+    if best is None or not problem.power(best) > 0:
+        return OperatingPoint("off", wind_mps, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, c_t)
+    state = problem.state(best)
+    reeling = recovery and best["gamma_out"] > 0
+    mode = "fly-gen" if best["gamma_out"] == 0 else ("ground-gen" if best["gamma_t"] == 0 else "both")
+    return OperatingPoint(mode, wind_mps, state.mechanical_power_W, state.electrical_power_W,
+                          state.tether_force_N, best["gamma_out"] * wind_mps, state.apparent_speed_mps,
+                          best["gamma_out"], best["gamma_in"] if reeling else 0.0, best["gamma_t"], c_t)
+
+
+def power_curve(system: UnifiedSystem, wind_mps, rho_kg_m3: float = 1.225,
+                tether_cd: float | None = None, mass_losses: bool = True,
+                recovery: bool = True) -> list[OperatingPoint]:
+    """:func:`operating_point` at every wind speed of ``wind_mps`` (cut-in where the power turns positive)."""
+    return [operating_point(system, float(w), rho_kg_m3, tether_cd, mass_losses, recovery)
+            for w in np.atleast_1d(np.asarray(wind_mps, dtype=float))]
+
+
+def _merged_starts(found: list[dict[str, float]], power) -> list[dict[str, float]]:
+    """Starts for γ_out, γ_in and γ_t together from the optima found so far: each, and the
+    best pure-GG optimum with half of each pure-FG optimum's γ_t."""
+    ground = max((p for p in found if p["gamma_t"] == 0), key=power, default=None)
+    if ground is None:
+        return list(found)
+    return [p for p in found if p["gamma_out"] > 0] + [
+        dict(ground, gamma_t=0.5 * p["gamma_t"]) for p in found if p["gamma_out"] == 0]
+
+
+def _grid_starts(problem: _Problem, free: tuple[str, ...], bounds, keep: int = 2) -> list[dict[str, float]]:
+    """The ``keep`` best flying points of a grid over the free factors (interior of the bounds)."""
+    axes = {"gamma_out": np.array([0.1, 0.25, 0.4, 0.6, 0.8]),
+            "gamma_in": np.array([0.05, 0.15, 0.3, 0.6]),
+            "gamma_t": np.array([0.1, 0.3, 0.5, 0.7, 0.9])}
+    grids = np.meshgrid(*(bounds[n][0] + axes[n] * (bounds[n][1] - bounds[n][0]) for n in free))
+    points = [dict(problem.zero, **dict(zip(free, map(float, values))))
+              for values in zip(*(g.ravel() for g in grids))]
+    scored = sorted(((problem.power(p), i) for i, p in enumerate(points)
+                     if problem.state(p).flies and problem.feasible(p)), reverse=True)
+    return [points[i] for _, i in scored[:keep]]
+
+
+class _Problem:
+    """One wind speed's optimisation: cached evaluations, objective and constraints on scaled powers."""
+
+    def __init__(self, system, wind_mps, rho_kg_m3, tether_cd, mass_losses, recovery, scale):
+        self.system = system
+        self.arguments = dict(wind_mps=wind_mps, rho_kg_m3=rho_kg_m3, tether_cd=tether_cd,
+                              mass_losses=mass_losses, recovery=recovery)
+        self.scale = scale
+        self.force_scale = scale / max(wind_mps, 1e-300)
+        self.zero = dict.fromkeys(FACTORS, 0.0)
+        self.cache: dict[tuple[float, ...], CyclePower] = {}
+
+    def state(self, point: dict[str, float]) -> CyclePower:
+        key = tuple(point[n] for n in FACTORS)
+        if key not in self.cache:
+            self.cache[key] = power_at_factors(self.system, gamma_out=key[0], gamma_in=key[1],
+                                               gamma_t=key[2], **self.arguments)
+        return self.cache[key]
+
+    def power(self, point: dict[str, float]) -> float:
+        state = self.state(point)
+        return state.electrical_power_W if state.flies else -self.scale
+
+    def limits(self, point: dict[str, float]) -> list[float]:
+        """Scaled slacks ≥ 0: reel-out and reel-in force, reel-in power (§5.1.2)."""
+        s, state = self.system, self.state(point)
+        slack = []
+        if math.isfinite(s.force_limit_N):
+            slack += [(s.force_limit_N - state.tether_force_N) / s.force_limit_N,
+                      (s.force_limit_N - state.reel_in_force_N) / s.force_limit_N]
+        if math.isfinite(s.rated_power_W):
+            slack.append((s.rated_power_W - state.reel_in_power_W / s.eta_in) / s.rated_power_W)
+        return slack
+
+    def feasible(self, point: dict[str, float]) -> bool:
+        return all(x >= -1e-9 for x in self.limits(point))
+
+    def _solve(self, free, bounds, start, objective, constraints):
+        def point(x):
+            return dict(start, **{n: float(min(max(v, bounds[n][0]), bounds[n][1])) for n, v in zip(free, x)})
+
+        cons = [{"type": "ineq", "fun": (lambda x, f=f: f(point(x)))} for f in constraints]
+        result = minimize(lambda x: objective(point(x)), [start[n] for n in free], method="SLSQP",
+                          bounds=[bounds[n] for n in free], constraints=cons,
+                          options={"ftol": 1e-14, "maxiter": 300})
+        found = point(result.x)
+        return found if self.state(found).flies and self.feasible(found) else None
+
+    def maximise(self, free, bounds, start):
+        """Most electrical power from ``start`` within the limits; None if it ends infeasible."""
+        n = len(self.limits(start))
+        checks = [lambda p, i=i: self.limits(p)[i] for i in range(n)]
+        return self._solve(free, bounds, start, lambda p: -self.power(p) / self.scale, checks)
+
+    def hold_rated(self, free, bounds, start):
+        """Least tether force with P = P_rated, from a point above it; None if none is reachable.
+
+        Each segment from ``start`` to a bound of γ_out or γ_t (γ_in kept)
+        along which the power falls below P_rated crosses it (brentq); the
+        crossing of least force starts SLSQP, whose result is kept if it is
+        feasible and no worse (at ``start`` P's gradient vanishes, so SLSQP's
+        linearised power limit would not hold it there).
+        """
+        rated = self.system.rated_power_W
+        crossings = []
+        for name in (n for n in free if n != "gamma_in"):
+            for end in bounds[name]:
+                if end == start[name]:
+                    continue
+
+                def along(t, name=name, end=end):
+                    return dict(start, **{name: start[name] + t * (end - start[name])})
+
+                if self.power(along(1.0)) < rated:
+                    t = brentq(lambda t: self.power(along(t)) - rated, 0.0, 1.0, xtol=1e-13)
+                    crossings += [along(t)] if self.feasible(along(t)) else []
+        if not crossings:
+            return None
+        crossing = min(crossings, key=lambda p: self.state(p).tether_force_N)
+        n = len(self.limits(start))
+        checks = [lambda p, i=i: self.limits(p)[i] for i in range(n)]
+        checks.append(lambda p: (self.power(p) - rated) / rated)
+        found = self._solve(free, bounds, crossing,
+                            lambda p: self.state(p).tether_force_N / self.force_scale, checks)
+        if found is None or self.power(found) < rated * (1 - 1e-9) \
+                or self.state(found).tether_force_N > self.state(crossing).tether_force_N:
+            return crossing
+        return found
