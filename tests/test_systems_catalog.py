@@ -14,7 +14,8 @@ PRESETS = catalog.names()
 
 
 def test_the_documents_systems_are_shipped():
-    assert PRESETS == ["ke-yoyo", "kitegen", "loyd-1", "loyd-2", "loyd-3", "makani-m600"]
+    assert PRESETS == ["ke-yoyo", "kitegen", "loyd-1", "loyd-2", "loyd-3", "makani-m600", "trevisi-fg",
+                       "trevisi-gg"]
 
 
 @pytest.mark.parametrize("name", PRESETS)
@@ -79,3 +80,17 @@ def test_summaries_list_every_preset_with_its_tether():
     assert set(rows) == set(PRESETS)
     assert (rows["ke-yoyo"]["lines"], rows["ke-yoyo"]["diameter_m"]) == (2, 0.03)
     assert ke_yoyo.TABLE_I.area_m2 == rows["ke-yoyo"]["area_m2"]
+
+
+@pytest.mark.parametrize("name", ["trevisi-gg", "trevisi-fg"])
+def test_trevisi_presets_fly_their_model_at_10_mps(name):
+    """Kite speed, tension and the line's mass per length (with the fly-gen conductor, eq. 3.16)
+    are the unified model's at 10 m/s (to the preset's 4-5 digits)."""
+    cfg = load_config(system=name)
+    system = from_config(cfg)
+    point = system.operating_point(10.0)
+    assert point.mode == cfg.unified.modes
+    assert cfg.kite.speed_mps == pytest.approx(point.apparent_speed_mps, rel=1e-3)
+    assert cfg.winch.ground_tension_N == pytest.approx(point.tether_force_N, rel=1e-3)
+    assert cfg.tether.linear_density_kg_m == pytest.approx(system.parameters.tether_mass_per_length_kg_m,
+                                                            rel=1e-4)

@@ -29,7 +29,7 @@ from fem_tether.trajectory import FigureEight
 
 from . import rules
 from .sections import (FD, FE, MOVED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, System,
-                       Tether, Time, Wind, Winch)
+                       Tether, Time, Unified, Wind, Winch)
 from .tomlio import read_toml, resolve_paths, section_toml
 
 
@@ -38,6 +38,7 @@ class Config:
     """A checked case: every section, and the rules across them."""
 
     system: System = field(default_factory=System)
+    unified: Unified = field(default_factory=Unified)
     tether: Tether = field(default_factory=Tether)
     air: Air = field(default_factory=Air)
     drag: Drag = field(default_factory=Drag)

@@ -47,6 +47,45 @@ class System(Section):
 
 
 @dataclass(frozen=True)
+class Unified(Section):
+    """The keys of the 'unified' power model that no other section holds (Trevisi 2019)."""
+
+    NAME = "unified"
+    modes: str = setting("both", "-", "generation allowed: 'ground-gen', 'fly-gen' or 'both' (Trevisi §3.3)",
+                         one_of("ground-gen", "fly-gen", "both"))
+    cd0: float = setting(0.055, "-", "zero-lift drag coefficient C_d0 of the wing (Trevisi eq. 3.15; "
+                         "Tab. 5.4: 0.01-0.1)", non_negative)
+    aspect_ratio: float = setting(8.0, "-", "wing aspect ratio AR of the induced drag C_L^2/(pi AR e) "
+                                  "(eq. 3.11; 0: no induced drag, an infinite AR)", non_negative)
+    oswald: float = setting(0.9, "-", "Oswald efficiency e (eq. 3.11)", positive)
+    tether_density_kg_m3: float = setting(970.0, "kg/m3", "density of the load-bearing tether material "
+                                          "(Dyneema)", non_negative)
+    tether_strength_Pa: float = setting(1.5e9, "Pa", "tether strength sigma_lim (Trevisi §5.1.2)", positive)
+    tether_safety_factor: float = setting(1.55, "-", "safety factor on the tether strength (Tab. 5.4: 1.1-2)",
+                                          positive)
+    max_tether_force_N: float = setting(0.0, "N", "tether force cap besides its strength (0: none)",
+                                        non_negative)
+    line_voltage_V: float = setting(21e3, "V", "fly-gen transmission voltage (Tab. 5.4: 2-40 kV)", positive)
+    transmission_loss: float = setting(0.05, "-", "fly-gen share of the rated power lost in the conductor",
+                                       between(0.0, 1.0, (True, False)))
+    conductor_resistivity_ohm_m: float = setting(2.65e-8, "ohm m", "conductor resistivity (aluminium)",
+                                                 positive)
+    conductor_density_kg_m3: float = setting(2700.0, "kg/m3", "conductor density (aluminium)", non_negative)
+    insulation_factor: float = setting(1.0, "-", "eta_is of eq. 3.16: conductor mass with its insulation",
+                                       at_least(1))
+    turbine_area_m2: float = setting(0.0, "m2", "fly-gen rotor area A_turb (0: no rotors)", non_negative)
+    min_disc_efficiency: float = setting(0.875, "-", "least rotor disc efficiency eta_d (eqs. 3.66-3.70; "
+                                         "Tab. 5.4: 0.8-0.95)", between(0.5, 1.0, (True, True)))
+    eta_t: float = setting(0.775, "-", "on-board generation and transmission efficiency (Tab. 5.4: "
+                           "0.7-0.85)", between(0.0, 1.0, (False, True)))
+    mass_balance: str = setting("exact", "-", "eq. 3.74 solved 'exact' or with the thesis's small-angle "
+                                "'seed' reading", one_of("exact", "seed"))
+    exact_reel_in: bool = setting(False, "-", "reel-in force by eq. 3.23 (true) or 3.24 (false)")
+    max_gamma_in: float = setting(10.0, "-", "upper bound of the reel-in factor gamma_in in the optimisation",
+                                  positive)
+
+
+@dataclass(frozen=True)
 class Tether(Section):
     NAME = "tether"
     length_m: float = setting(1000.0, "m", "cable length L (per line)", positive)
@@ -214,7 +253,7 @@ class Output(Section):
 
 
 #: The sections in the order of a configuration file.
-SECTIONS: tuple[type[Section], ...] = (System, Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
+SECTIONS: tuple[type[Section], ...] = (System, Unified, Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
                                         Resource, Output)
 
 #: Keys of earlier versions and where they are now: (section, key) -> (section, key).

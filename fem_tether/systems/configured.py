@@ -22,12 +22,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_tether import atmosphere, straight
-from fem_tether.config import Config
+from fem_tether.config import Config, ConfigError
 from fem_tether.kite import KiteGenDesign
 from fem_tether.power import Cycle, operating_design
 from fem_tether.summary import operating_density_kg_m3, operating_tether_cd
 
-from . import ke_yoyo, kitegen, loyd
+from . import ke_yoyo, kitegen, loyd, unified_system
 from .operating_point import OperatingPoint
 
 
@@ -131,13 +131,51 @@ def _loyd(cfg: Config) -> ConfiguredSystem:
                             lambda w, cd: loyd.power_curve(params, w, rho, cd), top_mps(cfg))
 
 
+def _unified(cfg: Config) -> ConfiguredSystem:
+    """Seed 004's unified ground-gen/fly-gen model: ``[unified]`` (its own keys);
+    ``[kite]`` area, C_L, elevation β = 90° − theta0_deg; ``[tether]`` d, r = L,
+    lines; ``[drag] cd`` as C_⊥; ``[system]`` kite_mass_kg, rated_power_W
+    (0: none), cut_out_mps; ``[cycle]`` eta_e as η_out, eta_c as η_in; ρ at the
+    operating altitude.  Straight line: eq. 3.14."""
+    u, t, k = cfg.unified, cfg.tether, cfg.kite
+    params = unified_system.UnifiedSystem(
+        area_m2=k.area_m2, cl=k.cl, aspect_ratio=u.aspect_ratio or math.inf, mass_kg=cfg.system.kite_mass_kg,
+        elevation_rad=math.radians(90.0 - k.theta0_deg), tether_diameter_m=t.diameter_m,
+        tether_length_m=t.length_m, rated_power_W=cfg.system.rated_power_W or math.inf, modes=u.modes,
+        cd0=u.cd0, oswald=u.oswald, tether_lines=t.lines, tether_cd_perp=cfg.drag.cd,
+        tether_density_kg_m3=u.tether_density_kg_m3, tether_strength_Pa=u.tether_strength_Pa,
+        tether_safety_factor=u.tether_safety_factor, max_tether_force_N=u.max_tether_force_N or math.inf,
+        line_voltage_V=u.line_voltage_V, transmission_loss=u.transmission_loss,
+        conductor_resistivity_ohm_m=u.conductor_resistivity_ohm_m,
+        conductor_density_kg_m3=u.conductor_density_kg_m3, insulation_factor=u.insulation_factor,
+        turbine_area_m2=u.turbine_area_m2, min_disc_efficiency=u.min_disc_efficiency, eta_out=cfg.cycle.eta_e,
+        eta_in=cfg.cycle.eta_c, eta_t=u.eta_t, mass_balance=u.mass_balance, exact_reel_in=u.exact_reel_in,
+        max_gamma_in=u.max_gamma_in)
+    rho = operating_density_kg_m3(cfg)
+    top = top_mps(cfg)
+
+    def curve(wind_mps, tether_cd):
+        """The optimised points up to the cut-out speed, "off" above it."""
+        on = wind_mps <= top
+        points = iter(unified_system.power_curve(params, wind_mps[on], rho, tether_cd))
+        return [next(points) if o else OperatingPoint("off", float(w), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                                                      float(tether_cd))
+                for w, o in zip(wind_mps, on)]
+
+    return ConfiguredSystem("unified", params, params.straight_tether_cd, curve, top)
+
+
 #: Loyd's reference width of a tether over its diameter: 4√A_T / d = 2√π (seed 003 eq. 2.17).
 LOYD_WIDTH_RATIO = 2.0 * math.sqrt(math.pi)
 
 BUILDERS: dict[str, Callable[[Config], ConfiguredSystem]] = {"kitegen": _kitegen, "ke-yoyo": _ke_yoyo,
-                                                             "loyd": _loyd}
+                                                             "loyd": _loyd, "unified": _unified}
 
 
 def from_config(cfg: Config) -> ConfiguredSystem:
-    """The power model of ``[system] model``, built from ``cfg``."""
-    return BUILDERS[cfg.system.model](cfg)
+    """The power model of ``[system] model``, built from ``cfg``; ConfigError
+    naming the model and the parameter it refuses."""
+    try:
+        return BUILDERS[cfg.system.model](cfg)
+    except ValueError as exc:
+        raise ConfigError(f"[system] model = {cfg.system.model!r}: {exc}") from None
