@@ -12,13 +12,17 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether import atmosphere, straight
+from fem_tether import straight
 from fem_tether.aep import SweepAep
 from fem_tether.config import Config
-from fem_tether.kite import KiteGenDesign
-from fem_tether.power import Cycle, cycle_curves, operating_design
+from fem_tether.power import SEED_GE
 from fem_tether.results import period_average
+from fem_tether.summary import operating_tether_cd
 from fem_tether.sweepfile import read_sweep
+from fem_tether.systems.configured import from_config
+
+#: Wind speeds of the main job's power curves, calm air to the cut-out.
+POWER_CURVE_POINTS = 121
 
 
 def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
@@ -32,18 +36,19 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
         "drag": plots.plot_drag(lengths, {c: data[d] for c, (d, _) in cases.items()},
                                 directory / "drag_vs_length.png"),
         "ge": plots.plot_ge(lengths, {c: data[g] for c, (_, g) in cases.items()},
-                            directory / "ge_vs_length.png"),
+                            directory / "ge_vs_length.png",
+                            reference=SEED_GE if cfg.system.model == "kitegen" else None),
     }
-    cycle = Cycle(**cfg.cycle.to_dict())
-    base, air = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines), atmosphere.from_config(cfg.air)
-    wind = np.linspace(0.0, cfg.resource.max_speed_mps, 501)
     curves = {}
     for i in (0, lengths.size - 1):
-        for case, (_, ge_key) in cases.items():
-            ge = data[ge_key][i]
-            if np.isfinite(ge):
-                design = operating_design(base, air, lengths[i], ge, data["mean_phi_deg"][i])
-                curves[f"{lengths[i]:g} m, {case}"] = cycle_curves(wind, design, cycle)
+        case = cfg.with_length(lengths[i])
+        system = from_config(case)
+        wind = np.linspace(0.0, system.top_mps, POWER_CURVE_POINTS)
+        for name, (drag_key, _) in cases.items():
+            if np.isfinite(data[drag_key][i]):
+                cd = operating_tether_cd(case, data[drag_key][i])
+                curves[f"{lengths[i]:g} m, {name}"] = (wind, system.electrical_power_W(wind, cd),
+                                                       system.active_power_W(wind, cd))
     files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png")
     files["aep"] = plots.plot_aep({"straight": energy.straight, "flexible": energy.flexible},
                                   directory / "aep_vs_length.png")

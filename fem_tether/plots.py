@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 from .aep import AepByLength  # noqa: E402
 from .atomic import atomic_path  # noqa: E402
 from .kite import ZONES, CharacteristicCurves, PowerCurves  # noqa: E402
-from .power import SEED_GE, SEED_LENGTHS_M, CycleCurves  # noqa: E402
+from .power import SEED_GE, SEED_LENGTHS_M  # noqa: E402
 
 
 def save_atomically(fig, path) -> Path:
@@ -136,18 +136,23 @@ def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
     return save_atomically(fig, path)
 
 
-def plot_power_curves(curves_by_label: Mapping[str, CycleCurves], path) -> Path:
-    """Active-phase (dashed) and cycle-mean (solid) power against wind speed (seed 000 Figs. 5.4–5.5)."""
+def plot_power_curves(curves_by_label: Mapping[str, tuple], path) -> Path:
+    """Cycle-mean (solid) and, where given, active-phase (dashed) power against wind speed
+    (seed 000 Figs. 5.4–5.5); each curve is ``(wind_mps, cycle_W, active_W or None)``."""
     fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
-    for i, (label, c) in enumerate(curves_by_label.items()):
+    any_active = False
+    for i, (label, (wind, cycle_W, active_W)) in enumerate(curves_by_label.items()):
         color = f"C{i}"
-        ax.plot(c.active.wind_mps, c.active.power_W * 1e-6, "--", color=color, lw=1.2)
-        ax.plot(c.active.wind_mps, c.power_W * 1e-6, "-", color=color, lw=2, label=label)
-    ax.plot([], [], "--", color="0.4", lw=1.2, label="active phase")
-    ax.plot([], [], "-", color="0.4", lw=2, label="cycle mean")
+        if active_W is not None:
+            any_active = True
+            ax.plot(wind, np.asarray(active_W) * 1e-6, "--", color=color, lw=1.2)
+        ax.plot(wind, np.asarray(cycle_W) * 1e-6, "-", color=color, lw=2, label=label)
+    if any_active:
+        ax.plot([], [], "--", color="0.4", lw=1.2, label="active phase")
+        ax.plot([], [], "-", color="0.4", lw=2, label="cycle mean")
     ax.set_xlim(left=0.0)
-    _label_axes(ax, "wind speed $V_w$ [m/s]", "power [MW]",
-                "power curves: active phase and cycle mean with side-slip recovery", "lower right")
+    _label_axes(ax, "wind speed at the kite $V_w$ [m/s]", "electrical power [MW]",
+                "power curves: cycle mean" + (" and active phase" if any_active else ""), "lower right")
     return save_atomically(fig, path)
 
 

@@ -160,9 +160,10 @@ def test_cycle_rejects_bad_values(field, value):
 
 def test_plot_power_curves_writes_png(seed_design, tmp_path):
     wind = np.linspace(0.0, 40.0, 401)
-    curves = {f"{L:.0f} m, {case}": cycle_curves(wind, operating_design(
+    cycles = {f"{L:.0f} m, {case}": cycle_curves(wind, operating_design(
         seed_design, ISA(), L, SEED_GE[case][i], SEED_MEAN_PHI_DEG[i]))
         for case in ("straight", "flexible") for i, L in ((0, 500.0), (6, 3000.0))}
+    curves = {label: (wind, c.power_W, c.active.power_W) for label, c in cycles.items()}
     path = plot_power_curves(curves, tmp_path / "power.png")
     assert path.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
     assert [p.name for p in tmp_path.iterdir()] == ["power.png"]

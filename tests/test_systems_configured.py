@@ -63,3 +63,12 @@ def test_a_model_refusing_its_parameters_names_the_model():
     cfg = load_config(system="trevisi-fg").replace(unified={"turbine_area_m2": 0.0})
     with pytest.raises(ConfigError, match=r"\[system\] model = 'unified': turbine_area_m2 = 0.0"):
         from_config(cfg)
+
+
+def test_kitegen_active_phase_is_the_characteristic_curve():
+    """The active-phase power drawn beside the cycle mean is zones A-D's (seed 000 eqs. 2.55-2.57)."""
+    system = from_config(load_config())
+    flown = kitegen.flown_design(system.parameters)
+    np.testing.assert_array_equal(system.active_power_W(WINDS),
+                                  cycle_curves(WINDS, flown, Cycle()).active.power_W)
+    assert from_config(load_config(system="ke-yoyo")).active_power_W(WINDS) is None

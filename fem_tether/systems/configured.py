@@ -23,7 +23,7 @@ import numpy as np
 
 from fem_tether import atmosphere, straight
 from fem_tether.config import Config, ConfigError
-from fem_tether.kite import KiteGenDesign
+from fem_tether.kite import KiteGenDesign, characteristic_curves
 from fem_tether.power import Cycle, operating_design
 from fem_tether.summary import operating_density_kg_m3, operating_tether_cd
 
@@ -37,7 +37,9 @@ class ConfiguredSystem:
 
     ``curve(wind_mps, tether_cd)`` gives one :class:`OperatingPoint` per wind
     speed (at the kite's altitude); ``straight_cd`` is the C_D,t of the
-    straight-line lumping its source used; ``parameters`` the model's own.
+    straight-line lumping its source used; ``parameters`` the model's own;
+    ``top_mps`` the end of its power curve (the cut-out); ``rated`` and
+    ``active`` the model's own rated power and active-phase power, if it has them.
     """
 
     model: str
@@ -46,6 +48,7 @@ class ConfiguredSystem:
     curve: Callable[..., list[OperatingPoint]]
     top_mps: float
     rated: Callable[[float], float] | None = None
+    active: Callable[[np.ndarray, float], np.ndarray] | None = None
 
     def power_curve(self, wind_mps, tether_cd=None) -> list[OperatingPoint]:
         """One operating point per wind speed; ``tether_cd`` None: the straight line."""
@@ -58,6 +61,12 @@ class ConfiguredSystem:
     def electrical_power_W(self, wind_mps, tether_cd=None) -> np.ndarray:
         """The electrical (cycle-mean) power at each wind speed."""
         return np.array([p.electrical_power_W for p in self.power_curve(wind_mps, tether_cd)])
+
+    def active_power_W(self, wind_mps, tether_cd=None) -> np.ndarray | None:
+        """The power of a pumping cycle's active (reel-out) phase, for a model that has one apart."""
+        if self.active is None:
+            return None
+        return self.active(np.asarray(wind_mps, dtype=float), self.straight_cd if tether_cd is None else tether_cd)
 
     def rated_power_W(self, tether_cd=None) -> float:
         """P_rated: the model's own where it has one, else the largest electrical
@@ -90,7 +99,8 @@ def _kitegen(cfg: Config) -> ConfiguredSystem:
                                    Cycle(**cfg.cycle.to_dict()))
     return ConfiguredSystem("kitegen", params, params.straight_cd,
                             lambda w, cd: kitegen.power_curve(params, w, cd), top_mps(cfg),
-                            lambda cd: kitegen.rated_power_W(params, cd))
+                            lambda cd: kitegen.rated_power_W(params, cd),
+                            lambda w, cd: characteristic_curves(w, kitegen.flown_design(params, cd)).power_W)
 
 
 def _ke_yoyo(cfg: Config) -> ConfiguredSystem:
