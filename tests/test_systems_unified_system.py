@@ -74,9 +74,9 @@ def test_operating_point_reports_the_optimal_cycle():
 def test_power_curve_over_the_whole_range_with_limits_active():
     """0–30 m/s, every mode, force cap 400 kN: off at 0 m/s, electrical power ≤ P_rated and
     tether force ≤ the cap (to 1e-6), C_L within [C_L,min, C_L,max], the cap active somewhere
-    and the rating too (ground-gen and both), every mode flying from its cut-in to 30 m/s (fly-gen too: it sheds
-    force by lowering C_L), and the mechanical power under the Loyd bound (docs §6) at the
-    point's own C_d and G_e at every speed."""
+    and the rating too (ground-gen and both), every mode flying from its cut-in to 30 m/s
+    (fly-gen too: it sheds force by lowering C_L), and the mechanical power under the Loyd
+    bound (docs §6) at the point's own C_d and G_e at every speed."""
     capped = replace(SYSTEM, max_tether_force_N=4e5)
     winds = np.arange(0.0, 31.0, 2.0)
     for modes in ("ground-gen", "fly-gen", "both"):

@@ -245,8 +245,9 @@ class CyclePower:
     """The unified model at given factors and one wind speed (SI units).
 
     ``gamma_out``, ``gamma_in``, ``gamma_t`` and ``cl`` are the factors and
-    the lift coefficient it was evaluated at.  ``flies`` is False where no equilibrium exists (the weight cannot be
-    carried, or the tether sags to the vertical); the powers are then 0.
+    the lift coefficient it was evaluated at.  ``flies`` is False where no
+    equilibrium exists (the weight cannot be carried, or the tether sags to
+    the vertical); the powers are then 0.
     Production powers are those of the reel-out phase: ``ground_power_W``
     P_gr with η_Δ (eq. 3.86), ``onboard_power_W`` P_ob (eq. 3.87, before
     the disc loss (1 − a)); the cycle means are mechanical (η = 1) and
@@ -279,7 +280,7 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
                      gamma_t: float, rho_kg_m3: float = 1.225, tether_cd: float | None = None,
                      mass_losses: bool = True, recovery: bool = True,
                      cl: float | None = None) -> CyclePower:
-    """The cycle of ``system`` at V_w, (γ_out, γ_in, γ_t) and C_L: seed 004 eqs. 3.15–3.30, 3.40–3.50, 3.74–3.89.
+    """The cycle of ``system`` at V_w, γ_out, γ_in, γ_t, C_L: seed 004 eqs. 3.15–3.30, 3.40–3.50, 3.74–3.89.
 
     - C_L = ``cl``, or C_L,max = ``system.cl`` if None; C_d = C_d0 +
       C_L²/(π AR e) + C_d,t (eq. 3.15), C_d,t = ``tether_cd`` or, if None,
@@ -430,7 +431,8 @@ def optimal_cycle(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1.2
     found: list[dict[str, float]] = []
     for free in sets:
         points = [] if starts is None else [
-            dict(problem.zero, **{n: v for n, v in problem.variables(*s).items() if n in free}) for s in starts]
+            dict(problem.zero, **{n: v for n, v in problem.variables(*start).items() if n in free})
+            for start in starts]
         points += _merged_starts(found, problem.power) if {"gamma_out", "rotor_load"} <= set(free) else []
         candidates = [c for c in map(lambda p: problem.maximise(free, bounds, p), points) if c is not None]
         if not candidates:
@@ -536,7 +538,7 @@ class _Problem:
 
     def variables(self, gamma_out: float, gamma_in: float, gamma_t: float,
                   cl: float | None = None) -> dict[str, float]:
-        """The optimiser's variables at (γ_out, γ_in, γ_t, C_L), C_L,max if None; γ_t clipped to γ_t,max."""
+        """The optimiser's variables at γ_out, γ_in, γ_t, C_L (C_L,max if None; γ_t ≤ γ_t,max)."""
         lift = min(max(self.system.cl if cl is None else float(cl), self.system.cl_bounds[0]), self.system.cl)
         top = self.max_gamma_t(lift)
         load = min(float(gamma_t) / top, 1.0) if top > 0 else 0.0
@@ -590,10 +592,9 @@ class _Problem:
 
         Each segment from ``start`` to a bound of γ_out, the rotors' load or
         C_L (γ_in kept) along which the power falls below P_rated crosses it
-        (brentq); the
-        crossing of least force starts SLSQP, whose result is kept if it is
-        feasible and no worse (at ``start`` P's gradient vanishes, so SLSQP's
-        linearised power limit would not hold it there).
+        (brentq); the crossing of least force starts SLSQP, whose result is
+        kept if it is feasible and no worse (at ``start`` P's gradient
+        vanishes, so SLSQP's linearised power limit would not hold it there).
         """
         rated = self.system.rated_power_W
         crossings = []
