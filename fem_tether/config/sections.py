@@ -83,6 +83,9 @@ class Unified(Section):
     exact_reel_in: bool = setting(False, "-", "reel-in force by eq. 3.23 (true) or 3.24 (false)")
     max_gamma_in: float = setting(10.0, "-", "upper bound of the reel-in factor gamma_in in the optimisation",
                                   positive)
+    min_cl: float = setting(0.0, "-", "least lift coefficient the optimiser may depower the wing to, per wind "
+                            "speed (Trevisi Tab. 5.1 q_CL; 0: a tenth of [kite] cl, the largest; = [kite] cl "
+                            "holds C_L)", non_negative)
 
 
 @dataclass(frozen=True)

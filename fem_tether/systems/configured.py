@@ -143,7 +143,7 @@ def _loyd(cfg: Config) -> ConfiguredSystem:
 
 def _unified(cfg: Config) -> ConfiguredSystem:
     """Seed 004's unified ground-gen/fly-gen model: ``[unified]`` (its own keys);
-    ``[kite]`` area, C_L, elevation β = 90° − theta0_deg; ``[tether]`` d, r = L,
+    ``[kite]`` area, C_L,max, elevation β = 90° − theta0_deg; ``[tether]`` d, r = L,
     lines; ``[drag] cd`` as C_⊥; ``[system]`` kite_mass_kg, rated_power_W
     (0: none), cut_out_mps; ``[cycle]`` eta_e as η_out, eta_c as η_in; ρ at the
     operating altitude.  Straight line: eq. 3.14."""
@@ -160,7 +160,7 @@ def _unified(cfg: Config) -> ConfiguredSystem:
         conductor_density_kg_m3=u.conductor_density_kg_m3, insulation_factor=u.insulation_factor,
         turbine_area_m2=u.turbine_area_m2, min_disc_efficiency=u.min_disc_efficiency, eta_out=cfg.cycle.eta_e,
         eta_in=cfg.cycle.eta_c, eta_t=u.eta_t, mass_balance=u.mass_balance, exact_reel_in=u.exact_reel_in,
-        max_gamma_in=u.max_gamma_in)
+        max_gamma_in=u.max_gamma_in, min_cl=u.min_cl or None)
     rho = operating_density_kg_m3(cfg)
     top = top_mps(cfg)
 

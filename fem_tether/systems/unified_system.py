@@ -3,11 +3,12 @@
 :class:`UnifiedSystem` holds what seed 004's unified model needs (Trevisi,
 *Configuration optimisation of kite-based wind turbines*, Ch. 3 and §5.1);
 :func:`power_at_factors` evaluates the cycle at given factors γ_out, γ_in,
-γ_t (eqs. 3.15–3.19, 3.21–3.30, 3.40–3.50, 3.74–3.89, with the sag solved
-together with the tether force); :func:`operating_point` optimises the
-factors at one wind speed under the rated-power and tether-force limits
-(seed 004 §5.1.2) with :mod:`scipy.optimize`; :func:`power_curve` repeats it
-over wind speeds.  Usage::
+γ_t and lift coefficient C_L (eqs. 3.15–3.19, 3.21–3.30, 3.40–3.50,
+3.74–3.89, with the sag solved together with the tether force);
+:func:`optimal_cycle` optimises the factors and C_L at one wind speed under
+the rated-power and tether-force limits (seed 004 §5.1, Table 5.1) with
+:mod:`scipy.optimize`, :func:`operating_point` reports that optimum and
+:func:`power_curve` repeats it over wind speeds.  Usage::
 
     system = UnifiedSystem.table_3_1()
     power_at_factors(system, 10.0, gamma_out=0.33, gamma_in=2.0, gamma_t=0.0).ground_power_W
@@ -34,7 +35,11 @@ from .unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W, di
 
 #: generation modes a system may be allowed (seed 004 §3.3: GG, FG or both)
 SYSTEM_MODES = ("ground-gen", "fly-gen", "both")
-FACTORS = ("gamma_out", "gamma_in", "gamma_t")
+#: the optimiser's variables at one wind speed: γ_out, γ_in, the rotors' load
+#: γ_t/γ_t,max(C_L) (so that its bound does not move with C_L) and C_L
+VARIABLES = ("gamma_out", "gamma_in", "rotor_load", "cl")
+#: C_L,min/C_L,max when ``min_cl`` is not given (ours; the thesis prints no lower bound)
+MIN_CL_SHARE = 0.1
 
 
 @dataclass(frozen=True)
@@ -44,9 +49,13 @@ class UnifiedSystem:
     Defaults are the means of seed 004's Table 5.4 ranges (its nominal
     system, §5.6) where it gives one, else stated as ours.
 
-    - ``area_m2`` A, ``cl`` C_L flown (held, not optimised), ``aspect_ratio``
-      AR (``inf``: no induced drag), ``oswald`` e = 0.9 (§3.1.2), ``cd0``
-      C_d0 (Tab. 5.4: 0.01–0.1).
+    - ``area_m2`` A, ``aspect_ratio`` AR (``inf``: no induced drag),
+      ``oswald`` e = 0.9 (§3.1.2), ``cd0`` C_d0 (Tab. 5.4: 0.01–0.1).
+    - ``cl`` C_L,max, the wing's largest flown lift coefficient: the upper
+      bound of the C_L optimised per wind speed (Tab. 5.1 q_CL, Tab. 5.4:
+      C_L,max 1–4); ``min_cl`` its lower bound C_L,min (the thesis prints
+      none; ``None``: ``MIN_CL_SHARE`` × ``cl`` = 0.1 C_L,max, ours, a
+      depowered wing; ``min_cl = cl`` holds C_L).
     - ``mass_kg`` flying mass m in the force balance 3.74 (the tether's own
       weight enters through the sag, not through m).
     - ``elevation_rad`` β of the tether at the ground (Fig. 3.3).
@@ -106,6 +115,7 @@ class UnifiedSystem:
     mass_balance: str = "exact"
     exact_reel_in: bool = False
     max_gamma_in: float = 10.0
+    min_cl: float | None = None
 
     def __post_init__(self):
         positive = ("area_m2", "cl", "aspect_ratio", "oswald", "tether_diameter_m", "tether_length_m",
@@ -123,6 +133,8 @@ class UnifiedSystem:
         for name in ("eta_out", "eta_in", "eta_t"):
             if not 0 < getattr(self, name) <= 1:
                 raise ValueError(f"{name} = {getattr(self, name)!r}: must be in (0, 1]")
+        if self.min_cl is not None and not 0 < self.min_cl <= self.cl:
+            raise ValueError(f"min_cl = {self.min_cl!r}: must be in (0, cl = {self.cl!r}]")
         if not 0.5 <= self.min_disc_efficiency <= 1:
             raise ValueError(f"min_disc_efficiency = {self.min_disc_efficiency!r}: must be in "
                              "[0.5, 1] (induction a = 1 - it must not exceed 1/2)")
@@ -177,6 +189,15 @@ class UnifiedSystem:
                    turbine_area_m2=100.0 * 0.5 * 0.15 / (4.0 * a * (1.0 - a)))
 
     @property
+    def cl_bounds(self) -> tuple[float, float]:
+        """(C_L,min, C_L,max): the range of the optimised lift coefficient."""
+        return (MIN_CL_SHARE * self.cl if self.min_cl is None else self.min_cl), self.cl
+
+    def cd(self, cl: float, tether_cd: float) -> float:
+        """C_d = C_d0 + C_L²/(π AR e) + C_d,t at lift coefficient C_L (seed 004 eq. 3.15)."""
+        return float(drag_coefficient(self.cd0, cl, self.aspect_ratio, tether_cd, self.oswald))
+
+    @property
     def conductor_area_m2(self) -> float:
         """A_el of eq. 5.1 at the rated on-board power; 0 for ground generation."""
         if self.modes == "ground-gen":
@@ -223,14 +244,20 @@ class UnifiedSystem:
 class CyclePower:
     """The unified model at given factors and one wind speed (SI units).
 
-    ``flies`` is False where no equilibrium exists (the weight cannot be
-    carried, or the tether sags to the vertical); the powers are then 0.
+    ``gamma_out``, ``gamma_in``, ``gamma_t`` and ``cl`` are the factors and
+    the lift coefficient it was evaluated at.  ``flies`` is False where no
+    equilibrium exists (the weight cannot be carried, or the tether sags to
+    the vertical); the powers are then 0.
     Production powers are those of the reel-out phase: ``ground_power_W``
     P_gr with η_Δ (eq. 3.86), ``onboard_power_W`` P_ob (eq. 3.87, before
     the disc loss (1 − a)); the cycle means are mechanical (η = 1) and
     electrical (η_out, η_in, η_t).
     """
 
+    gamma_out: float
+    gamma_in: float
+    gamma_t: float
+    cl: float
     flies: bool
     theta_rad: float
     delta_rad: float
@@ -251,11 +278,15 @@ class CyclePower:
 
 def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_in: float,
                      gamma_t: float, rho_kg_m3: float = 1.225, tether_cd: float | None = None,
-                     mass_losses: bool = True, recovery: bool = True) -> CyclePower:
-    """The cycle of ``system`` at V_w and (γ_out, γ_in, γ_t): seed 004 eqs. 3.15–3.30, 3.40–3.50, 3.74–3.89.
+                     mass_losses: bool = True, recovery: bool = True,
+                     cl: float | None = None) -> CyclePower:
+    """The cycle of ``system`` at V_w, γ_out, γ_in, γ_t, C_L: seed 004 eqs. 3.15–3.30, 3.40–3.50, 3.74–3.89.
 
-    - C_d = C_d0 + C_L²/(π AR e) + C_d,t (eq. 3.15), C_d,t = ``tether_cd``
-      or, if None, the straight tether's (eq. 3.14); G_e = C_L/C_d.
+    - C_L = ``cl``, or C_L,max = ``system.cl`` if None; C_d = C_d0 +
+      C_L²/(π AR e) + C_d,t (eq. 3.15), C_d,t = ``tether_cd`` or, if None,
+      the straight tether's (eq. 3.14); G_e = C_L/C_d.  C_d and G_e enter
+      the production (3.42–3.47) and the weight's balance (3.79); the
+      reel-in flies the wing at zero lift, C_d0 (3.23–3.24).
     - The inclination θ at the kite and the tether force T solve each
       other: θ = arctan(tanβ + a r cosβ), a = m_r g/(2T) (eqs. 3.16–3.19),
       T = η_Δ R_a(θ + Δ) (eqs. 3.77–3.84; Δ = 0, η_Δ = 1 without
@@ -273,11 +304,12 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
                         ("gamma_t", gamma_t), ("rho_kg_m3", rho_kg_m3)):
         if not value >= 0:
             raise ValueError(f"{name} = {value!r}: must be >= 0")
-    c_t = system.straight_tether_cd if tether_cd is None else float(tether_cd)
-    if not c_t >= 0:
-        raise ValueError(f"tether_cd = {tether_cd!r}: must be >= 0")
-    cd = float(drag_coefficient(system.cd0, system.cl, system.aspect_ratio, c_t, system.oswald))
-    ge = system.cl / cd
+    c_t = _tether_cd(system, tether_cd)
+    lift = system.cl if cl is None else float(cl)
+    if not 0 < lift <= system.cl:
+        raise ValueError(f"cl = {cl!r}: must be in (0, system.cl = {system.cl!r}]")
+    cd = system.cd(lift, c_t)
+    ge = lift / cd
     beta = system.elevation_rad
     thrust_coefficient = system.area_m2 * gamma_t * cd / system.turbine_area_m2 if gamma_t > 0 else 0.0
     if thrust_coefficient > 1 + 1e-12:
@@ -301,8 +333,9 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
 
     theta = _kite_inclination(system, beta, balance)
     delta, eta, force = balance(theta) if theta is not None else (math.nan, math.nan, 0.0)
+    factors = (gamma_out, gamma_in, gamma_t, lift)
     if not force > 0:
-        return CyclePower(False, math.nan if theta is None else theta, delta, eta, cd, ge, c_t,
+        return CyclePower(*factors, False, math.nan if theta is None else theta, delta, eta, cd, ge, c_t,
                           0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     assert theta is not None
     phi = theta + delta
@@ -318,7 +351,7 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
     mechanical = float(cycle_power_W(p_gr + (1.0 - a) * p_ob, p_r, gamma_out if reeling else 0.0, g_in))
     electrical = float(cycle_power_W(system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob,
                                      p_r / system.eta_in, gamma_out if reeling else 0.0, g_in))
-    return CyclePower(True, theta, delta, eta, cd, ge, c_t, force,
+    return CyclePower(*factors, True, theta, delta, eta, cd, ge, c_t, force,
                       float(apparent_speed_mps(wind_mps, ge, phi, gamma_out, gamma_t)), p_gr, p_ob, a,
                       t_r, p_r, mechanical, electrical)
 
@@ -352,63 +385,86 @@ def _kite_inclination(system: UnifiedSystem, beta: float, balance) -> float | No
     return None
 
 
-def _free_factors(system: UnifiedSystem, recovery: bool) -> list[tuple[str, ...]]:
-    """The factor sets to optimise: pure GG, pure FG, then both together."""
-    ground: tuple[str, ...] = ("gamma_out", "gamma_in") if recovery else ("gamma_out",)
-    sets: dict[str, list[tuple[str, ...]]] = {"ground-gen": [ground], "fly-gen": [("gamma_t",)],
-            "both": [ground, ("gamma_t",), ground + ("gamma_t",)]}
+def _free_variables(system: UnifiedSystem, recovery: bool) -> list[tuple[str, ...]]:
+    """The variable sets to optimise: pure GG, pure FG, then both together; C_L in each unless held."""
+    lift: tuple[str, ...] = ("cl",) if system.cl_bounds[0] < system.cl_bounds[1] else ()
+    ground = (("gamma_out", "gamma_in") if recovery else ("gamma_out",)) + lift
+    fly = ("rotor_load",) + lift
+    sets = {"ground-gen": [ground], "fly-gen": [fly], "both": [ground, fly, ground + ("rotor_load",)]}
     return sets[system.modes]
 
 
-def operating_point(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1.225,
-                    tether_cd: float | None = None, mass_losses: bool = True, recovery: bool = True,
-                    starts: list[tuple[float, float, float]] | None = None) -> OperatingPoint:
-    """The best cycle of ``system`` at one wind speed: γ_out, γ_in, γ_t optimised (seed 004 §5.1).
+def optimal_cycle(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1.225,
+                  tether_cd: float | None = None, mass_losses: bool = True, recovery: bool = True,
+                  starts: list[tuple[float, ...]] | None = None) -> CyclePower | None:
+    """The best cycle of ``system`` at one wind speed: γ_out, γ_in, γ_t and C_L optimised (seed 004 §5.1).
 
     Maximises the cycle-mean electrical power of :func:`power_at_factors`
-    (eq. 3.89) over the factors the system's ``modes`` allows, bounded by
-    0 ≤ γ_out ≤ cosβ, 0 ≤ γ_in ≤ ``max_gamma_in``, 0 ≤ γ_t ≤ γ_t,max (the
-    rotors' induction limit, :meth:`UnifiedSystem.max_gamma_t`), subject to
-    T ≤ and T_r ≤ the force limit and P_r/η_in ≤ P_rated (§5.1.2).  If the
-    optimum exceeds P_rated, the power is held at P_rated and, of the
-    factors that deliver it, those of least tether force are taken (the
-    seed leaves the choice to its AEP optimiser; the least load makes it
-    unique).  SLSQP from ``starts`` (γ_out, γ_in, γ_t; the factors a set
-    does not free are zeroed), or, if none given or none ends feasible, from
-    the best points of a grid of factors; a "both" system optimises pure
-    GG, pure FG, then all three from their optima.  No positive power: mode
-    "off", zeros.
+    (eq. 3.89) over the factors the system's ``modes`` allows and the lift
+    coefficient (the thesis' design variables q_γout, q_γin, q_γt, q_CL per
+    wind speed, Table 5.1), bounded by 0 ≤ γ_out ≤ cosβ, 0 ≤ γ_in ≤
+    ``max_gamma_in``, C_L,min ≤ C_L ≤ C_L,max (:attr:`UnifiedSystem.cl_bounds`)
+    and 0 ≤ γ_t ≤ γ_t,max(C_L) (the rotors' induction limit,
+    :meth:`UnifiedSystem.max_gamma_t`, which moves with C_d(C_L): the
+    optimiser varies the rotors' load γ_t/γ_t,max in [0, 1] instead of γ_t),
+    subject to T ≤ and T_r ≤ the force limit and P_r/η_in ≤ P_rated
+    (§5.1.2).  If the optimum exceeds P_rated, the power is held at P_rated
+    and, of the factors and C_L that deliver it, those of least tether force
+    are taken (the seed leaves the choice to its AEP optimiser; the least
+    load makes it unique).  SLSQP from ``starts`` ((γ_out, γ_in, γ_t) at
+    C_L,max or (γ_out, γ_in, γ_t, C_L); what a set does not free is zeroed,
+    C_L held at C_L,max), or, if none given or none ends feasible, from the
+    best points of a grid; a "both" system optimises pure GG, pure FG, then
+    all variables from their optima.  None: no positive power within the
+    limits.
     """
     if not wind_mps >= 0:
         raise ValueError(f"wind_mps = {wind_mps!r}: must be >= 0")
-    c_t = system.straight_tether_cd if tether_cd is None else float(tether_cd)
-    cd = float(drag_coefficient(system.cd0, system.cl, system.aspect_ratio, c_t, system.oswald))
+    c_t = _tether_cd(system, tether_cd)
+    cd = system.cd(system.cl, c_t)
     bounds = {"gamma_out": (0.0, math.cos(system.elevation_rad)), "gamma_in": (0.0, system.max_gamma_in),
-              "gamma_t": (0.0, system.max_gamma_t(cd))}
+              "rotor_load": (0.0, 1.0), "cl": system.cl_bounds}
     scale = max(float(loyd_power_bound_W(rho_kg_m3, system.area_m2, cd, system.cl / cd, wind_mps,
-                                         system.elevation_rad, bounds["gamma_t"][1])), 1e-300)
+                                         system.elevation_rad, system.max_gamma_t(cd))), 1e-300)
     problem = _Problem(system, wind_mps, rho_kg_m3, c_t, mass_losses, recovery, scale)
+    sets = _free_variables(system, recovery)
     found: list[dict[str, float]] = []
-    for free in _free_factors(system, recovery):
+    for free in sets:
         points = [] if starts is None else [
-            dict(problem.zero, **{n: float(v) for n, v in zip(FACTORS, s) if n in free}) for s in starts]
-        points += _merged_starts(found, problem.power) if len(free) == 3 else []
+            dict(problem.zero, **{n: v for n, v in problem.variables(*start).items() if n in free})
+            for start in starts]
+        points += _merged_starts(found, problem.power) if {"gamma_out", "rotor_load"} <= set(free) else []
         candidates = [c for c in map(lambda p: problem.maximise(free, bounds, p), points) if c is not None]
         if not candidates:
             candidates = [c for c in (problem.maximise(free, bounds, p)
                                       for p in _grid_starts(problem, free, bounds)) if c is not None]
-        found += candidates
+        for candidate in sorted(candidates, key=problem.power, reverse=True):
+            found += [] if any(_same(candidate, f) for f in found) else [candidate]
     best = max(found, key=problem.power, default=None)
     if best is not None and problem.power(best) > system.rated_power_W:
-        best = problem.hold_rated(_free_factors(system, recovery)[-1], bounds, best)
+        best = problem.hold_rated(sets[-1], bounds, best)
     if best is None or not problem.power(best) > 0:
-        return OperatingPoint("off", wind_mps, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, c_t)
-    state = problem.state(best)
-    reeling = recovery and best["gamma_out"] > 0
-    mode = "fly-gen" if best["gamma_out"] == 0 else ("ground-gen" if best["gamma_t"] == 0 else "both")
-    return OperatingPoint(mode, wind_mps, state.mechanical_power_W, state.electrical_power_W,
-                          state.tether_force_N, best["gamma_out"] * wind_mps, state.apparent_speed_mps,
-                          best["gamma_out"], best["gamma_in"] if reeling else 0.0, best["gamma_t"], c_t)
+        return None
+    return problem.state(best)
+
+
+def operating_point(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1.225,
+                    tether_cd: float | None = None, mass_losses: bool = True, recovery: bool = True,
+                    starts: list[tuple[float, ...]] | None = None) -> OperatingPoint:
+    """:func:`optimal_cycle` as an :class:`OperatingPoint`; no positive power: mode "off", zeros.
+
+    The mode is the optimum's: "fly-gen" at γ_out = 0, "ground-gen" at
+    γ_t = 0, else "both"; γ_in is 0 without a recovery.
+    """
+    cycle = optimal_cycle(system, wind_mps, rho_kg_m3, tether_cd, mass_losses, recovery, starts)
+    if cycle is None:
+        return OperatingPoint("off", wind_mps, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                              _tether_cd(system, tether_cd))
+    reeling = recovery and cycle.gamma_out > 0
+    mode = "fly-gen" if cycle.gamma_out == 0 else ("ground-gen" if cycle.gamma_t == 0 else "both")
+    return OperatingPoint(mode, wind_mps, cycle.mechanical_power_W, cycle.electrical_power_W,
+                          cycle.tether_force_N, cycle.gamma_out * wind_mps, cycle.apparent_speed_mps,
+                          cycle.gamma_out, cycle.gamma_in if reeling else 0.0, cycle.gamma_t, cycle.tether_cd)
 
 
 def power_curve(system: UnifiedSystem, wind_mps, rho_kg_m3: float = 1.225,
@@ -419,27 +475,49 @@ def power_curve(system: UnifiedSystem, wind_mps, rho_kg_m3: float = 1.225,
             for w in np.atleast_1d(np.asarray(wind_mps, dtype=float))]
 
 
+def _tether_cd(system: UnifiedSystem, tether_cd: float | None) -> float:
+    """C_d,t used: ``tether_cd``, or the straight tether's (eq. 3.14) if None."""
+    c_t = system.straight_tether_cd if tether_cd is None else float(tether_cd)
+    if not c_t >= 0:
+        raise ValueError(f"tether_cd = {tether_cd!r}: must be >= 0")
+    return c_t
+
+
+def _same(a: dict[str, float], b: dict[str, float]) -> bool:
+    """Whether two optima are one as starts go (every variable within 1e-4 of its scale)."""
+    return all(abs(a[n] - b[n]) <= 1e-4 * max(abs(a[n]), abs(b[n]), 1.0) for n in VARIABLES)
+
+
 def _merged_starts(found: list[dict[str, float]], power) -> list[dict[str, float]]:
-    """Starts for γ_out, γ_in and γ_t together from the optima found so far: each, and the
-    best pure-GG optimum with half of each pure-FG optimum's γ_t."""
-    ground = max((p for p in found if p["gamma_t"] == 0), key=power, default=None)
+    """Starts for all variables together from the optima found so far: each, and the
+    best pure-GG optimum with half of each pure-FG optimum's rotor load."""
+    ground = max((p for p in found if p["rotor_load"] == 0), key=power, default=None)
     if ground is None:
         return list(found)
     return [p for p in found if p["gamma_out"] > 0] + [
-        dict(ground, gamma_t=0.5 * p["gamma_t"]) for p in found if p["gamma_out"] == 0]
+        dict(ground, rotor_load=0.5 * p["rotor_load"]) for p in found if p["gamma_out"] == 0]
 
 
 def _grid_starts(problem: _Problem, free: tuple[str, ...], bounds, keep: int = 2) -> list[dict[str, float]]:
-    """The ``keep`` best flying points of a grid over the free factors (interior of the bounds)."""
+    """The ``keep`` best flying points within the limits of a grid over the free factors (the
+    interior of their bounds), at C_L,max or, if points fly there but none within the limits,
+    at the next lower C_L that has one (less lift carries less weight: where nothing flies at
+    C_L,max, less C_L is not tried)."""
     axes = {"gamma_out": np.array([0.1, 0.25, 0.4, 0.6, 0.8]),
             "gamma_in": np.array([0.05, 0.15, 0.3, 0.6]),
-            "gamma_t": np.array([0.1, 0.3, 0.5, 0.7, 0.9])}
-    grids = np.meshgrid(*(bounds[n][0] + axes[n] * (bounds[n][1] - bounds[n][0]) for n in free))
-    points = [dict(problem.zero, **dict(zip(free, map(float, values))))
-              for values in zip(*(g.ravel() for g in grids))]
-    scored = sorted(((problem.power(p), i) for i, p in enumerate(points)
-                     if problem.state(p).flies and problem.feasible(p)), reverse=True)
-    return [points[i] for _, i in scored[:keep]]
+            "rotor_load": np.array([0.1, 0.3, 0.5, 0.7, 0.9])}
+    factors = [n for n in free if n != "cl"]
+    grids = np.meshgrid(*(bounds[n][0] + axes[n] * (bounds[n][1] - bounds[n][0]) for n in factors))
+    low, high = bounds["cl"]
+    for lift in ([high - share * (high - low) for share in (0.0, 0.6, 0.9)] if "cl" in free else [high]):
+        points = [dict(problem.zero, cl=lift, **dict(zip(factors, map(float, values))))
+                  for values in zip(*(g.ravel() for g in grids))]
+        flying = [i for i, p in enumerate(points) if problem.state(p).flies]
+        scored = sorted(((problem.power(points[i]), i) for i in flying if problem.feasible(points[i])),
+                        reverse=True)
+        if scored or not flying:
+            return [points[i] for _, i in scored[:keep]]
+    return []
 
 
 class _Problem:
@@ -447,18 +525,31 @@ class _Problem:
 
     def __init__(self, system, wind_mps, rho_kg_m3, tether_cd, mass_losses, recovery, scale):
         self.system = system
+        self.tether_cd = tether_cd
         self.arguments = dict(wind_mps=wind_mps, rho_kg_m3=rho_kg_m3, tether_cd=tether_cd,
                               mass_losses=mass_losses, recovery=recovery)
         self.scale = scale
         self.force_scale = scale / max(wind_mps, 1e-300)
-        self.zero = dict.fromkeys(FACTORS, 0.0)
+        self.zero = dict(gamma_out=0.0, gamma_in=0.0, rotor_load=0.0, cl=system.cl)
         self.cache: dict[tuple[float, ...], CyclePower] = {}
 
+    def max_gamma_t(self, cl: float) -> float:
+        return self.system.max_gamma_t(self.system.cd(cl, self.tether_cd))
+
+    def variables(self, gamma_out: float, gamma_in: float, gamma_t: float,
+                  cl: float | None = None) -> dict[str, float]:
+        """The optimiser's variables at γ_out, γ_in, γ_t, C_L (C_L,max if None; γ_t ≤ γ_t,max)."""
+        lift = min(max(self.system.cl if cl is None else float(cl), self.system.cl_bounds[0]), self.system.cl)
+        top = self.max_gamma_t(lift)
+        load = min(float(gamma_t) / top, 1.0) if top > 0 else 0.0
+        return dict(gamma_out=float(gamma_out), gamma_in=float(gamma_in), rotor_load=load, cl=lift)
+
     def state(self, point: dict[str, float]) -> CyclePower:
-        key = tuple(point[n] for n in FACTORS)
+        key = tuple(point[n] for n in VARIABLES)
         if key not in self.cache:
             self.cache[key] = power_at_factors(self.system, gamma_out=key[0], gamma_in=key[1],
-                                               gamma_t=key[2], **self.arguments)
+                                               gamma_t=key[2] * self.max_gamma_t(key[3]), cl=key[3],
+                                               **self.arguments)
         return self.cache[key]
 
     def power(self, point: dict[str, float]) -> float:
@@ -499,11 +590,11 @@ class _Problem:
     def hold_rated(self, free, bounds, start):
         """Least tether force with P = P_rated, from a point above it; None if none is reachable.
 
-        Each segment from ``start`` to a bound of γ_out or γ_t (γ_in kept)
-        along which the power falls below P_rated crosses it (brentq); the
-        crossing of least force starts SLSQP, whose result is kept if it is
-        feasible and no worse (at ``start`` P's gradient vanishes, so SLSQP's
-        linearised power limit would not hold it there).
+        Each segment from ``start`` to a bound of γ_out, the rotors' load or
+        C_L (γ_in kept) along which the power falls below P_rated crosses it
+        (brentq); the crossing of least force starts SLSQP, whose result is
+        kept if it is feasible and no worse (at ``start`` P's gradient
+        vanishes, so SLSQP's linearised power limit would not hold it there).
         """
         rated = self.system.rated_power_W
         crossings = []
