@@ -21,8 +21,8 @@ from fem_tether.summary import operating_tether_cd
 from fem_tether.sweepfile import read_sweep
 from fem_tether.systems.configured import from_config
 
-#: Wind speeds of the main job's power curves, calm air to the cut-out.
-POWER_CURVE_POINTS = 121
+#: Wind-speed step of the main job's power curves, calm air to the cut-out [m/s].
+POWER_CURVE_STEP_MPS = 0.5
 
 
 def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
@@ -43,7 +43,7 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
     for i in (0, lengths.size - 1):
         case = cfg.with_length(lengths[i])
         system = from_config(case)
-        wind = np.linspace(0.0, system.top_mps, POWER_CURVE_POINTS)
+        wind = np.arange(0.0, system.top_mps + 0.5 * POWER_CURVE_STEP_MPS, POWER_CURVE_STEP_MPS)
         for name, (drag_key, _) in cases.items():
             if np.isfinite(data[drag_key][i]):
                 cd = operating_tether_cd(case, data[drag_key][i])

@@ -69,8 +69,9 @@ class ConfiguredSystem:
         return self.active(np.asarray(wind_mps, dtype=float), self.straight_cd if tether_cd is None else tether_cd)
 
     def rated_power_W(self, tether_cd=None) -> float:
-        """P_rated: the model's own where it has one, else the largest electrical
-        power from calm air to the cut-out speed (:data:`RATED_POINTS` speeds)."""
+        """P_rated: the model's own (KiteGen's from its zones) or the configured
+        ``[system] rated_power_W``, else the largest electrical power from calm
+        air to the cut-out speed (:data:`RATED_POINTS` speeds)."""
         cd = self.straight_cd if tether_cd is None else tether_cd
         if self.rated is not None:
             return self.rated(cd)
@@ -81,6 +82,12 @@ class ConfiguredSystem:
 RATED_POINTS = 601
 #: Top of a power curve without a cut-out speed [m/s].
 TOP_MPS = 30.0
+
+
+def stated_rating(cfg: Config) -> Callable[[float], float] | None:
+    """The configured ``[system] rated_power_W`` as a rating, None if 0 (none stated)."""
+    rated_W = cfg.system.rated_power_W
+    return (lambda tether_cd: rated_W) if rated_W > 0 else None
 
 
 def top_mps(cfg: Config) -> float:
@@ -119,7 +126,8 @@ def _ke_yoyo(cfg: Config) -> ConfiguredSystem:
         rated_power_W=cfg.system.rated_power_W or math.inf, cut_out_mps=cfg.system.cut_out_mps or math.inf,
         theta_rad=math.radians(k.theta0_deg), phi_rad=math.radians(k.design_phi_deg))
     return ConfiguredSystem("ke-yoyo", params, float(ke_yoyo.line_drag_coefficient(params)),
-                            lambda w, cd: ke_yoyo.power_curve(params, w, tether_cd=cd), top_mps(cfg))
+                            lambda w, cd: ke_yoyo.power_curve(params, w, tether_cd=cd), top_mps(cfg),
+                            stated_rating(cfg))
 
 
 def _loyd(cfg: Config) -> ConfiguredSystem:
@@ -172,7 +180,7 @@ def _unified(cfg: Config) -> ConfiguredSystem:
                                                       float(tether_cd))
                 for w, o in zip(wind_mps, on)]
 
-    return ConfiguredSystem("unified", params, params.straight_tether_cd, curve, top)
+    return ConfiguredSystem("unified", params, params.straight_tether_cd, curve, top, stated_rating(cfg))
 
 
 #: Loyd's reference width of a tether over its diameter: 4√A_T / d = 2√π (seed 003 eq. 2.17).
