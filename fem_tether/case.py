@@ -1,7 +1,7 @@
 """What a tether solver is asked to solve, shared by the FE and FD solvers.
 
 The line's length, the kite end's motion (``end.state(t, R)`` gives R e(t)
-and its derivatives: a :class:`~fem_tether.trajectory.FigureEight` or a
+and its derivatives: a :class:`~fem_tether.trajectory.FigureEight`, a :class:`~fem_tether.orbit.Circle` or a
 :class:`~fem_tether.trajectory.Stationary` end), the winch condition (docs/physics.md
 §8: r(0, t) = 0 and either T(0, t) = T_0 with the kite's radius free,
 ``tension_mode``, or the kite at a prescribed radius) and the Newton controls.
@@ -25,7 +25,7 @@ class EndMotion(Protocol):
 
     @property
     def period_s(self) -> float:
-        """The time unit of spin-up and averaging (one loop of an eight)."""
+        """The time unit of spin-up and averaging (one loop of the path)."""
 
     def state(self, t_s, radius_m: float = ...) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration of R e(t) at times ``t_s``."""
@@ -66,9 +66,9 @@ def end_at_length(end: EndMotion, length_m: float) -> EndMotion:
 
 
 def case_fields(cfg: Config, end: EndMotion | None = None) -> dict:
-    """:class:`TetherCase` fields of the configuration ``cfg`` (``end``: default its eight)."""
+    """:class:`TetherCase` fields of the configuration ``cfg`` (``end``: default its path)."""
     t = cfg.time
-    return dict(end=end or cfg.eight, length_m=cfg.tether.length_m,
+    return dict(end=end or cfg.path, length_m=cfg.tether.length_m,
                 tension_mode=cfg.winch.mode == "tension",
                 ground_tension_N=cfg.winch.ground_tension_N, radius_m=cfg.kite.radius_m,
                 newton_tol=t.newton_tol, max_newton=t.max_newton, max_halvings=t.max_halvings)

@@ -51,7 +51,7 @@ N_GAUSS = 6
 N_NEWTON = 1
 
 
-def _functions(x):
+def functions_of(x):
     """``math`` for one number, ``numpy`` for arrays: the time step asks for the
     eight at one time, where NumPy's ufuncs cost ~10 times math's functions."""
     return math if isinstance(x, float) else np
@@ -59,7 +59,7 @@ def _functions(x):
 
 def direction(theta_rad, phi_rad):
     """Unit vector ê = e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ), shape ϑ.shape + (3,)."""
-    f = _functions(theta_rad)
+    f = functions_of(theta_rad)
     st = f.sin(theta_rad)
     components = [st * f.cos(phi_rad), st * f.sin(phi_rad), f.cos(theta_rad)]
     return np.array(components) if f is math else np.stack(components, axis=-1)
@@ -85,7 +85,7 @@ def gerono(tau, width_m, height_m):
 
     Returns ((u, u', u''), (w, w', w'')) in metres.
     """
-    f = _functions(tau)
+    f = functions_of(tau)
     s, c = f.sin(tau), f.cos(tau)
     s2, c2 = 2.0 * s * c, c * c - s * s
     u = (0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s)
@@ -162,7 +162,7 @@ def sphere_arc_rate(length_m, theta, phi):
     with theta = (ϑ, ϑ', ϑ''), phi = (φ, φ', φ'').
     """
     (th, dth, d2th), (_, dph, d2ph) = theta, phi
-    f = _functions(th)
+    f = functions_of(th)
     st = f.sin(th)
     g = length_m * f.sqrt(dth ** 2 + (st * dph) ** 2)
     dg = length_m ** 2 * (dth * d2th + st * f.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g

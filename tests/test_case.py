@@ -18,7 +18,7 @@ def test_case_fields_of_the_default_configuration():
     cfg = load_config()
     fields = case_fields(cfg)
     assert set(fields) == {f.name for f in dataclasses.fields(TetherCase)}
-    assert fields["end"] == cfg.eight and fields["length_m"] == cfg.tether.length_m
+    assert fields["end"] == cfg.path and fields["length_m"] == cfg.tether.length_m
     assert fields["tension_mode"] and fields["ground_tension_N"] == cfg.winch.ground_tension_N
     assert (fields["newton_tol"], fields["max_newton"], fields["max_halvings"]) == (
         cfg.time.newton_tol, cfg.time.max_newton, cfg.time.max_halvings)
@@ -46,7 +46,7 @@ def test_force_ref_scales_residuals():
 
 
 def test_end_at_length():
-    eight = load_config().eight
+    eight = load_config().path
     moved = end_at_length(eight, 2500.0)
     assert moved.length_m == 2500.0 and moved == dataclasses.replace(eight, length_m=2500.0)
     fixed = Stationary((1.0, 0.0, 0.0), period_s=1.0)
@@ -56,6 +56,6 @@ def test_end_at_length():
 @pytest.mark.parametrize("length_m", [500.0, 3000.0])
 def test_the_eight_flies_on_the_sphere_of_the_line(length_m):
     """R e(t) of the moved end has |R e| = L (to 1e-12 relative, rounding)."""
-    end = end_at_length(load_config().eight, length_m)
+    end = end_at_length(load_config().path, length_m)
     position = end.state(0.3, length_m)[0]
     assert np.linalg.norm(position) == pytest.approx(length_m, rel=1e-12)
