@@ -1,8 +1,8 @@
 """What a tether solver is asked to solve, shared by the FE and FD solvers.
 
 The line's length, the kite end's motion (``end.state(t, R)`` gives R e(t)
-and its derivatives: a :class:`~fem_tether.trajectory.FigureEight`, a :class:`~fem_tether.orbit.Circle` or a
-:class:`~fem_tether.trajectory.Stationary` end), the winch condition (docs/physics.md
+and its derivatives: a :class:`~fem_tether.trajectory.FigureEight`, a
+:class:`~fem_tether.orbit.Circle` or a :class:`~fem_tether.trajectory.Stationary` end), the winch condition (docs/physics.md
 §8: r(0, t) = 0 and either T(0, t) = T_0 with the kite's radius free,
 ``tension_mode``, or the kite at a prescribed radius) and the Newton controls.
 """
