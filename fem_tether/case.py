@@ -9,8 +9,8 @@ and its derivatives: a :class:`~fem_tether.trajectory.FigureEight`, a
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-from typing import Any, ClassVar, Protocol
+from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -18,10 +18,7 @@ from fem_tether.config import Config
 
 
 class EndMotion(Protocol):
-    """The kite end's prescribed motion, as the solvers use it: a dataclass
-    (:func:`end_at_length` replaces its ``length_m``, where it has one)."""
-
-    __dataclass_fields__: ClassVar[dict[str, Any]]
+    """The kite end's prescribed motion, as the solvers use it."""
 
     @property
     def period_s(self) -> float:
@@ -32,6 +29,10 @@ class EndMotion(Protocol):
 
     def direction_at(self, t_s) -> np.ndarray:
         """The unit direction e(t) at times ``t_s`` (``state(t, 1)[0]``, cheaper)."""
+
+    def at_length(self, length_m: float, t_s: float) -> EndMotion:
+        """The motion flown on the sphere of a line of ``length_m`` from ``t_s`` on,
+        through the same direction at ``t_s`` (a line reeled at time ``t_s``)."""
 
 
 @dataclass
@@ -56,13 +57,13 @@ class TetherCase:
         return max(float(np.max(np.abs(tension_N))), physics.weight_N(self.length_m), 1.0)
 
 
-def end_at_length(end: EndMotion, length_m: float) -> EndMotion:
-    """The end motion flown on the sphere of a line of ``length_m`` (an end that
-    does not depend on the length, such as a Stationary one, or one already at
-    ``length_m``, unchanged)."""
+def end_at_length(end: EndMotion, length_m: float, t_s: float) -> EndMotion:
+    """The end motion flown on the sphere of a line of ``length_m`` from ``t_s`` on
+    (:meth:`EndMotion.at_length`); an end that does not depend on the length,
+    such as a Stationary one, or one already at ``length_m``, unchanged."""
     if getattr(end, "length_m", length_m) == length_m:
         return end
-    return replace(end, length_m=length_m)
+    return end.at_length(length_m, t_s)
 
 
 def case_fields(cfg: Config, end: EndMotion | None = None) -> dict:

@@ -20,8 +20,9 @@ sphere of nominal radius L (the cable length):
   the vertical (``[kite] theta0_deg``; Lourenço: 1 rad);
 * cone half-angle ρ: every point of the circle is at the angle ρ from u
   (``[kite] circle_radius_deg``; Lourenço: 0.4 rad);
-* start, β0 = 0, at the highest point, polar angle ϑ0 − ρ (Lourenço: "β is
-  zero in the highest position", v = (R, θ, φ) = (400 m, 0.6 rad, 0));
+* start at the highest point, polar angle ϑ0 − ρ: β0 = 0 (Lourenço: "β is
+  zero in the highest position", v = (R, θ, φ) = (400 m, 0.6 rad, 0)); β0 is
+  ``phase_rad``, which :meth:`Circle.at_length` sets when a reeled line changes L;
 * β grows by the right-hand rule about u, as in eq. 3.2 (counter-clockwise
   seen from downwind, from the tip of u), so the kite leaves the top towards −y.
 
@@ -39,7 +40,7 @@ speed is exact on a circle: position, velocity and acceleration are analytic.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -55,6 +56,7 @@ class Circle:
     theta0_rad: float
     radius_rad: float
     speed_mps: float
+    phase_rad: float = 0.0
 
     @classmethod
     def from_config(cls, kite, length_m):
@@ -77,10 +79,18 @@ class Circle:
         return 2.0 * math.pi / self.rate_rad_s
 
     def angle(self, t_s):
-        """β(t) = ω t (eq. 3.1 with β0 = 0), unwrapped (2π per period)."""
+        """β(t) = β0 + ω t (eq. 3.1; β0 = ``phase_rad``), unwrapped (2π per period)."""
         if isinstance(t_s, (int, float)):
-            return self.rate_rad_s * float(t_s)
-        return self.rate_rad_s * np.asarray(t_s, dtype=float)
+            return self.phase_rad + self.rate_rad_s * float(t_s)
+        return self.phase_rad + self.rate_rad_s * np.asarray(t_s, dtype=float)
+
+    def at_length(self, length_m, t_s):
+        """The circle on the sphere of a line of ``length_m``, at the same β at
+        ``t_s`` (a line reeled at ``t_s``): β0' = β(t_s) − ω' t_s.  The phase
+        must carry over, as ω = V/(L sinρ) changes with L; β(t) along a reeled
+        line is then ∫ V/(L(t) sinρ) dt, the kite's speed staying V R/L."""
+        moved = replace(self, length_m=float(length_m))
+        return replace(moved, phase_rad=self.angle(t_s) - moved.rate_rad_s * float(t_s))
 
     def _unit(self, beta, k_up, k_side, k_axis):
         """Global components of k_axis u + k_up a + k_side b, shape β.shape + (3,)

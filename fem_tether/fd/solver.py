@@ -402,7 +402,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         grid = g.with_first_length(h0)
     restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
     model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
-                    reel_mps=reel_mps, end=end_at_length(model.end, length_m))
+                    reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t))
     if restart:
         v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_mps)
         prev = None

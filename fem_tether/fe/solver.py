@@ -382,7 +382,7 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
     model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
-                    end=end_at_length(model.end, length_m))
+                    end=end_at_length(model.end, length_m, state.t))
     if restart:
         v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
                                             model.ground_tension_N, reel_mps, free_radius=True)
