@@ -132,8 +132,12 @@ class Circle:
         return R * self._point(beta), R * velocity, R * acceleration
 
     def angles(self, t_s):
-        """Polar angle ϑ = arccos ê_z and azimuth φ = atan2(ê_y, ê_x) at times t, in radians."""
-        e = self.direction_at(t_s)
+        """Polar angle ϑ and azimuth φ of the kite at times t, in radians."""
+        return self._angles(self.angle(t_s))
+
+    def _angles(self, beta):
+        """ϑ = arccos ê_z and φ = atan2(ê_y, ê_x) at β."""
+        e = self._point(beta)
         return np.arccos(e[..., 2]), np.arctan2(e[..., 1], e[..., 0])
 
     def mean_abs_phi_deg(self):
@@ -144,6 +148,5 @@ class Circle:
         where φ = 0).
         """
         _, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
-        e = self._point(nodes)
-        phi = np.arctan2(e[..., 1], e[..., 0])
+        phi = self._angles(nodes)[1]
         return float(np.degrees((np.abs(phi) * weights).sum() / (2.0 * np.pi)))

@@ -7,7 +7,7 @@ the catenary (the gravity-only equilibrium) with the wind and drag load
 ramped up (:mod:`fem_tether.continuation`), each load step a backtracking
 Newton solve (:func:`static_equilibrium` says why).  Then the
 generalised-alpha scheme (:mod:`.integrator`) takes the steps of the run
-protocol (:mod:`fem_tether.protocol`: whole periods of the eight, spin-up
+protocol (:mod:`fem_tether.protocol`: whole periods of the path, spin-up
 then the averaging window, step halving, reeling), which drives this solver
 as an :class:`FESolver`.
 """
@@ -75,7 +75,7 @@ def unit_mesh_from_config(fe) -> np.ndarray:
 
 def build_model(cfg: Config, end: EndMotion | None = None,
                 physics: TetherPhysics | None = None) -> FEModel:
-    """FE model of the configured case; ``end`` overrides the figure-eight."""
+    """FE model of the configured case; ``end`` overrides the configured path."""
     case = case_fields(cfg, end)
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
