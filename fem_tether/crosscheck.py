@@ -92,7 +92,7 @@ MIN_SNAPSHOTS_PER_PERIOD = 10
 def checkable(cfg: Config) -> Config:
     """``cfg`` with ``[output] every`` lowered, if needed, so that both solvers
     store at least ``MIN_SNAPSHOTS_PER_PERIOD`` snapshots per period."""
-    period = cfg.eight.period_s
+    period = cfg.path.period_s
     steps = min(steps_per_period(period, cfg.fe.dt_s), steps_per_period(period, cfg.fd.dt_s))
     every = max(1, min(cfg.output.every, steps // MIN_SNAPSHOTS_PER_PERIOD))
     return cfg.replace(output={"every": every})

@@ -106,7 +106,7 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
     res = LengthResult(length_m)
     v = dict.fromkeys(ROOT_DATASETS, float("nan"))
     v["crosscheck_ok"] = 0
-    v["mean_phi_deg"] = cfg.eight.mean_abs_phi_deg()
+    v["mean_phi_deg"] = cfg.path.mean_abs_phi_deg()
     runs, parts, errors, pending = {}, {}, [], False
     status = {solver: store.status(Task(length_m, solver), key) for solver in job.solvers}
     compared = status.get("fe") == status.get("fd") == "ok"    # only then are snapshots read

@@ -2,7 +2,7 @@
 
 A :class:`TetherRun` holds time series sampled at every time step, snapshots
 of the whole line every few steps, and period means over the averaging
-window (whole periods of the eight after the spin-up).
+window (whole periods of the path after the spin-up).
 """
 
 from __future__ import annotations
@@ -152,7 +152,7 @@ def _padded(arrays) -> np.ndarray:
 
 
 def period_average(run: TetherRun, name: str) -> tuple[np.ndarray, np.ndarray]:
-    """Moving average of a series over one period of the eight, against the
+    """Moving average of a series over one period of the path, against the
     line length at the window's centre: ``(L, mean)`` (F_t(L) along a reel-out).
 
     Only windows after the spin-up and inside the run are kept."""

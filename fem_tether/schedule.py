@@ -32,7 +32,7 @@ def task_cost(job: Job, task: Task) -> float:
     cfg = job.config_for(task.length_m)
     t = cfg.time
     dt = cfg.fe.dt_s if task.solver == "fe" else cfg.fd.dt_s
-    steps = time_grid(cfg.eight.period_s, dt, t.spinup_periods, t.average_periods)[1]
+    steps = time_grid(cfg.path.period_s, dt, t.spinup_periods, t.average_periods)[1]
     points = unit_mesh_from_config(cfg.fe).size if task.solver == "fe" else cfg.fd.segments + 1
     overhead_us, per_point_us = STEP_COST_US[task.solver]
     return float(steps * (overhead_us + per_point_us * points))

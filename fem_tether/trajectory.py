@@ -35,7 +35,7 @@ from __future__ import annotations
 import bisect
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.interpolate import BPoly, PPoly
@@ -51,7 +51,7 @@ N_GAUSS = 6
 N_NEWTON = 1
 
 
-def _functions(x):
+def functions_of(x):
     """``math`` for one number, ``numpy`` for arrays: the time step asks for the
     eight at one time, where NumPy's ufuncs cost ~10 times math's functions."""
     return math if isinstance(x, float) else np
@@ -59,7 +59,7 @@ def _functions(x):
 
 def direction(theta_rad, phi_rad):
     """Unit vector ê = e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ), shape ϑ.shape + (3,)."""
-    f = _functions(theta_rad)
+    f = functions_of(theta_rad)
     st = f.sin(theta_rad)
     components = [st * f.cos(phi_rad), st * f.sin(phi_rad), f.cos(theta_rad)]
     return np.array(components) if f is math else np.stack(components, axis=-1)
@@ -85,7 +85,7 @@ def gerono(tau, width_m, height_m):
 
     Returns ((u, u', u''), (w, w', w'')) in metres.
     """
-    f = _functions(tau)
+    f = functions_of(tau)
     s, c = f.sin(tau), f.cos(tau)
     s2, c2 = 2.0 * s * c, c * c - s * s
     u = (0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s)
@@ -162,7 +162,7 @@ def sphere_arc_rate(length_m, theta, phi):
     with theta = (ϑ, ϑ', ϑ''), phi = (φ, φ', φ'').
     """
     (th, dth, d2th), (_, dph, d2ph) = theta, phi
-    f = _functions(th)
+    f = functions_of(th)
     st = f.sin(th)
     g = length_m * f.sqrt(dth ** 2 + (st * dph) ** 2)
     dg = length_m ** 2 * (dth * d2th + st * f.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
@@ -202,6 +202,14 @@ class FigureEight:
             height_m=float(kite.eight_height_m),
             speed_mps=float(kite.speed_mps),
         )
+
+    def at_length(self, length_m, t_s):
+        """The eight on the sphere of a line of ``length_m`` (a line reeled at
+        ``t_s``).  Its phase is the arc length V t along an eight of metric
+        size, whose loop barely depends on L, so ``t_s`` is not needed: the
+        kite moves along the path by the change of the loop length times the
+        loops flown (4.7 mm per loop, of 578 m, from 400 to 401 m)."""
+        return replace(self, length_m=float(length_m))
 
     def __post_init__(self):
         knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
@@ -310,6 +318,10 @@ class Stationary:
 
     direction: tuple[float, float, float]
     period_s: float = 1.0
+
+    def at_length(self, length_m, t_s):
+        """The same end: a stationary direction does not depend on the line's length."""
+        return self
 
     def direction_at(self, t_s):
         """ê at times ``t_s``: the fixed direction, normalised."""

@@ -84,7 +84,7 @@ def test_variants_are_new_checked_configurations():
     cfg = load_config()
     longer = cfg.with_length(3000.0)
     assert longer.tether.length_m == 3000.0 and cfg.tether.length_m == 1000.0
-    assert longer.eight.period_s > cfg.eight.period_s
+    assert longer.path.period_s > cfg.path.period_s
     assert cfg.replace(fe={"elements": 20}).fe.elements == 20 and cfg.fe.elements == 40
     with pytest.raises(ConfigError, match=r"^\[tether\] length_m = -1.0: must be > 0$"):
         cfg.with_length(-1.0)

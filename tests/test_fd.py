@@ -466,7 +466,7 @@ def pumping(tmp_path_factory):
     -15 m/s, then held for ~2 periods (a speed table with its steps between the time steps)."""
     from fem_tether.results import time_grid
     over = {"tether": {"length_m": PUMP_L0}}
-    period = load_config(overrides=over).eight.period_s
+    period = load_config(overrides=over).path.period_s
     h, _ = time_grid(period, PUMP_DT, 1, 1)
     n = round(300.0 / (PUMP_V * h))
     knots = [(0, 0), (0.5, 0), (0.6, PUMP_V), (n + 0.5, PUMP_V), (n + 0.6, -PUMP_V),

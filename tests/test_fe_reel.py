@@ -105,3 +105,23 @@ def test_speed_table_and_config_errors(tmp_path):
     bad.write_text("t,v\n")
     with pytest.raises(ConfigError, match=r"\[winch\] reel_out_table: .*line 1"):
         reel_from_config(load_config(overrides={"winch": {"reel_out": "table", "reel_out_table": str(bad)}}))
+
+
+def test_reel_out_on_the_circle():
+    """Paying out 400 -> 500 m at 5 m/s on the circle (period 12.2 s at 400 m): the run ends at
+    the stop length (to one step, 0.5 m), the winch holds its 150 kN, the kite's radius follows
+    the paid-out line (within 1 %), and the period-averaged F_t(L) stays within 5 % of
+    fixed-length runs on the circle at 430 and 470 m."""
+    circle = {"kite": {"path": "circle"}}
+    cfg = _cfg(reel_out="constant", reel_out_speed_mps=5.0, reel_out_stop_m=500.0).replace(
+        **circle, time={"spinup_periods": 1, "average_periods": 3})
+    run = simulate(cfg)
+    L = run.series["length_m"]
+    assert L[-1] == pytest.approx(500.0, abs=0.5) and np.all(np.diff(L) >= 0)
+    assert run.series["ground_tension_N"] == pytest.approx(150e3, rel=1e-12)
+    reeled = run.time_s > run.average_start_s
+    np.testing.assert_allclose(run.series["kite_radius_m"][reeled], L[reeled], rtol=0.01)
+    lengths, F = period_average(run, "drag_N")
+    for length in (430.0, 470.0):
+        fixed = simulate(_cfg(length).replace(**circle)).mean("drag_N")
+        assert np.interp(length, lengths, F) == pytest.approx(fixed, rel=0.05)

@@ -305,3 +305,22 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
     with pytest.raises(InputError, match="bad resource"):
         sw.sweep(tiny_job, tmp_path / "s.h5", comm=_self_comm(), progress=False, check=bad)
     assert not (tmp_path / "s.h5").exists() and not list(parts_dir(tmp_path / "s.h5").glob("*.h5"))
+
+
+def test_a_sweep_flies_the_circle(tmp_path):
+    """The tiny job with ``[kite] path = "circle"``: both lengths run and pass the cross-check,
+    and the stored mean |φ| is the circle's, the same at every length (its angular size
+    does not depend on L), not the eight's."""
+    path = tmp_path / "circle.toml"
+    path.write_text(TINY + '[kite]\npath = "circle"\n')
+    job = load_job(path)
+    out = tmp_path / "r.h5"
+    outcome = sw.sweep(job, out, comm=_self_comm(), progress=False)
+    assert [r.status for r in outcome.lengths] == ["ok", "ok"]
+    circle = job.config_for(400.0).path
+    with h5py.File(out) as f:
+        assert np.all(f["crosscheck_ok"][()] == 1)
+        np.testing.assert_allclose(f["mean_phi_deg"][()], circle.mean_abs_phi_deg(), rtol=1e-12)
+    eight = job.config_for(400.0).replace(kite={"path": "eight"}).path
+    assert circle.mean_abs_phi_deg() == pytest.approx(21.44, abs=0.01)   # the eight's: 11.08 at 400 m
+    assert eight.mean_abs_phi_deg() == pytest.approx(11.08, abs=0.01)

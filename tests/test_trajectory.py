@@ -12,7 +12,7 @@ TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.4
 
 @pytest.fixture(scope="module")
 def eight():
-    return load_config().eight
+    return load_config().path
 
 
 def one_period(eight, n=4001):
@@ -21,11 +21,11 @@ def one_period(eight, n=4001):
 
 def test_from_config_reads_kite_and_tether():
     cfg = load_config(overrides={"tether": {"length_m": 1500.0}})
-    e = cfg.eight
+    e = cfg.path
     assert e.length_m == 1500.0
     assert e.theta0_rad == pytest.approx(np.pi / 4)
     assert (e.width_m, e.height_m, e.speed_mps) == (190.0, 95.0, 80.0)
-    assert cfg.with_length(700.0).eight.length_m == 700.0
+    assert cfg.with_length(700.0).path.length_m == 700.0
 
 
 @pytest.mark.parametrize("scale", [1.0, 0.9])
@@ -85,7 +85,7 @@ def test_parameter_follows_arc_length(eight):
 
 @pytest.mark.parametrize("length_m", [500.0, 1000.0, 3000.0])
 def test_derivatives_match_finite_differences(length_m):
-    e = load_config().with_length(length_m).eight
+    e = load_config().with_length(length_m).path
     t, h = np.linspace(-e.period_s, 2 * e.period_s, 3001), 3e-4
     x, v, a = e.state(t, radius_m=0.8 * length_m)
     xp, vp, _ = e.state(t + h, radius_m=0.8 * length_m)

@@ -25,12 +25,16 @@ from typing import Any
 
 from fem_tether.errors import ConfigError
 from fem_tether.systems import catalog
+from fem_tether.orbit import Circle
 from fem_tether.trajectory import FigureEight
 
 from . import rules
 from .sections import (FD, FE, MOVED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, System,
                        Tether, Time, Unified, Wind, Winch)
 from .tomlio import read_toml, resolve_paths, section_toml
+
+#: The kite paths by the name ``[kite] path`` takes.
+PATHS: dict[str, type[FigureEight] | type[Circle]] = {"eight": FigureEight, "circle": Circle}
 
 
 @dataclass(frozen=True)
@@ -92,9 +96,9 @@ class Config:
         return self.replace(tether={"length_m": float(length_m)})
 
     @cached_property
-    def eight(self) -> FigureEight:
-        """The figure-eight the kite end flies on this line."""
-        return FigureEight.from_config(self.kite, self.tether.length_m)
+    def path(self) -> FigureEight | Circle:
+        """The path the kite end flies on this line: ``[kite] path``'s figure-eight or circle."""
+        return PATHS[self.kite.path].from_config(self.kite, self.tether.length_m)
 
     def to_dict(self) -> dict[str, dict[str, Any]]:
         return {f.name: getattr(self, f.name).to_dict() for f in dataclasses.fields(self)}

@@ -21,7 +21,7 @@ if TYPE_CHECKING:
 #: Highest altitude of the ISA troposphere the atmosphere model covers [m].
 CEILING_M = 11000.0
 
-#: Fewest time steps per period of the eight, per time-step key.  From the
+#: Fewest time steps per period of the path, per time-step key.  From the
 #: convergence of mean F_t in dt (default case, 500 m is the worst length):
 #: FE generalised-alpha errs +2.2 % at 40 steps, +4.0 % at 30, +10 % at 20;
 #: FD BDF2 errs +1.9 % at 72 steps, +6.1 % at 36.  The limits keep the
@@ -41,17 +41,17 @@ def check(cfg: Config) -> None:
     An elastic line needs a prescribed kite radius, a prescribed radius must
     be set and shorter than an inextensible line, reeling needs the
     winch-tension mode, the reeling element bounds
-    must allow a split into two admissible halves, the figure-eight must fit
-    the sphere of the line (azimuth within 1 rad, polar angle inside
-    (0, 90) deg) and stay below the ISA ceiling, and both time steps must
-    resolve its period (:data:`MIN_STEPS_PER_PERIOD`).
+    must allow a split into two admissible halves, the kite's path must fit
+    the sphere of the line (the eight's azimuth within 1 rad; polar angles
+    inside (0, 90) deg) and stay below the ISA ceiling, and both time steps
+    must resolve its period (:data:`MIN_STEPS_PER_PERIOD`).
     """
     _check_winch(cfg)
     winch = cfg.winch
     if not winch.max_element_m > 2.0 * winch.min_element_m:
         raise ConfigError(f"[winch] max_element_m = {winch.max_element_m:g}: must exceed twice "
                           f"[winch] min_element_m = {winch.min_element_m:g}")
-    _check_eight(cfg)
+    _check_path(cfg)
 
 
 def _check_winch(cfg: Config) -> None:
@@ -82,6 +82,24 @@ def check_files(cfg: Config) -> None:
             raise ConfigError(f"[{section}] {name} = {toml_value(value)}: no such file")
 
 
+def _check_path(cfg: Config) -> None:
+    """The path fits its sphere and the atmosphere, and the time steps resolve its period."""
+    (_check_eight if cfg.kite.path == "eight" else _check_circle)(cfg)
+    period_s = cfg.path.period_s
+    for (section, name), fewest in MIN_STEPS_PER_PERIOD.items():
+        dt_s = getattr(getattr(cfg, section), name)
+        steps = steps_per_period(period_s, dt_s)
+        if steps < fewest:
+            largest = math.floor(1e4 * period_s / fewest) / 1e4
+            raise ConfigError(f"[{section}] {name} = {toml_value(dt_s)}: {steps} step(s) per "
+                              f"period of the {cfg.kite.path} ({period_s:.3f} s), at least {fewest} "
+                              f"needed; largest allowed {name} = {largest:g}")
+    for stop in (cfg.tether.length_m, cfg.winch.reel_out_stop_m):
+        if _highest_m(cfg, stop) > CEILING_M:
+            raise ConfigError(f"[tether] length_m = {stop:g}: the kite would fly above the ISA "
+                              f"troposphere ({CEILING_M:g} m), which the atmosphere model covers")
+
+
 def _check_eight(cfg: Config) -> None:
     kite, length = cfg.kite, cfg.tether.length_m
     theta0 = math.radians(kite.theta0_deg)
@@ -93,16 +111,21 @@ def _check_eight(cfg: Config) -> None:
         raise ConfigError(f"[kite] theta0_deg = {kite.theta0_deg:g}: the eight ([kite] eight_height_m = "
                           f"{kite.eight_height_m:g}) must stay between the zenith and the horizon "
                           f"on a {length:g} m line")
-    period_s = cfg.eight.period_s
-    for (section, name), fewest in MIN_STEPS_PER_PERIOD.items():
-        dt_s = getattr(getattr(cfg, section), name)
-        steps = steps_per_period(period_s, dt_s)
-        if steps < fewest:
-            largest = math.floor(1e4 * period_s / fewest) / 1e4
-            raise ConfigError(f"[{section}] {name} = {toml_value(dt_s)}: {steps} step(s) per "
-                              f"period of the eight ({period_s:.3f} s), at least {fewest} needed; "
-                              f"largest allowed {name} = {largest:g}")
-    for stop in (length, cfg.winch.reel_out_stop_m):
-        if stop * math.cos(theta0 - half_height) + 0.5 * kite.eight_height_m > CEILING_M:
-            raise ConfigError(f"[tether] length_m = {stop:g}: the kite would fly above the ISA "
-                              f"troposphere ({CEILING_M:g} m), which the atmosphere model covers")
+
+
+def _check_circle(cfg: Config) -> None:
+    theta0, radius = cfg.kite.theta0_deg, cfg.kite.circle_radius_deg
+    if not (0.0 < theta0 - radius and theta0 + radius < 90.0):
+        raise ConfigError(f"[kite] circle_radius_deg = {radius:g}: the circle about [kite] theta0_deg = "
+                          f"{theta0:g} must stay between the zenith and the horizon (polar angles "
+                          f"{theta0 - radius:g} to {theta0 + radius:g} deg)")
+
+
+def _highest_m(cfg: Config, stop_m: float) -> float:
+    """The kite's highest altitude on a line of ``stop_m``: L cos(ϑ0 − ρ) on the
+    circle; on the eight the bound L cos(ϑ0 − H/2L) + H/2 (H/2L at the configured length)."""
+    kite = cfg.kite
+    if kite.path == "circle":
+        return stop_m * math.cos(math.radians(kite.theta0_deg - kite.circle_radius_deg))
+    half_height = 0.5 * kite.eight_height_m / cfg.tether.length_m
+    return stop_m * math.cos(math.radians(kite.theta0_deg) - half_height) + 0.5 * kite.eight_height_m

@@ -138,9 +138,13 @@ class Kite(Section):
     area_m2: float = setting(120.0, "m2", "kite reference area A", positive)
     cl: float = setting(1.0, "-", "lift coefficient C_l", positive)
     efficiency: float = setting(28.0, "-", "aerodynamic efficiency E = C_l/C_d", positive)
-    speed_mps: float = setting(80.0, "m/s", "crosswind flight speed V_k on the eight", positive)
-    theta0_deg: float = setting(45.0, "deg", "polar angle of the eight's centre, from the vertical",
-                                between(0.0, 90.0))
+    speed_mps: float = setting(80.0, "m/s", "crosswind flight speed V_k on the path", positive)
+    path: str = setting("eight", "-", "the kite end's path: 'eight' (figure-eight, Roselli 2016 §4.2) or "
+                        "'circle' (Lourenco 2014 §3.2.1)", one_of("eight", "circle"))
+    theta0_deg: float = setting(45.0, "deg", "polar angle of the eight's centre or of the circle's axis, "
+                                "from the vertical", between(0.0, 90.0))
+    circle_radius_deg: float = setting(22.918, "deg", "path = 'circle': cone half-angle rho of the circle "
+                                       "about its axis (Lourenco 2014 §3.2.1: 0.4 rad)", between(0.0, 90.0))
     eight_width_m: float = setting(190.0, "m", "crosswind width W of the eight", positive)
     eight_height_m: float = setting(95.0, "m", "height H of the eight", positive)
     design_phi_deg: float = setting(11.0, "deg", "azimuth used by the characteristic curves",

@@ -36,7 +36,7 @@ winch segment merges with the next one).  The node-1 equation then has unequal
 half-segments on its two sides (:mod:`.system`: mass mu (h_0 + h_1)/2), and
 the lumped masses always sum to mu L(t).  After a change of the grid or a
 jump of V_L the velocities are projected on the constraints with the new V_L
-and BDF2 restarts with an implicit-Euler step.  The kite flies the eight on
+and BDF2 restarts with an implicit-Euler step.  The kite flies its path on
 the sphere of the current L.  The same law as the FE solver, written
 independently.
 
@@ -104,7 +104,7 @@ def build_model(cfg: Config, end: EndMotion | None = None, gravity=True, drag=Tr
                 physics: TetherPhysics | None = None) -> FDModel:
     """FD model of the configured case (``[fd] segments``, ``scheme`` and ``kernel``).
 
-    ``end`` overrides the figure-eight (e.g. ``trajectory.Stationary``);
+    ``end`` overrides the configured path (e.g. ``trajectory.Stationary``);
     ``gravity=False`` / ``drag=False`` switch those loads off (the mass stays).
     """
     case = case_fields(cfg, end)
@@ -402,7 +402,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         grid = g.with_first_length(h0)
     restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
     model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
-                    reel_mps=reel_mps, end=end_at_length(model.end, length_m))
+                    reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t))
     if restart:
         v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_mps)
         prev = None

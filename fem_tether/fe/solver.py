@@ -7,7 +7,7 @@ the catenary (the gravity-only equilibrium) with the wind and drag load
 ramped up (:mod:`fem_tether.continuation`), each load step a backtracking
 Newton solve (:func:`static_equilibrium` says why).  Then the
 generalised-alpha scheme (:mod:`.integrator`) takes the steps of the run
-protocol (:mod:`fem_tether.protocol`: whole periods of the eight, spin-up
+protocol (:mod:`fem_tether.protocol`: whole periods of the path, spin-up
 then the averaging window, step halving, reeling), which drives this solver
 as an :class:`FESolver`.
 """
@@ -75,7 +75,7 @@ def unit_mesh_from_config(fe) -> np.ndarray:
 
 def build_model(cfg: Config, end: EndMotion | None = None,
                 physics: TetherPhysics | None = None) -> FEModel:
-    """FE model of the configured case; ``end`` overrides the figure-eight."""
+    """FE model of the configured case; ``end`` overrides the configured path."""
     case = case_fields(cfg, end)
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
@@ -383,7 +383,7 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
     model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
-                    end=end_at_length(model.end, length_m))
+                    end=end_at_length(model.end, length_m, state.t))
     if restart:
         v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
                                             model.ground_tension_N, reel_mps, free_radius=True)

@@ -101,7 +101,7 @@ def _kitegen(cfg: Config) -> ConfiguredSystem:
     straight line: the eq. 4.1 integral with the wind (:mod:`fem_tether.straight`)."""
     design = operating_design(KiteGenDesign.from_config(cfg.kite, cfg.tether.lines),
                               atmosphere.from_config(cfg.air),
-                              cfg.tether.length_m, cfg.kite.efficiency, cfg.eight.mean_abs_phi_deg())
+                              cfg.tether.length_m, cfg.kite.efficiency, cfg.path.mean_abs_phi_deg())
     params = kitegen.KiteGenSystem(design, operating_tether_cd(cfg, straight.from_config(cfg, True).drag_N),
                                    Cycle(**cfg.cycle.to_dict()))
     return ConfiguredSystem("kitegen", params, params.straight_cd,
