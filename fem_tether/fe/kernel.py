@@ -355,9 +355,9 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     NumPy path of :func:`fem_tether.fe.solver._step` takes it.
 
     The unknowns ``r``, ``T`` and R start from the predictor
-    ``q_n + dt v_n + dt^2/2 a_n`` (:meth:`~fem_tether.fe.integrator.Kinematics.predict`)
-    with the kite node at ``R_n kite_dir``, on its path, and ``T_n``, ``R_n``, and end
-    at the solution.  Each iterate's kinematics are affine in its positions q (the
+    ``q_n + dt v_n + dt^2/2 a_n`` with ``T_n`` and ``R_n``
+    (:meth:`~fem_tether.fe.integrator.Kinematics.predict`) and end at the
+    solution.  Each iterate's kinematics are affine in its positions q (the
     terms of :class:`~fem_tether.fe.integrator.Step`, computed here as there):
     ``a = (q - q_known) / (beta dt^2)``, ``v = v_known + dt gamma a``,
     ``qdd = qdd_known + (1 - alpha_m)/(1 - alpha_f) a``, into ``v``, ``a``,
@@ -381,8 +381,6 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
             q_known[i, k] = q_n[i, k] + dt_s * v_n[i, k] + dt_s * dt_s * (0.5 - beta) * a_n[i, k]
             v_known[i, k] = v_n[i, k] + dt_s * (1.0 - gamma) * a_n[i, k]
             qdd_known[i, k] = (alpha_m * a_n[i, k] - alpha_f * qdd_n[i, k]) / (1.0 - alpha_f)
-    for k in range(3):
-        r[n_nodes - 1, k] = R_n * kite_dir[k]
     for e in range(n_nodes - 1):
         T[e] = T_n[e]
     R = R_n

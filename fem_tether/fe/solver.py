@@ -276,7 +276,6 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     # the unknowns in one vector, r and T views into it; each Newton update adds in place
     x = sys_.pack(kin.predict(h), state.T, state.R)
     r, T, _ = sys_.unpack(x)
-    r[-1] = state.R * np.asarray(e)       # the kite node on its path: one Newton iteration fewer at large steps
     step = kin.step(h, model.scheme)
     worst = last = math.inf            # last: the residual before worst
     factors = None
