@@ -50,10 +50,13 @@ class ConfiguredSystem:
     rated: Callable[[float], float] | None = None
     active: Callable[[np.ndarray, float], np.ndarray] | None = None
 
+    def tether_cd(self, tether_cd=None) -> float:
+        """``tether_cd``, or the straight line's if None."""
+        return self.straight_cd if tether_cd is None else tether_cd
+
     def power_curve(self, wind_mps, tether_cd=None) -> list[OperatingPoint]:
         """One operating point per wind speed; ``tether_cd`` None: the straight line."""
-        return self.curve(np.atleast_1d(np.asarray(wind_mps, dtype=float)),
-                          self.straight_cd if tether_cd is None else tether_cd)
+        return self.curve(np.atleast_1d(np.asarray(wind_mps, dtype=float)), self.tether_cd(tether_cd))
 
     def operating_point(self, wind_mps: float, tether_cd=None) -> OperatingPoint:
         return self.power_curve([wind_mps], tether_cd)[0]
@@ -66,13 +69,13 @@ class ConfiguredSystem:
         """The power of a pumping cycle's active (reel-out) phase, for a model that has one apart."""
         if self.active is None:
             return None
-        return self.active(np.asarray(wind_mps, dtype=float), self.straight_cd if tether_cd is None else tether_cd)
+        return self.active(np.asarray(wind_mps, dtype=float), self.tether_cd(tether_cd))
 
     def rated_power_W(self, tether_cd=None) -> float:
         """P_rated: the model's own (KiteGen's from its zones) or the configured
         ``[system] rated_power_W``, else the largest electrical power from calm
         air to the cut-out speed (:data:`RATED_POINTS` speeds)."""
-        cd = self.straight_cd if tether_cd is None else tether_cd
+        cd = self.tether_cd(tether_cd)
         if self.rated is not None:
             return self.rated(cd)
         return float(self.electrical_power_W(np.linspace(0.0, self.top_mps, RATED_POINTS), cd).max())
@@ -176,9 +179,7 @@ def _unified(cfg: Config) -> ConfiguredSystem:
         """The optimised points up to the cut-out speed, "off" above it."""
         on = wind_mps <= top
         points = iter(unified_system.power_curve(params, wind_mps[on], rho, tether_cd))
-        return [next(points) if o else OperatingPoint("off", float(w), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
-                                                      float(tether_cd))
-                for w, o in zip(wind_mps, on)]
+        return [next(points) if o else OperatingPoint.off(w, tether_cd) for w, o in zip(wind_mps, on)]
 
     return ConfiguredSystem("unified", params, params.straight_tether_cd, curve, top, stated_rating(cfg))
 

@@ -297,8 +297,7 @@ def power_curve(system: KEYoyo, wind_mps, rho_kg_m3=None, tether_cd=None) -> lis
     points = []
     for i in range(w.size):
         if not on[i]:
-            points.append(OperatingPoint("off", float(w[i]), 0.0, 0.0, 0.0, 0.0, 0.0,
-                                         0.0, 0.0, 0.0, cd_t))
+            points.append(OperatingPoint.off(w[i], cd_t))
             continue
         points.append(OperatingPoint(
             mode="ground-gen", wind_mps=float(w[i]),

@@ -94,7 +94,7 @@ def power_curve(system: KiteGenSystem, wind_mps, tether_cd=None) -> list[Operati
     points = []
     for i in range(w.size):
         if not curves.power_W[i] > 0:
-            points.append(OperatingPoint("off", float(w[i]), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cd_t))
+            points.append(OperatingPoint.off(w[i], cd_t))
             continue
         points.append(OperatingPoint(
             mode="ground-gen", wind_mps=float(w[i]), mechanical_power_W=float(mechanical[i]),

@@ -36,3 +36,8 @@ class OperatingPoint:
     def __post_init__(self):
         if self.mode not in MODES:
             raise ValueError(f"mode {self.mode!r} is not one of {', '.join(MODES)}")
+
+    @classmethod
+    def off(cls, wind_mps: float, tether_cd: float) -> OperatingPoint:
+        """The system at rest at ``wind_mps``: no power, no force, every factor 0."""
+        return cls("off", float(wind_mps), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, float(tether_cd))

@@ -458,8 +458,7 @@ def operating_point(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1
     """
     cycle = optimal_cycle(system, wind_mps, rho_kg_m3, tether_cd, mass_losses, recovery, starts)
     if cycle is None:
-        return OperatingPoint("off", wind_mps, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
-                              _tether_cd(system, tether_cd))
+        return OperatingPoint.off(wind_mps, _tether_cd(system, tether_cd))
     reeling = recovery and cycle.gamma_out > 0
     mode = "fly-gen" if cycle.gamma_out == 0 else ("ground-gen" if cycle.gamma_t == 0 else "both")
     return OperatingPoint(mode, wind_mps, cycle.mechanical_power_W, cycle.electrical_power_W,
