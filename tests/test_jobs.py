@@ -37,3 +37,14 @@ def test_bad_jobs_name_the_key(tmp_path, text, match):
     path.write_text(text)
     with pytest.raises(ConfigError, match=match):
         load_job(path)
+
+
+def test_a_job_over_a_system_preset(tmp_path):
+    """`sweep JOB --system NAME`: the job's lengths and keys over the preset's configuration;
+    without a job, the preset's own job."""
+    path = tmp_path / "j.toml"
+    path.write_text("[sweep]\nlengths_m = [700]\n[kite]\ncl = 1.1\n")
+    job = load_job(path, system="ke-yoyo")
+    assert job.lengths_m == (700.0,) and job.config.kite.cl == 1.1
+    assert job.config.tether.diameter_m == 0.03 and job.config.system.name == "ke-yoyo"
+    assert load_job(system="ke-yoyo").lengths_m == (600.0, 875.0, 1200.0)
