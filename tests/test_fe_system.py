@@ -58,3 +58,21 @@ def test_jacobian_matches_central_differences(mode, tether, reel_mps, kernel):
         dx[j] = 1e-6 * max(1.0, abs(x[j]))
         N[:, j] = (residual(x + dx) - residual(x - dx)) / (2 * dx[j])
     assert np.max(np.abs(A - N)) <= 1e-6 * np.max(np.abs(N))
+
+
+@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
+def test_with_physics_is_a_system_made_with_that_physics(kernel):
+    """The load ramp's cheap copy evaluates exactly as a system built anew with the physics."""
+    from dataclasses import replace
+
+    from fem_tether.continuation import with_load_factor
+
+    model = build_model(load_config(overrides={"fe": {"elements": 6, "kernel": kernel}}))
+    st = static_equilibrium(model)
+    sys_ = model.system
+    physics = with_load_factor(sys_.physics, 0.37)
+    e = model.end.state(0.3, 1.0)[0]
+    args = (st.kin.q, st.kin.v, np.zeros_like(st.kin.q), st.T, st.R, e, 150e3, 990.0, 1e5, 7.0, 3.0)
+    cheap, anew = sys_.with_physics(physics).evaluate(*args), replace(sys_, physics=physics).evaluate(*args)
+    np.testing.assert_array_equal(cheap.residual, anew.residual)
+    np.testing.assert_array_equal(cheap.band, anew.band)

@@ -226,7 +226,7 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     f_ref = model.force_ref_N(T, sys_.physics)
 
     def solve(load_factor, x):
-        loaded = replace(sys_, physics=with_load_factor(sys_.physics, load_factor))
+        loaded = sys_.with_physics(with_load_factor(sys_.physics, load_factor))
 
         def evaluate(x, jacobian=True):
             r, T, R = loaded.unpack(x)

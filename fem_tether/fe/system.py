@@ -123,6 +123,16 @@ class TetherSystem:
         self._interior_mass = (sp.mass_kg * self.interior)[:, None] * np.ones(3)
         self._h_mean = sp.h_m.mean()
 
+    def with_physics(self, physics: TetherPhysics) -> "TetherSystem":
+        """This system with other physics on the same mesh (the static start's load ramp):
+        only what the physics sets is made again, not the mesh's index tables."""
+        other = copy.copy(self)
+        other.physics = physics
+        other.weight = physics.weight_N_m
+        if self.compiled:
+            other._kernel_env = importlib.import_module("fem_tether.environment_kernel").tables(physics)
+        return other
+
     def with_spaces(self, spaces: TetherSpaces) -> "TetherSystem":
         """This system on other spaces of the same topology (reeling changes lengths)."""
         other = copy.copy(self)
