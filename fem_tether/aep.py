@@ -189,12 +189,12 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
 
 def sweep_resource(cfg: Config, wind_csv=None) -> WindResource:
     """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
-    return resource_from_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
+    return resource_from_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 
 def check_resource(cfg: Config, wind_csv=None) -> None:
     """Raise the error :func:`sweep_resource` would raise, without computing the resource."""
-    check_resource_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
+    check_resource_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 
 def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
