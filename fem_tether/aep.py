@@ -25,7 +25,7 @@ from .config import Config
 from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
-from .resource import WindResource
+from .resource import Band, WindResource
 from .resource import check_config as check_resource_config
 from .resource import from_config as resource_from_config
 
@@ -44,6 +44,23 @@ def annual_energy_Wh(power_at_edges_W, probability):
 def capacity_factor(aep_Wh, rated_power_W):
     """CF = AEP / (P_rated · 8760 h): the mean power over the rated power (seed 001 §IV)."""
     return np.asarray(aep_Wh) / (np.asarray(rated_power_W) * HOURS_PER_YEAR)
+
+
+@dataclass(frozen=True)
+class BandAep:
+    """AEP and capacity factor of one power curve on one band's histogram."""
+
+    aep_MWh: float
+    rated_power_W: float
+    capacity_factor: float
+    unbinned_probability: float
+
+
+def aep_on_band(power_W, band: Band, rated_power_W: float) -> BandAep:
+    """Eq. 5.2 and CF of the power curve ``power_W`` (a function of the wind
+    speed, vectorised) on ``band``, with rated power P_rated."""
+    aep_Wh = float(annual_energy_Wh(power_W(band.edges_mps), band.probability))
+    return BandAep(aep_Wh / 1e6, rated_power_W, float(capacity_factor(aep_Wh, rated_power_W)), band.remainder)
 
 
 @dataclass(frozen=True)
@@ -189,12 +206,12 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
 
 def sweep_resource(cfg: Config, wind_csv=None) -> WindResource:
     """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
-    return resource_from_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
+    return resource_from_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 
 def check_resource(cfg: Config, wind_csv=None) -> None:
     """Raise the error :func:`sweep_resource` would raise, without computing the resource."""
-    check_resource_config(cfg.resource, wind.from_config(cfg.wind), wind_csv)
+    check_resource_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 
 def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:

@@ -12,11 +12,12 @@ those modules; each loop below names the one it follows.
 
 A model as numbers:
 
-* air: ``[AIR_CONSTANT, rho, mu]`` or ``[AIR_ISA, 0, 0]``;
-* wind: one row ``[kind, p, q, s]`` per profile, the speed being the rows'
+* air: ``[AIR_CONSTANT, rho, mu, 0]``, ``[AIR_ISA, 0, 0, 0]`` or
+  ``[AIR_EXPONENTIAL, rho_0, mu, H_p]``;
+* wind: one row ``[kind, p, q, s, t]`` per profile, the speed being the rows'
   mean (:class:`~fem_tether.wind.MeanOfProfiles`; one row for a single
-  profile): ``[WIND_NONE, 0, 0, 0]``, ``[WIND_LOG, V0, z_r, ln(z0/z_r)]`` or
-  ``[WIND_POWER, V_ref, z_ref, alpha]``;
+  profile): ``[WIND_NONE, 0, 0, 0, 0]``, ``[WIND_LOG, V0, z_r, ln(z0/z_r), 0]`` or
+  ``[WIND_POWER, V_ref, z_ref, alpha, z_top]``;
 * drag coefficient: ``[DRAG_CONSTANT, C_d, lambda]`` or ``[DRAG_CYLINDER, 0, lambda]``,
   the coefficient times lambda (1, or the factor of a
   :class:`~fem_tether.drag_coefficient.ScaledDrag`).
@@ -38,7 +39,7 @@ from fem_tether.atmosphere import (GAS_CONSTANT_J_KG_K, LAPSE_RATE_K_M, PRESSURE
                                    SUTHERLAND_S_K, TROPOPAUSE_M)
 from fem_tether.drag_coefficient import BELAN_TORDELLA_MAX_RE, LOG_CD, LOG_RE, SLOPE
 
-AIR_CONSTANT, AIR_ISA = 0.0, 1.0
+AIR_CONSTANT, AIR_ISA, AIR_EXPONENTIAL = 0.0, 1.0, 2.0
 WIND_NONE, WIND_LOG, WIND_POWER = 0.0, 1.0, 2.0
 DRAG_CONSTANT, DRAG_CYLINDER = 0.0, 1.0
 
@@ -47,9 +48,11 @@ V, F = "f8[:]", "f8"
 
 def _air_table(air) -> np.ndarray:
     if isinstance(air, atmosphere.ISA):
-        return np.array([AIR_ISA, 0.0, 0.0])
+        return np.array([AIR_ISA, 0.0, 0.0, 0.0])
     if isinstance(air, atmosphere.ConstantAir):
-        return np.array([AIR_CONSTANT, air.rho_kg_m3, air.mu_Pa_s])
+        return np.array([AIR_CONSTANT, air.rho_kg_m3, air.mu_Pa_s, 0.0])
+    if isinstance(air, atmosphere.ExponentialAir):
+        return np.array([AIR_EXPONENTIAL, air.rho0_kg_m3, air.mu_Pa_s, air.scale_height_m])
     raise TypeError(f"no compiled twin of the air model {air!r} (the NumPy kernel runs any model)")
 
 
@@ -57,11 +60,12 @@ def _wind_rows(profile) -> list:
     if isinstance(profile, wind.MeanOfProfiles):
         return [row for p in profile.profiles for row in _wind_rows(p)]
     if isinstance(profile, wind.NoWind):
-        return [[WIND_NONE, 0.0, 0.0, 0.0]]
+        return [[WIND_NONE, 0.0, 0.0, 0.0, 0.0]]
     if isinstance(profile, wind.LogWind):
-        return [[WIND_LOG, profile.v0_mps, profile.zr_m, profile._log_z0_zr]]
+        return [[WIND_LOG, profile.v0_mps, profile.zr_m, profile._log_z0_zr, 0.0]]
     if isinstance(profile, wind.PowerWind):
-        return [[WIND_POWER, profile.reference_speed_mps, profile.reference_height_m, profile.alpha]]
+        return [[WIND_POWER, profile.reference_speed_mps, profile.reference_height_m, profile.alpha,
+                 profile.top_m]]
     raise TypeError(f"no compiled twin of the wind profile {profile!r} (the NumPy kernel runs any model)")
 
 
@@ -96,7 +100,8 @@ def jit(signature):
 def air_state(air, z_m, rho, mu, drho_dz, dmu_dz):
     """rho, mu and their altitude gradients at the altitudes ``z_m``
     (:class:`~fem_tether.atmosphere.ISA`: T = T0 - L z, p = p0 (T/T0)^(g0/(R L)),
-    rho = p/(R T), Sutherland's mu, and their derivatives; or
+    rho = p/(R T), Sutherland's mu, and their derivatives;
+    :class:`~fem_tether.atmosphere.ExponentialAir`: rho = rho_0 exp(-z/H_p); or
     :class:`~fem_tether.atmosphere.ConstantAir`).  Returns the index of the
     first altitude above the ISA troposphere (the values there not computed),
     or -1."""
@@ -105,6 +110,12 @@ def air_state(air, z_m, rho, mu, drho_dz, dmu_dz):
             rho[i] = air[1]
             mu[i] = air[2]
             drho_dz[i] = 0.0
+            dmu_dz[i] = 0.0
+            continue
+        if air[0] == AIR_EXPONENTIAL:
+            rho[i] = air[1] * np.exp(-z_m[i] / air[3])
+            mu[i] = air[2]
+            drho_dz[i] = -rho[i] / air[3]
             dmu_dz[i] = 0.0
             continue
         if z_m[i] > TROPOPAUSE_M:
@@ -126,7 +137,9 @@ def _profile(row, z):
         if z > row[2]:
             return row[1] * math.log(z / row[2]) / row[3], row[1] / (z * row[3])
         return 0.0, 0.0
-    if kind == WIND_POWER:               # V_ref (z/z_ref)^alpha above 0
+    if kind == WIND_POWER:               # V_ref (min(z, z_top)/z_ref)^alpha above 0
+        if z > row[4]:
+            return row[1] * (row[4] / row[2]) ** row[3], 0.0
         if z > 0.0:
             speed = row[1] * (z / row[2]) ** row[3]
             return speed, row[3] * speed / z

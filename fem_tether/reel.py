@@ -154,6 +154,6 @@ def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
         except SpeedTableError as exc:
             raise ConfigError(f"[winch] reel_out_table: {exc}") from None
     k = cfg.kite
-    law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind), k.area_m2, k.cl,
-                      k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps)
+    law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind, cfg.resource.weibull_k),
+                      k.area_m2, k.cl, k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps)
     return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_mps, table, law)

@@ -77,6 +77,14 @@ class Band:
         mid = 0.5 * (self.edges_mps[1:] + self.edges_mps[:-1])
         return float(np.sum(self.probability * mid) / self.probability.sum())
 
+    def probability_above(self, speed_mps: float) -> float:
+        """P(V > v) for v a bin edge: the bins above v and the :attr:`remainder`."""
+        i = np.flatnonzero(np.isclose(self.edges_mps, speed_mps, rtol=0.0, atol=1e-9))
+        if not i.size:
+            raise ResourceError(f"speed {speed_mps:g} m/s is not a bin edge of band "
+                                f"{self.low_m:g}–{self.high_m:g} m")
+        return float(self.probability[i[0]:].sum()) + self.remainder
+
 
 @dataclass(frozen=True)
 class WindResource:
@@ -96,6 +104,25 @@ class WindResource:
     def band_for_length(self, length_m: float, theta_rad: float) -> Band:
         """The band of the mean kite altitude z = L cosϑ of lines of length L (seed 000 §5)."""
         return self.band_at_altitude(length_m * math.cos(theta_rad))
+
+    def pooled(self, low_m: float, high_m: float) -> Band:
+        """One histogram of the altitudes low_m–high_m: the bands that tile them,
+        each weighted by its width, p = Σ_b w_b p_b / Σ_b w_b (the histogram of
+        observations spread evenly over the altitudes, as seed 001 §IV pools
+        200–800 m).  The bands must share their bin edges."""
+        inside = [b for b in self.bands if low_m <= b.low_m and b.high_m <= high_m]
+        tiled = (inside and inside[0].low_m == low_m and inside[-1].high_m == high_m
+                 and all(a.high_m == b.low_m for a, b in zip(inside[:-1], inside[1:])))
+        if not tiled:
+            raise ResourceError(f"{self.source}: no bands tile {low_m:g}–{high_m:g} m "
+                                f"(bands: {_band_list(self.bands)})")
+        edges = inside[0].edges_mps
+        if any(b.edges_mps.shape != edges.shape or np.any(b.edges_mps != edges) for b in inside):
+            raise ResourceError(f"{self.source}: the bands of {low_m:g}–{high_m:g} m have "
+                                "different bins; pool bands that share them")
+        width = np.array([b.high_m - b.low_m for b in inside])
+        probability = np.einsum("b,bi->i", width, np.array([b.probability for b in inside])) / width.sum()
+        return Band(float(low_m), float(high_m), edges, probability)
 
 
 def _band_list(bands) -> str:

@@ -96,7 +96,7 @@ def line_of_config(cfg: Config, with_wind=False) -> Callable[[float], StraightLi
         speed_mps=cfg.kite.speed_mps,
         air=atmosphere.from_config(cfg.air),
         drag=drag_coefficient.from_config(cfg.drag),
-        wind_profile=wind.from_config(cfg.wind) if with_wind else None,
+        wind_profile=wind.from_config(cfg.wind, cfg.resource.weibull_k) if with_wind else None,
     )
 
 

@@ -52,7 +52,7 @@ def physics_from_config(cfg: Config) -> TetherPhysics:
     return TetherPhysics(
         air=atmosphere.from_config(cfg.air),
         drag=drag_coefficient.from_config(cfg.drag),
-        wind=wind.from_config(cfg.wind),
+        wind=wind.from_config(cfg.wind, cfg.resource.weibull_k),
         diameter_m=tether.diameter_m,
         linear_density_kg_m=tether.linear_density_kg_m,
         compliance_per_N=1.0 / tether.axial_stiffness_N if elastic else 0.0,

@@ -1,7 +1,8 @@
 """Wind speed profiles V_w(z); the wind blows along +x.
 
 Only the mean speed against altitude z is modelled (seed 000 §3): the
-logarithmic law with De Bilt coefficients, the power law, or still air.  Every
+logarithmic law with De Bilt coefficients, the power law (constant above the
+boundary layer, seed 004 eq. 3.91), or still air.  Every
 profile offers ``speed_mps(z)``, its analytic shear ``shear_per_s(z) = dV/dz``
 and ``velocity_mps(z)``, the vector (V, 0, 0) with shape ``z.shape + (3,)``.
 
@@ -14,6 +15,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Protocol
+
+import math
 
 import numpy as np
 import numpy.typing as npt
@@ -94,24 +97,31 @@ def _mean(values: list) -> np.ndarray:
 
 @dataclass(frozen=True)
 class PowerWind(_Profile):
-    """Power law V = V_ref (z/z_ref)^alpha (seed 000 eq. 3.1, seed 003 eq. 3.4); zero for z <= 0."""
+    """Power law V = V_ref (min(z, z_top)/z_ref)^alpha (seed 000 eq. 3.1, seed 003 eq. 3.4,
+    seed 004 eq. 3.91); zero for z <= 0.
+
+    Above ``top_m`` the speed stays at its value there: seed 004 §3.8 holds
+    the wind constant above 500 m, "as the boundary layer effects terminate".
+    ``top_m = inf`` (the default) is the unbounded law of seeds 000 and 003.
+    """
 
     reference_speed_mps: float
     reference_height_m: float
     alpha: float
+    top_m: float = math.inf
 
     def speed_mps(self, z_m):
-        """V = V_ref (z/z_ref)^alpha for z > 0, else 0."""
-        z = np.asarray(z_m, dtype=float)
+        """V = V_ref (min(z, z_top)/z_ref)^alpha for z > 0, else 0."""
+        z = np.minimum(np.asarray(z_m, dtype=float), self.top_m)
         above = z > 0.0
         ratio = np.where(above, z, 1.0) / self.reference_height_m
         return np.where(above, self.reference_speed_mps * ratio**self.alpha, 0.0)
 
     def shear_per_s(self, z_m):
-        """dV/dz = alpha V / z for z > 0, else 0."""
+        """dV/dz = alpha V / z for 0 < z <= z_top, else 0."""
         z = np.asarray(z_m, dtype=float)
-        above = z > 0.0
-        return np.where(above, self.alpha * self.speed_mps(z) / np.where(above, z, 1.0), 0.0)
+        sheared = (z > 0.0) & (z <= self.top_m)
+        return np.where(sheared, self.alpha * self.speed_mps(z) / np.where(sheared, z, 1.0), 0.0)
 
 
 @dataclass(frozen=True)
@@ -135,12 +145,36 @@ DE_BILT = {
 #: De Bilt "annual": the mean of the winter and summer profiles' speeds.
 DE_BILT_ANNUAL = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
 
+#: Shear exponent alpha of the power law by terrain (seed 004 Tab. 3.2, after Archer).
+TERRAIN_ALPHA = {
+    "smooth hard ground, calm water": 0.10,
+    "tall grass on level ground": 0.15,
+    "high crops, hedges and shrubs": 0.20,
+    "wooded countryside, many trees": 0.25,
+    "small town with trees and shrubs": 0.30,
+    "large city with tall buildings": 0.40,
+}
 
-def from_config(wind) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
-    """The wind profile of the ``[wind]`` section; the "annual" De Bilt season is
-    the winter/summer mean."""
+
+def weibull_mean_mps(scale_mps, shape_k):
+    """V̄ = A Γ(1 + 1/k): the mean of the Weibull density of scale A and shape k
+    (seed 004 eq. 3.92).
+
+    >>> round(weibull_mean_mps(9.5, 2.12), 3)   # seed 004's nominal site at 20 m
+    8.414
+    """
+    return scale_mps * math.gamma(1.0 + 1.0 / shape_k)
+
+
+def from_config(wind, weibull_k: float) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
+    """The mean wind profile of the ``[wind]`` section; the "annual" De Bilt season
+    is the winter/summer mean.  The power law's reference speed is the mean of
+    the Weibull of scale ``reference_scale_mps`` and shape ``weibull_k`` (the
+    ``[resource]`` shape), and it is constant above ``boundary_layer_top_m``
+    (0: never)."""
     if wind.profile == "log":
         return DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
     if wind.profile == "power":
-        return PowerWind(wind.reference_speed_mps, wind.reference_height_m, wind.alpha)
+        return PowerWind(weibull_mean_mps(wind.reference_scale_mps, weibull_k), wind.reference_height_m,
+                         wind.alpha, wind.boundary_layer_top_m or math.inf)
     return NoWind()

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from fem_tether import atmosphere
-from fem_tether.atmosphere import ISA, ConstantAir
+from fem_tether.atmosphere import ISA, ConstantAir, ExponentialAir
 from fem_tether.config import load_config
 
 # seed 000 Tab. 4.1 (ISA samples): z [m], rho [kg/m3], mu_air [1e-5 kg/(m s)]
@@ -46,7 +46,7 @@ def test_constant_air():
     np.testing.assert_array_equal(air.density_gradient_kg_m4(z), np.zeros(z.shape))
 
 
-@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5)])
+@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5), ExponentialAir()])
 def test_vectorised_shapes(air):
     z = np.linspace(0.0, 2000.0, 12).reshape(3, 4)
     for f in (air.density_kg_m3, air.viscosity_Pa_s, air.density_gradient_kg_m4):
@@ -63,15 +63,33 @@ def test_density_gradient_against_finite_difference(z):
     assert air.density_gradient_kg_m4(z) == pytest.approx(fd, rel=1e-6)
 
 
+def test_exponential_air_is_seed_004_eq_3_90():
+    """rho = 1.225 exp(-z/8550) (to 1e-15); its gradient is the finite difference
+    (to 1e-8); it departs from the ISA by -1.0 % at 500 m, -2.0 % at 1000 m and
+    -5.1 % at 3000 m (to 0.05 points), as the docs say."""
+    air = ExponentialAir()
+    z = np.array([0.0, 500.0, 1000.0, 3000.0])
+    np.testing.assert_allclose(air.density_kg_m3(z), 1.225 * np.exp(-z / 8550.0), rtol=1e-15)
+    fd = (air.density_kg_m3(z + 1.0) - air.density_kg_m3(z - 1.0)) / 2.0
+    np.testing.assert_allclose(air.density_gradient_kg_m4(z), fd, rtol=1e-8)
+    np.testing.assert_allclose(air.density_kg_m3(z[1:]) / ISA().density_kg_m3(z[1:]) - 1.0,
+                               [-0.010, -0.020, -0.051], atol=5e-4)
+    np.testing.assert_array_equal(air.viscosity_Pa_s(z), 1.789e-5)
+    with pytest.raises(ValueError, match="scale_height_m = 0.0: must be > 0"):
+        ExponentialAir(scale_height_m=0.0)
+
+
 def test_from_config():
     assert isinstance(atmosphere.from_config(load_config().air), ISA)
+    cfg = load_config(overrides={"air": {"model": "exponential"}})
+    assert atmosphere.from_config(cfg.air) == ExponentialAir(1.225, 1.789e-5, 8550.0)
     cfg = load_config(overrides={"air": {"model": "constant", "density_kg_m3": 1.0}})
     air = atmosphere.from_config(cfg.air)
     assert air == ConstantAir(1.0, 1.789e-5)
     assert air.density_kg_m3(300.0) == 1.0
 
 
-@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5)])
+@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5), ExponentialAir()])
 def test_state_is_the_single_properties(air):
     z = np.array([0.0, 250.0, 3000.0])
     state = air.state(z, gradients=True)

@@ -4,6 +4,7 @@ import tomllib
 
 import pytest
 
+from fem_tether import wind
 from fem_tether.config import SECTIONS, Config, ConfigError, load_config
 
 
@@ -33,7 +34,7 @@ def test_toml_round_trip(tmp_path):
     ({"tether": {"length_m": -5.0}}, r"\[tether\] length_m = -5.0: must be > 0"),
     ({"tether": {"lines": 1.5}}, r"\[tether\] lines = 1.5: expected an integer"),
     ({"tether": {"lines": True}}, r"\[tether\] lines = true: expected an integer"),
-    ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "constant"'),
+    ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "exponential", "constant"'),
     ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0.0, 90.0\)"),
     ({"fe": {"rho_inf": 1.5}}, r"\[fe\] rho_inf = 1.5"),
 ])
@@ -105,3 +106,16 @@ def test_a_stored_configuration_of_an_earlier_version_reads_with_its_keys_moved(
     cfg = Config.from_stored('[time]\ndt_s = 0.1\naverage_periods = 1\n[kite]\nspeed_ms = 70.0\n')
     assert cfg.fe.dt_s == 0.1 and cfg.time.average_periods == 1 and cfg.kite.speed_mps == 70.0
     assert Config.from_stored(Config().to_toml()) == Config()
+
+
+def test_the_power_law_speed_is_now_a_weibull_scale():
+    """``[wind] reference_speed_mps`` was the mean at the reference height; a user
+    file with it is an error naming the new key, and a stored configuration
+    reads as the same wind (scale = mean / Gamma(1 + 1/k) to 1e-12, unbounded)."""
+    with pytest.raises(ConfigError, match=r"^\[wind\] reference_speed_mps: now \[wind\] reference_scale_mps"):
+        Config().replace(wind={"reference_speed_mps": 9.5})
+    cfg = Config.from_stored('[wind]\nprofile = "power"\nreference_speed_mps = 9.5\n'
+                             '[resource]\nweibull_k = 2.12\n')
+    profile = wind.from_config(cfg.wind, cfg.resource.weibull_k)
+    assert profile.speed_mps(20.0) == pytest.approx(9.5, rel=1e-12)
+    assert cfg.wind.boundary_layer_top_m == 0.0 and profile.speed_mps(2000.0) > profile.speed_mps(500.0)

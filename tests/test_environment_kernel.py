@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_tether import environment_kernel as ek
-from fem_tether.atmosphere import ISA, TROPOPAUSE_M, ConstantAir
+from fem_tether.atmosphere import ISA, TROPOPAUSE_M, ConstantAir, ExponentialAir
 from fem_tether.drag_coefficient import ConstantDrag, CylinderDrag, ScaledDrag
 from fem_tether.tether import TetherPhysics
 from fem_tether.wind import DE_BILT, DE_BILT_ANNUAL, MeanOfProfiles, NoWind, PowerWind
@@ -21,7 +21,7 @@ def physics(air=ISA(), drag=CylinderDrag(), wind=NoWind()):
     return TetherPhysics(air=air, drag=drag, wind=wind, diameter_m=0.01, linear_density_kg_m=0.1)
 
 
-@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5)])
+@pytest.mark.parametrize("air", [ISA(), ConstantAir(1.2, 1.8e-5), ExponentialAir()])
 def test_air_state_equals_the_air_model(air):
     """rho, mu, d rho/dz, d mu/dz at 200 altitudes from -100 m to the tropopause."""
     z = np.linspace(-100.0, TROPOPAUSE_M, 200)
@@ -41,7 +41,7 @@ def test_air_state_names_the_first_altitude_above_the_troposphere():
 
 
 @pytest.mark.parametrize("profile", [NoWind(), DE_BILT["winter"], DE_BILT_ANNUAL,
-                                     PowerWind(10.0, 100.0, 0.14),
+                                     PowerWind(10.0, 100.0, 0.14), PowerWind(8.4, 20.0, 0.2, 500.0),
                                      MeanOfProfiles((PowerWind(10.0, 100.0, 0.14), DE_BILT["summer"]))])
 def test_wind_state_equals_the_profile(profile):
     """V and dV/dz at 300 altitudes from -10 m (zero wind below the profiles'

@@ -18,7 +18,7 @@ def example(name):
 
 
 #: Every example, in README's order ("Python API").
-NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep")
+NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite")
 
 
 def test_every_example_opens_with_its_equations_and_how_to_run_it():
@@ -84,3 +84,22 @@ def test_sweep_aep_checks_every_length_and_the_shortest_line_is_nearly_straight(
     assert r["aep_fe_MWh"][0] == pytest.approx(r["aep_straight_MWh"][0], rel=0.02)
     assert r["file"].is_file() and r["file"].parent == tmp_path
     assert all(path.is_file() and path.parent == tmp_path for path in r["plots"].values())
+
+
+def test_tower_vs_kite_against_seed_001_table_ii():
+    """De Bilt, seed 001 Table II: CF 0.36 (tower) and 0.71 (KE-yoyo), ratio 1.97.
+
+    The tower (cubic through 1 MW at 9 m/s) on the default resource at 50-150 m:
+    0.364, within 0.01 of 0.36.  The KE-yoyo's eq. 20 model on 200-800 m: 0.556,
+    0.154 below 0.71, and the gap is its power curve: the model reaches 2 MW at
+    12.03 m/s, not at the 9 m/s Fig. 8 states.  A curve that does (cubic to
+    2 MW at 9 m/s) gives 0.710 on the same histogram, within 0.01 of 0.71, and
+    the CF ratio 1.95 against the seed's 1.97 (tolerance 0.05)."""
+    r = example("tower_vs_kite").main()
+    cf = {name: result.capacity_factor for name, result in r["results"].items()}
+    assert cf["tower"] == pytest.approx(0.36, abs=0.01)
+    assert cf["ke-yoyo Fig. 8"] == pytest.approx(0.71, abs=0.01)
+    assert r["ratio_fig8"] == pytest.approx(0.71 / 0.36, abs=0.05)
+    assert cf["ke-yoyo"] == pytest.approx(0.556, abs=0.005)
+    assert r["rated_mps"] == pytest.approx(12.03, abs=0.015)   # found on a 0.01 m/s grid
+    assert cf["ke-yoyo"] < cf["ke-yoyo flown band"] < cf["ke-yoyo Fig. 8"]

@@ -30,7 +30,7 @@ def test_physics_of_an_inextensible_line():
     assert physics.compliance_per_N == 0.0 and physics.damping_time_s == 0.0   # not elastic
     assert physics.air == atmosphere.from_config(cfg.air)
     assert type(physics.drag) is type(drag_coefficient.from_config(cfg.drag))
-    assert type(physics.wind) is type(wind.from_config(cfg.wind))
+    assert type(physics.wind) is type(wind.from_config(cfg.wind, cfg.resource.weibull_k))
 
 
 def test_physics_of_an_elastic_line():

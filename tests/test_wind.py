@@ -1,3 +1,5 @@
+import math
+
 import numpy as np
 import pytest
 
@@ -6,7 +8,8 @@ from fem_tether.config import load_config
 from fem_tether.wind import DE_BILT, LogWind, MeanOfProfiles, NoWind, PowerWind
 
 ANNUAL = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
-PROFILES = [DE_BILT["winter"], DE_BILT["summer"], ANNUAL, PowerWind(9.5, 20.0, 0.2), NoWind()]
+PROFILES = [DE_BILT["winter"], DE_BILT["summer"], ANNUAL, PowerWind(9.5, 20.0, 0.2),
+            PowerWind(9.5, 20.0, 0.2, 500.0), NoWind()]
 
 
 @pytest.mark.parametrize("season, v0", [("winter", 5.1), ("summer", 4.4)])
@@ -66,10 +69,48 @@ def test_no_wind():
 
 
 def test_from_config():
-    assert wind.from_config(load_config().wind) == ANNUAL
+    k = 2.0
+    assert wind.from_config(load_config().wind, k) == ANNUAL
     for season in ("winter", "summer"):
         cfg = load_config(overrides={"wind": {"season": season}})
-        assert wind.from_config(cfg.wind) == DE_BILT[season]
+        assert wind.from_config(cfg.wind, k) == DE_BILT[season]
     cfg = load_config(overrides={"wind": {"profile": "power", "alpha": 0.14}})
-    assert wind.from_config(cfg.wind) == PowerWind(9.5, 20.0, 0.14)
-    assert wind.from_config(load_config(overrides={"wind": {"profile": "none"}}).wind) == NoWind()
+    assert wind.from_config(cfg.wind, k) == PowerWind(9.5 * math.gamma(1.5), 20.0, 0.14, 500.0)
+    cfg = load_config(overrides={"wind": {"profile": "power", "boundary_layer_top_m": 0.0}})
+    assert wind.from_config(cfg.wind, k).top_m == math.inf
+    assert wind.from_config(load_config(overrides={"wind": {"profile": "none"}}).wind, k) == NoWind()
+
+
+def test_seed_004_scale_is_not_the_mean():
+    """Seed 004 §3.8: A = 9.5 m/s, k = 2.12 at 20 m.  The mean is A Γ(1 + 1/k) =
+    8.414 m/s (to 1e-3); reading 9.5 m/s as the mean overstates it by 12.9 %
+    (to 0.05 points).  The configured power law's speed at 20 m is that mean."""
+    mean = wind.weibull_mean_mps(9.5, 2.12)
+    assert mean == pytest.approx(8.414, abs=1e-3)
+    assert 9.5 / mean - 1.0 == pytest.approx(0.129, abs=5e-4)
+    cfg = load_config(overrides={"wind": {"profile": "power"}, "resource": {"weibull_k": 2.12}})
+    assert wind.from_config(cfg.wind, cfg.resource.weibull_k).speed_mps(20.0) == pytest.approx(mean, rel=1e-12)
+
+
+def test_weibull_mean_is_the_mean_of_scipys_weibull():
+    """A Γ(1 + 1/k) equals ``scipy.stats.weibull_min(k, scale=A).mean()`` to 1e-12."""
+    from scipy.stats import weibull_min
+    for scale, k in [(9.5, 2.12), (11.0, 1.5), (6.0, 3.0)]:
+        assert wind.weibull_mean_mps(scale, k) == pytest.approx(weibull_min(k, scale=scale).mean(), rel=1e-12)
+
+
+def test_power_law_is_constant_above_the_boundary_layer():
+    """Seed 004 eq. 3.91 and §3.8: V(z > 500 m) = V(500 m), no shear there; the
+    law holds below."""
+    capped, free = PowerWind(8.414, 20.0, 0.2, 500.0), PowerWind(8.414, 20.0, 0.2)
+    z = np.array([20.0, 300.0, 500.0, 700.0, 2000.0])
+    np.testing.assert_allclose(capped.speed_mps(z), free.speed_mps(np.minimum(z, 500.0)), rtol=1e-15)
+    np.testing.assert_array_equal(capped.shear_per_s(z[3:]), 0.0)
+    assert capped.shear_per_s(300.0) == free.shear_per_s(300.0)
+    assert capped.speed_mps(500.0) == pytest.approx(8.414 * 25.0**0.2)
+
+
+def test_terrain_table_is_seed_004s():
+    """Seed 004 Tab. 3.2: six terrains, alpha from 0.10 to 0.40; 0.20 for high crops."""
+    assert sorted(wind.TERRAIN_ALPHA.values()) == [0.10, 0.15, 0.20, 0.25, 0.30, 0.40]
+    assert wind.TERRAIN_ALPHA["high crops, hedges and shrubs"] == 0.20

@@ -17,6 +17,7 @@ edited one.
 from __future__ import annotations
 
 import dataclasses
+import math
 import tomllib
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -29,7 +30,7 @@ from fem_tether.orbit import Circle
 from fem_tether.trajectory import FigureEight
 
 from . import rules
-from .sections import (FD, FE, MOVED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, System,
+from .sections import (FD, FE, MOVED, REDEFINED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, System,
                        Tether, Time, Unified, Wind, Winch)
 from .tomlio import read_toml, resolve_paths, section_toml
 
@@ -74,7 +75,7 @@ class Config:
             for key, value in values.items():
                 new_section, new_key = MOVED.get((section, key), (section, key))
                 data.setdefault(new_section, {})[new_key] = value
-        return cls.from_dict(data)
+        return cls.from_dict(_redefined(data))
 
     def replace(self, **sections: dict[str, Any]) -> Config:
         """A checked copy with some keys changed: ``cfg.replace(fe={"elements": 20})``."""
@@ -88,6 +89,8 @@ class Config:
             for key in values:
                 if (name, key) in MOVED:
                     raise ConfigError("[{}] {}: now [{}] {}".format(name, key, *MOVED[name, key]))
+                if (name, key) in REDEFINED:
+                    raise ConfigError(f"[{name}] {key}: {REDEFINED[name, key]}")
             changed[name] = getattr(self, name).replace(**values)
         return dataclasses.replace(self, **changed)
 
@@ -106,6 +109,18 @@ class Config:
     def to_toml(self) -> str:
         """The configuration as TOML, each key commented with its meaning and unit."""
         return "\n".join(section_toml(getattr(self, f.name)) for f in dataclasses.fields(self))
+
+
+def _redefined(data: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    """Stored tables of an earlier version in today's keys, for the same case: its
+    power-law speed ``reference_speed_mps`` was the mean V at z_ref, now the
+    scale A = V / Gamma(1 + 1/k), and its law had no boundary-layer top."""
+    wind = data.get("wind", {})
+    if "reference_speed_mps" in wind:
+        k = data.get("resource", {}).get("weibull_k", Resource().weibull_k)
+        wind["reference_scale_mps"] = wind.pop("reference_speed_mps") / math.gamma(1.0 + 1.0 / k)
+        wind.setdefault("boundary_layer_top_m", 0.0)
+    return data
 
 
 def merged(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:

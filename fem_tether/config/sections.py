@@ -107,9 +107,14 @@ class Tether(Section):
 @dataclass(frozen=True)
 class Air(Section):
     NAME = "air"
-    model: str = setting("isa", "-", "'isa' (ISA troposphere) or 'constant'", one_of("isa", "constant"))
-    density_kg_m3: float = setting(1.225, "kg/m3", "density for model = 'constant'", positive)
-    viscosity_Pa_s: float = setting(1.789e-5, "Pa s", "dynamic viscosity for model = 'constant'", positive)
+    model: str = setting("isa", "-", "'isa' (ISA troposphere), 'exponential' (rho_0 exp(-z/H_p), Trevisi "
+                         "eq. 3.90) or 'constant'", one_of("isa", "exponential", "constant"))
+    density_kg_m3: float = setting(1.225, "kg/m3", "density for model = 'constant'; rho_0 at z = 0 for "
+                                   "'exponential'", positive)
+    viscosity_Pa_s: float = setting(1.789e-5, "Pa s", "dynamic viscosity for model = 'constant' or "
+                                    "'exponential'", positive)
+    scale_height_m: float = setting(8550.0, "m", "model = 'exponential': scale height H_p (Trevisi eq. 3.90)",
+                                    positive)
 
 
 @dataclass(frozen=True)
@@ -127,9 +132,14 @@ class Wind(Section):
     NAME = "wind"
     profile: str = setting("log", "-", "'log' (De Bilt), 'power' or 'none'", one_of("log", "power", "none"))
     season: str = setting("annual", "-", "De Bilt log-law season", one_of("winter", "summer", "annual"))
-    reference_speed_mps: float = setting(9.5, "m/s", "power law: speed at reference_height_m", non_negative)
-    reference_height_m: float = setting(20.0, "m", "power law: reference height", positive)
-    alpha: float = setting(0.2, "-", "power law: shear exponent", between(0.0, 1.0, (True, False)))
+    reference_scale_mps: float = setting(9.5, "m/s", "power law: Weibull scale A of the wind at "
+                                         "reference_height_m; the mean there is A Gamma(1 + 1/k), k = "
+                                         "[resource] weibull_k (Trevisi eq. 3.92: 9.5 m/s)", non_negative)
+    reference_height_m: float = setting(20.0, "m", "power law: reference height (Trevisi: 20 m)", positive)
+    alpha: float = setting(0.2, "-", "power law: shear exponent (Trevisi Tab. 3.2: 0.10 calm water to 0.40 "
+                           "large city; 0.20 high crops, hedges and shrubs)", between(0.0, 1.0, (True, False)))
+    boundary_layer_top_m: float = setting(500.0, "m", "power law: the wind is constant above this height "
+                                          "(Trevisi eq. 3.91: 500 m; 0: never)", non_negative)
 
 
 @dataclass(frozen=True)
@@ -262,6 +272,12 @@ class Output(Section):
 #: The sections in the order of a configuration file.
 SECTIONS: tuple[type[Section], ...] = (System, Unified, Tether, Air, Drag, Wind, Kite, Winch, FE, Time, FD, Crosscheck, Cycle,
                                         Resource, Output)
+
+#: Keys of earlier versions whose meaning changed: (section, key) -> what a file must say instead.
+REDEFINED = {
+    ("wind", "reference_speed_mps"): "now [wind] reference_scale_mps, the Weibull scale A at reference_height_m "
+                                     "(reference_speed_mps was the mean there, A Gamma(1 + 1/k))",
+}
 
 #: Keys of earlier versions and where they are now: (section, key) -> (section, key).
 MOVED = {
