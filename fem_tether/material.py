@@ -256,6 +256,10 @@ def sized_diameter_m(material: Material, tension_N, safety_factor):
     return material.capacity_diameter_m(tension if material.working_stress else safety_factor * tension)
 
 
+#: Trevisi's tether (seed 004 §5.1.2): σ_lim = 1.5 GPa, Dyneema (970 kg/m³), no conductor.
+TREVISI = Section("trevisi", stress_Pa=1.5e9, density_kg_m3=970.0, modulus_Pa=SK99_MODULUS_PA,
+                  working_stress=False)
+
 #: The materials by the name ``[tether] material`` takes.  E: SK99 155 GPa (seed
 #: 000 §2.3, the fibre's); steel 200 GPa and carbon fibre 70 GPa are not in
 #: seed 003, which needs none (200 GPa: structural steel, a textbook value;
@@ -267,6 +271,5 @@ MATERIALS: dict[str, Material] = {
                      working_stress=True),                    # seed 003 Tab. 3.1 and its listing
     "carbon": Section("carbon", stress_Pa=2137e6, density_kg_m3=1760.0, modulus_Pa=70e9,
                       working_stress=True),                   # seed 003 Tab. 4.1 (Makani M600)
-    "trevisi": Section("trevisi", stress_Pa=1.5e9, density_kg_m3=970.0, modulus_Pa=SK99_MODULUS_PA,
-                       working_stress=False),                 # seed 004 §5.1.2: sigma_lim, Dyneema
+    "trevisi": TREVISI,
 }

@@ -22,7 +22,7 @@ diameters and the iterations of a loop that does not settle.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -103,8 +103,8 @@ def material_of(cfg: Config) -> materials.Material:
     power_W = cfg.system.rated_power_W
     area = float(conductor_area_m2(power_W, u.line_voltage_V, u.transmission_loss * power_W,
                                    cfg.tether.length_m, u.conductor_resistivity_ohm_m)) / cfg.tether.lines
-    return materials.Section(chosen.name, chosen.stress_Pa, chosen.density_kg_m3, chosen.modulus_Pa,
-                             chosen.working_stress, area, u.conductor_density_kg_m3, u.insulation_factor)
+    return replace(materials.TREVISI, conductor_area_m2=area, conductor_density_kg_m3=u.conductor_density_kg_m3,
+                   insulation_factor=u.insulation_factor)
 
 
 def tether_keys(cfg: Config, diameter_m: float) -> dict[str, float]:

@@ -110,7 +110,8 @@ def is_sweep_result(path: Path) -> bool:
 
 def read_sweep(path: str | Path) -> dict:
     """Root datasets and attributes of a result file, as NumPy arrays and strings
-    (``"file"``: the path as given)."""
+    (``"file"``: the path as given; ``"case_configs"``: each length's configuration,
+    its sized line with ``[tether] sizing = "load"``)."""
     if Path(path).is_dir():
         raise ConfigError(f"{path}: is a directory, not a sweep result file")
     try:
@@ -119,6 +120,8 @@ def read_sweep(path: str | Path) -> dict:
             data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
             data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
             data["config"] = Config.from_stored(f.attrs["config_toml"])
+            data["case_configs"] = tuple(Config.from_stored(f[f"L{length_tag(L)}"].attrs["config_toml"])
+                                         for L in data["length_m"])
             data["attrs"] = {k: f.attrs[k] for k in f.attrs}
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such file") from None

@@ -13,6 +13,7 @@ import pytest
 from conftest import TINY_JOB, series_run
 
 from fem_tether import sizing
+from fem_tether.aep import sweep_aep
 from fem_tether.cli import main
 from fem_tether.config import ConfigError, load_config
 from fem_tether.evaluate import run_task
@@ -190,6 +191,10 @@ def test_a_sized_sweep_records_d_per_length_whatever_runs_first(sized_job, tmp_p
         stored = load_config(overrides=tomllib.loads(f["L400"].attrs["config_toml"]))
         assert stored.tether.diameter_m == data["d_m"][0]
         assert f["L400/fd"].attrs["config_toml"] == f["L400"].attrs["config_toml"]
+    energy = sweep_aep(data, allow_unchecked=True)           # each length flies its sized line
+    assert energy.fixed is not None and list(energy.fixed.length_m) == list(sized_job.lengths_m)
+    assert [c.tether.diameter_m for c in data["case_configs"]] == list(data["d_m"])
+    assert "aep_fixed_MWh" in energy.as_dict()["lengths"][0]
     reversed_order = _sweep_by_hand(sized_job, tmp_path / "b.h5", [3, 2, 1, 0])    # FD first
     for name in ("d_m", "peak_tension_N", "margin", "drag_fe_N", "drag_fd_N", "ge_fixed"):
         assert np.array_equal(data[name], reversed_order[name]), name
