@@ -67,7 +67,8 @@ def main(out_dir="out/sweep_aep") -> dict | None:
             "ge_straight": data["ge_straight"], "aep_fe_MWh": _per_length(energy.flexible, lengths),
             "aep_straight_MWh": _per_length(energy.straight, lengths), "file": out / "sweep.h5",
             "plots": write_plots(data, energy, out),
-            "text": "\n".join([sweep_text(outcome, out / "sweep.h5"), ge, aep_text(energy.as_dict())])}
+            "text": "\n".join([sweep_text(outcome, out / "sweep.h5", data["config"].tether.safety_factor), ge,
+                                aep_text(energy.as_dict())])}
 
 
 if __name__ == "__main__":

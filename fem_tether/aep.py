@@ -116,11 +116,12 @@ def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean
     return _by_length(lengths, design.theta_rad, resource, power_and_rated)
 
 
-def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource) -> AepByLength:
+def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource, cases=None) -> AepByLength:
     """AEP (eq. 5.2) and capacity factor of the configured system (any ``[system]
     model``, :mod:`fem_tether.systems.configured`) on each length, with the tether
     drag F_t per line of that length as its C_D,t
-    (:func:`fem_tether.summary.operating_tether_cd`)."""
+    (:func:`fem_tether.summary.operating_tether_cd`); ``cases``, if given, the
+    configuration of each length (a sized line's), else ``cfg`` at each length."""
     from .summary import operating_tether_cd
     from .systems.configured import from_config
 
@@ -128,7 +129,7 @@ def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource) -> Aep
     drags = np.broadcast_to(drag_N, lengths.shape)
 
     def power_and_rated(i, edges_mps):
-        case = cfg.with_length(lengths[i])
+        case = cases[i] if cases is not None else cfg.with_length(lengths[i])
         cd = operating_tether_cd(case, drags[i])
         system = from_config(case)
         return system.electrical_power_W(edges_mps, cd), system.rated_power_W(cd)
@@ -149,6 +150,7 @@ class SweepAep:
     excluded_m: tuple[float, ...]      # flexible lengths left out (failed cross-check or solve)
     unchecked_m: tuple[float, ...]     # flexible lengths kept with --allow-unchecked
     pending_m: tuple[float, ...] = ()  # lengths not finished (kept only with allow_incomplete)
+    fixed: AepByLength | None = None   # [tether] sizing = "load": the configured (unsized) line's
 
     def as_dict(self) -> dict:
         def at(result: AepByLength, length, name):
@@ -161,6 +163,7 @@ class SweepAep:
                  "cf_straight": at(self.straight, length, "capacity_factor"),
                  "aep_fe_MWh": at(self.flexible, length, "aep_MWh"),
                  "cf_fe": at(self.flexible, length, "capacity_factor"),
+                 **({"aep_fixed_MWh": at(self.fixed, length, "aep_MWh")} if self.fixed else {}),
                  "unchecked": float(length) in self.unchecked_m} for length in lengths]
         return {"lengths": rows,
                 "best_length_straight_m": self.straight.best_length_m,
@@ -176,7 +179,10 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
     Straight lines: every length with a straight-line G_e.  Flexible lines:
     the lengths whose FE run succeeded and whose cross-check passed; with
     ``allow_unchecked`` also those whose cross-check failed or did not run
-    (listed in ``unchecked_m``).  A sweep with ``pending`` lengths raises
+    (listed in ``unchecked_m``).  Each length flies its own configuration
+    (its sized line with ``[tether] sizing = "load"``); a sized sweep also gives
+    the AEP of the configured line (``fixed``: the sizing loop's first FE run,
+    not cross-checked).  A sweep with ``pending`` lengths raises
     :class:`IncompleteSweepError` naming them, unless ``allow_incomplete``
     (then they are listed in ``pending_m`` and gated like the others).
     """
@@ -195,9 +201,15 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
     has_fe = np.isfinite(drag_fe)
     keep = has_fe & (checked | allow_unchecked)
     has_straight = np.isfinite(drag_straight)
+    cases = sweep_data.get("case_configs")
+    case = np.array(cases, dtype=object) if cases is not None else None
+    drag_fixed = np.asarray(sweep_data.get("drag_fixed_N", np.full(lengths.shape, np.nan)), dtype=float)
+    has_fixed = np.isfinite(drag_fixed)
     return SweepAep(
-        straight=aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource),
-        flexible=aep_of_system(cfg, lengths[keep], drag_fe[keep], resource),
+        straight=aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource,
+                               None if case is None else case[has_straight]),
+        flexible=aep_of_system(cfg, lengths[keep], drag_fe[keep], resource, None if case is None else case[keep]),
+        fixed=aep_of_system(cfg, lengths[has_fixed], drag_fixed[has_fixed], resource) if has_fixed.any() else None,
         excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),

@@ -139,6 +139,15 @@ def cmd_simulate(args):
     return 0
 
 
+def cmd_size(args):
+    from fem_tether.sizing import size_tether
+
+    cfg = _config(args, args.length)
+    data = report.size_summary(cfg, size_tether(cfg))
+    print(report.json_text(data) if args.json else report.size_text(data))
+    return 0
+
+
 def cmd_crosscheck(args):
     from fem_tether.evaluate import run_crosscheck
 
@@ -160,11 +169,12 @@ def cmd_sweep(args):
     from fem_tether.jobs import load_job
     from fem_tether.sweep import sweep
 
-    outcome = sweep(load_job(args.job, args.system), args.out, progress=not args.json)
+    job = load_job(args.job, args.system)
+    outcome = sweep(job, args.out, progress=not args.json)
     if outcome is None:
         return 0
     print(report.json_text(report.sweep_summary(outcome, args.out)) if args.json
-          else report.sweep_text(outcome, args.out))
+          else report.sweep_text(outcome, args.out, job.config.tether.safety_factor))
     return 0 if outcome.ok else EXIT_FAILED
 
 
@@ -268,6 +278,11 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", metavar="DIR", help="write HDF5 and a ParaView time series here")
     c.add_argument("--sweep", metavar="FILE.h5",
                    help="reel-out: overlay a sweep's fixed-length F_t on the F_t(L) plot")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
+    c = command("size", cmd_size, "size the line to its peak tension, closed loop over FE runs "
+                "([tether] material, safety_factor; docs/physics.md §5)")
+    c.add_argument("--length", type=_positive_float, help="cable length [m]")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("crosscheck", cmd_crosscheck, "run the FE and the FD solver on one case and compare")

@@ -3,7 +3,9 @@
 :func:`run_crosscheck` runs the FE and the FD solver on one case and compares
 them; :func:`run_task` runs one solver of a sweep's length into the parts
 store; :func:`evaluate_length` combines a length's stored runs with the
-straight line into the values of the sweep result (F_t, G_e, cross-check).
+straight line into the values of the sweep result (F_t, G_e, cross-check,
+the line's diameter, peak tension and margin; with a sized line also the F_t
+and G_e of the configured one, the sizing loop's first run).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from fem_tether.errors import SolverDivergedError
 from fem_tether.fe import solver as fe_solver
 from fem_tether.jobs import Task
 from fem_tether.quantities import names
+from fem_tether.sizing import margin, peak_tension_N
 from fem_tether.store import PartsStore
 from fem_tether.summary import operating_ge
 
@@ -60,11 +63,12 @@ def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):
 def run_task(store: PartsStore, task: Task) -> str:
     """Run one task unless a matching successful part exists; return
     ``"reused"`` (a stored part matched), ``"ok"`` or ``"failed"``."""
-    cfg = store.job.config_for(task.length_m)
     key = store.inputs_key(task.length_m)
     if store.status(task, key) == "ok":
         return "reused"
+    cfg = store.job.config_for(task.length_m)
     try:
+        cfg = store.config_for(task.length_m)       # with [tether] sizing = "load": sized now or stored
         run = simulator(task.solver)(cfg)
     except SolverDivergedError as exc:
         store.write_failure(task, cfg, key, f"{task.solver.upper()}: {exc}")
@@ -101,7 +105,7 @@ def evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, d
 
 def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:
     job = store.job
-    cfg = job.config_for(length_m)
+    cfg = store.stored_config(length_m)
     key = store.inputs_key(length_m)
     res = LengthResult(length_m)
     v = dict.fromkeys(ROOT_DATASETS, float("nan"))
@@ -124,6 +128,13 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
         v["drag_fe_N"] = runs["fe"].mean("drag_N")
         v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
         v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"])
+        v["peak_tension_N"] = peak_tension_N(runs["fe"])
+        v["margin"] = margin(cfg, v["peak_tension_N"])
+    v["d_m"] = cfg.tether.diameter_m
+    sizing = store.stored_sizing(length_m) if cfg.tether.sizing == "load" else None
+    if sizing:
+        v["drag_fixed_N"] = sizing.fixed_drag_N
+        v["ge_fixed"] = operating_ge(job.config_for(length_m), sizing.fixed_drag_N)
     if "fd" in runs:
         v["drag_fd_N"] = runs["fd"].mean("drag_N")
         v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")

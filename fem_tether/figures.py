@@ -50,8 +50,11 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
                 curves[f"{lengths[i]:g} m, {name}"] = (wind, system.electrical_power_W(wind, cd),
                                                        system.active_power_W(wind, cd))
     files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png")
-    files["aep"] = plots.plot_aep({"straight": energy.straight, "flexible": energy.flexible},
-                                  directory / "aep_vs_length.png")
+    aep = {"straight": energy.straight, "flexible": energy.flexible}
+    if energy.fixed is not None:
+        aep = {"straight": energy.straight, "flexible, configured d": energy.fixed,
+               "flexible, sized d": energy.flexible}
+    files["aep"] = plots.plot_aep(aep, directory / "aep_vs_length.png")
     return files
 
 

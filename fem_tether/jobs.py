@@ -70,11 +70,6 @@ class Job:
         """The configuration of one of the job's lengths."""
         return self.configs[float(length_m)]
 
-    @cached_property
-    def case_tomls(self) -> dict[float, str]:
-        """Each length's configuration as TOML (written into, and keying, every assembly)."""
-        return {L: cfg.to_toml() for L, cfg in self.configs.items()}
-
 
 def _job_error(key, value, problem):
     return ConfigError(f"[sweep] {key} = {toml_value(value)}: {problem}")

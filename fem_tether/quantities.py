@@ -55,6 +55,11 @@ QUANTITIES = (
     Quantity("sweep", "kite_tension_fd_N", "N", "mean kite-end tension, FD solver"),
     Quantity("sweep", "rel_diff_drag", "1", "|F_t,FD / F_t,FE - 1| of the cross-check"),
     Quantity("sweep", "rel_diff_shape", "1", "largest distance between the FE and FD lines / L"),
+    Quantity("sweep", "d_m", "m", "line diameter flown: [tether] diameter_m, or the sized one ([tether] sizing = load)"),
+    Quantity("sweep", "peak_tension_N", "N", "largest tension at either end of the line over the averaged periods, FE solver"),
+    Quantity("sweep", "margin", "1", "breaking load of the line ([tether] material) over peak_tension_N"),
+    Quantity("sweep", "drag_fixed_N", "N", "sizing = load: mean F_t per line of the configured (unsized) line, FE solver"),
+    Quantity("sweep", "ge_fixed", "1", "sizing = load: G_e with drag_fixed_N"),
     Quantity("sweep", "status", "", "ok, pending (a task has not run) or failed"),
     Quantity("sweep", "error", "", "the failed tasks' error messages, or empty"),
 )

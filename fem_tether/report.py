@@ -13,6 +13,7 @@ import numpy as np
 
 from fem_tether.config import Config
 from fem_tether.crosscheck import QUANTITIES, CrossCheck, limits_of
+from fem_tether.sizing import Sizing, breaking_load_N, margin, short_of_margin, sized_case
 
 
 def json_text(data) -> str:
@@ -98,6 +99,50 @@ def curves_text(data: dict) -> str:
     return "\n".join(lines)
 
 
+def margin_warnings(margins, safety_factor: float) -> list[str]:
+    """A warning line for each (length, margin) short of the safety factor
+    (:func:`fem_tether.sizing.short_of_margin`)."""
+    return [f"warning: L = {length:g} m: margin {m:.3f} is below the safety factor {safety_factor:g} "
+            "(the line's breaking load over its peak tension; [tether] sizing = \"load\" sizes it)"
+            for length, m in margins if short_of_margin(m, safety_factor)]
+
+
+def size_summary(cfg: Config, sizing: Sizing) -> dict:
+    """``fem-tether size --json``: the sized line, its peak tension and margin, the loop,
+    and the configured line's peak and margin (the loop's first run)."""
+    sized = sized_case(cfg, sizing)
+    line = sized.tether
+    return {"length_m": cfg.tether.length_m, "material": sizing.material,
+            "safety_factor": sizing.safety_factor, "diameter_m": line.diameter_m,
+            "linear_density_kg_m": line.linear_density_kg_m, "axial_stiffness_N": line.axial_stiffness_N,
+            "peak_tension_N": sizing.peak_tension_N, "breaking_load_N": breaking_load_N(sized),
+            "margin": margin(sized, sizing.peak_tension_N),
+            "iterations": sizing.iterations, "change": sizing.change,
+            "diameters_m": list(sizing.diameters_m), "peak_tensions_N": list(sizing.peak_tensions_N),
+            "fixed": {"diameter_m": cfg.tether.diameter_m, "peak_tension_N": sizing.peak_tensions_N[0],
+                      "margin": margin(cfg, sizing.peak_tensions_N[0]), "mean_drag_N": sizing.fixed_drag_N}}
+
+
+def size_text(s: dict) -> str:
+    """``fem-tether size``: the sized line and the loop (``s``: :func:`size_summary`)."""
+    fixed = s["fixed"]
+    return "\n".join([
+        f"tether sized to its peak tension, L = {s['length_m']:g} m, {s['material']}, "
+        f"safety factor {s['safety_factor']:g}",
+        f"  diameter                  {1e3 * s['diameter_m']:10.3f} mm",
+        f"  mass per metre            {s['linear_density_kg_m']:10.4f} kg/m",
+        f"  EA                        {s['axial_stiffness_N']:10.4g} N",
+        f"  peak tension              {s['peak_tension_N']:10.1f} N",
+        f"  breaking load             {s['breaking_load_N']:10.1f} N",
+        f"  margin                    {s['margin']:10.3f}",
+        f"  iterations (FE runs)      {s['iterations']:10d}   d: "
+        + " -> ".join(f"{1e3 * d:.4f}" for d in s["diameters_m"])
+        + f" mm (last change {100 * s['change']:.3f} %)",
+        f"  configured line: d = {1e3 * fixed['diameter_m']:.3f} mm, peak tension "
+        f"{fixed['peak_tension_N']:.1f} N, margin {fixed['margin']:.3f}, mean F_t {fixed['mean_drag_N']:.1f} N",
+        *margin_warnings([(s["length_m"], s["margin"])], s["safety_factor"])])
+
+
 def simulate_text(s: dict, cfg: Config, written: bool) -> str:
     """``fem-tether simulate``: the run's summary (:func:`fem_tether.summary.run_summary`)
     and, if ``written``, its files."""
@@ -111,7 +156,13 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
              f"  mean kite-end tension     {s['mean_kite_tension_N']:10.1f} N",
              f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m",
              f"  G_e                       {s['ge']:10.2f}",
-             f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}"]
+             f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}",
+             f"  peak tension              {s['peak_tension_N']:10.1f} N   (d = {1e3 * s['diameter_m']:.3f} mm "
+             f"{s['material']}, breaking load {s['breaking_load_N']:.1f} N, margin {s['margin']:.3f})"]
+    if "sizing_diameters_m" in s:
+        lines.append(f"  sized to the peak tension: d = "
+                     f"{' -> '.join(f'{1e3 * d:.3f}' for d in s['sizing_diameters_m'])} mm")
+    lines += margin_warnings([(s["length_m"], s["margin"])], s["safety_factor"])
     if cfg.winch.reel_out != "none":
         lines.append(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
                      f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line (the means above mix lengths; "
@@ -216,15 +267,19 @@ def sweep_summary(outcome, out) -> dict:
                 for r in outcome.lengths]}
 
 
-def sweep_text(outcome, out) -> str:
-    """``fem-tether sweep``: F_t of each length, both solvers and the straight line."""
+def sweep_text(outcome, out, safety_factor: float) -> str:
+    """``fem-tether sweep``: F_t of each length, both solvers and the straight line, the
+    line's diameter and margin (a warning where it is short of ``safety_factor``)."""
     lines = [f"sweep of {len(outcome.lengths)} lengths -> {out} ({reused(outcome)})"]
     for r in outcome.lengths:
         v = r.values
         lines.append(f"  L = {r.length_m:6g} m: F_t FE {v['drag_fe_N']:9.1f} N, FD {v['drag_fd_N']:9.1f} N, "
                      f"straight {v['drag_straight_N']:9.1f} N, cross-check "
-                     f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}"
+                     f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}, d {1e3 * v['d_m']:.3f} mm, "
+                     f"margin {v['margin']:.3f}"
                      + (f"  [{r.error}]" if r.status != "ok" else ""))
+    lines += margin_warnings([(r.length_m, r.values["margin"]) for r in outcome.lengths],
+                             safety_factor)
     return "\n".join(lines + [m for m in (peak_memory(outcome),) if m])
 
 
@@ -275,6 +330,12 @@ def summary_table(data: dict, energy) -> str:
     if energy.unchecked_m:
         lines.append("kept without a passed cross-check (--allow-unchecked): "
                      + _lengths(energy.unchecked_m))
+    cfg = data["config"]
+    if cfg.tether.sizing == "load":
+        lines.append(f"lines sized to their peak tension ({cfg.tether.material}, safety factor "
+                     f"{cfg.tether.safety_factor:g}): d = "
+                     + ", ".join(f"{1e3 * d:.2f}" for d in data["d_m"]) + " mm")
+    lines += margin_warnings(zip(data["length_m"], data["margin"]), cfg.tether.safety_factor)
     return "\n".join(lines)
 
 

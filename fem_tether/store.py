@@ -7,23 +7,33 @@ from (:func:`inputs_key`: configuration, package version and the contents of
 the files it names); re-running the same job reuses the parts whose key
 matches.  A task whose solve failed is stored too, as attributes only (its
 status and error), so the other tasks go on and the failure is reported.
+
+With ``[tether] sizing = "load"`` a length's tasks run its sized line
+(:mod:`fem_tether.sizing`): the first task of the length to need it sizes the
+line under the length's lock and stores the result (``L<length>_size.json``,
+keyed like the parts); a task of the same length on another rank waits for
+the lock and reads it.  The sizing is a function of the length's
+configuration alone, so the sized line is the same whatever the number of
+ranks and whichever rank sizes it.
 """
 
 from __future__ import annotations
 
 import fcntl
 import hashlib
+import json
 from contextlib import contextmanager
 from pathlib import Path
 
 import h5py
 
 from fem_tether import __version__
-from fem_tether.atomic import atomic_path
+from fem_tether.atomic import atomic_path, write_json
 from fem_tether.config import FILE_KEYS, NOT_FILES, Config
-from fem_tether.jobs import Job, Task
+from fem_tether.jobs import Job, Task, length_tag
 from fem_tether.output import read_run_hdf5, write_run_hdf5
 from fem_tether.results import TetherRun
+from fem_tether.sizing import Sizing, size_tether, sized_case
 
 
 def parts_dir(out: Path) -> Path:
@@ -63,6 +73,44 @@ class PartsStore:
         """The inputs key of the tasks of one length."""
         return inputs_key(self.job.config_for(length_m))
 
+    def sizing_path(self, length_m: float) -> Path:
+        return self.directory / f"L{length_tag(length_m)}_size.json"
+
+    def stored_sizing(self, length_m: float) -> Sizing | None:
+        """The stored sizing of a length if its inputs match the job's, else None."""
+        try:
+            data = json.loads(self.sizing_path(length_m).read_text())
+        except (OSError, ValueError):
+            return None
+        if data.get("inputs_key") != self.inputs_key(length_m):
+            return None
+        return Sizing.from_dict(data["sizing"])
+
+    def sizing(self, length_m: float) -> Sizing:
+        """The sizing of a length: stored, or computed now and stored (under the
+        length's lock, so that it is computed once)."""
+        with self.lock(f".L{length_tag(length_m)}_size.lock"):
+            stored = self.stored_sizing(length_m)
+            if stored is not None:
+                return stored
+            sizing = size_tether(self.job.config_for(length_m))
+            write_json(self.sizing_path(length_m), {"inputs_key": self.inputs_key(length_m),
+                                                   "sizing": sizing.to_dict()})
+            return sizing
+
+    def config_for(self, length_m: float) -> Config:
+        """The configuration the tasks of a length run: the job's, or with
+        ``[tether] sizing = "load"`` its sized line (sized now if not stored)."""
+        cfg = self.job.config_for(length_m)
+        return sized_case(cfg, self.sizing(length_m)) if cfg.tether.sizing == "load" else cfg
+
+    def stored_config(self, length_m: float) -> Config:
+        """The configuration of a length's stored runs: the sized line if its sizing
+        is stored, else the job's (a length not sized yet has no runs)."""
+        cfg = self.job.config_for(length_m)
+        sizing = self.stored_sizing(length_m) if cfg.tether.sizing == "load" else None
+        return sized_case(cfg, sizing) if sizing else cfg
+
     def status(self, task: Task, key: str) -> str | None:
         """Status of the stored part of ``task`` if its inputs match ``key``, else None."""
         try:
@@ -80,9 +128,9 @@ class PartsStore:
 
     def read(self, task: Task, snapshots: bool = True) -> TetherRun:
         """The stored run of a task whose part matches the job's inputs (its
-        configuration is the job's, not parsed again); ``snapshots=False``: the
+        configuration is the length's, :meth:`stored_config`, not parsed again); ``snapshots=False``: the
         series only."""
-        return read_run_hdf5(self.path(task), self.job.config_for(task.length_m), snapshots)
+        return read_run_hdf5(self.path(task), self.stored_config(task.length_m), snapshots)
 
     def write_run(self, task: Task, run: TetherRun, key: str) -> None:
         write_run_hdf5(run, self.path(task), extra_attrs={"status": "ok", "inputs_key": key})
@@ -101,9 +149,11 @@ class PartsStore:
         return sum(self.path(t).exists() for t in self.job.tasks)
 
     @contextmanager
-    def lock(self):
-        """One assembler at a time (ranks finishing tasks together); released on exit or kill."""
-        with open(self.directory / ".assemble.lock", "a") as fh:
+    def lock(self, name: str = ".assemble.lock"):
+        """One assembler (or sizer of a length) at a time (ranks finishing tasks
+        together); released on exit or kill."""
+        self.directory.mkdir(parents=True, exist_ok=True)
+        with open(self.directory / name, "a") as fh:
             fcntl.flock(fh, fcntl.LOCK_EX)
             yield
 

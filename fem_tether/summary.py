@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fem_tether import atmosphere, kite, straight
+from fem_tether import atmosphere, kite, sizing, straight
 from fem_tether.config import Config
 from fem_tether.power import operating_altitude_m
 from fem_tether.systems.tether_drag import flexible_tether_cd
@@ -39,9 +39,11 @@ def operating_tether_cd(cfg: Config, drag_N) -> float:
 
 
 def run_summary(run, cfg: Config) -> dict:
-    """Period means, straight-line comparison and G_e of one tether run."""
+    """Period means, straight-line comparison, G_e, and the line's peak tension,
+    breaking load and margin (:mod:`fem_tether.sizing`) of one tether run."""
     means = run.means()
     ge = operating_ge(cfg, means["mean_drag_N"])
+    peak = sizing.peak_tension_N(run)
     return {
         "solver": run.solver,
         "length_m": run.length_m,
@@ -51,6 +53,12 @@ def run_summary(run, cfg: Config) -> dict:
         "mean_kite_tension_N": means["mean_kite_tension_N"],
         "mean_kite_radius_m": means["mean_kite_radius_m"],
         "max_strain": float(np.max(run.series["max_strain"])),
+        "diameter_m": cfg.tether.diameter_m,
+        "material": cfg.tether.material,
+        "safety_factor": cfg.tether.safety_factor,
+        "peak_tension_N": peak,
+        "breaking_load_N": sizing.breaking_load_N(cfg),
+        "margin": sizing.margin(cfg, peak),
         "straight_drag_N": straight.from_config(cfg, with_wind=True).drag_N,
         "ge": float(ge),
         "length_end_m": float(run.series["length_m"][-1]),

@@ -13,11 +13,12 @@ each dataset's ``units`` and ``description`` attributes::
     length_m, drag_fe_N, drag_fd_N, drag_straight_N, ge_fe, ge_straight,
     crosscheck_ok (int8: 1 ok, 0 failed or not run), mean_phi_deg,
     kite_tension_fe_N, kite_tension_fd_N, rel_diff_drag, rel_diff_shape,
-    status ("ok" | "pending" | "failed"), error (message or "")
+    d_m, peak_tension_N, margin, drag_fixed_N, ge_fixed, status ("ok" | "pending" | "failed"), error (message or "")
 
 root attributes ``config_toml`` (the job's configuration), ``job_toml``,
 ``fem_tether_version``, ``n_ranks``, ``created_utc``; one group ``L<length>``
-per length with its configuration and status as attributes and subgroups
+per length with its configuration (its sized line, with ``[tether] sizing =
+"load"``) and status as attributes and subgroups
 ``fe`` and ``fd`` holding the whole run as :mod:`fem_tether.output` writes it
 (series, means, snapshots).
 """
@@ -34,7 +35,7 @@ from fem_tether import __version__
 from fem_tether.atomic import OutputError, atomic_path, check_writable
 from fem_tether.config import Config, ConfigError
 from fem_tether.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
-from fem_tether.jobs import Job, length_tag
+from fem_tether.jobs import length_tag
 from fem_tether.quantities import attributes
 from fem_tether.store import PartsStore, parts_dir
 
@@ -69,11 +70,12 @@ def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
         results = [evaluate_length(store, L) for L in store.job.lengths_m]
         with atomic_path(store.out) as tmp:
             with h5py.File(tmp, "w") as f:
-                _write_result(f, store.job, n_ranks, results)
+                _write_result(f, store, n_ranks, results)
     return [r for r, _ in results]
 
 
-def _write_result(f: h5py.File, job: Job, n_ranks: int, results) -> None:
+def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> None:
+    job = store.job
     f.attrs.update(config_toml=job.config.to_toml(), job_toml=job.toml,
                    fem_tether_version=__version__, n_ranks=n_ranks,
                    created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
@@ -86,7 +88,7 @@ def _write_result(f: h5py.File, job: Job, n_ranks: int, results) -> None:
     for r, parts in results:
         group = f.create_group(f"L{length_tag(r.length_m)}")
         group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
-                           config_toml=job.case_tomls[r.length_m],
+                           config_toml=store.stored_config(r.length_m).to_toml(),
                            description=GROUP_DESCRIPTIONS["length"])
         for solver, path in parts.items():
             with h5py.File(path, "r") as src:      # a failed task's part: attributes only
@@ -108,7 +110,8 @@ def is_sweep_result(path: Path) -> bool:
 
 def read_sweep(path: str | Path) -> dict:
     """Root datasets and attributes of a result file, as NumPy arrays and strings
-    (``"file"``: the path as given)."""
+    (``"file"``: the path as given; ``"case_configs"``: each length's configuration,
+    its sized line with ``[tether] sizing = "load"``)."""
     if Path(path).is_dir():
         raise ConfigError(f"{path}: is a directory, not a sweep result file")
     try:
@@ -117,6 +120,8 @@ def read_sweep(path: str | Path) -> dict:
             data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
             data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
             data["config"] = Config.from_stored(f.attrs["config_toml"])
+            data["case_configs"] = tuple(Config.from_stored(f[f"L{length_tag(L)}"].attrs["config_toml"])
+                                         for L in data["length_m"])
             data["attrs"] = {k: f.attrs[k] for k in f.attrs}
     except FileNotFoundError:
         raise ConfigError(f"{path}: no such file") from None

@@ -53,7 +53,8 @@ def test_crosscheck_text_lists_each_quantity_with_its_tolerance():
 
 
 def _outcome():
-    values = {"drag_fe_N": 4000.0, "drag_fd_N": 4010.0, "drag_straight_N": 5100.0, "crosscheck_ok": 1}
+    values = {"drag_fe_N": 4000.0, "drag_fd_N": 4010.0, "drag_straight_N": 5100.0, "crosscheck_ok": 1,
+              "d_m": 0.011, "margin": 1.25}
     return SimpleNamespace(n_ranks=2, tasks=4, reused=1, lengths=[
         LengthResult(400.0, values=values),
         LengthResult(800.0, "failed", "FE: diverged", values | {"drag_fe_N": float("nan"),
@@ -63,11 +64,16 @@ def _outcome():
 def test_sweep_text_and_summary():
     outcome = _outcome()
     assert reused(outcome) == "1 of 4 tasks reused from the stored parts, 3 run"
-    assert sweep_text(outcome, "r.h5").splitlines() == [
+    assert sweep_text(outcome, "r.h5", 1.2).splitlines() == [
         "sweep of 2 lengths -> r.h5 (1 of 4 tasks reused from the stored parts, 3 run)",
-        "  L =    400 m: F_t FE    4000.0 N, FD    4010.0 N, straight    5100.0 N, cross-check ok",
+        "  L =    400 m: F_t FE    4000.0 N, FD    4010.0 N, straight    5100.0 N, cross-check ok, "
+        "d 11.000 mm, margin 1.250",
         "  L =    800 m: F_t FE       nan N, FD    4010.0 N, straight    5100.0 N, cross-check "
-        "FAILED/not run  [FE: diverged]"]
+        "FAILED/not run, d 11.000 mm, margin 1.250  [FE: diverged]"]
+    short = sweep_text(outcome, "r.h5", 1.3).splitlines()
+    assert short[-2:] == [f"warning: L = {L} m: margin 1.250 is below the safety factor 1.3 (the line's "
+                          "breaking load over its peak tension; [tether] sizing = \"load\" sizes it)"
+                          for L in (400, 800)]
     summary = sweep_summary(outcome, "r.h5")
     assert json.loads(json_text(summary)) == summary         # NaN written as null: valid JSON
     assert summary["lengths"][1]["drag_fe_N"] is None and summary["lengths"][1]["error"] == "FE: diverged"
@@ -118,6 +124,6 @@ def test_summary_table_of_a_passed_and_a_failed_cross_check(data):
 def test_peak_memory_per_rank_in_the_sweep_texts():
     outcome = _outcome()
     outcome.peak_rss_MiB = (180.4, 201.6)
-    assert sweep_text(outcome, "r.h5").splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
+    assert sweep_text(outcome, "r.h5", 1.2).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
     summary = sweep_summary(outcome, "r.h5")
     assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6

@@ -102,6 +102,15 @@ class Tether(Section):
                                        positive)
     damping_time_s: float = setting(0.0, "s", "Kelvin-Voigt retardation time eta, T = EA (eps + eta deps/dt)",
                                     non_negative)
+    sizing: str = setting("fixed", "-", "'fixed' (diameter_m, linear_density_kg_m, axial_stiffness_N as given) "
+                          "or 'load' (all three sized in material to the FE run's peak tension, from diameter_m "
+                          "on; fem_tether.sizing)", one_of("fixed", "load"))
+    material: str = setting("sk99", "-", "line material for sizing and the margin: 'sk99' (Dyneema, Roselli "
+                            "2016 Tab. 2.1), 'steel' (345 MPa working stress) or 'carbon' (2137 MPa; both "
+                            "Lourenco 2014) or 'trevisi' (Dyneema, 1.5 GPa strength, fly-gen conductor; "
+                            "Trevisi 2019)", one_of("sk99", "steel", "carbon", "trevisi"))
+    safety_factor: float = setting(1.2, "-", "breaking load over the peak tension a line is sized to (Fagiano "
+                                   "et al. 2010: 1.2)", at_least(1))
 
 
 @dataclass(frozen=True)
