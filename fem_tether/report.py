@@ -100,11 +100,14 @@ def curves_text(data: dict) -> str:
 
 
 def margin_warnings(margins, safety_factor: float) -> list[str]:
-    """A warning line for each (length, margin) short of the safety factor
-    (:func:`fem_tether.sizing.short_of_margin`)."""
-    return [f"warning: L = {length:g} m: margin {m:.3f} is below the safety factor {safety_factor:g} "
-            "(the line's breaking load over its peak tension; [tether] sizing = \"load\" sizes it)"
-            for length, m in margins if short_of_margin(m, safety_factor)]
+    """One warning line naming the (length, margin) pairs short of the safety factor
+    (:func:`fem_tether.sizing.short_of_margin`); none if every margin holds."""
+    short = [(length, m) for length, m in margins if short_of_margin(m, safety_factor)]
+    if not short:
+        return []
+    where = ", ".join(f"{m:.3f} at {length:g} m" for length, m in short)
+    return [f"warning: margin below the safety factor {safety_factor:g}: {where} (the line's breaking load "
+            "over its peak tension; [tether] sizing = \"load\" sizes it)"]
 
 
 def size_summary(cfg: Config, sizing: Sizing) -> dict:

@@ -147,7 +147,7 @@ def test_cli_size_text_and_a_short_margin_warns(capsys):
     assert "margin" in out and "iterations (FE runs)" in out and "warning" not in out
     assert main(["simulate", "--length", "400", "--system", "kitegen"]) == 0
     out = capsys.readouterr().out
-    assert "margin 1.100" in out and "warning: L = 400 m: margin 1.100" in out   # 11 mm: 165 kN over 150 kN
+    assert "margin 1.100" in out and "below the safety factor 1.2: 1.100 at 400 m" in out   # 11 mm: 165 kN over 150 kN
 
 
 SIZED_JOB = TINY_JOB + """[tether]
