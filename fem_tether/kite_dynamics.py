@@ -32,6 +32,7 @@ from __future__ import annotations
 import csv
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -105,7 +106,8 @@ class Polar:
             raise PolarError(f"{name}: cd = {cd[np.argmax(cd <= 0.0)]:g} at alpha_deg = "
                              f"{alpha[np.argmax(cd <= 0.0)]:g}: must be > 0")
         alpha_rad = np.radians(alpha)
-        object.__setattr__(self, "_curves", (PchipInterpolator(alpha_rad, cl), PchipInterpolator(alpha_rad, cd)))
+        lift, drag = PchipInterpolator(alpha_rad, cl), PchipInterpolator(alpha_rad, cd)
+        object.__setattr__(self, "_curves", (lift, drag, lift.derivative(), drag.derivative()))
 
     def coefficients(self, alpha_rad: float) -> tuple[float, float, float, float]:
         """(C_L, C_D, dC_L/dα, dC_D/dα) at α [rad], slopes per radian."""
@@ -113,10 +115,9 @@ class Polar:
         alpha_deg = float(np.degrees(alpha_rad))
         if not low <= alpha_deg <= high:
             raise PolarError(f"angle of attack {alpha_deg:.3f} deg is outside the polar "
-                             f"{self.source or ''} ({low:g} to {high:g} deg)".replace("  ", " "))
-        lift, drag = self._curves
-        return (float(lift(alpha_rad)), float(drag(alpha_rad)),
-                float(lift.derivative()(alpha_rad)), float(drag.derivative()(alpha_rad)))
+                             f"{self.source + ' ' if self.source else ''}({low:g} to {high:g} deg)")
+        cl, cd, dcl, dcd = (float(curve(alpha_rad)) for curve in self._curves)
+        return cl, cd, dcl, dcd
 
 
 POLAR_HEADER = ("alpha_deg", "cl", "cd")
@@ -222,14 +223,24 @@ def _cross_matrix(a):
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-def _air_force(kite, apparent, direction, rho, roll_rad, derivatives):
-    """Eqs. (1)–(3) for W_e = ``apparent`` and a unit tether direction e; with
-    ``derivatives`` also ∂F/∂W_e, ∂F/∂e and ∂F/∂ψ (else ``None``)."""
+class _Air(NamedTuple):
+    force: np.ndarray
+    turbine_power: float
+    alpha: float
+    cl: float
+    cd: float
+    d_apparent: np.ndarray
+    d_direction: np.ndarray
+    d_roll: np.ndarray
+
+
+def _air_force(kite, apparent, direction, rho, roll_rad) -> _Air:
+    """Eqs. (1)–(3) for W_e = ``apparent`` and a unit tether direction e, and
+    their derivatives ∂F/∂W_e, ∂F/∂e and ∂F/∂ψ (a few 3 × 3 products: always)."""
     speed = float(np.linalg.norm(apparent))
     if speed == 0.0:
         cl, cd, _, _ = kite.aerodynamics.coefficients(kite.base_aoa_rad)
-        zero = np.zeros((3, 3)) if derivatives else None
-        return np.zeros(3), 0.0, kite.base_aoa_rad, cl, cd, zero, zero, (np.zeros(3) if derivatives else None)
+        return _Air(np.zeros(3), 0.0, kite.base_aoa_rad, cl, cd, np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3))
     w_hat = apparent / speed
     c = float(w_hat @ direction)
     n = np.sqrt(max(1.0 - c * c, 0.0))
@@ -247,8 +258,6 @@ def _air_force(kite, apparent, direction, rho, roll_rad, derivatives):
     drag_factor = 1.0 + kite.turbine_factor
     force = k * (drag_factor * cd * speed * apparent + cl * speed**2 * lift_dir)
     turbine_power = kite.turbine_factor * cd * k * speed**3
-    if not derivatives:
-        return force, turbine_power, alpha, cl, cd, None, None, None
     # differentials as row vectors / matrices against W_e (…_w) and e (…_e)
     d_speed = w_hat
     d_what = (_EYE - np.outer(w_hat, w_hat)) / speed
@@ -268,7 +277,7 @@ def _air_force(kite, apparent, direction, rho, roll_rad, derivatives):
     jac_e = k * (drag_factor * np.outer(apparent, dcd * speed * dalpha_e)
                  + np.outer(lift_dir, dcl * speed**2 * dalpha_e) + cl * speed**2 * dlift_e)
     jac_roll = k * cl * speed**2 * (-sin_psi * lift0 + cos_psi * side)
-    return force, turbine_power, alpha, cl, cd, jac_w, jac_e, jac_roll
+    return _Air(force, turbine_power, alpha, cl, cd, jac_w, jac_e, jac_roll)
 
 
 def _tether_direction(r, tether):
@@ -291,8 +300,9 @@ def aerodynamic_force_N(kite: PointMassKite, r, v, wind: WindProfile, air: AirMo
     direction, _ = _tether_direction(r, tether)
     apparent = wind.velocity_mps(r[2]) - np.asarray(v, dtype=float)
     rho = float(air.density_kg_m3(r[2]))
-    force, power, alpha, cl, cd, _, _, _ = _air_force(kite, apparent, direction, rho, roll_rad, False)
-    return AerodynamicForce(force, power, apparent, alpha, cl, cd)
+    air_force = _air_force(kite, apparent, direction, rho, roll_rad)
+    return AerodynamicForce(air_force.force, air_force.turbine_power, apparent, air_force.alpha,
+                            air_force.cl, air_force.cd)
 
 
 def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
@@ -311,13 +321,14 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
     direction, length = _tether_direction(r, tether)
     apparent = wind.velocity_mps(r[2]) - np.asarray(v, dtype=float)
     rho = float(air.density_kg_m3(r[2]))
-    force, _, _, _, _, jac_w, jac_e, jac_roll = _air_force(kite, apparent, direction, rho, roll_rad, True)
+    air_force = _air_force(kite, apparent, direction, rho, roll_rad)
+    force, jac_w, jac_e = air_force.force, air_force.d_apparent, air_force.d_direction
     jac_d = jac_e @ (_EYE - np.outer(direction, direction)) / length
     jac_r = (float(wind.shear_per_s(r[2])) * np.outer(jac_w @ _E_X, _E_Z)
              + np.outer(force / rho, float(air.density_gradient_kg_m4(r[2])) * _E_Z))
     if tether is None:
         jac_r = jac_r + jac_d
-    return AerodynamicJacobian(velocity=-jac_w, position=jac_r, tether=jac_d, roll=jac_roll)
+    return AerodynamicJacobian(velocity=-jac_w, position=jac_r, tether=jac_d, roll=air_force.d_roll)
 
 
 def gravity_force_N(kite: PointMassKite, g_mps2: float = G_MPS2) -> np.ndarray:
@@ -414,15 +425,17 @@ def steady_crosswind(kite: PointMassKite, wind_mps: float, theta_rad: float, phi
     k = 0.5 * rho_kg_m3 * kite.area_m2
 
     def forces(speed):
+        """W_e, eq. (1)'s force and the lumped tether drag at the crosswind speed V_k."""
         apparent = wind - speed * e_phi - reel_out_mps * e_r
-        force, turbine_power, alpha, cl, cd, _, _, _ = _air_force(kite, apparent, e_r, rho_kg_m3, 0.0, False)
-        return apparent, force, k * tether_cd * float(np.linalg.norm(apparent)) * apparent, turbine_power, alpha, cl, cd
+        drag = k * tether_cd * float(np.linalg.norm(apparent)) * apparent
+        return apparent, _air_force(kite, apparent, e_r, rho_kg_m3, 0.0), drag
 
     def across(speed):
         """(F_aero + F_t)·e_w / (q A): < 0 while the lift drives the kite faster."""
-        apparent, force, drag, *_ = forces(speed)
+        apparent, air_force, drag = forces(speed)
         crosswind = apparent - (apparent @ e_r) * e_r
-        return float((force + drag) @ crosswind) / (k * float(apparent @ apparent) * float(np.linalg.norm(crosswind)))
+        return float((air_force.force + drag) @ crosswind) / (
+            k * float(apparent @ apparent) * float(np.linalg.norm(crosswind)))
 
     high = 64.0 * along
     while across(high) < 0.0:
@@ -436,12 +449,12 @@ def steady_crosswind(kite: PointMassKite, wind_mps: float, theta_rad: float, phi
             raise ValueError(f"no crosswind flight along e_phi at theta_rad = {theta_rad!r}, phi_rad = "
                              f"{phi_rad!r}: the drag exceeds the lift's forward pull at every speed")
     speed = brentq(across, low, high, xtol=1e-14 * high, rtol=4 * np.finfo(float).eps)
-    apparent, force, drag, turbine_power, alpha, cl, cd = forces(speed)
-    tension = float((force + drag) @ e_r)
+    apparent, air_force, drag = forces(speed)
+    tension = float((air_force.force + drag) @ e_r)
     velocity = speed * e_phi + reel_out_mps * e_r
     return SteadyCrosswind(
         kite_speed_mps=float(speed), crosswind_speed_mps=float(np.linalg.norm(apparent - (apparent @ e_r) * e_r)),
         apparent_speed_mps=float(np.linalg.norm(apparent)), tension_N=tension,
-        angle_of_attack_rad=float(alpha), cl=cl, cd=cd, turbine_power_W=float(turbine_power),
-        winch_power_W=tension * reel_out_mps, velocity_mps=velocity, apparent_wind_mps=apparent,
-        aerodynamic_N=force, tether_drag_N=drag, tether_direction=e_r)
+        angle_of_attack_rad=float(air_force.alpha), cl=air_force.cl, cd=air_force.cd,
+        turbine_power_W=float(air_force.turbine_power), winch_power_W=tension * reel_out_mps,
+        velocity_mps=velocity, apparent_wind_mps=apparent, aerodynamic_N=air_force.force, tether_drag_N=drag, tether_direction=e_r)
