@@ -155,9 +155,12 @@ class Steering:
     """The path-following law of the module docstring for a kite of mass m.
 
     Tuning (docs/steering.md): ``lookahead_m`` ℓ sets the closed-loop double
-    pole −2V/ℓ; :meth:`for_path` takes ℓ = R_min/2, half the path's smallest
-    turn radius, so an error decays to 41 % ((1 + 2) e⁻²) over a distance flown
-    of ℓ, half the tightest turn radius.  The limits bound ψ (seed 003 §3.2.1 flies −7° … 47°).
+    pole −ω = −2V/ℓ; :meth:`for_path` takes ℓ = R_min/2, half the path's
+    smallest turn radius, so an error decays to 41 % ((1 + 2) e⁻²) over a
+    distance flown of ℓ.  A roll actuator of lag τ_a (or a sampled law, τ_a ≈
+    half the sampling step) keeps the loop stable iff ω τ_a < 2 (Routh on
+    τ_a s³ + s² + 2ωs + ω²): take ℓ ≥ 4 V τ_a (ω τ_a ≤ 0.5) when that is larger.
+    The limits bound ψ (seed 003 §3.2.1 flies −7° … 47°).
     """
 
     path: object

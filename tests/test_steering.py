@@ -5,7 +5,8 @@ point-mass kite on a rigid straight tether of length L (motion on the sphere),
 lift ⊥ apparent wind tilted by the roll ψ about it, drag along it (constant
 C_L, C_D; the tether's and turbines' drag lumped into C_D), uniform wind along
 x, gravity on; integrated by ``scipy.integrate.solve_ivp`` with the nearest
-path point's parameter σ as an eighth state (σ̇ from ``parameter_rate``).
+path point's parameter σ as an eighth state (σ̇ from ``parameter_rate``) and
+an optional roll actuator lag as a ninth.
 """
 
 import math
@@ -62,12 +63,15 @@ class Flight:
     radius_m: np.ndarray
 
 
-def fly(kite, steering, loops, offset_m=0.0, heading_rad=0.0, speed_mps=None, belief=None, samples=5000):
+def fly(kite, steering, loops, offset_m=0.0, heading_rad=0.0, speed_mps=None, belief=None, samples=5000,
+        lag_s=0.0):
     """Fly ``loops`` loops of the path from its point σ = 0, started ``offset_m``
     to its left, heading ``heading_rad`` left of it, at ``speed_mps``.
 
     ``belief`` = (mass factor, lift factor) scales the mass the law is told and
     the lift passed to it (model error); the kite itself keeps its own.
+    ``lag_s`` > 0 puts a first-order actuator between law and wing,
+    ψ̇ = (ψ_cmd − ψ)/τ_a (a ninth state, from ψ = 0).
     The rigid tether: a = P_t(F/m) + a_r ê with the radial acceleration
     a_r = −|v_t|²/R − 2c ṙ − c²(R − L) (centripetal, plus Baumgarte's drift
     correction), i.e. the tether pulls whatever holds |r| = L.
@@ -83,27 +87,28 @@ def fly(kite, steering, loops, offset_m=0.0, heading_rad=0.0, speed_mps=None, be
     v0 = speed_mps * (math.cos(heading_rad) * start.tangent + math.sin(heading_rad) * start.normal)
     gravity = np.array([0.0, 0.0, -kite.mass_kg * GRAVITY_MPS2])
 
-    def law(r, v, sigma, iterations):
+    def law(r, v, sigma, iterations, roll=None):
         point = nearest_point(path, r, sigma, iterations)
         drag, lift, up, side = kite.aerodynamics(r, v)
         command = told.command(point, r, v, drag + lift * up, lift * lift_factor)
-        return point, command, drag + lift * (math.cos(command.roll_rad) * up
-                                              + math.sin(command.roll_rad) * side)
+        psi = command.roll_rad if roll is None else roll
+        return point, command, drag + lift * (math.cos(psi) * up + math.sin(psi) * side)
 
     def rhs(t, y):
         r, v, sigma = y[:3], y[3:6], y[6]
-        point, _, aero = law(r, v, sigma, 1)
+        point, command, aero = law(r, v, sigma, 1, y[7] if lag_s else None)
         radius = float(np.linalg.norm(r))
         e = r / radius
         v_r = float(v @ e)
         a = (aero + gravity) / kite.mass_kg
         a_r = -(v @ v - v_r ** 2) / radius - 2 * CONSTRAINT_RATE * v_r - CONSTRAINT_RATE ** 2 * (radius - length)
-        return np.concatenate([v, a - (a @ e) * e + a_r * e, [parameter_rate(point, r, v)]])
+        return np.concatenate([v, a - (a @ e) * e + a_r * e, [parameter_rate(point, r, v)],
+                               [(command.roll_rad - y[7]) / lag_s if lag_s else 0.0]])
 
     def done(t, y):
         return y[6] - loops * path.period_s
     done.terminal = True
-    solution = solve_ivp(rhs, (0.0, 100.0 * loops * path.period_s), np.concatenate([r0, v0, [0.0]]),
+    solution = solve_ivp(rhs, (0.0, 100.0 * loops * path.period_s), np.concatenate([r0, v0, [0.0, 0.0]]),
                          rtol=1e-5, atol=1e-6, events=done, dense_output=True)
     assert solution.status == 1, solution.message
     t = np.linspace(0.0, solution.t[-1], samples)
@@ -205,6 +210,25 @@ def test_offset_decays_as_the_critically_damped_double_pole():
     early = x <= 2.0
     predicted = e0 * (1 + 2 * x) * np.exp(-2 * x)
     assert np.abs(flight.cross_track_m[early] - predicted[early]).max() <= 0.03 * e0
+
+
+def test_actuator_lag_stability_bound():
+    """A roll actuator of lag τ_a adds a pole: τ s³ + s² + 2ω s + ω² (ω = 2V/ℓ)
+    is stable iff ω τ_a < 2 (Routh).  On the circle (V ≈ 165 m/s, ℓ = 93 m):
+    at ω τ_a = 1 the path holds within 2 % of its width (loops 1–3); at
+    ω τ_a = 2.5 the error grows loop by loop (RMS of loop 3 > 1.5 × loop 2
+    and beyond 2 % of the width)."""
+    kite, steering = m600()
+    speed = 165.0
+    per_loop = []
+    for omega_tau in (1.0, 2.5):
+        lag = omega_tau * steering.lookahead_m / (2 * speed)
+        flight = fly(kite, steering, 3, speed_mps=crosswind_speed(kite, steering.path), lag_s=lag, samples=1500)
+        per_loop.append([rms(flight.cross_track_m[(flight.loops >= k) & (flight.loops < k + 1)]) for k in (1, 2)])
+        if omega_tau < 2:
+            assert rms(flight.cross_track_m[flight.loops >= 1.0]) <= 0.02 * path_width_m(steering.path)
+    assert per_loop[1][1] > 1.5 * per_loop[1][0]
+    assert per_loop[1][1] > 0.02 * path_width_m(steering.path)
 
 
 def test_model_error_still_holds_the_path():
