@@ -4,8 +4,8 @@ The kite flies on the sphere of its tether (global frame x downwind, z up;
 docs/steering.md).  Its only steering input is the roll ψ: the lift L is tilted
 about the apparent wind by ψ, so ``L sinψ`` pushes the kite across its own
 flight direction in the tangent plane of the sphere.  Seed 003 (Lourenço 2014,
-§5.1) reports that a PID on the kite's angles did not hold its circle; this
-law holds the figure-eight (:mod:`fem_tether.trajectory`) and the circle
+§5.1 "Future Work") reports that a PID on the kite's angles did not hold its
+circle; this law holds the figure-eight (:mod:`fem_tether.trajectory`) and the circle
 (:mod:`fem_tether.orbit`) by *inverting the lateral equation of motion*:
 
 * the reference is the nearest point of the path, tracked continuously in the
@@ -160,7 +160,8 @@ class Steering:
     distance flown of ℓ.  A roll actuator of lag τ_a (or a sampled law, τ_a ≈
     half the sampling step) keeps the loop stable iff ω τ_a < 2 (Routh on
     τ_a s³ + s² + 2ωs + ω²): take ℓ ≥ 4 V τ_a (ω τ_a ≤ 0.5) when that is larger.
-    The limits bound ψ (seed 003 §3.2.1 flies −7° … 47°).
+    The limits bound ψ (seed 003 §3.2.3 flies the M600's circle open-loop at
+    −7.25° … 46.68°).
     """
 
     path: object
