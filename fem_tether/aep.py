@@ -81,20 +81,22 @@ class AepByLength:
         return float(self.length_m[np.argmax(self.aep_MWh)]) if self.length_m.size else None
 
 
-def _by_length(lengths, theta_rad, resource: WindResource, power_and_rated) -> AepByLength:
-    """Eq. 5.2 per length: ``power_and_rated(i, edges_mps)`` gives length i's power at
-    its band's bin edges and its rated power; the band holds z = L cosϑ0."""
-    rows = []
-    for i, length in enumerate(lengths):
-        band = resource.band_for_length(length, theta_rad)
-        power_W, rated_W = power_and_rated(i, band.edges_mps)
-        rows.append((band.low_m, band.high_m, annual_energy_Wh(power_W, band.probability), rated_W,
-                     band.remainder))
-    low, high, aep_Wh, rated, unbinned = (np.array(col, dtype=float)
-                                          for col in (zip(*rows) if rows else [()] * 5))
-    return AepByLength(length_m=lengths, band_low_m=low, band_high_m=high, aep_MWh=aep_Wh / 1e6,
-                       rated_power_W=rated, capacity_factor=capacity_factor(aep_Wh, rated),
-                       unbinned_probability=unbinned)
+def _by_length(lengths, theta_rad, resource: WindResource, curve_at) -> AepByLength:
+    """:func:`aep_on_band` per length: ``curve_at(i)`` gives length i's power curve
+    (a function of the wind speed) and its rated power; the band holds z = L cosϑ0."""
+    bands = [resource.band_for_length(length, theta_rad) for length in lengths]
+    results = [aep_on_band(power_W, band, rated_W)
+               for (power_W, rated_W), band in zip(map(curve_at, range(len(bands))), bands)]
+
+    def column(values):
+        return np.array(list(values), dtype=float)
+
+    return AepByLength(length_m=lengths, band_low_m=column(b.low_m for b in bands),
+                       band_high_m=column(b.high_m for b in bands),
+                       aep_MWh=column(r.aep_MWh for r in results),
+                       rated_power_W=column(r.rated_power_W for r in results),
+                       capacity_factor=column(r.capacity_factor for r in results),
+                       unbinned_probability=column(r.unbinned_probability for r in results))
 
 
 def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean_phi_deg,
@@ -109,11 +111,11 @@ def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean
     ge = np.broadcast_to(global_efficiency, lengths.shape)
     phi = np.broadcast_to(mean_phi_deg, lengths.shape)
 
-    def power_and_rated(i, edges_mps):
+    def curve_at(i):
         flown = operating_design(design, air, lengths[i], ge[i], phi[i])
-        return cycle_curves(edges_mps, flown, cycle).power_W, rated_power_W(flown, cycle)
+        return (lambda wind_mps: cycle_curves(wind_mps, flown, cycle).power_W), rated_power_W(flown, cycle)
 
-    return _by_length(lengths, design.theta_rad, resource, power_and_rated)
+    return _by_length(lengths, design.theta_rad, resource, curve_at)
 
 
 def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource, cases=None) -> AepByLength:
@@ -128,13 +130,13 @@ def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource, cases=
     lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
     drags = np.broadcast_to(drag_N, lengths.shape)
 
-    def power_and_rated(i, edges_mps):
+    def curve_at(i):
         case = cases[i] if cases is not None else cfg.with_length(lengths[i])
         cd = operating_tether_cd(case, drags[i])
         system = from_config(case)
-        return system.electrical_power_W(edges_mps, cd), system.rated_power_W(cd)
+        return (lambda wind_mps: system.electrical_power_W(wind_mps, cd)), system.rated_power_W(cd)
 
-    return _by_length(lengths, np.radians(cfg.kite.theta0_deg), resource, power_and_rated)
+    return _by_length(lengths, np.radians(cfg.kite.theta0_deg), resource, curve_at)
 
 
 class IncompleteSweepError(InputError):
