@@ -29,7 +29,7 @@ CEILING_M = 11000.0
 MIN_STEPS_PER_PERIOD = {("fe", "dt_s"): 36, ("fd", "dt_s"): 72}
 
 #: Keys that name files: a relative name in a file is read relative to that file.
-FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"))
+FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"), ("kite", "polar"))
 
 #: Values of file keys that are not files.
 NOT_FILES = ("", "uniform", "graded")
@@ -52,6 +52,25 @@ def check(cfg: Config) -> None:
         raise ConfigError(f"[winch] max_element_m = {winch.max_element_m:g}: must exceed twice "
                           f"[winch] min_element_m = {winch.min_element_m:g}")
     _check_path(cfg)
+    _check_free_kite(cfg)
+
+
+def _check_free_kite(cfg: Config) -> None:
+    """A point-mass kite needs wind to fly in, a roll range and a winch that
+    does not also set its radius (its distance is its own; the winch holds the
+    line's length or reels it at the set speed, and T_0 sets the static start)."""
+    kite = cfg.kite
+    if kite.model != "point-mass":
+        return
+    if cfg.wind.profile == "none":
+        raise ConfigError("[kite] model = \"point-mass\": needs wind ([wind] profile = \"none\" leaves "
+                          "the kite nothing to fly in)")
+    if not kite.roll_min_deg < kite.roll_max_deg:
+        raise ConfigError(f"[kite] roll_min_deg = {kite.roll_min_deg:g}: must be below roll_max_deg = "
+                          f"{kite.roll_max_deg:g}")
+    if cfg.winch.mode != "tension":
+        raise ConfigError("[winch] mode = \"prescribed\": a point-mass kite's distance follows its "
+                          "flight; use [winch] mode = \"tension\" (T_0 sets the line's static start)")
 
 
 def _check_winch(cfg: Config) -> None:

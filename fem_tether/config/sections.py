@@ -174,6 +174,21 @@ class Kite(Section):
                                        positive)
     radius_m: float = setting(0.0, "m", "kite distance for [winch] mode = 'prescribed' (0: unset)",
                               non_negative)
+    model: str = setting("prescribed", "-", "the kite end: 'prescribed' (moved along the path at speed_mps) "
+                         "or 'point-mass' (a steered point-mass kite flying under its forces, docs/free-kite.md)",
+                         one_of("prescribed", "point-mass"))
+    polar: str = setting("", "-", "model = 'point-mass': CSV alpha_deg,cl,cd of the wing ('': C_L = cl and "
+                         "C_D = cl / efficiency at every angle)")
+    base_aoa_deg: float = setting(0.0, "deg", "model = 'point-mass': bridle angle of attack alpha_0 (Fagiano "
+                                  "et al. eq. 16; a polar only)", between(-30.0, 30.0))
+    turbine_factor: float = setting(0.0, "-", "model = 'point-mass': on-board turbine drag over the wing's "
+                                    "drag gamma_t (fly-gen; Trevisi eq. 3.33)", non_negative)
+    roll_min_deg: float = setting(-30.0, "deg", "model = 'point-mass': least steering roll psi",
+                                  between(-89.0, 89.0))
+    roll_max_deg: float = setting(30.0, "deg", "model = 'point-mass': largest steering roll psi",
+                                  between(-89.0, 89.0))
+    lookahead_m: float = setting(0.0, "m", "model = 'point-mass': steering look-ahead l (0: half the path's "
+                                 "smallest turn radius, docs/steering.md)", non_negative)
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,150 @@
+"""The kite end as a steered point mass flying under its forces (``[kite] model = "point-mass"``).
+
+Instead of being moved along its path, the line's end node carries a kite: a
+point mass under its aerodynamic force (:mod:`fem_tether.kite_dynamics`, eqs.
+(1)–(3): seed 001 eqs. 8–16, seed 003 eq. 2.11, seed 004 eqs. 3.31–3.33), its
+weight and the line's pull.  The end node's equation of motion is the line's
+interior one with the kite added (docs/free-kite.md)::
+
+    (m_k + m_N) r̈_N + T_L τ_L − (Q f_t)_N − m_N g − m_k g − F_aero(r_N, ṙ_N, τ_L, ψ) = 0,
+
+m_N the node's share of the line's mass, τ_L the direction of the last
+element (the tether's direction at the kite, eq. (1)'s e) and ψ the roll.
+
+One line of n: the model is solved per line ([tether] lines = n identical
+lines from the winch to the kite), so each line's end carries 1/n of the
+kite: mass m_k = m/n and area A/n (the same C_L, C_D), and each line's F_t is
+the per-line drag as today.
+
+Steering: ψ comes from the path-following law of :mod:`fem_tether.steering`
+evaluated at the start of each time step and held over it (a sampled
+controller, zero-order hold): :meth:`FreeKite.steer` tracks the nearest point
+of the reference path (the configured eight or circle) from the previous one.
+The law's mass is the kite's plus the end node's share of the line
+(``end_mass_kg``), the mass the lateral balance accelerates.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether.atmosphere import AirModel
+from fem_tether.errors import ConfigError, SolverDivergedError
+from fem_tether.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, aerodynamic_force_N,
+                                      aerodynamic_jacobian, gravity_force_N, read_polar, steady_crosswind)
+from fem_tether.loads import G_MPS2
+from fem_tether.steering import Command, Steering, min_turn_radius_m, nearest_point
+from fem_tether.systems.tether_drag import straight_tether_cd
+from fem_tether.wind import WindProfile
+
+
+@dataclass(frozen=True)
+class KiteLoad:
+    """The kite's force on the end node and its derivatives (dF = J dx)."""
+
+    force_N: np.ndarray
+    """F_aero + m_k g [N], shape (3,)"""
+    d_position: np.ndarray
+    """∂F/∂r_N at a fixed tether vector d (through V_w(z) and ρ(z)) (3, 3)"""
+    d_velocity: np.ndarray
+    """∂F/∂ṙ_N (3, 3)"""
+    d_tether: np.ndarray
+    """∂F/∂d, d = r_N − r_{N−1} the last element (its direction is τ_L) (3, 3)"""
+    aero: AerodynamicForce
+    """the aerodynamic force and its state (apparent wind, α, C_L, C_D, turbine power)"""
+
+
+@dataclass(frozen=True)
+class Steer:
+    """One sample of the steering law."""
+
+    roll_rad: float
+    """ψ held over the next time step"""
+    parameter_s: float
+    """σ of the nearest path point (the next sample's first guess)"""
+    command: Command
+    """the law's output: cross-track and heading errors, saturation"""
+
+
+@dataclass(frozen=True)
+class FreeKite:
+    """One line's share of a point-mass kite, its steering and its air."""
+
+    kite: PointMassKite
+    """the kite per line: mass m/n, area A/n"""
+    steering: Steering
+    """the path-following law and its reference path"""
+    wind: WindProfile
+    air: AirModel
+    start_tether_cd: float = 0.0
+    """C_D,t of the line lumped at the kite for the static start's speed (:meth:`start_speed_mps`)"""
+    gravity_mps2: float = G_MPS2
+
+    def load(self, r, v, tether, roll_rad: float) -> KiteLoad:
+        """F = F_aero(r, v, τ_L, ψ) + m_k g and its Jacobians; ``tether`` is the
+        last element's vector d = r_N − r_{N−1}."""
+        aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
+        jac = aerodynamic_jacobian(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
+        return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
+                        jac.velocity, jac.tether, aero)
+
+    def steer(self, t_s: float, parameter_s: float, r, v, tether) -> Steer:
+        """The roll ψ for the kite at ``r`` moving at ``v`` (:meth:`Steering.command`),
+        with the nearest path point found from ``parameter_s``; the law's F_0 is the
+        aerodynamic force at ψ = 0 and its lift L = ½ ρ |W_e|² A C_L.  Raises
+        :class:`SolverDivergedError` (time, position, cause) when the kite has lost
+        its path: no nearest point, no lift or no speed across the tether."""
+        try:
+            point = nearest_point(self.steering.path, r, parameter_s)
+            aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, 0.0, tether=tether)
+            rho = float(self.air.density_kg_m3(float(r[2])))
+            lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
+            command = self.steering.command(point, r, v, aero.force_N, lift_N)
+        except ValueError as exc:
+            raise SolverDivergedError(f"the point-mass kite lost its path at t = {t_s:.4f} s, at "
+                                      f"{np.round(np.asarray(r, dtype=float), 1).tolist()} m: {exc}") from None
+        return Steer(command.roll_rad, point.parameter_s, command)
+
+    def start_speed_mps(self, length_m: float) -> float:
+        """The steady crosswind speed at the path's first point (the static start's
+        kite speed): :func:`~fem_tether.kite_dynamics.steady_crosswind` of this kite,
+        massless, in the wind and air at its altitude, with the line's drag lumped
+        as :attr:`start_tether_cd`.  Only the start uses it: the spin-up periods
+        let the kite find its own speed."""
+        path = self.steering.path
+        theta, phi = path.angles(0.0)
+        z = length_m * math.cos(float(theta))
+        massless = PointMassKite(0.0, self.kite.area_m2, self.kite.aerodynamics, self.kite.base_aoa_rad,
+                                 self.kite.turbine_factor)
+        state = steady_crosswind(massless, float(self.wind.speed_mps(z)), float(theta), float(phi), 0.0,
+                                 float(self.air.density_kg_m3(z)), self.start_tether_cd)
+        return state.kite_speed_mps
+
+
+def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> FreeKite | None:
+    """The configured point-mass kite per line (None for ``[kite] model = "prescribed"``);
+    ``end_mass_kg`` is the end node's share of the line's mass (the steering law's
+    mass is the kite's plus it)."""
+    k = cfg.kite
+    if k.model != "point-mass":
+        return None
+    lines = cfg.tether.lines
+    if k.polar:
+        aerodynamics = read_polar(k.polar)
+    else:
+        aerodynamics = ConstantCoefficients(k.cl, k.cl / k.efficiency)
+    try:
+        kite = PointMassKite(cfg.system.kite_mass_kg / lines, k.area_m2 / lines, aerodynamics,
+                             math.radians(k.base_aoa_deg), k.turbine_factor)
+    except ValueError as exc:
+        raise ConfigError(f"[kite] model = \"point-mass\": {exc}") from None
+    path = cfg.path
+    lookahead = k.lookahead_m or 0.5 * min_turn_radius_m(path)
+    steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
+                        math.radians(k.roll_max_deg))
+    # the line lumped as a straight rod (seed 004 eq. 3.14) with C_d,c = 1.2, the seeds' value
+    start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
+    return FreeKite(kite, steering, wind, air, start_cd)
