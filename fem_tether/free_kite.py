@@ -148,3 +148,19 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
     # the line lumped as a straight rod (seed 004 eq. 3.14) with C_d,c = 1.2, the seeds' value
     start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
     return FreeKite(kite, steering, wind, air, start_cd)
+
+
+def series_values(steer: Steer, load: KiteLoad, velocity_mps) -> dict:
+    """The kite's values of :data:`fem_tether.results.KITE_SERIES` at one solution:
+    its speed, |W_e|, α, the roll ψ held over the step, the turbine power and
+    the steering errors of the step's sample."""
+    aero = load.aero
+    return {
+        "kite_speed_mps": float(np.linalg.norm(velocity_mps)),
+        "apparent_speed_mps": float(np.linalg.norm(aero.apparent_wind_mps)),
+        "aoa_deg": math.degrees(aero.angle_of_attack_rad),
+        "roll_deg": math.degrees(steer.roll_rad),
+        "turbine_power_W": float(aero.turbine_power_W),
+        "cross_track_m": steer.command.cross_track_m,
+        "heading_error_deg": math.degrees(steer.command.heading_error_rad),
+    }

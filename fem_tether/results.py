@@ -21,6 +21,14 @@ if TYPE_CHECKING:
 SERIES = ("ground_tension_N", "kite_tension_N", "kite_radius_m", "drag_N", "drag_against_N",
           "max_strain", "length_m", "reel_out_mps", "winch_power_W", "winch_energy_J")
 
+#: Time series of a point-mass kite (``[kite] model = "point-mass"``,
+#: :mod:`fem_tether.free_kite`), recorded beside :data:`SERIES` when the solver
+#: gives them: the kite's speed, its apparent wind speed |W_e|, angle of attack,
+#: roll input ψ, on-board turbine power, and the steering's cross-track and
+#: heading errors.
+KITE_SERIES = ("kite_speed_mps", "apparent_speed_mps", "aoa_deg", "roll_deg", "turbine_power_W",
+               "cross_track_m", "heading_error_deg")
+
 #: Snapshot fields: per node (arc length from the winch, position, velocity)
 #: and per element (the rest); units and meanings in :mod:`fem_tether.quantities`.
 #: A run whose node count changes (reel-out) pads every snapshot with NaN to
@@ -72,7 +80,7 @@ class TetherRun:
         return period_mean(self.time_s[mask], self.series[name][mask])
 
     def means(self) -> dict[str, float]:
-        return {f"mean_{name}": self.mean(name) for name in SERIES}
+        return {f"mean_{name}": self.mean(name) for name in self.series}
 
 
 def period_mean(t, y) -> float:
@@ -106,13 +114,16 @@ class Recorder:
     steps (and at the last step) of a run, then builds its :class:`TetherRun`.
 
     The series go into arrays allocated for the whole run (``n_steps + 1``
-    samples), so memory grows with simulated time only by the snapshots."""
+    samples), so memory grows with simulated time only by the snapshots.  The
+    series are :data:`SERIES` and those of :data:`KITE_SERIES` the first
+    sample has."""
 
     def __init__(self, n_steps: int, output_every: int):
         self.n_steps, self.output_every = n_steps, output_every
         self.count = 0
         self.times = np.empty(n_steps + 1)
-        self.rows = np.empty((n_steps + 1, len(SERIES)))
+        self.names: tuple[str, ...] = SERIES
+        self.rows = np.empty((0, 0))
         self.snap_t: list[float] = []
         self.snaps: list[dict] = []
 
@@ -123,8 +134,11 @@ class Recorder:
     def add(self, step: int, t: float, values: dict, last: bool = False) -> None:
         """Record ``values`` at step ``step``: the SERIES always, the NODE_FIELDS and
         CELL_FIELDS when :meth:`snapshot_due`; ``last`` marks a run's last step."""
+        if not self.count:
+            self.names = SERIES + tuple(k for k in KITE_SERIES if k in values)
+            self.rows = np.empty((self.n_steps + 1, len(self.names)))
         self.times[self.count] = t
-        self.rows[self.count] = [values[k] for k in SERIES]
+        self.rows[self.count] = [values[k] for k in self.names]
         self.count += 1
         if self.snapshot_due(step, last):
             self.snap_t.append(t)
@@ -135,7 +149,7 @@ class Recorder:
         series = self.rows[:self.count].copy()
         return TetherRun(
             time_s=self.times[:self.count].copy(),
-            series={k: series[:, j] for j, k in enumerate(SERIES)},
+            series={k: series[:, j] for j, k in enumerate(self.names)},
             snapshot_time_s=np.asarray(self.snap_t),
             snapshots={k: _padded([s[k] for s in self.snaps]) for k in NODE_FIELDS + CELL_FIELDS},
             **fields,

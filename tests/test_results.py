@@ -95,8 +95,12 @@ def test_period_average_of_a_sine_during_a_reel_out():
 
 def test_recorder_allocates_the_series_of_the_whole_run_at_once():
     """Memory grows with simulated time only by the snapshots: the series arrays are
-    allocated for every step when the recorder is made."""
+    allocated for every step at the first sample, with the kite series it has."""
     rec = Recorder(n_steps=7, output_every=100)
+    values = {k: 1.0 for k in SERIES} | {"kite_speed_mps": 80.0, "s_m": 0.0}
+    rec.add(1, 0.1, values)
     times, rows = rec.times, rec.rows
-    assert times.shape == (8,) and rows.shape == (8, len(SERIES))
+    assert times.shape == (8,) and rows.shape == (8, len(SERIES) + 1)
+    rec.add(2, 0.2, values)
     assert rec.times is times and rec.rows is rows
+    assert rec.names == SERIES + ("kite_speed_mps",)
