@@ -315,7 +315,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="compute the AEP even if lengths are pending (else exit 2 naming them)")
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False, system=False)
-    c.add_argument("--repeats", type=_positive_int, default=5, help="best of N runs per setting")
+    c.add_argument("--repeats", type=_positive_int, default=5, help="rounds over every setting; the best per setting counts")
     c.add_argument("--memory", type=_positive_int, metavar="N",
                    help="instead: wall time and peak RSS of one FE run with N elements (e.g. 5000)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)

@@ -23,3 +23,21 @@ def test_an_error_in_the_child_is_raised_in_the_parent():
         assert "elements" in str(exc)
     else:
         raise AssertionError("1 element ran")
+
+
+def test_rounds_keep_the_fastest_run_and_the_largest_memory(monkeypatch):
+    """Each round runs every setting once; per setting the least wall time counts,
+    with the largest memory figures of its rounds."""
+    walls = iter([3.0, 5.0, 1.0, 6.0, 2.0, 4.0])
+    calls = []
+
+    def fake_run(solver, resolution, dt_s, repeats):
+        calls.append(resolution)
+        wall = next(walls)
+        return {"wall_s": wall, "peak_rss_MiB": 10 * wall, "run_rss_MiB": wall, "elements": resolution}
+
+    monkeypatch.setattr(bench, "_run", fake_run)
+    best = bench._best_of_rounds([("fe", 10, 0.2, 2), ("fe", 20, 0.2, 2)], rounds=3)
+    assert calls == [10, 20, 10, 20, 10, 20]        # interleaved, not back to back
+    assert [b["wall_s"] for b in best] == [1.0, 4.0]
+    assert [b["peak_rss_MiB"] for b in best] == [30.0, 60.0]
