@@ -31,8 +31,12 @@ ParaView (:func:`write_paraview`), one directory per run::
     <directory>/<name>_0000.vtu     the line at snapshot 0: points = node positions,
     ...                             "line" cells, point data velocity_mps and s_m,
                                     cell data tension_N, vn_mps, reynolds, cd, drag_N_m
+    <directory>/<name>_kite_track.vtu   the kite's track: the end node at every snapshot
+                                    joined by "line" cells, point data time_s and the
+                                    kite's series (results.KITE_SERIES) of a point-mass kite
 
-Open the ``.pvd`` in ParaView and play the animation to see the tether move.
+Open the ``.pvd`` in ParaView and play the animation to see the tether move;
+open the track beside it to see where the kite flew.
 
 Both writers are atomic: the output is written beside its target under a
 hidden temporary name and renamed into place only when complete; on any error
@@ -55,7 +59,7 @@ from . import __version__
 from .atomic import atomic_path, check_writable
 from .config import Config
 from .quantities import attributes
-from .results import CELL_FIELDS, TetherRun
+from .results import CELL_FIELDS, KITE_SERIES, TetherRun
 
 GROUPS = {
     "series": "time series, one value per time step",
@@ -189,7 +193,17 @@ def _write_paraview(run: TetherRun, directory: Path, name: str):
         file = f"{name}_{i:04d}.vtu"
         meshio.write(directory / file, mesh)
         ET.SubElement(collection, "DataSet", timestep=repr(float(t)), file=file)
+    _write_track(run, directory / f"{name}_kite_track.vtu")
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
     root.append(collection)
     ET.indent(root)
     ET.ElementTree(root).write(directory / f"{name}.pvd", encoding="utf-8", xml_declaration=True)
+
+
+def _write_track(run: TetherRun, path: Path):
+    """The kite's track: the end node of every snapshot, a polyline in time order."""
+    points = np.array([run.line(i)["position_m"][-1] for i in range(run.snapshot_time_s.size)])
+    steps = np.searchsorted(run.time_s, run.snapshot_time_s - 1e-9 * run.period_s)
+    data = {"time_s": run.snapshot_time_s} | {k: run.series[k][steps] for k in KITE_SERIES if k in run.series}
+    cells = np.column_stack([np.arange(len(points) - 1), np.arange(1, len(points))])
+    meshio.write(path, meshio.Mesh(points, [("line", cells)] if len(cells) else [], point_data=data))

@@ -162,6 +162,11 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
              f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}",
              f"  peak tension              {s['peak_tension_N']:10.1f} N   (d = {1e3 * s['diameter_m']:.3f} mm "
              f"{s['material']}, breaking load {s['breaking_load_N']:.1f} N, margin {s['margin']:.3f})"]
+    if "mean_kite_speed_mps" in s:
+        lines += [f"  point-mass kite: mean speed {s['mean_kite_speed_mps']:.2f} m/s, apparent wind "
+                  f"{s['mean_apparent_speed_mps']:.2f} m/s, mean power {s['mean_power_W'] / 1e3:.1f} kW per line",
+                  f"  steering: cross-track RMS {s['cross_track_rms_m']:.2f} m, largest roll "
+                  f"{s['max_abs_roll_deg']:.1f} deg"]
     if "sizing_diameters_m" in s:
         lines.append(f"  sized to the peak tension: d = "
                      f"{' -> '.join(f'{1e3 * d:.3f}' for d in s['sizing_diameters_m'])} mm")

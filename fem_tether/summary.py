@@ -67,4 +67,23 @@ def run_summary(run, cfg: Config) -> dict:
         "period_s": run.period_s,
         "wall_s": run.wall_s,
         **run.extra,
+    } | free_kite_summary(run)
+
+
+def free_kite_summary(run) -> dict:
+    """A point-mass kite's flight over the averaging window ({} for a prescribed
+    end): mean kite and apparent speeds, mean mechanical power per line (winch
+    T(0) V_L plus on-board turbines), the cross-track RMS of the steering and
+    the largest roll."""
+    if "kite_speed_mps" not in run.series:
+        return {}
+    window = run.average_window
+    means = run.means()
+    track = run.series["cross_track_m"][window]
+    return {
+        "mean_kite_speed_mps": means["mean_kite_speed_mps"],
+        "mean_apparent_speed_mps": means["mean_apparent_speed_mps"],
+        "mean_power_W": means["mean_winch_power_W"] + means["mean_turbine_power_W"],
+        "cross_track_rms_m": float(np.sqrt(np.mean(track ** 2))),
+        "max_abs_roll_deg": float(np.max(np.abs(run.series["roll_deg"][window]))),
     }

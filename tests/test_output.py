@@ -120,7 +120,12 @@ def test_paraview(run, tmp_path):
         assert set(mesh.cell_data) == set(CELL_FIELDS)
         for name in CELL_FIELDS:
             np.testing.assert_allclose(mesh.cell_data[name][0], run.snapshots[name][i])
-    assert sorted(p.name for p in pvd.parent.iterdir()) == ["kite.pvd"] + [d.get("file") for d in datasets]
+    assert sorted(p.name for p in pvd.parent.iterdir()) == (
+        ["kite.pvd"] + [d.get("file") for d in datasets] + ["kite_kite_track.vtu"])
+    track = meshio.read(pvd.parent / "kite_kite_track.vtu")
+    np.testing.assert_allclose(track.points, run.snapshots["position_m"][:, -1])
+    np.testing.assert_allclose(track.point_data["time_s"], run.snapshot_time_s)
+    assert track.cells[0].type == "line" and len(track.cells[0].data) == n_snap - 1
     assert hidden(tmp_path) == []
 
 
