@@ -7,7 +7,7 @@ from fem_tether import atmosphere, drag_coefficient, wind
 from fem_tether.catenary import Catenary
 from fem_tether.config import MAX_ELEMENTS, ConfigError, load_config
 from fem_tether.fe.integrator import Kinematics, Scheme
-from fem_tether.fe.solver import (FEModel, FESolver, SolverDivergedError, State, build_model,
+from fem_tether.fe.solver import (FEModel, FESolver, SolverDivergedError, State, _step, build_model,
                                   initial_state, simulate, static_equilibrium)
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.mesh import unit_nodes, write_unit_mesh
@@ -382,3 +382,36 @@ def test_mesh_file_beyond_the_cap_is_refused(tmp_path):
     cfg = load_config(overrides={"fe": {"mesh": str(path)}})
     with pytest.raises(ConfigError, match=r"\[fe\] mesh = .*big.vtu\": 10001 elements, at most 10000"):
         build_model(cfg)
+
+
+@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
+def test_a_step_with_kept_factors_reaches_the_fresh_solution(kernel):
+    """A step starting with the previous step's factors (a chord step) converges to
+    the solution a step with a fresh Jacobian reaches, within the Newton tolerance;
+    factors that are garbage (here: scrambled) send it back to the predictor with
+    a fresh Jacobian, to the same solution."""
+    cfg = load_config(overrides={"tether": {"length_m": 1000.0},
+                                 "fe": {"elements": 12, "dt_s": 0.2, "kernel": kernel}})
+    model = build_model(cfg)
+    h = 0.2
+    state = _step(model, initial_state(model), h, Statistics())   # leaves its factors kept
+    kept = model.system.kept
+    assert kept.valid_for(h, model.system.row_scale(model.ground_tension_N), model.scheme.coefficients(h)[1], 0.0)
+    with_kept = _step(model, state, h, Statistics())
+    scale = np.abs(with_kept.kin.q).max()
+
+    def fresh_step():
+        kept.keep(False, 0.0, 0.0, 0.0, 0.0)
+        return _step(model, state, h, Statistics())
+
+    fresh = fresh_step()
+    np.testing.assert_allclose(with_kept.kin.q, fresh.kin.q, rtol=0, atol=1e-8 * scale)
+    np.testing.assert_allclose(with_kept.T, fresh.T, rtol=1e-8)
+    fresh_step()                                   # fresh factors, kept for the next step ...
+    if kernel == "compiled":
+        kept.band[:] = np.random.default_rng(1).permutation(kept.band.ravel()).reshape(kept.band.shape)
+    else:
+        kept.factors.lu[:] = np.random.default_rng(1).permutation(kept.factors.lu.ravel()).reshape(
+            kept.factors.lu.shape)
+    scrambled = _step(model, state, h, Statistics())   # ... but scrambled
+    np.testing.assert_allclose(scrambled.kin.q, fresh.kin.q, rtol=0, atol=1e-8 * scale)

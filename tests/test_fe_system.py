@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_tether.config import load_config
-from fem_tether.fe.solver import build_model, static_equilibrium
+from fem_tether.fe.solver import build_model, initial_state, static_equilibrium
 
 
 def _dense(sys_, ev, tension_mode):
@@ -76,3 +76,22 @@ def test_with_physics_is_a_system_made_with_that_physics(kernel):
     cheap, anew = sys_.with_physics(physics).evaluate(*args), replace(sys_, physics=physics).evaluate(*args)
     np.testing.assert_array_equal(cheap.residual, anew.residual)
     np.testing.assert_array_equal(cheap.band, anew.band)
+
+
+@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
+def test_factors_for_another_column_solve_as_fresh_ones(kernel):
+    """Factors.for_column: the same LU with z = J0^-1 r_col for another kite
+    direction gives the Newton step that factorising with that column gives."""
+    model = build_model(load_config(overrides={"fe": {"elements": 6, "kernel": kernel}}))
+    st = initial_state(model)
+    sys_ = model.system
+
+    def evaluation(direction):
+        return sys_.evaluate(st.kin.q, st.kin.v, st.kin.qdd, st.T, st.R, direction, 150e3, 0.0, 1.5e5, 3.0, 1.0)
+
+    e0 = model.end.direction_at(0.0)
+    e1 = model.end.direction_at(0.3)
+    moved = sys_.factorize(evaluation(e0)).for_column(sys_.r_column(e1, sys_.row_scale(1.5e5)))
+    fresh = evaluation(e1)
+    residual = fresh.residual.copy()
+    np.testing.assert_allclose(moved.step(residual), sys_.factorize(fresh).step(residual), rtol=1e-10, atol=1e-12)

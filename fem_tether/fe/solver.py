@@ -273,32 +273,55 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
                                                  stats)
         return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
     c_a, c_v = model.scheme.coefficients(h)
+    k_s = sys_.row_scale(f_ref)
+    kept = sys_.kept
+    made_for = (h, k_s, c_v, model.reel_mps)
+    factors = kept.factors.for_column(sys_.r_column(e, k_s)) \
+        if kept.factors is not None and kept.valid_for(*made_for) else None
+    stale = factors is not None       # an earlier step's factors: the first iterate takes a chord step
+    checking = False                  # this iterate follows that chord step
+    kept.keep(False, *made_for)
     # the unknowns in one vector, r and T views into it; each Newton update adds in place
-    x = sys_.pack(kin.predict(h), state.T, state.R)
+    predictor = sys_.pack(kin.predict(h), state.T, state.R)
+    x = predictor.copy()
     r, T, _ = sys_.unpack(x)
     step = kin.step(h, model.scheme)
     worst = last = math.inf            # last: the residual before worst
-    factors = None
     for _ in range(model.max_newton):
         R = float(x[-1])
         kin = step.kinematics(r)
-        chord = factors is not None and reuse_factors(worst, last)
+        chord = factors is not None and (stale or reuse_factors(worst, last))
         try:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, jacobian=not chord, reel_mps=model.reel_mps)
+            above = ""
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
-            raise NotConverged(worst, left_atmosphere(exc)) from None
+            if not checking:
+                raise NotConverged(worst, left_atmosphere(exc)) from None
+            above = left_atmosphere(exc)
         stats.newton_iterations += 1
-        worst, last = float(np.abs(ev.residual).max()) / f_ref, worst
+        if not above:
+            worst, last = float(np.abs(ev.residual).max()) / f_ref, worst
+        if checking and (above or not worst < last):
+            # the stale factors' step raised the residual: again from the predictor, freshly
+            x[:] = predictor
+            checking, factors = False, None
+            worst = last = math.inf
+            continue
+        checking, stale = stale, False
         if not math.isfinite(worst):
             break
         if worst <= model.newton_tol:
+            if chord:
+                kept.factors = factors
+                kept.keep(True, *made_for)
             return State(t_new, kin, T, R, ev)
-        if factors is None or not chord:
+        if not chord:
             try:
                 factors = sys_.factorize(ev)
             except np.linalg.LinAlgError:     # singular Jacobian (a folded or slack line)
                 break
+        assert factors is not None
         x += factors.step(ev.residual)
     raise NotConverged(worst)
 

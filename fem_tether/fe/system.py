@@ -91,6 +91,7 @@ class TetherSystem:
     _idx: dict = field(init=False, repr=False)
     _kernel: Any = field(init=False, repr=False)      # the module fem_tether.fe.kernel, if compiled
     _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag tables
+    kept: "KeptFactors" = field(init=False, repr=False)  # a step's factors for the next (KeptFactors)
 
     def __post_init__(self):
         n_el = self.spaces.n_elements
@@ -116,7 +117,9 @@ class TetherSystem:
         self._set_lengths()
 
     def _set_lengths(self):
-        """The constants of the element lengths: Q's weights, masses, mean length."""
+        """The constants of the element lengths: Q's weights, masses, mean length
+        (and no factors kept: they belong to the former lengths or physics)."""
+        self.kept = KeptFactors(self.n)
         sp = self.spaces
         self.load_weights = self._load_weights()
         self._interior_weights = (self.load_weights * self._interior_ab)[:, :, None, None, None]
@@ -129,6 +132,7 @@ class TetherSystem:
         other = copy.copy(self)
         other.physics = physics
         other.weight = physics.weight_N_m
+        other.kept = KeptFactors(self.n)
         if self.compiled:
             other._kernel_env = importlib.import_module("fem_tether.environment_kernel").tables(physics)
         return other
@@ -295,11 +299,14 @@ class TetherSystem:
         k_s = self.row_scale(force_ref_N)
         c_a, c_v = scheme.coefficients(dt_s)
         outputs = self._outputs()
-        series, info = np.empty(4), np.zeros(3)
+        series, info = np.empty(4), np.zeros(4)
+        kept = self.kept
         status = self._kernel.solve_step(
             r_new, T_new, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma,
             kite_dir, ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol,
-            max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, series, info)
+            max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, series, info,
+            kept.band, kept.ipiv, kept.z, kept.valid_for(dt_s, k_s, c_v, reel_mps))
+        kept.keep(bool(info[3]), dt_s, k_s, c_v, reel_mps)
         stats.newton_iterations += int(info[0])
         if status == self._kernel.CONVERGED:
             evaluation = self._evaluation(k_s, outputs)
@@ -478,6 +485,29 @@ class TetherSystem:
         return self.factorize(ev).step(ev.residual)
 
 
+class KeptFactors:
+    """A step's last Newton factors and what they were made for: the step size,
+    the row scale k_s, dv/dr = c_v and the reel speed, all of which enter the
+    Jacobian.  The next step reuses them only when all four are the same (it
+    then starts with a chord step, :func:`fem_tether.fe.solver._step` and
+    :func:`.kernel.solve_step`); the system's mesh and physics are fixed for
+    one object.  The compiled steps keep theirs in ``band``, ``ipiv``, ``z``
+    (allocated once), the NumPy steps a :class:`Factors` in ``factors``."""
+
+    def __init__(self, n: int):
+        self.band = np.empty((3 * BAND + 1, n - 1), order="F")
+        self.ipiv = np.empty(n - 1, np.int64)
+        self.z = np.empty(n - 1)
+        self.factors: Factors | None = None
+        self._made_for: tuple | None = None
+
+    def valid_for(self, dt_s, k_s, c_v, reel_mps) -> bool:
+        return self._made_for == (dt_s, k_s, c_v, reel_mps)
+
+    def keep(self, valid: bool, dt_s, k_s, c_v, reel_mps) -> None:
+        self._made_for = (dt_s, k_s, c_v, reel_mps) if valid else None
+
+
 @dataclass
 class Factors:
     """The LU of a Newton matrix without its R row and column, ``J0``, and
@@ -495,6 +525,17 @@ class Factors:
     tension_mode: bool
     k_s: float
     kernel: Any = None
+
+    def for_column(self, r_col: np.ndarray) -> "Factors":
+        """These factors with ``z = J0^-1 r_col`` for another R column (the next
+        step's kite direction)."""
+        z = np.empty(r_col.size)
+        if self.kernel is not None:
+            z[:] = r_col
+            self.kernel.band_solve(self.lu, self.ipiv, z)
+        else:
+            z, _ = dgbtrs(self.lu, BAND, BAND, r_col, self.ipiv)
+        return Factors(self.lu, self.ipiv, z, self.tension_mode, self.k_s, self.kernel)
 
     def step(self, residual: np.ndarray) -> np.ndarray:
         dx = np.empty(residual.size)
