@@ -10,10 +10,13 @@ precise (global frame x downwind, z up; docs/physics.md §1):
 
       ê(ϑ, φ) = (sinϑ cosφ, sinϑ sinφ, cosϑ)
 
-* a lemniscate of Gerono in the tangent plane at (ϑ0, φ = 0), of width W and
-  height H, u crosswind (along e_φ) and w up (along −e_ϑ)::
+* a curve in the tangent plane at (ϑ0, φ = 0), of width W and height H, u
+  crosswind (along e_φ) and w up (along −e_ϑ), by ``[kite] eight_shape``: the
+  lemniscate of Gerono (the default) or two elliptic lobes tangent at the
+  centre (circles of radius W/4 when H = W/2)::
 
-      u = (W/2) sin τ,    w = H sin τ cos τ
+      gerono:    u = (W/2) sin τ,         w = H sin τ cos τ
+      ellipses:  u = (W/2) sin τ |sin τ|,  w = H sin τ cos τ
 
 * mapped on the sphere of nominal radius L (the cable length)::
 
@@ -91,6 +94,31 @@ def gerono(tau, width_m, height_m):
     u = (0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s)
     w = (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2)
     return u, w
+
+
+def ellipses(tau, width_m, height_m):
+    """Two elliptic lobes tangent at the centre: u = (W/2) sin τ |sin τ|,
+    w = H sin τ cos τ, with d/dτ, d²/dτ².
+
+    Each lobe is the ellipse (u ∓ W/4)²/(W/4)² + w²/(H/2)² = 1 (u = (W/4)(1 − cos 2τ)
+    on τ ∈ [0, π], mirrored on [π, 2π]), a circle of radius W/4 when H = W/2.
+    A lobe is symmetric about its centre u = ±W/4, so at constant speed the
+    mean |u| is exactly W/4, whatever H.  Position and velocity are continuous;
+    u'' = W sgn(sin τ) cos 2τ jumps at the crossings τ = 0, π (the turn changes
+    side), where u' = 0, so the arc rate g and its derivative g' stay continuous.
+    Returns ((u, u', u''), (w, w', w'')) in metres.
+    """
+    f = functions_of(tau)
+    s, c = f.sin(tau), f.cos(tau)
+    side = math.copysign(1.0, s) if f is math else np.sign(s)
+    s2, c2 = 2.0 * s * c, c * c - s * s
+    u = (0.5 * width_m * s * abs(s), width_m * abs(s) * c, width_m * side * c2)
+    w = (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2)
+    return u, w
+
+
+#: The eight's curves by the name ``[kite] eight_shape`` takes.
+SHAPES = {"gerono": gerono, "ellipses": ellipses}
 
 
 @functools.cache
@@ -188,6 +216,7 @@ class FigureEight:
     width_m: float
     height_m: float
     speed_mps: float
+    shape: str = "gerono"
     _loop_m: float = field(init=False, repr=False, compare=False)
     _arc_m: PiecewisePolynomial = field(init=False, repr=False, compare=False)
     _tau_of_arc: PiecewisePolynomial = field(init=False, repr=False, compare=False)
@@ -201,6 +230,7 @@ class FigureEight:
             width_m=float(kite.eight_width_m),
             height_m=float(kite.eight_height_m),
             speed_mps=float(kite.speed_mps),
+            shape=kite.eight_shape,
         )
 
     def at_length(self, length_m, t_s):
@@ -225,7 +255,7 @@ class FigureEight:
 
         ϑ = ϑ0 − w/L,  φ = u / (L sinϑ0).
         """
-        u, w = gerono(tau, self.width_m, self.height_m)
+        u, w = SHAPES[self.shape](tau, self.width_m, self.height_m)
         L = self.length_m
         theta = (self.theta0_rad - w[0] / L, -w[1] / L, -w[2] / L)
         phi = tuple(ui / (L * math.sin(self.theta0_rad)) for ui in u)

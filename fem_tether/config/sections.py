@@ -166,6 +166,9 @@ class Kite(Section):
                                        "about its axis (Lourenco 2014 §3.2.1: 0.4 rad)", between(0.0, 90.0))
     eight_width_m: float = setting(190.0, "m", "crosswind width W of the eight", positive)
     eight_height_m: float = setting(95.0, "m", "height H of the eight", positive)
+    eight_shape: str = setting("gerono", "-", "the eight's curve: 'gerono' (lemniscate of Gerono) or 'ellipses' "
+                               "(two elliptic lobes tangent at the centre, circles of radius W/4 if H = W/2; "
+                               "its mean |phi| matches Roselli 2016 Tab. 5.2)", one_of("gerono", "ellipses"))
     design_phi_deg: float = setting(11.0, "deg", "azimuth used by the characteristic curves",
                                     between(-90.0, 90.0))
     nominal_force_N: float = setting(300000.0, "N", "nominal traction force (all lines)", positive)
