@@ -12,7 +12,7 @@ from pathlib import Path
 
 from fem_tether.atomic import atomic_path, check_writable, write_json
 
-from .case import DOCUMENTS, Result, format_difference, format_tolerance
+from .case import DOCUMENTS, VERDICTS, Result, format_difference, format_tolerance
 from .run import Validation
 
 MARKDOWN_NAME, JSON_NAME = "validation.md", "validation.json"
@@ -72,11 +72,11 @@ def write(validation: Validation, directory) -> dict[str, Path]:
 
 
 def read_counts(path) -> dict | None:
-    """``{"counts", "quick", "version"}`` of a ``validation.json``; None if there is none or
-    it is not one."""
+    """``{"counts", "quick", "version"}`` of a ``validation.json`` (counts in the order of
+    :data:`~fem_tether.validation.case.VERDICTS`); None if there is none or it is not one."""
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
-        return {"counts": {k: int(v) for k, v in data["counts"].items()}, "quick": bool(data["quick"]),
+        return {"counts": {v: int(data["counts"][v]) for v in VERDICTS}, "quick": bool(data["quick"]),
                 "version": str(data["version"])}
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
