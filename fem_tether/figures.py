@@ -51,7 +51,7 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
                 curves[f"{lengths[i]:g} m, {name}"] = (wind, system.electrical_power_W(wind, cd),
                                                        system.active_power_W(wind, cd))
     files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png",
-                                             "; ".join(dict.fromkeys(air)))
+                                             "\n".join(dict.fromkeys(air)))
     aep = {"straight": energy.straight, "flexible": energy.flexible}
     if energy.fixed is not None:
         aep = {"straight": energy.straight, "flexible, configured d": energy.fixed,
@@ -64,8 +64,8 @@ def air_note(cfg: Config) -> str:
     """The air density the power curves of ``cfg`` use and where: ρ of ``[air]`` at the
     operating altitude z = L cos ϑ0 (seed 000 §5)."""
     z_m = float(operating_altitude_m(cfg.tether.length_m, np.radians(cfg.kite.theta0_deg)))
-    return (f"{cfg.tether.length_m:g} m: rho = {operating_density_kg_m3(cfg):.3f} kg/m$^3$ "
-            f"({cfg.air.model}) at z = L cos theta0 = {z_m:.0f} m")
+    return (f"{cfg.tether.length_m:g} m line: $\\rho$ = {operating_density_kg_m3(cfg):.3f} kg/m$^3$ "
+            f"({cfg.air.model} air) at $z = L\\cos\\vartheta_0$ = {z_m:.0f} m")
 
 
 def reel_drag_plot(run, cfg: Config, path, sweep_file=None) -> Path:

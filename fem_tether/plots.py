@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
 from pathlib import Path
 
 import matplotlib
@@ -156,7 +157,7 @@ def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
 
 #: Power curves: solid flexible, dashed with hollow squares straight (drawn on top, so that a
 #: straight curve equal to the flexible one stays visible), thin dotted the active phase.
-POWER_CASE_STYLE = {"flexible": dict(ls="-", lw=2.2, zorder=2),
+POWER_CASE_STYLE: dict[str, dict[str, Any]] = {"flexible": dict(ls="-", lw=2.2, zorder=2),
                     "straight": dict(ls="--", lw=1.3, marker="s", ms=4.5, mfc="none", zorder=3)}
 
 

@@ -78,7 +78,7 @@ def test_power_curves_keep_equal_straight_curves_visible_and_state_the_air(drawn
     power = 1e5 * wind**2
     plot_power_curves({"500 m, straight": (wind, power, power * 1.5), "500 m, flexible": (wind, power, None),
                        "3000 m, straight": (wind, 0.5 * power, None), "3000 m, flexible": (wind, 0.8 * power, None)},
-                      tmp_path / "p.png", note="500 m: rho = 1.170 kg/m$^3$ (isa) at z = 354 m")
+                      tmp_path / "p.png", note="500 m line: $\\rho$ = 1.170 kg/m$^3$ (isa air) at z = 354 m")
     ax = drawn[0].axes[0]
     lines = {line.get_label(): line for line in ax.get_lines()}
     for length in ("500 m", "3000 m"):
@@ -90,4 +90,4 @@ def test_power_curves_keep_equal_straight_curves_visible_and_state_the_air(drawn
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
     assert legend == ["500 m, straight", "500 m, flexible", "3000 m, straight", "3000 m, flexible",
                       "active phase"]
-    assert "rho = 1.170" in ax.get_title() and "z = 354 m" in ax.get_title()
+    assert "= 1.170 kg/m$^3$" in ax.get_title() and "z = 354 m" in ax.get_title()

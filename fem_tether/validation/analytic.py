@@ -44,17 +44,25 @@ def observed_orders(errors) -> np.ndarray:
     return np.log2(e[:-1] / e[1:])
 
 
+def _fe_static(n: int, cfg: Config, end: Stationary):
+    """Arc lengths of the nodes and of the tensions, positions and tensions of the FE
+    static solution with n uniform elements."""
+    model = fe.build_model(cfg.replace(fe={"elements": n, "mesh": "uniform"}), end=end)
+    state = fe.static_equilibrium(model)
+    return model.system.spaces.s_m, model.system.spaces.s_mid_m, state.kin.q, state.T
+
+
+def _fd_static(n: int, cfg: Config, end: Stationary):
+    """The same of the FD static solution with n segments (tensions at the midpoints)."""
+    model = fd.build_model(cfg.replace(fd={"segments": n}), end=end)
+    state = fd.static_equilibrium(model)
+    s_m = model.grid.s_m
+    return s_m, 0.5 * (s_m[1:] + s_m[:-1]), state.r, state.T
+
+
 def _catenary_errors(solver: str, n: int, cfg: Config, exact: Catenary, end: Stationary):
     """Largest position error / L and tension error / T_max of the static solution with n cells."""
-    if solver == "fe":
-        model = fe.build_model(cfg.replace(fe={"elements": n, "mesh": "uniform"}), end=end)
-        state = fe.static_equilibrium(model)
-        s_m, s_mid_m, r, T = model.system.spaces.s_m, model.system.spaces.s_mid_m, state.kin.q, state.T
-    else:
-        model = fd.build_model(cfg.replace(fd={"segments": n}), end=end)
-        state = fd.static_equilibrium(model)
-        s_m, r, T = model.grid.s_m, state.r, state.T
-        s_mid_m = 0.5 * (s_m[1:] + s_m[:-1])
+    s_m, s_mid_m, r, T = (_fe_static if solver == "fe" else _fd_static)(n, cfg, end)
     t_exact = exact.tension_N(s_mid_m)
     return (np.max(np.linalg.norm(r - exact.position(s_m), axis=1)) / exact.length_m,
             np.max(np.abs(T - t_exact)) / np.max(t_exact))

@@ -29,8 +29,8 @@ from .analytic import QUIET, observed_orders
 from .case import Check
 
 CONVERGENCE_CASE = QUIET | {"tether": {"length_m": 3000.0}, "time": {"average_periods": 1}}
-#: (solver, section, key, values from coarse to fine, the other key of the section held)
-REFINEMENTS = {
+#: (solver section, key refined, its values from coarse to fine, the section's other key held)
+REFINEMENTS: dict[str, tuple[str, str, tuple[float, ...], dict[str, float]]] = {
     "FE elements": ("fe", "elements", (10, 20, 40, 80, 160), {"dt_s": 0.05}),
     "FE time step": ("fe", "dt_s", (0.2, 0.1, 0.05, 0.025, 0.0125), {"elements": 40}),
     "FD segments": ("fd", "segments", (25, 50, 100, 200, 400), {"dt_s": 0.025}),

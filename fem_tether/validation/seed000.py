@@ -174,7 +174,7 @@ def best_length(quick: bool) -> tuple[Check, ...]:
     inputs = {f"{column}, Tab. 5.1 G_e and Tab. 5.2 phi": (SEED_GE[column], SEED_MEAN_PHI_DEG)
               for column in ("straight", "flexible")}
     inputs["flexible, fem-tether's G_e and phi (FE)"] = (np.array(flexible_ge()), own_mean_phi_deg())
-    return tuple(Check(f"best length, {name}", SEED_BEST_LENGTH_M,
-                       aep_by_length(design, air, SEED_LENGTHS_M, ge, phi, resource).best_length_m,
-                       0.0, "m", relative=False)
-                 for name, (ge, phi) in inputs.items())
+    best = {name: aep_by_length(design, air, SEED_LENGTHS_M, ge, phi, resource).best_length_m
+            for name, (ge, phi) in inputs.items()}
+    return tuple(Check(f"best length, {name}", SEED_BEST_LENGTH_M, np.nan if length is None else length,
+                       0.0, "m", relative=False) for name, length in best.items())
