@@ -27,7 +27,7 @@ VALIDATION_NAME = "validation.json"
 STYLE = ("body{font-family:sans-serif;max-width:62em;margin:2em auto;padding:0 1em}"
          "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:.2em .5em;text-align:right}"
          "th{background:#eee}td.text{text-align:left}img{max-width:100%}"
-         "pre{background:#f6f6f6;padding:1em;overflow-x:auto}.fail{color:#b00}")
+         "pre{background:#f6f6f6;padding:1em;overflow-x:auto}")
 
 
 def _number(value, digits: int) -> str:
