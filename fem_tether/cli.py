@@ -198,6 +198,18 @@ def cmd_run(args):
     return 0 if result.outcome.ok else EXIT_FAILED
 
 
+def cmd_validate(args):
+    from fem_tether.validation import table, validate
+
+    progress = None if args.json else (lambda case: print(f"validate: {case.name}", file=sys.stderr, flush=True))
+    result = validate(args.quick, args.only, progress=progress)
+    files = table.write(result, args.out)
+    print(report.json_text(result.as_dict()) if args.json else
+          "\n".join([table.markdown_table(result), "", table.summary_line(result),
+                     *(f"wrote {path}" for path in files.values())]))
+    return 0 if result.ok else EXIT_FAILED
+
+
 def cmd_bench(args):
     from fem_tether import bench
 
@@ -313,6 +325,14 @@ def build_parser() -> argparse.ArgumentParser:
                    help="keep lengths whose cross-check failed, marked")
     c.add_argument("--allow-incomplete", action="store_true",
                    help="compute the AEP even if lengths are pending (else exit 2 naming them)")
+
+    c = command("validate", cmd_validate, "run the validation cases (analytic solutions, the source documents' "
+                "numbers, FE <-> FD) and print one table of verdicts", config=False, system=False)
+    c.add_argument("--quick", action="store_true", help="only the quick set (under a minute)")
+    c.add_argument("--only", metavar="PATTERN", help="only the cases whose name matches, e.g. 'roselli/*' or tab-5")
+    c.add_argument("--out", default="validation", metavar="DIR",
+                   help="write validation.md and validation.json here (validation)")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False, system=False)
     c.add_argument("--repeats", type=_positive_int, default=5, help="rounds over every setting; the best per setting counts")

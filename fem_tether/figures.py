@@ -15,9 +15,9 @@ import numpy as np
 from fem_tether import straight
 from fem_tether.aep import SweepAep
 from fem_tether.config import Config
-from fem_tether.power import SEED_GE
+from fem_tether.power import SEED_GE, operating_altitude_m
 from fem_tether.results import period_average
-from fem_tether.summary import operating_tether_cd
+from fem_tether.summary import operating_density_kg_m3, operating_tether_cd
 from fem_tether.sweepfile import read_sweep
 from fem_tether.systems.configured import from_config
 
@@ -39,9 +39,10 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
                             directory / "ge_vs_length.png",
                             reference=SEED_GE if cfg.system.model == "kitegen" else None),
     }
-    curves = {}
+    curves, air = {}, []
     for i in (0, lengths.size - 1):
         case = cfg.with_length(lengths[i])
+        air.append(air_note(case))
         system = from_config(case)
         wind = np.arange(0.0, system.top_mps + 0.5 * POWER_CURVE_STEP_MPS, POWER_CURVE_STEP_MPS)
         for name, (drag_key, _) in cases.items():
@@ -49,13 +50,22 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
                 cd = operating_tether_cd(case, data[drag_key][i])
                 curves[f"{lengths[i]:g} m, {name}"] = (wind, system.electrical_power_W(wind, cd),
                                                        system.active_power_W(wind, cd))
-    files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png")
+    files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png",
+                                             "\n".join(dict.fromkeys(air)))
     aep = {"straight": energy.straight, "flexible": energy.flexible}
     if energy.fixed is not None:
         aep = {"straight": energy.straight, "flexible, configured d": energy.fixed,
                "flexible, sized d": energy.flexible}
     files["aep"] = plots.plot_aep(aep, directory / "aep_vs_length.png")
     return files
+
+
+def air_note(cfg: Config) -> str:
+    """The air density the power curves of ``cfg`` use and where: ρ of ``[air]`` at the
+    operating altitude z = L cos ϑ0 (seed 000 §5)."""
+    z_m = float(operating_altitude_m(cfg.tether.length_m, np.radians(cfg.kite.theta0_deg)))
+    return (f"{cfg.tether.length_m:g} m line: $\\rho$ = {operating_density_kg_m3(cfg):.3f} kg/m$^3$ "
+            f"({cfg.air.model} air) at $z = L\\cos\\vartheta_0$ = {z_m:.0f} m")
 
 
 def reel_drag_plot(run, cfg: Config, path, sweep_file=None) -> Path:

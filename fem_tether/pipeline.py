@@ -2,8 +2,9 @@
 
 Rank 0 of the sweep does everything after the sweep.  Files written into the
 output directory: ``sweep.h5`` (the sweep result, see :mod:`fem_tether.sweepfile`),
-``aep.json`` and four PNG plots (F_t, G_e, power curves, AEP vs L); the
-summary table is :func:`fem_tether.report.summary_table`.
+``aep.json``, four PNG plots (F_t, G_e, power curves, AEP vs L) and the report
+page ``index.html`` (:mod:`fem_tether.page`); the printed summary table is
+:func:`fem_tether.report.summary_table`.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from fem_tether.atomic import write_json
 from fem_tether.figures import write_plots
 from fem_tether.jobs import load_job
 from fem_tether.memory import peak_rss_MiB
+from fem_tether.page import write_page
 from fem_tether.sweep import SweepOutcome, sweep
 from fem_tether.sweepfile import read_sweep
 
@@ -66,5 +68,6 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     files = write_plots(data, energy, out)
     files["aep_json"] = write_json(out / "aep.json", energy.as_dict())
+    files["index"] = write_page(out, data, energy, {k: v for k, v in files.items() if v.suffix == ".png"})
     outcome = replace(outcome, peak_rss_MiB=(peak_rss_MiB(),) + outcome.peak_rss_MiB[1:])  # with the plots
     return MainJob(outcome, data, energy, h5, files, time.perf_counter() - t0)

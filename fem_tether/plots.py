@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
 from pathlib import Path
 
 import matplotlib
@@ -117,10 +118,23 @@ def plot_ge(lengths_m, ge_by_case: Mapping[str, np.ndarray], path,
                            "$G_e = L/(D_k + 2F_t)$ (seed 000 eq. 5.1, Fig. 5.1)", path, ref)
 
 
+#: The note on the AEP plot where a case's best length is the first or last one swept.
+EDGE_NOTE = "optimum at the edge of the swept lengths: not bracketed"
+
+
+def at_the_edge(result: AepByLength) -> bool:
+    """Whether the best length is the shortest or the longest swept (a maximum not bracketed)."""
+    best = int(np.argmax(result.aep_MWh))
+    return result.length_m.size > 0 and best in (0, result.length_m.size - 1)
+
+
 def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
     """AEP (eq. 5.2) against L per case, each case's best length starred (seed 000 Fig. 5.6);
-    a case without lengths (none passed the cross-check) is named in the legend only."""
+    a case without lengths (none passed the cross-check) is named in the legend only.  A best
+    length at the edge of the swept range is noted (:data:`EDGE_NOTE`): the true optimum may
+    lie beyond it."""
     fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    edge = []
     for i, (case, r) in enumerate(results.items()):
         style = _case_style(case, i)
         if not r.length_m.size:
@@ -131,28 +145,48 @@ def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
         best = np.argmax(r.aep_MWh)
         ax.plot(r.length_m[best], r.aep_MWh[best] * 1e-3, "*", ms=16, color=style["color"],
                 mec="k", mew=0.6, zorder=5)
+        if at_the_edge(r):
+            edge.append(case)
+    if edge:
+        ax.text(0.5, 0.03, f"{EDGE_NOTE} ({', '.join(edge)})", transform=ax.transAxes, ha="center",
+                va="bottom", fontsize=8.5, color="0.25", bbox=dict(fc="white", ec="0.7", alpha=0.9))
     _label_axes(ax, "cable length $L$ [m]", "annual energy production [GWh]",
                 "AEP with the cycle-mean power curve (seed 000 eq. 5.2, Fig. 5.6)")
     return save_atomically(fig, path)
 
 
-def plot_power_curves(curves_by_label: Mapping[str, tuple], path) -> Path:
-    """Cycle-mean (solid) and, where given, active-phase (dashed) power against wind speed
-    (seed 000 Figs. 5.4–5.5); each curve is ``(wind_mps, cycle_W, active_W or None)``."""
-    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+#: Power curves: solid flexible, dashed with hollow squares straight (drawn on top, so that a
+#: straight curve equal to the flexible one stays visible), thin dotted the active phase.
+POWER_CASE_STYLE: dict[str, dict[str, Any]] = {"flexible": dict(ls="-", lw=2.2, zorder=2),
+                    "straight": dict(ls="--", lw=1.3, marker="s", ms=4.5, mfc="none", zorder=3)}
+
+
+def plot_power_curves(curves_by_label: Mapping[str, tuple], path, note: str | None = None) -> Path:
+    """Cycle-mean and, where given, active-phase (thin dotted) power against wind speed
+    (seed 000 Figs. 5.4–5.5); each curve is ``(wind_mps, cycle_W, active_W or None)``.
+
+    A label ending in ``straight`` or ``flexible`` takes that case's line style
+    (:data:`POWER_CASE_STYLE`), its start (e.g. the length) the colour; ``note``
+    (e.g. the air density and altitude the curves are for) goes under the title.
+    """
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), constrained_layout=True)
+    colours: dict[str, str] = {}
     any_active = False
-    for i, (label, (wind, cycle_W, active_W)) in enumerate(curves_by_label.items()):
-        color = f"C{i}"
+    for label, (wind, cycle_W, active_W) in curves_by_label.items():
+        group, _, case = label.rpartition(", ")
+        color = colours.setdefault(group or label, f"C{len(colours)}")
+        style = POWER_CASE_STYLE.get(case, POWER_CASE_STYLE["flexible"])
         if active_W is not None:
             any_active = True
-            ax.plot(wind, np.asarray(active_W) * 1e-6, "--", color=color, lw=1.2)
-        ax.plot(wind, np.asarray(cycle_W) * 1e-6, "-", color=color, lw=2, label=label)
+            ax.plot(wind, np.asarray(active_W) * 1e-6, ":", color=color, lw=1.0)
+        ax.plot(wind, np.asarray(cycle_W) * 1e-6, color=color, label=label,
+                markevery=max(1, len(wind) // 20), **style)
     if any_active:
-        ax.plot([], [], "--", color="0.4", lw=1.2, label="active phase")
-        ax.plot([], [], "-", color="0.4", lw=2, label="cycle mean")
+        ax.plot([], [], ":", color="0.4", lw=1.0, label="active phase")
     ax.set_xlim(left=0.0)
+    title = "power curves: cycle mean" + (" and active phase (dotted)" if any_active else "")
     _label_axes(ax, "wind speed at the kite $V_w$ [m/s]", "electrical power [MW]",
-                "power curves: cycle mean" + (" and active phase" if any_active else ""), "lower right")
+                title + (f"\n{note}" if note else ""), "lower right")
     return save_atomically(fig, path)
 
 

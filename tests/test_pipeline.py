@@ -9,6 +9,8 @@ from pathlib import Path
 import h5py
 import pytest
 
+from test_page import check_page
+
 from fem_tether.cli import main
 from fem_tether.resource import from_config as resource_from_config
 from fem_tether.resource import write_resource_csv
@@ -45,6 +47,9 @@ def test_run_writes_results_plots_and_table(quick_run, capsys):
     assert all(r["aep_fe_MWh"] > r["aep_straight_MWh"] for r in rows[1:])
     with h5py.File(out / "sweep.h5") as f:
         assert f["drag_fe_N"][2] < f["drag_straight_N"][2] and f["ge_fe"][2] > f["ge_straight"][2]
+    # the report page: self-contained, the numbers of aep.json, the four plots
+    page = check_page(out / "index.html", data)
+    assert len(page.images) == 4
 
 
 def test_aep_gate_leaves_out_failed_crosschecks(quick_run, tmp_path, capsys):

@@ -1,0 +1,46 @@
+"""Every validation case, in the order of the table.
+
+The quick set (``quick=True``) is what ``fem-tether validate --quick`` and the
+test suite run: the analytic solutions, Roselli 2016's numbers, the kite-system
+models and the FE <-> FD cross-check at the shipped settings.  The full run adds
+the convergence tables of both solvers and their agreement at the finest settings.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+from . import analytic, numerics, seed000, systems
+from .case import Case
+
+CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
+STRING = "analytic: taut string, f = sqrt(T/mu)/(2L)"
+
+CASES: tuple[Case, ...] = (
+    Case("analytic/catenary-fe", CATENARY, True, partial(analytic.catenary, "fe")),
+    Case("analytic/catenary-fd", CATENARY, True, partial(analytic.catenary, "fd")),
+    Case("analytic/string-frequency", STRING, True, analytic.string_frequency),
+    Case("analytic/string-energy", "analytic: taut string, energy kinetic + T0 (L - R)", True,
+         analytic.string_energy),
+    Case("analytic/inextensible-and-winch", "analytic: |r_s| = 1 (Roselli 2016 eq. 4.16), T(0) = T0", True,
+         analytic.held_line),
+    Case("analytic/straight-closed-form", "analytic: Roselli 2016 eq. 4.6 as the limit of eq. 4.1", True,
+         analytic.straight_closed_form),
+    Case("roselli/straight-line", "Roselli 2016 §4.1, eqs. 4.1 and 4.6", True, seed000.straight_line),
+    Case("roselli/characteristic-speeds", "Roselli 2016 §2.4, eqs. 2.55-2.57", True, seed000.characteristic),
+    Case("roselli/tab-5.1-straight", "Roselli 2016 Tab. 5.1 (straight lines), eq. 5.1", True,
+         seed000.tab_5_1_straight),
+    Case("roselli/tab-5.1-flexible", "Roselli 2016 Tab. 5.1 (flexible ropes), eq. 5.1", True,
+         seed000.tab_5_1_flexible),
+    Case("roselli/tab-5.2", "Roselli 2016 Tab. 5.2", True, seed000.tab_5_2),
+    Case("roselli/tab-5.3", "Roselli 2016 Tab. 5.3", True, seed000.tab_5_3),
+    Case("roselli/best-length", "Roselli 2016 Fig. 5.6, eq. 5.2", True, seed000.best_length),
+    Case("trevisi/table-3.1", "Trevisi 2019 Table 3.1, eqs. 3.74-3.87", True, systems.trevisi_table_3_1),
+    Case("trevisi/optima", "Trevisi 2019 §3.3.2, eq. 3.47", True, systems.trevisi_optima),
+    Case("lourenco/tether-and-power", "Lourenço eq. 3.7, Table 4.2", True, systems.lourenco),
+    Case("fagiano/equivalent-drag", "Fagiano et al. 2010 eq. 21, Table I", True, systems.fagiano),
+    Case("numerics/fe-fd-shipped", "FE <-> FD cross-check, shipped settings", True, numerics.agreement_shipped),
+    *(Case(f"numerics/{name.lower().replace(' ', '-')}", f"convergence: {name}, 3000 m, quiet air", False,
+           partial(numerics.convergence, name)) for name in numerics.REFINEMENTS),
+    Case("numerics/fe-fd-finest", "FE <-> FD cross-check, finest settings", False, numerics.agreement_finest),
+)
