@@ -110,6 +110,10 @@ def tab_5_1_straight(quick: bool) -> tuple[Check, ...]:
                     for length, seed, ge in zip(SEED_LENGTHS_M, SEED_GE["straight"], scaled)))
 
 
+#: Tab. 5.2 against the ellipses eight: 3 % (measured +2.4 % at 500 m, within 0.7 % from 919 m).
+ELLIPSES_TOLERANCE = 0.03
+
+
 def tab_5_1_flexible(quick: bool) -> tuple[Check, ...]:
     """Tab. 5.1, flexible ropes: G_e of the FE line (default configuration: 40 graded
     elements, dt 0.05 s, 1 + 2 periods) at each length."""
@@ -117,25 +121,29 @@ def tab_5_1_flexible(quick: bool) -> tuple[Check, ...]:
     for length, seed, ge in zip(SEED_LENGTHS_M, SEED_GE["flexible"], flexible_ge()):
         gap = FLEXIBLE_GE_GAP.get(float(length))
         explanation = None if gap is None else Explanation(
-            f"docs: measured +{100 * gap:.1f} % at {length:g} m; its decomposition is in tab51-gap.md",
+            f"docs: +{100 * gap:.1f} % measured; the seed's drag level closes a part, its Euler step, "
+            "eight and reel-out reading widen it; the rest tracks the eight's height, which the seed "
+            "does not give",
             FLEXIBLE_GE_LINKS, (gap - 0.005, gap + 0.005))
         checks.append(Check(f"G_e flexible, {length:g} m", seed, ge, TABLE_TOLERANCE, explanation=explanation))
     return tuple(checks)
 
 
-def own_mean_phi_deg() -> np.ndarray:
-    """Mean |φ| of the default eight at Tab. 5.2's lengths."""
-    kite = load_config().kite
+def own_mean_phi_deg(shape: str = "gerono") -> np.ndarray:
+    """Mean |φ| of the default eight (of ``[kite] eight_shape = shape``) at Tab. 5.2's lengths."""
+    kite = load_config(overrides={"kite": {"eight_shape": shape}}).kite
     return np.array([FigureEight.from_config(kite, length).mean_abs_phi_deg() for length in SEED_LENGTHS_M])
 
 
 def tab_5_2(quick: bool) -> tuple[Check, ...]:
     """Tab. 5.2: mean |φ| of the flown eight per length, and the ratio 500 m / 3000 m."""
     phi = own_mean_phi_deg()
-    eight = Explanation("docs: our 190 m x 95 m eight has a mean |phi| 15-18 % above Tab. 5.2 "
-                        "at every length", PHI_LINKS, (0.14, 0.19))
+    eight = Explanation("docs: the Gerono eight 190 m x 95 m sits 15-18 % above Tab. 5.2; an eight of "
+                        "two elliptic lobes of the same size matches it (next rows)", PHI_LINKS, (0.14, 0.19))
     checks = [Check(f"mean |phi|, {length:g} m", seed, value, TABLE_TOLERANCE, "deg", explanation=eight)
               for length, seed, value in zip(SEED_LENGTHS_M, SEED_MEAN_PHI_DEG, phi)]
+    checks += [Check(f"mean |phi|, eight_shape = ellipses, {length:g} m", seed, value, ELLIPSES_TOLERANCE, "deg")
+               for length, seed, value in zip(SEED_LENGTHS_M, SEED_MEAN_PHI_DEG, own_mean_phi_deg("ellipses"))]
     checks.append(Check("mean |phi| 500 m / 3000 m", SEED_MEAN_PHI_DEG[0] / SEED_MEAN_PHI_DEG[-1],
                         phi[0] / phi[-1], TABLE_TOLERANCE,
                         explanation=Explanation("docs: the ratio agrees to about 2 % (6.0 vs 5.9)",
