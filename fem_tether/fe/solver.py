@@ -97,7 +97,8 @@ def build_model(cfg: Config, end: EndMotion | None = None,
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
     physics = physics or physics_from_config(cfg)
-    kite = free_kite_module.from_config(cfg, float(spaces.mass_kg[-1]), physics.wind, physics.air)
+    kite = free_kite_module.from_config(cfg, float(spaces.mass_kg[-1]), physics.wind, physics.air,
+                                        sample_s=cfg.fe.dt_s)
     if kite is not None and end is None:
         case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
     system = TetherSystem(spaces, physics, case["tension_mode"], compiled=cfg.fe.kernel == "compiled")
@@ -294,7 +295,7 @@ def release(model: FEModel, state: State) -> tuple[FEModel, State]:
     free = TetherSystem(sys_.spaces, sys_.physics, False, sys_.compiled, end_mass_kg=kite.kite.mass_kg)
     model = replace(model, system=free, tension_mode=False, radius_m=state.R)
     r, v = state.kin.q, state.kin.v
-    steer = kite.steer(state.t, 0.0, r[-1], v[-1], r[-1] - r[-2])
+    steer = kite.steer(state.t, 0.0, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]))
     v, qdd, T = free.consistent_start(r, v, state.T, state.R, None, 0.0,
                                       end_force=_end_force(kite, r, steer.roll_rad))
     load = kite.load(r[-1], v[-1], r[-1] - r[-2], steer.roll_rad)
@@ -347,7 +348,8 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     steer = load = None
     if kite is not None:
         assert state.steer is not None, "a free kite's state carries its last steering sample"
-        steer = kite.steer(state.t, state.steer.parameter_s, kin.q[-1], kin.v[-1], kin.q[-1] - kin.q[-2])
+        steer = kite.steer(state.t, state.steer.parameter_s, kin.q[-1], kin.v[-1], kin.q[-1] - kin.q[-2],
+                           float(state.T[-1]))
     c_a, c_v = model.scheme.coefficients(h)
     # the unknowns in one vector, r and T views into it; each Newton update adds in place
     x = sys_.pack(kin.predict(h), state.T, state.R)
