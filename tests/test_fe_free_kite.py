@@ -63,3 +63,118 @@ def test_coupled_jacobian_matches_central_differences(kernel, polar, tmp_path):
         N[:, j] = (evaluation(x + dx, False).residual - evaluation(x - dx, False).residual) / (2 * dx[j])
     assert np.max(np.abs(A - N)) <= 1e-6 * np.max(np.abs(N))
     assert np.max(np.abs(A[-8:-1, -8:-1] - N[-8:-1, -8:-1])) <= 1e-6 * np.max(np.abs(N[-8:-1, -8:-1]))
+
+
+#: A kite on a line so thin and light that its drag and weight are negligible
+#: (d = 0.1 mm, mu = 0.1 g/m: F_t ~ 150 N and weight 0.4 N against ~1 MN), in a
+#: height-independent wind (power law of exponent 0: 8.42 m/s) and air of constant
+#: density; the kite 1 kg per line (the law needs a mass to steer: its inertia,
+#: m V^2 / R_min ~ 1.4 kN, is 0.14 % of the force).
+CROSSWIND = {"tether": {"length_m": 400.0, "diameter_m": 1e-4, "linear_density_kg_m": 1e-4},
+             "system": {"kite_mass_kg": 2.0}, "wind": {"profile": "power", "alpha": 0.0},
+             "air": {"model": "constant", "density_kg_m3": 1.2}, "winch": {"ground_tension_N": 1e4},
+             "fe": {"elements": 8, "dt_s": 0.02}, "time": {"spinup_periods": 2, "average_periods": 2},
+             "output": {"every": 1}}
+
+
+def _overrides(base, **sections):
+    out = {k: dict(v) for k, v in base.items()}
+    for name, values in sections.items():
+        out.setdefault(name, {}).update(values)
+    return out
+
+
+@pytest.mark.parametrize("turbine_factor", [0.0, 0.5])
+def test_spun_up_flight_obeys_the_crosswind_law(turbine_factor):
+    """Seed 000 eqs. 2.35/2.45 (seed 001 eq. 17): |W_e,perp| / (V_w . e_r) = E = C_L/C_D
+    at every step of the spun-up flight, and T_L = the traction of seed 000 eq. 2.46
+    (:func:`steady_crosswind` of the massless kite at the kite's (theta, phi)); a
+    fly-gen kite (gamma_t = 0.5) with C_L/(C_D (1 + gamma_t)) for E (seed 004 eq.
+    3.34); both within 2 %."""
+    from fem_tether.fe.solver import simulate
+    from fem_tether.kite_dynamics import PointMassKite, steady_crosswind
+
+    cfg = load_config(overrides=_overrides(CROSSWIND, kite={"model": "point-mass",
+                                                             "turbine_factor": turbine_factor}))
+    run = simulate(cfg)
+    kite = build_model(cfg).kite
+    aero = kite.kite.aerodynamics
+    efficiency = aero.cl / (aero.cd * (1.0 + turbine_factor))
+    massless = PointMassKite(0.0, kite.kite.area_m2, aero, 0.0, turbine_factor)
+    steps = [i for i, t in enumerate(run.snapshot_time_s) if t >= run.average_start_s - 1e-9]
+    assert len(steps) == run.periods * round(run.period_s / run.extra["dt_s"]) + 1
+    for i in steps:
+        line = run.line(i)
+        r, v = line["position_m"][-1], line["velocity_mps"][-1]
+        e_r = r / np.linalg.norm(r)
+        wind = kite.wind.velocity_mps(r[2])
+        apparent = wind - v
+        across = np.linalg.norm(apparent - (apparent @ e_r) * e_r)
+        assert across / (wind @ e_r) == pytest.approx(efficiency, rel=0.02)
+        state = steady_crosswind(massless, float(kite.wind.speed_mps(r[2])), np.arccos(e_r[2]),
+                                 np.arctan2(e_r[1], e_r[0]), 0.0, 1.2)
+        assert line["tension_N"][-1] == pytest.approx(state.tension_N, rel=0.02)
+
+
+KITEGEN = {"system": {"kite_mass_kg": 180.0}, "fe": {"elements": 20},
+           "kite": {"model": "point-mass"}}
+
+
+def test_tracks_the_kitegen_eight():
+    """KiteGen's eight at 1000 m (default log wind, 180 kg wing: seed 000 §2.3), flown
+    free for 10 periods after 2 of spin-up: cross-track RMS within 2 % of the eight's
+    width (3.8 m); the roll stays inside its limits."""
+    from fem_tether.fe.solver import simulate
+
+    cfg = load_config(overrides=_overrides(KITEGEN, time={"spinup_periods": 2, "average_periods": 10}))
+    run = simulate(cfg)
+    window = run.average_window
+    rms = np.sqrt(np.mean(run.series["cross_track_m"][window] ** 2))
+    assert rms <= 0.02 * 190.0
+    assert np.all(np.abs(run.series["roll_deg"]) <= 30.0 + 1e-9)
+
+
+def _free_run(cfg, start_factor=1.0):
+    """A free-kite run whose static start moves the end at ``start_factor`` times
+    the kite's start speed, over the nominal start's periods."""
+    from dataclasses import replace
+
+    from fem_tether import protocol
+
+    nominal = build_model(cfg)
+    solver = FESolver(replace(nominal, end=replace(nominal.end, speed_mps=start_factor * nominal.end.speed_mps)))
+    state = solver.initial_state()
+    solver.model = replace(solver.model, end=nominal.end)
+    return protocol.run(solver, cfg.fe.dt_s, cfg.time.spinup_periods, cfg.time.average_periods, initial=state)
+
+
+def test_series_and_perturbed_starts():
+    """A free kite's run records the KITE_SERIES; starts at 0.9 and 1.1 times the
+    start speed reach the nominal start's spun-up means (F_t, T_0, T_L, kite speed)
+    within 1 %."""
+    from fem_tether.results import KITE_SERIES
+
+    cfg = load_config(overrides=_overrides(KITEGEN, time={"spinup_periods": 2, "average_periods": 5}))
+    nominal = _free_run(cfg)
+    assert set(KITE_SERIES) <= set(nominal.series)
+    for factor in (0.9, 1.1):
+        run = _free_run(cfg, factor)
+        for name in ("drag_N", "ground_tension_N", "kite_tension_N", "kite_speed_mps"):
+            assert run.mean(name) == pytest.approx(nominal.mean(name), rel=0.01), (factor, name)
+
+
+def test_reels_out_with_a_free_kite():
+    """Constant reel-out at 5 m/s with the free kite (element birth at the winch):
+    the line grows by V_L t, elements are born, the kite keeps its path."""
+    from fem_tether.fe.solver import simulate
+
+    cfg = load_config(overrides=_overrides(KITEGEN, tether={"length_m": 500.0},
+                                           winch={"reel_out": "constant", "reel_out_speed_mps": 5.0,
+                                                  "max_element_m": 30.0},
+                                           time={"spinup_periods": 1, "average_periods": 2}))
+    run = simulate(cfg)
+    reeling = run.series["reel_out_mps"] > 0
+    grown = run.series["length_m"][-1] - 500.0
+    assert grown == pytest.approx(5.0 * run.extra["dt_s"] * np.count_nonzero(reeling), rel=1e-9)
+    assert run.extra["elements"] > 20
+    assert np.sqrt(np.mean(run.series["cross_track_m"][reeling] ** 2)) <= 0.02 * 190.0
