@@ -33,8 +33,9 @@ import numpy as np
 
 from fem_tether.atmosphere import AirModel
 from fem_tether.errors import ConfigError, SolverDivergedError
-from fem_tether.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, aerodynamic_force_N,
-                                      aerodynamic_load, gravity_force_N, read_polar, steady_crosswind)
+from fem_tether.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, Polar,
+                                      aerodynamic_force_N, aerodynamic_load, gravity_force_N, read_polar,
+                                      steady_crosswind)
 from fem_tether.loads import G_MPS2
 from fem_tether.steering import Command, Steering, min_turn_radius_m, nearest_point, sampled_lookahead_m
 from fem_tether.systems.tether_drag import straight_tether_cd
@@ -144,6 +145,7 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel,
     if k.model != "point-mass":
         return None
     lines = cfg.tether.lines
+    aerodynamics: ConstantCoefficients | Polar
     if k.polar:
         aerodynamics = read_polar(k.polar)
     else:

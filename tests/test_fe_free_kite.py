@@ -164,17 +164,18 @@ def test_series_and_perturbed_starts():
 
 
 def test_reels_out_with_a_free_kite():
-    """Constant reel-out at 5 m/s with the free kite (element birth at the winch):
+    """Constant reel-out at 1.5 m/s (about a third of V_w . e_r, Loyd's optimum) with the
+    free kite (element birth at the winch):
     the line grows by V_L t, elements are born, the kite keeps its path."""
     from fem_tether.fe.solver import simulate
 
     cfg = load_config(overrides=_overrides(KITEGEN, tether={"length_m": 500.0},
-                                           winch={"reel_out": "constant", "reel_out_speed_mps": 5.0,
+                                           winch={"reel_out": "constant", "reel_out_speed_mps": 1.5,
                                                   "max_element_m": 30.0},
                                            time={"spinup_periods": 1, "average_periods": 2}))
     run = simulate(cfg)
     reeling = run.series["reel_out_mps"] > 0
     grown = run.series["length_m"][-1] - 500.0
-    assert grown == pytest.approx(5.0 * run.extra["dt_s"] * np.count_nonzero(reeling), rel=1e-9)
+    assert grown == pytest.approx(1.5 * run.extra["dt_s"] * np.count_nonzero(reeling), rel=1e-9)
     assert run.extra["elements"] > 20
     assert np.sqrt(np.mean(run.series["cross_track_m"][reeling] ** 2)) <= 0.02 * 190.0

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 from scipy.optimize import brentq
@@ -364,7 +365,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
         try:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, jacobian=not chord, reel_mps=model.reel_mps)
-            if steer is not None:
+            if kite is not None and steer is not None:
                 load = add_kite(sys_, ev, kite, r, kin.v, steer.roll_rad, c_v)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             raise NotConverged(worst, left_atmosphere(exc)) from None
@@ -468,7 +469,8 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
     kite = model.kite
     if kite is not None:          # the steering's path on the new sphere, as the end's
         kite = replace(kite, steering=replace(kite.steering,
-                                              path=end_at_length(kite.steering.path, length_m, state.t)))
+                                              path=end_at_length(cast(EndMotion, kite.steering.path),
+                                                                 length_m, state.t)))
     model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
                     end=end_at_length(model.end, length_m, state.t), kite=kite)
     if restart:
