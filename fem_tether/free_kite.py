@@ -33,10 +33,11 @@ import numpy as np
 
 from fem_tether.atmosphere import AirModel
 from fem_tether.errors import ConfigError, SolverDivergedError
-from fem_tether.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, aerodynamic_force_N,
-                                      aerodynamic_jacobian, gravity_force_N, read_polar, steady_crosswind)
+from fem_tether.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, Polar,
+                                      aerodynamic_force_N, aerodynamic_load, gravity_force_N, read_polar,
+                                      steady_crosswind)
 from fem_tether.loads import G_MPS2
-from fem_tether.steering import Command, Steering, min_turn_radius_m, nearest_point
+from fem_tether.steering import Command, Steering, min_turn_radius_m, nearest_point, sampled_lookahead_m
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.wind import WindProfile
 
@@ -86,15 +87,17 @@ class FreeKite:
     def load(self, r, v, tether, roll_rad: float) -> KiteLoad:
         """F = F_aero(r, v, τ_L, ψ) + m_k g and its Jacobians; ``tether`` is the
         last element's vector d = r_N − r_{N−1}."""
-        aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
-        jac = aerodynamic_jacobian(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
+        aero, jac = aerodynamic_load(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
         return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
                         jac.velocity, jac.tether, aero)
 
-    def steer(self, t_s: float, parameter_s: float, r, v, tether) -> Steer:
+    def steer(self, t_s: float, parameter_s: float, r, v, tether, tension_N: float = 0.0) -> Steer:
         """The roll ψ for the kite at ``r`` moving at ``v`` (:meth:`Steering.command`),
         with the nearest path point found from ``parameter_s``; the law's F_0 is the
-        aerodynamic force at ψ = 0 and its lift L = ½ ρ |W_e|² A C_L.  Raises
+        aerodynamic force at ψ = 0 plus the line's pull −T_L τ_L on the kite
+        (``tension_N`` = T_L along the last element ``tether``: its sideways part,
+        the sag and the line's own inertia, the law balances like any other
+        force) and its lift L = ½ ρ |W_e|² A C_L.  Raises
         :class:`SolverDivergedError` (time, position, cause) when the kite has lost
         its path: no nearest point, no lift or no speed across the tether."""
         try:
@@ -102,7 +105,8 @@ class FreeKite:
             aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, 0.0, tether=tether)
             rho = float(self.air.density_kg_m3(float(r[2])))
             lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
-            command = self.steering.command(point, r, v, aero.force_N, lift_N)
+            pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
+            command = self.steering.command(point, r, v, aero.force_N + pull, lift_N)
         except ValueError as exc:
             raise SolverDivergedError(f"the point-mass kite lost its path at t = {t_s:.4f} s, at "
                                       f"{np.round(np.asarray(r, dtype=float), 1).tolist()} m: {exc}") from None
@@ -114,24 +118,34 @@ class FreeKite:
         massless, in the wind and air at its altitude, with the line's drag lumped
         as :attr:`start_tether_cd`.  Only the start uses it: the spin-up periods
         let the kite find its own speed."""
-        path = self.steering.path
-        theta, phi = path.angles(0.0)
-        z = length_m * math.cos(float(theta))
-        massless = PointMassKite(0.0, self.kite.area_m2, self.kite.aerodynamics, self.kite.base_aoa_rad,
-                                 self.kite.turbine_factor)
-        state = steady_crosswind(massless, float(self.wind.speed_mps(z)), float(theta), float(phi), 0.0,
-                                 float(self.air.density_kg_m3(z)), self.start_tether_cd)
-        return state.kite_speed_mps
+        return start_speed_mps(self.kite, self.steering.path, self.wind, self.air, self.start_tether_cd,
+                               length_m)
 
 
-def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> FreeKite | None:
+def start_speed_mps(kite: PointMassKite, path, wind: WindProfile, air: AirModel, tether_cd: float,
+                    length_m: float) -> float:
+    """:meth:`FreeKite.start_speed_mps` of ``kite`` on ``path`` with the line lumped as ``tether_cd``."""
+    theta, phi = path.angles(0.0)
+    z = length_m * math.cos(float(theta))
+    massless = PointMassKite(0.0, kite.area_m2, kite.aerodynamics, kite.base_aoa_rad, kite.turbine_factor)
+    state = steady_crosswind(massless, float(wind.speed_mps(z)), float(theta), float(phi), 0.0,
+                             float(air.density_kg_m3(z)), tether_cd)
+    return state.kite_speed_mps
+
+
+def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel,
+                sample_s: float = 0.0) -> FreeKite | None:
     """The configured point-mass kite per line (None for ``[kite] model = "prescribed"``);
     ``end_mass_kg`` is the end node's share of the line's mass (the steering law's
-    mass is the kite's plus it)."""
+    mass is the kite's plus it).  The look-ahead ℓ is ``[kite] lookahead_m`` or
+    else the larger of half the path's smallest turn radius and, for a law
+    sampled every ``sample_s`` (a solver's time step), 4 V₀ h
+    (:func:`~fem_tether.steering.sampled_lookahead_m`, V₀ the start speed)."""
     k = cfg.kite
     if k.model != "point-mass":
         return None
     lines = cfg.tether.lines
+    aerodynamics: ConstantCoefficients | Polar
     if k.polar:
         aerodynamics = read_polar(k.polar)
     else:
@@ -142,11 +156,13 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
     except ValueError as exc:
         raise ConfigError(f"[kite] model = \"point-mass\": {exc}") from None
     path = cfg.path
-    lookahead = k.lookahead_m or 0.5 * min_turn_radius_m(path)
-    steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
-                        math.radians(k.roll_max_deg))
     # the line lumped as a straight rod (seed 004 eq. 3.14) with C_d,c = 1.2, the seeds' value
     start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
+    lookahead = k.lookahead_m or max(
+        0.5 * min_turn_radius_m(path),
+        sampled_lookahead_m(start_speed_mps(kite, path, wind, air, start_cd, cfg.tether.length_m), sample_s))
+    steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
+                        math.radians(k.roll_max_deg))
     return FreeKite(kite, steering, wind, air, start_cd)
 
 

@@ -249,7 +249,8 @@ def _air_force(kite, apparent, direction, rho, roll_rad) -> _Air:
                          "direction (eq. 1) is undefined")
     u = direction - c * w_hat
     lift0 = u / n
-    side = np.cross(w_hat, lift0)
+    w_cross = _cross_matrix(w_hat)
+    side = w_cross @ lift0
     cos_psi, sin_psi = np.cos(roll_rad), np.sin(roll_rad)
     lift_dir = cos_psi * lift0 + sin_psi * side
     alpha = kite.base_aoa_rad + np.arcsin(c)
@@ -266,8 +267,8 @@ def _air_force(kite, apparent, direction, rho, roll_rad) -> _Air:
     du_e = _EYE - np.outer(w_hat, dc_e)
     dlift0_w = du_w / n + np.outer(u, c * dc_w) / n**3
     dlift0_e = du_e / n + np.outer(u, c * dc_e) / n**3
-    dside_w = _cross_matrix(w_hat) @ dlift0_w - _cross_matrix(lift0) @ d_what
-    dside_e = _cross_matrix(w_hat) @ dlift0_e
+    dside_w = w_cross @ dlift0_w - _cross_matrix(lift0) @ d_what
+    dside_e = w_cross @ dlift0_e
     dlift_w = cos_psi * dlift0_w + sin_psi * dside_w
     dlift_e = cos_psi * dlift0_e + sin_psi * dside_e
     dalpha_w, dalpha_e = dc_w / n, dc_e / n
@@ -317,6 +318,13 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
     ∂F/∂W_e differentiates ŵ, the lift basis (l₀, ŵ × l₀) and α = α₀ + arcsin(ŵ·e)
     through C_L(α), C_D(α).
     """
+    return aerodynamic_load(kite, r, v, wind, air, roll_rad, tether)[1]
+
+
+def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
+                     tether=None) -> tuple[AerodynamicForce, AerodynamicJacobian]:
+    """:func:`aerodynamic_force_N` and :func:`aerodynamic_jacobian` (same arguments)
+    from one evaluation of the force (an implicit solver needs both every iteration)."""
     r = np.asarray(r, dtype=float)
     direction, length = _tether_direction(r, tether)
     apparent = wind.velocity_mps(r[2]) - np.asarray(v, dtype=float)
@@ -328,7 +336,8 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
              + np.outer(force / rho, float(air.density_gradient_kg_m4(r[2])) * _E_Z))
     if tether is None:
         jac_r = jac_r + jac_d
-    return AerodynamicJacobian(velocity=-jac_w, position=jac_r, tether=jac_d, roll=air_force.d_roll)
+    return (AerodynamicForce(force, air_force.turbine_power, apparent, air_force.alpha, air_force.cl, air_force.cd),
+            AerodynamicJacobian(velocity=-jac_w, position=jac_r, tether=jac_d, roll=air_force.d_roll))
 
 
 def gravity_force_N(kite: PointMassKite, g_mps2: float = G_MPS2) -> np.ndarray:

@@ -157,10 +157,11 @@ class Steering:
     Tuning (docs/steering.md): ``lookahead_m`` ℓ sets the closed-loop double
     pole −ω = −2V/ℓ; :meth:`for_path` takes ℓ = R_min/2, half the path's
     smallest turn radius, so an error decays to 41 % ((1 + 2) e⁻²) over a
-    distance flown of ℓ.  A roll actuator of lag τ_a (or a sampled law, τ_a ≈
-    half the sampling step) keeps the loop stable iff ω τ_a < 2 (Routh on
-    τ_a s³ + s² + 2ωs + ω²): take ℓ ≥ 4 V τ_a (ω τ_a ≤ 0.5) when that is larger.
-    The limits bound ψ (seed 003 §3.2.3 flies the M600's circle open-loop at
+    distance flown of ℓ.  A roll actuator of lag τ_a keeps the loop stable iff
+    ω τ_a < 2 (Routh on τ_a s³ + s² + 2ωs + ω²): take ℓ ≥ 4 V τ_a (ω τ_a ≤ 0.5)
+    when that is larger.  A law sampled every h and held is stable iff ω h < 1
+    (:func:`sampled_lookahead_m`; the lag τ_a ≈ h/2 reading overstates this
+    bound fourfold): take ℓ ≥ 4 V h (ω h ≤ 0.5) when that is larger.  The limits bound ψ (seed 003 §3.2.3 flies the M600's circle open-loop at
     −7.25° … 46.68°).
     """
 
@@ -229,6 +230,28 @@ class Steering:
         return Command(roll_rad=math.asin(min(max(sin_roll, low), high)),
                        feedforward_rad=math.asin(min(max(sin_ff, -1.0), 1.0)),
                        cross_track_m=e, heading_error_rad=eta, saturated=not low <= sin_roll <= high)
+
+
+def sampled_lookahead_m(speed_mps, sample_s):
+    """ℓ = 4 V h: the least look-ahead of a law sampled every h and held over the
+    sample (zero-order hold, the time step of a simulation), ω h = 2 V h / ℓ = 1/2.
+
+    On a straight path the linearised loop is ë = a, the command
+    a_k = −ω² e_k − 2ω ė_k held over [t_k, t_k + h].  Exactly integrated over
+    the sample, (e, ė h) goes to A (e, ė h) with, x = ω h,
+    trace A = 2 − 2x − x²/2 and det A = 1 − 2x + x²/2; Jury's conditions
+    (1 ± trace + det > 0, |det| < 1) reduce to 4 − 4x > 0 and 0 < x < 4: the
+    sampled loop is stable iff ω h < 1.  At ω h = 1/2 its poles are real,
+    0.70 and 0.18 per sample (the continuous loop's e^(−ωh) = 0.61): damped
+    as the continuous design.  Measured on the flexible line (KiteGen eight,
+    1000 m, h = 0.05 s, ℓ = 9.34 m, ω h ≈ 1.0 at V ≈ 92 m/s): the heading error
+    grew to 30° within a loop and the run diverged; at ω h ≈ 0.5 (ℓ = 18.4 m
+    or h = 0.025 s) it tracks to 0.21 m and 0.03 m RMS (docs/free-kite.md).
+
+    >>> sampled_lookahead_m(90.0, 0.05)
+    18.0
+    """
+    return 4.0 * speed_mps * sample_s
 
 
 def min_turn_radius_m(path, samples=2048):

@@ -81,7 +81,7 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along
              tension_mode, ground_tension_N, radius_m, force, res):
     """The drag ``force`` (:func:`~fem_tether.loads_kernel.drag_force`) and the scaled residual (module
     docstring of :mod:`.system`): node rows ``m qdd + D^T (T tau) - Q (f_t + w)``
-    at interior nodes, kinematic rows ``k r_0`` and ``k (r_N - R e)``, constraint
+    at interior nodes (and a free end), kinematic rows ``k r_0`` and ``k (r_N - R e)``, constraint
     rows ``k (|D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e)`` and the closing row."""
     drag_force(rho, diameter_m, cd, vn, vn_mps, tau, along, skin_friction_cf, force)
     n_el = tau.shape[0]
@@ -98,7 +98,8 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along
             res[4 * i + k] = (mass[i] * qdd[i, k] + internal - load) * interior[i]
     for k in range(3):
         res[k] = k_s * r[0, k]
-        res[4 * n_el + k] = k_s * (r[n_el, k] - R * kite_dir[k])
+        if interior[n_el] == 0.0:      # a kinematic kite end (a free one is a mass node)
+            res[4 * n_el + k] = k_s * (r[n_el, k] - R * kite_dir[k])
     for e in range(n_el):
         g = length[e] - h[e] * (1.0 + compliance_per_N * T[e])
         if damping_time_s:
@@ -120,7 +121,7 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
     node a's rows of column T_e get ``sgn_a tau_e``; row T_e gets
     ``k sgn_b c_e^T`` (c_e = tau_e plus the Kelvin-Voigt terms) and
     ``-k h_e / EA`` on its diagonal; the diagonal of node i's rows
-    ``c_a m_i`` (interior) or ``k`` (kinematic ends).
+    ``c_a m_i`` (interior, and a free end) or ``k`` (kinematic ends).
     """
     for col in range(band.shape[1]):      # column by column: the band is in Fortran order
         for row in range(band.shape[0]):
@@ -185,7 +186,7 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
                 band[diag + 4 * e + 3 - col, col] += k_s * sgn[b] * c_row[j]
         band[diag, 4 * e + 3] += -k_s * compliance_per_N * h[e]
     for node in range(n_el + 1):
-        m = k_s if (node == 0 or node == n_el) else c_a * mass[node] * interior[node]
+        m = c_a * mass[node] if interior[node] != 0.0 else k_s
         for k in range(3):
             band[diag, 4 * node + k] += m
 

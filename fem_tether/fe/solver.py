@@ -10,12 +10,20 @@ generalised-alpha scheme (:mod:`.integrator`) takes the steps of the run
 protocol (:mod:`fem_tether.protocol`: whole periods of the path, spin-up
 then the averaging window, step halving, reeling), which drives this solver
 as an :class:`FESolver`.
+
+A point-mass kite (``[kite] model = "point-mass"``, docs/free-kite.md) starts
+the same way, its end moved along the path at the kite's steady crosswind
+speed (:meth:`~fem_tether.free_kite.FreeKite.start_speed_mps`); then it is
+released (:func:`release`): the end node becomes a free mass carrying the kite,
+whose force and Jacobian join the line's in the same Newton iteration
+(:func:`add_kite`), steered by a roll sampled at the start of each step.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 from scipy.optimize import brentq
@@ -29,6 +37,9 @@ from fem_tether.fe import mesh as fe_mesh
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.system import Evaluation, TetherSystem
+from fem_tether.free_kite import FreeKite, KiteLoad, Steer
+from fem_tether import free_kite as free_kite_module
+from fem_tether.kite_dynamics import PolarError
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
@@ -44,6 +55,7 @@ class FEModel(TetherCase):
     system: TetherSystem
     scheme: Scheme
     reel_mps: float = 0.0          # winch speed V_L during the current step
+    kite: FreeKite | None = None   # a point-mass kite at the end, free once released (system.free_end)
 
 
 @dataclass
@@ -53,8 +65,10 @@ class State:
     t: float
     kin: Kinematics               # nodal r, v, a, qdd (n_nodes, 3)
     T: np.ndarray                 # element tensions
-    R: float                      # kite distance
+    R: float                      # kite distance (a free kite's: held, unused)
     ev: Evaluation | None = None  # the converged evaluation at t, if any
+    steer: Steer | None = None    # a free kite: the steering sample held over the step to t
+    kite_load: KiteLoad | None = None   # a free kite: its force at the solution
 
 
 def unit_mesh_from_config(fe) -> np.ndarray:
@@ -75,13 +89,21 @@ def unit_mesh_from_config(fe) -> np.ndarray:
 
 def build_model(cfg: Config, end: EndMotion | None = None,
                 physics: TetherPhysics | None = None) -> FEModel:
-    """FE model of the configured case; ``end`` overrides the configured path."""
+    """FE model of the configured case; ``end`` overrides the configured path.
+
+    A point-mass kite's start end is the configured path flown at the kite's
+    start speed (:meth:`~fem_tether.free_kite.FreeKite.start_speed_mps`), so the
+    run's periods are that end's."""
     case = case_fields(cfg, end)
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
-    system = TetherSystem(spaces, physics or physics_from_config(cfg), case["tension_mode"],
-                          compiled=cfg.fe.kernel == "compiled")
-    return FEModel(system=system, scheme=scheme_from_config(cfg.fe), **case)
+    physics = physics or physics_from_config(cfg)
+    kite = free_kite_module.from_config(cfg, float(spaces.mass_kg[-1]), physics.wind, physics.air,
+                                        sample_s=cfg.fe.dt_s)
+    if kite is not None and end is None:
+        case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
+    system = TetherSystem(spaces, physics, case["tension_mode"], compiled=cfg.fe.kernel == "compiled")
+    return FEModel(system=system, scheme=scheme_from_config(cfg.fe), kite=kite, **case)
 
 
 def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:
@@ -256,22 +278,79 @@ def initial_state(model: FEModel, t=0.0) -> State:
     return State(t, Kinematics(st.kin.q, v, qdd, qdd.copy()), T, st.R)
 
 
+def release(model: FEModel, state: State) -> tuple[FEModel, State]:
+    """The model and state with the point-mass kite let go at ``state`` (the
+    static start of the end moving on its path, :func:`initial_state`).
+
+    The system becomes the free-end one (node N a mass node of m_N + m_k,
+    :attr:`TetherSystem.end_mass_kg`); R loses its role: its column is zero and
+    its row holds it at the start's value (``radius_m``, the case no longer
+    in tension mode: the winch keeps the line's length, T_0 is free).  The
+    first steering sample is taken at the start (the nearest path point from
+    σ = 0: the start's end is at the path's first point at t = 0) and the accelerations and tensions are made consistent
+    with the kite's force at its roll (:meth:`TetherSystem.consistent_start`),
+    the velocities being already consistent."""
+    kite = model.kite
+    assert kite is not None, "release needs a model with a point-mass kite"
+    sys_ = model.system
+    free = TetherSystem(sys_.spaces, sys_.physics, False, sys_.compiled, end_mass_kg=kite.kite.mass_kg)
+    model = replace(model, system=free, tension_mode=False, radius_m=state.R)
+    r, v = state.kin.q, state.kin.v
+    steer = kite.steer(state.t, 0.0, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]))
+    v, qdd, T = free.consistent_start(r, v, state.T, state.R, None, 0.0,
+                                      end_force=_end_force(kite, r, steer.roll_rad))
+    load = kite.load(r[-1], v[-1], r[-1] - r[-2], steer.roll_rad)
+    return model, State(state.t, Kinematics(r, v, qdd, qdd.copy()), T, state.R, steer=steer, kite_load=load)
+
+
+def _end_force(kite: FreeKite, r, roll_rad: float):
+    """The kite's force on the end node as a function of the node's velocity, at
+    the positions ``r`` and roll ψ (:meth:`TetherSystem.consistent_start`'s ``end_force``)."""
+    return lambda v_end: kite.load(r[-1], v_end, r[-1] - r[-2], roll_rad).force_N
+
+
+def add_kite(system: TetherSystem, ev: Evaluation, kite: FreeKite, r, v, roll_rad: float,
+             c_v: float) -> KiteLoad:
+    """The kite's force F(r_N, v_N, d, ψ) added to the free end's rows of ``ev``
+    (:meth:`TetherSystem.add_end_force`) with, when ``ev`` has its Jacobian,
+    ``dF/dr_N = ∂F/∂r_N + c_v ∂F/∂v_N + ∂F/∂d`` and ``dF/dr_{N-1} = -∂F/∂d``
+    (d = r_N - r_{N-1}, v_N's dependence on r_N through the integrator's c_v).
+    Raises :class:`NotConverged` where the iterate leaves the polar or the
+    force is undefined (apparent wind along the tether)."""
+    try:
+        load = kite.load(r[-1], v[-1], r[-1] - r[-2], roll_rad)
+    except (PolarError, ValueError) as exc:
+        raise NotConverged(math.inf, f"the kite's force at {np.round(r[-1], 1).tolist()} m: {exc}") from None
+    system.add_end_force(ev, load.force_N, load.d_position + c_v * load.d_velocity + load.d_tether,
+                         -load.d_tether)
+    return load
+
+
 def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     """One generalised-alpha step of size h solved by Newton (iterations counted in
     ``stats``); raises :class:`NotConverged`.  A compiled system takes the whole
     step in one call (:meth:`TetherSystem.solve_step`); the NumPy iteration below
-    is its reference."""
+    is its reference, and a free kite's iteration (with the compiled evaluation
+    when the system is compiled): the kite's roll is sampled at the step's start
+    (:meth:`~fem_tether.free_kite.FreeKite.steer`, which raises
+    :class:`SolverDivergedError` when the kite has lost its path) and held."""
     sys_ = model.system
     t_new = state.t + h
     e = model.end.direction_at(t_new)
     f_ref = model.force_ref_N(state.T, sys_.physics)
     kin = state.kin
-    if sys_.compiled:
+    kite = model.kite if sys_.free_end else None
+    if sys_.compiled and kite is None:
         r, T, R, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h,
                                                  model.scheme, e, model.ground_tension_N, model.radius_m,
                                                  f_ref, model.reel_mps, model.newton_tol, model.max_newton,
                                                  stats)
         return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
+    steer = load = None
+    if kite is not None:
+        assert state.steer is not None, "a free kite's state carries its last steering sample"
+        steer = kite.steer(state.t, state.steer.parameter_s, kin.q[-1], kin.v[-1], kin.q[-1] - kin.q[-2],
+                           float(state.T[-1]))
     c_a, c_v = model.scheme.coefficients(h)
     k_s = sys_.row_scale(f_ref)
     kept = sys_.kept
@@ -295,6 +374,8 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, jacobian=not chord, reel_mps=model.reel_mps)
             above = ""
+            if kite is not None and steer is not None:
+                load = add_kite(sys_, ev, kite, r, kin.v, steer.roll_rad, c_v)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             if not checking:
                 raise NotConverged(worst, left_atmosphere(exc)) from None
@@ -315,7 +396,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
             if chord:
                 kept.factors = factors
                 kept.keep(True, *made_for)
-            return State(t_new, kin, T, R, ev)
+            return State(t_new, kin, T, R, ev, steer, load)
         if not chord:
             try:
                 factors = sys_.factorize(ev)
@@ -349,6 +430,8 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
         "drag_against_N": against,
         "max_strain": strain,
     }
+    if state.steer is not None and state.kite_load is not None:
+        series |= free_kite_module.series_values(state.steer, state.kite_load, v[-1])
     if not fields:
         return series
     return series | {
@@ -394,23 +477,35 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
         kin = Kinematics(*(np.insert(getattr(kin, k), 1, rows[k], axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.insert(T, 0, T[0])
         spaces = build_spaces(np.insert(sp.s_m, 1, f * s1) / model.length_m, model.length_m, mu)
-        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled,
+                              model.system.end_mass_kg)
     elif growth < 0 and sp.h_m[0] + growth < min_element_m and sp.n_elements > 1:
         kin = Kinematics(*(np.delete(getattr(kin, k), 1, axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.delete(T, 0)
         spaces = build_spaces(np.delete(sp.s_m, 1) / model.length_m, model.length_m, mu)
-        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled,
+                              model.system.end_mass_kg)
     else:
         system = model.system
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
+    kite = model.kite
+    if kite is not None:          # the steering's path on the new sphere, as the end's
+        kite = replace(kite, steering=replace(kite.steering,
+                                              path=end_at_length(cast(EndMotion, kite.steering.path),
+                                                                 length_m, state.t)))
     model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
-                    end=end_at_length(model.end, length_m, state.t))
+                    end=end_at_length(model.end, length_m, state.t), kite=kite)
     if restart:
+        end_force = None
+        if kite is not None and system.free_end:
+            assert state.steer is not None, "a free kite's state carries its last steering sample"
+            end_force = _end_force(kite, kin.q, state.steer.roll_rad)
         v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
-                                            model.ground_tension_N, reel_mps, free_radius=True)
+                                            model.ground_tension_N, reel_mps, free_radius=True,
+                                            end_force=end_force)
         kin = Kinematics(kin.q, v, qdd, qdd.copy())
-    return model, State(state.t, kin, T, state.R)
+    return model, State(state.t, kin, T, state.R, steer=state.steer)
 
 
 @dataclass
@@ -423,7 +518,10 @@ class FESolver:
     name = "fe"
 
     def initial_state(self) -> State:
-        return initial_state(self.model)
+        state = initial_state(self.model)
+        if self.model.kite is not None:
+            self.model, state = release(self.model, state)
+        return state
 
     def step(self, state: State, h: float, stats: Statistics) -> State:
         return _step(self.model, state, h, stats)

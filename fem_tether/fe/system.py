@@ -10,6 +10,10 @@ midpoints (:mod:`fem_tether.loads`); EA = inf (``compliance = 0``) and eta = 0
 give the inextensible line.  Both ends are kinematic: r_0 = 0 at the winch and
 r_N = R e(t) at the kite, with e(t) the kite's direction on its trajectory and
 R closed either by the winch tension (T at the winch = T_0) or prescribed.
+A free end (``end_mass_kg`` set: a point-mass kite, docs/free-kite.md) is
+instead a node like the interior ones, with the kite's mass added to its own
+and the kite's force added by :meth:`TetherSystem.add_end_force`; R then has
+no role (its column is zero, its row holds R at ``radius_m``).
 
 Unknowns and equations share one interleaved ordering,
 ``[r_0, T_0, r_1, T_1, ..., r_N, R]`` (index ``4i + k`` for r_i, ``4e + 3``
@@ -88,6 +92,8 @@ class TetherSystem:
     physics: TetherPhysics
     tension_mode: bool
     compiled: bool = True
+    end_mass_kg: float | None = None
+    """the free end's point mass (a kite) added to node N's; None: the end is kinematic"""
     _idx: dict = field(init=False, repr=False)
     _kernel: Any = field(init=False, repr=False)      # the module fem_tether.fe.kernel, if compiled
     _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag tables
@@ -99,6 +105,10 @@ class TetherSystem:
         self.weight = self.physics.weight_N_m
         interior = np.zeros(n_el + 1)
         interior[1:-1] = 1.0
+        if self.free_end:
+            if self.tension_mode:
+                raise ValueError("a free end cannot close R by the winch tension (tension_mode)")
+            interior[-1] = 1.0
         self.interior = interior
         self._idx = self._band_indices()
         node_interior = interior[np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)]
@@ -123,8 +133,16 @@ class TetherSystem:
         sp = self.spaces
         self.load_weights = self._load_weights()
         self._interior_weights = (self.load_weights * self._interior_ab)[:, :, None, None, None]
-        self._interior_mass = (sp.mass_kg * self.interior)[:, None] * np.ones(3)
+        self.mass_kg = sp.mass_kg.copy()
+        if self.free_end:
+            self.mass_kg[-1] += self.end_mass_kg
+        self._interior_mass = (self.mass_kg * self.interior)[:, None] * np.ones(3)
         self._h_mean = sp.h_m.mean()
+
+    @property
+    def free_end(self) -> bool:
+        """Whether node N is a free point mass (:attr:`end_mass_kg`) rather than kinematic."""
+        return self.end_mass_kg is not None
 
     def with_physics(self, physics: TetherPhysics) -> "TetherSystem":
         """This system with other physics on the same mesh (the static start's load ramp):
@@ -222,10 +240,11 @@ class TetherSystem:
         node_res = res.reshape(-1, 4)[:, :3]
         internal = self._nodal_difference(T[:, None] * tau)
         line_load = self._nodal_load(load.force + self.weight)
-        np.subtract(self.spaces.mass_kg[:, None] * qdd + internal, line_load, out=node_res)
+        np.subtract(self.mass_kg[:, None] * qdd + internal, line_load, out=node_res)
         node_res *= self.interior[:, None]
         node_res[0] = k_s * r[0]
-        node_res[-1] = k_s * (r[-1] - R * kite_dir)
+        if not self.free_end:
+            node_res[-1] = k_s * (r[-1] - R * kite_dir)
         dv = v[1:] - v[:-1] if ph.damping_time_s else None
         constraint = length - self.spaces.h_m * (1.0 + ph.compliance_per_N * T)
         if dv is not None:
@@ -243,15 +262,31 @@ class TetherSystem:
         return force_ref_N / self._h_mean
 
     def r_column(self, kite_dir, k_s) -> np.ndarray:
-        """The Jacobian's column of R (rows 0..n-2): ``-k e`` in the kite node's rows."""
+        """The Jacobian's column of R (rows 0..n-2): ``-k e`` in the kite node's rows
+        (zero for a free end)."""
         r_col = np.zeros(self.n - 1)
-        r_col[-3:] = -k_s * np.asarray(kite_dir)
+        if not self.free_end:
+            r_col[-3:] = -k_s * np.asarray(kite_dir)
         return r_col
+
+    def add_end_force(self, ev: Evaluation, force_N, d_end=None, d_previous=None) -> None:
+        """Add an external force F on the free end node N to the evaluation, in place:
+        its rows ``... - F`` and, with the Jacobian, ``-dF/dr_N`` (``d_end``, the
+        velocity's and acceleration's dependence on r_N included) in block (N, N)
+        and ``-dF/dr_{N-1}`` (``d_previous``) in block (N, N - 1), within the band."""
+        n_el = self.spaces.n_elements
+        ev.residual[4 * n_el:4 * n_el + 3] -= force_N
+        if ev.band is None or d_end is None:
+            return
+        rows = 4 * n_el + np.arange(3)
+        for col0, block in ((4 * n_el, d_end), (4 * n_el - 4, d_previous)):
+            cols = col0 + np.arange(3)
+            ev.band[2 * BAND + rows[:, None] - cols[None, :], cols[None, :]] -= block
 
     def _line_constants(self) -> tuple:
         """The compiled kernels' models and line constants (:data:`.kernel.LINE`)."""
         ph, sp = self.physics, self.spaces
-        return (*self._kernel_env, ph.diameter_m, ph.skin_friction_cf, self.weight, sp.mass_kg,
+        return (*self._kernel_env, ph.diameter_m, ph.skin_friction_cf, self.weight, self.mass_kg,
                 self.interior, self.load_weights, sp.h_m, ph.compliance_per_N, ph.damping_time_s,
                 self.tension_mode)
 
@@ -369,8 +404,7 @@ class TetherSystem:
         Tr = k_s * _SGN[None, :, None] * c_row[:, None, :]
         TT = (-k_s * ph.compliance_per_N) * self.spaces.h_m
         mass = c_a * self._interior_mass
-        mass[0] = k_s
-        mass[-1] = k_s
+        mass[self.interior == 0.0] = k_s
         m = self.n - 1
         band = np.bincount(
             self._scatter,
@@ -380,7 +414,7 @@ class TetherSystem:
         return band, self.r_column(kite_dir, k_s)
 
     def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_mps=0.0,
-                         free_radius=False):
+                         free_radius=False, end_force=None):
         """Velocities and accelerations on the constraint manifold.
 
         With ``B`` the constraint gradient (rows ``sgn tau_e``) and ``M`` the
@@ -393,7 +427,10 @@ class TetherSystem:
         the reel-out speed V_L = ``reel_mps``, and the kite end on its trajectory
         (``kite = (e, e_dot, e_ddot)``; its radius rate dR/dt = 0 at the start,
         or free with ``free_radius`` for a restart during reeling; d2R/dt2 closed
-        by T_0 = T_ground in tension mode).  Starting (or restarting, after the
+        by T_0 = T_ground in tension mode).  A free end (:attr:`free_end`) is a
+        mass node instead, ``kite`` unused: its velocity is projected as the
+        others' and its acceleration row carries the kite's force
+        ``end_force(v_N)`` beside Q (f_t + w).  Starting (or restarting, after the
         mesh or V_L jumps) an index-3 integration from consistent data avoids
         the tension impulse an inconsistent velocity field causes.  An elastic
         line starts with the same projected velocities (no strain rate) but
@@ -401,12 +438,13 @@ class TetherSystem:
         ``M qdd = Q (f_t + w) - D^T (T tau)``.  Returns ``(v, qdd, T)``.
         """
         sp = self.spaces
-        e, e_dot, e_ddot = kite
+        free = self.free_end
+        e, e_dot, e_ddot = (np.zeros(3),) * 3 if free else kite
         dr = sp.D @ r
         length = np.linalg.norm(dr, axis=1)
         tau = dr / length[:, None]
         band = self._saddle(tau)
-        m = sp.mass_kg[:, None] * self.interior[:, None]
+        m = self.mass_kg[:, None] * self.interior[:, None]
         r_col = self.r_column(e, 1.0)
 
         def solve(node_rhs, constraint_rhs, border_index, border_rhs):
@@ -421,10 +459,12 @@ class TetherSystem:
 
         ph = self.physics
         node = m * v_guess
-        node[0], node[-1] = 0.0, R * e_dot
+        node[0] = 0.0
+        if not free:
+            node[-1] = R * e_dot
         constraint = np.zeros(sp.n_elements)
         constraint[0] = reel_mps
-        v, _, R_dot = solve(node, constraint, self.n - 5 if free_radius else None, 0.0)
+        v, _, R_dot = solve(node, constraint, self.n - 5 if free_radius and not free else None, 0.0)
         dv = sp.D @ v
         curvature = (np.einsum("ij,ij->i", dv, dv) - np.einsum("ij,ij->i", tau, dv) ** 2) / length
         v_mid = 0.5 * (v[1:] + v[:-1])
@@ -434,25 +474,29 @@ class TetherSystem:
         load = crossflow_drag(ph.wind.velocity_mps(z) - v_mid, tau, air.density_kg_m3,
                               air.viscosity_Pa_s, ph.diameter_m, ph.drag, ph.skin_friction_cf)
         node = (sp.Q @ (load.force + self.weight)) * self.interior[:, None]
-        node[-1] = R * e_ddot + 2.0 * R_dot * e_dot
+        if free:
+            node[-1] += end_force(v[-1])
+        else:
+            node[-1] = R * e_ddot + 2.0 * R_dot * e_dot
         if ph.compliance_per_N:
             qdd = (node - sp.D.T @ (T[:, None] * tau)) * self.interior[:, None]
-            qdd[1:-1] /= sp.mass_kg[1:-1, None]
-            qdd[-1] = node[-1]
+            qdd[1:] /= np.where(self.interior[1:, None] > 0.0, self.mass_kg[1:, None], 1.0)
+            if not free:
+                qdd[-1] = node[-1]
             return v, qdd, T
         qdd, T, _ = solve(node, -curvature, 3 if self.tension_mode else None, ground_tension_N)
         return v, qdd, T
 
     def _saddle(self, tau):
-        """Banded [M B^T; B 0] with identity rows for the two kinematic end nodes,
-        in LAPACK ``gbsv`` storage."""
+        """Banded [M B^T; B 0] with identity rows for the kinematic end nodes
+        (the winch's, and the kite's unless it is free), in LAPACK ``gbsv`` storage."""
         n_el = self.spaces.n_elements
         node = np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)
         sgn = np.array([-1.0, 1.0])
         rT = sgn[None, :, None] * tau[:, None, :] * self.interior[node][:, :, None]
         Tr = sgn[None, :, None] * tau[:, None, :]
-        mass = (self.spaces.mass_kg * self.interior)[:, None] * np.ones(3)
-        mass[0] = mass[-1] = 1.0
+        mass = (self.mass_kg * self.interior)[:, None] * np.ones(3)
+        mass[self.interior == 0.0] = 1.0
         idx = self._idx
         m = self.n - 1
         return np.bincount(
