@@ -56,7 +56,7 @@ def check(cfg: Config) -> None:
 
 
 def _check_free_kite(cfg: Config) -> None:
-    """A point-mass kite needs wind to fly in, a roll range and a winch that
+    """A point-mass kite needs wind to fly in, a mass, a roll range and a winch that
     does not also set its radius (its distance is its own; the winch holds the
     line's length or reels it at the set speed, and T_0 sets the static start)."""
     kite = cfg.kite
@@ -65,6 +65,10 @@ def _check_free_kite(cfg: Config) -> None:
     if cfg.wind.profile == "none":
         raise ConfigError("[kite] model = \"point-mass\": needs wind ([wind] profile = \"none\" leaves "
                           "the kite nothing to fly in)")
+    if not cfg.system.kite_mass_kg > 0.0:
+        raise ConfigError(f"[system] kite_mass_kg = {cfg.system.kite_mass_kg:g}: a point-mass kite needs a "
+                          "mass (its roll is sampled once per step: a massless kite has no inertia to "
+                          "carry it through a step, docs/free-kite.md)")
     if not kite.roll_min_deg < kite.roll_max_deg:
         raise ConfigError(f"[kite] roll_min_deg = {kite.roll_min_deg:g}: must be below roll_max_deg = "
                           f"{kite.roll_max_deg:g}")
