@@ -40,7 +40,7 @@ class System(Section):
                                       "power (not [cycle] eta_c, which divides the recovery energy)",
                                       between(0.0, 1.0, (False, True)))
     kite_mass_kg: float = setting(180.0, "kg", "mass of the kite (and on-board turbines): the KiteGen power "
-                                  "wing's ~180 kg (Roselli 2016 §5); the kitegen power model neglects it, the "
+                                  "wing's ~180 kg (Roselli 2016 §2.3); the kitegen power model neglects it, the "
                                   "point-mass kite ([kite] model) flies with it", non_negative)
     working_stress_Pa: float = setting(345e6, "Pa", "loyd: working stress the tether is sized to, "
                                        "d = 2 sqrt(T/(pi sigma)) (Lourenco 2014 eq. 3.7; steel)", positive)
