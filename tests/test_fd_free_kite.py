@@ -1,15 +1,18 @@
 """The FD line with a point-mass kite at its free end (fem_tether/fd/kite.py), each check with its tolerance."""
 
 import math
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
 import fem_tether.fd as fd
+from fem_tether import protocol
 from fem_tether.config import load_config
 from fem_tether.fd import kite as kite_end
+from fem_tether.fd.solver import FDSolver
 from fem_tether.fd.system import Grid, TetherFD
+from fem_tether.kite_dynamics import PointMassKite, steady_crosswind
+from fem_tether.results import KITE_SERIES, SERIES
 
 
 def free_cfg(**sections):
@@ -70,3 +73,137 @@ def test_jacobian_matches_central_differences(kernel, reel_mps):
         J_fd[:, j] = (evaluate(x0 + dx).residual - evaluate(x0 - dx).residual) / (2 * dx[j])
     assert np.max(np.abs(J - J_fd)) <= 1e-6 * np.max(np.abs(J))
     assert np.max(np.abs(J[-3:] - J_fd[-3:])) <= 1e-6 * np.max(np.abs(J[-3:]))
+
+
+def fly(cfg, spinup=1, average=1):
+    """A run of ``cfg`` with the FD solver: (run, model after it)."""
+    solver = FDSolver(fd.build_model(cfg), (cfg.winch.min_element_m, cfg.winch.max_element_m))
+    run = protocol.simulate(solver, cfg.replace(time={"spinup_periods": spinup, "average_periods": average}),
+                            cfg.fd.dt_s)
+    return run, solver.model
+
+
+def spun_up(run):
+    """The series' indices after the spin-up."""
+    return run.time_s >= run.average_start_s - 1e-9
+
+
+# 2. crosswind-law limit ----------------------------------------------------------------------
+#: A massless kite (E = 8) on a line so thin and light that its drag and weight vanish next to
+#: the kite's pull (~1e5 N): d = 0.1 mm, mu = 0.1 g/m, C_d = 1.2: weight 0.4 N, drag moment
+#: over L ~ 20 N), in a uniform wind (power law, alpha = 0) and constant air.
+CROSSWIND = {"system": {"kite_mass_kg": 0.0},
+             "kite": {"model": "point-mass", "cl": 1.0, "efficiency": 8.0},
+             "tether": {"length_m": 400.0, "diameter_m": 1e-4, "linear_density_kg_m": 1e-4},
+             "winch": {"ground_tension_N": 1e5},
+             "wind": {"profile": "power", "alpha": 0.0, "reference_scale_mps": 11.0},
+             "air": {"model": "constant", "density_kg_m3": 1.225},
+             "drag": {"model": "constant", "cd": 1.2},
+             "fd": {"segments": 10}, "output": {"every": 1}}
+
+
+@pytest.mark.parametrize("turbine_factor", [0.0, 0.5])
+def test_massless_kite_flies_the_crosswind_law(turbine_factor):
+    """At every spun-up step of an eight, the massless kite on a negligible line
+    is in the steady crosswind state of its (theta, phi): |W_e,perp| = E W_r
+    (seed 000 eqs. 2.35/2.45, W_r = V_w . e_r - V_L, V_L = 0) and the kite
+    tension the traction of seed 000 eq. 2.46 (kite_dynamics.steady_crosswind
+    at the kite's angles), within 2 %; with turbines (gamma_t = 0.5) the
+    apparent speed is seed 004 eq. 3.34's, |W_e| = W_r sqrt(1 + (E/(1 + gamma_t))^2),
+    and the tension steady_crosswind's (seed 004 eq. 3.37), within 2 %."""
+    cfg = load_config(overrides=CROSSWIND | {"kite": CROSSWIND["kite"] | {"turbine_factor": turbine_factor}})
+    run, model = fly(cfg)
+    wind_mps = float(model.eq.physics.wind.speed_mps(100.0))
+    kite = model.kite.kite
+    massless = PointMassKite(0.0, kite.area_m2, kite.aerodynamics, turbine_factor=turbine_factor)
+    E = cfg.kite.efficiency
+    rows = []
+    position = run.snapshots["position_m"][:, -1]
+    velocity = run.snapshots["velocity_mps"][:, -1]
+    tension = run.snapshots["tension_N"][:, -1]
+    for t, r, v, T in zip(run.snapshot_time_s, position, velocity, tension):
+        if t < run.average_start_s:
+            continue
+        e_r = r / np.linalg.norm(r)
+        theta, phi = math.acos(e_r[2]), math.atan2(e_r[1], e_r[0])
+        apparent = np.array([wind_mps, 0.0, 0.0]) - v
+        w_r = wind_mps * e_r[0]
+        across = np.linalg.norm(apparent - (apparent @ e_r) * e_r)
+        target = steady_crosswind(massless, wind_mps, theta, phi, 0.0, 1.225)
+        rows.append((across / w_r / (E / (1.0 + turbine_factor) if turbine_factor else E) - 1.0,
+                     np.linalg.norm(apparent) / (w_r * math.sqrt(1.0 + (E / (1.0 + turbine_factor)) ** 2)) - 1.0,
+                     T / target.tension_N - 1.0))
+    err = np.abs(np.array(rows))
+    print(f"\n gamma_t = {turbine_factor}: {len(rows)} steps, max |ratio/E - 1| = {err[:, 0].max():.2e}, "
+          f"max |W_e| error = {err[:, 1].max():.2e}, max tension error = {err[:, 2].max():.2e}")
+    assert len(rows) > 100
+    assert err.max() <= 0.02
+
+
+# 3. path tracking ----------------------------------------------------------------------------
+def test_kitegen_kite_tracks_the_eight_for_ten_periods():
+    """The KiteGen defaults at 1000 m (massless kite, E = 28, 2 x 11 mm lines, log
+    wind, ISA), 20 segments: over 10 periods after one of spin-up the
+    cross-track RMS is within 2 % of the eight's width (3.8 m), the roll within
+    its limits and the line taut."""
+    cfg = free_cfg(fd={"segments": 20})
+    run, _ = fly(cfg, spinup=1, average=10)
+    s, late = run.series, spun_up(run)
+    rms = math.sqrt(np.mean(s["cross_track_m"][late] ** 2))
+    print(f"\n cross-track RMS {rms:.4f} m, max {np.abs(s['cross_track_m'][late]).max():.4f} m; kite speed "
+          f"mean {s['kite_speed_mps'][late].mean():.2f} m/s; roll {s['roll_deg'][late].min():.2f} .. "
+          f"{s['roll_deg'][late].max():.2f} deg; F_t mean {s['drag_N'][late].mean():.0f} N; kite tension "
+          f"mean {s['kite_tension_N'][late].mean():.0f} N, peak {s['kite_tension_N'][late].max():.0f} N; "
+          f"ground peak {s['ground_tension_N'][late].max():.0f} N; {run.time_s[-1] - run.average_start_s:.1f} s "
+          f"= {(run.time_s[-1] - run.average_start_s) / run.period_s:.1f} periods; {run.extra}")
+    assert (run.time_s[-1] - run.average_start_s) / run.period_s >= 10 - 1e-9
+    assert rms <= 0.02 * cfg.kite.eight_width_m
+    assert np.all(np.abs(s["roll_deg"]) <= 30.0 + 1e-9)
+    assert np.all(s["kite_tension_N"][late] > 0.0)
+
+
+# 4. series, schemes, kernels, reeling ---------------------------------------------------------
+@pytest.mark.parametrize("scheme", ["euler", "bdf2"])
+def test_series_hold_the_kite_values_in_both_schemes(scheme):
+    """A free-kite run records SERIES and every KITE_SERIES key, finite, with
+    either time scheme; the kite speed is the end node's."""
+    cfg = free_cfg(tether={"length_m": 400.0}, fd={"segments": 8, "scheme": scheme, "dt_s": 0.05})
+    run, _ = fly(cfg, spinup=0, average=1)
+    for key in SERIES + KITE_SERIES:
+        assert key in run.series and np.all(np.isfinite(run.series[key])), key
+    speed = np.linalg.norm(run.snapshots["velocity_mps"][:, -1], axis=1)
+    at = np.searchsorted(run.time_s, run.snapshot_time_s)
+    assert np.allclose(run.series["kite_speed_mps"][at], speed, rtol=1e-12)
+
+
+def test_kernels_agree():
+    """The compiled and NumPy evaluations give the same free-kite run (same
+    Newton iterations; tensions within 1e-9 relative) over half a period."""
+    runs = []
+    for kernel in ("compiled", "numpy"):
+        cfg = free_cfg(tether={"length_m": 400.0}, fd={"segments": 8, "kernel": kernel, "dt_s": 0.05})
+        solver = FDSolver(fd.build_model(cfg))
+        runs.append(protocol.run(solver, 0.05, 0, 1))
+    a, b = runs
+    assert a.extra["newton_iterations"] == b.extra["newton_iterations"]
+    for key in ("ground_tension_N", "kite_tension_N", "kite_speed_mps", "roll_deg"):
+        assert np.allclose(a.series[key], b.series[key], rtol=1e-9, atol=1e-9 * np.abs(a.series[key]).max()), key
+
+
+def test_reeling_out_a_free_kite():
+    """Reeled out at 3 m/s after the spin-up period (the velocities projected on the
+    constraints with the kite's node free, segments inserted at the winch): the
+    line pays out L + V_L t, the kite keeps its path on the growing sphere
+    (cross-track RMS within 2 % of the width) and its distance follows the line."""
+    cfg = free_cfg(tether={"length_m": 400.0}, fd={"segments": 8, "dt_s": 0.05},
+                   winch={"reel_out": "constant", "reel_out_speed_mps": 3.0, "max_element_m": 60.0})
+    run, model = fly(cfg, spinup=1, average=1)
+    s, late = run.series, spun_up(run)
+    paid = s["length_m"][-1] - 400.0
+    assert paid == pytest.approx(3.0 * (run.time_s[-1] - run.average_start_s), rel=1e-6)
+    assert model.grid.M > 8
+    rms = math.sqrt(np.mean(s["cross_track_m"][late] ** 2))
+    print(f"\n reeled {paid:.1f} m to {model.grid.M} segments; cross-track RMS {rms:.3f} m; "
+          f"kite distance {s['kite_radius_m'][-1]:.2f} m of {s['length_m'][-1]:.2f} m")
+    assert rms <= 0.02 * cfg.kite.eight_width_m
+    assert s["kite_radius_m"][-1] == pytest.approx(s["length_m"][-1], rel=2e-3)
