@@ -91,15 +91,13 @@ class FreeKite:
         return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
                         jac.velocity, jac.tether, aero)
 
-    def steer(self, t_s: float, parameter_s: float, r, v, tether, line_force_N=None) -> Steer:
+    def steer(self, t_s: float, parameter_s: float, r, v, tether, tension_N: float = 0.0) -> Steer:
         """The roll ψ for the kite at ``r`` moving at ``v`` (:meth:`Steering.command`),
         with the nearest path point found from ``parameter_s``; the law's F_0 is the
-        aerodynamic force at ψ = 0 and its lift L = ½ ρ |W_e|² A C_L.
-        ``line_force_N`` is the line's force on the kite's node (its pull
-        −T_L τ_L and the node's share of the line's drag; the node's weight is
-        in the law's m g), counted with F_0 in the lateral balance: a sagging
-        line pulls across the flight (docs/steering.md §6), by far more than a
-        light kite's m a_⊥.  None: a radial pull (the law's own model).  Raises
+        aerodynamic force at ψ = 0 plus the line's pull −T_L τ_L on the kite
+        (``tension_N`` = T_L along the last element ``tether``: its sideways part,
+        the sag and the line's own inertia, the law balances like any other
+        force) and its lift L = ½ ρ |W_e|² A C_L.  Raises
         :class:`SolverDivergedError` (time, position, cause) when the kite has lost
         its path: no nearest point, no lift or no speed across the tether."""
         try:
@@ -107,8 +105,8 @@ class FreeKite:
             aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, 0.0, tether=tether)
             rho = float(self.air.density_kg_m3(float(r[2])))
             lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
-            passive = aero.force_N if line_force_N is None else aero.force_N + line_force_N
-            command = self.steering.command(point, r, v, passive, lift_N)
+            pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
+            command = self.steering.command(point, r, v, aero.force_N + pull, lift_N)
         except ValueError as exc:
             raise SolverDivergedError(f"the point-mass kite lost its path at t = {t_s:.4f} s, at "
                                       f"{np.round(np.asarray(r, dtype=float), 1).tolist()} m: {exc}") from None

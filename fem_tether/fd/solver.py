@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 
@@ -138,15 +139,14 @@ def _moved_end(model: FDModel) -> FDModel:
 
 def _sampled(model: FDModel, state: State, parameter_s: float) -> Steer:
     """The steering's sample of the free kite in ``state`` (:meth:`FreeKite.steer`),
-    its nearest path point found from ``parameter_s``; the line's force on the
-    kite's node, ``-T_{M-1/2} tau_{M-1/2} + (h_{M-1}/2) f_M``, is the law's to
-    balance across the flight with the air's."""
+    its nearest path point found from ``parameter_s``; the line's pull on the
+    kite, ``-T_{M-1/2} tau_{M-1/2}``, is the law's to balance across the flight
+    with the air's (a sagging line pulls sideways, by far more than a light
+    kite's m a_perp: without it the massless KiteGen kite's heading swung by
+    ±80° from step to step)."""
     assert model.kite is not None
-    r, v = state.r, state.v
-    d = r[-1] - r[-2]
-    drag = state.drag if state.drag is not None else model.eq.line_loads(r, v, model.reel_mps)
-    line_force = -state.T[-1] * d / math.sqrt(d @ d) + 0.5 * model.grid.h[-1] * drag.force[-1]
-    return model.kite.steer(state.t, parameter_s, r[-1], v[-1], d, line_force)
+    r = state.r
+    return model.kite.steer(state.t, parameter_s, r[-1], state.v[-1], r[-1] - r[-2], float(state.T[-1]))
 
 
 def _segment_midpoints_m(model: FDModel) -> np.ndarray:
@@ -496,7 +496,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
     kite = model.kite
     if kite is not None and state.steer is not None:
-        path = end_at_length(kite.steering.path, length_m, state.steer.parameter_s)
+        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, state.steer.parameter_s)
         kite = replace(kite, steering=replace(kite.steering, path=path))
     model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
                     reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t), kite=kite)
