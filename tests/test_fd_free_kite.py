@@ -72,8 +72,11 @@ def test_jacobian_matches_central_differences(kernel, reel_mps):
         dx = np.zeros(g.n)
         dx[j] = 1e-3 if j % 4 == 0 else 1e-6
         J_fd[:, j] = (evaluate(x0 + dx).residual - evaluate(x0 - dx).residual) / (2 * dx[j])
-    assert np.max(np.abs(J - J_fd)) <= 1e-6 * np.max(np.abs(J))
-    assert np.max(np.abs(J[-3:] - J_fd[-3:])) <= 1e-6 * np.max(np.abs(J[-3:]))
+    whole = np.max(np.abs(J - J_fd)) / np.max(np.abs(J))
+    kite_rows = np.max(np.abs(J[-3:] - J_fd[-3:])) / np.max(np.abs(J[-3:]))
+    print(f"\n {kernel}, V_L = {reel_mps}: max |J - J_fd| / max |J| = {whole:.1e}, kite rows {kite_rows:.1e}")
+    assert whole <= 1e-6
+    assert kite_rows <= 1e-6
 
 
 def fly(cfg, spinup=1, average=1):

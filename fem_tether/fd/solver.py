@@ -40,6 +40,12 @@ and BDF2 restarts with an implicit-Euler step.  The kite flies its path on
 the sphere of the current L.  The same law as the FE solver, written
 independently.
 
+Free kite (``[kite] model = "point-mass"``, docs/free-kite-fd.md): the end
+node carries the kite (:mod:`.kite`); the static start moves the end along
+the path at the kite's start speed, then each step solves line and kite
+together (:func:`_free_step`: 4M unknowns, T_{1/2} among them), the roll of
+the steering's sample at the step's start held over it.
+
 Configuration: ``[fd] segments``, ``[fd] scheme`` ("bdf2" or "euler") and
 ``[fd] kernel`` ("compiled" or "numpy", :class:`~.system.TetherFD`);
 reeling uses ``[winch]`` and the segment bounds ``[winch] min_element_m`` and
