@@ -166,6 +166,22 @@ def test_kitegen_kite_tracks_the_eight_for_ten_periods():
     assert np.all(s["kite_tension_N"][late] > 0.0)
 
 
+def test_massless_kite_tracks_the_circle():
+    """A massless kite on the circle (axis 57.3° from the vertical, cone half-angle
+    22.9°, 440 m line, KiteGen wing and lines), 10 segments: over the period
+    after the spin-up the cross-track RMS is within 2 % of the circle's width
+    2 L sin(rho) (6.8 m).  The case that needs the node's share of the line's
+    drag in the steering's passive force (without it, at 20 segments: 10.9 m RMS)."""
+    cfg = free_cfg(kite={"model": "point-mass", "path": "circle", "theta0_deg": 57.3}, tether={"length_m": 440.0},
+                   fd={"segments": 10})
+    run, _ = fly(cfg, spinup=1, average=1)
+    e = run.series["cross_track_m"][spun_up(run)]
+    rms = math.sqrt(np.mean(e ** 2))
+    width_m = 2.0 * 440.0 * math.sin(math.radians(cfg.kite.circle_radius_deg))
+    print(f"\n circle: cross-track RMS {rms:.4f} m, max {np.abs(e).max():.4f} m (2 % of the width: {0.02 * width_m:.2f} m)")
+    assert rms <= 0.02 * width_m
+
+
 @pytest.mark.parametrize("offset_m, kite_mass_kg", [(9.5, 0.0), (-9.5, 300.0)])
 def test_kite_started_off_its_path_joins_it(offset_m, kite_mass_kg):
     """Started off the eight it is to fly (the reference path moved by 5 % of its
