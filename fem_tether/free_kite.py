@@ -91,13 +91,19 @@ class FreeKite:
         return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
                         jac.velocity, jac.tether, aero)
 
-    def steer(self, t_s: float, parameter_s: float, r, v, tether, tension_N: float = 0.0) -> Steer:
+    def steer(self, t_s: float, parameter_s: float, r, v, tether, tension_N: float = 0.0,
+              line_drag_N=0.0) -> Steer:
         """The roll ψ for the kite at ``r`` moving at ``v`` (:meth:`Steering.command`),
         with the nearest path point found from ``parameter_s``; the law's F_0 is the
         aerodynamic force at ψ = 0 plus the line's pull −T_L τ_L on the kite
         (``tension_N`` = T_L along the last element ``tether``: its sideways part,
         the sag and the line's own inertia, the law balances like any other
-        force) and its lift L = ½ ρ |W_e|² A C_L.  Raises
+        force) and its lift L = ½ ρ |W_e|² A C_L.  ``line_drag_N`` is the drag
+        of the line's share at the kite's node (the law's mass includes that
+        share, so its weight is already in the law's m g): the law's feedback
+        acts through m a_⊥, so for a light kite every force on the node must be
+        in F_0 (docs/free-kite-fd.md: without it a massless kite flew 11 m off
+        its circle).  Raises
         :class:`SolverDivergedError` (time, position, cause) when the kite has lost
         its path: no nearest point, no lift or no speed across the tether."""
         try:
@@ -106,7 +112,7 @@ class FreeKite:
             rho = float(self.air.density_kg_m3(float(r[2])))
             lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
             pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
-            command = self.steering.command(point, r, v, aero.force_N + pull, lift_N)
+            command = self.steering.command(point, r, v, aero.force_N + pull + line_drag_N, lift_N)
         except ValueError as exc:
             raise SolverDivergedError(f"the point-mass kite lost its path at t = {t_s:.4f} s, at "
                                       f"{np.round(np.asarray(r, dtype=float), 1).tolist()} m: {exc}") from None
@@ -133,14 +139,14 @@ def start_speed_mps(kite: PointMassKite, path, wind: WindProfile, air: AirModel,
     return state.kite_speed_mps
 
 
-def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel,
-                sample_s: float = 0.0) -> FreeKite | None:
+def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> FreeKite | None:
     """The configured point-mass kite per line (None for ``[kite] model = "prescribed"``);
     ``end_mass_kg`` is the end node's share of the line's mass (the steering law's
     mass is the kite's plus it).  The look-ahead ℓ is ``[kite] lookahead_m`` or
     else the larger of half the path's smallest turn radius and, for a law
-    sampled every ``sample_s`` (a solver's time step), 4 V₀ h
-    (:func:`~fem_tether.steering.sampled_lookahead_m`, V₀ the start speed)."""
+    sampled every time step h, 4 V₀ h (:func:`~fem_tether.steering.sampled_lookahead_m`,
+    V₀ the start speed), with h the larger of ``[fe] dt_s`` and ``[fd] dt_s``:
+    both solvers fly the same law, so the cross-check compares the same flight."""
     k = cfg.kite
     if k.model != "point-mass":
         return None
@@ -160,7 +166,8 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel,
     start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
     lookahead = k.lookahead_m or max(
         0.5 * min_turn_radius_m(path),
-        sampled_lookahead_m(start_speed_mps(kite, path, wind, air, start_cd, cfg.tether.length_m), sample_s))
+        sampled_lookahead_m(start_speed_mps(kite, path, wind, air, start_cd, cfg.tether.length_m),
+                            max(cfg.fe.dt_s, cfg.fd.dt_s)))
     steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
                         math.radians(k.roll_max_deg))
     return FreeKite(kite, steering, wind, air, start_cd)

@@ -40,6 +40,12 @@ and BDF2 restarts with an implicit-Euler step.  The kite flies its path on
 the sphere of the current L.  The same law as the FE solver, written
 independently.
 
+Free kite (``[kite] model = "point-mass"``, docs/free-kite-fd.md): the end
+node carries the kite (:mod:`.kite`); the static start moves the end along
+the path at the kite's start speed, then each step solves line and kite
+together (:func:`_free_step`: 4M unknowns, T_{1/2} among them), the roll of
+the steering's sample at the step's start held over it.
+
 Configuration: ``[fd] segments``, ``[fd] scheme`` ("bdf2" or "euler") and
 ``[fd] kernel`` ("compiled" or "numpy", :class:`~.system.TetherFD`);
 reeling uses ``[winch]`` and the segment bounds ``[winch] min_element_m`` and
@@ -50,6 +56,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 
@@ -59,7 +66,10 @@ from fem_tether.atmosphere import AltitudeError
 from fem_tether.config import Config
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
 from fem_tether.drag_coefficient import ConstantDrag
+from fem_tether.fd import kite as kite_end
 from fem_tether.fd.system import Grid, NodalLoads, TetherFD
+from fem_tether import free_kite
+from fem_tether.free_kite import FreeKite, Steer
 from fem_tether.tether import TetherPhysics, physics_from_config
 from fem_tether.moment import drag_moment_Nm, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
@@ -74,6 +84,7 @@ class FDModel(TetherCase):
     eq: TetherFD
     scheme: str                   # "bdf2" or "euler"
     reel_mps: float = 0.0          # winch speed V_L during the current step
+    kite: FreeKite | None = None   # the point-mass kite at the free end (None: the end is moved)
 
     @property
     def grid(self) -> Grid:
@@ -83,7 +94,9 @@ class FDModel(TetherCase):
 @dataclass
 class State:
     """Solution at one instant: nodal r, v, a (M+1, 3), tensions (M,), kite distance,
-    and the drag along it where a time step computed it (:meth:`TetherFD.line_loads`)."""
+    the drag along it where a time step computed it (:meth:`TetherFD.line_loads`)
+    and, for a free kite, the steering's sample at this instant (the roll held
+    over the next step and the path parameter σ it continues from)."""
 
     t: float
     r: np.ndarray
@@ -92,6 +105,7 @@ class State:
     T: np.ndarray
     R: float
     drag: NodalLoads | None = None   # at every node, where the step's Newton solve gave it
+    steer: Steer | None = None
 
 
 def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysics:
@@ -106,12 +120,42 @@ def build_model(cfg: Config, end: EndMotion | None = None, gravity=True, drag=Tr
 
     ``end`` overrides the configured path (e.g. ``trajectory.Stationary``);
     ``gravity=False`` / ``drag=False`` switch those loads off (the mass stays).
+    With ``[kite] model = "point-mass"`` the end is free (:mod:`.kite`) and the
+    model's ``end`` (the static start's and the periods') is the path flown at
+    the kite's start speed (:meth:`FreeKite.start_speed_mps`).
     """
     case = case_fields(cfg, end)
-    grid = Grid(case["length_m"], cfg.fd.segments, case["tension_mode"])
-    return FDModel(eq=TetherFD(grid, physics or _switched(physics_from_config(cfg), gravity, drag),
-                               cfg.fd.kernel == "compiled"),
-                   scheme=cfg.fd.scheme, **case)
+    physics = physics or _switched(physics_from_config(cfg), gravity, drag)
+    segments = cfg.fd.segments
+    kite = free_kite.from_config(cfg, physics.linear_density_kg_m * 0.5 * case["length_m"] / segments,
+                                 physics.wind, physics.air)
+    if kite is not None and end is None:
+        case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
+    grid = Grid(case["length_m"], segments, case["tension_mode"], free_end=kite is not None)
+    return FDModel(eq=TetherFD(grid, physics, cfg.fd.kernel == "compiled"), scheme=cfg.fd.scheme, kite=kite,
+                   **case)
+
+
+def _moved_end(model: FDModel) -> FDModel:
+    """A free-kite model with its end moved along ``model.end`` instead (the static start's)."""
+    eq = model.eq
+    return replace(model, eq=TetherFD(Grid.from_lengths(eq.grid.h, model.tension_mode), eq.physics, eq.compiled),
+                   kite=None)
+
+
+def _sampled(model: FDModel, state: State, parameter_s: float) -> Steer:
+    """The steering's sample of the free kite in ``state`` (:meth:`FreeKite.steer`),
+    its nearest path point found from ``parameter_s``.  The line's forces on the
+    kite's node, its pull ``-T_{M-1/2} tau_{M-1/2}`` and the half segment's
+    drag ``(h_{M-1}/2) f_M``, are the law's to balance across the flight with
+    the air's: a sagging line pulls sideways by far more than a light kite's
+    m a_perp (without the pull the massless KiteGen kite's heading swung by
+    up to 170° from step to step; without the drag it flew 11 m off the circle)."""
+    assert model.kite is not None
+    r, v = state.r, state.v
+    drag = state.drag if state.drag is not None else model.eq.line_loads(r, v, model.reel_mps)
+    return model.kite.steer(state.t, parameter_s, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]),
+                            0.5 * model.grid.h[-1] * drag.force[-1])
 
 
 def _segment_midpoints_m(model: FDModel) -> np.ndarray:
@@ -261,6 +305,23 @@ def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):
     return 1.0 / h, 0.0
 
 
+def _history(prev: State | None, cur: State, a2: float):
+    """The BDF2 history's parts ``a2 (r_{n-1} - r_n)`` and ``a2 (v_{n-1} - v_n)`` of v
+    and a (fixed within a step), or None (implicit Euler)."""
+    if a2 and prev is not None:
+        return a2 * (prev.r - cur.r), a2 * (prev.v - cur.v)
+    return None
+
+
+def _rates(r, cur: State, a0: float, history):
+    """v and a of the nodes r at the new time level (the module docstring's formulas)."""
+    v = a0 * (r - cur.r)
+    if history is None:
+        return v, a0 * (v - cur.v)
+    v += history[0]
+    return v, a0 * (v - cur.v) + history[1]
+
+
 def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
     """One implicit step of size h after ``cur`` (``prev``: the BDF2 history) solved by
     Newton (iterations counted in ``stats``); raises :class:`NotConverged`.  The
@@ -285,24 +346,15 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
     x = g.pack((cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1], cur.T, cur.R)
     r_int, T, _ = g.split(x)
     active = g.active(x)
-    r_old, v_old = cur.r, cur.v
-    v_hist = a_hist = None           # the history's parts of v and a, fixed within the step
-    if a2 and prev is not None:
-        v_hist = a2 * (prev.r - cur.r)
-        a_hist = a2 * (prev.v - cur.v)
-    r = np.zeros_like(r_old)         # r_0 = 0 (the winch)
+    history = _history(prev, cur, a2)
+    r = np.zeros_like(cur.r)         # r_0 = 0 (the winch)
 
     worst = last = math.inf            # last: the residual before worst
     for _ in range(model.max_newton):
         R = x[-1]
         r[1:-1] = r_int
         r[-1] = R * e
-        v = a0 * (r - r_old)
-        if v_hist is not None:
-            v += v_hist
-            acc = a0 * (v - v_old) + a_hist
-        else:
-            acc = a0 * (v - v_old)
+        v, acc = _rates(r, cur, a0, history)
         try:
             ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0,
                                    jacobian=not expect_converged(worst, last, model.newton_tol),
@@ -317,6 +369,50 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
             return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
         try:
             active -= model.eq.solve(ev.ab, ev.residual)
+        except np.linalg.LinAlgError:
+            break
+    raise NotConverged(worst)
+
+
+def _free_step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
+    """One implicit step of size h of the line with the kite at its free end
+    (:mod:`.kite`), the roll of ``cur``'s steering sample held over it; then
+    the steering's sample of the new state.  Newton on all 4M unknowns in
+    Python, each iterate evaluated by the line's kernel (compiled or NumPy)
+    and the kite's rows; the Jacobian is skipped where the iterate is expected
+    to converge, as in :func:`_step`.  Raises :class:`NotConverged`."""
+    kite = model.kite
+    assert kite is not None and cur.steer is not None
+    t_new = cur.t + h
+    a0, a2 = _coefficients(model, prev, cur, h)
+    f_ref = model.force_ref_N(cur.T, model.eq.physics)
+    g = model.grid
+    x = g.pack_nodes((cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:], cur.T)
+    nodes, T = g.split_nodes(x)
+    history = _history(prev, cur, a2)
+    r = np.zeros_like(cur.r)         # r_0 = 0 (the winch)
+    worst = last = math.inf
+    for _ in range(model.max_newton):
+        r[1:] = nodes
+        v, acc = _rates(r, cur, a0, history)
+        try:
+            ev = kite_end.evaluate(model.eq, kite, r, v, acc, T, cur.steer.roll_rad, f_ref, c_a=a0 * a0, c_v=a0,
+                                   jacobian=not expect_converged(worst, last, model.newton_tol),
+                                   reel_mps=model.reel_mps)
+        except AltitudeError as exc:
+            raise NotConverged(worst, left_atmosphere(exc)) from None
+        except ValueError as exc:       # an iterate the kite's force is undefined at (polar range, W_e along e)
+            raise NotConverged(worst, f"the kite's force at an iterate: {exc}") from None
+        stats.newton_iterations += 1
+        worst, last = float(np.abs(ev.residual).max()), worst
+        if not math.isfinite(worst):
+            break
+        if worst <= model.newton_tol:
+            new = State(t_new, r, v, acc, T.copy(), math.sqrt(r[-1] @ r[-1]), ev.drag)
+            new.steer = _sampled(model, new, cur.steer.parameter_s)
+            return new
+        try:
+            x -= model.eq.solve(ev.ab, ev.residual)
         except np.linalg.LinAlgError:
             break
     raise NotConverged(worst)
@@ -346,6 +442,9 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
         "drag_against_N": float(against) if against is not None else 0.0,
         "max_strain": float(np.abs(seg / g.h - 1.0).max()),
     }
+    if model.kite is not None and state.steer is not None:
+        load = model.kite.load(r[-1], v[-1], r[-1] - r[-2], state.steer.roll_rad)
+        series |= free_kite.series_values(state.steer, load, v[-1])
     if not fields:
         return series
     z_mid = 0.5 * (r[1:, 2] + r[:-1, 2])
@@ -380,7 +479,10 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     projected on the constraints with the new V_L
     (:meth:`TetherFD.consistent_velocity`: the speed change is an impulse, not
     a tension spike spread over the next steps) and BDF2 restarts (the
-    history is dropped: the next step is implicit Euler).
+    history is dropped: the next step is implicit Euler).  A free kite
+    steers along its path on the sphere of the new length, continued at its
+    path time σ (``at_length``: the eight carries σ, the circle its angle at
+    σ), and its steering is sampled again on it.
     """
     g = model.grid
     h0 = g.h[0] + (length_m - model.length_m)
@@ -393,20 +495,29 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         v = np.insert(v, 1, (1.0 - f) * drum + f * v[1], axis=0)
         a = np.insert(a, 1, f * a[1], axis=0)
         T = np.insert(T, 1, T[0])
-        grid = Grid.from_lengths(np.concatenate([[h0 - half, half], g.h[1:]]), g.tension_mode)
+        grid = Grid.from_lengths(np.concatenate([[h0 - half, half], g.h[1:]]), g.tension_mode, g.free_end)
     elif h0 < min_segment_m and h0 < g.h[0] and g.M > 2:
         r, v, a = (np.delete(x, 1, axis=0) for x in (r, v, a))
         T = np.delete(T, 1)                     # T_{1/2} stays (the winch's, in tension mode)
-        grid = Grid.from_lengths(np.concatenate([[h0 + g.h[1]], g.h[2:]]), g.tension_mode)
+        grid = Grid.from_lengths(np.concatenate([[h0 + g.h[1]], g.h[2:]]), g.tension_mode, g.free_end)
     else:
         grid = g.with_first_length(h0)
     restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
+    kite = model.kite
+    if kite is not None and state.steer is not None:
+        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, state.steer.parameter_s)
+        kite = replace(kite, steering=replace(kite.steering, path=path))
     model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
-                    reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t))
+                    reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t), kite=kite)
     if restart:
-        v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_mps)
+        end_mass = 0.0 if kite is None else kite_end.end_mass_kg(model.eq, kite)
+        v, _ = model.eq.consistent_velocity(r, v, state.R, model.end.state(state.t, 1.0)[:2], reel_mps,
+                                            end_mass)
         prev = None
-    return model, prev, State(state.t, r, v, a, T, state.R)
+    new = State(state.t, r, v, a, T, state.R)
+    if kite is not None and state.steer is not None:
+        new.steer = _sampled(model, new, state.steer.parameter_s)
+    return model, prev, new
 
 
 @dataclass
@@ -424,10 +535,16 @@ class FDSolver:
     name = "fd"
 
     def initial_state(self) -> State:
-        return static_equilibrium(self.model)
+        """The static equilibrium; a free kite's with its end moving along the path
+        at the start speed (:func:`build_model`), and the steering's first sample."""
+        if self.model.kite is None:
+            return static_equilibrium(self.model)
+        state = static_equilibrium(_moved_end(self.model))
+        state.steer = _sampled(self.model, state, 0.0)
+        return state
 
     def step(self, state: State, h: float, stats: Statistics) -> State:
-        new = _step(self.model, self.prev, state, h, stats)
+        new = (_step if self.model.kite is None else _free_step)(self.model, self.prev, state, h, stats)
         self.prev = state
         return new
 

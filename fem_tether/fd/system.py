@@ -105,31 +105,38 @@ class Grid:
     """FD grid of a line of length L with M segments, and its band layout.
 
     ``Grid(L, M, mode)`` is uniform (``ds = L/M``); :meth:`from_lengths` takes
-    any positive segment lengths.  The band layout depends on M and the winch
-    mode only, so :meth:`with_first_length` (reeling without a new node)
-    shares it.
+    any positive segment lengths.  The band layout depends on M, the winch
+    mode and the end only, so :meth:`with_first_length` (reeling without a
+    new node) shares it.
+
+    ``free_end``: the end node carries a point-mass kite (:mod:`.kite`); r_M
+    is three unknowns of its own, ``x[4M-3 : 4M]`` after ``T_{M-1/2}``, with
+    the kite's equation of motion in rows ``4M-3 .. 4M-1``, and R is removed.
+    T_{1/2} is then an unknown in either winch mode (the winch holds the
+    line's length, or pays it out at V_L): 4M unknowns and equations.
     """
 
-    def __init__(self, length_m: float, segments: int, tension_mode: bool):
+    def __init__(self, length_m: float, segments: int, tension_mode: bool, free_end: bool = False):
         if segments < 2:
             raise ValueError(f"FD grid needs at least 2 segments, got {segments}")
         M = int(segments)
         self.M = M
         self.tension_mode = bool(tension_mode)
-        self.n_full = 4 * M - 2
-        self.n = 4 * M - 3                       # active unknowns = equations
+        self.free_end = bool(free_end)
+        self.n_full = 4 * M if free_end else 4 * M - 2
+        self.n = 4 * M if free_end else 4 * M - 3        # active unknowns = equations
         self.eye_stack = np.tile(_EYE, (2 * M + 1, 1, 1))    # I, once per row of Directions.unit
         ds = float(length_m) / M
         self._set_lengths(np.full(M, ds), np.linspace(0.0, float(length_m), M + 1))
         self._layout()
 
     @classmethod
-    def from_lengths(cls, lengths_m, tension_mode: bool) -> "Grid":
+    def from_lengths(cls, lengths_m, tension_mode: bool, free_end: bool = False) -> "Grid":
         """Grid with the segment lengths ``lengths_m`` (at least 2, all > 0)."""
         h = np.array(lengths_m, dtype=float)
         if h.size < 2 or not np.all(h > 0):
             raise ValueError(f"FD grid needs at least 2 segments of positive length, got {h}")
-        grid = cls(float(h.sum()), h.size, tension_mode)
+        grid = cls(float(h.sum()), h.size, tension_mode, free_end)
         grid._set_lengths(h, np.concatenate([[0.0], np.cumsum(h)]))
         return grid
 
@@ -174,12 +181,14 @@ class Grid:
 
     # --- index bookkeeping -------------------------------------------------
     def _node_cols(self):
-        """Full column of node j component c; node 0 -> -1 (fixed); node M -> R."""
+        """Full column of node j component c; node 0 -> -1 (fixed); node M -> R,
+        or its own three columns with a free end."""
         M = self.M
         cols = np.empty((M + 1, 3), dtype=np.int64)
         cols[0] = -1
-        cols[1:M] = 4 * np.arange(M - 1)[:, None] + 1 + np.arange(3)
-        cols[M] = 4 * M - 3
+        cols[1:] = 4 * np.arange(M)[:, None] + 1 + np.arange(3)
+        if not self.free_end:
+            cols[M] = 4 * M - 3
         return cols
 
     def _layout(self):
@@ -197,24 +206,33 @@ class Grid:
             cols.append(c.ravel())
             kite.append(np.broadcast_to(kite_col, r.shape).ravel())
 
+        kinematic_end = not self.free_end
         # momentum blocks (M-1, 3, 3): self, next, previous node
         for j in (i, i + 1, i - 1):
             c = ncol[j][:, None, :]
-            add(rows_m[:, :, None], c, (j == M)[:, None, None] * np.ones((1, 3, 3), bool))
+            add(rows_m[:, :, None], c, ((j == M) & kinematic_end)[:, None, None] * np.ones((1, 3, 3), bool))
         # momentum x tension (M-1, 3): T_{i+1/2} (col 4i), T_{i-1/2} (col 4(i-1))
         add(rows_m, (4 * i)[:, None], False)
         add(rows_m, (4 * (i - 1))[:, None], False)
         # constraint x nodes (M, 3): node k+1, node k
-        add(rows_g[:, None], ncol[k + 1], (k + 1 == M)[:, None] * np.ones((1, 3), bool))
+        add(rows_g[:, None], ncol[k + 1], ((k + 1 == M) & kinematic_end)[:, None] * np.ones((1, 3), bool))
         add(rows_g[:, None], ncol[k], False)
         # constraint x own tension (M,)
         add(rows_g, rows_g, False)
 
+        n_line = sum(r.size for r in rows)
+        if self.free_end:    # the kite's rows: r_M (3, 3), r_{M-1} (3, 3), T_{M-1/2} (3,), after the line's
+            rows_k = 4 * M - 3 + np.arange(3)
+            add(rows_k[:, None], ncol[M][None, :], False)
+            add(rows_k[:, None], ncol[M - 1][None, :], False)
+            add(rows_k, 4 * M - 4, False)
         rows = np.concatenate(rows)
         cols = np.concatenate(cols)
-        self._kite_entry = np.concatenate(kite)
+        self._kite_entry = np.concatenate(kite)[:n_line]
         # map full columns to active columns
-        if self.tension_mode:           # T_{1/2} known: drop column 0
+        if self.free_end:               # all unknowns active
+            act = cols.copy()
+        elif self.tension_mode:         # T_{1/2} known: drop column 0
             act = cols - 1
             act[cols <= 0] = -1
         else:                           # R known: drop column 4M-3
@@ -227,6 +245,8 @@ class Grid:
         nb = self.lower + self.upper + 1
         flat = (self.upper + rows - act) * self.n + act
         self._dump = nb * self.n                               # sink for dropped entries
+        self._end_entries = (self.upper + rows - act)[n_line:], act[n_line:]   # the kite's rows (free end)
+        flat, keep = flat[:n_line], keep[:n_line]
         self._flat = np.where(keep, flat, self._dump)
         self._band_shape = (nb, self.n)
         # tension mode: the kite node's three entries of a row add up in the R
@@ -266,6 +286,20 @@ class Grid:
         """Views (r_int (M-1, 3), T (M,)) into a full-layout vector, and R."""
         return x[: 4 * self.M - 4].reshape(self.M - 1, 4)[:, 1:], x[0: 4 * self.M - 3: 4], float(x[-1])
 
+    def pack_nodes(self, r_nodes, T) -> np.ndarray:
+        """A free end's unknowns (:attr:`free_end`): nodes 1..M (M, 3) and tensions (M,)
+        in one vector ``[T_{1/2}, r_1, T_{3/2}, r_2, ..]`` (4M)."""
+        x = np.empty(self.n_full)
+        body = x.reshape(self.M, 4)
+        body[:, 0] = T
+        body[:, 1:] = r_nodes
+        return x
+
+    def split_nodes(self, x):
+        """Views (nodes 1..M (M, 3), T (M,)) into a free end's unknowns (:meth:`pack_nodes`)."""
+        body = x.reshape(self.M, 4)
+        return body[:, 1:], body[:, 0]
+
     def active(self, x):
         """The view of the active unknowns (the Newton update's) in a full-layout vector."""
         return x[1:] if self.tension_mode else x[:-1]
@@ -278,6 +312,12 @@ class Grid:
             w = values[self._kite_groups] * np.asarray(kite_dir)
             ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
         return self.band(ab)
+
+    def put_end_rows(self, ab, d_end, d_before, d_tension) -> None:
+        """A free end's rows (the kite's equation) into the band ``ab``
+        (:meth:`assemble`'s, in place): their derivatives in r_M (3, 3), in
+        r_{M-1} (3, 3) and in T_{M-1/2} (3,), rows by components."""
+        ab[self._end_entries] = np.concatenate([np.ravel(d_end), np.ravel(d_before), d_tension])
 
     def empty_band(self) -> np.ndarray:
         """A flattened band to assemble into: its entries and, after them, the
@@ -541,7 +581,7 @@ class TetherFD:
         np.add(K[1:], K[:-1], out=blocks[0])
         blocks[0] /= g.hbar_blocks
         blocks[0] += (self.physics.linear_density_kg_m * c_a) * g.eye_stack[: M - 1]
-        blocks[0] -= self._drag_derivative(r[1:-1, 2], drag, air, inner, c_v)
+        blocks[0] -= self.drag_derivative(r[1:-1, 2], drag, air, inner, c_v)
         np.divide(K[1:], g.hbar_blocks, out=blocks[1])
         np.divide(K[:-1], g.hbar_blocks, out=blocks[2])
         d_next = drag.d_dtau[inner] @ projections[M + 1: 2 * M] / dirs.tangent_len[1:-1, None, None]
@@ -559,7 +599,7 @@ class TetherFD:
         values[-M:] = self._constraint_T
         return g.assemble(values, kite_dir)
 
-    def _drag_derivative(self, z, drag, air, inner, c_v):
+    def drag_derivative(self, z, drag, air, inner, c_v):
         """df_i/dr_i of the drag at the interior nodes (altitudes z), through the
         velocity v_i = c_v r_i + .. (``-c_v df/dV_rel``) and through the
         altitude, in the z column: ``df/dz = df/dV_rel e_x V_w'(z) + df/drho rho'(z)
@@ -582,7 +622,7 @@ class TetherFD:
         dv = v[1:] - v[:-1]
         return tau + eta * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None] + c_v * tau)
 
-    def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0):
+    def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0, end_mass_kg=0.0):
         """Velocities of the inextensible line on its constraints, closest to
         ``v_guess`` in the kinetic-energy norm.
 
@@ -596,13 +636,16 @@ class TetherFD:
         the kite end on its trajectory, ``v_M = R e' + R' e`` (``kite = (e, e')``).
         The closure is the one of the Newton system: in tension mode the winch
         takes no impulse (``lam_{1/2} = 0``, the tension there is held) and the
-        radius rate R' is free; in prescribed mode R' = 0.  Used to restart the
-        time stepping when V_L jumps or the grid changes (:mod:`.solver`).
-        Returns ``(v, R')``.
+        radius rate R' is free; in prescribed mode R' = 0.  A free end
+        (:attr:`Grid.free_end`; ``R`` and ``kite`` unused) is a node of mass
+        ``end_mass_kg`` (the kite's and its share of the line's) with the row
+        ``m_M (v_M - v_guess_M) + lam_{M-1/2} tau_{M-1/2} = 0``, and the winch
+        takes the impulse ``lam_{1/2}``.  Used to restart the time stepping when
+        V_L jumps or the grid changes (:mod:`.solver`).  Returns ``(v, R')``
+        (R' = 0 with a free end).
         """
         g = self.grid
         M = g.M
-        e, e_dot = kite
         tau, _ = _unit(r[1:] - r[:-1])
         m = self.mass_kg[1:-1]
         zero3 = np.zeros((M - 1, 3, 3))
@@ -611,12 +654,22 @@ class TetherFD:
             (-tau[1:]).ravel(), tau[:-1].ravel(),
             tau.ravel(), (-tau).ravel(), np.zeros(M),
         ])
-        ab = g.assemble(values, e)
         full = np.zeros(g.n_full)
         body = full[: 4 * M - 4].reshape(M - 1, 4)
         body[:, 1:] = m[:, None] * v_guess[1:-1]
         con = np.zeros(M)
         con[0] = reel_mps
+        v = np.zeros_like(v_guess)
+        if g.free_end:
+            body[:, 0] = con[:-1]
+            full[4 * M - 4] = con[-1]
+            full[4 * M - 3:] = end_mass_kg * v_guess[-1]
+            ab = g.assemble(values, np.zeros(3))
+            g.put_end_rows(ab, end_mass_kg * _EYE, np.zeros((3, 3)), tau[-1])
+            v[1:] = g.split_nodes(self.solve(ab, full))[0]
+            return v, 0.0
+        e, e_dot = kite
+        ab = g.assemble(values, e)
         con[-1] -= tau[-1] @ (R * e_dot)        # the kite's known velocity R e'
         body[:, 0] = con[:-1]
         full[4 * M - 4] = con[-1]
@@ -624,7 +677,6 @@ class TetherFD:
         dv, _, r_dot = g.expand(x)
         if not g.tension_mode:
             r_dot = 0.0
-        v = np.zeros_like(v_guess)
         v[1:-1] = dv
         v[-1] = R * e_dot + r_dot * e
         return v, float(r_dot)

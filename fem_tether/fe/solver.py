@@ -98,8 +98,7 @@ def build_model(cfg: Config, end: EndMotion | None = None,
     spaces = build_spaces(unit_mesh_from_config(cfg.fe), case["length_m"],
                           cfg.tether.linear_density_kg_m)
     physics = physics or physics_from_config(cfg)
-    kite = free_kite_module.from_config(cfg, float(spaces.mass_kg[-1]), physics.wind, physics.air,
-                                        sample_s=cfg.fe.dt_s)
+    kite = free_kite_module.from_config(cfg, float(spaces.mass_kg[-1]), physics.wind, physics.air)
     if kite is not None and end is None:
         case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
     system = TetherSystem(spaces, physics, case["tension_mode"], compiled=cfg.fe.kernel == "compiled")
@@ -296,7 +295,8 @@ def release(model: FEModel, state: State) -> tuple[FEModel, State]:
     free = TetherSystem(sys_.spaces, sys_.physics, False, sys_.compiled, end_mass_kg=kite.kite.mass_kg)
     model = replace(model, system=free, tension_mode=False, radius_m=state.R)
     r, v = state.kin.q, state.kin.v
-    steer = kite.steer(state.t, 0.0, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]))
+    steer = kite.steer(state.t, 0.0, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]),
+                       _end_line_drag_N(model, state))
     v, qdd, T = free.consistent_start(r, v, state.T, state.R, None, 0.0,
                                       end_force=_end_force(kite, r, steer.roll_rad))
     load = kite.load(r[-1], v[-1], r[-1] - r[-2], steer.roll_rad)
@@ -326,6 +326,16 @@ def add_kite(system: TetherSystem, ev: Evaluation, kite: FreeKite, r, v, roll_ra
     return load
 
 
+def _end_line_drag_N(model: FEModel, state: State) -> np.ndarray:
+    """The line's drag on the end node, ``(Q f_t)_N``: the last element's share,
+    for the steering law's balance (:meth:`~fem_tether.free_kite.FreeKite.steer`)."""
+    sys_ = model.system
+    ev = state.ev or sys_.evaluate(state.kin.q, state.kin.v, state.kin.qdd, state.T, state.R,
+                                   model.end.direction_at(state.t), model.ground_tension_N, model.radius_m,
+                                   1.0, jacobian=False)
+    return sys_.load_weights[-1, 1] * ev.load.force[-1]
+
+
 def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     """One generalised-alpha step of size h solved by Newton (iterations counted in
     ``stats``); raises :class:`NotConverged`.  A compiled system takes the whole
@@ -350,7 +360,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     if kite is not None:
         assert state.steer is not None, "a free kite's state carries its last steering sample"
         steer = kite.steer(state.t, state.steer.parameter_s, kin.q[-1], kin.v[-1], kin.q[-1] - kin.q[-2],
-                           float(state.T[-1]))
+                           float(state.T[-1]), _end_line_drag_N(model, state))
     c_a, c_v = model.scheme.coefficients(h)
     k_s = sys_.row_scale(f_ref)
     kept = sys_.kept
