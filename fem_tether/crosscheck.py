@@ -9,6 +9,12 @@ arc lengths (linearly in s); the largest distance between them, divided by L,
 is the shape difference.  Tolerances come from ``[crosscheck]``: a difference
 within its tolerance passes, and the check is ``ok`` only if all pass.
 
+A point-mass kite flies its own speed, so two runs drift apart in phase along
+the path (a speed 0.1 % apart over 15 s at 108 m/s is ~2 m, and the distance
+at equal times grows with the run); their lines are compared at equal phase:
+the FD line at the instant its kite is nearest the FE kite
+(:func:`_nearest_kite_time`), the phase lag being that instant's offset.
+
 On reel-out runs (the length changes) F_t and the tensions are compared along
 the run: their means over one period of the eight against the line length
 (:func:`fem_tether.results.period_average`), the largest relative difference
@@ -68,19 +74,43 @@ def _line_at(run: TetherRun, t, s):
     return (1.0 - w) * _on_grid(run, j - 1, s) + w * _on_grid(run, j, s)
 
 
+def _free_kite(run: TetherRun) -> bool:
+    return "kite_speed_mps" in run.series
+
+
+def _nearest_kite_time(run: TetherRun, position_m, t) -> float:
+    """The instant within one period of ``t`` at which ``run``'s kite (its line's
+    end, linear between snapshots) passes nearest ``position_m``."""
+    times = run.snapshot_time_s
+    near = np.flatnonzero(np.abs(times - t) <= run.period_s / 2)
+    kite = np.array([run.line(int(j))["position_m"][-1] for j in near])
+    best, best_t = np.inf, t
+    for k in range(near.size - 1):
+        p, q = kite[k], kite[k + 1]
+        w = float(np.clip((position_m - p) @ (q - p) / max(float((q - p) @ (q - p)), 1e-300), 0.0, 1.0))
+        gap = float(np.linalg.norm(p + w * (q - p) - position_m))
+        if gap < best:
+            best, best_t = gap, (1.0 - w) * times[near[k]] + w * times[near[k + 1]]
+    return float(best_t)
+
+
 def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
-    """max over a's snapshot times and common s of |r_a - r_b| / L.
+    """max over a's snapshot times and common s of |r_a - r_b| / L (for a
+    point-mass kite, b's line at the instant its kite is nearest a's: the
+    module docstring).
 
     For a line whose length changes (reel-out), the common arc lengths span
     the shorter of the two lines at that time, and L is the longer length."""
     t_end = min(a.snapshot_time_s[-1], b.snapshot_time_s[-1])
     worst, length = 0.0, a.length_m
+    free = _free_kite(a) and _free_kite(b)
     for i, t in enumerate(a.snapshot_time_s):
         if t > t_end + 1e-9:
             break
         s_a = a.line(i)["s_m"]
         s = np.linspace(0.0, s_a[-1], samples)
-        diff = _on_grid(a, i, s) - _line_at(b, t, s)
+        t_b = min(_nearest_kite_time(b, a.line(i)["position_m"][-1], t), t_end) if free else t
+        diff = _on_grid(a, i, s) - _line_at(b, t_b, s)
         worst = max(worst, float(np.max(np.linalg.norm(diff, axis=1))))
         length = max(length, float(s_a[-1]))
     return worst / length
@@ -91,7 +121,10 @@ MIN_SNAPSHOTS_PER_PERIOD = 10
 
 def checkable(cfg: Config) -> Config:
     """``cfg`` with ``[output] every`` lowered, if needed, so that both solvers
-    store at least ``MIN_SNAPSHOTS_PER_PERIOD`` snapshots per period."""
+    store at least ``MIN_SNAPSHOTS_PER_PERIOD`` snapshots per period (a
+    point-mass kite's run: every step, for its phase, :func:`_nearest_kite_time`)."""
+    if cfg.kite.model == "point-mass":
+        return cfg.replace(output={"every": 1})
     period = cfg.path.period_s
     steps = min(steps_per_period(period, cfg.fe.dt_s), steps_per_period(period, cfg.fd.dt_s))
     every = max(1, min(cfg.output.every, steps // MIN_SNAPSHOTS_PER_PERIOD))
