@@ -127,7 +127,8 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
     if "fe" in runs:
         v["drag_fe_N"] = runs["fe"].mean("drag_N")
         v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
-        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"])
+        apparent = runs["fe"].mean("apparent_speed_mps") if "apparent_speed_mps" in runs["fe"].series else None
+        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"], apparent)     # a point-mass kite: at its own speed
         v["peak_tension_N"] = peak_tension_N(runs["fe"])
         v["margin"] = margin(cfg, v["peak_tension_N"])
     v["d_m"] = cfg.tether.diameter_m

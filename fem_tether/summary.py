@@ -22,12 +22,14 @@ def operating_density_kg_m3(cfg: Config) -> float:
     return float(atmosphere.from_config(cfg.air).density_kg_m3(np.array(z)))
 
 
-def operating_ge(cfg: Config, drag_N) -> float:
+def operating_ge(cfg: Config, drag_N, speed_mps: float | None = None) -> float:
     """G_e (seed 000 eq. 5.1) of the configured case with tether drag ``drag_N``
-    per line, rho at the operating altitude L cos(theta0)."""
+    per line, rho at the operating altitude L cos(theta0), at the kite speed
+    ``speed_mps`` (default ``[kite] speed_mps``; a point-mass kite's run: its
+    mean apparent wind speed)."""
     k = cfg.kite
     return float(kite.global_efficiency(drag_N, operating_density_kg_m3(cfg), k.area_m2, k.cl, k.efficiency,
-                                        k.speed_mps, cfg.tether.lines))
+                                        speed_mps or k.speed_mps, cfg.tether.lines))
 
 
 def operating_tether_cd(cfg: Config, drag_N) -> float:
@@ -42,7 +44,7 @@ def run_summary(run, cfg: Config) -> dict:
     """Period means, straight-line comparison, G_e, and the line's peak tension,
     breaking load and margin (:mod:`fem_tether.sizing`) of one tether run."""
     means = run.means()
-    ge = operating_ge(cfg, means["mean_drag_N"])
+    ge = operating_ge(cfg, means["mean_drag_N"], means.get("mean_apparent_speed_mps"))
     peak = sizing.peak_tension_N(run)
     return {
         "solver": run.solver,
