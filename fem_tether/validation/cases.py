@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from functools import partial
 
-from . import analytic, numerics, seed000, systems
+from . import analytic, free_kite, numerics, seed000, systems
 from .case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -39,6 +39,14 @@ CASES: tuple[Case, ...] = (
     Case("trevisi/optima", "Trevisi 2019 §3.3.2, eq. 3.47", True, systems.trevisi_optima),
     Case("lourenco/tether-and-power", "Lourenço eq. 3.7, Table 4.2", True, systems.lourenco),
     Case("fagiano/equivalent-drag", "Fagiano et al. 2010 eq. 21, Table I", True, systems.fagiano),
+    Case("free-kite/crosswind-law", "Roselli 2016 eqs. 2.35, 2.45-2.46; Trevisi 2019 eq. 3.34", True,
+         free_kite.crosswind_law),
+    Case("free-kite/energy", "analytic: work of the air = winch + drag dissipation + dK + dU", True,
+         free_kite.energy),
+    Case("free-kite/tracking", "the steering law (docs/steering.md): cross-track <= 2 % of the path width",
+         True, free_kite.tracking),
+    Case("free-kite/fe-fd", "FE <-> FD cross-check, point-mass kite, shipped settings", True,
+         free_kite.agreement),
     Case("numerics/fe-fd-shipped", "FE <-> FD cross-check, shipped settings", True, numerics.agreement_shipped),
     *(Case(f"numerics/{name.lower().replace(' ', '-')}", f"convergence: {name}, 3000 m, quiet air", False,
            partial(numerics.convergence, name)) for name in numerics.REFINEMENTS),
