@@ -46,7 +46,8 @@ def crosswind_deviations(run: TetherRun, cfg) -> tuple[float, float]:
     kite = build_model(cfg).kite
     assert kite is not None, "a point-mass kite's run"
     aero, factor = kite.kite.aerodynamics, kite.kite.turbine_factor
-    efficiency = aero.cl / (aero.cd * (1.0 + factor))
+    cl, cd, _, _ = aero.coefficients(kite.kite.base_aoa_rad)      # constant coefficients: any angle
+    efficiency = cl / (cd * (1.0 + factor))
     massless = PointMassKite(0.0, kite.kite.area_m2, aero, 0.0, factor)
     rho = cfg.air.density_kg_m3
     speed, tension = [], []
