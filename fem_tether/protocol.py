@@ -169,7 +169,8 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
-            reel_mps, was_reeling = reel.speed_mps(state.t, solver.kite_position_m(state)), reel_mps
+            reel_mps, was_reeling = reel.speed_mps(state.t, solver.kite_position_m(state), float(state.T[0]),
+                                                   reel_mps), reel_mps
             if reel_mps or was_reeling:
                 state = solver.reeled(state, reel.next_length(solver.model.length_m, reel_mps, h), reel_mps)
             try:

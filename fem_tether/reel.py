@@ -16,7 +16,18 @@ Modes (``[winch] reel_out``):
       V_L = V_w(z_k) sin(theta) cos(phi) - sqrt(lines T_0 / C(rho(z_k))),
       C = 1/2 rho A C_l E^2 (1 + 1/E^2)^(3/2),
 
-  held within [0, max_reel_out_mps].
+  held within [0, max_reel_out_mps];
+* ``"hold"`` (a point-mass kite, whose pull results from its flight): the same
+  law closed on the measured ground tension T_0, a sampled integral
+  controller that holds T_0 at ``ground_tension_N`` (the seed's condition of
+  zones B-D by feedback).  With the traction law's T ~ C (W_r - V_L)^2,
+  dT/dV_L = -2 T / (W_r - V_L), and each step takes half of the Newton
+  correction::
+
+      V_L <- V_L + 1/2 (T_0 - T_set) (W_r - V_L) / (2 T_0),
+
+  W_r = V_w(z_k) sin(theta) cos(phi) at the kite's position, held within
+  [0, max_reel_out_mps].
 
 Reeling starts after the spin-up (``start_s``) and stops when the line reaches
 ``reel_out_stop_m`` (0: never).
@@ -90,8 +101,11 @@ class Reel:
     def active(self) -> bool:
         return self.mode != "none"
 
-    def speed_mps(self, t_s: float, kite_position_m) -> float:
-        """V_L at time ``t_s`` (0 before ``start_s``) with the kite at ``kite_position_m``."""
+    def speed_mps(self, t_s: float, kite_position_m, ground_tension_N: float = 0.0,
+                  previous_mps: float = 0.0) -> float:
+        """V_L at time ``t_s`` (0 before ``start_s``) with the kite at ``kite_position_m``
+        (``"hold"``: the winch's tension ``ground_tension_N`` and the speed of the
+        step before, ``previous_mps``)."""
         if self.mode == "none" or t_s < self.start_s:
             return 0.0
         if self.mode == "constant":
@@ -100,6 +114,8 @@ class Reel:
             assert self.table is not None, "a table Reel needs its table"
             return float(np.interp(t_s - self.start_s, *self.table))
         assert self.law is not None, "a controlled Reel needs its traction law"
+        if self.mode == "hold":
+            return self.law.holding_mps(np.asarray(kite_position_m, dtype=float), ground_tension_N, previous_mps)
         return self.law.reel_out_mps(np.asarray(kite_position_m, dtype=float))
 
     def next_length(self, length_m: float, speed_mps: float, h_s: float) -> float:
@@ -129,16 +145,31 @@ class TractionLaw:
     efficiency: float
     nominal_force_N: float
     max_reel_out_mps: float
+    held_tension_N: float = 0.0
+    """``"hold"``: the winch tension T_set per line ([winch] ground_tension_N)"""
+
+    #: The share of the Newton correction each step of ``"hold"`` takes.
+    HOLD_GAIN = 0.5
+
+    def radial_wind_mps(self, kite_position_m) -> float:
+        """W_r = V_w(z_k) sin(theta) cos(phi): the wind along the line at the kite."""
+        p = kite_position_m
+        theta = np.arccos(p[2] / np.linalg.norm(p))
+        return float(self.wind.speed_mps(np.array(max(p[2], 0.0)))) * np.sin(theta) * np.cos(np.arctan2(p[1], p[0]))
 
     def reel_out_mps(self, kite_position_m) -> float:
-        p = kite_position_m
-        z = np.array(max(p[2], 0.0))
+        z = np.array(max(kite_position_m[2], 0.0))
         c = kite.traction_coefficient(float(self.air.density_kg_m3(z)), self.area_m2, self.cl,
                                       self.efficiency)
-        theta = np.arccos(p[2] / np.linalg.norm(p))
-        v_l = float(self.wind.speed_mps(z)) * np.sin(theta) * np.cos(np.arctan2(p[1], p[0])) \
-            - np.sqrt(self.nominal_force_N / c)
+        v_l = self.radial_wind_mps(kite_position_m) - np.sqrt(self.nominal_force_N / c)
         return float(np.clip(v_l, 0.0, self.max_reel_out_mps))
+
+    def holding_mps(self, kite_position_m, ground_tension_N: float, previous_mps: float) -> float:
+        """``"hold"``: V_L + 1/2 (T_0 - T_set) (W_r - V_L) / (2 T_0) (module docstring),
+        T_set the lines' nominal force per line (``nominal_force_N / lines``)."""
+        slip = max(self.radial_wind_mps(kite_position_m) - previous_mps, 0.0)
+        step = self.HOLD_GAIN * (ground_tension_N - self.held_tension_N) * slip / (2.0 * max(ground_tension_N, 1.0))
+        return float(np.clip(previous_mps + step, 0.0, self.max_reel_out_mps))
 
 
 def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
@@ -155,5 +186,6 @@ def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
             raise ConfigError(f"[winch] reel_out_table: {exc}") from None
     k = cfg.kite
     law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind, cfg.resource.weibull_k),
-                      k.area_m2, k.cl, k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps)
+                      k.area_m2, k.cl, k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps,
+                      w.ground_tension_N)
     return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_mps, table, law)

@@ -92,6 +92,9 @@ def _check_winch(cfg: Config) -> None:
     if winch.reel_out != "none" and not tension_mode:
         raise ConfigError(f"[winch] reel_out = \"{winch.reel_out}\": needs [winch] mode = "
                           "\"tension\" (the kite's radius follows the paid-out line)")
+    if winch.reel_out == "hold" and cfg.kite.model != "point-mass":
+        raise ConfigError("[winch] reel_out = \"hold\": needs [kite] model = \"point-mass\" (a prescribed "
+                          "end in tension mode already holds T_0; use \"controlled\" for the seed's law)")
     if winch.reel_out == "table" and not winch.reel_out_table:
         raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = \"table\"")
 

@@ -201,8 +201,9 @@ class Winch(Section):
     mode: str = setting("tension", "-", "'tension' (winch holds ground_tension_N) or 'prescribed'",
                         one_of("tension", "prescribed"))
     ground_tension_N: float = setting(150000.0, "N", "tension held by the winch, per line", positive)
-    reel_out: str = setting("none", "-", "reeling during flight: 'none', 'constant', 'table' or 'controlled'",
-                            one_of("none", "constant", "table", "controlled"))
+    reel_out: str = setting("none", "-", "reeling during flight: 'none', 'constant', 'table', 'controlled' or "
+                            "'hold' (a point-mass kite: V_L held to keep ground_tension_N at the winch)",
+                            one_of("none", "constant", "table", "controlled", "hold"))
     reel_out_speed_mps: float = setting(0.0, "m/s", "reel_out = 'constant': V_L (< 0 reels in)")
     reel_out_table: str = setting("", "-", "reel_out = 'table': CSV time_s,speed_mps from the start of reeling")
     reel_out_stop_m: float = setting(0.0, "m", "stop reeling and the run at this length (0: run the periods)",
