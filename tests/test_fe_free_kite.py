@@ -5,20 +5,9 @@ series and the start."""
 import numpy as np
 import pytest
 
+from conftest import dense_fe_jacobian
 from fem_tether.config import load_config
 from fem_tether.fe.solver import FESolver, add_kite, build_model
-
-
-def _dense(sys_, ev):
-    """The Jacobian of a free-end system as a dense matrix (R's row k_s dR, zero column)."""
-    n, m = sys_.n, sys_.n - 1
-    A = np.zeros((n, n))
-    for j in range(m):
-        for i in range(max(0, j - 6), min(m, j + 7)):
-            A[i, j] = ev.ab[6 + i - j, j]
-    A[:m, -1] = ev.r_col
-    A[-1, -1] = ev.k_s
-    return A
 
 
 @pytest.mark.parametrize("kernel", ["compiled", "numpy"])
@@ -55,7 +44,7 @@ def test_coupled_jacobian_matches_central_differences(kernel, polar, tmp_path):
         return ev
 
     x = sys_.pack(r0, T, R)
-    A = _dense(sys_, evaluation(x, True))
+    A = dense_fe_jacobian(sys_, evaluation(x, True))
     N = np.zeros_like(A)
     for j in range(x.size):
         dx = np.zeros(x.size)

@@ -3,22 +3,9 @@
 import numpy as np
 import pytest
 
+from conftest import dense_fe_jacobian
 from fem_tether.config import load_config
 from fem_tether.fe.solver import build_model, initial_state, static_equilibrium
-
-
-def _dense(sys_, ev, tension_mode):
-    n, m = sys_.n, sys_.n - 1
-    A = np.zeros((n, n))
-    for j in range(m):
-        for i in range(max(0, j - 6), min(m, j + 7)):
-            A[i, j] = ev.ab[6 + i - j, j]
-    A[:m, -1] = ev.r_col
-    if tension_mode:
-        A[-1, 3] = 1.0
-    else:
-        A[-1, -1] = ev.k_s
-    return A
 
 
 @pytest.mark.parametrize("kernel", ["compiled", "numpy"])
@@ -51,7 +38,7 @@ def test_jacobian_matches_central_differences(mode, tether, reel_mps, kernel):
     x = sys_.pack(r0, T, R)
     ev = sys_.evaluate(r0, v0, np.zeros_like(r0), T, R, e, 150e3, 990.0, 1e5, c_a, c_v,
                        reel_mps=reel_mps)
-    A = _dense(sys_, ev, mode == "tension")
+    A = dense_fe_jacobian(sys_, ev, mode == "tension")
     N = np.zeros_like(A)
     for j in range(x.size):
         dx = np.zeros(x.size)
