@@ -66,17 +66,28 @@ def _trapezoid(t, y) -> float:
     return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)))
 
 
+def _aero_power_W(kite: free_kite.FreeKite, r, v, roll_rad: float) -> float:
+    """F_aero · ṙ_N of ``kite`` at the line's nodes ``r``, velocities ``v`` and roll ψ."""
+    return float(kite.load(r[-1], v[-1], r[-1] - r[-2], roll_rad).aero.force_N @ v[-1])
+
+
 def energy_balance(run: TetherRun, cfg, window: slice | None = None) -> EnergyBalance:
     """The balance of the module docstring over the run's snapshots ``window``
     (default: the averaging window); ``cfg`` is the run's configuration (a
-    point-mass kite)."""
+    point-mass kite).  Each step's integrals are trapezoids over its ends with
+    what the step held: its winch speed V_L (the series' value at its end) and
+    its wing (a pumping cycle's recovery wing while V_L < 0,
+    :meth:`~fem_tether.free_kite.FreeKite.for_reel_mps`), so a turn of the winch
+    is integrated exactly where the air force jumps as the wing is swapped."""
     if run.snapshot_time_s.size != run.time_s.size:
         raise ValueError("energy_balance needs a snapshot at every step ([output] every = 1)")
     ph = physics_from_config(cfg)
     mu = ph.linear_density_kg_m
     steps = np.arange(run.time_s.size)[window] if window else np.flatnonzero(run.average_window)
-    kinetic, potential, aero, diss = (np.empty(steps.size) for _ in range(4))
+    kinetic, potential, aero, aero_left, diss = (np.empty(steps.size) for _ in range(5))
+    speed = run.series["reel_out_mps"]
     kite = None
+    last: tuple = ()              # the previous sample's wing, r, v and roll
     for j, i in enumerate(steps):
         line = run.line(int(i))
         s, r, v = line["s_m"], line["position_m"], line["velocity_mps"]
@@ -93,12 +104,19 @@ def energy_balance(run: TetherRun, cfg, window: slice | None = None) -> EnergyBa
         v_mid = 0.5 * (v[1:] + v[:-1])
         diss[j] = -float(np.sum(h * np.einsum("ij,ij->i", line["drag_N_m"], v_mid)))
         roll = math.radians(float(run.series["roll_deg"][i]))
-        load = kite.load(r[-1], v[-1], r[-1] - r[-2], roll)
-        aero[j] = float(load.aero.force_N @ v[-1])
+        wing = kite.for_reel_mps(float(speed[i]))
+        aero[j] = _aero_power_W(wing, r, v, roll)
+        if j and wing.kite is not last[0].kite:      # the winch turned: the step's wing from its start
+            aero_left[j] = _aero_power_W(wing, *last[1:])
+        else:
+            aero_left[j] = aero[j - 1] if j else aero[j]
+        last = (wing, r, v, roll)
     t = run.time_s[steps]
+    dt = np.diff(t)
+    tension = run.series["ground_tension_N"][steps]
     return EnergyBalance(
-        aero_work_J=_trapezoid(t, aero),
-        winch_J=_trapezoid(t, run.series["winch_power_W"][steps]),
+        aero_work_J=float(np.sum(0.5 * (aero_left[1:] + aero[1:]) * dt)),
+        winch_J=float(np.sum(0.5 * speed[steps][1:] * (tension[:-1] + tension[1:]) * dt)),
         dissipated_J=_trapezoid(t, diss),
         kinetic_change_J=float(kinetic[-1] - kinetic[0]),
         potential_change_J=float(potential[-1] - potential[0]),

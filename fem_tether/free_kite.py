@@ -27,7 +27,7 @@ The law's mass is the kite's plus the end node's share of the line
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -83,6 +83,24 @@ class FreeKite:
     start_tether_cd: float = 0.0
     """C_D,t of the line lumped at the kite for the static start's speed (:meth:`start_speed_mps`)"""
     gravity_mps2: float = G_MPS2
+    wings: tuple[PointMassKite, PointMassKite] | None = None
+    """a pumping cycle's (``[winch] reel_out = "cycle"``) powered wing and its depowered
+    recovery wing (:func:`recovery_wing`); :attr:`kite` is the one flown"""
+
+    @property
+    def depowered(self) -> bool:
+        """Whether the kite flies its recovery wing (a pumping cycle's reel-in)."""
+        return self.wings is not None and self.kite is self.wings[1]
+
+    def for_reel_mps(self, reel_mps: float) -> FreeKite:
+        """The kite as flown while the winch reels at ``reel_mps``: a pumping cycle's
+        recovery wing while the line is reeled in (V_L < 0), its powered wing
+        otherwise; without :attr:`wings` always itself.  The solvers swap it when
+        the winch turns (``reeled``), so neither knows the reel's law."""
+        if self.wings is None:
+            return self
+        wing = self.wings[1] if reel_mps < 0.0 else self.wings[0]
+        return self if wing is self.kite else replace(self, kite=wing)
 
     def load(self, r, v, tether, roll_rad: float) -> KiteLoad:
         """F = F_aero(r, v, τ_L, ψ) + m_k g and its Jacobians; ``tether`` is the
@@ -105,7 +123,15 @@ class FreeKite:
         in F_0 (docs/free-kite-fd.md: without it a massless kite flew 11 m off
         its circle).  Raises
         :class:`SolverDivergedError` (time, position, cause) when the kite has lost
-        its path: no nearest point, no lift or no speed across the tether."""
+        its path: no nearest point, no lift or no speed across the tether.
+
+        A depowered kite (:attr:`depowered`, a cycle's recovery) has no lift to
+        steer with: ψ = 0, and the sample's σ and errors are NaN (no path is
+        tracked); the first powered sample after it finds the nearest path point
+        afresh (:func:`~fem_tether.steering.nearest_point` from the loop's best
+        sample, ``parameter_s`` NaN)."""
+        if self.depowered:
+            return Steer(0.0, math.nan, Command(0.0, 0.0, math.nan, math.nan, False))
         try:
             point = nearest_point(self.steering.path, r, parameter_s)
             aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, 0.0, tether=tether)
@@ -170,7 +196,16 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
                             max(cfg.fe.dt_s, cfg.fd.dt_s)))
     steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
                         math.radians(k.roll_max_deg))
-    return FreeKite(kite, steering, wind, air, start_cd)
+    wings = (kite, recovery_wing(kite, cfg.cycle.reel_in_cd0)) if cfg.winch.reel_out == "cycle" else None
+    return FreeKite(kite, steering, wind, air, start_cd, wings=wings)
+
+
+def recovery_wing(kite: PointMassKite, cd0: float) -> PointMassKite:
+    """The wing depowered for a pumping cycle's recovery: KiteGen's side-slip
+    (Roselli 2016 §2.1.2: the stalled wing's lift "drops down") as Trevisi 2019
+    eq. 3.24 models it, pure drag C_d0 on the apparent wind; the same mass and
+    area, no turbines."""
+    return PointMassKite(kite.mass_kg, kite.area_m2, ConstantCoefficients(0.0, cd0))
 
 
 def series_values(steer: Steer, load: KiteLoad, velocity_mps) -> dict:

@@ -7,7 +7,10 @@ whose start transient the means discard, then ``average_periods``.  Each step
 
 1. takes V_L from the reel schedule (:class:`fem_tether.reel.Reel`) at the
    start of the step; while the winch reels (and in the step after it stops)
-   the solver remeshes to L + h V_L (``reeled``);
+   the solver remeshes to L + h V_L (``reeled``); a step that reaches the
+   reel's stop or a cycle's turning length pays out only to it, at the speed
+   (L_end − L)/h that gets there (the winch element's kinematics and the
+   winch's energy T(0) V_L h stay those of the length change);
 2. advances by h (:func:`advance`): a step whose Newton iteration fails
    (:class:`~fem_tether.continuation.NotConverged`) is retried as two half
    steps, recursively, up to ``max_halvings`` levels deep; past that
@@ -169,10 +172,14 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
     for i in range(n_steps + 1):
         if i:
+            length = solver.model.length_m
             reel_mps, was_reeling = reel.speed_mps(state.t, solver.kite_position_m(state), float(state.T[0]),
-                                                   reel_mps), reel_mps
+                                                   reel_mps, length, start_length), reel_mps
             if reel_mps or was_reeling:
-                state = solver.reeled(state, reel.next_length(solver.model.length_m, reel_mps, h), reel_mps)
+                target = reel.next_length(length, reel_mps, h, start_length)
+                if target != length + h * reel_mps:     # a stroke's or the stop's last step: the speed that ends there
+                    reel_mps = (target - length) / h
+                state = solver.reeled(state, target, reel_mps)
             try:
                 state = advance(solver, state, h, stats)
             except SolverDivergedError as exc:

@@ -40,8 +40,9 @@ QUANTITIES = (
     Quantity("series", "roll_deg", "deg", "point-mass kite: steering roll psi held over the step"),
     Quantity("series", "turbine_power_W", "W", "point-mass kite: on-board turbine power gamma_t D |W_e|, "
              "per line"),
-    Quantity("series", "cross_track_m", "m", "point-mass kite: distance left of the reference path"),
-    Quantity("series", "heading_error_deg", "deg", "point-mass kite: heading left of the path's"),
+    Quantity("series", "cross_track_m", "m", "point-mass kite: distance left of the reference path (NaN while "
+             "depowered in a pumping cycle's recovery)"),
+    Quantity("series", "heading_error_deg", "deg", "point-mass kite: heading left of the path's (NaN while depowered)"),
     Quantity("snapshots", "time_s", "s", "time of each snapshot of the whole line"),
     Quantity("snapshots", "s_m", "m", "arc length of each node from the winch (NaN padding)"),
     Quantity("snapshots", "position_m", "m", "node positions x, y, z (z up, winch at the origin)"),

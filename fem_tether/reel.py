@@ -27,10 +27,19 @@ Modes (``[winch] reel_out``):
       V_L <- V_L + 1/2 (T_0 - T_set) (W_r - V_L) / (2 T_0),
 
   W_r = V_w(z_k) sin(theta) cos(phi) at the kite's position, held within
-  [0, max_reel_out_mps].
+  [0, max_reel_out_mps];
+* ``"cycle"`` (a point-mass kite): pumping cycles of ``[cycle]``.  Traction
+  with ``"hold"`` until the line has paid out ``stroke_m`` from its start
+  length L_0, then the recovery: V_L = -``reel_in_mps`` (the solvers fly the
+  kite depowered while V_L < 0, :meth:`fem_tether.free_kite.FreeKite.for_reel_mps`)
+  until the line is back at L_0; then traction again.  The law is stateless:
+  the phase follows from the length, L_0 and the sign of the previous step's
+  speed (:meth:`Reel.recovering`), so a run restarted from any state continues
+  the phase it is in, and the winch never needs a memory the protocol does
+  not already carry.
 
 Reeling starts after the spin-up (``start_s``) and stops when the line reaches
-``reel_out_stop_m`` (0: never).
+``reel_out_stop_m`` (0: never; a cycle never stops).
 """
 
 from __future__ import annotations
@@ -96,16 +105,32 @@ class Reel:
     speed: float = 0.0
     table: tuple[np.ndarray, np.ndarray] | None = field(default=None, compare=False)
     law: "TractionLaw | None" = field(default=None, compare=False, repr=False)
+    stroke_m: float = 0.0
+    """``"cycle"``: the line paid out per traction phase, then reeled in"""
+    reel_in_mps: float = 0.0
+    """``"cycle"``: the recovery's reel-in speed (> 0)"""
+
+    #: Lengths within this of a cycle's turning length count as reached [m].
+    TURN_TOL_M = 1e-6
 
     @property
     def active(self) -> bool:
         return self.mode != "none"
 
+    def recovering(self, length_m: float, start_length_m: float, previous_mps: float) -> bool:
+        """``"cycle"``: whether the next step reels in: the line has paid out the
+        stroke (L ≥ L_0 + stroke), or the previous step reeled in (V_L < 0) and the
+        line is not back at L_0 yet."""
+        if length_m >= start_length_m + self.stroke_m - self.TURN_TOL_M:
+            return True
+        return previous_mps < 0.0 and length_m > start_length_m + self.TURN_TOL_M
+
     def speed_mps(self, t_s: float, kite_position_m, ground_tension_N: float = 0.0,
-                  previous_mps: float = 0.0) -> float:
+                  previous_mps: float = 0.0, length_m: float = 0.0, start_length_m: float = 0.0) -> float:
         """V_L at time ``t_s`` (0 before ``start_s``) with the kite at ``kite_position_m``
-        (``"hold"``: the winch's tension ``ground_tension_N`` and the speed of the
-        step before, ``previous_mps``)."""
+        (``"hold"`` and ``"cycle"``: the winch's tension ``ground_tension_N`` and the
+        speed of the step before, ``previous_mps``; ``"cycle"``: the line's length
+        and the run's start length, :meth:`recovering`)."""
         if self.mode == "none" or t_s < self.start_s:
             return 0.0
         if self.mode == "constant":
@@ -114,13 +139,22 @@ class Reel:
             assert self.table is not None, "a table Reel needs its table"
             return float(np.interp(t_s - self.start_s, *self.table))
         assert self.law is not None, "a controlled Reel needs its traction law"
+        if self.mode == "cycle":
+            if self.recovering(length_m, start_length_m, previous_mps):
+                return -self.reel_in_mps
+            # traction: "hold" from rest after a recovery
+            return self.law.holding_mps(np.asarray(kite_position_m, dtype=float), ground_tension_N,
+                                        max(previous_mps, 0.0))
         if self.mode == "hold":
             return self.law.holding_mps(np.asarray(kite_position_m, dtype=float), ground_tension_N, previous_mps)
         return self.law.reel_out_mps(np.asarray(kite_position_m, dtype=float))
 
-    def next_length(self, length_m: float, speed_mps: float, h_s: float) -> float:
-        """L + h V_L, held at ``stop_m`` once reached."""
+    def next_length(self, length_m: float, speed_mps: float, h_s: float, start_length_m: float = 0.0) -> float:
+        """L + h V_L, held at ``stop_m`` once reached; a cycle's within [L_0, L_0 + stroke]
+        (L_0 = ``start_length_m``)."""
         target = length_m + h_s * speed_mps
+        if self.mode == "cycle":
+            return min(max(target, start_length_m), start_length_m + self.stroke_m)
         if self.stop_m:
             target = min(target, self.stop_m) if speed_mps > 0 else max(target, self.stop_m)
         return target
@@ -188,4 +222,5 @@ def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
     law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind, cfg.resource.weibull_k),
                       k.area_m2, k.cl, k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps,
                       w.ground_tension_N)
-    return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_mps, table, law)
+    return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_mps, table, law,
+                cfg.cycle.stroke_m, cfg.cycle.reel_in_mps)

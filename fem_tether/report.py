@@ -167,6 +167,10 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
                   f"{s['mean_apparent_speed_mps']:.2f} m/s, mean power {s['mean_power_W'] / 1e3:.1f} kW per line",
                   f"  steering: cross-track RMS {s['cross_track_rms_m']:.2f} m, largest roll "
                   f"{s['max_abs_roll_deg']:.1f} deg"]
+    if "cycles" in s:
+        lines.append(f"  pumping: {s['cycles']} whole cycle(s): out {s['cycle_energy_out_J'] / 1e6:.2f} MJ in "
+                     f"{s['cycle_time_out_s']:.1f} s, in {s['cycle_energy_in_J'] / 1e6:.3f} MJ in "
+                     f"{s['cycle_time_in_s']:.1f} s, mean cycle power {s['cycle_power_W'] / 1e3:.1f} kW per line")
     if "sizing_diameters_m" in s:
         lines.append(f"  sized to the peak tension: d = "
                      f"{' -> '.join(f'{1e3 * d:.3f}' for d in s['sizing_diameters_m'])} mm")

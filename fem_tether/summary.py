@@ -13,6 +13,7 @@ import numpy as np
 from fem_tether import atmosphere, kite, sizing, straight
 from fem_tether.config import Config
 from fem_tether.power import operating_altitude_m
+from fem_tether.reel import Reel
 from fem_tether.systems.tether_drag import flexible_tether_cd
 
 
@@ -69,7 +70,7 @@ def run_summary(run, cfg: Config) -> dict:
         "period_s": run.period_s,
         "wall_s": run.wall_s,
         **run.extra,
-    } | free_kite_summary(run)
+    } | free_kite_summary(run) | cycle_summary(run, cfg)
 
 
 def free_kite_summary(run) -> dict:
@@ -82,10 +83,47 @@ def free_kite_summary(run) -> dict:
     window = run.average_window
     means = run.means()
     track = run.series["cross_track_m"][window]
+    track = track[np.isfinite(track)]          # a pumping cycle's recovery tracks no path (NaN)
     return {
         "mean_kite_speed_mps": means["mean_kite_speed_mps"],
         "mean_apparent_speed_mps": means["mean_apparent_speed_mps"],
         "mean_power_W": means["mean_winch_power_W"] + means["mean_turbine_power_W"],
-        "cross_track_rms_m": float(np.sqrt(np.mean(track ** 2))),
+        "cross_track_rms_m": float(np.sqrt(np.mean(track ** 2))) if track.size else float("nan"),
         "max_abs_roll_deg": float(np.max(np.abs(run.series["roll_deg"][window]))),
+    }
+
+
+def cycle_summary(run, cfg: Config) -> dict:
+    """The whole pumping cycles of a run (``[winch] reel_out = "cycle"``; {} without
+    one), per line: from the start of reeling (the end of the spin-up) to the end
+    of the last recovery that brought the line back to its start length.  Over
+    them the winch's energy out and in (the protocol's h T(0) V_L of each step),
+    E_out over the traction steps (V_L ≥ 0) and E_in = −∫ T(0) V_L dt over the
+    recovery (V_L < 0), their times and the cycle's mean power (Trevisi 2019 eq.
+    3.27 with the efficiencies of :func:`fem_tether.power.cycle_curves`)::
+
+        P = (η_e E_out − E_in / η_c) / (t_out + t_in).
+    """
+    s = run.series
+    if cfg.winch.reel_out != "cycle" or "reel_out_mps" not in s:
+        return {}
+    speed, length = s["reel_out_mps"], s["length_m"]
+    ended = np.flatnonzero((speed < 0.0) & (length <= length[0] + Reel.TURN_TOL_M))
+    if not ended.size:
+        return {}
+    start = int(np.searchsorted(run.time_s, run.average_start_s - 1e-9))
+    steps = np.arange(start + 1, ended[-1] + 1)
+    dt = np.diff(run.time_s)[steps - 1]
+    energy = np.diff(s["winch_energy_J"])[steps - 1]
+    reeling_in = speed[steps] < 0.0
+    e_out, e_in = float(energy[~reeling_in].sum()), -float(energy[reeling_in].sum())
+    t_out, t_in = float(dt[~reeling_in].sum()), float(dt[reeling_in].sum())
+    c = cfg.cycle
+    return {
+        "cycles": int(ended.size),
+        "cycle_energy_out_J": e_out,
+        "cycle_energy_in_J": e_in,
+        "cycle_time_out_s": t_out,
+        "cycle_time_in_s": t_in,
+        "cycle_power_W": (c.eta_e * e_out - e_in / c.eta_c) / (t_out + t_in),
     }

@@ -343,3 +343,15 @@ def test_bad_inputs_raise():
         steering.command(point, point.position_m, np.zeros(3), np.zeros(3), 1e5)
     with pytest.raises(ValueError, match="centre of curvature"):
         nearest_point(path, -point.position_m + np.array([0.0, 1.0, 0.0]), 0.0)
+
+
+@pytest.mark.parametrize("fraction", [0.1, 0.37, 0.62, 0.9])
+def test_nearest_point_without_a_previous_one_searches_the_whole_loop(fraction):
+    """A NaN guess (after a pumping cycle's recovery, which tracks no path): the nearest
+    point of the loop from a kite 20 m across the eight, wherever on the loop it is."""
+    path = FigureEight(1000.0, math.pi / 4, 190.0, 95.0, 80.0)
+    s0 = fraction * path.period_s
+    r = path.state(s0)[0]
+    n = path_point(path, s0).normal
+    point = nearest_point(path, r + 20.0 * n, math.nan)
+    assert math.remainder(point.parameter_s - s0, path.period_s) == pytest.approx(0.0, abs=1e-6)

@@ -95,6 +95,12 @@ def _check_winch(cfg: Config) -> None:
     if winch.reel_out == "hold" and cfg.kite.model != "point-mass":
         raise ConfigError("[winch] reel_out = \"hold\": needs [kite] model = \"point-mass\" (a prescribed "
                           "end in tension mode already holds T_0; use \"controlled\" for the seed's law)")
+    if winch.reel_out == "cycle" and cfg.kite.model != "point-mass":
+        raise ConfigError("[winch] reel_out = \"cycle\": needs [kite] model = \"point-mass\" (the recovery "
+                          "depowers a flying kite; a prescribed end has no wing to depower)")
+    if winch.reel_out == "cycle" and winch.reel_out_stop_m:
+        raise ConfigError(f"[winch] reel_out_stop_m = {winch.reel_out_stop_m:g}: reel_out = \"cycle\" pays "
+                          "out [cycle] stroke_m and reels it back in; set reel_out_stop_m = 0")
     if winch.reel_out == "table" and not winch.reel_out_table:
         raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = \"table\"")
 
@@ -120,10 +126,14 @@ def _check_path(cfg: Config) -> None:
             raise ConfigError(f"[{section}] {name} = {toml_value(dt_s)}: {steps} step(s) per "
                               f"period of the {cfg.kite.path} ({period_s:.3f} s), at least {fewest} "
                               f"needed; largest allowed {name} = {largest:g}")
-    for stop in (cfg.tether.length_m, cfg.winch.reel_out_stop_m):
+    longest = [("[tether] length_m", cfg.tether.length_m, cfg.tether.length_m),
+               ("[winch] reel_out_stop_m", cfg.winch.reel_out_stop_m, cfg.winch.reel_out_stop_m)]
+    if cfg.winch.reel_out == "cycle":
+        longest.append(("[cycle] stroke_m", cfg.cycle.stroke_m, cfg.tether.length_m + cfg.cycle.stroke_m))
+    for key, value, stop in longest:
         if _highest_m(cfg, stop) > CEILING_M:
-            raise ConfigError(f"[tether] length_m = {stop:g}: the kite would fly above the ISA "
-                              f"troposphere ({CEILING_M:g} m), which the atmosphere model covers")
+            raise ConfigError(f"{key} = {value:g}: the kite would fly above the ISA troposphere "
+                              f"({CEILING_M:g} m), which the atmosphere model covers")
 
 
 def _check_eight(cfg: Config) -> None:

@@ -201,9 +201,11 @@ class Winch(Section):
     mode: str = setting("tension", "-", "'tension' (winch holds ground_tension_N) or 'prescribed'",
                         one_of("tension", "prescribed"))
     ground_tension_N: float = setting(150000.0, "N", "tension held by the winch, per line", positive)
-    reel_out: str = setting("none", "-", "reeling during flight: 'none', 'constant', 'table', 'controlled' or "
-                            "'hold' (a point-mass kite: V_L held to keep ground_tension_N at the winch)",
-                            one_of("none", "constant", "table", "controlled", "hold"))
+    reel_out: str = setting("none", "-", "reeling during flight: 'none', 'constant', 'table', 'controlled', "
+                            "'hold' (a point-mass kite: V_L held to keep ground_tension_N at the winch) or "
+                            "'cycle' (a point-mass kite: pumping cycles, 'hold' over [cycle] stroke_m, then "
+                            "the depowered kite reeled in at [cycle] reel_in_mps)",
+                            one_of("none", "constant", "table", "controlled", "hold", "cycle"))
     reel_out_speed_mps: float = setting(0.0, "m/s", "reel_out = 'constant': V_L (< 0 reels in)")
     reel_out_table: str = setting("", "-", "reel_out = 'table': CSV time_s,speed_mps from the start of reeling")
     reel_out_stop_m: float = setting(0.0, "m", "stop reeling and the run at this length (0: run the periods)",

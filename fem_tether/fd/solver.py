@@ -482,7 +482,10 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     history is dropped: the next step is implicit Euler).  A free kite
     steers along its path on the sphere of the new length, continued at its
     path time σ (``at_length``: the eight carries σ, the circle its angle at
-    σ), and its steering is sampled again on it.
+    σ), and its steering is sampled again on it.  It flies the wing of the new
+    reel speed (:meth:`FreeKite.for_reel_mps`: a pumping cycle's recovery wing
+    while V_L < 0); the winch's turn is a jump of V_L, so the projection comes
+    with the swap.
     """
     g = model.grid
     h0 = g.h[0] + (length_m - model.length_m)
@@ -505,7 +508,9 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     restart = grid.M != g.M or speed_jumped(model.reel_mps, reel_mps)
     kite = model.kite
     if kite is not None and state.steer is not None:
-        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, state.steer.parameter_s)
+        kite = kite.for_reel_mps(reel_mps)
+        sigma = state.steer.parameter_s     # NaN after a depowered sample: any phase, the next search is global
+        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, sigma if math.isfinite(sigma) else 0.0)
         kite = replace(kite, steering=replace(kite.steering, path=path))
     model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
                     reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t), kite=kite)

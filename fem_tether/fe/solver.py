@@ -467,6 +467,9 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
     grows; when it would fall below ``min_element_m`` it merges with its
     neighbour (node 1 is removed).  Splits happen only while paying out and
     merges only while reeling in, so a mesh never flips between the two.
+    A free kite flies the wing of the reel speed (:meth:`FreeKite.for_reel_mps`:
+    a pumping cycle's recovery wing while V_L < 0); the winch's turn is a jump
+    of V_L, so the swap comes with the restart below.
     After a change of mesh, or a jump of V_L (:func:`~fem_tether.protocol.speed_jumped`),
     velocities and accelerations are made consistent with the new constraints
     (:meth:`TetherSystem.consistent_start`) and the integrator restarts: an
@@ -500,7 +503,8 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
     kite = model.kite
-    if kite is not None:          # the steering's path on the new sphere, as the end's
+    if kite is not None:          # the wing flown at this reel speed; the steering's path on the new sphere
+        kite = kite.for_reel_mps(reel_mps)
         kite = replace(kite, steering=replace(kite.steering,
                                               path=end_at_length(cast(EndMotion, kite.steering.path),
                                                                  length_m, state.t)))
