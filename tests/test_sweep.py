@@ -324,3 +324,25 @@ def test_a_sweep_flies_the_circle(tmp_path):
     eight = job.config_for(400.0).replace(kite={"path": "eight"}).path
     assert circle.mean_abs_phi_deg() == pytest.approx(21.44, abs=0.01)   # the eight's: 11.08 at 400 m
     assert eight.mean_abs_phi_deg() == pytest.approx(11.08, abs=0.01)
+
+
+def test_a_sweep_of_point_mass_kites_is_gated_and_takes_g_e_at_their_speed(tmp_path):
+    """Issue 13 ("sweeps and run accept the dynamic kite"): a sweep of the point-mass
+    kite runs both solvers, cross-checks them (at equal phase) and computes G_e at the
+    kite's own mean apparent speed, not at [kite] speed_mps.  The shipped solver
+    settings: at the tiny job's FE dt of 0.2 s the FE kite's roll is held four times
+    longer than the FD kite's and the two flights differ by 2 % (the gate fails)."""
+    from fem_tether.summary import operating_ge
+
+    (tmp_path / "job.toml").write_text("[sweep]\nlengths_m = [500]\n[time]\naverage_periods = 1\n"
+                                       "[kite]\nmodel = \"point-mass\"\n")
+    job = load_job(tmp_path / "job.toml")
+    outcome = sw.sweep(job, tmp_path / "r.h5", comm=_self_comm(), progress=False)
+    assert [r.status for r in outcome.lengths] == ["ok"]
+    with h5py.File(tmp_path / "r.h5") as f:
+        assert f["crosscheck_ok"][0] == 1
+        apparent = f["L500/fe/series/apparent_speed_mps"][()]
+        mean_apparent = float(np.mean(apparent[len(apparent) // 2:]))
+        cfg = job.config_for(500.0)
+        assert mean_apparent > 1.2 * cfg.kite.speed_mps              # it flies faster than 80 m/s here
+        assert f["ge_fe"][0] != pytest.approx(operating_ge(cfg, f["drag_fe_N"][0]), rel=1e-3)
