@@ -297,13 +297,7 @@ def aerodynamic_force_N(kite: PointMassKite, r, v, wind: WindProfile, air: AirMo
     vector along the tether at the kite, pointing to the kite (any length;
     ``None``: r itself, the straight tether of the sources).
     """
-    r = np.asarray(r, dtype=float)
-    direction, _ = _tether_direction(r, tether)
-    apparent = wind.velocity_mps(r[2]) - np.asarray(v, dtype=float)
-    rho = float(air.density_kg_m3(r[2]))
-    air_force = _air_force(kite, apparent, direction, rho, roll_rad)
-    return AerodynamicForce(air_force.force, air_force.turbine_power, apparent, air_force.alpha,
-                            air_force.cl, air_force.cd)
+    return aerodynamic_load(kite, r, v, wind, air, roll_rad, tether)[0]
 
 
 def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
@@ -324,7 +318,8 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
 def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
                      tether=None) -> tuple[AerodynamicForce, AerodynamicJacobian]:
     """:func:`aerodynamic_force_N` and :func:`aerodynamic_jacobian` (same arguments)
-    from one evaluation of the force (an implicit solver needs both every iteration)."""
+    from one evaluation of the force (an implicit solver needs both every iteration;
+    :func:`_air_force` gives the derivatives with the force in any case)."""
     r = np.asarray(r, dtype=float)
     direction, length = _tether_direction(r, tether)
     apparent = wind.velocity_mps(r[2]) - np.asarray(v, dtype=float)
