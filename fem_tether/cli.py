@@ -178,6 +178,22 @@ def cmd_sweep(args):
     return 0 if outcome.ok else EXIT_FAILED
 
 
+def cmd_study(args):
+    from fem_tether.study.driver import run_study
+    from fem_tether.study.job import load_study
+
+    job = load_study(args.job, args.system)
+    outcome = run_study(job, args.out, progress=not args.json, allow_unchecked=args.allow_unchecked)
+    if outcome is None:
+        return 0
+    from fem_tether.study.report import write_report
+
+    page = write_report(args.out)
+    summary = report.study_summary(outcome, args.out, page)
+    print(report.json_text(summary) if args.json else report.study_text(summary))
+    return 0 if all(s["failed"] == 0 for s in summary["surfaces"]) else EXIT_FAILED
+
+
 def cmd_aep(args):
     from fem_tether.aep import sweep_aep
     from fem_tether.sweepfile import read_sweep
@@ -308,6 +324,15 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", required=True, metavar="FILE.h5", help="result file")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
+    c = command("study", cmd_study, "design study: AEP over tether length and diameter (systems, sites) from "
+                "wind-resolved flexible drag, MPI-parallel", config=False)
+    c.add_argument("job", help="study job (TOML with a [study] table, docs/study.md)")
+    c.add_argument("--out", required=True, metavar="FILE.h5",
+                   help="result file; plots and the report page go to FILE_report/")
+    c.add_argument("--allow-unchecked", action="store_true",
+                   help="let points whose FE <-> FD gate failed count for the flexible optimum")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)
     c.add_argument("file", metavar="FILE.h5", help="sweep result")
     c.add_argument("--wind", metavar="CSV", help="wind histograms per altitude band (CSV)")
@@ -351,7 +376,7 @@ def build_parser() -> argparse.ArgumentParser:
 #: Environment variables set by MPI launchers (MPICH/Intel MPI hydra, Open MPI, PMIx).
 _LAUNCHER_VARIABLES = ("PMI_RANK", "PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "PMIX_RANK")
 #: Commands that share their work among the ranks; every other one runs on rank 0 alone.
-_PARALLEL_COMMANDS = ("sweep", "run")
+_PARALLEL_COMMANDS = ("sweep", "run", "study")
 
 
 def _world():

@@ -7,7 +7,8 @@ follow UDUNITS: ``"1"`` for a dimensionless number, ``""`` for text.
 
 ``where`` names the place in a file: ``"series"`` and ``"snapshots"`` are the
 groups of a single-run file (:mod:`fem_tether.output`), ``"sweep"`` the root
-datasets of a sweep result (:mod:`fem_tether.sweep`).
+datasets of a sweep result (:mod:`fem_tether.sweep`), ``"study"`` those of a
+study's surface (:mod:`fem_tether.study.result`).
 """
 
 from __future__ import annotations
@@ -71,6 +72,39 @@ QUANTITIES = (
     Quantity("sweep", "ge_fixed", "1", "sizing = load: G_e with drag_fixed_N"),
     Quantity("sweep", "status", "", "ok, pending (a task has not run) or failed"),
     Quantity("sweep", "error", "", "the failed tasks' error messages, or empty"),
+    Quantity("study", "wind_mps", "m/s", "the study's wind speeds at the kite (bins; NaN: the configured case)"),
+    Quantity("study", "edges_mps", "m/s", "bin edges of the wind resource where the power is evaluated (eq. 5.2)"),
+    Quantity("study", "length_m", "m", "cable length of each point"),
+    Quantity("study", "diameter_m", "m", "line diameter of each point"),
+    Quantity("study", "refined", "1", "1 for a point added about the grid's AEP maximum, 0 for a grid point"),
+    Quantity("study", "status", "", "ok, unchecked (the FE/FD gate failed or did not run) or failed"),
+    Quantity("study", "error", "", "the failed runs' error messages, or empty"),
+    Quantity("study", "aep_fe_MWh", "MWh", "AEP (eq. 5.2) with each bin's flexible tether drag"),
+    Quantity("study", "aep_straight_MWh", "MWh", "AEP with each bin's straight-line tether drag (eq. 4.1)"),
+    Quantity("study", "cf_fe", "1", "capacity factor AEP / (P_rated 8760 h), flexible"),
+    Quantity("study", "cf_straight", "1", "capacity factor, straight line"),
+    Quantity("study", "rated_fe_W", "W", "rated power P_rated of the flexible case"),
+    Quantity("study", "rated_straight_W", "W", "rated power P_rated of the straight-line case"),
+    Quantity("study", "crosscheck_ok", "1", "1 if the FE/FD gate passed at the gated bin, 0 if it failed or did not run"),
+    Quantity("study", "gate_wind_mps", "m/s", "wind speed of the gated bin (the most bent line)"),
+    Quantity("study", "rel_diff_drag", "1", "|F_t,FD / F_t,FE - 1| at the gated bin"),
+    Quantity("study", "rel_diff_shape", "1", "largest distance between the FE and FD lines / L at the gated bin"),
+    Quantity("study", "interpolation_error", "1", "|AEP(every other bin) - AEP| / AEP: bound of the error of "
+             "interpolating C_D,t between bins"),
+    Quantity("study", "unbinned_probability", "1", "probability of the wind above the last bin edge (no power)"),
+    Quantity("study", "apparent_speed_mps", "m/s", "kite speed V_a of each bin's operating point (the path's speed)"),
+    Quantity("study", "tether_force_N", "N", "traction of all lines of each bin's operating point"),
+    Quantity("study", "reel_out_mps", "m/s", "reel-out speed of each bin's operating point (not flown: docs/study.md)"),
+    Quantity("study", "drag_fe_N", "N", "mean F_t per line of each bin's FE run (NaN: the kite does not fly)"),
+    Quantity("study", "drag_straight_N", "N", "F_t per line of the straight line at each bin (eq. 4.1, with wind)"),
+    Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F_t / (1/2 rho A V_a^2) of each bin, flexible"),
+    Quantity("study", "cd_straight", "1", "C_D,t of each bin, straight line"),
+    Quantity("study", "ge_fe", "1", "G_e = L / (D_k + lines F_t) (eq. 5.1) at each bin, flexible"),
+    Quantity("study", "ge_straight", "1", "G_e at each bin, straight line"),
+    Quantity("study", "power_fe_W", "W", "electrical power at each bin with its flexible C_D,t"),
+    Quantity("study", "power_straight_W", "W", "electrical power at each bin with its straight-line C_D,t"),
+    Quantity("study", "power_edges_fe_W", "W", "electrical power at each resource bin edge, flexible C_D,t interpolated"),
+    Quantity("study", "power_edges_straight_W", "W", "electrical power at each resource bin edge, straight line"),
 )
 
 _BY_PLACE = {(q.where, q.name): q for q in QUANTITIES}

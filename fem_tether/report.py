@@ -361,3 +361,65 @@ def main_job_text(result) -> str:
                       *(m for m in (peak_memory(outcome),) if m),
                       f"results: {result.h5}",
                       *(f"{name}: {path}" for name, path in result.files.items())])
+
+
+def _optimum_text(best, swept: dict) -> str:
+    if best is None:
+        return "none (no point has an AEP)"
+    edge = [name for name, key in (("length", "bracketed_length"), ("diameter", "bracketed_diameter"))
+            if swept[name] and not best[key]]
+    return (f"L {best['length_m']:g} m, d {1e3 * best['diameter_m']:.1f} mm: AEP {best['aep_MWh']:.0f} MWh, "
+            f"CF {best['capacity_factor']:.3f}" + (f" (not bracketed in {' and '.join(edge)})" if edge else ""))
+
+
+def _finite_max(values) -> float | None:
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    return float(finite.max()) if finite.size else None
+
+
+def study_summary(outcome, out, report_page=None) -> dict:
+    """``fem-tether study --json``: per surface its optimum, flexible and straight,
+    the points' status counts, the gate's worst drag difference and the largest
+    interpolation error; the tasks, ranks and wall time per phase."""
+    surfaces = []
+    for s in outcome.surfaces:
+        points = s["points"]
+        status = [p["status"] for p in points]
+        surfaces.append({
+            "system": s["system"], "site": s["site"],
+            "optimum_fe": None if s["optimum"]["fe"] is None else s["optimum"]["fe"].as_dict(),
+            "optimum_straight": None if s["optimum"]["straight"] is None else s["optimum"]["straight"].as_dict(),
+            "points": len(points), "refined_points": sum(p["refined"] for p in points),
+            "swept": {name: len({p[f"{name}_m"] for p in points if not p["refined"]}) > 1
+                      for name in ("length", "diameter")},
+            "ok": status.count("ok"), "unchecked": status.count("unchecked"), "failed": status.count("failed"),
+            "errors": [p["error"] for p in points if p["error"]],
+            "max_gate_rel_diff_drag": _finite_max([p["rel_diff_drag"] for p in points]),
+            "max_interpolation_error": _finite_max([p["interpolation_error"] for p in points])})
+    return {"file": str(out), "report": str(report_page) if report_page else None, "surfaces": surfaces,
+            "tasks": outcome.tasks, "ran": outcome.ran, "reused": outcome.tasks - outcome.ran,
+            "n_ranks": outcome.n_ranks, "wall_s": outcome.wall_s, "phase_s": outcome.phase_s}
+
+
+def study_text(summary: dict) -> str:
+    """``fem-tether study``: each surface's optimum, flexible beside straight, and the study's cost."""
+    phases = ", ".join(f"{name} {seconds:.1f} s" for name, seconds in summary["phase_s"].items())
+    lines = [f"study of {len(summary['surfaces'])} surface(s) -> {summary['file']}: {summary['tasks']} tasks "
+             f"({summary['ran']} ran, {summary['reused']} reused from the stored parts) on {summary['n_ranks']} "
+             f"rank(s) in {summary['wall_s']:.1f} s ({phases})"]
+    for s in summary["surfaces"]:
+        lines += [f"{s['system']} at {s['site']}: {s['points']} points ({s['refined_points']} refined): "
+                  f"{s['ok']} ok, {s['unchecked']} unchecked, {s['failed']} failed",
+                  "  AEP-optimal, flexible: " + _optimum_text(s["optimum_fe"], s["swept"]),
+                  "  AEP-optimal, straight: " + _optimum_text(s["optimum_straight"], s["swept"])]
+        if s["max_gate_rel_diff_drag"] is not None:
+            lines.append(f"  FE <-> FD gate: largest drag difference {100 * s['max_gate_rel_diff_drag']:.2f} %")
+        if s["max_interpolation_error"] is not None:
+            lines.append(f"  C_D,t interpolation between bins: AEP error at most "
+                         f"{100 * s['max_interpolation_error']:.2f} %"
+                         + (" (above 0.5 %: add wind speeds)" if s["max_interpolation_error"] > 0.005 else ""))
+        lines += [f"  failed: {e}" for e in s["errors"][:5]]
+    if summary["report"]:
+        lines.append(f"report page: {summary['report']}")
+    return "\n".join(lines)

@@ -13,23 +13,19 @@ the finished tasks and says how to resume.
 
 from __future__ import annotations
 
-import sys
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from fem_tether.distribute import distribute
 from fem_tether.errors import InputError
 from fem_tether.evaluate import LengthResult, evaluate_length, load_kernels, run_task
 from fem_tether.jobs import Job, Task
 from fem_tether.memory import peak_rss_MiB
 from fem_tether.progress import Progress
-from fem_tether.schedule import assign, task_cost
+from fem_tether.schedule import task_cost
 from fem_tether.store import PartsStore
 from fem_tether.sweepfile import assemble, check_out
-
-EXIT_ABORT = 3
-
 
 @dataclass(frozen=True)
 class SweepOutcome:
@@ -101,36 +97,35 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
     comm.Barrier()
     load_kernels(job.config, job.solvers)
     tasks = job.tasks
-    mine = assign([task_cost(job, t) for t in tasks], size, idle_cost_us if idle else 0.0)[rank]
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
     reused = 0
+    seen = -1
+
+    def run(i):
+        nonlocal reused
+        if run_task(store, tasks[i]) == "reused":
+            reused += 1
+        else:
+            assemble(store, size)
+        if rank == 0:
+            bar.update(store.done())
+
+    def waiting():
+        nonlocal seen, idle
+        if store.done() != seen:
+            seen = store.done()
+            bar.update(seen)
+            _combine_complete(store)
+        if idle is not None:
+            idle()
+            idle = None
+
     try:
-        for i in mine:
-            if run_task(store, tasks[i]) == "reused":
-                reused += 1
-            else:
-                assemble(store, size)
-            if rank == 0:
-                bar.update(store.done())
-        request = comm.Ibarrier()
-        seen = -1
-        while not request.Test():
-            if rank == 0:
-                if store.done() != seen:
-                    seen = store.done()
-                    bar.update(seen)
-                    _combine_complete(store)
-                if idle is not None:
-                    idle()
-                    idle = None
-            time.sleep(0.05)
+        distribute(comm, [task_cost(job, t) for t in tasks], run, idle_cost_us if idle else 0.0, waiting)
     except KeyboardInterrupt:
         bar.close()
         raise SweepInterrupted(store.kept(), len(tasks), store.directory) from None
-    except Exception as exc:   # an I/O failure on one rank must not leave the others waiting
-        print(f"fem-tether: error on rank {rank}: {exc}", file=sys.stderr, flush=True)
-        comm.Abort(EXIT_ABORT)
     reused = comm.reduce(reused, root=0)
     if rank != 0:
         comm.gather(peak_rss_MiB(), root=0)

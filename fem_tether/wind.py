@@ -166,15 +166,30 @@ def weibull_mean_mps(scale_mps, shape_k):
     return scale_mps * math.gamma(1.0 + 1.0 / shape_k)
 
 
+def scaled(profile, factor: float):
+    """The profile with its speed times ``factor`` at every height (its shape kept):
+    V0 of a log law, V_ref of a power law, each profile of a mean."""
+    if factor == 1.0 or isinstance(profile, NoWind):
+        return profile
+    if isinstance(profile, MeanOfProfiles):
+        return MeanOfProfiles(tuple(scaled(p, factor) for p in profile.profiles))
+    if isinstance(profile, LogWind):
+        return LogWind(profile.v0_mps * factor, profile.z0_m, profile.zr_m)
+    return PowerWind(profile.reference_speed_mps * factor, profile.reference_height_m, profile.alpha,
+                     profile.top_m)
+
+
 def from_config(wind, weibull_k: float) -> LogWind | MeanOfProfiles | PowerWind | NoWind:
-    """The mean wind profile of the ``[wind]`` section; the "annual" De Bilt season
-    is the winter/summer mean.  The power law's reference speed is the mean of
-    the Weibull of scale ``reference_scale_mps`` and shape ``weibull_k`` (the
-    ``[resource]`` shape), and it is constant above ``boundary_layer_top_m``
-    (0: never)."""
+    """The mean wind profile of the ``[wind]`` section, times its ``scale``; the
+    "annual" De Bilt season is the winter/summer mean.  The power law's reference
+    speed is the mean of the Weibull of scale ``reference_scale_mps`` and shape
+    ``weibull_k`` (the ``[resource]`` shape), and it is constant above
+    ``boundary_layer_top_m`` (0: never)."""
     if wind.profile == "log":
-        return DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
-    if wind.profile == "power":
-        return PowerWind(weibull_mean_mps(wind.reference_scale_mps, weibull_k), wind.reference_height_m,
-                         wind.alpha, wind.boundary_layer_top_m or math.inf)
-    return NoWind()
+        profile = DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
+    elif wind.profile == "power":
+        profile = PowerWind(weibull_mean_mps(wind.reference_scale_mps, weibull_k), wind.reference_height_m,
+                            wind.alpha, wind.boundary_layer_top_m or math.inf)
+    else:
+        return NoWind()
+    return scaled(profile, wind.scale)

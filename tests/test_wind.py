@@ -114,3 +114,20 @@ def test_terrain_table_is_seed_004s():
     """Seed 004 Tab. 3.2: six terrains, alpha from 0.10 to 0.40; 0.20 for high crops."""
     assert sorted(wind.TERRAIN_ALPHA.values()) == [0.10, 0.15, 0.20, 0.25, 0.30, 0.40]
     assert wind.TERRAIN_ALPHA["high crops, hedges and shrubs"] == 0.20
+
+
+@pytest.mark.parametrize("profile", [wind.DE_BILT_ANNUAL, wind.DE_BILT["winter"],
+                                     wind.PowerWind(8.0, 20.0, 0.2, 500.0)])
+def test_scaled_profile_is_the_profile_times_the_factor(profile):
+    z = np.array([1.0, 3.0, 50.0, 400.0, 900.0])
+    scaled = wind.scaled(profile, 1.7)
+    np.testing.assert_allclose(scaled.speed_mps(z), 1.7 * profile.speed_mps(z), rtol=1e-14)
+    np.testing.assert_allclose(scaled.shear_per_s(z), 1.7 * profile.shear_per_s(z), rtol=1e-14)
+    assert wind.scaled(profile, 1.0) is profile
+
+
+def test_scale_key_scales_the_configured_profile():
+    cfg = load_config(overrides={"wind": {"scale": 2.5}})
+    z = np.array([100.0, 700.0])
+    np.testing.assert_allclose(wind.from_config(cfg.wind, 2.0).speed_mps(z),
+                               2.5 * wind.DE_BILT_ANNUAL.speed_mps(z), rtol=1e-14)

@@ -150,6 +150,8 @@ class Wind(Section):
                            "large city; 0.20 high crops, hedges and shrubs)", between(0.0, 1.0, (True, False)))
     boundary_layer_top_m: float = setting(500.0, "m", "power law: the wind is constant above this height "
                                           "(Trevisi eq. 3.91: 500 m; 0: never)", non_negative)
+    scale: float = setting(1.0, "-", "factor on the profile's speed at every height (a design study sets "
+                           "it so that the wind at the kite is a power-curve bin's speed; 1: as given)", positive)
 
 
 @dataclass(frozen=True)

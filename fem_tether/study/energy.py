@@ -1,0 +1,136 @@
+"""A point's annual energy from its bins: the C_D,t of each wind speed in that speed's power.
+
+For a point (a system on a line of length L and diameter d at a site), each
+bin j of the study's wind speeds V_j has a tether run at its operating point
+(:mod:`fem_tether.study.plan`), hence a flexible C_D,t,j (and the straight
+line's, by seed 000 eq. 4.1 at the same operating point).  The power at a
+wind speed V uses the C_D,t interpolated linearly in V between the bins that
+fly (held beyond the first and the last):
+
+    P(V) = P_model(V; C_D,t(V)),
+
+evaluated at the resource band's bin edges and integrated by seed 000 eq. 5.2
+(:func:`fem_tether.aep.aep_on_band`); CF = AEP / (P_rated 8760 h), P_rated
+the model's at the C_D,t of the bin of the largest power.  The interpolation
+error is estimated by the same AEP from every other bin:
+|AEP(all bins) - AEP(every other bin)| / AEP(all bins) bounds the error of
+linear interpolation (O(h^2): halving the bins' spacing divides it by about
+four, so the difference is about three times the error of the finer set).
+
+With ``wind_mps = "configured"`` the point has one run, the configured case,
+whose C_D,t applies at every wind speed: the main job's AEP
+(:func:`fem_tether.aep.aep_of_system`), to the last bit.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from fem_tether import straight
+from fem_tether.aep import aep_on_band, sweep_resource
+from fem_tether.errors import InputError
+from fem_tether.summary import operating_ge, operating_tether_cd
+from fem_tether.systems.configured import from_config
+
+from .job import Point, StudyJob
+
+#: Interpolation error of the AEP above which a study warns (the bins are too coarse).
+INTERPOLATION_LIMIT = 0.005
+
+
+def evaluations(job: StudyJob) -> int:
+    """Power-model evaluations of one point's AEP: three curves at the band's bin edges."""
+    r = job.configs[0].resource
+    return 3 * (int(r.max_speed_mps / r.bin_width_mps) + 1)
+
+
+def _curve(system, edges_mps, wind_mps, cd) -> np.ndarray:
+    """P(V) at the edges with C_D,t interpolated between the bins of finite C_D,t."""
+    ok = np.isfinite(cd)
+    at = np.interp(edges_mps, wind_mps[ok], cd[ok])
+    return np.array([system.operating_point(v, c).electrical_power_W for v, c in zip(edges_mps, at)])
+
+
+def _node_power(system, wind_mps, cd) -> np.ndarray:
+    return np.array([system.operating_point(v, c).electrical_power_W if math.isfinite(c) else math.nan
+                     for v, c in zip(wind_mps, cd)])
+
+
+def point_energy(study, point: Point) -> dict:
+    """AEP, CF, the bins' drag, C_D,t, G_e and power, straight and flexible, of one
+    point from its stored runs (a dict of plain numbers and lists, the ``aep`` part)."""
+    cfg = study.config(point)
+    system = from_config(cfg)
+    band = sweep_resource(cfg).band_for_length(point.length_m, math.radians(cfg.kite.theta0_deg))
+    edges = band.edges_mps
+    nodes = np.array(study.job.wind_mps or [math.nan], dtype=float)
+    n = nodes.size
+    v = {name: np.full(n, math.nan) for name in
+         ("drag_fe_N", "drag_straight_N", "cd_fe", "cd_straight", "ge_fe", "ge_straight")}
+    errors, gate = [], {}
+    for task in study.run_tasks([point]):
+        run = study.stored(task)
+        if run is None:
+            raise RuntimeError(f"{task.name}: the run's part is missing")
+        try:
+            case = study.case(point, task.node)
+        except InputError:              # the run recorded why
+            case = None
+        if case is not None:
+            v["drag_straight_N"][task.node] = straight.from_config(case, with_wind=True).drag_N
+            v["cd_straight"][task.node] = operating_tether_cd(case, v["drag_straight_N"][task.node])
+            v["ge_straight"][task.node] = operating_ge(case, v["drag_straight_N"][task.node])
+        if run["status"] != "ok":
+            errors.append(run["error"])
+            continue
+        v["drag_fe_N"][task.node] = run["drag_fe_N"]
+        v["cd_fe"][task.node] = operating_tether_cd(case, run["drag_fe_N"])
+        v["ge_fe"][task.node] = operating_ge(case, run["drag_fe_N"])
+        if task.kind == "check":
+            gate = {"gate_wind_mps": float(nodes[task.node]), "crosscheck_ok": int(run["crosscheck_ok"]),
+                    "rel_diff_drag": run["rel_diff_drag"], "rel_diff_shape": run["rel_diff_shape"]}
+    out: dict = {"edges_mps": edges.tolist(), "unbinned_probability": band.remainder,
+                 "gate_wind_mps": math.nan, "crosscheck_ok": 0, "rel_diff_drag": math.nan,
+                 "rel_diff_shape": math.nan, **gate}
+    for case_name in ("fe", "straight"):
+        cd = v[f"cd_{case_name}"]
+        if study.configured:
+            power = system.electrical_power_W(edges, cd[0]) if np.isfinite(cd[0]) else np.full(edges.size, np.nan)
+            node_power = np.full(n, math.nan)
+            rated_cd = cd[0]
+        elif np.isfinite(cd).any():
+            power = _curve(system, edges, nodes, cd)
+            node_power = _node_power(system, nodes, cd)
+            rated_cd = cd[np.nanargmax(np.where(np.isfinite(node_power), node_power, -np.inf))]
+        else:
+            power, node_power, rated_cd = np.full(edges.size, np.nan), np.full(n, np.nan), math.nan
+        if np.isfinite(rated_cd) and not (case_name == "fe" and errors):
+            energy = aep_on_band(lambda _: power, band, system.rated_power_W(rated_cd))
+            aep, cf, rated = energy.aep_MWh, energy.capacity_factor, energy.rated_power_W
+        else:
+            aep = cf = rated = math.nan
+        out |= {f"aep_{case_name}_MWh": aep, f"cf_{case_name}": cf, f"rated_{case_name}_W": rated,
+                f"power_edges_{case_name}_W": power.tolist(), f"power_{case_name}_W": node_power.tolist()}
+    out["interpolation_error"] = _interpolation_error(system, band, nodes, v["cd_fe"], out["aep_fe_MWh"])
+    if errors:
+        status = "failed"
+    elif not np.isfinite(v["cd_fe"]).any():
+        status, errors = "failed", [f"{point.name}: no wind speed of the study makes the kite fly"]
+    else:
+        status = "ok" if out["crosscheck_ok"] else "unchecked"
+    return out | {name: values.tolist() for name, values in v.items()} | {"status": status,
+                                                                           "error": "; ".join(errors)}
+
+
+def _interpolation_error(system, band, nodes, cd, aep_MWh) -> float:
+    """|AEP(every other flying bin) - AEP| / AEP (NaN with fewer than three flying bins)."""
+    flying = np.flatnonzero(np.isfinite(cd))
+    if flying.size < 3 or not math.isfinite(aep_MWh) or aep_MWh <= 0.0:
+        return math.nan
+    keep = np.union1d(flying[::2], flying[-1:])
+    coarse = np.full(cd.size, math.nan)
+    coarse[keep] = cd[keep]
+    power = _curve(system, band.edges_mps, nodes, coarse)
+    return abs(aep_on_band(lambda _: power, band, 1.0).aep_MWh - aep_MWh) / aep_MWh

@@ -1,0 +1,71 @@
+"""From a study point to its tether runs: the power model's operating point in each wind bin.
+
+At each wind speed V_w of the study (at the kite's altitude) the point's
+power model gives its operating point with the straight-line tether drag its
+source lumps at the kite (:mod:`fem_tether.systems.configured`): the kite's
+apparent speed V_a, the traction of all lines F and the reel-out speed.  The
+bin's tether run flies the prescribed path at
+
+    [kite] speed_mps = V_a,   [winch] ground_tension_N = F / lines,
+    [wind] scale such that V_w(L cos theta0) = V_w,
+
+on a line of fixed length (the reel-out speed moves the line along itself and
+leaves its cross-flow drag almost unchanged: docs/study.md shows it by
+computation).  Its mean F_t is the bin's flexible drag, as C_D,t at V_a
+(:func:`fem_tether.summary.operating_tether_cd` of the run's case); the
+straight line gets the same treatment (seed 000 eq. 4.1 at the bin's V_a and
+wind).  The gate (FE <-> FD) runs at the most bent bin, :func:`bending`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from fem_tether import straight, wind
+from fem_tether.config import Config
+from fem_tether.power import operating_altitude_m
+from fem_tether.systems.configured import from_config
+from fem_tether.systems.operating_point import OperatingPoint
+
+#: Standard gravity [m/s^2].
+G_MPS2 = 9.80665
+
+
+def operating_points(cfg: Config, wind_mps) -> list[OperatingPoint]:
+    """The point's operating point at each wind speed, with its source's straight-line C_D,t."""
+    return from_config(cfg).power_curve(wind_mps)
+
+
+def flies(op: OperatingPoint) -> bool:
+    """Whether the kite flies and pulls at this operating point (a tether run is needed)."""
+    return op.mode != "off" and op.tether_force_N > 0.0 and op.apparent_speed_mps > 0.0
+
+
+def wind_scale(cfg: Config, wind_mps: float) -> float:
+    """The ``[wind] scale`` that makes the configured profile blow ``wind_mps`` at L cos(theta0)."""
+    z = operating_altitude_m(cfg.tether.length_m, math.radians(cfg.kite.theta0_deg))
+    here = float(wind.from_config(cfg.wind, cfg.resource.weibull_k).speed_mps(z))
+    return cfg.wind.scale * wind_mps / here
+
+
+def run_config(cfg: Config, op: OperatingPoint) -> Config:
+    """The tether run of one bin: the path at V_a, the winch at F / lines, the wind at V_w."""
+    return cfg.replace(kite={"speed_mps": op.apparent_speed_mps},
+                       winch={"ground_tension_N": op.tether_force_N / cfg.tether.lines},
+                       wind={"scale": wind_scale(cfg, op.wind_mps)})
+
+
+def bending(cfg: Config) -> float:
+    """beta = (F_t,straight + mu g L) / T0: the line's transverse load lumped at the
+    kite (drag and weight) over its tension, the scale of its deflection angle."""
+    t = cfg.tether
+    load_N = straight.from_config(cfg, with_wind=True).drag_N + t.linear_density_kg_m * G_MPS2 * t.length_m
+    return load_N / cfg.winch.ground_tension_N
+
+
+def gate_index(cases: list[Config]) -> int:
+    """The bin whose run the FE <-> FD gate checks: the most bent line (largest
+    :func:`bending`), where the discretisations differ most."""
+    return int(np.argmax([bending(c) for c in cases]))

@@ -1,0 +1,107 @@
+"""The study result file: one group per AEP surface, written once at the end.
+
+Layout (h5py), units and meanings in :mod:`fem_tether.quantities`
+(``where = "study"``) and in each dataset's ``units`` and ``description``::
+
+    /                       attrs job_toml, fem_tether_version, surfaces
+    /<system>/<site>/       attrs config_toml (the system at the site), optimum_fe_*, optimum_straight_*
+        wind_mps [N]        the study's wind speeds (NaN: "configured", one bin)
+        edges_mps [E]       the resource's bin edges
+        length_m, diameter_m, refined, status, error, aep_fe_MWh, ...    [P] one per point
+        drag_fe_N, cd_fe, ge_fe, power_fe_W, apparent_speed_mps, ...    [P, N] per point and bin
+        power_edges_fe_W, power_edges_straight_W                         [P, E]
+
+Points are the grid (lengths x diameters, in the job's order) then the refined
+points.  The file holds no time or rank count, so the same job gives the same
+bytes whatever the number of ranks or interruptions (datasets are written
+without HDF5's object timestamps).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from fem_tether import __version__
+from fem_tether.atomic import OutputError, atomic_path, check_writable
+from fem_tether.config import ConfigError
+from fem_tether.quantities import attributes, names
+from fem_tether.store import parts_dir
+
+#: Per-point datasets, per point and bin, per point and edge (the quantities table's order).
+POINT = tuple(n for n in names("study") if n not in ("wind_mps", "edges_mps"))
+STRINGS = ("status", "error")
+INTEGERS = ("refined", "crosscheck_ok")
+OPTIMUM_KEYS = ("length_m", "diameter_m", "aep_MWh", "capacity_factor", "bracketed_length", "bracketed_diameter")
+
+
+def is_study_result(path: Path) -> bool:
+    try:
+        with h5py.File(path, "r") as f:
+            return "job_toml" in f.attrs and "surfaces" in f.attrs
+    except OSError:
+        return False
+
+
+def check_out(out: Path) -> None:
+    """Before a study: ``out`` and its parts can be written, and ``out`` is not
+    a file some other program wrote."""
+    check_writable(out)
+    if out.exists() and not is_study_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether study result "
+                          "(move it away or choose another file)")
+    check_writable(parts_dir(out), directory=True)
+
+
+def _dataset(group, name, data):
+    if name in STRINGS:
+        data = np.array(data, dtype=h5py.string_dtype())
+    else:
+        data = np.array(data, dtype=np.int8 if name in INTEGERS else float)
+    group.create_dataset(name, data=data, track_times=False).attrs.update(attributes("study", name))
+
+
+def write_study(out: Path, job_toml: str, surfaces: list[dict]) -> None:
+    """Write the result file atomically.  ``surfaces``: one dict per surface with
+    ``system``, ``site``, ``config_toml``, ``wind_mps``, ``edges_mps``, ``points``
+    (one dict per point with the :data:`POINT` values) and ``optimum``
+    (``"fe"``/``"straight"`` -> an :class:`~fem_tether.study.optimum.Optimum` dict or None)."""
+    with atomic_path(out) as tmp:
+        with h5py.File(tmp, "w", track_order=False) as f:
+            f.attrs.update(job_toml=job_toml, fem_tether_version=__version__,
+                           surfaces=[f"{s['system']}/{s['site']}" for s in surfaces])
+            for s in surfaces:
+                group = f.require_group(s["system"]).create_group(s["site"])
+                group.attrs["config_toml"] = s["config_toml"]
+                for case, best in s["optimum"].items():
+                    for key in OPTIMUM_KEYS:
+                        value = getattr(best, key) if best is not None else np.nan
+                        group.attrs[f"optimum_{case}_{key}"] = value
+                _dataset(group, "wind_mps", s["wind_mps"])
+                _dataset(group, "edges_mps", s["edges_mps"])
+                for name in POINT:
+                    _dataset(group, name, [p[name] for p in s["points"]])
+
+
+def read_study(path: str | Path) -> dict:
+    """The surfaces of a study file: ``{"job_toml", "version", "surfaces": {"system/site":
+    {dataset: array, "config_toml": str, "optimum": {"fe": dict | None, "straight": ...}}}}``."""
+    if not is_study_result(Path(path)):
+        raise ConfigError(f"{path}: not a fem-tether study result")
+    with h5py.File(path, "r") as f:
+        out = {"job_toml": str(f.attrs["job_toml"]), "version": str(f.attrs["fem_tether_version"]),
+               "surfaces": {}}
+        for name in f.attrs["surfaces"]:
+            group = f[name]
+            data = {key: group[key][()] for key in group}
+            for key in STRINGS:
+                data[key] = np.array([x.decode() if isinstance(x, bytes) else x for x in data[key]])
+            data["config_toml"] = str(group.attrs["config_toml"])
+            data["optimum"] = {}
+            for case in ("fe", "straight"):
+                best = {key: group.attrs[f"optimum_{case}_{key}"] for key in OPTIMUM_KEYS}
+                data["optimum"][case] = None if np.isnan(best["aep_MWh"]) else best
+            out["surfaces"][name] = data
+    return out

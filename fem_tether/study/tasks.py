@@ -1,0 +1,191 @@
+"""The tasks of a study and how each one runs into its part.
+
+Three kinds, in three phases (each needs the parts of the one before):
+
+* ``ops``: a point's operating points at the study's wind speeds (its power
+  model, :func:`fem_tether.study.plan.operating_points`);
+* ``fe`` / ``check``: the tether run of one bin of a point: the FE solver, or
+  at the gated bin the FE and the FD solver compared (the FE <-> FD gate);
+* ``aep``: a point's AEP, straight and flexible (:mod:`fem_tether.study.energy`).
+
+With ``wind_mps = "configured"`` a point has one bin, the configured case,
+and no ``ops`` task.  A task whose case the configuration rules refuse or
+whose solve fails stores the error; the others go on.
+"""
+
+from __future__ import annotations
+
+import traceback
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+from fem_tether.config import Config
+from fem_tether.crosscheck import checkable, compare
+from fem_tether.errors import InputError, SolverDivergedError
+from fem_tether.evaluate import simulator
+from fem_tether.schedule import run_cost_us
+from fem_tether.sizing import peak_tension_N
+from fem_tether.store import inputs_key
+from fem_tether.systems.operating_point import OperatingPoint
+
+from . import energy, plan
+from .job import Point, StudyJob
+from .parts import StudyParts, key_of
+
+#: Estimated cost of one operating point of a power model [us]: Trevisi's
+#: optimised model 0.19 s on this machine (2026-11-30), the closed forms ~20 us.
+OPERATING_POINT_COST_US = {"unified": 1.9e5}
+CLOSED_FORM_COST_US = 20.0
+
+
+@dataclass(frozen=True)
+class Task:
+    """One unit of a study's work: ``kind`` of a point (and of one bin)."""
+
+    kind: str            # "ops", "fe", "check" or "aep"
+    point: Point
+    node: int = -1       # the bin: index into the study's wind speeds (0: the configured one)
+
+    @property
+    def name(self) -> str:
+        return f"{self.point.name}_{self.kind}" if self.node < 0 else f"{self.point.name}_v{self.node}_{self.kind}"
+
+
+class Study:
+    """A study job with its parts: what each task needs, costs and stores."""
+
+    def __init__(self, job: StudyJob, out: str | Path):
+        self.job = job
+        self.parts = StudyParts(out)
+        self._configs: dict[Point, Config] = {}
+
+    # -- inputs ---------------------------------------------------------------
+    def config(self, point: Point) -> Config:
+        if point not in self._configs:
+            self._configs[point] = self.job.point_config(point)
+        return self._configs[point]
+
+    @property
+    def configured(self) -> bool:
+        """One operating point per point: the configured case."""
+        return self.job.wind_mps is None
+
+    def key(self, task: Task, *extra: str) -> str:
+        return key_of(task.kind, self.config(task.point).to_toml(), repr(self.job.wind_mps),
+                      repr(self.job.crosscheck), *extra)
+
+    def operating_points(self, point: Point) -> list[OperatingPoint] | None:
+        """The stored operating points of a point (None if not computed yet)."""
+        values = self.parts.read(Task("ops", point).name, self.key(Task("ops", point)))
+        return None if values is None else [OperatingPoint(**op) for op in values["points"]]
+
+    def bins(self, point: Point) -> list[int]:
+        """The bins of a point that need a tether run (its operating points known)."""
+        if self.configured:
+            return [0]
+        ops = self.operating_points(point)
+        return [] if ops is None else [i for i, op in enumerate(ops) if plan.flies(op)]
+
+    def case(self, point: Point, node: int) -> Config:
+        """The tether run's case of one bin (ConfigError if the rules refuse it)."""
+        cfg = self.config(point)
+        if self.configured:
+            return checkable(cfg) if self.job.crosscheck else cfg
+        ops = self.operating_points(point)
+        assert ops is not None
+        return plan.run_config(cfg, ops[node])
+
+    def gate(self, point: Point) -> int | None:
+        """The bin the FE <-> FD gate runs at (None without a gate or a flying bin)."""
+        bins = self.bins(point)
+        if not self.job.crosscheck or not bins:
+            return None
+        cases = {}
+        for node in bins:
+            try:
+                cases[node] = self.case(point, node)
+            except InputError:          # its run fails and says why; the gate runs elsewhere
+                continue
+        return list(cases)[plan.gate_index(list(cases.values()))] if cases else None
+
+    # -- the phases' tasks -----------------------------------------------------
+    def ops_tasks(self, points: list[Point]) -> list[Task]:
+        return [] if self.configured else [Task("ops", p) for p in points]
+
+    def run_tasks(self, points: list[Point]) -> list[Task]:
+        tasks = []
+        for point in points:
+            gate = self.gate(point)
+            tasks += [Task("check" if node == gate else "fe", point, node) for node in self.bins(point)]
+        return tasks
+
+    def aep_tasks(self, points: list[Point]) -> list[Task]:
+        return [Task("aep", p) for p in points]
+
+    def cost_us(self, task: Task) -> float:
+        """Estimated cost in microseconds (:func:`fem_tether.schedule.run_cost_us` for runs)."""
+        cfg = self.config(task.point)
+        per_point = OPERATING_POINT_COST_US.get(cfg.system.model, CLOSED_FORM_COST_US)
+        if task.kind == "ops":
+            return per_point * len(self.job.wind_mps or ())
+        if task.kind == "aep":
+            return per_point * energy.evaluations(self.job)
+        try:
+            case = self.case(task.point, task.node)
+        except InputError:
+            return 0.0
+        return run_cost_us(case, "fe") + (run_cost_us(case, "fd") if task.kind == "check" else 0.0)
+
+    # -- running one task --------------------------------------------------------
+    def run_key(self, task: Task) -> str:
+        try:
+            return key_of(task.kind, inputs_key(self.case(task.point, task.node)))
+        except InputError as exc:
+            return key_of(task.kind, str(exc))
+
+    def task_key(self, task: Task) -> str:
+        if task.kind in ("fe", "check"):
+            return self.run_key(task)
+        if task.kind == "aep":
+            return self.key(task, *(self.run_key(t) for t in self.run_tasks([task.point])))
+        return self.key(task)
+
+    def stored(self, task: Task) -> dict | None:
+        return self.parts.read(task.name, self.task_key(task))
+
+    def run(self, task: Task) -> bool:
+        """Run ``task`` unless its part is stored; True if it ran."""
+        key = self.task_key(task)
+        if self.parts.read(task.name, key) is not None:
+            return False
+        if task.kind == "ops":
+            values = {"points": [asdict(op) for op in
+                                 plan.operating_points(self.config(task.point), self.job.wind_mps)]}
+        elif task.kind == "aep":
+            values = energy.point_energy(self, task.point)
+        else:
+            values = self._tether_run(task)
+        self.parts.write(task.name, key, values)
+        return True
+
+    def _tether_run(self, task: Task) -> dict:
+        try:
+            case = self.case(task.point, task.node)
+            if task.kind == "check":
+                case = checkable(case)
+                fe_run = simulator("fe")(case)
+                fd_run = simulator("fd")(case)
+                check = compare(fe_run, fd_run, case.crosscheck)
+                values = {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
+                          "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
+            else:
+                fe_run, values = simulator("fe")(case), {}
+        except (InputError, SolverDivergedError) as exc:
+            return {"status": "failed", "error": f"{task.name}: {exc}"}
+        except Exception as exc:  # a defect must not cost the other runs their results
+            last = traceback.extract_tb(exc.__traceback__)[-1]
+            return {"status": "failed", "error": f"{task.name}: {type(exc).__name__}: {exc} "
+                                                 f"({Path(last.filename).name}:{last.lineno})"}
+        return {"status": "ok", "drag_fe_N": fe_run.mean("drag_N"),
+                "kite_tension_fe_N": fe_run.mean("kite_tension_N"), "peak_tension_N": peak_tension_N(fe_run),
+                **values}
