@@ -77,7 +77,8 @@ QUANTITIES = (
     Quantity("study", "length_m", "m", "cable length of each point"),
     Quantity("study", "diameter_m", "m", "line diameter of each point"),
     Quantity("study", "refined", "1", "1 for a point added about the grid's AEP maximum, 0 for a grid point"),
-    Quantity("study", "status", "", "ok, unchecked (the FE/FD gate failed or did not run) or failed"),
+    Quantity("study", "status", "", "ok, unchecked (the FE/FD gate failed or did not run), weak (the line's margin "
+             "is below the safety factor) or failed"),
     Quantity("study", "error", "", "the failed runs' error messages, or empty"),
     Quantity("study", "aep_fe_MWh", "MWh", "AEP (eq. 5.2) with each bin's flexible tether drag"),
     Quantity("study", "aep_straight_MWh", "MWh", "AEP with each bin's straight-line tether drag (eq. 4.1)"),
@@ -91,10 +92,12 @@ QUANTITIES = (
     Quantity("study", "rel_diff_shape", "1", "largest distance between the FE and FD lines / L at the gated bin"),
     Quantity("study", "interpolation_error", "1", "|AEP(every other bin) - AEP| / AEP: bound of the error of "
              "interpolating C_D,t between bins"),
+    Quantity("study", "peak_tension_N", "N", "largest tension at either end of the line over every bin's FE run"),
+    Quantity("study", "margin", "1", "breaking load of the line ([tether] material) over peak_tension_N"),
     Quantity("study", "unbinned_probability", "1", "probability of the wind above the last bin edge (no power)"),
     Quantity("study", "apparent_speed_mps", "m/s", "kite speed V_a of each bin's operating point (the path's speed)"),
     Quantity("study", "tether_force_N", "N", "traction of all lines of each bin's operating point"),
-    Quantity("study", "reel_out_mps", "m/s", "reel-out speed of each bin's operating point (not flown: docs/study.md)"),
+    Quantity("study", "reel_out_mps", "m/s", "reel-out speed of each bin's operating point (flown only with [study] reel_out = true)"),
     Quantity("study", "drag_fe_N", "N", "mean F_t per line of each bin's FE run (NaN: the kite does not fly)"),
     Quantity("study", "drag_straight_N", "N", "F_t per line of the straight line at each bin (eq. 4.1, with wind)"),
     Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F_t / (1/2 rho A V_a^2) of each bin, flexible"),

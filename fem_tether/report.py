@@ -367,9 +367,11 @@ def _optimum_text(best, swept: dict) -> str:
     if best is None:
         return "none (no point has an AEP)"
     edge = [name for name, key in (("length", "bracketed_length"), ("diameter", "bracketed_diameter"))
-            if swept[name] and not best[key]]
+            if swept[name] and not best[key] and not (name == "diameter" and best["strength_limited"])]
+    notes = ([f"not bracketed in {' and '.join(edge)}"] if edge else []) + \
+        (["the thinnest line strong enough"] if best["strength_limited"] else [])
     return (f"L {best['length_m']:g} m, d {1e3 * best['diameter_m']:.1f} mm: AEP {best['aep_MWh']:.0f} MWh, "
-            f"CF {best['capacity_factor']:.3f}" + (f" (not bracketed in {' and '.join(edge)})" if edge else ""))
+            f"CF {best['capacity_factor']:.3f}" + (f" ({'; '.join(notes)})" if notes else ""))
 
 
 def _finite_max(values) -> float | None:
@@ -393,13 +395,15 @@ def study_summary(outcome, out, report_page=None) -> dict:
             "points": len(points), "refined_points": sum(p["refined"] for p in points),
             "swept": {name: len({p[f"{name}_m"] for p in points if not p["refined"]}) > 1
                       for name in ("length", "diameter")},
-            "ok": status.count("ok"), "unchecked": status.count("unchecked"), "failed": status.count("failed"),
-            "errors": [p["error"] for p in points if p["error"]],
+            "ok": status.count("ok"), "unchecked": status.count("unchecked"), "weak": status.count("weak"),
+            "failed": status.count("failed"),
+            "errors": [p["error"] for p in points if p["status"] == "failed"],
             "max_gate_rel_diff_drag": _finite_max([p["rel_diff_drag"] for p in points]),
             "max_interpolation_error": _finite_max([p["interpolation_error"] for p in points])})
     return {"file": str(out), "report": str(report_page) if report_page else None, "surfaces": surfaces,
             "tasks": outcome.tasks, "ran": outcome.ran, "reused": outcome.tasks - outcome.ran,
-            "n_ranks": outcome.n_ranks, "wall_s": outcome.wall_s, "phase_s": outcome.phase_s}
+            "n_ranks": outcome.n_ranks, "wall_s": outcome.wall_s, "phase_s": outcome.phase_s,
+            "model_s": {str(n): t for n, t in outcome.model_s.items()}}
 
 
 def study_text(summary: dict) -> str:
@@ -410,7 +414,8 @@ def study_text(summary: dict) -> str:
              f"rank(s) in {summary['wall_s']:.1f} s ({phases})"]
     for s in summary["surfaces"]:
         lines += [f"{s['system']} at {s['site']}: {s['points']} points ({s['refined_points']} refined): "
-                  f"{s['ok']} ok, {s['unchecked']} unchecked, {s['failed']} failed",
+                  f"{s['ok']} ok, {s['unchecked']} unchecked, {s['weak']} too weak for their peak tension, "
+                  f"{s['failed']} failed",
                   "  AEP-optimal, flexible: " + _optimum_text(s["optimum_fe"], s["swept"]),
                   "  AEP-optimal, straight: " + _optimum_text(s["optimum_straight"], s["swept"])]
         if s["max_gate_rel_diff_drag"] is not None:
@@ -419,7 +424,10 @@ def study_text(summary: dict) -> str:
             lines.append(f"  C_D,t interpolation between bins: AEP error at most "
                          f"{100 * s['max_interpolation_error']:.2f} %"
                          + (" (above 0.5 %: add wind speeds)" if s["max_interpolation_error"] > 0.005 else ""))
-        lines += [f"  failed: {e}" for e in s["errors"][:5]]
+        lines += [f"  {e}" for e in s["errors"][:5]]
+    if summary["model_s"]:
+        lines.append("modelled wall time from the tasks' measured times (docs/study.md): "
+                     + ", ".join(f"{n} rank{'s' if n != '1' else ''} {t:.0f} s" for n, t in summary["model_s"].items()))
     if summary["report"]:
         lines.append(f"report page: {summary['report']}")
     return "\n".join(lines)

@@ -23,6 +23,7 @@ from fem_tether.evaluate import load_kernels
 from fem_tether.progress import Progress
 
 from . import optimum as opt
+from . import scaling
 from .job import Point, StudyJob
 from .result import check_out, write_study
 from .tasks import Study, Task
@@ -38,6 +39,8 @@ class StudyOutcome:
     n_ranks: int = 1
     phase_s: dict = field(default_factory=dict)
     wall_s: float = 0.0
+    #: Modelled wall time on N ranks [s] (:func:`scaling_model`).
+    model_s: dict = field(default_factory=dict)
 
 
 class StudyInterrupted(KeyboardInterrupt):
@@ -72,9 +75,23 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutc
 
 
 def _stages(comm, study: Study, points: list[Point], outcome: StudyOutcome, progress: bool) -> None:
-    _phase(comm, study, "operating points", study.ops_tasks(points), outcome, progress)
-    _phase(comm, study, "tether runs", study.run_tasks(points), outcome, progress)
-    _phase(comm, study, "AEP", study.aep_tasks(points), outcome, progress)
+    for label, tasks in PHASES:
+        _phase(comm, study, label, tasks(study, points), outcome, progress)
+
+
+#: The phases of a study's points, in order: (label, the study's tasks of some points).
+PHASES = (("operating points", Study.ops_tasks), ("tether runs", Study.run_tasks), ("AEP", Study.aep_tasks))
+
+
+def scaling_model(study: Study, extra: list[Point], other_s: float) -> dict[int, float]:
+    """Modelled wall time of the whole study on N ranks (:mod:`fem_tether.study.scaling`)
+    from every task's measured time; ``other_s``: the time spent outside the phases."""
+    phases = []
+    for points in (study.job.points, extra):
+        for _, tasks in PHASES:
+            mine = tasks(study, points)
+            phases.append(([study.cost_us(t) for t in mine], [study.stored(t)["wall_s"] for t in mine]))
+    return scaling.model(phases, other_s)
 
 
 def _usable(values: dict, allow_unchecked: bool) -> bool:
@@ -82,28 +99,32 @@ def _usable(values: dict, allow_unchecked: bool) -> bool:
 
 
 def _surface_values(study: Study, system: str, site: str, extra: list[Point], allow_unchecked: bool):
-    """(lengths, diameters, {case: {(L, d): AEP}}, {case: {(L, d): CF}}) of one surface's points."""
+    """(lengths, diameters, {case: {(L, d): AEP}}, {case: {(L, d): CF}}, the weak (L, d)) of one
+    surface's points."""
     job = study.job
     lengths = job.lengths_m[job.systems.index(system)]
     diameters = job.diameters(system)
     aep: dict = {"fe": {}, "straight": {}}
     cf: dict = {"fe": {}, "straight": {}}
+    weak = set()
     for point in job.grid(system, site) + [p for p in extra if (p.system, p.site) == (system, site)]:
         values = study.stored(Task("aep", point))
         assert values is not None
         key = (point.length_m, point.diameter_m)
+        if values["status"] == "weak":
+            weak.add(key)
         aep["fe"][key] = values["aep_fe_MWh"] if _usable(values, allow_unchecked) else math.nan
         cf["fe"][key] = values["cf_fe"]
-        aep["straight"][key] = values["aep_straight_MWh"]
+        aep["straight"][key] = values["aep_straight_MWh"] if values["status"] != "weak" else math.nan
         cf["straight"][key] = values["cf_straight"]
-    return lengths, diameters, aep, cf
+    return lengths, diameters, aep, cf, frozenset(weak)
 
 
 def refinement_points(study: Study, allow_unchecked: bool) -> list[Point]:
     """The points about each surface's maximum, flexible and straight (:mod:`fem_tether.study.optimum`)."""
     extra: set[Point] = set()
     for system, site in study.job.surfaces:
-        lengths, diameters, aep, _ = _surface_values(study, system, site, [], allow_unchecked)
+        lengths, diameters, aep, _, _ = _surface_values(study, system, site, [], allow_unchecked)
         for case in ("fe", "straight"):
             extra |= {Point(system, site, L, d) for L, d in opt.refinement(lengths, diameters, aep[case])}
     return sorted(extra, key=lambda p: (study.job.surfaces.index((p.system, p.site)), p.length_m, p.diameter_m))
@@ -128,14 +149,14 @@ def surfaces(study: Study, extra: list[Point], allow_unchecked: bool) -> list[di
     out = []
     job = study.job
     for system, site in job.surfaces:
-        lengths, diameters, aep, cf = _surface_values(study, system, site, extra, allow_unchecked)
+        lengths, diameters, aep, cf, weak = _surface_values(study, system, site, extra, allow_unchecked)
         grid = job.grid(system, site)
         mine = [p for p in extra if (p.system, p.site) == (system, site)]
         rows = [_point_row(study, p, False) for p in grid] + [_point_row(study, p, True) for p in mine]
         out.append({"system": system, "site": site, "config_toml": job.site(site).apply(job.config(system)).to_toml(),
                     "wind_mps": list(job.wind_mps or [math.nan]), "edges_mps": rows[0]["edges_mps"],
                     "points": rows,
-                    "optimum": {case: opt.optimum(lengths, diameters, aep[case], cf[case])
+                    "optimum": {case: opt.optimum(lengths, diameters, aep[case], cf[case], weak)
                                 for case in ("fe", "straight")}})
     return out
 
@@ -175,4 +196,5 @@ def run_study(job: StudyJob, out: str | Path, comm=None, progress: bool = True,
     outcome.surfaces = surfaces(study, extra, allow_unchecked)
     write_study(out, job.toml, outcome.surfaces)
     outcome.wall_s = time.perf_counter() - t0
+    outcome.model_s = scaling_model(study, extra, outcome.wall_s - sum(outcome.phase_s.values()))
     return outcome

@@ -17,6 +17,12 @@ error is estimated by the same AEP from every other bin:
 linear interpolation (O(h^2): halving the bins' spacing divides it by about
 four, so the difference is about three times the error of the finer set).
 
+When the study chooses the diameter (``diameters_m``), a point whose line
+would break, breaking load / largest peak tension of its runs below
+``[tether] safety_factor`` (:mod:`fem_tether.sizing`), is ``weak``: it
+counts for no optimum, straight or flexible (the configured line is flown
+whatever its margin, which the file records).
+
 With ``wind_mps = "configured"`` the point has one run, the configured case,
 whose C_D,t applies at every wind speed: the main job's AEP
 (:func:`fem_tether.aep.aep_of_system`), to the last bit.
@@ -31,6 +37,7 @@ import numpy as np
 from fem_tether import straight
 from fem_tether.aep import aep_on_band, sweep_resource
 from fem_tether.errors import InputError
+from fem_tether.sizing import margin, short_of_margin
 from fem_tether.summary import operating_ge, operating_tether_cd
 from fem_tether.systems.configured import from_config
 
@@ -69,7 +76,7 @@ def point_energy(study, point: Point) -> dict:
     n = nodes.size
     v = {name: np.full(n, math.nan) for name in
          ("drag_fe_N", "drag_straight_N", "cd_fe", "cd_straight", "ge_fe", "ge_straight")}
-    errors, gate = [], {}
+    errors, peaks, gate = [], [], {}
     for task in study.run_tasks([point]):
         run = study.stored(task)
         if run is None:
@@ -85,6 +92,7 @@ def point_energy(study, point: Point) -> dict:
         if run["status"] != "ok":
             errors.append(run["error"])
             continue
+        peaks.append(run["peak_tension_N"])
         v["drag_fe_N"][task.node] = run["drag_fe_N"]
         v["cd_fe"][task.node] = operating_tether_cd(case, run["drag_fe_N"])
         v["ge_fe"][task.node] = operating_ge(case, run["drag_fe_N"])
@@ -114,10 +122,17 @@ def point_energy(study, point: Point) -> dict:
         out |= {f"aep_{case_name}_MWh": aep, f"cf_{case_name}": cf, f"rated_{case_name}_W": rated,
                 f"power_edges_{case_name}_W": power.tolist(), f"power_{case_name}_W": node_power.tolist()}
     out["interpolation_error"] = _interpolation_error(system, band, nodes, v["cd_fe"], out["aep_fe_MWh"])
+    out["peak_tension_N"] = max(peaks, default=math.nan)
+    chooses_diameter = study.job.diameters_m[study.job.systems.index(point.system)] is not None
+    out["margin"] = margin(cfg, out["peak_tension_N"])
     if errors:
         status = "failed"
     elif not np.isfinite(v["cd_fe"]).any():
         status, errors = "failed", [f"{point.name}: no wind speed of the study makes the kite fly"]
+    elif chooses_diameter and short_of_margin(out["margin"], cfg.tether.safety_factor):
+        status = "weak"
+        errors = [f"{point.name}: breaking load / peak tension {out['margin']:.3f} is below [tether] "
+                  f"safety_factor = {cfg.tether.safety_factor:g}"]
     else:
         status = "ok" if out["crosscheck_ok"] else "unchecked"
     return out | {name: values.tolist() for name, values in v.items()} | {"status": status,

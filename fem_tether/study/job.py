@@ -10,6 +10,7 @@ configuration sections that apply to every system::
     wind_mps = [8, 10, 12, 14]           # operating points of the power curve, or "configured"
     crosscheck = true                    # the FE <-> FD gate (docs/study.md)
     refine = true                        # extra points about the AEP maximum
+    reel_out = false                     # fly each bin's reel-out speed (ten times the cost)
     base = ""                            # a configuration file under the job's sections
     [[study.sites]]                      # default: one site, the configured [wind] and [resource]
     name = "de-bilt"
@@ -30,12 +31,14 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from fem_tether.aep import sweep_resource
 from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
+from fem_tether.errors import InputError
 from fem_tether.jobs import length_tag
 from fem_tether.sizing import sized_config
 from fem_tether.systems import catalog
 
-KEYS = ("systems", "lengths_m", "diameters_m", "wind_mps", "sites", "crosscheck", "refine", "base")
+KEYS = ("systems", "lengths_m", "diameters_m", "wind_mps", "sites", "crosscheck", "refine", "reel_out", "base")
 SITE_KEYS = ("name", "wind", "resource")
 
 
@@ -78,6 +81,7 @@ class StudyJob:
     wind_mps: tuple[float, ...] | None      # None: "configured", one operating point
     crosscheck: bool = True
     refine: bool = True
+    reel_out: bool = False
     toml: str = ""
 
     def config(self, system: str) -> Config:
@@ -226,13 +230,21 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
         nodes = _numbers("wind_mps", wind_mps, (), "wind speed")[0] if isinstance(wind_mps, list) else None
         if nodes is None:
             raise _error("wind_mps", wind_mps, "expected a list of wind speeds at the kite, or \"configured\"")
-    for key in ("crosscheck", "refine"):
+    for key in ("crosscheck", "refine", "reel_out"):
         if not isinstance(study.get(key, True), bool):
             raise _error(key, study[key], "expected true or false")
     job = StudyJob(names, configs, _sites(study.get("sites"), configs[0]), lengths, diameters, nodes,
-                   study.get("crosscheck", True), study.get("refine", True), text)
+                   study.get("crosscheck", True), study.get("refine", True), study.get("reel_out", False), text)
     for point in job.points:            # every point's case is checked now, not in the study
         job.point_config(point)
+    for system, site in job.surfaces:   # and that the resource has a band at each length's altitude
+        cfg = job.site(site).apply(job.config(system))
+        resource = sweep_resource(cfg)
+        for length_m in job.lengths_m[job.systems.index(system)]:
+            try:
+                resource.band_for_length(length_m, math.radians(cfg.kite.theta0_deg))
+            except InputError as exc:
+                raise _error("lengths_m", length_m, f"{system} at site {site}: {exc}") from None
     return job
 
 

@@ -47,11 +47,13 @@ class Optimum:
     capacity_factor: float
     bracketed_length: bool
     bracketed_diameter: bool
+    strength_limited: bool = False      # the next thinner line at the best grid length is too weak
+
 
     def as_dict(self) -> dict:
         return {"length_m": self.length_m, "diameter_m": self.diameter_m, "aep_MWh": self.aep_MWh,
                 "capacity_factor": self.capacity_factor, "bracketed_length": self.bracketed_length,
-                "bracketed_diameter": self.bracketed_diameter}
+                "bracketed_diameter": self.bracketed_diameter, "strength_limited": self.strength_limited}
 
 
 def _grid_best(lengths, diameters, aep: dict) -> tuple[int, int] | None:
@@ -85,9 +87,10 @@ def refinement(lengths, diameters, aep: dict) -> list[tuple[float, float]]:
     return sorted(new)
 
 
-def optimum(lengths, diameters, aep: dict, cf: dict) -> Optimum | None:
+def optimum(lengths, diameters, aep: dict, cf: dict, weak: frozenset = frozenset()) -> Optimum | None:
     """The best of all points run (``aep`` and ``cf``: (L, d) -> value, grid and
-    refined), with the grid's brackets; None if no point has an AEP."""
+    refined), with the grid's brackets and whether the next thinner line (a
+    point of ``weak``) is too weak; None if no point has an AEP."""
     finite = {k: a for k, a in aep.items() if math.isfinite(a)}
     best = _grid_best(lengths, diameters, aep)
     if not finite or best is None:
@@ -97,4 +100,5 @@ def optimum(lengths, diameters, aep: dict, cf: dict) -> Optimum | None:
     return Optimum(L, d, finite[(L, d)], cf[(L, d)],
                    _bracketed(i, lengths, [aep.get((x, diameters[j]), math.nan) for x in lengths[max(i - 1, 0):i + 2]]),
                    _bracketed(j, diameters, [aep.get((lengths[i], x), math.nan)
-                                             for x in diameters[max(j - 1, 0):j + 2]]))
+                                             for x in diameters[max(j - 1, 0):j + 2]]),
+                   j > 0 and (lengths[i], diameters[j - 1]) in weak)

@@ -9,9 +9,10 @@ bin's tether run flies the prescribed path at
     [kite] speed_mps = V_a,   [winch] ground_tension_N = F / lines,
     [wind] scale such that V_w(L cos theta0) = V_w,
 
-on a line of fixed length (the reel-out speed moves the line along itself and
-leaves its cross-flow drag almost unchanged: docs/study.md shows it by
-computation).  Its mean F_t is the bin's flexible drag, as C_D,t at V_a
+on a line of fixed length: the reel-out speed moves the line along itself and
+changes its drag little (0.2-2.4 % less at the full reel-out speed,
+``examples/study_assumptions.py``); ``[study] reel_out = true`` flies it, at
+ten times the cost of a run.  Its mean F_t is the bin's flexible drag, as C_D,t at V_a
 (:func:`fem_tether.summary.operating_tether_cd` of the run's case); the
 straight line gets the same treatment (seed 000 eq. 4.1 at the bin's V_a and
 wind).  The gate (FE <-> FD) runs at the most bent bin, :func:`bending`.
@@ -50,11 +51,18 @@ def wind_scale(cfg: Config, wind_mps: float) -> float:
     return cfg.wind.scale * wind_mps / here
 
 
-def run_config(cfg: Config, op: OperatingPoint) -> Config:
-    """The tether run of one bin: the path at V_a, the winch at F / lines, the wind at V_w."""
-    return cfg.replace(kite={"speed_mps": op.apparent_speed_mps},
+def run_config(cfg: Config, op: OperatingPoint, reel_out: bool = False) -> Config:
+    """The tether run of one bin: the path at V_a, the winch at F / lines, the wind at V_w;
+    with ``reel_out`` the winch pays out at V_out from L - V_out T_avg / 2, so that
+    the line's mean length over the T_avg averaged is L."""
+    case = cfg.replace(kite={"speed_mps": op.apparent_speed_mps},
                        winch={"ground_tension_N": op.tether_force_N / cfg.tether.lines},
                        wind={"scale": wind_scale(cfg, op.wind_mps)})
+    if not reel_out or op.reel_out_mps == 0.0:
+        return case
+    paid_m = op.reel_out_mps * case.time.average_periods * case.path.period_s
+    return case.replace(tether={"length_m": cfg.tether.length_m - paid_m / 2.0},
+                        winch={"reel_out": "constant", "reel_out_speed_mps": op.reel_out_mps})
 
 
 def bending(cfg: Config) -> float:

@@ -34,7 +34,8 @@ from fem_tether.store import parts_dir
 POINT = tuple(n for n in names("study") if n not in ("wind_mps", "edges_mps"))
 STRINGS = ("status", "error")
 INTEGERS = ("refined", "crosscheck_ok")
-OPTIMUM_KEYS = ("length_m", "diameter_m", "aep_MWh", "capacity_factor", "bracketed_length", "bracketed_diameter")
+OPTIMUM_KEYS = ("length_m", "diameter_m", "aep_MWh", "capacity_factor", "bracketed_length", "bracketed_diameter",
+                "strength_limited")
 
 
 def is_study_result(path: Path) -> bool:

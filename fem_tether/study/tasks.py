@@ -15,6 +15,7 @@ whose solve fails stores the error; the others go on.
 
 from __future__ import annotations
 
+import time
 import traceback
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -93,7 +94,7 @@ class Study:
             return checkable(cfg) if self.job.crosscheck else cfg
         ops = self.operating_points(point)
         assert ops is not None
-        return plan.run_config(cfg, ops[node])
+        return plan.run_config(cfg, ops[node], self.job.reel_out)
 
     def gate(self, point: Point) -> int | None:
         """The bin the FE <-> FD gate runs at (None without a gate or a flying bin)."""
@@ -154,10 +155,12 @@ class Study:
         return self.parts.read(task.name, self.task_key(task))
 
     def run(self, task: Task) -> bool:
-        """Run ``task`` unless its part is stored; True if it ran."""
+        """Run ``task`` unless its part is stored; True if it ran.  The part records
+        the task's wall time (``wall_s``, for the scaling model; not in the result file)."""
         key = self.task_key(task)
         if self.parts.read(task.name, key) is not None:
             return False
+        t0 = time.perf_counter()
         if task.kind == "ops":
             values = {"points": [asdict(op) for op in
                                  plan.operating_points(self.config(task.point), self.job.wind_mps)]}
@@ -165,7 +168,7 @@ class Study:
             values = energy.point_energy(self, task.point)
         else:
             values = self._tether_run(task)
-        self.parts.write(task.name, key, values)
+        self.parts.write(task.name, key, values | {"wall_s": time.perf_counter() - t0})
         return True
 
     def _tether_run(self, task: Task) -> dict:
