@@ -80,8 +80,8 @@ QUANTITIES = (
     Quantity("study", "status", "", "ok, unchecked (the FE/FD gate failed or did not run), weak (the line's margin "
              "is below the safety factor) or failed"),
     Quantity("study", "error", "", "the failed runs' error messages, or empty"),
-    Quantity("study", "aep_fe_MWh", "MWh", "AEP (eq. 5.2) with each bin's flexible tether drag"),
-    Quantity("study", "aep_straight_MWh", "MWh", "AEP with each bin's straight-line tether drag (eq. 4.1)"),
+    Quantity("study", "aep_fe_MWh", "MW h", "AEP (eq. 5.2) with each bin's flexible tether drag"),
+    Quantity("study", "aep_straight_MWh", "MW h", "AEP with each bin's straight-line tether drag (eq. 4.1)"),
     Quantity("study", "cf_fe", "1", "capacity factor AEP / (P_rated 8760 h), flexible"),
     Quantity("study", "cf_straight", "1", "capacity factor, straight line"),
     Quantity("study", "rated_fe_W", "W", "rated power P_rated of the flexible case"),

@@ -18,7 +18,8 @@ def example(name):
 
 
 #: Every example, in README's order ("Python API").
-NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite", "tab51_gap")
+NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite", "study_assumptions",
+         "tab51_gap")
 
 
 def test_every_example_opens_with_its_equations_and_how_to_run_it():
@@ -139,3 +140,23 @@ def test_tab51_gap_eight_drag_level_and_reel_out():
     assert ratio == pytest.approx(0.977, abs=0.005)
     assert 1.02 < g.drag_level(1000, 1.035)["ratio"] < 1.035
     assert 0.97 < g.reel_out((800.0,), start_m=500.0, stop_m=900.0)[800.0]["ratio"] < 0.995
+
+
+def test_study_assumptions_change_the_drag_little():
+    """docs/study.md §3 at one bin (KiteGen, 1000 m, 20 m/s): reeling out at V_out
+    lowers F_t by less than 3 %; the flexible line's own operating point moves
+    C_D,t by less than 1.5 % and the bin's power by less than 1 %."""
+    ex = example("study_assumptions")
+    reel = ex.reel("kitegen", 1000.0, 20.0)
+    assert -0.03 < reel["change"] < 0.0
+    point = ex.fixed_point("kitegen", 1000.0, 20.0)
+    assert abs(point["cd_change"]) < 0.015 and abs(point["power_change"]) < 0.01
+
+
+@pytest.mark.parametrize("name", ["study_kitegen", "study_ke_yoyo", "study_trevisi_gg"])
+def test_study_jobs_load(name):
+    """The study jobs of docs/study.md §8 are valid jobs (every point's case and band checked)."""
+    from fem_tether.study.job import load_study
+
+    job = load_study(EXAMPLES / f"{name}.toml")
+    assert len(job.points) >= 16 and job.wind_mps is not None

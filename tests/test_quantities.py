@@ -25,7 +25,7 @@ def test_the_table_covers_what_the_solvers_record():
     assert set(quantities.names("snapshots")) == {"time_s", *NODE_FIELDS, *CELL_FIELDS}
     assert quantities.names("sweep") == ("length_m",) + ROOT_DATASETS + ("status", "error")
     units = {q.unit for q in quantities.QUANTITIES}
-    assert units <= {"s", "m", "m/s", "N", "N/m", "W", "J", "deg", "1", ""}
+    assert units <= {"s", "m", "m/s", "N", "N/m", "W", "J", "MW h", "deg", "1", ""}
     assert all(q.meaning for q in quantities.QUANTITIES)
 
 
@@ -120,3 +120,9 @@ def test_readme_units_column_reads_back_to_the_table():
     parsed = [tuple(c.strip() for c in row.strip("|").split("|")[:2]) for row in rows]
     expected = [(f"`{q.name}`", q.unit or "text") for q in quantities.QUANTITIES if q.where == "sweep"]
     assert parsed == expected
+
+
+def test_study_doc_table_is_the_quantities_table():
+    """docs/study.md §9 lists the study file's datasets from the quantities table."""
+    text = (Path(__file__).resolve().parent.parent / "docs" / "study.md").read_text(encoding="utf-8")
+    assert _tables(text.split("## 9. The file")[1]) == [quantities.markdown_rows("study")]

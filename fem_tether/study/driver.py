@@ -43,6 +43,10 @@ class StudyOutcome:
     model_s: dict = field(default_factory=dict)
 
 
+#: How often rank 0 counts the parts present for its progress bar [s].
+PROGRESS_EVERY_S = 1.0
+
+
 class StudyInterrupted(KeyboardInterrupt):
     """Ctrl-C during a study; the message says what is kept and how to resume."""
 
@@ -56,10 +60,12 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutc
     bar = Progress(len(tasks), f"study {label} ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0 and bool(tasks))
     ran = [0]
+    counted = [t0]
 
     def run(i):
         ran[0] += study.run(tasks[i])
-        if rank == 0:
+        if bar.enabled and time.perf_counter() - counted[0] > PROGRESS_EVERY_S:
+            counted[0] = time.perf_counter()
             bar.update(sum(1 for t in tasks if study.parts.path(t.name).exists()))
 
     try:
@@ -90,7 +96,7 @@ def scaling_model(study: Study, extra: list[Point], other_s: float) -> dict[int,
     for points in (study.job.points, extra):
         for _, tasks in PHASES:
             mine = tasks(study, points)
-            phases.append(([study.cost_us(t) for t in mine], [study.stored(t)["wall_s"] for t in mine]))
+            phases.append(([study.cost_us(t) for t in mine], [study.stored(t).get("wall_s", math.nan) for t in mine]))
     return scaling.model(phases, other_s)
 
 

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from fem_tether import straight
-from fem_tether.aep import aep_on_band, sweep_resource
+from fem_tether.aep import aep_on_band
 from fem_tether.errors import InputError
 from fem_tether.sizing import margin, short_of_margin
 from fem_tether.summary import operating_ge, operating_tether_cd
@@ -70,7 +70,7 @@ def point_energy(study, point: Point) -> dict:
     point from its stored runs (a dict of plain numbers and lists, the ``aep`` part)."""
     cfg = study.config(point)
     system = from_config(cfg)
-    band = sweep_resource(cfg).band_for_length(point.length_m, math.radians(cfg.kite.theta0_deg))
+    band = study.resource(point).band_for_length(point.length_m, math.radians(cfg.kite.theta0_deg))
     edges = band.edges_mps
     nodes = np.array(study.job.wind_mps or [math.nan], dtype=float)
     n = nodes.size

@@ -20,10 +20,12 @@ import traceback
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from fem_tether.aep import sweep_resource
 from fem_tether.config import Config
 from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import InputError, SolverDivergedError
 from fem_tether.evaluate import simulator
+from fem_tether.resource import WindResource
 from fem_tether.schedule import run_cost_us
 from fem_tether.sizing import peak_tension_N
 from fem_tether.store import inputs_key
@@ -59,12 +61,23 @@ class Study:
         self.job = job
         self.parts = StudyParts(out)
         self._configs: dict[Point, Config] = {}
+        self._cases: dict[tuple[Point, int], Config | InputError] = {}
+        self._runs: dict[Point, list[Task]] = {}
+        self._resources: dict[tuple[str, str], WindResource] = {}
+        self._keys: dict[Task, str] = {}
 
     # -- inputs ---------------------------------------------------------------
     def config(self, point: Point) -> Config:
         if point not in self._configs:
             self._configs[point] = self.job.point_config(point)
         return self._configs[point]
+
+    def resource(self, point: Point) -> WindResource:
+        """The wind resource of a point's site (the same for every point of a surface)."""
+        surface = (point.system, point.site)
+        if surface not in self._resources:
+            self._resources[surface] = sweep_resource(self.config(point))
+        return self._resources[surface]
 
     @property
     def configured(self) -> bool:
@@ -89,12 +102,18 @@ class Study:
 
     def case(self, point: Point, node: int) -> Config:
         """The tether run's case of one bin (ConfigError if the rules refuse it)."""
-        cfg = self.config(point)
-        if self.configured:
-            return checkable(cfg) if self.job.crosscheck else cfg
-        ops = self.operating_points(point)
-        assert ops is not None
-        return plan.run_config(cfg, ops[node], self.job.reel_out)
+        if (point, node) not in self._cases:
+            cfg = self.config(point)
+            ops = self.operating_points(point)
+            try:
+                self._cases[point, node] = (checkable(cfg) if self.job.crosscheck else cfg) if ops is None \
+                    else plan.run_config(cfg, ops[node], self.job.reel_out)
+            except InputError as exc:
+                self._cases[point, node] = exc
+        case = self._cases[point, node]
+        if isinstance(case, InputError):
+            raise case
+        return case
 
     def gate(self, point: Point) -> int | None:
         """The bin the FE <-> FD gate runs at (None without a gate or a flying bin)."""
@@ -114,11 +133,17 @@ class Study:
         return [] if self.configured else [Task("ops", p) for p in points]
 
     def run_tasks(self, points: list[Point]) -> list[Task]:
-        tasks = []
-        for point in points:
-            gate = self.gate(point)
-            tasks += [Task("check" if node == gate else "fe", point, node) for node in self.bins(point)]
-        return tasks
+        return [task for point in points for task in self._point_runs(point)]
+
+    def _point_runs(self, point: Point) -> list[Task]:
+        """A point's tether runs (remembered once its operating points are known)."""
+        if point in self._runs:
+            return self._runs[point]
+        gate = self.gate(point)
+        runs = [Task("check" if node == gate else "fe", point, node) for node in self.bins(point)]
+        if self.configured or self.operating_points(point) is not None:
+            self._runs[point] = runs
+        return runs
 
     def aep_tasks(self, points: list[Point]) -> list[Task]:
         return [Task("aep", p) for p in points]
@@ -145,11 +170,15 @@ class Study:
             return key_of(task.kind, str(exc))
 
     def task_key(self, task: Task) -> str:
-        if task.kind in ("fe", "check"):
-            return self.run_key(task)
-        if task.kind == "aep":
-            return self.key(task, *(self.run_key(t) for t in self.run_tasks([task.point])))
-        return self.key(task)
+        """The key of a task's inputs (remembered: its inputs do not change during a study)."""
+        if task not in self._keys:
+            if task.kind in ("fe", "check"):
+                self._keys[task] = self.run_key(task)
+            elif task.kind == "aep":
+                self._keys[task] = self.key(task, *(self.task_key(t) for t in self.run_tasks([task.point])))
+            else:
+                self._keys[task] = self.key(task)
+        return self._keys[task]
 
     def stored(self, task: Task) -> dict | None:
         return self.parts.read(task.name, self.task_key(task))
