@@ -30,12 +30,13 @@ STYLE = ("body{font-family:sans-serif;max-width:62em;margin:2em auto;padding:0 1
          "pre{background:#f6f6f6;padding:1em;overflow-x:auto}")
 
 
-def _number(value, digits: int) -> str:
+def number(value, digits: int) -> str:
     """A finite number with ``digits`` decimals; an en dash for none or NaN."""
     return "–" if value is None or not np.isfinite(value) else f"{value:.{digits}f}"
 
 
-def _table(header: list[str], rows: list[list[str]]) -> str:
+def table(header: list[str], rows: list[list[str]]) -> str:
+    """An HTML table of text cells (escaped), the first column left-aligned."""
     head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
     body = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" if i else f"<td class=\"text\">{html.escape(c)}</td>"
                                     for i, c in enumerate(row)) + "</tr>" for row in rows)
@@ -48,10 +49,10 @@ def summary_rows(data: dict, energy: SweepAep) -> list[list[str]]:
     out = []
     for i, length in enumerate(data["length_m"]):
         r = rows.get(float(length), {})
-        out.append([f"{length:g}", _number(data["drag_straight_N"][i], 1), _number(data["drag_fe_N"][i], 1),
-                    _number(data["ge_straight"][i], 3), _number(data["ge_fe"][i], 3),
-                    _number(r.get("aep_straight_MWh"), 1), _number(r.get("cf_straight"), 4),
-                    _number(r.get("aep_fe_MWh"), 1), _number(r.get("cf_fe"), 4)])
+        out.append([f"{length:g}", number(data["drag_straight_N"][i], 1), number(data["drag_fe_N"][i], 1),
+                    number(data["ge_straight"][i], 3), number(data["ge_fe"][i], 3),
+                    number(r.get("aep_straight_MWh"), 1), number(r.get("cf_straight"), 4),
+                    number(r.get("aep_fe_MWh"), 1), number(r.get("cf_fe"), 4)])
     return out
 
 
@@ -64,7 +65,7 @@ def crosscheck_rows(data: dict) -> list[list[str]]:
         verdict = "ok" if data["crosscheck_ok"][i] else ("not run" if not ran else "FAILED")
         if data["status"][i] != "ok":
             verdict += f" ({data['status'][i]}: {data['error'][i]})"
-        out.append([f"{length:g}", _number(data["drag_fe_N"][i], 1), _number(data["drag_fd_N"][i], 1),
+        out.append([f"{length:g}", number(data["drag_fe_N"][i], 1), number(data["drag_fd_N"][i], 1),
                     f"{100 * data['rel_diff_drag'][i]:.3f} % (≤ {100 * cfg.drag_rel:g} %)" if ran else "–",
                     f"{100 * data['rel_diff_shape'][i]:.4f} % (≤ {100 * cfg.shape_rel:g} %)" if ran else "–",
                     verdict])
@@ -83,10 +84,12 @@ def validation_status(directory: Path) -> str:
     return html.escape(f"{counts} ({chosen}, fem-tether {found['version']}; {VALIDATION_NAME})")
 
 
-def _image(path: Path) -> str:
-    data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
+def image(path: Path, embed: bool = True) -> str:
+    """A PNG captioned with its name: embedded as a base64 data URI, or (``embed``
+    false) linked by its name, for a page in the PNG's directory."""
     name = html.escape(Path(path).name)
-    return f"<figure><img src=\"data:image/png;base64,{data}\" alt=\"{name}\"><figcaption>{name}</figcaption></figure>"
+    source = f"data:image/png;base64,{base64.b64encode(Path(path).read_bytes()).decode('ascii')}" if embed else name
+    return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{name}</figcaption></figure>"
 
 
 def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str) -> str:
@@ -97,11 +100,11 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
     notes = [best] + [f"{what}: {', '.join(f'{v:g} m' for v in d[key])}" for key, what in (
         ("excluded_m", "left out of the flexible AEP (cross-check failed or not run)"),
         ("pending_m", "pending"), ("unchecked_m", "kept without a passed cross-check")) if d[key]]
-    summary = _table(["L [m]", "F_t straight [N]", "F_t flexible [N]", "G_e straight", "G_e flexible",
-                      "AEP straight [MWh]", "CF straight", "AEP flexible [MWh]", "CF flexible"],
-                     summary_rows(data, energy))
-    checks = _table(["L [m]", "F_t FE [N]", "F_t FD [N]", "F_t difference", "shape difference / L", "cross-check"],
-                    crosscheck_rows(data))
+    summary = table(["L [m]", "F_t straight [N]", "F_t flexible [N]", "G_e straight", "G_e flexible",
+                     "AEP straight [MWh]", "CF straight", "AEP flexible [MWh]", "CF flexible"],
+                    summary_rows(data, energy))
+    checks = table(["L [m]", "F_t FE [N]", "F_t FD [N]", "F_t difference", "shape difference / L", "cross-check"],
+                   crosscheck_rows(data))
     return "\n".join([
         "<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
         f"<title>fem-tether run: {html.escape(data['config'].system.name)}</title><style>{STYLE}</style></head><body>",
@@ -110,7 +113,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
         f"<h2>Validation</h2><p id=\"validation\">{validation}</p>",
         f"<h2>Summary</h2>{summary}", "".join(f"<p>{html.escape(n)}</p>" for n in notes),
         f"<h2>FE &lt;-&gt; FD cross-check</h2>{checks}",
-        "<h2>Plots</h2>", *(_image(p) for p in plots.values()),
+        "<h2>Plots</h2>", *(image(p) for p in plots.values()),
         f"<h2>Configuration</h2><pre>{html.escape(data['config'].to_toml())}</pre>",
         "</body></html>"])
 

@@ -231,3 +231,231 @@ def plot_system_power(rows: list[dict], title: str, path) -> Path:
     axes[-1].set_xlabel("wind speed at the kite $V_w$ [m/s]")
     axes[-1].set_xlim(left=0.0)
     return save_atomically(fig, path)
+
+
+
+#: The star of an AEP optimum.
+OPTIMUM_STYLE: dict[str, Any] = dict(marker="*", ms=20, mfc="gold", mec="k", mew=0.8, ls="none", zorder=6)
+
+
+def _point_markers(ax, x, y, refined, status, color: str = "k") -> None:
+    """A study's points at (x, y): grid points circles, refined points diamonds; filled
+    ``ok``, hollow ``unchecked`` (the FE <-> FD gate failed or did not run), a red
+    square ``weak`` (the line too weak for its peak tension), a cross ``failed`` (at
+    the axis' foot where y is NaN)."""
+    for xi, yi, r, s in zip(x, y, refined, status):
+        if s == "weak":
+            ax.plot(xi, yi, "s", ms=6, mec="tab:red", mfc="none", mew=1.2, ls="none", zorder=5)
+        elif s == "failed":
+            ax.plot(xi, yi if np.isfinite(yi) else 0.0, "x", color=color, ms=7, mew=1.5, zorder=5, clip_on=False)
+        else:
+            ax.plot(xi, yi, "D" if r else "o", ms=7 if r else 6, mec=color, mfc=color if s == "ok" else "white",
+                    mew=1.2, ls="none", zorder=4 if r else 5)
+
+
+def _marker_handles(refined, status, color: str = "k") -> list:
+    """Legend entries of the point markers that occur (:func:`_point_markers`) and the star."""
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], marker="o", ls="none", mfc=color, mec=color, label="grid point")]
+    if np.any(refined):
+        handles.append(Line2D([], [], marker="D", ls="none", mfc=color, mec=color, label="refined point"))
+    if "unchecked" in set(status):
+        handles.append(Line2D([], [], marker="o", ls="none", mfc="white", mec=color,
+                              label="hollow: unchecked (gate failed or not run)"))
+    if "weak" in set(status):
+        handles.append(Line2D([], [], marker="s", ls="none", mfc="none", mec="tab:red", mew=1.2,
+                              label="too weak for its peak tension"))
+    if "failed" in set(status):
+        handles.append(Line2D([], [], marker="x", ls="none", color=color, mew=1.5, label="failed: no AEP"))
+    return handles + [Line2D([], [], **{**OPTIMUM_STYLE, "ms": 13}, label="AEP optimum")]
+
+
+def _annotate_optimum(ax, x: float, y: float, text: str, below: bool | None = None) -> None:
+    """The star at (x, y) and ``text`` beside it, towards the middle of the axes
+    (``below``: under the star whatever its place)."""
+    ax.plot(x, y, **OPTIMUM_STYLE)
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    right = (x - x0) / (x1 - x0) > 0.5
+    below = (y - y0) / (y1 - y0) > 0.5 if below is None else below
+    ax.annotate(text, (x, y), xytext=(-14 if right else 14, -16 if below else 16), textcoords="offset points",
+                ha="right" if right else "left", va="top" if below else "bottom", fontsize=8.5, zorder=7,
+                bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="0.5", alpha=0.92))
+
+
+def _optimum_text(best: Mapping) -> str:
+    return (f"L {best['length_m']:g} m, d {1e3 * best['diameter_m']:.1f} mm\n"
+            f"AEP {best['aep_MWh']:.0f} MWh")
+
+
+def plot_aep_map(points: Mapping[str, Any], cases: Mapping[str, tuple], path, title: str) -> Path:
+    """AEP (seed 000 eq. 5.2) over cable length and line diameter of a study's surface.
+
+    One panel per case (e.g. flexible, straight) on one colour scale: the grid's
+    AEP as cells about its points (values written in), the points marked
+    (:func:`_point_markers`), the optimum starred and labelled with L, d and
+    AEP.  With one length or one diameter, AEP against the other in one panel,
+    a line per case (:data:`CASE_STYLE`), the same markers.
+
+    ``points``: per point ``length_m``, ``diameter_m`` and ``refined`` (a
+    surface of :func:`fem_tether.study.result.read_study`); ``cases``: name ->
+    (AEP per point [MWh], status per point, optimum: a dict with ``length_m``,
+    ``diameter_m`` and ``aep_MWh``, or None).
+    """
+    L = np.asarray(points["length_m"], dtype=float)
+    d = np.asarray(points["diameter_m"], dtype=float)
+    refined = np.asarray(points["refined"], dtype=bool)
+    lengths, diameters = np.unique(L[~refined]), np.unique(d[~refined])
+    if lengths.size > 1 and diameters.size > 1:
+        fig = _aep_panels(L, d, refined, lengths, diameters, cases)
+    else:
+        fig = _aep_line(L, d, refined, lengths.size > 1 or diameters.size == 1, cases)
+    fig.suptitle(title, fontsize=11)
+    return save_atomically(fig, path)
+
+
+def _aep_panels(L, d, refined, lengths, diameters, cases: Mapping[str, tuple]):
+    from matplotlib.colors import Normalize
+
+    fig, axes = plt.subplots(1, len(cases), figsize=(4.6 * len(cases) + 1.2, 5.0), sharey=True,
+                             constrained_layout=True, squeeze=False)
+    values = np.concatenate([np.asarray(aep, dtype=float) for aep, _, _ in cases.values()])
+    finite = values[np.isfinite(values)]
+    norm = Normalize(*(finite.min(), finite.max()) if finite.size else (0.0, 1.0))
+    cmap = plt.get_cmap("viridis").with_extremes(bad="0.88")      # a cell without AEP: grey
+    mesh = None
+    for ax, (case, (aep, status, best)) in zip(axes[0], cases.items()):
+        aep = np.asarray(aep, dtype=float)
+        grid = np.full((lengths.size, diameters.size), np.nan)
+        for k in np.flatnonzero(~refined):
+            grid[np.searchsorted(lengths, L[k]), np.searchsorted(diameters, d[k])] = aep[k]
+        mesh = ax.pcolormesh(lengths, 1e3 * diameters, grid.T, shading="nearest", cmap=cmap, norm=norm)
+        if grid.size <= 64:
+            for (i, j), value in np.ndenumerate(grid):
+                if np.isfinite(value):
+                    dark = np.dot(cmap(norm(value))[:3], (0.299, 0.587, 0.114)) < 0.5
+                    ax.annotate(f"{value:.0f}", (lengths[i], 1e3 * diameters[j]), xytext=(0, -7),
+                                textcoords="offset points", ha="center", va="top", fontsize=8,
+                                color="white" if dark else "black")
+        _point_markers(ax, L, 1e3 * d, refined, status)
+        if best is not None:
+            _annotate_optimum(ax, best["length_m"], 1e3 * best["diameter_m"], _optimum_text(best))
+        ax.set_title(case if best is not None else f"{case}: no optimum", fontsize=10)
+        ax.set_xlabel("cable length $L$ [m]")
+        if lengths.size <= 8:
+            ax.set_xticks(lengths)
+        if diameters.size <= 10:
+            ax.set_yticks(1e3 * diameters)
+    axes[0, 0].set_ylabel("line diameter $d$ [mm]")
+    fig.colorbar(mesh, ax=axes[0], label="AEP [MWh]", shrink=0.9)
+    status = np.concatenate([np.asarray(s) for _, s, _ in cases.values()])
+    handles = _marker_handles(refined, status)
+    fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8.5, frameon=False)
+    return fig
+
+
+def _aep_line(L, d, refined, by_length: bool, cases: Mapping[str, tuple]):
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), constrained_layout=True)
+    x = L if by_length else 1e3 * d
+    order = np.argsort(x)
+    handles = []
+    stars = []
+    for i, (case, (aep, status, best)) in enumerate(cases.items()):
+        aep = np.asarray(aep, dtype=float)
+        style = _case_style(case, i)
+        ok = np.isfinite(aep[order])
+        handles += ax.plot(x[order][ok], aep[order][ok], color=style["color"], ls=style["ls"], lw=1.8,
+                           label=case if best is not None else f"{case}: no optimum")
+        _point_markers(ax, x, aep, refined, status, style["color"])
+        if best is not None:
+            stars.append((best["length_m"] if by_length else 1e3 * best["diameter_m"], best))
+    ax.set_xlabel("cable length $L$ [m]" if by_length else "line diameter $d$ [mm]")
+    ax.set_ylabel("annual energy production [MWh]")
+    ax.set_title(f"d = {1e3 * d[0]:.1f} mm" if by_length else f"L = {L[0]:g} m", fontsize=10)
+    ax.margins(0.05, 0.12)
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    for k, (xs, best) in enumerate(stars):
+        _annotate_optimum(ax, xs, best["aep_MWh"], _optimum_text(best), below=bool(k) if len(stars) > 1 else None)
+    status = np.concatenate([np.asarray(s) for _, s, _ in cases.values()])
+    ax.legend(handles=handles + _marker_handles(refined, status, "0.3"), loc="lower left", fontsize=8.5,
+              framealpha=0.9)
+    return fig
+
+
+def _length_colors(n: int) -> list:
+    """One colour per curve of an ordered sequence (e.g. lengths): viridis, dark to green."""
+    return [plt.get_cmap("viridis")(v) for v in np.linspace(0.0, 0.8, n)] if n > 1 else ["C0"]
+
+
+def _per_bin(ax, curves: Mapping[str, Mapping], key: str, colors) -> None:
+    """``<key>_fe`` (solid, filled circles) and ``<key>_straight`` (dashed, hollow squares)
+    of each wind bin against ``wind_mps``; a bin without a wind speed (the configured
+    case, whose value holds at every speed) as a level line over ``edges_mps``."""
+    for color, c in zip(colors, curves.values()):
+        wind = np.asarray(c["wind_mps"], dtype=float)
+        for case, style in (("fe", dict(ls="-", marker="o", lw=1.8)),
+                            ("straight", dict(ls="--", marker="s", mfc="none", lw=1.2))):
+            values = np.asarray(c[f"{key}_{case}"], dtype=float)
+            if not np.isfinite(wind).any():
+                ax.plot(np.asarray(c["edges_mps"])[[0, -1]], values[[0, 0]], color=color,
+                        **{**style, "marker": "none"})
+            else:
+                ok = np.isfinite(values)
+                ax.plot(wind[ok], values[ok], color=color, ms=6, **style)
+
+
+def _bins_legend(ax, labels, colors, loc: str) -> None:
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=color, lw=2.5, label=label) for label, color in zip(labels, colors)]
+    handles += [Line2D([], [], color="0.3", ls="-", marker="o", label="flexible (FE runs)"),
+                Line2D([], [], color="0.3", ls="--", marker="s", mfc="none", label="straight line (eq. 4.1)")]
+    ax.legend(handles=handles, loc=loc, fontsize=8.5, framealpha=0.9)
+
+
+def plot_bin_power(curves: Mapping[str, Mapping], path, title: str) -> Path:
+    """A study point's power against wind speed and, beneath, its C_D,t per wind bin;
+    one colour per curve (e.g. per length), flexible solid, straight dashed.
+
+    Power: at the resource's bin edges with C_D,t interpolated between the bins
+    (lines) and at the bins (markers).  Each curve: ``wind_mps``, ``edges_mps``,
+    ``power_edges_fe_W``, ``power_edges_straight_W``, ``power_fe_W``,
+    ``power_straight_W``, ``cd_fe``, ``cd_straight`` (a study point's datasets).
+    """
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7.0, 7.5), height_ratios=(3, 2),
+                                      constrained_layout=True)
+    colors = _length_colors(len(curves))
+    for color, c in zip(colors, curves.values()):
+        top.plot(c["edges_mps"], np.asarray(c["power_edges_fe_W"]) * 1e-6, color=color, lw=1.8)
+        top.plot(c["edges_mps"], np.asarray(c["power_edges_straight_W"]) * 1e-6, color=color, ls="--", lw=1.2)
+        top.plot(c["wind_mps"], np.asarray(c["power_fe_W"]) * 1e-6, "o", color=color, ms=6)
+        top.plot(c["wind_mps"], np.asarray(c["power_straight_W"]) * 1e-6, "s", mfc="none", mec=color, ms=7)
+    top.set_ylabel("electrical power [MW]")
+    top.set_ylim(bottom=0.0)
+    top.set_xlim(left=0.0)
+    top.grid(alpha=0.3)
+    top.set_title(title, fontsize=10)
+    _bins_legend(top, list(curves), colors, "lower right")
+    _per_bin(bottom, curves, "cd", colors)
+    bottom.set_ylabel("tether drag coefficient $C_{D,t}$")
+    bottom.set_xlabel("wind speed at the kite $V_w$ [m/s]")
+    bottom.set_ylim(bottom=0.0)
+    bottom.grid(alpha=0.3)
+    return save_atomically(fig, path)
+
+
+def plot_ge_by_wind(curves: Mapping[str, Mapping], path, title: str) -> Path:
+    """Global efficiency G_e = L/(D_k + lines F_t) (seed 000 eq. 5.1) of each wind bin,
+    one colour per curve (e.g. per length), flexible solid, straight dashed
+    (:func:`_per_bin`); each curve: ``wind_mps``, ``edges_mps``, ``ge_fe``, ``ge_straight``."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    colors = _length_colors(len(curves))
+    _per_bin(ax, curves, "ge", colors)
+    ax.set_xlabel("wind speed at the kite $V_w$ [m/s]")
+    ax.set_ylabel("global efficiency $G_e$")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.set_title(title, fontsize=10)
+    _bins_legend(ax, list(curves), colors, "lower right")
+    return save_atomically(fig, path)

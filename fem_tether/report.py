@@ -374,7 +374,8 @@ def _optimum_text(best, swept: dict) -> str:
             f"CF {best['capacity_factor']:.3f}" + (f" ({'; '.join(notes)})" if notes else ""))
 
 
-def _finite_max(values) -> float | None:
+def finite_max(values) -> float | None:
+    """The largest finite value, None if there is none."""
     finite = np.asarray(values, dtype=float)
     finite = finite[np.isfinite(finite)]
     return float(finite.max()) if finite.size else None
@@ -398,8 +399,8 @@ def study_summary(outcome, out, report_page=None) -> dict:
             "ok": status.count("ok"), "unchecked": status.count("unchecked"), "weak": status.count("weak"),
             "failed": status.count("failed"),
             "errors": [p["error"] for p in points if p["status"] == "failed"],
-            "max_gate_rel_diff_drag": _finite_max([p["rel_diff_drag"] for p in points]),
-            "max_interpolation_error": _finite_max([p["interpolation_error"] for p in points])})
+            "max_gate_rel_diff_drag": finite_max([p["rel_diff_drag"] for p in points]),
+            "max_interpolation_error": finite_max([p["interpolation_error"] for p in points])})
     return {"file": str(out), "report": str(report_page) if report_page else None, "surfaces": surfaces,
             "tasks": outcome.tasks, "ran": outcome.ran, "reused": outcome.tasks - outcome.ran,
             "n_ranks": outcome.n_ranks, "wall_s": outcome.wall_s, "phase_s": outcome.phase_s,
