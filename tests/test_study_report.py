@@ -110,9 +110,12 @@ def test_page_tables_hold_the_study_files_optimum_and_points(study):
         for L, d, aep in zip(s["length_m"], s["diameter_m"], s["aep_fe_MWh"]):
             assert shown[(L, round(1e3 * d, 1))] == pytest.approx(aep, abs=0.5)
     ke_yoyo, kitegen = (next(iter(t[1:])) for t in optima)
-    assert ke_yoyo[-1] == "no: at the edge in diameter"          # refined in length, inside the grid
-    assert kitegen[-1] == "no: at the edge in length and diameter"
-    assert sum(r[2] == "yes" for r in points[0][1:]) == int(surfaces["ke-yoyo/configured"]["refined"].sum()) > 0
+    for row, surface in zip((ke_yoyo, kitegen), ("ke-yoyo/configured", "kitegen/configured")):
+        best = surfaces[surface]["optimum"]["fe"]
+        assert ("edge in length" in row[-1]) == (not best["bracketed_length"])
+        assert ("the thinnest line strong enough" in row[-1]) == bool(best["strength_limited"])
+    assert "edge in length" in kitegen[-1]                      # KiteGen: the shortest line is best
+    assert sum(r[2] == "yes" for r in points[0][1:]) == int(surfaces["ke-yoyo/configured"]["refined"].sum())
 
 
 def test_surface_section_states_failures_and_the_gate(study):
@@ -124,7 +127,9 @@ def test_surface_section_states_failures_and_the_gate(study):
     s["rel_diff_drag"][:] = np.linspace(0.001, 0.012, s["rel_diff_drag"].size)
     s["crosscheck_ok"][1:] = 1
     text = surface_html("kitegen/configured", s, {})
-    assert "8 unchecked, 1 failed" in text and "largest drag difference 1.20 %, 8 of 9 points passed" in text
+    status = list(s["status"])
+    assert f"{status.count('unchecked')} unchecked, {status.count('weak')} too weak for their peak tension, " \
+           "1 failed" in text and "largest drag difference 1.20 %, 8 of 9 points passed" in text
     assert "<li>kitegen_configured_L1000_v0_fe: diverged</li>" in text
 
 

@@ -127,7 +127,7 @@ def optimum_rows(s: dict) -> list[list[str]]:
 
 def point_rows(s: dict) -> list[list[str]]:
     """Every point by length and diameter: L, d, refined, status, AEP and CF flexible and
-    straight, the gate, the interpolation error."""
+    straight, the gate, the interpolation error, the line's margin."""
     return [[f"{s['length_m'][i]:g}", f"{1e3 * s['diameter_m'][i]:.1f}", "yes" if s["refined"][i] else "",
              str(s["status"][i]), number(s["aep_fe_MWh"][i], 0), number(s["aep_straight_MWh"][i], 0),
              number(s["cf_fe"][i], 3), number(s["cf_straight"][i], 3), number(s["gate_wind_mps"][i], 1),
