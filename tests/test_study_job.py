@@ -58,6 +58,8 @@ def _study(**keys) -> dict:
     # the flight a study needs: the prescribed path, a tension winch at a fixed length, a scalable wind
     (_study() | {"kite": {"model": "point-mass"}}, r'^\[kite\] model = "point-mass": .*use \'prescribed\''),
     (_study() | {"winch": {"reel_out": "constant"}}, r'^\[winch\] mode = "tension", reel_out = "constant": '),
+    (_study() | {"winch": {"mode": "prescribed"}, "kite": {"radius_m": 990}},
+     r'^\[winch\] mode = "prescribed", reel_out = "none": '),
     (_study() | {"wind": {"profile": "none"}}, r'^\[wind\] profile = "none": a study scales the wind profile'),
     (_study(sites=[{"name": "calm", "wind": {"profile": "none"}}]),
      r'^\[wind\] profile = "none": site \'calm\': a study scales the wind profile'),
