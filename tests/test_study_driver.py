@@ -89,13 +89,16 @@ def _interrupt_after_more_runs(argv, directory, sig) -> subprocess.CompletedProc
     before = _runs_kept(directory) if directory.is_dir() else 0
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             preexec_fn=_default_sigint)
-    start = time.monotonic()
-    while not directory.is_dir() or _runs_kept(directory) <= before:
-        assert proc.poll() is None, proc.communicate()
-        assert time.monotonic() - start < 120.0
-        time.sleep(0.01)
-    proc.send_signal(sig)
-    stdout, stderr = proc.communicate(timeout=120)
+    try:
+        start = time.monotonic()
+        while not directory.is_dir() or _runs_kept(directory) <= before:
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() - start < 120.0
+            time.sleep(0.01)
+        proc.send_signal(sig)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        proc.kill()                     # a failed wait leaves no study running
     return subprocess.CompletedProcess(argv, proc.returncode, stdout, stderr)
 
 
