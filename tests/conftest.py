@@ -22,6 +22,26 @@ dt_s = 0.05
 average_periods = 1
 """
 
+#: A study's solver settings small enough for the suite (the FE step fine enough for
+#: KiteGen's shortest periods, ~6 s at 300 m).
+STUDY_FAST = """[fe]
+elements = 10
+dt_s = 0.1
+[fd]
+segments = 20
+dt_s = 0.05
+[time]
+average_periods = 1
+"""
+
+#: KiteGen at three lengths and seven wind speeds: its AEP maximum lies inside
+#: (the 743 m refined point, at the bottom of the 500-800 m band), ~5 s serially.
+KITEGEN_STUDY = """[study]
+systems = ["kitegen"]
+lengths_m = [600, 800, 1000]
+wind_mps = [9, 12, 15, 18, 21, 24, 27]
+""" + STUDY_FAST
+
 QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},
          "drag": {"model": "constant", "cd": 1.2},
          "wind": {"profile": "none"}}

@@ -33,8 +33,8 @@ from pathlib import Path
 
 from fem_tether.aep import sweep_resource
 from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
-from fem_tether.errors import InputError
 from fem_tether.jobs import length_tag
+from fem_tether.resource import ResourceError
 from fem_tether.sizing import sized_config
 from fem_tether.systems import catalog
 
@@ -66,7 +66,12 @@ class Point:
 
     @property
     def name(self) -> str:
-        return f"{self.system}_{self.site}_L{length_tag(self.length_m)}_d{self.diameter_m * 1e3:.4f}mm"
+        return f"{self.system}_{self.site}_L{length_tag(self.length_m)}_d{diameter_tag(self.diameter_m)}mm"
+
+
+def diameter_tag(diameter_m: float) -> str:
+    """The diameter in names of parts, in mm: 0.1 um precision."""
+    return f"{float(diameter_m) * 1e3:.4f}"
 
 
 @dataclass(frozen=True)
@@ -122,8 +127,9 @@ def _error(key, value, problem):
     return ConfigError(f"[study] {key} = {toml_value(value)}: {problem}")
 
 
-def _numbers(key, value, per_system: tuple[str, ...], unit_name: str) -> tuple:
-    """A list of distinct finite positive numbers, or one such list per system."""
+def _numbers(key, value, per_system: tuple[str, ...], unit_name: str, tag=float, to: str = "") -> tuple:
+    """A list of finite positive numbers distinct in ``tag`` (to the precision
+    ``to`` says), or one such list per system."""
     if isinstance(value, dict):
         unknown = set(value) - set(per_system)
         if unknown:
@@ -132,19 +138,20 @@ def _numbers(key, value, per_system: tuple[str, ...], unit_name: str) -> tuple:
         missing = [s for s in per_system if s not in value]
         if missing:
             raise _error(key, value, f"no {unit_name} for system {missing[0]!r}")
-        return tuple(_numbers(key, value[s], (), unit_name)[0] for s in per_system)
+        return tuple(_numbers(key, value[s], (), unit_name, tag, to)[0] for s in per_system)
     if not isinstance(value, list) or not value:
         raise _error(key, value, f"expected a non-empty list of {unit_name}s (or one list per system)")
     for v in value:
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not (v > 0 and math.isfinite(v)):
             raise _error(key, v, f"every {unit_name} must be a finite number > 0")
-    if len({float(v) for v in value}) != len(value):
-        raise _error(key, value, f"{unit_name}s must be distinct")
+    if len({tag(v) for v in value}) != len(value):
+        raise _error(key, value, f"{unit_name}s must be distinct{to}")
     numbers = tuple(sorted(float(v) for v in value))
     return tuple(numbers for _ in per_system) if per_system else (numbers,)
 
 
-def _sites(value, base: Config) -> tuple[Site, ...]:
+def _sites(value, base: Config, base_dir: Path) -> tuple[Site, ...]:
+    """The job's sites (file names relative to ``base_dir``), their keys checked on ``base``."""
     if value is None:
         return (Site("configured"),)
     if not isinstance(value, list) or not value or not all(isinstance(s, dict) for s in value):
@@ -160,8 +167,8 @@ def _sites(value, base: Config) -> tuple[Site, ...]:
         for section in ("wind", "resource"):
             if not isinstance(table.get(section, {}), dict):
                 raise _error("sites", table, f"{section} must be a table of [{section}] keys")
-        site = Site(name, tuple(sorted(table.get("wind", {}).items())),
-                    tuple(sorted(table.get("resource", {}).items())))
+        keys = resolve_paths({section: table.get(section, {}) for section in ("wind", "resource")}, base_dir)
+        site = Site(name, tuple(sorted(keys["wind"].items())), tuple(sorted(keys["resource"].items())))
         site.apply(base)                # its keys are checked now
         sites.append(site)
     if len({s.name for s in sites}) != len(sites):
@@ -169,9 +176,9 @@ def _sites(value, base: Config) -> tuple[Site, ...]:
     return tuple(sites)
 
 
-def _check_flight(system: str, cfg: Config) -> None:
+def _check_flight(system: str, cfg: Config, site: str = "") -> None:
     """A study flies the prescribed path with the winch holding the operating point's tension."""
-    where = f"system {system!r}: " if system else ""
+    where = (f"system {system!r}: " if system else "") + (f"site {site!r}: " if site else "")
     if cfg.kite.model != "prescribed":
         raise ConfigError(f"[kite] model = {toml_value(cfg.kite.model)}: {where}a study flies the prescribed "
                           "path at each bin's operating point (use 'prescribed')")
@@ -180,8 +187,8 @@ def _check_flight(system: str, cfg: Config) -> None:
                           f"{toml_value(cfg.winch.reel_out)}: {where}a study's runs hold each bin's tension "
                           "at a fixed length (use mode = 'tension', reel_out = 'none'; docs/study.md)")
     if cfg.wind.profile == "none":
-        raise ConfigError(f"[wind] profile = 'none': {where}a study scales the wind profile to each bin's "
-                          "speed (use 'log' or 'power')")
+        raise ConfigError(f"[wind] profile = {toml_value(cfg.wind.profile)}: {where}a study scales the wind "
+                          "profile to each bin's speed (use 'log' or 'power')")
 
 
 def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system: str | None = None) -> StudyJob:
@@ -212,14 +219,17 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
             raise _error("systems", name, f"unknown system (known: {', '.join(catalog.names())})")
     overrides = resolve_paths(data, base_dir)
     configs = tuple(load_config(base_dir / base if base else None, overrides, name or None) for name in systems)
+    sites = _sites(study.get("sites"), configs[0], base_dir)
     for name, cfg in zip(systems, configs):
-        _check_flight(name, cfg)
+        for site in sites:              # a site's wind may be one a study cannot scale
+            _check_flight(name, site.apply(cfg), site.name if site.wind else "")
     names = tuple(name or "configured" for name in systems)
     if "lengths_m" not in study:
         raise ConfigError("[study] lengths_m: missing; give the study's cable lengths, "
                           "e.g. lengths_m = [1000, 2000, 3000]")
-    lengths = _numbers("lengths_m", study["lengths_m"], tuple(systems), "length")
-    diameters = (_numbers("diameters_m", study["diameters_m"], tuple(systems), "diameter")
+    lengths = _numbers("lengths_m", study["lengths_m"], tuple(systems), "length", length_tag, " (to 1 mm)")
+    diameters = (_numbers("diameters_m", study["diameters_m"], tuple(systems), "diameter", diameter_tag,
+                          " (to 0.1 um)")
                  if "diameters_m" in study else (None,) * len(systems))
     wind_mps = study.get("wind_mps", "configured")
     if wind_mps == "configured":
@@ -233,17 +243,17 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
     for key in ("crosscheck", "refine", "reel_out"):
         if not isinstance(study.get(key, True), bool):
             raise _error(key, study[key], "expected true or false")
-    job = StudyJob(names, configs, _sites(study.get("sites"), configs[0]), lengths, diameters, nodes,
+    job = StudyJob(names, configs, sites, lengths, diameters, nodes,
                    study.get("crosscheck", True), study.get("refine", True), study.get("reel_out", False), text)
     for point in job.points:            # every point's case is checked now, not in the study
         job.point_config(point)
-    for system, site in job.surfaces:   # and that the resource has a band at each length's altitude
+    for system, site in job.surfaces:   # and every length's resource band
         cfg = job.site(site).apply(job.config(system))
         resource = sweep_resource(cfg)
         for length_m in job.lengths_m[job.systems.index(system)]:
             try:
                 resource.band_for_length(length_m, math.radians(cfg.kite.theta0_deg))
-            except InputError as exc:
+            except ResourceError as exc:
                 raise _error("lengths_m", length_m, f"{system} at site {site}: {exc}") from None
     return job
 
