@@ -324,28 +324,35 @@ def _aep_panels(L, d, refined, lengths, diameters, cases: Mapping[str, tuple]):
     norm = Normalize(*(finite.min(), finite.max()) if finite.size else (0.0, 1.0))
     cmap = plt.get_cmap("viridis").with_extremes(bad="0.88")      # a cell without AEP: grey
     mesh = None
+
+    def at_L(length_m):
+        """Grid lengths at equal spacing (cells of equal width), refined points between them."""
+        return np.interp(length_m, lengths, np.arange(lengths.size))
+
+    def at_d(diameter_m):
+        return np.interp(diameter_m, diameters, np.arange(diameters.size))
+
     for ax, (case, (aep, status, best)) in zip(axes[0], cases.items()):
         aep = np.asarray(aep, dtype=float)
         grid = np.full((lengths.size, diameters.size), np.nan)
         for k in np.flatnonzero(~refined):
             grid[np.searchsorted(lengths, L[k]), np.searchsorted(diameters, d[k])] = aep[k]
-        mesh = ax.pcolormesh(lengths, 1e3 * diameters, grid.T, shading="nearest", cmap=cmap, norm=norm)
-        if grid.size <= 64:
+        mesh = ax.pcolormesh(np.arange(lengths.size), np.arange(diameters.size), grid.T, shading="nearest",
+                             cmap=cmap, norm=norm)
+        if grid.size <= 120:
             for (i, j), value in np.ndenumerate(grid):
                 if np.isfinite(value):
                     dark = np.dot(cmap(norm(value))[:3], (0.299, 0.587, 0.114)) < 0.5
-                    ax.annotate(f"{value:.0f}", (lengths[i], 1e3 * diameters[j]), xytext=(0, -7),
-                                textcoords="offset points", ha="center", va="top", fontsize=8,
-                                color="white" if dark else "black")
-        _point_markers(ax, L, 1e3 * d, refined, status)
+                    ax.annotate(f"{value:.0f}", (i, j), xytext=(0, -7), textcoords="offset points", ha="center",
+                                va="top", fontsize=7.5, color="white" if dark else "black")
+        _point_markers(ax, at_L(L), at_d(d), refined, status)
         if best is not None:
-            _annotate_optimum(ax, best["length_m"], 1e3 * best["diameter_m"], _optimum_text(best))
+            _annotate_optimum(ax, float(at_L(best["length_m"])), float(at_d(best["diameter_m"])), _optimum_text(best))
         ax.set_title(case if best is not None else f"{case}: no optimum", fontsize=10)
         ax.set_xlabel("cable length $L$ [m]")
-        if lengths.size <= 8:
-            ax.set_xticks(lengths)
-        if diameters.size <= 10:
-            ax.set_yticks(1e3 * diameters)
+        step = max(1, int(np.ceil(lengths.size / 12)))
+        ax.set_xticks(np.arange(0, lengths.size, step), [f"{v:g}" for v in lengths[::step]], rotation=45)
+        ax.set_yticks(np.arange(diameters.size), [f"{1e3 * v:g}" for v in diameters])
     axes[0, 0].set_ylabel("line diameter $d$ [mm]")
     fig.colorbar(mesh, ax=axes[0], label="AEP [MWh]", shrink=0.9)
     status = np.concatenate([np.asarray(s) for _, s, _ in cases.values()])

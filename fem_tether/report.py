@@ -419,6 +419,11 @@ def study_text(summary: dict) -> str:
                   f"{s['failed']} failed",
                   "  AEP-optimal, flexible: " + _optimum_text(s["optimum_fe"], s["swept"]),
                   "  AEP-optimal, straight: " + _optimum_text(s["optimum_straight"], s["swept"])]
+        fe, st = s["optimum_fe"], s["optimum_straight"]
+        if fe is not None and st is not None:
+            lines.append(f"  flexible against straight: optimum L {fe['length_m'] - st['length_m']:+g} m, "
+                         f"d {1e3 * (fe['diameter_m'] - st['diameter_m']):+.1f} mm, AEP "
+                         f"{fe['aep_MWh'] - st['aep_MWh']:+.0f} MWh ({100 * (fe['aep_MWh'] / st['aep_MWh'] - 1):+.1f} %)")
         if s["max_gate_rel_diff_drag"] is not None:
             lines.append(f"  FE <-> FD gate: largest drag difference {100 * s['max_gate_rel_diff_drag']:.2f} %")
         if s["max_interpolation_error"] is not None:

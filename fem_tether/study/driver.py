@@ -4,9 +4,10 @@ Each phase's tasks (:mod:`fem_tether.study.tasks`) are spread over the ranks
 by :func:`fem_tether.distribute.distribute` (longest estimated cost first);
 every rank then reads the parts the phase wrote and plans the next phase the
 same way, so the plan and every number are the same whatever the number of
-ranks.  Phases: operating points -> tether runs (with the FE <-> FD gate) ->
-AEP per point -> (refinement: the same three for the points about each
-surface's maximum) -> the result file, written by rank 0.  An interrupted
+ranks.  Phases: seed runs (each point's configured case) -> operating points ->
+tether runs (with the FE <-> FD gate) -> AEP per point -> (refinement: the
+same four for the points about each surface's maximum) -> the result file,
+written by rank 0.  An interrupted
 study keeps its parts; the same command resumes it.
 """
 
@@ -86,7 +87,8 @@ def _stages(comm, study: Study, points: list[Point], outcome: StudyOutcome, prog
 
 
 #: The phases of a study's points, in order: (label, the study's tasks of some points).
-PHASES = (("operating points", Study.ops_tasks), ("tether runs", Study.run_tasks), ("AEP", Study.aep_tasks))
+PHASES = (("seed runs", Study.seed_tasks), ("operating points", Study.ops_tasks), ("tether runs", Study.run_tasks),
+          ("AEP", Study.aep_tasks))
 
 
 def scaling_model(study: Study, extra: list[Point], other_s: float) -> dict[int, float]:
@@ -193,14 +195,19 @@ def run_study(job: StudyJob, out: str | Path, comm=None, progress: bool = True,
     load_kernels(job.configs[0], solvers)
     study = Study(job, out)
     outcome = StudyOutcome([], n_ranks=comm.Get_size())
-    _stages(comm, study, job.points, outcome, progress)
-    extra = refinement_points(study, allow_unchecked) if job.refine else []
-    if extra:
-        _stages(comm, study, extra, outcome, progress)
-    if rank != 0:
-        return None
-    outcome.surfaces = surfaces(study, extra, allow_unchecked)
-    write_study(out, job.toml, outcome.surfaces)
+    try:
+        _stages(comm, study, job.points, outcome, progress)
+        extra = refinement_points(study, allow_unchecked) if job.refine else []
+        if extra:
+            _stages(comm, study, extra, outcome, progress)
+        if rank != 0:
+            return None
+        outcome.surfaces = surfaces(study, extra, allow_unchecked)
+        write_study(out, job.toml, outcome.surfaces)
+    except StudyInterrupted:
+        raise
+    except KeyboardInterrupt:           # between phases: the parts are kept all the same
+        raise StudyInterrupted(study.parts.directory) from None
     outcome.wall_s = time.perf_counter() - t0
     outcome.model_s = scaling_model(study, extra, outcome.wall_s - sum(outcome.phase_s.values()))
     return outcome

@@ -2,8 +2,8 @@
 
 For a point (a system on a line of length L and diameter d at a site), each
 bin j of the study's wind speeds V_j has a tether run at its operating point
-(:mod:`fem_tether.study.plan`), hence a flexible C_D,t,j (and the straight
-line's, by seed 000 eq. 4.1 at the same operating point).  The power at a
+(:mod:`fem_tether.study.plan`), hence a flexible C_D,t,j, and the straight
+line's, by seed 000 eq. 4.1 at the straight line's own operating point.  The power at a
 wind speed V uses the C_D,t interpolated linearly in V between the bins that
 fly (held beyond the first and the last):
 
@@ -41,6 +41,7 @@ from fem_tether.sizing import margin, short_of_margin
 from fem_tether.summary import operating_ge, operating_tether_cd
 from fem_tether.systems.configured import from_config
 
+from . import plan
 from .job import Point, StudyJob
 
 #: Interpolation error of the AEP above which a study warns (the bins are too coarse).
@@ -75,6 +76,20 @@ def _node_power(system, wind_mps, cd) -> np.ndarray:
                      for v, c in zip(wind_mps, cd)])
 
 
+def _straight_cases(study, point: Point) -> list:
+    """The straight line's case at each bin: its own operating point (None where the kite
+    does not fly or the rules refuse the case); the configured case with one bin."""
+    if study.configured:
+        return [study.case(point, 0)]
+    cases = []
+    for op in study.operating_points(point, "straight"):
+        try:
+            cases.append(plan.run_config(study.config(point), op) if plan.flies(op) else None)
+        except InputError:
+            cases.append(None)
+    return cases
+
+
 def point_energy(study, point: Point) -> dict:
     """AEP, CF, the bins' drag, C_D,t, G_e and power, straight and flexible, of one
     point from its stored runs (a dict of plain numbers and lists, the ``aep`` part)."""
@@ -86,22 +101,20 @@ def point_energy(study, point: Point) -> dict:
     n = nodes.size
     v = {name: np.full(n, math.nan) for name in
          ("drag_fe_N", "drag_straight_N", "cd_fe", "cd_straight", "ge_fe", "ge_straight")}
+    for node, case in enumerate(_straight_cases(study, point)):
+        if case is not None:
+            v["drag_straight_N"][node] = straight.from_config(case, with_wind=True).drag_N
+            v["cd_straight"][node] = operating_tether_cd(case, v["drag_straight_N"][node])
+            v["ge_straight"][node] = operating_ge(case, v["drag_straight_N"][node])
     errors, peaks, gate = [], [], {}
     for task in study.run_tasks([point]):
         run = study.stored(task)
         if run is None:
             raise RuntimeError(f"{task.name}: the run's part is missing")
-        try:
-            case = study.case(point, task.node)
-        except InputError:              # the run recorded why
-            case = None
-        if case is not None:
-            v["drag_straight_N"][task.node] = straight.from_config(case, with_wind=True).drag_N
-            v["cd_straight"][task.node] = operating_tether_cd(case, v["drag_straight_N"][task.node])
-            v["ge_straight"][task.node] = operating_ge(case, v["drag_straight_N"][task.node])
         if run["status"] != "ok":
             errors.append(run["error"])
             continue
+        case = study.case(point, task.node)
         peaks.append(run["peak_tension_N"])
         v["drag_fe_N"][task.node] = run["drag_fe_N"]
         v["cd_fe"][task.node] = operating_tether_cd(case, run["drag_fe_N"])

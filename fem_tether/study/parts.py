@@ -46,7 +46,3 @@ class StudyParts:
     def write(self, name: str, key: str, values: dict) -> None:
         self.directory.mkdir(parents=True, exist_ok=True)
         write_json(self.path(name), {"inputs_key": key, "values": values})
-
-    def count(self) -> int:
-        """How many parts exist (whatever their inputs)."""
-        return len(list(self.directory.glob("*.json"))) if self.directory.is_dir() else 0

@@ -1,9 +1,16 @@
 """From a study point to its tether runs: the power model's operating point in each wind bin.
 
 At each wind speed V_w of the study (at the kite's altitude) the point's
-power model gives its operating point with the straight-line tether drag its
-source lumps at the kite (:mod:`fem_tether.systems.configured`): the kite's
-apparent speed V_a, the traction of all lines F and the reel-out speed.  The
+power model (:mod:`fem_tether.systems.configured`) gives its operating point:
+the kite's apparent speed V_a, the traction of all lines F and the reel-out
+speed.  The bins' runs fly the operating points the model gives with the
+C_D,t of the point's seed run, the FE run of its configured case (the main
+job's run): the flexible line's own drag, as well as it is known before the
+bins run.  The straight baseline flies the operating points of the
+straight-line C_D,t its source lumps at the kite.  Where the kite does not
+fly with that drag, the operating point is that of a drag-free tether: a
+line of less drag may fly there, and its C_D,t must come from a run, not
+from the next bin's.  The
 bin's tether run flies the prescribed path at
 
     [kite] speed_mps = V_a,   [winch] ground_tension_N = F / lines,
@@ -34,9 +41,14 @@ from fem_tether.systems.operating_point import OperatingPoint
 G_MPS2 = 9.80665
 
 
-def operating_points(cfg: Config, wind_mps) -> list[OperatingPoint]:
-    """The point's operating point at each wind speed, with its source's straight-line C_D,t."""
-    return from_config(cfg).power_curve(wind_mps)
+def operating_points(cfg: Config, wind_mps, tether_cd: float | None = None) -> list[OperatingPoint]:
+    """The point's operating point at each wind speed with the tether drag coefficient
+    ``tether_cd`` (None: its source's straight-line lumping); where the kite does not
+    fly with it, with a drag-free tether (C_D,t = 0), so that the runs also cover the
+    speeds where a line of less drag lets the kite fly."""
+    model = from_config(cfg)
+    return [op if flies(op) else model.operating_point(op.wind_mps, 0.0)
+            for op in model.power_curve(wind_mps, tether_cd)]
 
 
 def flies(op: OperatingPoint) -> bool:

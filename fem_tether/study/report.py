@@ -47,8 +47,9 @@ def report_dir(out) -> Path:
 
 def aep_cases(s: dict) -> dict:
     """:func:`~fem_tether.plots.plot_aep_map`'s cases of a surface ``s``: flexible with the
-    points' status, straight with none but where it has no AEP."""
-    straight = np.where(np.isfinite(s["aep_straight_MWh"]), "ok", "failed")
+    points' status, straight ``weak`` where the line is too weak, ``failed`` where it has
+    no AEP, else ``ok``."""
+    straight = np.where(s["status"] == "weak", "weak", np.where(np.isfinite(s["aep_straight_MWh"]), "ok", "failed"))
     return {"flexible": (s["aep_fe_MWh"], s["status"], s["optimum"]["fe"]),
             "straight": (s["aep_straight_MWh"], straight, s["optimum"]["straight"])}
 

@@ -1,15 +1,18 @@
 """The tasks of a study and how each one runs into its part.
 
-Three kinds, in three phases (each needs the parts of the one before):
+Four kinds, in four phases (each needs the parts of the one before):
 
+* ``seed``: the FE run of a point's configured case (the main job's run),
+  whose C_D,t the operating points are computed with;
 * ``ops``: a point's operating points at the study's wind speeds (its power
-  model, :func:`fem_tether.study.plan.operating_points`);
+  model, :func:`fem_tether.study.plan.operating_points`), with the seed's
+  C_D,t (the bins' runs fly them) and with the straight line's (its baseline);
 * ``fe`` / ``check``: the tether run of one bin of a point: the FE solver, or
   at the gated bin the FE and the FD solver compared (the FE <-> FD gate);
 * ``aep``: a point's AEP, straight and flexible (:mod:`fem_tether.study.energy`).
 
 With ``wind_mps = "configured"`` a point has one bin, the configured case,
-and no ``ops`` task.  A task whose case the configuration rules refuse or
+and no ``seed`` or ``ops`` task.  A task whose case the configuration rules refuse or
 whose solve fails stores the error; the others go on.
 """
 
@@ -29,6 +32,7 @@ from fem_tether.resource import WindResource
 from fem_tether.schedule import run_cost_us
 from fem_tether.sizing import peak_tension_N
 from fem_tether.store import inputs_key
+from fem_tether.summary import operating_tether_cd
 from fem_tether.systems.operating_point import OperatingPoint
 
 from . import energy, plan
@@ -45,7 +49,7 @@ CLOSED_FORM_COST_US = 20.0
 class Task:
     """One unit of a study's work: ``kind`` of a point (and of one bin)."""
 
-    kind: str            # "ops", "fe", "check" or "aep"
+    kind: str            # "seed", "ops", "fe", "check" or "aep"
     point: Point
     node: int = -1       # the bin: index into the study's wind speeds (0: the configured one)
 
@@ -88,10 +92,18 @@ class Study:
         return key_of(task.kind, self.config(task.point).to_toml(), repr(self.job.wind_mps),
                       repr(self.job.crosscheck), *extra)
 
-    def operating_points(self, point: Point) -> list[OperatingPoint] | None:
-        """The stored operating points of a point (None if not computed yet)."""
-        values = self.parts.read(Task("ops", point).name, self.key(Task("ops", point)))
-        return None if values is None else [OperatingPoint(**op) for op in values["points"]]
+    def seed_cd(self, point: Point) -> float | None:
+        """C_D,t of the point's seed run (the configured case), None if it failed or has not run."""
+        values = self.stored(Task("seed", point))
+        if values is None or values["status"] != "ok":
+            return None
+        return operating_tether_cd(self.config(point), values["drag_fe_N"])
+
+    def operating_points(self, point: Point, line: str = "flexible") -> list[OperatingPoint] | None:
+        """The stored operating points of a point (None if not computed yet): of the
+        ``"flexible"`` line (the bins' runs fly them) or of the ``"straight"`` one."""
+        values = self.stored(Task("ops", point))
+        return None if values is None else [OperatingPoint(**op) for op in values[line]]
 
     def bins(self, point: Point) -> list[int]:
         """The bins of a point that need a tether run (its operating points known)."""
@@ -129,6 +141,9 @@ class Study:
         return list(cases)[plan.gate_index(list(cases.values()))] if cases else None
 
     # -- the phases' tasks -----------------------------------------------------
+    def seed_tasks(self, points: list[Point]) -> list[Task]:
+        return [] if self.configured else [Task("seed", p) for p in points]
+
     def ops_tasks(self, points: list[Point]) -> list[Task]:
         return [] if self.configured else [Task("ops", p) for p in points]
 
@@ -153,7 +168,9 @@ class Study:
         cfg = self.config(task.point)
         per_point = OPERATING_POINT_COST_US.get(cfg.system.model, CLOSED_FORM_COST_US)
         if task.kind == "ops":
-            return per_point * len(self.job.wind_mps or ())
+            return 2.0 * per_point * len(self.job.wind_mps or ())
+        if task.kind == "seed":
+            return run_cost_us(self.config(task.point), "fe")
         if task.kind == "aep":
             return per_point * energy.evaluations(self.job)
         try:
@@ -174,8 +191,12 @@ class Study:
         if task not in self._keys:
             if task.kind in ("fe", "check"):
                 self._keys[task] = self.run_key(task)
+            elif task.kind == "seed":
+                self._keys[task] = key_of(task.kind, inputs_key(self.config(task.point)))
             elif task.kind == "aep":
                 self._keys[task] = self.key(task, *(self.task_key(t) for t in self.run_tasks([task.point])))
+            elif task.kind == "ops":
+                self._keys[task] = self.key(task, self.task_key(Task("seed", task.point)))
             else:
                 self._keys[task] = self.key(task)
         return self._keys[task]
@@ -191,8 +212,9 @@ class Study:
             return False
         t0 = time.perf_counter()
         if task.kind == "ops":
-            values = {"points": [asdict(op) for op in
-                                 plan.operating_points(self.config(task.point), self.job.wind_mps)]}
+            cfg, seed_cd = self.config(task.point), self.seed_cd(task.point)
+            values = {line: [asdict(op) for op in plan.operating_points(cfg, self.job.wind_mps, cd)]
+                      for line, cd in (("flexible", seed_cd), ("straight", None))}
         elif task.kind == "aep":
             values = energy.point_energy(self, task.point)
         else:
@@ -202,16 +224,17 @@ class Study:
 
     def _tether_run(self, task: Task) -> dict:
         try:
-            case = self.case(task.point, task.node)
-            if task.kind == "check":
-                case = checkable(case)
+            if task.kind == "seed":
+                fe_run, values = simulator("fe")(self.config(task.point)), {}
+            elif task.kind == "check":
+                case = checkable(self.case(task.point, task.node))
                 fe_run = simulator("fe")(case)
                 fd_run = simulator("fd")(case)
                 check = compare(fe_run, fd_run, case.crosscheck)
                 values = {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
                           "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
             else:
-                fe_run, values = simulator("fe")(case), {}
+                fe_run, values = simulator("fe")(self.case(task.point, task.node)), {}
         except (InputError, SolverDivergedError) as exc:
             return {"status": "failed", "error": f"{task.name}: {exc}"}
         except Exception as exc:  # a defect must not cost the other runs their results
