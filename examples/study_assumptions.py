@@ -8,12 +8,13 @@ computed with its source's straight-line C_D,t, at a fixed length:
   hardly changes.  Measured: F_t of the bin's run at fixed length L against
   a run reeling out at V_out from L - V_out T_avg / 2 (T_avg the averaged
   periods), whose mean length over the averaged periods is L;
-* ``fixed-point``: the operating point is the straight line's, not the
-  flexible line's own.  C_D,t = lines F_t / (1/2 rho A V_a^2) depends on the
-  operating point only through the line's shape (tension against drag and
-  weight), so it changes little.  Measured: C_D,t,1 at the straight line's
-  operating point, then C_D,t,2 at the operating point the model gives with
-  C_D,t,1, and the bin's power with each.
+* ``fixed-point``: the operating point is the one the model gives with the
+  C_D,t of the point's seed run (its configured case, C_D,t,0), not with the
+  bin's own.  C_D,t = lines F_t / (1/2 rho A V_a^2) depends on the operating
+  point only through the line's shape (tension against drag and weight), so
+  it changes little.  Measured: C_D,t,1 at the operating point of C_D,t,0,
+  then C_D,t,2 at the operating point the model gives with C_D,t,1, and the
+  bin's power with each.
 
 Run: ``python examples/study_assumptions.py``.
 """
@@ -43,17 +44,18 @@ def reel(system: str, length_m: float, wind_mps: float) -> dict:
 
 
 def fixed_point(system: str, length_m: float, wind_mps: float) -> dict:
-    """C_D,t and the power at the straight line's operating point and at the flexible line's."""
+    """C_D,t and the power at the seed's operating point and at the bin's own."""
     cfg = load_config(system=system).with_length(length_m)
     model = from_config(cfg)
-    op1 = model.operating_point(wind_mps)
+    seed_cd = operating_tether_cd(cfg, simulate(cfg).mean("drag_N"))
+    op1 = plan.operating_points(cfg, [wind_mps], seed_cd)[0]
     case1 = plan.run_config(cfg, op1)
     cd1 = operating_tether_cd(case1, simulate(case1).mean("drag_N"))
-    op2 = model.operating_point(wind_mps, cd1)
+    op2 = plan.operating_points(cfg, [wind_mps], cd1)[0]
     case2 = plan.run_config(cfg, op2)
     cd2 = operating_tether_cd(case2, simulate(case2).mean("drag_N"))
     p1, p2 = (model.operating_point(wind_mps, cd).electrical_power_W for cd in (cd1, cd2))
-    return {"system": system, "length_m": length_m, "wind_mps": wind_mps,
+    return {"system": system, "length_m": length_m, "wind_mps": wind_mps, "seed_cd": seed_cd,
             "speed_1_mps": op1.apparent_speed_mps, "speed_2_mps": op2.apparent_speed_mps,
             "force_1_N": op1.tether_force_N, "force_2_N": op2.tether_force_N,
             "cd_1": cd1, "cd_2": cd2, "cd_change": cd2 / cd1 - 1.0, "power_change": p2 / p1 - 1.0}

@@ -144,13 +144,13 @@ def test_tab51_gap_eight_drag_level_and_reel_out():
 
 def test_study_assumptions_change_the_drag_little():
     """docs/study.md §3 at one bin (KiteGen, 1000 m, 20 m/s): reeling out at V_out
-    lowers F_t by less than 3 %; the flexible line's own operating point moves
-    C_D,t by less than 1.5 % and the bin's power by less than 1 %."""
+    lowers F_t by less than 3 %; the bin's own operating point, against the seed's,
+    moves C_D,t by less than 1 % and the bin's power by less than 0.5 %."""
     ex = example("study_assumptions")
     reel = ex.reel("kitegen", 1000.0, 20.0)
     assert -0.03 < reel["change"] < 0.0
     point = ex.fixed_point("kitegen", 1000.0, 20.0)
-    assert abs(point["cd_change"]) < 0.015 and abs(point["power_change"]) < 0.01
+    assert abs(point["cd_change"]) < 0.01 and abs(point["power_change"]) < 0.005
 
 
 @pytest.mark.parametrize("name", ["study_kitegen", "study_ke_yoyo", "study_trevisi_gg"])
