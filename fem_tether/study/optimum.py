@@ -1,9 +1,11 @@
 """The AEP maximum of a surface over (length, diameter): bracketed, then refined.
 
 The best grid point is bracketed in a direction when it has a neighbour on
-either side there.  Along each bracketed direction the parabola through the
-best point and its two neighbours gives the refined coordinate (its vertex,
-held within the two neighbours):
+either side there: along d at its length, along L the best AEP over the
+diameters at each neighbouring length (the thinnest line strong enough
+changes with the length).  Along each bracketed direction the parabola
+through the best point and its two neighbours gives the refined coordinate
+(its vertex, held within the two neighbours):
 
     x* = x1 - ((x1-x0)^2 (y1-y2) - (x1-x2)^2 (y1-y0)) / (2 ((x1-x0)(y1-y2) - (x1-x2)(y1-y0))),
 
@@ -69,6 +71,18 @@ def _bracketed(index: int, values, along) -> bool:
     return 0 < index < len(values) - 1 and all(math.isfinite(a) for a in along)
 
 
+def _along(lengths, diameters, aep: dict, i: int, j: int) -> tuple[list[float], list[float]]:
+    """The AEP about the grid point (i, j): along L the best over the diameters at each
+    length (a diameter too weak at one length may be strong enough at the next), along
+    d at length i."""
+    def best_at(L):
+        values = [aep.get((L, d), math.nan) for d in diameters]
+        return max((a for a in values if math.isfinite(a)), default=math.nan)
+
+    return ([best_at(L) for L in lengths[max(i - 1, 0):i + 2]],
+            [aep.get((lengths[i], d), math.nan) for d in diameters[max(j - 1, 0):j + 2]])
+
+
 def refinement(lengths, diameters, aep: dict) -> list[tuple[float, float]]:
     """The points to run about the grid's best point (``aep``: (L, d) -> AEP on the grid)."""
     best = _grid_best(lengths, diameters, aep)
@@ -76,8 +90,7 @@ def refinement(lengths, diameters, aep: dict) -> list[tuple[float, float]]:
         return []
     i, j = best
     d1, L1 = diameters[j], lengths[i]
-    along_L = [aep.get((L, d1), math.nan) for L in lengths[max(i - 1, 0):i + 2]]
-    along_d = [aep.get((L1, d), math.nan) for d in diameters[max(j - 1, 0):j + 2]]
+    along_L, along_d = _along(lengths, diameters, aep, i, j)
     L_star = _rounded(vertex(lengths[i - 1:i + 2], along_L), LENGTH_STEP_M) \
         if _bracketed(i, lengths, along_L) else None
     d_star = _rounded(vertex(diameters[j - 1:j + 2], along_d), DIAMETER_STEP_M) \
@@ -97,8 +110,6 @@ def optimum(lengths, diameters, aep: dict, cf: dict, weak: frozenset = frozenset
         return None
     L, d = max(finite, key=lambda k: (finite[k], -k[0], -k[1]))
     i, j = best
-    return Optimum(L, d, finite[(L, d)], cf[(L, d)],
-                   _bracketed(i, lengths, [aep.get((x, diameters[j]), math.nan) for x in lengths[max(i - 1, 0):i + 2]]),
-                   _bracketed(j, diameters, [aep.get((lengths[i], x), math.nan)
-                                             for x in diameters[max(j - 1, 0):j + 2]]),
-                   j > 0 and (lengths[i], diameters[j - 1]) in weak)
+    along_L, along_d = _along(lengths, diameters, aep, i, j)
+    return Optimum(L, d, finite[(L, d)], cf[(L, d)], _bracketed(i, lengths, along_L),
+                   _bracketed(j, diameters, along_d), j > 0 and (lengths[i], diameters[j - 1]) in weak)

@@ -116,12 +116,16 @@ class Study:
         """The tether run's case of one bin (ConfigError if the rules refuse it)."""
         if (point, node) not in self._cases:
             cfg = self.config(point)
-            ops = self.operating_points(point)
-            try:
-                self._cases[point, node] = (checkable(cfg) if self.job.crosscheck else cfg) if ops is None \
-                    else plan.run_config(cfg, ops[node], self.job.reel_out)
-            except InputError as exc:
-                self._cases[point, node] = exc
+            if self.configured:
+                self._cases[point, node] = checkable(cfg) if self.job.crosscheck else cfg
+            else:
+                ops = self.operating_points(point)
+                if ops is None:
+                    raise RuntimeError(f"{point.name}: its operating points are not stored yet")
+                try:
+                    self._cases[point, node] = plan.run_config(cfg, ops[node], self.job.reel_out)
+                except InputError as exc:
+                    self._cases[point, node] = exc
         case = self._cases[point, node]
         if isinstance(case, InputError):
             raise case
