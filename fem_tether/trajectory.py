@@ -197,6 +197,12 @@ def sphere_arc_rate(length_m, theta, phi):
     return g, dg
 
 
+#: The arc-length tables of the eights made last, by geometry (L, theta0, W, H, shape): the
+#: same eight flown at another speed (a study's wind bins) shares them.
+_ARC_TABLES: dict[tuple, tuple] = {}
+ARC_TABLES_KEPT = 64
+
+
 @dataclass(frozen=True)
 class FigureEight:
     """Figure-eight on the sphere of radius L flown at constant speed V.
@@ -242,13 +248,21 @@ class FigureEight:
         return replace(self, length_m=float(length_m))
 
     def __post_init__(self):
+        geometry = (self.length_m, self.theta0_rad, self.width_m, self.height_m, self.shape)
+        tables = _ARC_TABLES.pop(geometry, None) or self._arc_tables()
+        _ARC_TABLES[geometry] = tables            # the most recent last
+        while len(_ARC_TABLES) > ARC_TABLES_KEPT:
+            _ARC_TABLES.pop(next(iter(_ARC_TABLES)))
+        for name, value in zip(("_loop_m", "_arc_m", "_tau_of_arc"), tables):
+            object.__setattr__(self, name, value)
+
+    def _arc_tables(self) -> tuple:
+        """The loop length, s(tau) and tau(s) of this eight's geometry (not of its speed)."""
         knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
         arc_m = np.concatenate([[0.0], np.cumsum((self.arc_rate(nodes)[0] * weights).sum(1))])
         g, dg = self.arc_rate(knots)
-        set_ = object.__setattr__
-        set_(self, "_loop_m", float(arc_m[-1]))
-        set_(self, "_arc_m", quintic_hermite(knots, arc_m, g, dg))
-        set_(self, "_tau_of_arc", quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3))
+        return (float(arc_m[-1]), quintic_hermite(knots, arc_m, g, dg),
+                quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3))
 
     def angle_derivatives(self, tau):
         """(ϑ, ϑ', ϑ''), (φ, φ', φ'') along the eight, ' = d/dτ.
