@@ -141,6 +141,10 @@ def weibull_probabilities(edges_mps, mean_mps, shape_k):
     return np.diff(weibull_min(shape_k, scale=scale).cdf(np.asarray(edges_mps, dtype=float)))
 
 
+def _bin_edges(bin_width_mps, max_speed_mps) -> np.ndarray:
+    return np.arange(0.0, max_speed_mps + 0.5 * bin_width_mps, bin_width_mps)
+
+
 def weibull_bands(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0, band_top_m=2300.0,
                   band_width_m=300.0, bin_width_mps=0.5, max_speed_mps=40.0):
     """The bands ``(low_m, high_m, mean_mps)`` and the bin edges of :func:`weibull_resource`,
@@ -148,8 +152,10 @@ def weibull_bands(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0, ba
     probabilities, whose Weibull CDF needs ``scipy.stats`` (~0.6 s to import)."""
     if not weibull_k > 0:
         raise ResourceError(f"Weibull shape k = {weibull_k!r}: must be > 0")
+    if band_width_m == 0:                  # at each altitude: no bands to check
+        return [], _bin_edges(bin_width_mps, max_speed_mps)
     band_edges = np.arange(band_bottom_m, band_top_m + 0.5 * band_width_m, band_width_m)
-    edges = np.arange(0.0, max_speed_mps + 0.5 * bin_width_mps, bin_width_mps)
+    edges = _bin_edges(bin_width_mps, max_speed_mps)
     if len(band_edges) < 2 or len(edges) < 2:
         raise ResourceError(f"no bands or no bins: bands {band_bottom_m}–{band_top_m} m by "
                             f"{band_width_m} m, bins 0–{max_speed_mps} m/s by {bin_width_mps} m/s")
@@ -163,6 +169,34 @@ def weibull_bands(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0, ba
     return bands, edges
 
 
+@dataclass(frozen=True)
+class AltitudeWeibull:
+    """Weibull histograms at any altitude from ``low_m`` to ``high_m``: the mean of
+    ``profile`` at the altitude itself (``[resource] band_width_m = 0``; no bands, so
+    the wind of a length changes with it continuously).  Offers the
+    :class:`WindResource` calls a length's AEP needs."""
+
+    profile: object
+    weibull_k: float
+    low_m: float
+    high_m: float
+    edges_mps: np.ndarray
+    source: str
+
+    def band_at_altitude(self, z_m: float) -> Band:
+        """The histogram at z: a band of no width, Weibull of the profile's mean there."""
+        if not self.low_m <= z_m <= self.high_m:
+            raise ResourceError(f"{self.source}: altitude {z_m:.0f} m is outside "
+                                f"{self.low_m:g}–{self.high_m:g} m")
+        mean = float(self.profile.speed_mps(z_m))
+        if not mean > 0:
+            raise ResourceError(f"mean wind {mean} m/s at {z_m:g} m: a Weibull needs a positive mean")
+        return Band(float(z_m), float(z_m), self.edges_mps,
+                    weibull_probabilities(self.edges_mps, mean, self.weibull_k))
+
+    band_for_length = WindResource.band_for_length
+
+
 def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
                      band_top_m=2300.0, band_width_m=300.0, bin_width_mps=0.5,
                      max_speed_mps=40.0) -> WindResource:
@@ -172,6 +206,10 @@ def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
     ``bin_width_mps`` from 0 to ``max_speed_mps``.  The mass above
     ``max_speed_mps`` is each band's :attr:`Band.remainder`.
     """
+    if band_width_m == 0:
+        edges = _bin_edges(bin_width_mps, max_speed_mps)
+        return AltitudeWeibull(profile, weibull_k, band_bottom_m, band_top_m, edges,
+                               f"Weibull resource (k = {weibull_k:g}, at each altitude)")
     bands, edges = weibull_bands(profile, weibull_k, band_bottom_m, band_top_m, band_width_m,
                                  bin_width_mps, max_speed_mps)
     return WindResource(tuple(Band(low, high, edges, weibull_probabilities(edges, mean, weibull_k))

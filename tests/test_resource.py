@@ -1,5 +1,7 @@
 """Wind resource per altitude band: default Weibull on the De Bilt log law, validated CSV histograms."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -243,3 +245,24 @@ def test_default_resource_at_50_150_m_against_seed_001_and_why_it_differs():
 
     assert above_12(3.03) == pytest.approx(0.08, abs=5e-4)
     assert above_12(2.0) == pytest.approx(0.163, abs=1e-3)
+
+
+def test_band_width_zero_is_the_weibull_at_the_altitude_itself():
+    """[resource] band_width_m = 0: each length's histogram is the Weibull of the profile's
+    mean at its own altitude (no bands), so it changes continuously with L."""
+    from fem_tether import wind
+    from fem_tether.config import load_config
+    from fem_tether.resource import from_config as resource_from_config, weibull_probabilities
+
+    cfg = load_config(overrides={"resource": {"band_width_m": 0.0, "band_bottom_m": 25.0}})
+    profile = wind.from_config(cfg.wind, cfg.resource.weibull_k)
+    resource = resource_from_config(cfg.resource, profile)
+    band = resource.band_for_length(1000.0, math.radians(45.0))
+    z = 1000.0 * math.cos(math.radians(45.0))
+    assert band.low_m == band.high_m == pytest.approx(z, rel=1e-15)
+    np.testing.assert_allclose(band.probability, weibull_probabilities(band.edges_mps, float(profile.speed_mps(z)),
+                                                                       2.0), rtol=1e-15)
+    near = resource.band_at_altitude(z + 1.0).probability
+    assert 0.0 < np.abs(near - band.probability).max() < 1e-3
+    with pytest.raises(ResourceError, match="altitude 10 m is outside 25–2300 m"):
+        resource.band_at_altitude(10.0)

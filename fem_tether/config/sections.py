@@ -291,7 +291,8 @@ class Resource(Section):
     weibull_k: float = setting(2.0, "-", "Weibull shape k of the default resource", positive)
     band_bottom_m: float = setting(200.0, "m", "lowest altitude of the bands", non_negative)
     band_top_m: float = setting(2300.0, "m", "highest altitude of the bands", positive)
-    band_width_m: float = setting(300.0, "m", "altitude band width", positive)
+    band_width_m: float = setting(300.0, "m", "altitude band width (0: no bands, the Weibull of the profile's "
+                                  "mean at each length's own altitude)", non_negative)
     bin_width_mps: float = setting(0.5, "m/s", "wind-speed bin width", positive)
     max_speed_mps: float = setting(50.0, "m/s", "last wind-speed bin edge", positive)
 
