@@ -25,7 +25,7 @@ from .config import Config
 from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
-from .resource import Band, WindResource
+from .resource import Band, Resource
 from .resource import check_config as check_resource_config
 from .resource import from_config as resource_from_config
 
@@ -81,7 +81,7 @@ class AepByLength:
         return float(self.length_m[np.argmax(self.aep_MWh)]) if self.length_m.size else None
 
 
-def _by_length(lengths, theta_rad, resource: WindResource, curve_at) -> AepByLength:
+def _by_length(lengths, theta_rad, resource: Resource, curve_at) -> AepByLength:
     """:func:`aep_on_band` per length: ``curve_at(i)`` gives length i's power curve
     (a function of the wind speed) and its rated power; the band holds z = L cosϑ0."""
     bands = [resource.band_for_length(length, theta_rad) for length in lengths]
@@ -100,7 +100,7 @@ def _by_length(lengths, theta_rad, resource: WindResource, curve_at) -> AepByLen
 
 
 def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean_phi_deg,
-                  resource: WindResource, cycle: Cycle = Cycle()) -> AepByLength:
+                  resource: Resource, cycle: Cycle = Cycle()) -> AepByLength:
     """AEP (eq. 5.2) and capacity factor of ``design`` flown on each length, with
     its G_e and mean φ (seed 000 Tab. 5.1–5.2 values, for instance).
 
@@ -118,7 +118,7 @@ def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean
     return _by_length(lengths, design.theta_rad, resource, curve_at)
 
 
-def aep_of_system(cfg: Config, lengths_m, drag_N, resource: WindResource, cases=None) -> AepByLength:
+def aep_of_system(cfg: Config, lengths_m, drag_N, resource: Resource, cases=None) -> AepByLength:
     """AEP (eq. 5.2) and capacity factor of the configured system (any ``[system]
     model``, :mod:`fem_tether.systems.configured`) on each length, with the tether
     drag F_t per line of that length as its C_D,t
@@ -174,7 +174,7 @@ class SweepAep:
                 "pending_m": list(self.pending_m)}
 
 
-def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
+def aep_of_sweep(sweep_data: Mapping, resource: Resource,
                  allow_unchecked: bool = False, allow_incomplete: bool = False) -> SweepAep:
     """AEP for the lengths of a sweep result (:func:`fem_tether.sweepfile.read_sweep`).
 
@@ -218,7 +218,7 @@ def aep_of_sweep(sweep_data: Mapping, resource: WindResource,
     )
 
 
-def sweep_resource(cfg: Config, wind_csv=None) -> WindResource:
+def sweep_resource(cfg: Config, wind_csv=None) -> Resource:
     """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
     return resource_from_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 

@@ -354,6 +354,7 @@ def _aep_panels(L, d, refined, lengths, diameters, cases: Mapping[str, tuple]):
         ax.set_xticks(np.arange(0, lengths.size, step), [f"{v:g}" for v in lengths[::step]], rotation=45)
         ax.set_yticks(np.arange(diameters.size), [f"{1e3 * v:g}" for v in diameters])
     axes[0, 0].set_ylabel("line diameter $d$ [mm]")
+    assert mesh is not None
     fig.colorbar(mesh, ax=axes[0], label="AEP [MWh]", shrink=0.9)
     status = np.concatenate([np.asarray(s) for _, s, _ in cases.values()])
     handles = _marker_handles(refined, status)

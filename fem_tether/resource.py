@@ -43,7 +43,7 @@ import numpy as np
 from scipy.special import gamma
 
 from .errors import InputError
-from .wind import DE_BILT_ANNUAL
+from .wind import DE_BILT_ANNUAL, WindProfile
 
 COLUMNS = ("band_low_m", "band_high_m", "bin_low_mps", "bin_high_mps", "probability")
 SUM_TOLERANCE = 1e-6
@@ -86,8 +86,19 @@ class Band:
         return float(self.probability[i[0]:].sum()) + self.remainder
 
 
+class _ByLength:
+    """A resource's histogram for lines of length L: at their mean kite altitude."""
+
+    def band_at_altitude(self, z_m: float) -> Band:
+        raise NotImplementedError
+
+    def band_for_length(self, length_m: float, theta_rad: float) -> Band:
+        """The histogram of the mean kite altitude z = L cosϑ of lines of length L (seed 000 §5)."""
+        return self.band_at_altitude(length_m * math.cos(theta_rad))
+
+
 @dataclass(frozen=True)
-class WindResource:
+class WindResource(_ByLength):
     """Histograms by altitude band, bands ascending and disjoint; ``source`` says whence."""
 
     bands: tuple[Band, ...]
@@ -100,10 +111,6 @@ class WindResource:
                 return band
         raise ResourceError(f"{self.source}: altitude {z_m:.0f} m is in no band "
                             f"(bands: {_band_list(self.bands)})")
-
-    def band_for_length(self, length_m: float, theta_rad: float) -> Band:
-        """The band of the mean kite altitude z = L cosϑ of lines of length L (seed 000 §5)."""
-        return self.band_at_altitude(length_m * math.cos(theta_rad))
 
     def pooled(self, low_m: float, high_m: float) -> Band:
         """One histogram of the altitudes low_m–high_m: the bands that tile them,
@@ -170,13 +177,13 @@ def weibull_bands(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0, ba
 
 
 @dataclass(frozen=True)
-class AltitudeWeibull:
+class AltitudeWeibull(_ByLength):
     """Weibull histograms at any altitude from ``low_m`` to ``high_m``: the mean of
     ``profile`` at the altitude itself (``[resource] band_width_m = 0``; no bands, so
     the wind of a length changes with it continuously).  Offers the
     :class:`WindResource` calls a length's AEP needs."""
 
-    profile: object
+    profile: WindProfile
     weibull_k: float
     low_m: float
     high_m: float
@@ -194,12 +201,15 @@ class AltitudeWeibull:
         return Band(float(z_m), float(z_m), self.edges_mps,
                     weibull_probabilities(self.edges_mps, mean, self.weibull_k))
 
-    band_for_length = WindResource.band_for_length
+
+
+#: A wind resource: histograms by altitude band, or at each altitude.
+Resource = WindResource | AltitudeWeibull
 
 
 def weibull_resource(profile=DE_BILT_ANNUAL, weibull_k=2.0, band_bottom_m=200.0,
                      band_top_m=2300.0, band_width_m=300.0, bin_width_mps=0.5,
-                     max_speed_mps=40.0) -> WindResource:
+                     max_speed_mps=40.0) -> Resource:
     """Weibull histograms whose means follow ``profile`` at the band centres (seed 000 §5).
 
     Bands of ``band_width_m`` from ``band_bottom_m`` to ``band_top_m``; bins of
@@ -330,7 +340,7 @@ def check_config(resource, wind_profile, csv_path=None) -> None:
                       resource.band_width_m, resource.bin_width_mps, resource.max_speed_mps)
 
 
-def from_config(resource, wind_profile, csv_path=None) -> WindResource:
+def from_config(resource, wind_profile, csv_path=None) -> Resource:
     """The resource of the ``[resource]`` section: the CSV ``csv_path`` (or
     ``[resource] csv``) if given, else Weibull histograms following
     ``wind_profile`` (a profile of :mod:`fem_tether.wind`)."""

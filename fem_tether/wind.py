@@ -185,6 +185,7 @@ def from_config(wind, weibull_k: float) -> LogWind | MeanOfProfiles | PowerWind 
     speed is the mean of the Weibull of scale ``reference_scale_mps`` and shape
     ``weibull_k`` (the ``[resource]`` shape), and it is constant above
     ``boundary_layer_top_m`` (0: never)."""
+    profile: LogWind | MeanOfProfiles | PowerWind
     if wind.profile == "log":
         profile = DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
     elif wind.profile == "power":

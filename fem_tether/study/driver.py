@@ -98,7 +98,8 @@ def scaling_model(study: Study, extra: list[Point], other_s: float) -> dict[int,
     for points in (study.job.points, extra):
         for _, tasks in PHASES:
             mine = tasks(study, points)
-            phases.append(([study.cost_us(t) for t in mine], [study.stored(t).get("wall_s", math.nan) for t in mine]))
+            phases.append(([study.cost_us(t) for t in mine], [(study.stored(t) or {}).get("wall_s", math.nan)
+                                                              for t in mine]))
     return scaling.model(phases, other_s)
 
 

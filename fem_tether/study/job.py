@@ -247,14 +247,14 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
                    study.get("crosscheck", True), study.get("refine", True), study.get("reel_out", False), text)
     for point in job.points:            # every point's case is checked now, not in the study
         job.point_config(point)
-    for system, site in job.surfaces:   # and every length's resource band
-        cfg = job.site(site).apply(job.config(system))
+    for system, site_name in job.surfaces:   # and every length's resource band
+        cfg = job.site(site_name).apply(job.config(system))
         resource = sweep_resource(cfg)
         for length_m in job.lengths_m[job.systems.index(system)]:
             try:
                 resource.band_for_length(length_m, math.radians(cfg.kite.theta0_deg))
             except ResourceError as exc:
-                raise _error("lengths_m", length_m, f"{system} at site {site}: {exc}") from None
+                raise _error("lengths_m", length_m, f"{system} at site {site_name}: {exc}") from None
     return job
 
 

@@ -200,7 +200,10 @@ def write_report(out) -> Path:
     out = Path(out)
     study = read_study(out)
     directory = report_dir(out)
-    figures = {name: write_figures(s, *name.split("/"), directory) for name, s in study["surfaces"].items()}
+    figures = {}
+    for name, s in study["surfaces"].items():
+        system, site = name.split("/")
+        figures[name] = write_figures(s, system, site, directory)
     with atomic_path(directory / PAGE_NAME) as tmp:
         tmp.write_text(render(out, study, figures), encoding="utf-8")
     return directory / PAGE_NAME

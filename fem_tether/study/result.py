@@ -20,6 +20,7 @@ without HDF5's object timestamps).
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import h5py
 import numpy as np
@@ -92,11 +93,11 @@ def read_study(path: str | Path) -> dict:
     if not is_study_result(Path(path)):
         raise ConfigError(f"{path}: not a fem-tether study result")
     with h5py.File(path, "r") as f:
-        out = {"job_toml": str(f.attrs["job_toml"]), "version": str(f.attrs["fem_tether_version"]),
+        out: dict[str, Any] = {"job_toml": str(f.attrs["job_toml"]), "version": str(f.attrs["fem_tether_version"]),
                "surfaces": {}}
         for name in f.attrs["surfaces"]:
             group = f[name]
-            data = {key: group[key][()] for key in group}
+            data: dict[str, Any] = {key: group[key][()] for key in group}
             for key in STRINGS:
                 data[key] = np.array([x.decode() if isinstance(x, bytes) else x for x in data[key]])
             data["config_toml"] = str(group.attrs["config_toml"])

@@ -28,7 +28,7 @@ from fem_tether.config import Config
 from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import InputError, SolverDivergedError
 from fem_tether.evaluate import simulator
-from fem_tether.resource import WindResource
+from fem_tether.resource import Resource
 from fem_tether.schedule import run_cost_us
 from fem_tether.sizing import peak_tension_N
 from fem_tether.store import inputs_key
@@ -67,7 +67,7 @@ class Study:
         self._configs: dict[Point, Config] = {}
         self._cases: dict[tuple[Point, int], Config | InputError] = {}
         self._runs: dict[Point, list[Task]] = {}
-        self._resources: dict[tuple[str, str], WindResource] = {}
+        self._resources: dict[tuple[str, str], Resource] = {}
         self._keys: dict[Task, str] = {}
 
     # -- inputs ---------------------------------------------------------------
@@ -76,7 +76,7 @@ class Study:
             self._configs[point] = self.job.point_config(point)
         return self._configs[point]
 
-    def resource(self, point: Point) -> WindResource:
+    def resource(self, point: Point) -> Resource:
         """The wind resource of a point's site (the same for every point of a surface)."""
         surface = (point.system, point.site)
         if surface not in self._resources:
