@@ -9,6 +9,7 @@ from fem_tether import wind
 from fem_tether.config import load_config
 from fem_tether.power import operating_altitude_m
 from fem_tether.straight import closed_form_drag_N
+from fem_tether.loads import G_MPS2
 from fem_tether.study import plan
 from fem_tether.systems.operating_point import OperatingPoint
 
@@ -57,12 +58,12 @@ def test_bending_is_the_lumped_transverse_load_over_the_tension():
                                  "kite": {"speed_mps": 60.0}, "winch": {"ground_tension_N": 8e4},
                                  "tether": {"diameter_m": 0.012, "linear_density_kg_m": 0.09}}).with_length(1500.0)
     drag_N = closed_form_drag_N(1.2, 1.1, 0.012, 1500.0, 60.0)
-    expected = (drag_N + 0.09 * 9.80665 * 1500.0) / 8e4
+    expected = (drag_N + 0.09 * G_MPS2 * 1500.0) / 8e4
     assert plan.bending(cfg) == pytest.approx(expected, rel=1e-9)
     # half the tension: twice the bending; a heavier line adds its weight
     assert plan.bending(cfg.replace(winch={"ground_tension_N": 4e4})) == pytest.approx(2 * expected, rel=1e-12)
     heavier = cfg.replace(tether={"linear_density_kg_m": 0.19})
-    assert plan.bending(heavier) - plan.bending(cfg) == pytest.approx(0.1 * 9.80665 * 1500.0 / 8e4, rel=1e-9)
+    assert plan.bending(heavier) - plan.bending(cfg) == pytest.approx(0.1 * G_MPS2 * 1500.0 / 8e4, rel=1e-9)
 
 
 def test_gate_index_picks_the_most_bent_case():

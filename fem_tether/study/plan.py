@@ -33,13 +33,10 @@ import numpy as np
 
 from fem_tether import straight, wind
 from fem_tether.config import Config
+from fem_tether.loads import G_MPS2
 from fem_tether.power import operating_altitude_m
 from fem_tether.systems.configured import from_config
 from fem_tether.systems.operating_point import OperatingPoint
-
-#: Standard gravity [m/s^2].
-G_MPS2 = 9.80665
-
 
 def operating_points(cfg: Config, wind_mps, tether_cd: float | None = None) -> list[OperatingPoint]:
     """The point's operating point at each wind speed with the tether drag coefficient
