@@ -107,6 +107,11 @@ def _usable(values: dict, allow_unchecked: bool) -> bool:
     return values["status"] == "ok" or (allow_unchecked and values["status"] == "unchecked")
 
 
+def _surface_points(job: StudyJob, system: str, site: str, extra: list[Point]) -> tuple[list[Point], list[Point]]:
+    """One surface's grid points and its points among the refined ``extra``."""
+    return job.grid(system, site), [p for p in extra if (p.system, p.site) == (system, site)]
+
+
 def _surface_values(study: Study, system: str, site: str, extra: list[Point], allow_unchecked: bool):
     """(lengths, diameters, {case: {(L, d): AEP}}, {case: {(L, d): CF}}, the weak (L, d)) of one
     surface's points."""
@@ -116,7 +121,8 @@ def _surface_values(study: Study, system: str, site: str, extra: list[Point], al
     aep: dict = {"fe": {}, "straight": {}}
     cf: dict = {"fe": {}, "straight": {}}
     weak = set()
-    for point in job.grid(system, site) + [p for p in extra if (p.system, p.site) == (system, site)]:
+    grid, refined = _surface_points(job, system, site, extra)
+    for point in grid + refined:
         values = study.stored(Task("aep", point))
         assert values is not None
         key = (point.length_m, point.diameter_m)
@@ -159,9 +165,8 @@ def surfaces(study: Study, extra: list[Point], allow_unchecked: bool) -> list[di
     job = study.job
     for system, site in job.surfaces:
         lengths, diameters, aep, cf, weak = _surface_values(study, system, site, extra, allow_unchecked)
-        grid = job.grid(system, site)
-        mine = [p for p in extra if (p.system, p.site) == (system, site)]
-        rows = [_point_row(study, p, False) for p in grid] + [_point_row(study, p, True) for p in mine]
+        grid, refined = _surface_points(job, system, site, extra)
+        rows = [_point_row(study, p, False) for p in grid] + [_point_row(study, p, True) for p in refined]
         out.append({"system": system, "site": site, "config_toml": job.site(site).apply(job.config(system)).to_toml(),
                     "wind_mps": list(job.wind_mps or [math.nan]), "edges_mps": rows[0]["edges_mps"],
                     "points": rows,
