@@ -14,17 +14,17 @@ import io
 import os
 import sys
 import time
+import traceback
 
 import numpy as np
 
 from fem_tether import __version__, kite, report
 from fem_tether.config import MAX_ELEMENTS, load_config
-from fem_tether.errors import InputError, SolverDivergedError
+from fem_tether.errors import FemTetherError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
+from fem_tether import stop
+from fem_tether.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
 
-EXIT_USAGE = 2
-EXIT_FAILED = 1
-EXIT_INTERRUPTED = 130
 DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
                "energy systems (FE model with an independent FD cross-check).")
 JSON_HELP = "print the result as JSON on stdout (no table, no progress)"
@@ -218,6 +218,7 @@ def cmd_validate(args):
     from fem_tether.validation import table, validate
 
     progress = None if args.json else (lambda case: print(f"validate: {case.name}", file=sys.stderr, flush=True))
+    table.check_out(args.out)                  # before the first case
     result = validate(args.quick, args.only, progress=progress)
     files = table.write(result, args.out)
     print(report.json_text(result.as_dict()) if args.json else
@@ -389,54 +390,62 @@ def _world():
 
 
 def main(argv=None) -> int:
-    """Run a command.  Under ``mpiexec -n N`` only ``sweep`` and ``run`` use the
-    ranks; any other command runs on rank 0 alone and the other ranks exit
-    with its exit code (they parse the same arguments silently)."""
+    """Run a command.  Under ``mpiexec -n N`` only ``sweep``, ``study`` and
+    ``run`` use the ranks, and a stop of any rank (Ctrl-C, an error) stops
+    them all (:mod:`fem_tether.stop`); any other command runs on rank 0 alone
+    and the other ranks wait for it.  Every rank exits with rank 0's code."""
     world = _world()
     with contextlib.ExitStack() as quiet:
         if world is not None and world.Get_rank() != 0:     # usage errors and --help once
             quiet.enter_context(contextlib.redirect_stdout(io.StringIO()))
             quiet.enter_context(contextlib.redirect_stderr(io.StringIO()))
         args = build_parser().parse_args(argv)
-    if world is None or args.command in _PARALLEL_COMMANDS:
+    if world is None:
         return _run(args)
-    return _on_rank_zero(world, args)
+    code = _agree(world, _run(args, world)) if args.command in _PARALLEL_COMMANDS else _on_rank_zero(world, args)
+    if code != 0:          # a stopped rank's requests cannot complete: leave without MPI_Finalize
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    return code
 
 
 def _on_rank_zero(comm, args) -> int:
-    """Rank 0 runs the command and broadcasts its exit code; the other ranks
-    wait for it asleep (not spinning on a core rank 0 may need)."""
-    code = np.array([EXIT_FAILED], dtype="i")
-    if comm.Get_rank() != 0:
-        try:
-            _complete(comm.Ibcast(code, root=0))
-        except KeyboardInterrupt:        # mpiexec passes Ctrl-C to every rank
-            return EXIT_INTERRUPTED
-        return int(code[0])
+    """Rank 0 runs the command; the other ranks wait for its exit code asleep
+    (not spinning on a core rank 0 may need)."""
+    return _agree(comm, _run(args) if comm.Get_rank() == 0 else EXIT_FAILED)
+
+
+def _agree(comm, code: int) -> int:
+    """Rank 0's exit code on every rank (each waits for it interruptibly)."""
+    shared = np.array([code], dtype="i")
     try:
-        code[0] = _run(args)
-    finally:                             # a defect's traceback still releases the others
-        _complete(comm.Ibcast(code, root=0))
-    return int(code[0])
+        with stop.interruptible():       # mpiexec passes Ctrl-C to every rank
+            request = comm.Ibcast(shared, root=0)
+            while not request.Test():
+                stop.checkpoint()
+                time.sleep(0.02)
+    except KeyboardInterrupt:
+        stop.clear()
+        return EXIT_INTERRUPTED
+    return int(shared[0])
 
 
-def _complete(request) -> None:
-    while not request.Test():
-        time.sleep(0.02)
-
-
-def _run(args) -> int:
+def _run(args, comm=None) -> int:
+    """The command's exit code; a stop on any rank of ``comm`` stops every rank
+    (:func:`fem_tether.stop.guard`), and rank 0 prints its one line."""
     try:
-        return args.func(args)
-    except InputError as exc:
-        return _fail(f"fem-tether: error: {exc}", EXIT_USAGE)
-    except SolverDivergedError as exc:
-        return _fail(f"fem-tether: solver failed: {exc}", EXIT_FAILED)
-    except OSError as exc:
-        where = f"{exc.filename}: " if exc.filename else ""
-        return _fail(f"fem-tether: error: {where}{exc.strerror or exc}", EXIT_USAGE)
-    except KeyboardInterrupt as exc:      # a sweep's says what it kept (SweepInterrupted)
-        return _fail(f"fem-tether: interrupted{f': {exc}' if str(exc) else ''}", EXIT_INTERRUPTED)
+        with guard(comm):
+            code = args.func(args)
+            if comm is not None:
+                stop.sync(comm)          # the ranks done first wait here, stoppable, for rank 0
+            return code
+    except (KeyboardInterrupt, FemTetherError, OSError) as exc:
+        stop.clear()
+        return _fail(*reversed(exit_code(exc)))
+    except Exception:                    # a defect: its traceback, and the ranks still agree
+        traceback.print_exc()
+        return EXIT_FAILED
 
 
 def _fail(message: str, code: int) -> int:

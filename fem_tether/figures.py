@@ -21,6 +21,9 @@ from fem_tether.summary import operating_density_kg_m3, operating_tether_cd
 from fem_tether.sweepfile import read_sweep
 from fem_tether.systems.configured import from_config
 
+#: The files of :func:`write_plots`: F_t, G_e, power curves, AEP against L.
+PLOT_FILES = ("drag_vs_length.png", "ge_vs_length.png", "power_curves.png", "aep_vs_length.png")
+
 #: Wind-speed step of the main job's power curves, calm air to the cut-out [m/s].
 POWER_CURVE_STEP_MPS = 0.5
 
@@ -34,9 +37,9 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
     cases = {"straight": ("drag_straight_N", "ge_straight"), "flexible": ("drag_fe_N", "ge_fe")}
     files = {
         "drag": plots.plot_drag(lengths, {c: data[d] for c, (d, _) in cases.items()},
-                                directory / "drag_vs_length.png"),
+                                directory / PLOT_FILES[0]),
         "ge": plots.plot_ge(lengths, {c: data[g] for c, (_, g) in cases.items()},
-                            directory / "ge_vs_length.png",
+                            directory / PLOT_FILES[1],
                             reference=SEED_GE if cfg.system.model == "kitegen" else None),
     }
     curves, air = {}, []
@@ -50,13 +53,13 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
                 cd = operating_tether_cd(case, data[drag_key][i])
                 curves[f"{lengths[i]:g} m, {name}"] = (wind, system.electrical_power_W(wind, cd),
                                                        system.active_power_W(wind, cd))
-    files["power"] = plots.plot_power_curves(curves, directory / "power_curves.png",
+    files["power"] = plots.plot_power_curves(curves, directory / PLOT_FILES[2],
                                              "\n".join(dict.fromkeys(air)))
     aep = {"straight": energy.straight, "flexible": energy.flexible}
     if energy.fixed is not None:
         aep = {"straight": energy.straight, "flexible, configured d": energy.fixed,
                "flexible, sized d": energy.flexible}
-    files["aep"] = plots.plot_aep(aep, directory / "aep_vs_length.png")
+    files["aep"] = plots.plot_aep(aep, directory / PLOT_FILES[3])
     return files
 
 

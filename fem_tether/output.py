@@ -38,15 +38,15 @@ ParaView (:func:`write_paraview`), one directory per run::
 Open the ``.pvd`` in ParaView and play the animation to see the tether move;
 open the track beside it to see where the kite flew.
 
-Both writers are atomic: the output is written beside its target under a
-hidden temporary name and renamed into place only when complete; on any error
-the temporary output is removed and the target is left untouched.
+Both writers are atomic (:mod:`fem_tether.atomic`): the output is written
+beside its target under a hidden temporary name and renamed into place only
+when complete; on any error the temporary output is removed and the target is
+left untouched.  :func:`save_hdf5` and :func:`save_paraview` write into
+temporaries a caller commits together (a run's HDF5 file and its folder).
 """
 
 from __future__ import annotations
 
-import os
-import shutil
 import xml.etree.ElementTree as ET
 from datetime import datetime, timezone
 from pathlib import Path
@@ -56,7 +56,7 @@ import meshio
 import numpy as np
 
 from . import __version__
-from .atomic import atomic_path, check_writable
+from .atomic import atomic_outputs, atomic_path, generator_tag
 from .config import Config
 from .quantities import attributes
 from .results import CELL_FIELDS, KITE_SERIES, TetherRun
@@ -72,11 +72,16 @@ GROUPS = {
 
 
 def write_run_hdf5(run: TetherRun, path, extra_attrs: dict | None = None) -> Path:
-    """Write ``run`` to the HDF5 file ``path`` (layout in the module docstring)."""
+    """Write ``run`` to the HDF5 file ``path`` (layout in the module docstring), atomically."""
     with atomic_path(path) as tmp:
-        with h5py.File(tmp, "w", track_order=True) as f:
-            _write_hdf5(f, run, extra_attrs or {})
+        save_hdf5(run, tmp, extra_attrs)
     return Path(path)
+
+
+def save_hdf5(run: TetherRun, path, extra_attrs: dict | None = None) -> None:
+    """Write ``run`` to the new HDF5 file ``path`` (not atomic: a temporary's writer)."""
+    with h5py.File(path, "w", track_order=True) as f:
+        _write_hdf5(f, run, extra_attrs or {})
 
 
 def _group(parent, name):
@@ -156,30 +161,18 @@ def read_run_hdf5(path, config: Config | None = None, snapshots: bool = True) ->
 def write_paraview(run: TetherRun, directory, name: str = "tether") -> Path:
     """Write the snapshots as a ParaView time series in ``directory``; return the ``.pvd``.
 
-    The whole set is written into a temporary directory beside ``directory``
-    and renamed into place.  An existing ``directory`` is replaced: it is first
-    renamed aside, then removed once the new set is in place.
+    The whole set is written into a temporary folder beside ``directory`` and
+    put in place only when complete (:func:`fem_tether.atomic.atomic_outputs`);
+    an existing ``directory`` is replaced only if it holds a time series
+    fem-tether wrote and nothing else.
     """
-    directory = check_writable(directory, directory=True)
-    tmp = directory.with_name(f".{directory.name}.tmp-{os.getpid()}")
-    shutil.rmtree(tmp, ignore_errors=True)  # left over by a killed process
-    tmp.mkdir(parents=True)
-    try:
-        _write_paraview(run, tmp, name)
-        if directory.exists():
-            old = directory.with_name(f".{directory.name}.old-{os.getpid()}")
-            os.replace(directory, old)
-            os.replace(tmp, directory)
-            shutil.rmtree(old)
-        else:
-            os.replace(tmp, directory)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return directory / f"{name}.pvd"
+    with atomic_outputs(directories=[directory]) as (tmp,):
+        save_paraview(run, tmp, name)
+    return Path(directory) / f"{name}.pvd"
 
 
-def _write_paraview(run: TetherRun, directory: Path, name: str):
+def save_paraview(run: TetherRun, directory: Path, name: str = "tether") -> None:
+    """Write the time series into the existing, empty folder ``directory`` (a temporary's writer)."""
     collection = ET.Element("Collection")
     for i, t in enumerate(run.snapshot_time_s):
         line = run.line(i)
@@ -195,6 +188,7 @@ def _write_paraview(run: TetherRun, directory: Path, name: str):
         ET.SubElement(collection, "DataSet", timestep=repr(float(t)), file=file)
     _write_track(run, directory / f"{name}_kite_track.vtu")
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
+    root.append(ET.Comment(f" {generator_tag()} "))
     root.append(collection)
     ET.indent(root)
     ET.ElementTree(root).write(directory / f"{name}.pvd", encoding="utf-8", xml_declaration=True)

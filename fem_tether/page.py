@@ -19,7 +19,7 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.aep import SweepAep
-from fem_tether.atomic import atomic_path
+from fem_tether.atomic import atomic_path, generator_tag
 
 PAGE_NAME = "index.html"
 VALIDATION_NAME = "validation.json"
@@ -107,6 +107,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
                    crosscheck_rows(data))
     return "\n".join([
         "<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
+        f"<meta name=\"generator\" content=\"{generator_tag()}\">",
         f"<title>fem-tether run: {html.escape(data['config'].system.name)}</title><style>{STYLE}</style></head><body>",
         f"<h1>fem-tether run</h1><p>fem-tether {html.escape(__version__)}; result file "
         f"{html.escape(Path(data['file']).name)}; system {html.escape(data['config'].system.name)}</p>",

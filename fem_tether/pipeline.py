@@ -11,15 +11,16 @@ from __future__ import annotations
 
 import importlib
 import time
+from contextlib import ExitStack
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 from fem_tether.aep import SweepAep, check_resource, sweep_aep
-from fem_tether.atomic import write_json
-from fem_tether.figures import write_plots
+from fem_tether.atomic import check_writable, exclusive, write_json
+from fem_tether.figures import PLOT_FILES, write_plots
 from fem_tether.jobs import load_job
 from fem_tether.memory import peak_rss_MiB
-from fem_tether.page import write_page
+from fem_tether.page import PAGE_NAME, write_page
 from fem_tether.sweep import SweepOutcome, sweep
 from fem_tether.sweepfile import read_sweep
 
@@ -33,6 +34,9 @@ from fem_tether.sweepfile import read_sweep
 #: task (exit at 8.4-9.5 s), with 1.3e6 it idled 3 s; with 0.75e6 the imports
 #: end before the other rank's tasks (exit at 8.4-9.1 s).
 IDLE_COST_US = 0.75e6
+
+#: The files the main job writes into its folder beside ``sweep.h5``.
+FILES = (*PLOT_FILES, "aep.json", PAGE_NAME)
 
 
 @dataclass(frozen=True)
@@ -56,14 +60,26 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     job = load_job(job_file, system)
     out = Path(out)
     h5 = out / "sweep.h5"
-    # a bad resource fails now, not after the sweep (checked on rank 0, without
-    # scipy.stats); rank 0 imports the plotting and scipy.stats while it waits
-    # for the other ranks' tasks
-    outcome = sweep(job, h5, check=lambda: check_resource(job.config),
-                    idle=lambda: [importlib.import_module(m) for m in ("fem_tether.plots", "scipy.stats")],
-                    idle_cost_us=IDLE_COST_US)
-    if outcome is None:
-        return None
+    with ExitStack() as output:
+        def check():
+            """Before any task, on rank 0: the resource (without scipy.stats), the
+            files after the sweep, and one run into ``out`` at a time."""
+            check_resource(job.config)
+            for name in FILES:
+                check_writable(out / name)
+            output.enter_context(exclusive(out, directory=True, outputs=[out / n for n in FILES]))
+
+        # rank 0 imports the plotting and scipy.stats while it waits for the other ranks' tasks
+        outcome = sweep(job, h5, check=check,
+                        idle=lambda: [importlib.import_module(m) for m in ("fem_tether.plots", "scipy.stats")],
+                        idle_cost_us=IDLE_COST_US)
+        if outcome is None:
+            return None
+        return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0)
+
+
+def _after_sweep(outcome: SweepOutcome, h5: Path, out: Path, allow_unchecked: bool, allow_incomplete: bool,
+                 t0: float) -> MainJob:
     data = read_sweep(h5)
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     files = write_plots(data, energy, out)

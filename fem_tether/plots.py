@@ -13,17 +13,18 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 import numpy as np  # noqa: E402
 
 from .aep import AepByLength  # noqa: E402
-from .atomic import atomic_path  # noqa: E402
+from .atomic import atomic_path, generator_tag  # noqa: E402
 from .kite import ZONES, CharacteristicCurves, PowerCurves  # noqa: E402
 from .power import SEED_GE, SEED_LENGTHS_M  # noqa: E402
 
 
 def save_atomically(fig, path) -> Path:
     """Save ``fig`` as PNG at ``path`` through a temporary file in the same
-    directory, and close it."""
+    directory, and close it; the PNG's ``Software`` text marks it as
+    fem-tether's (:func:`fem_tether.atomic.written_by_fem_tether`)."""
     try:
         with atomic_path(path) as tmp:
-            fig.savefig(tmp, format="png", dpi=150)
+            fig.savefig(tmp, format="png", dpi=150, metadata={"Software": generator_tag()})
         return Path(path)
     finally:
         plt.close(fig)

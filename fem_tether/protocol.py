@@ -45,6 +45,7 @@ from fem_tether.errors import SolverDivergedError, check_taut, slack_failure
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
+from fem_tether.stop import checkpoint
 
 #: A change of V_L between steps larger than this (m/s) restarts the time
 #: integration from data made consistent with the new constraints.
@@ -189,6 +190,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
                 check_taut(state.T, solver.tension_s_m(), state.t, solver.model.length_m)
             energy_J += h * reel_mps * state.T[0]
             bar.update(i)
+            checkpoint()                 # a Ctrl-C a finaliser swallowed (fem_tether.stop)
         done = i == n_steps or (reel.active and reel.stopped(solver.model.length_m, start_length))
         record.add(i, state.t, solver.line_state(state, record.snapshot_due(i, done))
                    | winch_values(solver.model.length_m, reel_mps, state.T[0], energy_J), last=done)

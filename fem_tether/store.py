@@ -95,7 +95,7 @@ class PartsStore:
                 return stored
             sizing = size_tether(self.job.config_for(length_m))
             write_json(self.sizing_path(length_m), {"inputs_key": self.inputs_key(length_m),
-                                                   "sizing": sizing.to_dict()})
+                                                   "sizing": sizing.to_dict()}, allow_nan=True)
             return sizing
 
     def config_for(self, length_m: float) -> Config:

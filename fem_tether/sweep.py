@@ -14,9 +14,11 @@ the finished tasks and says how to resume.
 from __future__ import annotations
 
 from collections.abc import Callable
+from contextlib import ExitStack
 from dataclasses import dataclass
 from pathlib import Path
 
+from fem_tether.atomic import exclusive, remove_temporaries
 from fem_tether.distribute import distribute
 from fem_tether.errors import InputError
 from fem_tether.evaluate import LengthResult, evaluate_length, load_kernels, run_task
@@ -24,6 +26,7 @@ from fem_tether.jobs import Job, Task
 from fem_tether.memory import peak_rss_MiB
 from fem_tether.progress import Progress
 from fem_tether.schedule import task_cost
+from fem_tether.stop import guard, sync
 from fem_tether.store import PartsStore
 from fem_tether.sweepfile import assemble, check_out
 
@@ -77,24 +80,32 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
-    out = Path(out)
+    with guard(comm), ExitStack() as output:
+        return _sweep(job, Path(out), comm, output, progress, check, idle, idle_cost_us)
+
+
+def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool, check, idle,
+           idle_cost_us: float) -> SweepOutcome | None:
     rank, size = comm.Get_rank(), comm.Get_size()
     store = PartsStore(job, out)
     problem: InputError | None = None
     if rank == 0:
         try:
             check_out(out)
+            output.enter_context(exclusive(out))   # one writer of out and its parts, until the end
+            remove_temporaries(store.directory)
             if check is not None:
                 check()
         except InputError as exc:
             problem = exc
+    sync(comm)
     problem = comm.bcast(problem, root=0)
     if problem:
         raise problem
     # after an install the first import of a solver's kernels compiles them: each
     # rank compiles one solver's (not all of them, all at once), then loads the others' cached
     load_kernels(job.config, [job.solvers[rank % len(job.solvers)]])
-    comm.Barrier()
+    sync(comm)
     load_kernels(job.config, job.solvers)
     tasks = job.tasks
     bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
@@ -126,6 +137,7 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
     except KeyboardInterrupt:
         bar.close()
         raise SweepInterrupted(store.kept(), len(tasks), store.directory) from None
+    sync(comm)
     reused = comm.reduce(reused, root=0)
     if rank != 0:
         comm.gather(peak_rss_MiB(), root=0)

@@ -25,6 +25,7 @@ per length with its configuration (its sized line, with ``[tether] sizing =
 
 from __future__ import annotations
 
+import os
 import datetime as _dt
 from pathlib import Path
 
@@ -32,7 +33,7 @@ import h5py
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.atomic import OutputError, atomic_path, check_writable
+from fem_tether.atomic import OutputError, atomic_path, check_folder, check_writable
 from fem_tether.config import Config, ConfigError
 from fem_tether.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs import length_tag
@@ -56,11 +57,11 @@ def _dataset(f, name, data):
 def check_out(out: Path) -> None:
     """Before a sweep: ``out`` and its parts directory can be written, and ``out``
     is not a file some other program wrote."""
-    check_writable(out)
-    if out.exists() and not is_sweep_result(out):
+    if os.path.lexists(out) and not is_sweep_result(out):
         raise OutputError(f"cannot write {out}: it exists and is not a fem-tether sweep result "
                           "(move it away or choose another file)")
-    check_writable(parts_dir(out), directory=True)
+    check_writable(out)
+    check_folder(parts_dir(out))
 
 
 def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:

@@ -1,4 +1,5 @@
 import os
+import re
 import xml.etree.ElementTree as ET
 
 import h5py
@@ -9,6 +10,7 @@ import pytest
 from fem_tether import __version__, output
 from fem_tether.config import load_config
 from fem_tether.fe.solver import simulate
+from fem_tether.atomic import OutputError
 from fem_tether.output import read_run_hdf5, write_paraview, write_run_hdf5
 from fem_tether.results import CELL_FIELDS, SERIES
 
@@ -79,7 +81,8 @@ def test_hdf5_failure_leaves_nothing(run, tmp_path, monkeypatch):
     path = tmp_path / "run.h5"
 
     def fail():
-        assert hidden(tmp_path) == [f".run.h5.tmp-{os.getpid()}.h5"]  # mid-write
+        [name] = hidden(tmp_path)                                    # mid-write
+        assert re.fullmatch(rf"\.run\.h5\.tmp-{os.getpid()}-[0-9a-f]{{6}}\.h5", name)
         raise RuntimeError("disk full")
 
     monkeypatch.setattr(run, "means", fail)
@@ -129,20 +132,22 @@ def test_paraview(run, tmp_path):
     assert hidden(tmp_path) == []
 
 
-def test_paraview_replaces_directory(run, tmp_path):
+def test_paraview_replaces_its_own_folder_only(run, tmp_path):
     target = tmp_path / "vis"
-    target.mkdir()
-    (target / "stale.vtu").write_text("old")
+    write_paraview(run, target, name="old")
     write_paraview(run, target)
-    assert not (target / "stale.vtu").exists()
-    assert (target / "tether.pvd").exists()
+    assert not (target / "old.pvd").exists() and (target / "tether.pvd").exists()
     assert hidden(tmp_path) == []
+    (target / "notes.txt").write_text("mine")       # a user's file in it: the folder is refused
+    with pytest.raises(OutputError, match=f"cannot write {target}: the folder holds files fem-tether did not"):
+        write_paraview(run, target)
+    assert (target / "notes.txt").read_text() == "mine" and (target / "tether.pvd").exists()
 
 
 def test_paraview_failure_leaves_nothing(run, tmp_path, monkeypatch):
     target = tmp_path / "vis"
-    target.mkdir()
-    (target / "old.pvd").write_text("old")
+    write_paraview(run, target, name="old")
+    before = sorted(p.name for p in target.iterdir())
     write = meshio.write
 
     def fail_third(path, mesh):
@@ -151,7 +156,7 @@ def test_paraview_failure_leaves_nothing(run, tmp_path, monkeypatch):
         write(path, mesh)
 
     monkeypatch.setattr(output.meshio, "write", fail_third)
-    with pytest.raises(OSError, match="disk full"):
+    with pytest.raises(OutputError, match=f"cannot write {target}: disk full"):
         write_paraview(run, target)
-    assert [p.name for p in target.iterdir()] == ["old.pvd"]
+    assert sorted(p.name for p in target.iterdir()) == before
     assert hidden(tmp_path) == []

@@ -90,7 +90,7 @@ def test_json_document_and_files(tmp_path):
     v = validate(pattern="trevisi/table-3.1")
     files = write(v, tmp_path / "out")
     data = json.loads(files["json"].read_text())
-    assert set(data) == {"version", "quick", "only", "seconds", "counts", "ok", "cases", "results"}
+    assert set(data) == {"fem_tether_version", "version", "quick", "only", "seconds", "counts", "ok", "cases", "results"}
     assert data["counts"] == {"pass": 7, "explained": 0, "fail": 0} and data["cases"] == ["trevisi/table-3.1"]
     assert set(data["results"][0]) == {"case", "source", "quantity", "unit", "target", "computed", "difference",
                                        "relative", "tolerance", "verdict", "reason", "links", "seconds"}

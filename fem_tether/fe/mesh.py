@@ -13,7 +13,7 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from fem_tether.atomic import atomic_path
+from fem_tether.atomic import atomic_path, mark_mesh
 from fem_tether.errors import InputError
 
 
@@ -47,6 +47,7 @@ def write_unit_mesh(path: str | Path, nodes: np.ndarray) -> Path:
     cells = [("line", np.column_stack([np.arange(nodes.size - 1), np.arange(1, nodes.size)]))]
     with atomic_path(path) as tmp:
         meshio.write(tmp, meshio.Mesh(points, cells), file_format=meshio.extension_to_filetypes[path.suffix][0])
+        mark_mesh(tmp)
     return path
 
 

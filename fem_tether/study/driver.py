@@ -15,13 +15,17 @@ from __future__ import annotations
 
 import math
 import time
+from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from fem_tether.atomic import exclusive, remove_temporaries
 from fem_tether.distribute import distribute
 from fem_tether.errors import InputError
 from fem_tether.evaluate import load_kernels
 from fem_tether.progress import Progress
+from fem_tether.stop import guard, sync
+from fem_tether.store import parts_dir
 
 from . import optimum as opt
 from . import scaling
@@ -77,6 +81,7 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutc
     bar.update(len(tasks))
     bar.close()
     outcome.tasks += len(tasks)
+    sync(comm)
     outcome.ran += comm.allreduce(ran[0])
     outcome.phase_s[label] = outcome.phase_s.get(label, 0.0) + time.perf_counter() - t0
 
@@ -183,21 +188,29 @@ def run_study(job: StudyJob, out: str | Path, comm=None, progress: bool = True,
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
+    with guard(comm), ExitStack() as output:
+        return _run_study(job, Path(out), comm, output, progress, allow_unchecked)
+
+
+def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool,
+               allow_unchecked: bool) -> StudyOutcome | None:
     t0 = time.perf_counter()
-    out = Path(out)
     rank = comm.Get_rank()
     problem: InputError | None = None
     if rank == 0:
         try:
             check_out(out)
+            output.enter_context(exclusive(out))   # one writer of out and its parts, until the end
+            remove_temporaries(parts_dir(out))
         except InputError as exc:
             problem = exc
+    sync(comm)
     problem = comm.bcast(problem, root=0)
     if problem:
         raise problem
     solvers = ("fe", "fd") if job.crosscheck else ("fe",)
     load_kernels(job.configs[0], [solvers[rank % len(solvers)]])
-    comm.Barrier()
+    sync(comm)
     load_kernels(job.configs[0], solvers)
     study = Study(job, out)
     outcome = StudyOutcome([], n_ranks=comm.Get_size())

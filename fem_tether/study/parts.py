@@ -45,4 +45,4 @@ class StudyParts:
 
     def write(self, name: str, key: str, values: dict) -> None:
         self.directory.mkdir(parents=True, exist_ok=True)
-        write_json(self.path(name), {"inputs_key": key, "values": values})
+        write_json(self.path(name), {"inputs_key": key, "values": values}, allow_nan=True)

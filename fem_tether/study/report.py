@@ -25,24 +25,18 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import __version__, plots
-from fem_tether.atomic import atomic_path
+from fem_tether.atomic import atomic_path, generator_tag
 from fem_tether.page import PAGE_NAME, STYLE, image, number, table
 from fem_tether.report import finite_max
 
 from .energy import INTERPOLATION_LIMIT
-from .result import read_study
+from .result import read_study, report_dir
 
 #: Evenly spaced lengths drawn in the per-bin figures (the optimum's besides).
 CURVES = 5
 #: A point's values per bin and per bin edge that its per-bin figures draw.
 BIN_KEYS = ("power_edges_fe_W", "power_edges_straight_W", "power_fe_W", "power_straight_W",
             "cd_fe", "cd_straight", "ge_fe", "ge_straight")
-
-
-def report_dir(out) -> Path:
-    """Where the report of the study file ``out`` goes: ``<out without suffix>_report/``."""
-    out = Path(out)
-    return out.with_name(f"{out.stem}_report")
 
 
 def aep_cases(s: dict) -> dict:
@@ -185,6 +179,7 @@ def render(out: Path, study: dict, figures: dict[str, dict[str, Path]]) -> str:
                        f"</a></li>" for n in names)
     return "\n".join([
         "<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
+        f"<meta name=\"generator\" content=\"{generator_tag()}\">",
         f"<title>fem-tether study: {html.escape(out.name)}</title><style>{STYLE}</style></head><body>",
         f"<h1>fem-tether study</h1><p>study file {html.escape(out.name)}, written by fem-tether "
         f"{html.escape(study['version'])}; page by fem-tether {html.escape(__version__)}; "

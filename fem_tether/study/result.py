@@ -19,6 +19,7 @@ without HDF5's object timestamps).
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -26,7 +27,7 @@ import h5py
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.atomic import OutputError, atomic_path, check_writable
+from fem_tether.atomic import OutputError, atomic_path, check_folder, check_writable
 from fem_tether.config import ConfigError
 from fem_tether.quantities import attributes, names
 from fem_tether.store import parts_dir
@@ -47,14 +48,23 @@ def is_study_result(path: Path) -> bool:
         return False
 
 
+def report_dir(out) -> Path:
+    """Where the report of the study file ``out`` goes: ``<out without suffix>_report/``."""
+    out = Path(out)
+    return out.with_name(f"{out.stem}_report")
+
+
 def check_out(out: Path) -> None:
-    """Before a study: ``out`` and its parts can be written, and ``out`` is not
-    a file some other program wrote."""
-    check_writable(out)
-    if out.exists() and not is_study_result(out):
+    """Before a study: ``out``, its parts and its report page can be written,
+    and ``out`` and the page are not files some other program wrote."""
+    from fem_tether.page import PAGE_NAME
+
+    if os.path.lexists(out) and not is_study_result(out):
         raise OutputError(f"cannot write {out}: it exists and is not a fem-tether study result "
                           "(move it away or choose another file)")
-    check_writable(parts_dir(out), directory=True)
+    check_writable(out)
+    check_folder(parts_dir(out))
+    check_writable(check_folder(report_dir(out)) / PAGE_NAME)
 
 
 def _dataset(group, name, data):

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from fem_tether.atomic import atomic_path, check_writable, write_json
+from fem_tether.atomic import atomic_path, check_folder, check_writable, generator_tag, write_json
 
 from .case import DOCUMENTS, VERDICTS, Result, format_difference, format_tolerance
 from .run import Validation
@@ -56,15 +56,21 @@ def summary_line(validation: Validation) -> str:
 def markdown(validation: Validation, link_base: str = "docs/") -> str:
     """The whole document: the summary, the table and the source documents' titles."""
     sources = "\n".join(f"- **{name}**: *{title}*" for name, title in DOCUMENTS.items())
-    return (f"# fem-tether validation\n\n{summary_line(validation)}\n\n{markdown_table(validation, link_base)}\n\n"
+    return (f"<!-- {generator_tag()} -->\n# fem-tether validation\n\n{summary_line(validation)}\n\n{markdown_table(validation, link_base)}\n\n"
             "Differences are relative (%) or, for targets of 0 and orders of convergence, absolute. "
             "`explained`: outside the tolerance, inside the gap the linked docs section computes.\n\n"
             f"Sources (docs/sources.md):\n{sources}\n")
 
 
+def check_out(directory) -> None:
+    """Before the first case: both files can be written into ``directory``."""
+    for name in (MARKDOWN_NAME, JSON_NAME):
+        check_writable(check_folder(directory) / name)
+
+
 def write(validation: Validation, directory) -> dict[str, Path]:
     """``validation.md`` and ``validation.json`` in ``directory``, each written whole or not at all."""
-    directory = check_writable(directory, directory=True)
+    directory = check_folder(directory)
     with atomic_path(directory / MARKDOWN_NAME) as tmp:
         tmp.write_text(markdown(validation), encoding="utf-8")
     return {"markdown": directory / MARKDOWN_NAME,
