@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
-from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
+from fem_tether.config import Config, ConfigError, load_config, resolve_paths, toml_and_text, toml_value
 from fem_tether.crosscheck import checkable
 from fem_tether.systems import catalog
 
@@ -124,8 +124,9 @@ def load_job(path: str | Path | None = None, system: str | None = None) -> Job:
     else the preset job of ``system`` (default :data:`DEFAULT_SYSTEM`)."""
     if path is None:
         path = catalog.path(system or DEFAULT_SYSTEM)
-        return job_from_dict(read_toml(path), path.parent, path.read_text())
+        data, text = toml_and_text(path)
+        return job_from_dict(data, path.parent, text)
     path = Path(path)
-    data = read_toml(path)
-    return job_from_dict(data, path.parent, path.read_text(), system)
+    data, text = toml_and_text(path)
+    return job_from_dict(data, path.parent, text, system)
 

@@ -31,11 +31,11 @@ def test_toml_round_trip(tmp_path):
     ({"tether": {"lenght_m": 1.0}}, r"\[tether\] lenght_m: unknown key"),
     ({"tehter": {}}, r"\[tehter\]: unknown section"),
     ({"tether": {"length_m": "long"}}, r'\[tether\] length_m = "long": expected a number'),
-    ({"tether": {"length_m": -5.0}}, r"\[tether\] length_m = -5.0: must be > 0"),
+    ({"tether": {"length_m": -5.0}}, r"\[tether\] length_m = -5.0: must be in \[10, 22000\]"),
     ({"tether": {"lines": 1.5}}, r"\[tether\] lines = 1.5: expected an integer"),
     ({"tether": {"lines": True}}, r"\[tether\] lines = true: expected an integer"),
     ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "exponential", "constant"'),
-    ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0.0, 90.0\)"),
+    ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0, 90\)"),
     ({"fe": {"rho_inf": 1.5}}, r"\[fe\] rho_inf = 1.5"),
 ])
 def test_bad_values_name_the_key(overrides, match):
@@ -53,7 +53,7 @@ def test_bad_files(tmp_path):
         load_config(bad)
 
 
-@pytest.mark.parametrize("section, dt_s, fewest", [("fe", 1.0, 36), ("fe", 100.0, 36), ("fd", 1.0, 72)])
+@pytest.mark.parametrize("section, dt_s, fewest", [("fe", 1.0, 36), ("fe", 60.0, 36), ("fd", 1.0, 72)])
 def test_time_step_must_resolve_the_eight(section, dt_s, fewest):
     """A step too coarse for the eight's period (7.23 s) is an input error that
     names the key, the steps per period and the largest allowed value; the
@@ -87,7 +87,7 @@ def test_variants_are_new_checked_configurations():
     assert longer.tether.length_m == 3000.0 and cfg.tether.length_m == 1000.0
     assert longer.path.period_s > cfg.path.period_s
     assert cfg.replace(fe={"elements": 20}).fe.elements == 20 and cfg.fe.elements == 40
-    with pytest.raises(ConfigError, match=r"^\[tether\] length_m = -1.0: must be > 0$"):
+    with pytest.raises(ConfigError, match=r"^\[tether\] length_m = -1.0: must be in \[10, 22000\]$"):
         cfg.with_length(-1.0)
     with pytest.raises(ConfigError, match=r"^\[fd\] dt_s = 1.0: "):
         cfg.replace(fd={"dt_s": 1.0})

@@ -159,7 +159,7 @@ def test_sum_tolerance_is_1e_6(tmp_path):
 
 
 def test_missing_file(tmp_path):
-    with pytest.raises(ResourceError, match="cannot read"):
+    with pytest.raises(ResourceError, match="nope.csv: no such file"):
         read_resource_csv(tmp_path / "nope.csv")
 
 

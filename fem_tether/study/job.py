@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fem_tether.aep import sweep_resource
-from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
+from fem_tether.config import Config, ConfigError, load_config, resolve_paths, toml_and_text, toml_value
 from fem_tether.jobs import length_tag
 from fem_tether.resource import ResourceError
 from fem_tether.sizing import sized_config
@@ -261,4 +261,5 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
 def load_study(path: str | Path, system: str | None = None) -> StudyJob:
     """The study job in the TOML file ``path``."""
     path = Path(path)
-    return study_from_dict(read_toml(path), path.parent, path.read_text(), system)
+    data, text = toml_and_text(path)
+    return study_from_dict(data, path.parent, text, system)
