@@ -9,12 +9,11 @@ run.  Everything a sweep does follows from the validated :class:`Job`.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
-from fem_tether.config import Config, ConfigError, load_config, resolve_paths, toml_and_text, toml_value
+from fem_tether.config import TETHER_LENGTH_M, Config, ConfigError, load_config, resolve_paths, toml_and_text, toml_value
 from fem_tether.crosscheck import checkable
 from fem_tether.systems import catalog
 
@@ -97,9 +96,9 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system
     if not isinstance(lengths, list) or not lengths:
         raise _job_error("lengths_m", lengths, "expected a non-empty list of lengths")
     for value in lengths:
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not (value > 0 and math.isfinite(value)):
-            raise _job_error("lengths_m", value, "every length must be a finite number > 0")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not TETHER_LENGTH_M.admits(value):
+            raise _job_error("lengths_m", value, f"every length must be a number in {TETHER_LENGTH_M} m "
+                                                 "(the range of [tether] length_m)")
     if len({length_tag(v) for v in lengths}) != len(lengths):
         raise _job_error("lengths_m", lengths, "lengths must be distinct (to 1 mm)")
     for key in ("crosscheck", "straight"):

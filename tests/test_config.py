@@ -35,7 +35,7 @@ def test_toml_round_trip(tmp_path):
     ({"tether": {"lines": 1.5}}, r"\[tether\] lines = 1.5: expected an integer"),
     ({"tether": {"lines": True}}, r"\[tether\] lines = true: expected an integer"),
     ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "exponential", "constant"'),
-    ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \(0, 90\)"),
+    ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \[1, 89\]"),
     ({"fe": {"rho_inf": 1.5}}, r"\[fe\] rho_inf = 1.5"),
 ])
 def test_bad_values_name_the_key(overrides, match):

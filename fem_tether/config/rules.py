@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from fem_tether.errors import ConfigError, InputError
+from fem_tether.loads import G_MPS2
 from fem_tether.results import CELL_FIELDS, KITE_SERIES, SERIES, steps_per_period
 
 from .sections import CEILING_M
@@ -101,7 +102,9 @@ def _check_winch(cfg: Config) -> None:
         raise ConfigError("[tether] elasticity = \"elastic\": needs [winch] mode = \"prescribed\"; a "
                           "fixed-length elastic line cannot hold the winch tension through the "
                           "kite's radius (waves take time to cross it), use an inextensible line")
-    if not tension_mode:
+    if tension_mode:
+        _check_tension_holds_the_line(cfg)
+    else:
         radius = cfg.kite.radius_m
         if radius <= 0.0 or (tether.elasticity == "inextensible" and radius >= tether.length_m):
             raise ConfigError(f"[kite] radius_m = {radius:g}: [winch] mode = \"prescribed\" needs "
@@ -122,6 +125,16 @@ def _check_winch(cfg: Config) -> None:
         raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = \"table\"")
     if winch.reel_out_stop_m and winch.reel_out in ("constant", "controlled", "hold"):
         _check_stop_side(cfg, winch.reel_out_speed_mps if winch.reel_out == "constant" else 1.0)
+
+
+def _check_tension_holds_the_line(cfg: Config) -> None:
+    """The winch's tension exceeds the weight of its line, mu g L: a lighter pull
+    cannot lift the line toward the kite (with 1e-300 N the static start found
+    no equilibrium even under gravity alone)."""
+    weight_N = cfg.tether.linear_density_kg_m * G_MPS2 * cfg.tether.length_m
+    if not cfg.winch.ground_tension_N > weight_N:
+        raise ConfigError(f"[winch] ground_tension_N = {cfg.winch.ground_tension_N:g}: must exceed the weight "
+                          f"of the line it holds, {weight_N:.4g} N ([tether] linear_density_kg_m x g x length_m)")
 
 
 def _check_stop_side(cfg: Config, speed_mps: float) -> None:

@@ -88,6 +88,11 @@ NEWTON_TOL = from_to(1e-12, 1e-6)
 #: static start failed (the last elements 1e-9 of the first).
 MAX_GRADING = 1e3
 
+#: Polar angles [deg] of a path's centre and a circle's cone: within 1 deg of the
+#: zenith or the horizon no path of a kite's size fits (theta0_deg = 1e-300 put
+#: the eight's 190 m across 1e-302 rad of the sphere).
+POLAR_ANGLE_DEG = from_to(1.0, 89.0)
+
 #: Time steps [s]: at most a minute (the steps-per-period rule needs far less).
 TIME_STEP_S = up_to(60.0)
 
@@ -279,9 +284,9 @@ class Kite(Section):
     path: str = setting("eight", "-", "the kite end's path: 'eight' (figure-eight, Roselli 2016 §4.2) or "
                         "'circle' (Lourenco 2014 §3.2.1)", one_of("eight", "circle"))
     theta0_deg: float = setting(45.0, "deg", "polar angle of the eight's centre or of the circle's axis, "
-                                "from the vertical", between(0.0, 90.0))
+                                "from the vertical", POLAR_ANGLE_DEG)
     circle_radius_deg: float = setting(22.918, "deg", "path = 'circle': cone half-angle rho of the circle "
-                                       "about its axis (Lourenco 2014 §3.2.1: 0.4 rad)", between(0.0, 90.0))
+                                       "about its axis (Lourenco 2014 §3.2.1: 0.4 rad)", POLAR_ANGLE_DEG)
     eight_width_m: float = setting(190.0, "m", "crosswind width W of the eight", PATH_SIZE_M)
     eight_height_m: float = setting(95.0, "m", "height H of the eight", PATH_SIZE_M)
     eight_shape: str = setting("gerono", "-", "the eight's curve: 'gerono' (lemniscate of Gerono) or 'ellipses' "

@@ -81,6 +81,7 @@ def read_unit_mesh(path: str | Path) -> np.ndarray:
     if mesh.points.shape[1] > 1 and np.any(np.abs(mesh.points[:, 1:]) > 1e-12):
         raise MeshError(f"{path}: points must lie on the x axis")
     used = np.unique(segments)
+    _check_finite(x[used], str(path))
     order = np.argsort(x[used])
     nodes = x[used][order]
     rank = np.empty(x.size, dtype=int)
@@ -103,14 +104,18 @@ def _meshio_read(path: Path) -> meshio.Mesh:
         raise MeshError(f"{path}: cannot read mesh: {reason}") from None
 
 
+def _check_finite(nodes: np.ndarray, where: str) -> None:
+    if not np.all(np.isfinite(nodes)):
+        k = int(np.argmin(np.isfinite(nodes)))
+        raise MeshError(f"{where}: node {k} is at x = {nodes[k]}: nodes must be finite")
+
+
 def _validated(nodes: np.ndarray, where: str) -> np.ndarray:
     """``nodes`` if they are finite, span [0, 1] strictly increasing, and no
     element is smaller than the largest over :data:`MAX_GRADING`."""
     if nodes.ndim != 1 or nodes.size < 3:
         raise MeshError(f"{where}: a tether mesh needs at least 2 segments")
-    if not np.all(np.isfinite(nodes)):
-        k = int(np.argmin(np.isfinite(nodes)))
-        raise MeshError(f"{where}: node {k} is at x = {nodes[k]}: nodes must be finite")
+    _check_finite(nodes, where)
     if abs(nodes[0]) > 1e-12 or abs(nodes[-1] - 1.0) > 1e-12:
         raise MeshError(f"{where}: mesh must span [0, 1], got [{nodes[0]}, {nodes[-1]}]")
     h = np.diff(nodes)
