@@ -110,8 +110,8 @@ MAX_LINES = 16
 #: (at most MAX_WIND_MPS) and the weakest profile it scales has ~1 m/s aloft.
 MAX_WIND_SCALE = 100.0
 
-#: Shortest reeling element [m]: 1 cm, 1e-3 of the shortest line; a 1e-15 m
-#: element makes the FE matrices singular.
+#: Shortest reeling element [m]: 1 cm, 1e-3 of the shortest line (no element
+#: of the shipped runs is shorter; a 1e-300 m one would never merge).
 MIN_ELEMENT_M = 0.01
 
 #: Cross-check tolerances: above 50 % the check passes any two runs of the same sign.

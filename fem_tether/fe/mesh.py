@@ -124,6 +124,6 @@ def _validated(nodes: np.ndarray, where: str) -> np.ndarray:
     if h.max() / h.min() > MAX_GRADING * (1.0 + 1e-9):
         raise MeshError(f"{where}: element {int(np.argmin(h))} is {h.min():.3g} of the line, "
                         f"{h.max() / h.min():.3g} times smaller than the largest ({h.max():.3g}); "
-                        f"at most {MAX_GRADING:g} times ([fe] grading's limit: the FE matrices of smaller "
-                        "elements are near-singular)")
+                        f"at most {MAX_GRADING:g} times ([fe] grading's limit, the largest ratio a run "
+                        "has been shown to converge at)")
     return nodes
