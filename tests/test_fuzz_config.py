@@ -32,6 +32,9 @@ BAD_POSITIVE = ('"x"', "nan", "inf", "-inf", "0", "-1", "1e300", "1e-300")
 TINY = {"fe": {"elements": 4, "mesh": "uniform", "dt_s": 0.2}, "fd": {"segments": 4, "dt_s": 0.1},
         "time": {"spinup_periods": 0, "average_periods": 1}}
 
+#: :data:`TINY` in TOML spellings.
+TINY_TOML = {name: {k: toml_value(v) for k, v in keys.items()} for name, keys in TINY.items()}
+
 
 def _numeric_keys() -> list[tuple[str, str]]:
     return [(section.NAME, f.name) for section in SECTIONS for f in dataclasses.fields(section)
@@ -45,7 +48,7 @@ def _toml(tables: dict[str, dict[str, str]]) -> str:
 
 
 def _tiny_with(section: str, key: str, value: str) -> dict[str, dict[str, str]]:
-    tables = {name: {k: toml_value(v) for k, v in keys.items()} for name, keys in TINY.items()}
+    tables = {name: dict(keys) for name, keys in TINY_TOML.items()}
     tables.setdefault(section, {})[key] = value
     return tables
 
@@ -132,9 +135,6 @@ def test_sweep_rejects_bad_keys(tmp_path, capsys, key, value):
     path.write_text(_toml({"sweep": {"lengths_m": "[1000]", "crosscheck": "false", key: value}, **TINY_TOML}))
     code, _, err = _run(capsys, "sweep", str(path), "--out", str(tmp_path / "job.h5"))
     _assert_rejected(code, err, f"[sweep] {key}")
-
-
-TINY_TOML = {name: {k: toml_value(v) for k, v in keys.items()} for name, keys in TINY.items()}
 
 
 def test_the_fuzz_covers_every_numeric_key_and_enough_cases():

@@ -96,6 +96,11 @@ POLAR_ANGLE_DEG = from_to(1.0, 89.0)
 #: Time steps [s]: at most a minute (the steps-per-period rule needs far less).
 TIME_STEP_S = up_to(60.0)
 
+#: Axial stiffness EA [N]: from 1 kN (a rubber cord) to 1e18 N, the stiffest an
+#: elastic line is run at (it reproduces the inextensible line,
+#: tests/test_fe_solver.py); beyond it the strain T/EA is below round-off.
+AXIAL_STIFFNESS_N = from_to(1e3, 1e18)
+
 #: Kite masses [kg]: four times the heaviest preset's (loyd-1, the C-5A's 233 t).
 MAX_KITE_MASS_KG = 1e6
 
@@ -219,7 +224,7 @@ class Tether(Section):
                               "'inextensible' (|r_s| = 1) or 'elastic' (strain = T/EA)",
                               one_of("inextensible", "elastic"))
     axial_stiffness_N: float = setting(1.4730e7, "N", "EA for elasticity = 'elastic' (SK99 11 mm: 155 GPa)",
-                                       from_to(1e3, 1e11))
+                                       AXIAL_STIFFNESS_N)
     damping_time_s: float = setting(0.0, "s", "Kelvin-Voigt retardation time eta, T = EA (eps + eta deps/dt)",
                                     zero_to(10.0))
     sizing: str = setting("fixed", "-", "'fixed' (diameter_m, linear_density_kg_m, axial_stiffness_N as given) "
