@@ -193,7 +193,7 @@ def check_given(cfg: Config, given: dict, base: Config) -> None:
     """Raise :class:`ConfigError` for a key the user changed (``given``: the tables
     of the user's file and overrides, set to other than ``base``'s value, the
     preset's or default) that ``cfg``'s path ignores."""
-    kite = given.get("kite") if isinstance(given.get("kite"), dict) else {}
+    kite: dict = given["kite"] if isinstance(given.get("kite"), dict) else {}
     for key, (path, meaning) in PATH_KEYS.items():
         if key in kite and cfg.kite.path != path and getattr(cfg.kite, key) != getattr(base.kite, key):
             raise ConfigError(f"[kite] {key} = {toml_value(kite[key])}: [kite] path = "
