@@ -19,7 +19,7 @@ import traceback
 import numpy as np
 
 from fem_tether import __version__, kite, report
-from fem_tether.config import MAX_ELEMENTS, load_config
+from fem_tether.config import MAX_ELEMENTS, TETHER_LENGTH_M, load_config
 from fem_tether.errors import FemTetherError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
 from fem_tether import stop
@@ -56,10 +56,11 @@ _positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
 _azimuth_deg = _option(float, "a number", lambda v: -90.0 < v < 90.0, "an azimuth in (-90, 90) degrees")
 _positive_float = _option(float, "a number", lambda v: np.isfinite(v) and v > 0, "a positive number")
 _non_negative_float = _option(float, "a number", lambda v: np.isfinite(v) and v >= 0, "a number >= 0")
+_length_m = _option(float, "a number", TETHER_LENGTH_M.admits, f"a cable length in {TETHER_LENGTH_M} m")
 
 
 def _float_list(text):
-    values = [_positive_float(v) for v in text.split(",") if v.strip()]
+    values = [_length_m(v) for v in text.split(",") if v.strip()]
     if not values:
         raise argparse.ArgumentTypeError("give comma-separated lengths, e.g. 500,1000")
     return values
@@ -278,7 +279,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("straight", cmd_straight, "straight-line tether drag F_t per line (Roselli 2016, §4.1)")
     g = c.add_mutually_exclusive_group()
-    g.add_argument("--length", type=_positive_float, help="cable length [m]")
+    g.add_argument("--length", type=_length_m, help="cable length [m]")
     g.add_argument("--lengths", type=_float_list, help="comma-separated lengths [m] for a table")
     c.add_argument("--closed-form", action="store_true", help="rho C_d d L V^2 / 8 (eq. 4.6)")
     c.add_argument("--rho", type=_positive_float, help="closed form density (default: line mean)")
@@ -303,7 +304,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("simulate", cmd_simulate, "FE tether dynamics on the figure-eight")
-    c.add_argument("--length", type=_positive_float, help="cable length [m]")
+    c.add_argument("--length", type=_length_m, help="cable length [m]")
     c.add_argument("--out", metavar="DIR", help="write HDF5 and a ParaView time series here")
     c.add_argument("--sweep", metavar="FILE.h5",
                    help="reel-out: overlay a sweep's fixed-length F_t on the F_t(L) plot")
@@ -311,11 +312,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("size", cmd_size, "size the line to its peak tension, closed loop over FE runs "
                 "([tether] material, safety_factor; docs/physics.md §5)")
-    c.add_argument("--length", type=_positive_float, help="cable length [m]")
+    c.add_argument("--length", type=_length_m, help="cable length [m]")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("crosscheck", cmd_crosscheck, "run the FE and the FD solver on one case and compare")
-    c.add_argument("--length", type=_positive_float, help="cable length [m]")
+    c.add_argument("--length", type=_length_m, help="cable length [m]")
     c.add_argument("--fd-config", metavar="CONFIG", help="a different configuration for the FD run")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 

@@ -9,12 +9,11 @@ run.  Everything a sweep does follows from the validated :class:`Job`.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
-from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
+from fem_tether.config import TETHER_LENGTH_M, Config, ConfigError, load_config, resolve_paths, toml_and_text, toml_value
 from fem_tether.crosscheck import checkable
 from fem_tether.systems import catalog
 
@@ -97,9 +96,9 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system
     if not isinstance(lengths, list) or not lengths:
         raise _job_error("lengths_m", lengths, "expected a non-empty list of lengths")
     for value in lengths:
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not (value > 0 and math.isfinite(value)):
-            raise _job_error("lengths_m", value, "every length must be a finite number > 0")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not TETHER_LENGTH_M.admits(value):
+            raise _job_error("lengths_m", value, f"every length must be a number in {TETHER_LENGTH_M} m "
+                                                 "(the range of [tether] length_m)")
     if len({length_tag(v) for v in lengths}) != len(lengths):
         raise _job_error("lengths_m", lengths, "lengths must be distinct (to 1 mm)")
     for key in ("crosscheck", "straight"):
@@ -124,8 +123,9 @@ def load_job(path: str | Path | None = None, system: str | None = None) -> Job:
     else the preset job of ``system`` (default :data:`DEFAULT_SYSTEM`)."""
     if path is None:
         path = catalog.path(system or DEFAULT_SYSTEM)
-        return job_from_dict(read_toml(path), path.parent, path.read_text())
+        data, text = toml_and_text(path)
+        return job_from_dict(data, path.parent, text)
     path = Path(path)
-    data = read_toml(path)
-    return job_from_dict(data, path.parent, path.read_text(), system)
+    data, text = toml_and_text(path)
+    return job_from_dict(data, path.parent, text, system)
 

@@ -40,6 +40,7 @@ from scipy.optimize import brentq
 
 from fem_tether.atmosphere import AirModel
 from fem_tether.errors import InputError, SolverDivergedError
+from fem_tether.inputfile import read_text
 from fem_tether.loads import G_MPS2
 from fem_tether.wind import WindProfile
 
@@ -127,13 +128,7 @@ def read_polar(path) -> Polar:
     """A :class:`Polar` from a CSV file with the header ``alpha_deg,cl,cd`` and one
     row per angle (α in degrees, increasing); errors name the file and line."""
     path = Path(path)
-    try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        raise PolarError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise PolarError(f"{path}: cannot read: {exc}") from None
+    rows = list(csv.reader(read_text(path, PolarError).splitlines()))
     if not rows or tuple(c.strip() for c in rows[0]) != POLAR_HEADER:
         raise PolarError(f"{path} line 1: expected the header '{','.join(POLAR_HEADER)}'")
     values = []

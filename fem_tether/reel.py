@@ -55,6 +55,7 @@ from fem_tether.atmosphere import AirModel
 from fem_tether.config import Config
 from fem_tether.wind import WindProfile
 from fem_tether.errors import ConfigError, InputError
+from fem_tether.inputfile import read_text
 
 
 class SpeedTableError(InputError):
@@ -64,13 +65,7 @@ class SpeedTableError(InputError):
 def read_speed_table(path) -> tuple[np.ndarray, np.ndarray]:
     """``time_s,speed_mps`` rows (with that header), times strictly increasing from 0."""
     path = Path(path)
-    try:
-        with path.open(newline="") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        raise SpeedTableError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SpeedTableError(f"{path}: cannot read: {exc}") from None
+    rows = list(csv.reader(read_text(path, SpeedTableError).splitlines()))
     if not rows or [c.strip() for c in rows[0]] != ["time_s", "speed_mps"]:
         raise SpeedTableError(f"{path} line 1: expected the header 'time_s,speed_mps'")
     t: list[float] = []

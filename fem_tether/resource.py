@@ -43,6 +43,7 @@ import numpy as np
 from scipy.special import gamma
 
 from .errors import InputError
+from .inputfile import read_text
 from .wind import DE_BILT_ANNUAL, WindProfile
 
 COLUMNS = ("band_low_m", "band_high_m", "bin_low_mps", "bin_high_mps", "probability")
@@ -248,10 +249,7 @@ def read_resource_csv(path) -> WindResource:
     """Read and validate histograms in the module's CSV format; errors name the line."""
     path = Path(path)
     name = path.name
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise ResourceError(f"{path}: cannot read: {exc.strerror}") from None
+    text = read_text(path, ResourceError)
     reader = csv.DictReader(text.splitlines())
     header = [c.strip() for c in reader.fieldnames or []]
     missing = [c for c in COLUMNS if c not in header]

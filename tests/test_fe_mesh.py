@@ -32,7 +32,7 @@ def test_shipped_meshes_are_readable():
 
 
 def test_bad_meshes(tmp_path):
-    with pytest.raises(MeshError, match="cannot read"):
+    with pytest.raises(MeshError, match="no such file"):
         read_unit_mesh(tmp_path / "missing.vtu")
     with pytest.raises(MeshError, match="span"):
         write_unit_mesh(tmp_path / "x.vtu", np.array([0.0, 0.25, 0.5]))
@@ -44,3 +44,29 @@ def test_bad_meshes(tmp_path):
         write_unit_mesh(tmp_path / "x.vtu", np.array([0.0, 0.6, 0.5, 1.0]))
     with pytest.raises(MeshError, match=">= 1"):
         unit_nodes(0)
+
+
+def _mesh_file(tmp_path, x):
+    import meshio
+    path = tmp_path / "m.vtu"
+    meshio.write(path, meshio.Mesh(np.column_stack([x, np.zeros((len(x), 2))]),
+                                   [("line", np.column_stack([np.arange(len(x) - 1), np.arange(1, len(x))]))]))
+    return path
+
+
+def test_a_mesh_with_a_nan_node_or_a_vanishing_element_is_refused(tmp_path):
+    with pytest.raises(MeshError, match=r"node 2 is at x = nan: nodes must be finite"):
+        read_unit_mesh(_mesh_file(tmp_path, [0.0, 0.25, np.nan, 0.75, 1.0]))
+    with pytest.raises(MeshError, match=r"element 1 is 9.99e-16 of the line, .* at most 1000 times"):
+        read_unit_mesh(_mesh_file(tmp_path, [0.0, 0.5, 0.5 + 1e-15, 1.0]))
+
+
+def test_an_unreadable_mesh_is_one_input_error_not_meshio_s_exit(tmp_path, capsys):
+    """meshio prints and calls sys.exit(1) on some files: one MeshError, nothing printed."""
+    from fem_tether.cli import main
+    (tmp_path / "g.vtu").write_text("garbage")
+    (tmp_path / "c.toml").write_text('[fe]\nmesh = "g.vtu"\n')
+    assert main(["config", str(tmp_path / "c.toml")]) == 2
+    out, err = capsys.readouterr()
+    assert err.startswith('fem-tether: error: [fe] mesh = "') and "cannot read mesh" in err
+    assert len(err.strip().splitlines()) == 1 and out == ""

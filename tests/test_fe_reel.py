@@ -103,8 +103,8 @@ def test_speed_table_and_config_errors(tmp_path):
             load_config(overrides=overrides)
     bad = tmp_path / "bad.csv"
     bad.write_text("t,v\n")
-    with pytest.raises(ConfigError, match=r"\[winch\] reel_out_table: .*line 1"):
-        reel_from_config(load_config(overrides={"winch": {"reel_out": "table", "reel_out_table": str(bad)}}))
+    with pytest.raises(ConfigError, match=r"^\[winch\] reel_out_table = .*bad.csv line 1"):   # read at load
+        load_config(overrides={"winch": {"reel_out": "table", "reel_out_table": str(bad)}})
 
 
 def test_reel_out_on_the_circle():

@@ -373,15 +373,14 @@ def test_largest_accepted_mesh_starts_and_steps():
     model = build_model(cfg)
     state = advance(FESolver(model), initial_state(model), 0.05, Statistics())
     assert state.T[0] == pytest.approx(150e3, rel=1e-9) and np.min(state.T) > 0
-    with pytest.raises(ConfigError, match=r"\[fe\] elements = 10001: must be from 2 to 10000"):
+    with pytest.raises(ConfigError, match=r"\[fe\] elements = 10001: must be in \[2, 10000\]"):
         load_config(overrides={"fe": {"elements": MAX_ELEMENTS + 1}})
 
 
 def test_mesh_file_beyond_the_cap_is_refused(tmp_path):
     path = write_unit_mesh(tmp_path / "big.vtu", unit_nodes(MAX_ELEMENTS + 1))
-    cfg = load_config(overrides={"fe": {"mesh": str(path)}})
     with pytest.raises(ConfigError, match=r"\[fe\] mesh = .*big.vtu\": 10001 elements, at most 10000"):
-        build_model(cfg)
+        load_config(overrides={"fe": {"mesh": str(path)}})          # the mesh is read at load
 
 
 @pytest.mark.parametrize("kernel", ["compiled", "numpy"])

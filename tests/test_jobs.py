@@ -20,6 +20,8 @@ def test_default_job_file_is_the_embedded_default():
 @pytest.mark.parametrize("text, match", [
     ("[sweep]\nlengths_m = []\n", r"\[sweep\] lengths_m = \[\]"),
     ("[sweep]\nlengths_m = [500, -1]\n", r"\[sweep\] lengths_m = -1"),
+    ("[sweep]\nlengths_m = [500, 1e200]\n",
+     r"^\[sweep\] lengths_m = 1e\+200: every length must be a number in \[10, 22000\]"),
     ("[sweep]\nlengths_m = [500, 500]\n", "distinct"),
     ("[sweep]\nlengths_m = [500]\ncrosscheck = 'yes'\n", r"\[sweep\] crosscheck"),
     ("[sweep]\nlenghts_m = [1]\n", r"\[sweep\] lenghts_m: unknown key"),

@@ -135,7 +135,7 @@ def test_mean_abs_phi_equals_a_dense_average(circle):
                            r"must stay between the zenith and the horizon"),
     ({"theta0_deg": 70.0}, r"\[kite\] circle_radius_deg = 22.918: .* horizon \(polar angles 47.082 to "
                            r"92.918 deg\)"),
-    ({"circle_radius_deg": 0.0}, r"\[kite\] circle_radius_deg = 0.0: must be in \(0.0, 90.0\)"),
+    ({"circle_radius_deg": 0.0}, r"\[kite\] circle_radius_deg = 0.0: must be in \[1, 89\]"),
     ({"path": "square"}, r'\[kite\] path = "square": must be one of "eight", "circle"'),
 ])
 def test_a_circle_off_the_sphere_is_an_error_naming_the_key(kite, match):

@@ -159,7 +159,7 @@ def test_sum_tolerance_is_1e_6(tmp_path):
 
 
 def test_missing_file(tmp_path):
-    with pytest.raises(ResourceError, match="cannot read"):
+    with pytest.raises(ResourceError, match="nope.csv: no such file"):
         read_resource_csv(tmp_path / "nope.csv")
 
 
@@ -266,3 +266,10 @@ def test_band_width_zero_is_the_weibull_at_the_altitude_itself():
     assert 0.0 < np.abs(near - band.probability).max() < 1e-3
     with pytest.raises(ResourceError, match="altitude 10 m is outside 25–2300 m"):
         resource.band_at_altitude(10.0)
+
+
+def test_a_csv_not_in_utf8_is_one_error_naming_the_file(tmp_path):
+    path = tmp_path / "latin1.csv"
+    path.write_bytes("band_low_m,band_high_m,bin_low_mps,bin_high_mps,probability\n# Zürich\n".encode("latin-1"))
+    with pytest.raises(ResourceError, match=r"latin1.csv: not UTF-8 text \(byte \d+ is 0xfc\)"):
+        read_resource_csv(path)

@@ -17,13 +17,15 @@ from fem_tether.errors import ConfigError
 
 from .model import Config, load_config
 from .rules import CEILING_M, FILE_KEYS, MIN_STEPS_PER_PERIOD, NOT_FILES
-from .sections import (FD, FE, MAX_ELEMENTS, SECTIONS, Air, Crosscheck, Cycle, Drag, Kite, Output,
+from .sections import (FD, FE, MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, SECTIONS, TETHER_DIAMETER_M,
+                       TETHER_LENGTH_M, Air, Crosscheck, Cycle, Drag, Kite, Output,
                        Resource, System, Tether, Time, Unified, Wind, Winch)
 from .settings import Section, toml_value
-from .tomlio import read_toml, resolve_paths
+from .tomlio import read_toml, resolve_paths, toml_and_text
 
-__all__ = ["CEILING_M", "FD", "FE", "FILE_KEYS", "MAX_ELEMENTS", "MIN_STEPS_PER_PERIOD", "NOT_FILES",
+__all__ = ["CEILING_M", "FD", "FE", "FILE_KEYS", "MAX_ELEMENTS", "MAX_GRADING", "MAX_WIND_MPS",
+           "TETHER_DIAMETER_M", "TETHER_LENGTH_M", "MIN_STEPS_PER_PERIOD", "NOT_FILES",
            "SECTIONS", "Air", "Config", "ConfigError", "Crosscheck", "Cycle", "Drag", "Kite", "Output",
            "Resource", "Section", "System", "Tether", "Time", "Unified", "Wind", "Winch", "load_config",
            "read_toml",
-           "resolve_paths", "toml_value"]
+           "resolve_paths", "toml_and_text", "toml_value"]

@@ -136,10 +136,12 @@ def load_config(path: str | Path | None = None, overrides: dict | None = None,
                 system: str | None = None) -> Config:
     """Defaults, then the preset of ``system`` (:mod:`fem_tether.systems.catalog`),
     then the TOML file at ``path``, then ``overrides``.  File names in the
-    file are relative to the file, and must exist."""
-    data = catalog.config_tables(system) if system is not None else {}
-    if path is not None:
-        data = merged(data, resolve_paths(read_toml(path), Path(path).parent))
-    cfg = Config.from_dict(merged(data, overrides or {}))
+    file are relative to the file, and must exist and read; a key the user
+    sets (in the file or ``overrides``) that the case ignores is an error."""
+    preset = catalog.config_tables(system) if system is not None else {}
+    given = resolve_paths(read_toml(path), Path(path).parent) if path is not None else {}
+    given = merged(given, overrides or {})
+    cfg = Config.from_dict(merged(preset, given))
+    rules.check_given(cfg, given, Config.from_dict(preset))
     rules.check_files(cfg)
     return cfg

@@ -10,16 +10,15 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from fem_tether.errors import ConfigError
-from fem_tether.results import steps_per_period
+from fem_tether.errors import ConfigError, InputError
+from fem_tether.loads import G_MPS2
+from fem_tether.results import CELL_FIELDS, KITE_SERIES, SERIES, steps_per_period
 
+from .sections import CEILING_M
 from .settings import toml_value
 
 if TYPE_CHECKING:
     from .model import Config
-
-#: Highest altitude of the ISA troposphere the atmosphere model covers [m].
-CEILING_M = 11000.0
 
 #: Fewest time steps per period of the path, per time-step key.  From the
 #: convergence of mean F_t in dt (default case, 500 m is the worst length):
@@ -33,6 +32,25 @@ FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"), (
 
 #: Values of file keys that are not files.
 NOT_FILES = ("", "uniform", "graded")
+
+#: Keys of one path: key -> (the path that flies it, what it is for).
+PATH_KEYS = {
+    "eight_width_m": ("eight", "the width of an eight"),
+    "eight_height_m": ("eight", "the height of an eight"),
+    "eight_shape": ("eight", "the curve of an eight"),
+    "circle_radius_deg": ("circle", "the cone half-angle of a circle"),
+}
+
+#: Most time steps of one run: 2e6, about 2 h at the default case's ~3 ms per
+#: step; dt_s = 1e-9 asked for 2e10 (and 162 GiB) and failed after minutes.
+MAX_STEPS = 2_000_000
+
+#: Most memory of one run's stored series and snapshots [bytes], 2 GiB, twice
+#: what is held (the arrays, then the run's copy of them).
+MAX_RUN_BYTES = 2 * 2**30
+
+#: Numbers per node of a snapshot (results.NODE_FIELDS: s, and r and v in 3-D).
+SNAPSHOT_PER_NODE = 7
 
 
 def check(cfg: Config) -> None:
@@ -84,7 +102,9 @@ def _check_winch(cfg: Config) -> None:
         raise ConfigError("[tether] elasticity = \"elastic\": needs [winch] mode = \"prescribed\"; a "
                           "fixed-length elastic line cannot hold the winch tension through the "
                           "kite's radius (waves take time to cross it), use an inextensible line")
-    if not tension_mode:
+    if tension_mode:
+        _check_tension_holds_the_line(cfg)
+    else:
         radius = cfg.kite.radius_m
         if radius <= 0.0 or (tether.elasticity == "inextensible" and radius >= tether.length_m):
             raise ConfigError(f"[kite] radius_m = {radius:g}: [winch] mode = \"prescribed\" needs "
@@ -103,21 +123,91 @@ def _check_winch(cfg: Config) -> None:
                           "out [cycle] stroke_m and reels it back in; set reel_out_stop_m = 0")
     if winch.reel_out == "table" and not winch.reel_out_table:
         raise ConfigError("[winch] reel_out_table: a CSV file is needed for reel_out = \"table\"")
+    if winch.reel_out_stop_m and winch.reel_out in ("constant", "controlled", "hold"):
+        _check_stop_side(cfg, winch.reel_out_speed_mps if winch.reel_out == "constant" else 1.0)
+
+
+def _check_tension_holds_the_line(cfg: Config) -> None:
+    """The winch's tension exceeds the weight of its line, mu g L: a lighter pull
+    cannot lift the line toward the kite (with 1e-300 N the static start found
+    no equilibrium even under gravity alone)."""
+    weight_N = cfg.tether.linear_density_kg_m * G_MPS2 * cfg.tether.length_m
+    if not cfg.winch.ground_tension_N > weight_N:
+        raise ConfigError(f"[winch] ground_tension_N = {cfg.winch.ground_tension_N:g}: must exceed the weight "
+                          f"of the line it holds, {weight_N:.4g} N ([tether] linear_density_kg_m x g x length_m)")
+
+
+def _check_stop_side(cfg: Config, speed_mps: float) -> None:
+    """``reel_out_stop_m`` lies where a reel at ``speed_mps`` (its sign) takes the line."""
+    stop_m, length_m = cfg.winch.reel_out_stop_m, cfg.tether.length_m
+    if speed_mps == 0.0 or (stop_m - length_m) * speed_mps <= 0.0:
+        moves = ("does not move" if speed_mps == 0.0 else
+                 f"reels {'out' if speed_mps > 0 else 'in'} from [tether] length_m = {length_m:g}")
+        raise ConfigError(f"[winch] reel_out_stop_m = {stop_m:g}: never reached, the winch {moves} "
+                          f"([winch] reel_out = {toml_value(cfg.winch.reel_out)})")
+
+
+def _check_table_direction(cfg: Config, speeds_mps) -> None:
+    """A speed table's ``reel_out_stop_m`` lies where the table's reel goes (a
+    table of one sign; a table reeling both ways is not checked)."""
+    if cfg.winch.reel_out_stop_m and (all(v >= 0 for v in speeds_mps) or all(v <= 0 for v in speeds_mps)):
+        _check_stop_side(cfg, float(sum(speeds_mps)))
 
 
 def check_files(cfg: Config) -> None:
     """Raise :class:`ConfigError` if a file the configuration names does not
-    exist (checked when a configuration is loaded, not when a stored one is read)."""
+    exist or is not what its key needs: each is read by the reader a run uses
+    (checked when a configuration is loaded, not when a stored one is read)."""
     for section, name in FILE_KEYS:
         value = getattr(getattr(cfg, section), name)
-        if value not in NOT_FILES and not Path(value).is_file():
+        if value in NOT_FILES:
+            continue
+        if not Path(value).is_file():
             raise ConfigError(f"[{section}] {name} = {toml_value(value)}: no such file")
+        try:
+            _read_file_key(cfg, section, name)
+        except ConfigError:
+            raise
+        except InputError as exc:
+            raise ConfigError(f"[{section}] {name} = {toml_value(value)}: {exc}") from None
+
+
+def _read_file_key(cfg: Config, section: str, name: str) -> None:
+    """Read the file of key ``[section] name`` as a run reads it (imported here:
+    the readers need scipy and meshio, which a configuration without files does not)."""
+    if (section, name) == ("fe", "mesh"):
+        from fem_tether.fe.mesh import unit_mesh_from_config
+        unit_mesh_from_config(cfg.fe)
+    elif (section, name) == ("resource", "csv"):
+        from fem_tether.resource import read_resource_csv
+        read_resource_csv(cfg.resource.csv)
+    elif (section, name) == ("winch", "reel_out_table"):
+        from fem_tether.reel import read_speed_table
+        _check_table_direction(cfg, read_speed_table(cfg.winch.reel_out_table)[1])
+    elif (section, name) == ("kite", "polar"):
+        from fem_tether.kite_dynamics import read_polar
+        read_polar(cfg.kite.polar)
+
+
+def check_given(cfg: Config, given: dict, base: Config) -> None:
+    """Raise :class:`ConfigError` for a key the user changed (``given``: the tables
+    of the user's file and overrides, set to other than ``base``'s value, the
+    preset's or default) that ``cfg``'s path ignores."""
+    kite: dict = given["kite"] if isinstance(given.get("kite"), dict) else {}
+    for key, (path, meaning) in PATH_KEYS.items():
+        if key in kite and cfg.kite.path != path and getattr(cfg.kite, key) != getattr(base.kite, key):
+            raise ConfigError(f"[kite] {key} = {toml_value(kite[key])}: [kite] path = "
+                              f"{toml_value(cfg.kite.path)} ignores it ({meaning}); remove it or "
+                              f"set path = {toml_value(path)}")
 
 
 def _check_path(cfg: Config) -> None:
-    """The path fits its sphere and the atmosphere, and the time steps resolve its period."""
+    """The path fits its sphere and the atmosphere, and the time steps resolve its
+    period in a run of bounded size (:func:`_check_run_size`)."""
     (_check_eight if cfg.kite.path == "eight" else _check_circle)(cfg)
     period_s = cfg.path.period_s
+    for solver, elements in (("fe", cfg.fe.elements), ("fd", cfg.fd.segments)):
+        _check_run_size(cfg, solver, elements, period_s)
     for (section, name), fewest in MIN_STEPS_PER_PERIOD.items():
         dt_s = getattr(getattr(cfg, section), name)
         steps = steps_per_period(period_s, dt_s)
@@ -134,6 +224,36 @@ def _check_path(cfg: Config) -> None:
         if _highest_m(cfg, stop) > CEILING_M:
             raise ConfigError(f"{key} = {value:g}: the kite would fly above the ISA troposphere "
                               f"({CEILING_M:g} m), which the atmosphere model covers")
+
+
+def run_size(cfg: Config, solver: str, elements: int, period_s: float) -> tuple[float, float]:
+    """The time steps of a run of ``solver`` on ``elements`` and the bytes its
+    series and snapshots take (twice: the arrays and the run's copy), estimated
+    in floating point (no overflow for any step, ``dt_s = 5e-324`` gives inf)."""
+    periods = cfg.time.spinup_periods + cfg.time.average_periods
+    steps = periods * period_s / getattr(cfg, solver).dt_s
+    series = (steps + 1) * len(SERIES + KITE_SERIES)
+    snapshots = (steps / cfg.output.every + 2) * (SNAPSHOT_PER_NODE * (elements + 1) + len(CELL_FIELDS) * elements)
+    return steps, 2 * 8 * (series + snapshots)
+
+
+def _check_run_size(cfg: Config, solver: str, elements: int, period_s: float) -> None:
+    """A run takes at most :data:`MAX_STEPS` steps and :data:`MAX_RUN_BYTES` of
+    memory; the error names the step (the key that sets the count) and what else does."""
+    steps, size = run_size(cfg, solver, elements, period_s)
+    dt_s = getattr(cfg, solver).dt_s
+    periods = cfg.time.spinup_periods + cfg.time.average_periods
+    run = (f"{periods} periods ([time] spinup_periods + average_periods) of the {cfg.kite.path}'s "
+           f"{period_s:.4g} s (its length over [kite] speed_mps)")
+    if not steps <= MAX_STEPS:
+        raise ConfigError(f"[{solver}] dt_s = {toml_value(dt_s)}: {steps:.3g} time steps for {run}, "
+                          f"at most {MAX_STEPS:g}; raise dt_s or fly fewer periods")
+    if not size <= MAX_RUN_BYTES:
+        count = "elements" if solver == "fe" else "segments"
+        raise ConfigError(f"[output] every = {cfg.output.every}: {steps:.3g} steps of {elements} {count} "
+                          f"stored every {cfg.output.every} take {size / 2**30:.3g} GiB, at most "
+                          f"{MAX_RUN_BYTES / 2**30:g} GiB; store fewer snapshots (raise every), or use "
+                          f"fewer [{solver}] {count} or steps ([{solver}] dt_s)")
 
 
 def _check_eight(cfg: Config) -> None:

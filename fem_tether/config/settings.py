@@ -24,34 +24,60 @@ def setting(default: Any, unit: str, doc: str, check: Check | None = None) -> An
     return dataclasses.field(default=default, metadata={"unit": unit, "doc": doc, "check": check})
 
 
-def positive(v) -> str | None:
-    return None if v > 0 else "must be > 0"
+class Range:
+    """A check admitting numbers from ``lo`` to ``hi``, each end included if
+    ``closed`` says so; printed as an interval, ``(0, 250]``."""
+
+    def __init__(self, lo: float, hi: float, closed: tuple[bool, bool] = (False, False)):
+        self.lo, self.hi, self.closed = lo, hi, closed
+
+    def admits(self, v) -> bool:
+        ok_lo = v >= self.lo if self.closed[0] else v > self.lo
+        ok_hi = v <= self.hi if self.closed[1] else v < self.hi
+        return bool(ok_lo and ok_hi)
+
+    def __call__(self, v) -> str | None:
+        return None if self.admits(v) else f"must be in {self}"
+
+    def __str__(self) -> str:
+        return f"{'[' if self.closed[0] else '('}{self.lo:g}, {self.hi:g}{']' if self.closed[1] else ')'}"
 
 
-def non_negative(v) -> str | None:
-    return None if v >= 0 else "must be >= 0"
+def between(lo: float, hi: float, closed: tuple[bool, bool] = (False, False)) -> Range:
+    """Numbers from ``lo`` to ``hi``, open ends unless ``closed`` says otherwise."""
+    return Range(lo, hi, closed)
 
 
-def between(lo: float, hi: float, closed: tuple[bool, bool] = (False, False)) -> Check:
-    def check(v):
-        ok_lo = v >= lo if closed[0] else v > lo
-        ok_hi = v <= hi if closed[1] else v < hi
-        if ok_lo and ok_hi:
-            return None
-        return f"must be in {'[' if closed[0] else '('}{lo}, {hi}{']' if closed[1] else ')'}"
-    return check
+def up_to(hi: float) -> Range:
+    """Numbers in (0, ``hi``]: a positive quantity with a largest meaningful value."""
+    return Range(0.0, hi, (False, True))
+
+
+def zero_to(hi: float) -> Range:
+    """Numbers in [0, ``hi``]: a quantity that may be zero (often: "none")."""
+    return Range(0.0, hi, (True, True))
+
+
+def from_to(lo: float, hi: float) -> Range:
+    """Numbers (or counts) in [``lo``, ``hi``]."""
+    return Range(lo, hi, (True, True))
+
+
+class ZeroOr(Range):
+    """A check admitting 0 (a key's "none") or the numbers of ``band``."""
+
+    def __init__(self, band: Range):
+        super().__init__(band.lo, band.hi, band.closed)
+
+    def admits(self, v) -> bool:
+        return v == 0 or super().admits(v)
+
+    def __str__(self) -> str:
+        return f"0 or {super().__str__()}"
 
 
 def one_of(*choices: str) -> Check:
     return lambda v: None if v in choices else f"must be one of {', '.join(map(toml_value, choices))}"
-
-
-def at_least(n: int) -> Check:
-    return lambda v: None if v >= n else f"must be >= {n}"
-
-
-def count_between(lo: int, hi: int) -> Check:
-    return lambda v: None if lo <= v <= hi else f"must be from {lo} to {hi}"
 
 
 def toml_value(v: Any) -> str:
@@ -119,4 +145,10 @@ class Section:
     @classmethod
     def describe(cls) -> list[tuple[str, Any, str, str]]:
         """(key, default, unit, meaning) of every key, in order."""
-        return [(f.name, f.default, f.metadata["unit"], f.metadata["doc"]) for f in dataclasses.fields(cls)]
+        return [(f.name, f.default, f.metadata["unit"], _with_range(f.metadata["doc"], f.metadata["check"]))
+                for f in dataclasses.fields(cls)]
+
+
+def _with_range(doc: str, check: Check | None) -> str:
+    """A key's meaning with its admissible range, if it has one."""
+    return f"{doc}; in {check}" if isinstance(check, Range) else doc

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from fem_tether.errors import ConfigError
+from fem_tether.inputfile import read_text
 
 from .rules import FILE_KEYS, NOT_FILES
 from .settings import Section, toml_value
@@ -16,16 +17,16 @@ from .settings import Section, toml_value
 
 def read_toml(path: str | Path) -> dict[str, Any]:
     """Parse a TOML file, turning I/O and syntax problems into ConfigError."""
-    path = Path(path)
+    return toml_and_text(path)[0]
+
+
+def toml_and_text(path: str | Path) -> tuple[dict[str, Any], str]:
+    """A TOML file's tables and its text (read once, through :func:`~fem_tether.inputfile.read_text`)."""
+    text = read_text(path, ConfigError)
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh)
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: no such file") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        return tomllib.loads(text), text
+    except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: invalid TOML: {exc}") from None
-    except OSError as exc:
-        raise ConfigError(f"{path}: cannot read: {exc.strerror}") from None
 
 
 def resolve_paths(values: dict[str, Any], base_dir: Path) -> dict[str, Any]:

@@ -8,13 +8,17 @@ progression, shrinking toward the kite where the line bends most, with
 
 from __future__ import annotations
 
+import contextlib
+import io
 from pathlib import Path
 
 import meshio
 import numpy as np
 
 from fem_tether.atomic import atomic_path, mark_mesh
+from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, ConfigError, toml_value
 from fem_tether.errors import InputError
+from fem_tether.inputfile import checked_file
 
 
 class MeshError(InputError):
@@ -51,12 +55,25 @@ def write_unit_mesh(path: str | Path, nodes: np.ndarray) -> Path:
     return path
 
 
+def unit_mesh_from_config(fe) -> np.ndarray:
+    """Unit-interval nodes named by the ``[fe]`` section's ``mesh``: generated or read from a file."""
+    if fe.mesh == "uniform":
+        return unit_nodes(fe.elements)
+    if fe.mesh == "graded":
+        return unit_nodes(fe.elements, fe.grading)
+    try:
+        nodes = read_unit_mesh(fe.mesh)
+    except MeshError as exc:
+        raise ConfigError(f"[fe] mesh = {toml_value(fe.mesh)}: {exc}") from None
+    if nodes.size - 1 > MAX_ELEMENTS:
+        raise ConfigError(f"[fe] mesh = {toml_value(fe.mesh)}: {nodes.size - 1} elements, "
+                          f"at most {MAX_ELEMENTS}")
+    return nodes
+
+
 def read_unit_mesh(path: str | Path) -> np.ndarray:
     """Read the nodes of a 1-D mesh of [0, 1] from any meshio-readable file."""
-    try:
-        mesh = meshio.read(path)
-    except Exception as exc:  # meshio raises many types for unreadable files
-        raise MeshError(f"{path}: cannot read mesh: {exc}") from None
+    mesh = _meshio_read(checked_file(path, MeshError))
     lines = [c.data for c in mesh.cells if c.type == "line"]
     if not lines:
         raise MeshError(f"{path}: no 'line' cells")
@@ -65,6 +82,7 @@ def read_unit_mesh(path: str | Path) -> np.ndarray:
     if mesh.points.shape[1] > 1 and np.any(np.abs(mesh.points[:, 1:]) > 1e-12):
         raise MeshError(f"{path}: points must lie on the x axis")
     used = np.unique(segments)
+    _check_finite(x[used], str(path))
     order = np.argsort(x[used])
     nodes = x[used][order]
     rank = np.empty(x.size, dtype=int)
@@ -75,11 +93,38 @@ def read_unit_mesh(path: str | Path) -> np.ndarray:
     return _validated(nodes, str(path))
 
 
+def _meshio_read(path: Path) -> meshio.Mesh:
+    """``meshio.read``, its failures (some print and call ``sys.exit``) one MeshError."""
+    said = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
+            return meshio.read(path)
+    except (Exception, SystemExit) as exc:  # meshio raises many types, or exits, for unreadable files
+        reason = str(exc) if not isinstance(exc, SystemExit) else ""
+        reason = reason or " ".join(said.getvalue().split()) or type(exc).__name__
+        raise MeshError(f"{path}: cannot read mesh: {reason}") from None
+
+
+def _check_finite(nodes: np.ndarray, where: str) -> None:
+    if not np.all(np.isfinite(nodes)):
+        k = int(np.argmin(np.isfinite(nodes)))
+        raise MeshError(f"{where}: node {k} is at x = {nodes[k]}: nodes must be finite")
+
+
 def _validated(nodes: np.ndarray, where: str) -> np.ndarray:
+    """``nodes`` if they are finite, span [0, 1] strictly increasing, and no
+    element is smaller than the largest over :data:`MAX_GRADING`."""
     if nodes.ndim != 1 or nodes.size < 3:
         raise MeshError(f"{where}: a tether mesh needs at least 2 segments")
+    _check_finite(nodes, where)
     if abs(nodes[0]) > 1e-12 or abs(nodes[-1] - 1.0) > 1e-12:
         raise MeshError(f"{where}: mesh must span [0, 1], got [{nodes[0]}, {nodes[-1]}]")
-    if np.any(np.diff(nodes) <= 0):
+    h = np.diff(nodes)
+    if np.any(h <= 0):
         raise MeshError(f"{where}: nodes must be strictly increasing")
+    if h.max() / h.min() > MAX_GRADING * (1.0 + 1e-9):
+        raise MeshError(f"{where}: element {int(np.argmin(h))} is {h.min():.3g} of the line, "
+                        f"{h.max() / h.min():.3g} times smaller than the largest ({h.max():.3g}); "
+                        f"at most {MAX_GRADING:g} times ([fe] grading's limit, the largest ratio a run "
+                        "has been shown to converge at)")
     return nodes

@@ -30,10 +30,10 @@ from scipy.optimize import brentq
 
 from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
-from fem_tether.config import MAX_ELEMENTS, Config, ConfigError, toml_value
+from fem_tether.config import Config
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
-from fem_tether.fe import mesh as fe_mesh
+from fem_tether.fe.mesh import unit_mesh_from_config
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
 from fem_tether.fe.system import Evaluation, TetherSystem
@@ -69,22 +69,6 @@ class State:
     ev: Evaluation | None = None  # the converged evaluation at t, if any
     steer: Steer | None = None    # a free kite: the steering sample held over the step to t
     kite_load: KiteLoad | None = None   # a free kite: its force at the solution
-
-
-def unit_mesh_from_config(fe) -> np.ndarray:
-    """Unit-interval nodes named by the ``[fe]`` section's ``mesh``: generated or read from a file."""
-    if fe.mesh == "uniform":
-        return fe_mesh.unit_nodes(fe.elements)
-    if fe.mesh == "graded":
-        return fe_mesh.unit_nodes(fe.elements, fe.grading)
-    try:
-        nodes = fe_mesh.read_unit_mesh(fe.mesh)
-    except fe_mesh.MeshError as exc:
-        raise ConfigError(f"[fe] mesh = {toml_value(fe.mesh)}: {exc}") from None
-    if nodes.size - 1 > MAX_ELEMENTS:
-        raise ConfigError(f"[fe] mesh = {toml_value(fe.mesh)}: {nodes.size - 1} elements, "
-                          f"at most {MAX_ELEMENTS}")
-    return nodes
 
 
 def build_model(cfg: Config, end: EndMotion | None = None,

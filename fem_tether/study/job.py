@@ -32,11 +32,17 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fem_tether.aep import sweep_resource
-from fem_tether.config import Config, ConfigError, load_config, read_toml, resolve_paths, toml_value
+from fem_tether.config import (MAX_WIND_MPS, TETHER_DIAMETER_M, TETHER_LENGTH_M, Config, ConfigError,
+                               load_config, resolve_paths, toml_and_text, toml_value)
+from fem_tether.config.settings import Range, from_to
 from fem_tether.jobs import length_tag
 from fem_tether.resource import ResourceError
 from fem_tether.sizing import sized_config
 from fem_tether.systems import catalog
+
+#: Wind speeds at the kite of a study's operating points [m/s]: below 1 m/s no
+#: kite flies (the presets' power curves cut in at 3 m/s and more).
+STUDY_WIND_MPS = from_to(1.0, MAX_WIND_MPS)
 
 KEYS = ("systems", "lengths_m", "diameters_m", "wind_mps", "sites", "crosscheck", "refine", "reel_out", "base")
 SITE_KEYS = ("name", "wind", "resource")
@@ -127,8 +133,9 @@ def _error(key, value, problem):
     return ConfigError(f"[study] {key} = {toml_value(value)}: {problem}")
 
 
-def _numbers(key, value, per_system: tuple[str, ...], unit_name: str, tag=float, to: str = "") -> tuple:
-    """A list of finite positive numbers distinct in ``tag`` (to the precision
+def _numbers(key, value, per_system: tuple[str, ...], unit_name: str, admissible: Range, tag=float,
+             to: str = "") -> tuple:
+    """A list of numbers in ``admissible`` distinct in ``tag`` (to the precision
     ``to`` says), or one such list per system."""
     if isinstance(value, dict):
         unknown = set(value) - set(per_system)
@@ -138,12 +145,12 @@ def _numbers(key, value, per_system: tuple[str, ...], unit_name: str, tag=float,
         missing = [s for s in per_system if s not in value]
         if missing:
             raise _error(key, value, f"no {unit_name} for system {missing[0]!r}")
-        return tuple(_numbers(key, value[s], (), unit_name, tag, to)[0] for s in per_system)
+        return tuple(_numbers(key, value[s], (), unit_name, admissible, tag, to)[0] for s in per_system)
     if not isinstance(value, list) or not value:
         raise _error(key, value, f"expected a non-empty list of {unit_name}s (or one list per system)")
     for v in value:
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (v > 0 and math.isfinite(v)):
-            raise _error(key, v, f"every {unit_name} must be a finite number > 0")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not admissible.admits(v):
+            raise _error(key, v, f"every {unit_name} must be a number in {admissible}")
     if len({tag(v) for v in value}) != len(value):
         raise _error(key, value, f"{unit_name}s must be distinct{to}")
     numbers = tuple(sorted(float(v) for v in value))
@@ -227,9 +234,10 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
     if "lengths_m" not in study:
         raise ConfigError("[study] lengths_m: missing; give the study's cable lengths, "
                           "e.g. lengths_m = [1000, 2000, 3000]")
-    lengths = _numbers("lengths_m", study["lengths_m"], tuple(systems), "length", length_tag, " (to 1 mm)")
-    diameters = (_numbers("diameters_m", study["diameters_m"], tuple(systems), "diameter", diameter_tag,
-                          " (to 0.1 um)")
+    lengths = _numbers("lengths_m", study["lengths_m"], tuple(systems), "length", TETHER_LENGTH_M, length_tag,
+                       " (to 1 mm)")
+    diameters = (_numbers("diameters_m", study["diameters_m"], tuple(systems), "diameter", TETHER_DIAMETER_M,
+                          diameter_tag, " (to 0.1 um)")
                  if "diameters_m" in study else (None,) * len(systems))
     wind_mps = study.get("wind_mps", "configured")
     if wind_mps == "configured":
@@ -237,7 +245,8 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
     else:
         if isinstance(wind_mps, list) and len(wind_mps) < 2:
             raise _error("wind_mps", wind_mps, "give at least two wind speeds, or \"configured\"")
-        nodes = _numbers("wind_mps", wind_mps, (), "wind speed")[0] if isinstance(wind_mps, list) else None
+        nodes = (_numbers("wind_mps", wind_mps, (), "wind speed", STUDY_WIND_MPS)[0]
+                 if isinstance(wind_mps, list) else None)
         if nodes is None:
             raise _error("wind_mps", wind_mps, "expected a list of wind speeds at the kite, or \"configured\"")
     for key in ("crosscheck", "refine", "reel_out"):
@@ -261,4 +270,5 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
 def load_study(path: str | Path, system: str | None = None) -> StudyJob:
     """The study job in the TOML file ``path``."""
     path = Path(path)
-    return study_from_dict(read_toml(path), path.parent, path.read_text(), system)
+    data, text = toml_and_text(path)
+    return study_from_dict(data, path.parent, text, system)
