@@ -2,9 +2,13 @@
 
 Ctrl-C while the libraries load is held back until the command starts
 (:func:`fem_tether.stop.defer_interrupts`), where it stops every MPI rank
-and prints one line, exit 130, like any other interrupt.
+and prints one line, exit 130, like any other interrupt.  A command that
+failed or was stopped leaves at once, without the libraries' exit handlers:
+a stopped MPI rank's pending requests can never complete (MPI_Finalize would
+complain), and HDF5 after a failed write (a full disk) can crash its own.
 """
 
+import os
 import sys
 
 from fem_tether.stop import defer_interrupts
@@ -14,7 +18,12 @@ def main() -> int:
     defer_interrupts()
     from fem_tether.cli import main as command_line
 
-    return command_line()
+    code = command_line()
+    if code != 0:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    return code
 
 
 if __name__ == "__main__":

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import fcntl
+import gc
 import json
 import os
 import re
@@ -38,6 +39,7 @@ import socket
 import stat
 import struct
 import sys
+import traceback
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -302,6 +304,34 @@ def _commit(pairs: Sequence[tuple[Path, Path, bool]], token: str) -> None:
 
 
 @contextmanager
+def _dropped_write_errors() -> Iterator[list[OSError]]:
+    """Collect the write errors a library raised where Python drops them: h5py
+    flushes in finalisers, and a full disk there would otherwise print
+    tracebacks (through ``sys.excepthook`` and ``sys.unraisablehook``) and
+    leave a damaged file that looks complete."""
+    dropped: list[OSError] = []
+    unraisable, excepthook = sys.unraisablehook, sys.excepthook
+
+    def on_unraisable(report):
+        if isinstance(report.exc_value, OSError):
+            dropped.append(report.exc_value)
+        else:
+            unraisable(report)
+
+    def on_printed(kind, value, tb):
+        if isinstance(value, OSError):
+            dropped.append(value)
+        else:
+            excepthook(kind, value, tb)
+
+    sys.unraisablehook, sys.excepthook = on_unraisable, on_printed
+    try:
+        yield dropped
+    finally:
+        sys.unraisablehook, sys.excepthook = unraisable, excepthook
+
+
+@contextmanager
 def atomic_outputs(files: Sequence = (), directories: Sequence = ()) -> Iterator[list[Path]]:
     """Yield temporaries for ``files`` and (empty, created) ``directories``, in
     that order; when the block ends without error, put them all in place
@@ -312,18 +342,27 @@ def atomic_outputs(files: Sequence = (), directories: Sequence = ()) -> Iterator
     token = _token()
     pairs = [(temporary_name(t, token) if not d else t.with_name(f".{t.name}.tmp-{token}"), t, d)
              for t, d in targets]
-    try:
-        for tmp, _, directory in pairs:
-            if directory:
-                tmp.mkdir()
-        yield [tmp for tmp, _, _ in pairs]
-        _commit(pairs, token)
-    except BaseException as exc:
-        for tmp, _, _ in pairs:
-            _remove(tmp)
-        if isinstance(exc, OSError) and not isinstance(exc, OutputError):
-            raise _writing_failed(pairs[0][1], exc) from None
-        raise
+    with _dropped_write_errors() as dropped:
+        try:
+            for tmp, _, directory in pairs:
+                if directory:
+                    tmp.mkdir()
+            yield [tmp for tmp, _, _ in pairs]
+            if dropped:
+                raise dropped[0]
+            _commit(pairs, token)
+        except BaseException as exc:
+            failure = (_writing_failed(pairs[0][1], exc)
+                       if isinstance(exc, OSError) and not isinstance(exc, OutputError) else None)
+            if failure is not None:   # free the writer's objects now, so their dropped errors come here
+                traceback.clear_frames(exc.__traceback__)
+                exc.__traceback__ = None
+                gc.collect()
+            for tmp, _, _ in pairs:
+                _remove(tmp)
+            if failure is not None:
+                raise failure from None
+            raise
 
 
 @contextmanager

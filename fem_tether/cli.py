@@ -403,12 +403,7 @@ def main(argv=None) -> int:
         args = build_parser().parse_args(argv)
     if world is None:
         return _run(args)
-    code = _agree(world, _run(args, world)) if args.command in _PARALLEL_COMMANDS else _on_rank_zero(world, args)
-    if code != 0:          # a stopped rank's requests cannot complete: leave without MPI_Finalize
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(code)
-    return code
+    return _agree(world, _run(args, world)) if args.command in _PARALLEL_COMMANDS else _on_rank_zero(world, args)
 
 
 def _on_rank_zero(comm, args) -> int:
