@@ -38,18 +38,31 @@ def left_atmosphere(exc) -> str:
 
 def slack(tension_N, s_mid_m) -> str:
     """Why a line with a negative tension is no longer the model's ("" if none is):
-    a string carries no compression."""
-    k = int(np.argmin(tension_N))
-    if tension_N[k] >= 0.0:
+    a string carries no compression.  A NaN tension is not a slack line (it is
+    :func:`not_finite`'s)."""
+    k = int(np.nanargmin(tension_N)) if np.any(np.isfinite(tension_N)) else 0
+    if not tension_N[k] < 0.0:
         return ""
     return (f"the line went slack (tension {tension_N[k]:.0f} N at s = {s_mid_m[k]:.0f} m; a string "
             "carries no compression): the winch tension is too low to keep it taut against its "
             "drag and weight")
 
 
+def not_finite(tension_N, s_mid_m) -> str:
+    """Where the tensions are NaN or infinite ("" if nowhere): the solution
+    diverged (no cause measured)."""
+    bad = ~np.isfinite(tension_N)
+    if not np.any(bad):
+        return ""
+    k = int(np.argmax(bad))
+    return (f"the tension diverged to {tension_N[k]} (first at s = {s_mid_m[k]:.0f} m, "
+            f"{np.count_nonzero(bad)} of {bad.size} values)")
+
+
 def check_taut(tension_N, s_mid_m, t_s: float, length_m: float) -> None:
-    """Raise :class:`SolverDivergedError` naming the time and length if the line is slack."""
-    cause = slack(tension_N, s_mid_m)
+    """Raise :class:`SolverDivergedError` naming the time and length if the line is
+    slack or its tension is not finite."""
+    cause = not_finite(tension_N, s_mid_m) or slack(tension_N, s_mid_m)
     if cause:
         raise SolverDivergedError(f"at t = {t_s:.4f} s, L = {length_m:g} m, {cause}")
 

@@ -570,6 +570,9 @@ class FDSolver:
     def resolution(self) -> str:
         return f"{self.model.grid.M} segments"
 
+    def compliance_per_N(self) -> float:
+        return self.model.eq.physics.compliance_per_N
+
     def extra(self) -> dict:
         return {"segments": self.model.grid.M, "scheme": self.model.scheme}
 

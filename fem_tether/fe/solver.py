@@ -556,6 +556,9 @@ class FESolver:
     def resolution(self) -> str:
         return f"{self.model.system.spaces.n_elements} elements"
 
+    def compliance_per_N(self) -> float:
+        return self.model.system.physics.compliance_per_N
+
     def extra(self) -> dict:
         return {"elements": self.model.system.spaces.n_elements}
 
