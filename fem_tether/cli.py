@@ -113,7 +113,7 @@ def cmd_power(args):
     from fem_tether.systems import comparison, flexible
 
     cfg = _config(args)
-    flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg.tether.length_m) if args.flexible else None
+    flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg) if args.flexible else None
     speeds = [args.wind_speed] if args.wind_speed is not None else comparison.curve_speeds(cfg)
     rows = comparison.compare(cfg, speeds, flexible_cd)
     data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m}
