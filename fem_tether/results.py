@@ -185,11 +185,12 @@ def _first_time_s(run: TetherRun, bad: np.ndarray) -> float:
 
 
 def non_finite(run: TetherRun) -> str:
-    """The series of ``run`` that are NaN or infinite, each with the time it
-    first is ("" if every value is finite)."""
-    return "; ".join(f"{name} is {run.series[name][np.argmax(~np.isfinite(values))]} "
-                     f"from t = {_first_time_s(run, ~np.isfinite(values)):.4f} s"
-                     for name, values in run.series.items() if not np.all(np.isfinite(values)))
+    """The :data:`SERIES` of ``run`` that are NaN or infinite, each with the time
+    it first is ("" if every value is finite; the :data:`KITE_SERIES` are not
+    checked: a depowered kite's steering errors are NaN by definition)."""
+    bad = {name: ~np.isfinite(run.series[name]) for name in SERIES}
+    return "; ".join(f"{name} is {run.series[name][np.argmax(where)]} from t = {_first_time_s(run, where):.4f} s"
+                     for name, where in bad.items() if np.any(where))
 
 
 def overstretched(run: TetherRun, max_strain: float) -> str:
