@@ -75,7 +75,7 @@ def test_simulate_json_and_files(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("argv, match", [
-    (["straight", "--length", "-3"], "must be a positive number"),
+    (["straight", "--length", "-3"], "'-3' must be a length in (0, 22000] m"),
     (["straight", "--lengths", "500,x"], "straight: argument --lengths: 'x' is not a number"),
     (["straight", "--lengths", ","], "straight: argument --lengths: give comma-separated lengths"),
     (["curves", "--ge", "zero"], "not a number"),
@@ -90,6 +90,51 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, match):
     assert info.value.code == 2
     assert match in err and err.count("--lengths:") <= 1
     assert "Traceback" not in err and err.count("\n") == 1
+
+
+#: Every numeric option of every command, with the arguments its command needs besides it.
+NUMERIC_OPTIONS = [("straight", "--length"), ("straight", "--lengths"), ("straight --closed-form", "--rho"),
+                   ("straight --closed-form", "--cd"), ("curves", "--ge"), ("curves", "--phi-deg"),
+                   ("power", "--wind-speed"), ("simulate", "--length"), ("size", "--length"),
+                   ("crosscheck", "--length"), ("bench", "--repeats"), ("bench", "--memory"),
+                   ("mesh {out}", "--elements"), ("mesh {out} --elements 10", "--grading")]
+
+
+def test_every_numeric_option_is_in_the_extreme_values_test():
+    """A new numeric option joins :data:`NUMERIC_OPTIONS` (its range tested below)."""
+    numeric = {(name, opts[0]) for name, command in _commands(build_parser()) for action in command._actions
+               for opts in [action.option_strings] if opts and action.type not in (None, str)}
+    assert numeric == {(cmd.split()[0], option) for cmd, option in NUMERIC_OPTIONS}
+
+
+def _commands(parser):
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return sub.choices.items()
+
+
+#: A number a sane output never prints: NaN, infinity or more than 15 digits in a row.
+ABSURD_NUMBER = re.compile(r"\b(nan|inf|infinity)\b|\d{16,}", re.IGNORECASE)
+
+
+@pytest.mark.parametrize("command, option", NUMERIC_OPTIONS)
+@pytest.mark.parametrize("value", ["1e300", "1e-300", "nan", "inf", "-1", "0"])
+def test_extreme_option_values_exit_2_or_print_sane_numbers(capsys, tmp_path, command, option, value):
+    """power --wind-speed 1e300, curves --ge 1e-300, straight --closed-form --rho 1e308 printed
+    RuntimeWarnings, inf and 300-digit numbers with exit 0: every option has a physical range."""
+    argv = command.format(out=tmp_path / "m.vtu").split() + [f"{option}={value}"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        try:
+            code = main(argv)
+        except SystemExit as exc:
+            code = exc.code
+    out, err = capsys.readouterr()
+    if code == 2:           # one line naming the option, or the configuration key it sets
+        assert err.startswith("fem-tether: error: ") and err.count("\n") == 1
+        assert re.search(f"(argument |^fem-tether: error: ){option}", err) or (
+            option.startswith("--length") and "[tether] length_m" in err)
+    else:
+        assert code == 0 and not ABSURD_NUMBER.search(out), out
 
 
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
