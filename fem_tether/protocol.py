@@ -47,7 +47,7 @@ import numpy as np
 from fem_tether.case import TetherCase
 from fem_tether.config import Config
 from fem_tether.continuation import NotConverged
-from fem_tether.errors import SolverDivergedError, check_taut, slack_failure
+from fem_tether.errors import SolverDivergedError, check_taut, newton_failure, slack_failure
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import (MAX_CONSTRAINT_STRAIN, MAX_ELASTIC_STRAIN, Recorder, TetherRun,
@@ -152,8 +152,7 @@ def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int
             raise SolverDivergedError(
                 f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
                 f"{depth} halvings, {solver.resolution()}), L = {case.length_m:g} m: "
-                + (exc.cause or f"scaled residual {exc.residual:.3e} after {case.max_newton} "
-                   "Newton iterations")) from None
+                + (exc.cause or newton_failure(exc.residual, case.max_newton))) from None
     stats.halvings += 1
     half = advance(solver, state, h / 2, stats, depth + 1)
     return advance(solver, half, h / 2, stats, depth + 1)

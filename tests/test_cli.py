@@ -169,15 +169,19 @@ def test_console_script_entry_point():
 
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
 @pytest.mark.parametrize("tension_N, cause", [
-    (100.0, r"at t = 0 s, L = 1000 m, 40 elements: .*the winch tension 100 N cannot hold the line "
-            r"\(weight 608 N\)"),
+    (100.0, r"at t = 0 s, L = 1000 m, 40 elements: the gravity-only equilibrium did not converge: "
+            r"scaled residual .*; the winch tension is below the line's weight: raise \[winch\] "
+            r"ground_tension_N \(now 100 N, 0\.164 times the line's weight of 608 N\)"),
+    (1e8, r"at t = 0 s, L = 1000 m, 40 elements: the gravity-only equilibrium did not converge: "
+          r"scaled residual .*; suspicious input: \[winch\] ground_tension_N = 1e\+08 N, 1\.64e\+05 times "
+          r"the line's weight \(608 N\)$"),
     (1000.0, r"at t = 0\.4\d* s .*L = 1000 m: .*the line went slack \(tension -\d+ N at s = \d+ m"),
 ])
 def test_winch_too_weak_for_the_line_is_a_solver_failure(capsys, tmp_path, command, tension_N, cause):
-    """A winch tension too low to hold the line against its weight (100 N) or
-    its drag (1000 N): one line naming the length, the time and the physical
-    cause, exit code 1, no traceback (was: ValueError from the ISA model, the
-    iterates having left the troposphere) and no warnings."""
+    """A winch tension below the line's weight (100 N), too low for its drag
+    (1000 N) or suspiciously high (1e8 N, which was said not to hold a 608 N
+    line): one line naming the length, the time, what diverged and the measured
+    tension-to-weight ratio, exit code 1, no traceback and no warnings."""
     cfg = tmp_path / "t.toml"
     cfg.write_text(f"[winch]\nground_tension_N = {tension_N}\n")
     with warnings.catch_warnings():
