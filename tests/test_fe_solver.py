@@ -183,7 +183,7 @@ def test_static_start_failure_names_time_length_elements_and_residual():
     no equilibrium, so a SolverDivergedError names where and how far it got."""
     model = _static_model("prescribed", 1000.0, 2, "graded", radius_rel=0.3)
     with pytest.raises(SolverDivergedError, match=r"static equilibrium at t = 0 s, L = 1000 m, "
-                                                  r"2 elements: .*load: scaled residual \d"):
+                                                  r"2 elements: .*: scaled residual \d"):
         static_equilibrium(model)
 
 
