@@ -259,9 +259,9 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     try:
         r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
     except ContinuationFailed as exc:
-        raise SolverDivergedError(
-            f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
-            f"{sys_.spaces.n_elements} elements: {static_start_failure(exc, model, sys_.physics.weight_N(model.length_m))}") from None
+        why = static_start_failure(exc, model, sys_.physics.weight_N(model.length_m))
+        raise SolverDivergedError(f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
+                                  f"{sys_.spaces.n_elements} elements: {why}") from None
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
