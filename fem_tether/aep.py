@@ -25,7 +25,7 @@ from .config import Config
 from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
-from .resource import Band, Resource
+from .resource import Band, Resource, ResourceError
 from .resource import check_config as check_resource_config
 from .resource import from_config as resource_from_config
 
@@ -56,9 +56,21 @@ class BandAep:
     unbinned_probability: float
 
 
+def check_band(band: Band) -> Band:
+    """``band`` if its probabilities are finite, else :class:`ResourceError` naming
+    the band and the inputs it comes from (no AEP is defined on it)."""
+    if np.all(np.isfinite(band.probability)) and np.isfinite(band.remainder):
+        return band
+    raise ResourceError(f"the wind resource's band {band.low_m:g}-{band.high_m:g} m has undefined "
+                        f"probabilities ({np.count_nonzero(~np.isfinite(band.probability))} of "
+                        f"{band.probability.size} bins NaN or infinite): no AEP on it; check "
+                        "[resource] weibull_k and the wind profile, or the --wind CSV")
+
+
 def aep_on_band(power_W, band: Band, rated_power_W: float) -> BandAep:
     """Eq. 5.2 and CF of the power curve ``power_W`` (a function of the wind
-    speed, vectorised) on ``band``, with rated power P_rated."""
+    speed, vectorised) on ``band`` (:func:`check_band`), with rated power P_rated."""
+    check_band(band)
     aep_Wh = float(annual_energy_Wh(power_W(band.edges_mps), band.probability))
     return BandAep(aep_Wh / 1e6, rated_power_W, float(capacity_factor(aep_Wh, rated_power_W)), band.remainder)
 
@@ -77,8 +89,10 @@ class AepByLength:
 
     @property
     def best_length_m(self) -> float | None:
-        """The length of the largest AEP (None without lengths)."""
-        return float(self.length_m[np.argmax(self.aep_MWh)]) if self.length_m.size else None
+        """The length of the largest AEP; None without a finite, positive maximum
+        (no lengths, every AEP zero or undefined): no length is best then."""
+        aep = np.where(np.isfinite(self.aep_MWh), self.aep_MWh, -np.inf)
+        return float(self.length_m[np.argmax(aep)]) if aep.size and np.max(aep) > 0.0 else None
 
 
 def _by_length(lengths, theta_rad, resource: Resource, curve_at) -> AepByLength:
@@ -155,9 +169,14 @@ class SweepAep:
     fixed: AepByLength | None = None   # [tether] sizing = "load": the configured (unsized) line's
 
     def as_dict(self) -> dict:
+        """Per length its AEP and CF, straight and flexible, and the best lengths;
+        a value is None (JSON null) where it is undefined: a length left out, an
+        AEP or CF that is not finite, no best length without a finite, positive
+        maximum (:attr:`AepByLength.best_length_m`)."""
         def at(result: AepByLength, length, name):
             j = np.flatnonzero(result.length_m == length)
-            return float(getattr(result, name)[j[0]]) if j.size else None
+            value = float(getattr(result, name)[j[0]]) if j.size else np.nan
+            return value if np.isfinite(value) else None
 
         lengths = np.union1d(self.straight.length_m, self.flexible.length_m)
         rows = [{"length_m": float(length),

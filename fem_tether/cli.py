@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import math
 import os
 import sys
 import time
@@ -19,7 +20,7 @@ import traceback
 import numpy as np
 
 from fem_tether import __version__, kite, report
-from fem_tether.config import MAX_ELEMENTS, TETHER_LENGTH_M, load_config
+from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, TETHER_LENGTH_M, load_config
 from fem_tether.errors import FemTetherError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
 from fem_tether import stop
@@ -52,11 +53,36 @@ def _option(kind, what: str, admissible, requirement: str):
     return parse
 
 
+def _between(low: float, high: float, what: str, unit: str, why: str, low_open: bool = False):
+    """An argparse ``type`` for a float from ``low`` to ``high`` (``low`` itself
+    excluded with ``low_open``); NaN fails every comparison, so it is refused too."""
+    above = (lambda v: v > low) if low_open else (lambda v: v >= low)
+    bracket = "(" if low_open else "["
+    return _option(float, "a number", lambda v: above(v) and v <= high,
+                   f"{what} in {bracket}{low:g}, {high:g}]{' ' + unit if unit else ''} ({why})")
+
+
+#: Air densities of ``straight --rho`` [kg/m³]: from the ISA at the troposphere's
+#: top (0.36 at 11 km) to the densest surface air (about 1.5 at -50 °C).
+AIR_DENSITY_KG_M3 = (0.3, 2.0)
+#: Cross-flow drag coefficients of ``straight --cd``: the cylinder's C_d,c(Re)
+#: spans 0.31 (post-critical) to 26 at Re = 0.1 (fem_tether.drag_coefficient).
+CYLINDER_CD = (0.1, 30.0)
+#: Fastest wind of ``power --wind-speed`` [m/s]: the jet stream's strongest
+#: (about 100 m/s), far above any power curve's cut-out (25-30 m/s).
+MAX_WIND_MPS = 100.0
+
 _positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
+_element_count = _option(int, "a whole number", lambda v: 2 <= v <= MAX_ELEMENTS, f"from 2 to {MAX_ELEMENTS}")
 _azimuth_deg = _option(float, "a number", lambda v: -90.0 < v < 90.0, "an azimuth in (-90, 90) degrees")
-_positive_float = _option(float, "a number", lambda v: np.isfinite(v) and v > 0, "a positive number")
-_non_negative_float = _option(float, "a number", lambda v: np.isfinite(v) and v >= 0, "a number >= 0")
 _length_m = _option(float, "a number", TETHER_LENGTH_M.admits, f"a cable length in {TETHER_LENGTH_M} m")
+_air_density = _between(*AIR_DENSITY_KG_M3, "an air density", "kg/m³", "the troposphere's")
+_cylinder_cd = _between(*CYLINDER_CD, "a drag coefficient", "", "a cylinder's C_d,c(Re)")
+_wind_mps = _between(0.0, MAX_WIND_MPS, "a wind speed", "m/s", "up to the jet stream's")
+_grading = _between(1.0 / MAX_GRADING, MAX_GRADING, "a grading", "", "first over last element size")
+_global_efficiency = _option(float, "a number", lambda v: kite.MIN_GLOBAL_EFFICIENCY <= v < math.inf,
+                             f"a global efficiency G_e >= {kite.MIN_GLOBAL_EFFICIENCY:g} (below it the kite "
+                             "flies no faster crosswind than the wind; at most the wing's [kite] efficiency)")
 
 
 def _float_list(text):
@@ -99,6 +125,8 @@ def cmd_curves(args):
     from fem_tether.plots import plot_characteristic_curves
 
     cfg = _config(args)
+    if args.ge is not None:
+        kite.check_global_efficiency(args.ge, cfg.kite.efficiency, "--ge")
     design = kite.KiteGenDesign.from_config(cfg.kite, cfg.tether.lines, efficiency=args.ge,
                                             phi_deg=args.phi_deg)
     curves = kite.characteristic_view(design)
@@ -114,7 +142,7 @@ def cmd_power(args):
     from fem_tether.systems import comparison, flexible
 
     cfg = _config(args)
-    flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg.tether.length_m) if args.flexible else None
+    flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg) if args.flexible else None
     speeds = [args.wind_speed] if args.wind_speed is not None else comparison.curve_speeds(cfg)
     rows = comparison.compare(cfg, speeds, flexible_cd)
     data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m}
@@ -282,13 +310,13 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--length", type=_length_m, help="cable length [m]")
     g.add_argument("--lengths", type=_float_list, help="comma-separated lengths [m] for a table")
     c.add_argument("--closed-form", action="store_true", help="rho C_d d L V^2 / 8 (eq. 4.6)")
-    c.add_argument("--rho", type=_positive_float, help="closed form density (default: line mean)")
-    c.add_argument("--cd", type=_positive_float, help="closed form C_d (default: C_d,c at the top)")
+    c.add_argument("--rho", type=_air_density, help="closed form density [kg/m3] (default: line mean)")
+    c.add_argument("--cd", type=_cylinder_cd, help="closed form C_d (default: C_d,c at the top)")
     c.add_argument("--wind", action="store_true", help="include the wind's normal component")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("curves", cmd_curves, "KiteGen characteristic curves (Roselli 2016, §2.4)")
-    c.add_argument("--ge", type=_positive_float, help="global efficiency G_e used in place of E")
+    c.add_argument("--ge", type=_global_efficiency, help="global efficiency G_e used in place of E")
     c.add_argument("--phi-deg", type=_azimuth_deg,
                    help="azimuth [deg] in (-90, 90) (default [kite] design_phi_deg)")
     c.add_argument("--plot", metavar="FILE.png", help="write reel-out speed, force, power vs wind")
@@ -296,7 +324,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("power", cmd_power, "the system's operating points: power, tether force, reel-out, "
                 "optimised factors; straight against flexible tether")
-    c.add_argument("--wind-speed", type=_non_negative_float, metavar="V",
+    c.add_argument("--wind-speed", type=_wind_mps, metavar="V",
                    help="one wind speed at the kite [m/s] (default: the power curve)")
     c.add_argument("--flexible", metavar="FILE.h5",
                    help="the flexible tether's drag from a sweep result or an FE run (simulate --out)")
@@ -363,14 +391,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False, system=False)
     c.add_argument("--repeats", type=_positive_int, default=5, help="rounds over every setting; the best per setting counts")
-    c.add_argument("--memory", type=_positive_int, metavar="N",
+    c.add_argument("--memory", type=_element_count, metavar="N",
                    help="instead: wall time and peak RSS of one FE run with N elements (e.g. 5000)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False, system=False)
     c.add_argument("out", help="output file (.vtu, .xdmf, .vtk, ...)")
     c.add_argument("--elements", type=_positive_int, required=True, help="number of elements (>= 2)")
-    c.add_argument("--grading", type=_positive_float, default=1.0,
+    c.add_argument("--grading", type=_grading, default=1.0,
                    help="first/last element size (> 1: finer toward the kite)")
     return p
 

@@ -30,26 +30,39 @@ class SolverDivergedError(FemTetherError, RuntimeError):
 
 
 def left_atmosphere(exc) -> str:
-    """Why a solve whose iterate rose above the ISA troposphere failed (a cause
-    for :class:`SolverDivergedError` messages; ``exc`` an AltitudeError)."""
-    return (f"the line left the atmosphere ({exc}): the tension is too low to hold it "
-            "against its drag, weight and the wind")
+    """What a solve whose iterate rose above the ISA troposphere measured (for
+    :class:`SolverDivergedError` messages; ``exc`` an AltitudeError): an
+    iterate, not necessarily a solution, left it; no cause is named."""
+    return f"a Newton iterate left the atmosphere ({exc})"
 
 
 def slack(tension_N, s_mid_m) -> str:
     """Why a line with a negative tension is no longer the model's ("" if none is):
-    a string carries no compression."""
-    k = int(np.argmin(tension_N))
-    if tension_N[k] >= 0.0:
+    a string carries no compression.  A NaN tension is not a slack line (it is
+    :func:`not_finite`'s)."""
+    k = int(np.nanargmin(tension_N)) if np.any(np.isfinite(tension_N)) else 0
+    if not tension_N[k] < 0.0:
         return ""
     return (f"the line went slack (tension {tension_N[k]:.0f} N at s = {s_mid_m[k]:.0f} m; a string "
             "carries no compression): the winch tension is too low to keep it taut against its "
             "drag and weight")
 
 
+def not_finite(tension_N, s_mid_m) -> str:
+    """Where the tensions are NaN or infinite ("" if nowhere): the solution
+    diverged (no cause measured)."""
+    bad = ~np.isfinite(tension_N)
+    if not np.any(bad):
+        return ""
+    k = int(np.argmax(bad))
+    return (f"the tension diverged to {tension_N[k]} (first at s = {s_mid_m[k]:.0f} m, "
+            f"{np.count_nonzero(bad)} of {bad.size} values)")
+
+
 def check_taut(tension_N, s_mid_m, t_s: float, length_m: float) -> None:
-    """Raise :class:`SolverDivergedError` naming the time and length if the line is slack."""
-    cause = slack(tension_N, s_mid_m)
+    """Raise :class:`SolverDivergedError` naming the time and length if the line is
+    slack or its tension is not finite."""
+    cause = not_finite(tension_N, s_mid_m) or slack(tension_N, s_mid_m)
     if cause:
         raise SolverDivergedError(f"at t = {t_s:.4f} s, L = {length_m:g} m, {cause}")
 
@@ -61,7 +74,46 @@ def slack_failure(exc: SolverDivergedError, tension_N, s_mid_m) -> SolverDiverge
     return SolverDivergedError(f"{exc}; {cause}") if cause else exc
 
 
-def too_weak_for_weight(ground_tension_N: float, weight_N: float) -> str:
-    """The cause of a static start that fails under gravity alone in tension mode."""
-    return (f"; no equilibrium even under gravity alone: the winch tension {ground_tension_N:g} N "
-            f"cannot hold the line (weight {weight_N:.0f} N) toward the kite")
+def newton_failure(residual: float, iterations: int) -> str:
+    """What a failed Newton iteration measured: its last scaled residual, or that
+    it diverged to NaN or infinity (no cause measured)."""
+    if not np.isfinite(residual):
+        return f"the Newton iteration diverged to {residual} (no cause measured)"
+    return f"scaled residual {residual:.3e} after {iterations} Newton iterations"
+
+
+#: A winch tension above this many times the line's weight is named as a
+#: suspicious input of a failed static start: the residual is scaled by T_0,
+#: so the line's own loads are then below 1e-4 of the scale and its iterates'
+#: rounding dominates them (measured: T_0 = 1e8 N, 1.6e5 weights, stalled at a
+#: scaled residual of 2.8e-7 on a 1e-10 tolerance).
+SUSPICIOUS_TENSION_TO_WEIGHT = 1e4
+
+
+def static_start_failure(failed, case, weight_N: float) -> str:
+    """Why a static start's load continuation failed, as measured: ``failed``
+    (a ContinuationFailed: the load factor reached, the last residual, a cause
+    if one was measured) on ``case`` (a TetherCase), the line weighing
+    ``weight_N``.  Says what diverged and, in tension mode, the winch tension
+    against the line's weight: below it (raise it), or so far above it that it
+    is suspicious (:data:`SUSPICIOUS_TENSION_TO_WEIGHT`)."""
+    load = failed.load_factor
+    if failed.cause or (load > 0.0 and np.isfinite(failed.residual)):
+        what = failed.reason()
+    elif not np.isfinite(failed.residual):
+        what = f"the Newton iteration diverged to {failed.residual} at {load:.6g} of the wind and drag load " \
+               "(no cause measured)"
+    else:
+        what = (f"the gravity-only equilibrium did not converge: scaled residual {failed.residual:.3e} "
+                f"above [time] newton_tol = {case.newton_tol:g}")
+    if not case.tension_mode:
+        return what
+    ratio = case.ground_tension_N / weight_N
+    if ratio > SUSPICIOUS_TENSION_TO_WEIGHT:
+        return (f"{what}; suspicious input: [winch] ground_tension_N = {case.ground_tension_N:g} N, "
+                f"{ratio:.3g} times the line's weight ({weight_N:.0f} N)")
+    now = f"[winch] ground_tension_N (now {case.ground_tension_N:g} N, {ratio:.3g} times the line's weight " \
+          f"of {weight_N:.0f} N)"
+    if ratio < 1.0:
+        return f"{what}; the winch tension is below the line's weight: raise {now}"
+    return f"{what}; to reach the full load raise {now}, or shorten the line" if load > 0.0 else what

@@ -17,7 +17,49 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem_tether.errors import InputError
+
 ZONES = ("A", "B", "C", "D")
+
+#: Smallest global efficiency G_e the crosswind force law (eq. 2.45) applies
+#: to: the law is that of a kite flying crosswind faster than the wind (its
+#: crosswind speed G_e times the wind's component along the line).  Its
+#: coefficient E² (1 + 1/E²)^{3/2} = (E² + 1)^{3/2} / E has its minimum at
+#: E = 1/√2 and grows as 1/E below it: more drag would give more force
+#: (measured: G_e = 0.0034 gave a full-force wind of 5.94 m/s, below G_e = 5's
+#: 19.78 m/s).  From 1 on the law is monotonic in E.
+MIN_GLOBAL_EFFICIENCY = 1.0
+
+
+def _range_error(what: str, values, allowed: str, why: str) -> InputError:
+    """The one-line error of a G_e or C_D,t outside its physical range."""
+    shown = ", ".join(f"{v:g}" for v in np.unique(np.atleast_1d(values))[:4])
+    return InputError(f"{what} = {shown}: outside the physical range {allowed} ({why})")
+
+
+def check_global_efficiency(ge, wing_efficiency, what: str = "G_e"):
+    """``ge`` if every value is from :data:`MIN_GLOBAL_EFFICIENCY` to the wing's E
+    (a line's drag only lowers E), else InputError stating the range."""
+    values = np.asarray(ge, dtype=float)
+    if np.all((values >= MIN_GLOBAL_EFFICIENCY) & (values <= wing_efficiency)):
+        return ge
+    raise _range_error(what, values[~((values >= MIN_GLOBAL_EFFICIENCY) & (values <= wing_efficiency))],
+                       f"[{MIN_GLOBAL_EFFICIENCY:g}, E = {wing_efficiency:g}]",
+                       "below 1 the kite flies no faster crosswind than the wind; above the wing's E "
+                       "the line would pull it forward")
+
+
+def check_tether_cd(tether_cd, cl, what: str = "C_D,t"):
+    """``tether_cd`` if every value is in [0, C_l / MIN_GLOBAL_EFFICIENCY), else
+    InputError stating the range: G_e = C_l / (C_d + C_D,t) < C_l / C_D,t, so
+    beyond it G_e is below :data:`MIN_GLOBAL_EFFICIENCY` whatever the wing's drag."""
+    values = np.asarray(tether_cd, dtype=float)
+    bad = ~((values >= 0.0) & (values < cl / MIN_GLOBAL_EFFICIENCY))
+    if not np.any(bad):
+        return tether_cd
+    raise _range_error(what, values[bad], f"[0, C_L = {cl:g})",
+                       f"the global efficiency C_L / (C_D + C_D,t) would be below {MIN_GLOBAL_EFFICIENCY:g}: "
+                       "no crosswind flight")
 
 
 def traction_coefficient(rho_kg_m3, area_m2, cl, efficiency):
@@ -106,12 +148,14 @@ class KiteGenDesign:
         ``efficiency`` replaces E in the force law (pass G_e), ``phi_deg`` the
         design azimuth and ``rho_kg_m3`` the curves' air density (default: the
         seed's conservative 1 kg/m³).  The cut-in speed keeps the wing's E.
+        InputError for a G_e outside its physical range (:func:`check_global_efficiency`).
         """
         return cls(
             rho_kg_m3=kite.air_density_kg_m3 if rho_kg_m3 is None else rho_kg_m3,
             area_m2=kite.area_m2,
             cl=kite.cl,
-            efficiency=kite.efficiency if efficiency is None else efficiency,
+            efficiency=kite.efficiency if efficiency is None else check_global_efficiency(efficiency,
+                                                                                          kite.efficiency),
             speed_mps=kite.speed_mps,
             theta_rad=np.radians(kite.theta0_deg),
             phi_rad=np.radians(kite.design_phi_deg if phi_deg is None else phi_deg),

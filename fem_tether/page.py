@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether import __version__
+from fem_tether import __version__, report
 from fem_tether.aep import SweepAep
 from fem_tether.atomic import atomic_path, generator_tag
 
@@ -95,9 +95,7 @@ def image(path: Path, embed: bool = True) -> str:
 def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str) -> str:
     """The page's HTML (``validation``: the status, already HTML)."""
     d = energy.as_dict()
-    best = (f"best length: straight {d['best_length_straight_m']:g} m, flexible "
-            + (f"{d['best_length_fe_m']:g} m" if d["best_length_fe_m"] is not None else "none"))
-    notes = [best] + [f"{what}: {', '.join(f'{v:g} m' for v in d[key])}" for key, what in (
+    notes = [report.best_length_text(d)] + [f"{what}: {', '.join(f'{v:g} m' for v in d[key])}" for key, what in (
         ("excluded_m", "left out of the flexible AEP (cross-check failed or not run)"),
         ("pending_m", "pending"), ("unchecked_m", "kept without a passed cross-check")) if d[key]]
     summary = table(["L [m]", "F_t straight [N]", "F_t flexible [N]", "G_e straight", "G_e flexible",

@@ -141,9 +141,12 @@ def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
         if not r.length_m.size:
             ax.plot([], [], **style, label=f"{case}: no length")
             continue
+        if r.best_length_m is None:
+            ax.plot(r.length_m, r.aep_MWh * 1e-3, ms=6, **style, label=f"{case}: no finite, positive AEP")
+            continue
         ax.plot(r.length_m, r.aep_MWh * 1e-3, ms=6, **style,
-                label=f"{case}: best {r.best_length_m:.0f} m, CF {r.capacity_factor.max():.2f}")
-        best = np.argmax(r.aep_MWh)
+                label=f"{case}: best {r.best_length_m:.0f} m, CF {np.nanmax(r.capacity_factor):.2f}")
+        best = np.flatnonzero(r.length_m == r.best_length_m)[0]
         ax.plot(r.length_m[best], r.aep_MWh[best] * 1e-3, "*", ms=16, color=style["color"],
                 mec="k", mew=0.6, zorder=5)
         if at_the_edge(r):

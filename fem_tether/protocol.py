@@ -22,7 +22,13 @@ whose start transient the means discard, then ``average_periods``.  Each step
    winch's power and energy (:class:`fem_tether.results.Recorder`).
 
 The run ends after the periods or when the line reaches the reel's stop
-length.  Newton iterations and step halvings are counted for every solver
+length.  Before it is returned it must pass its own sanity checks
+(:func:`check_sane`): finite series, the line's strain within
+:data:`~fem_tether.results.MAX_CONSTRAINT_STRAIN` (inextensible) or
+:data:`~fem_tether.results.MAX_ELASTIC_STRAIN` (elastic), the kite within the
+line's reach; a run that fails them raises :class:`SolverDivergedError`
+saying what is absurd, so no caller (simulate, a sweep's or a study's part)
+stores or prints it.  Newton iterations and step halvings are counted for every solver
 (:class:`Statistics`, stored in ``TetherRun.extra``).
 
 Solvers plug in through :class:`TetherSolver`; each keeps its own
@@ -41,10 +47,11 @@ import numpy as np
 from fem_tether.case import TetherCase
 from fem_tether.config import Config
 from fem_tether.continuation import NotConverged
-from fem_tether.errors import SolverDivergedError, check_taut, slack_failure
+from fem_tether.errors import SolverDivergedError, check_taut, newton_failure, slack_failure
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
-from fem_tether.results import Recorder, TetherRun, time_grid, winch_values
+from fem_tether.results import (MAX_CONSTRAINT_STRAIN, MAX_ELASTIC_STRAIN, Recorder, TetherRun,
+                                non_finite, overstretched, time_grid, winch_values)
 from fem_tether.stop import checkpoint
 
 #: A change of V_L between steps larger than this (m/s) restarts the time
@@ -131,6 +138,9 @@ class TetherSolver(Protocol):
     def extra(self) -> dict:
         """Solver-specific values for ``TetherRun.extra``."""
 
+    def compliance_per_N(self) -> float:
+        """The line's axial compliance 1/EA (0: inextensible)."""
+
 
 def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int = 0):
     """The state one step ``h`` later; a step whose Newton iteration fails is
@@ -143,8 +153,7 @@ def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int
             raise SolverDivergedError(
                 f"time step did not converge at t = {state.t:.4f} s (step {h:.3e} s after "
                 f"{depth} halvings, {solver.resolution()}), L = {case.length_m:g} m: "
-                + (exc.cause or f"scaled residual {exc.residual:.3e} after {case.max_newton} "
-                   "Newton iterations")) from None
+                + (exc.cause or newton_failure(exc.residual, case.max_newton))) from None
     stats.halvings += 1
     half = advance(solver, state, h / 2, stats, depth + 1)
     return advance(solver, half, h / 2, stats, depth + 1)
@@ -197,7 +206,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
         if done:
             break
     bar.close()
-    return record.run(
+    return check_sane(solver, record.run(
         solver=solver.name,
         length_m=start_length,
         period_s=period,
@@ -206,7 +215,26 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
         wall_s=time.perf_counter() - wall0,
         extra=solver.extra() | {"dt_s": h, "newton_iterations": stats.newton_iterations,
                                 "halvings": stats.halvings},
-    )
+    ))
+
+
+def check_sane(solver: TetherSolver, result: TetherRun) -> TetherRun:
+    """``result`` if it passes its sanity checks (module docstring), else
+    :class:`SolverDivergedError` naming what is absurd and, for a stretched line,
+    the input that lets it stretch (the Newton tolerance that bounds the
+    constraint's residual, or the elastic line's EA)."""
+    compliance = solver.compliance_per_N()
+    stretched = overstretched(result, MAX_ELASTIC_STRAIN if compliance else MAX_CONSTRAINT_STRAIN)
+    absurd = "; ".join(p for p in (non_finite(result), stretched) if p)
+    if not absurd:
+        return result
+    suspect = ""
+    if stretched:
+        suspect = (f"; suspicious input: [tether] axial_stiffness_N = {1.0 / compliance:g}" if compliance else
+                   f"; suspicious input: [time] newton_tol = {solver.model.newton_tol:g} "
+                   "(the Newton iterations stop at that scaled residual)")
+    raise SolverDivergedError(f"{solver.name.upper()} run, L = {result.length_m:g} m, is no solution "
+                              f"of its model: {absurd}{suspect}")
 
 
 def simulate(solver: TetherSolver, cfg: Config, dt_s: float, progress: bool = False) -> TetherRun:

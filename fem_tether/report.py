@@ -8,6 +8,7 @@ printed number is formatted in one place.
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 
@@ -16,18 +17,54 @@ from fem_tether.crosscheck import QUANTITIES, CrossCheck, limits_of
 from fem_tether.sizing import Sizing, breaking_load_N, margin, short_of_margin, sized_case
 
 
+def json_safe(data):
+    """``data`` with every NaN or infinite number (in dicts, lists and tuples)
+    replaced by None: JSON has no NaN, and null is the value of an undefined
+    quantity in every document fem-tether writes."""
+    if isinstance(data, dict):
+        return {k: json_safe(v) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [json_safe(v) for v in data]
+    if isinstance(data, float) and not math.isfinite(data):
+        return None
+    return data
+
+
 def json_text(data) -> str:
-    """``data`` as the indented JSON document with sorted keys every ``--json`` prints."""
-    return json.dumps(data, indent=2, sort_keys=True)
+    """``data`` as the indented JSON document with sorted keys every ``--json``
+    prints; an undefined (NaN or infinite) number is null (:func:`json_safe`),
+    never the invalid JSON ``NaN``."""
+    return json.dumps(json_safe(data), indent=2, sort_keys=True, allow_nan=False)
 
 
 def _lengths(values) -> str:
     return ", ".join(f"{v:g} m" for v in values)
 
 
-def _best_length(best_straight, best_fe) -> str:
-    return (f"best length: straight {best_straight:g} m, flexible "
-            + (f"{best_fe:g} m" if best_fe is not None else "none (no length passed the cross-check)"))
+def _best(best_m, kept: bool, none_kept: str) -> str:
+    """One tether's best length in words; if there is none, why (``none_kept`` if
+    no length was kept, else no finite, positive AEP)."""
+    if best_m is not None:
+        return f"{best_m:g} m"
+    return f"none ({'no length has a finite, positive AEP' if kept else none_kept})"
+
+
+def _left_out(energy: dict) -> set:
+    """The lengths ``SweepAep.as_dict()`` has no flexible AEP of: excluded or pending."""
+    return set(energy["excluded_m"]) | set(energy["pending_m"])
+
+
+def best_length_text(energy: dict) -> str:
+    """The best lengths of ``SweepAep.as_dict()``, straight and flexible."""
+    rows = energy["lengths"]
+    fe_kept = any(r["length_m"] not in _left_out(energy) for r in rows)
+    return (f"best length: straight {_best(energy['best_length_straight_m'], bool(rows), 'no length')}, "
+            f"flexible {_best(energy['best_length_fe_m'], fe_kept, 'no length passed the cross-check')}")
+
+
+def _number(value, spec: str, width: int) -> str:
+    """``value`` formatted by ``spec``, or "undefined" right-aligned in ``width`` for None."""
+    return f"{'undefined':>{width}s}" if value is None else format(value, spec)
 
 
 def systems_text(rows: list[dict]) -> str:
@@ -299,12 +336,13 @@ def aep_text(result: dict) -> str:
     """``fem-tether aep``: AEP and capacity factor per length (``SweepAep.as_dict()``)."""
     lines = ["    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible"]
     for r in result["lengths"]:
-        fe = (f"{r['aep_fe_MWh']:18.0f}  {r['cf_fe']:11.3f}" if r["aep_fe_MWh"] is not None
-              else f"{'left out':>18s}  {'':11s}")
-        lines.append(f" {r['length_m']:8.0f}  {r['aep_straight_MWh']:18.0f}  {r['cf_straight']:11.3f}  {fe}"
+        fe = (f"{_number(r['aep_fe_MWh'], '18.0f', 18)}  {_number(r['cf_fe'], '11.3f', 11)}"
+              if r["length_m"] not in _left_out(result) else f"{'left out':>18s}  {'':11s}")
+        lines.append(f" {r['length_m']:8.0f}  {_number(r['aep_straight_MWh'], '18.0f', 18)}  "
+                     f"{_number(r['cf_straight'], '11.3f', 11)}  {fe}"
                      + ("  (unchecked)" if r["unchecked"] else "")
                      + ("  (pending)" if r["length_m"] in result["pending_m"] else ""))
-    lines.append(_best_length(result["best_length_straight_m"], result["best_length_fe_m"]))
+    lines.append(best_length_text(result))
     if result["excluded_m"]:
         lines.append("left out (cross-check failed or not run): " + _lengths(result["excluded_m"]))
     if result["pending_m"]:
@@ -333,7 +371,7 @@ def summary_table(data: dict, energy) -> str:
                      f"{data['ge_fe'][i]:9.2f}  {r.get('aep_straight_MWh', np.nan) / 1e3:8.2f}  "
                      f"{(aep_fe if aep_fe is not None else np.nan) / 1e3:9.2f}  {check}")
     d = energy.as_dict()
-    lines.append(_best_length(d["best_length_straight_m"], d["best_length_fe_m"]))
+    lines.append(best_length_text(d))
     if energy.excluded_m:
         lines.append("left out of the flexible AEP (cross-check failed or not run): "
                      + _lengths(energy.excluded_m))

@@ -165,6 +165,51 @@ def _padded(arrays) -> np.ndarray:
     return out
 
 
+#: Largest | |r_s| - 1 | accepted from an inextensible line: the stretch the
+#: inextensible model itself neglects (SK99 11 mm at its nominal 150 kN:
+#: T/EA = 150 kN / 14.73 MN = 1.0 %); a line violating its constraint by more
+#: is no solution of the model.  Measured on the default case at 500 m:
+#: [time] newton_tol 1e-10, 1e-3, 1e-2 leave 2e-10, 1.2e-3, 1.5e-2 (FE).
+MAX_CONSTRAINT_STRAIN = 1e-2
+
+#: Largest strain accepted from an elastic line: above the breaking strain of
+#: every material the project models (carbon's 2137 MPa / 70 GPa = 3.1 %, the
+#: largest; SK99 1.1 %, 165 kN on 14.73 MN; steel 0.17 % at its working
+#: stress): a line stretched further has broken.
+MAX_ELASTIC_STRAIN = 0.05
+
+
+def _first_time_s(run: TetherRun, bad: np.ndarray) -> float:
+    """The time of the first sample where ``bad`` holds."""
+    return float(run.time_s[int(np.argmax(bad))])
+
+
+def non_finite(run: TetherRun) -> str:
+    """The :data:`SERIES` of ``run`` that are NaN or infinite, each with the time
+    it first is ("" if every value is finite; the :data:`KITE_SERIES` are not
+    checked: a depowered kite's steering errors are NaN by definition)."""
+    bad = {name: ~np.isfinite(run.series[name]) for name in SERIES}
+    return "; ".join(f"{name} is {run.series[name][np.argmax(where)]} from t = {_first_time_s(run, where):.4f} s"
+                     for name, where in bad.items() if np.any(where))
+
+
+def overstretched(run: TetherRun, max_strain: float) -> str:
+    """Where ``run``'s line stretches beyond ``max_strain`` or its kite is farther
+    from the winch than the line so stretched reaches ("" if nowhere): the
+    largest value of each and the first time it is exceeded."""
+    strain, radius = run.series["max_strain"], run.series["kite_radius_m"]
+    reach = run.series["length_m"] * (1.0 + max_strain)
+    problems = []
+    if np.any(strain > max_strain):
+        problems.append(f"max | |r_s| - 1 | = {np.nanmax(strain):.3g} (beyond {max_strain:g} from "
+                        f"t = {_first_time_s(run, strain > max_strain):.4f} s)")
+    if np.any(radius > reach):
+        k = int(np.nanargmax(radius / reach))
+        problems.append(f"kite radius {radius[k]:.0f} m on a line of {run.series['length_m'][k]:g} m "
+                        f"(beyond its reach from t = {_first_time_s(run, radius > reach):.4f} s)")
+    return "; ".join(problems)
+
+
 def period_average(run: TetherRun, name: str) -> tuple[np.ndarray, np.ndarray]:
     """Moving average of a series over one period of the path, against the
     line length at the window's centre: ``(L, mean)`` (F_t(L) along a reel-out).

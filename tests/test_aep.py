@@ -5,6 +5,8 @@ import pytest
 
 from fem_tether.aep import (
     HOURS_PER_YEAR,
+    AepByLength,
+    SweepAep,
     aep_by_length,
     annual_energy_Wh,
     capacity_factor,
@@ -22,7 +24,7 @@ from fem_tether.power import (
     cycle_curves,
     operating_design,
 )
-from fem_tether.resource import Band, WindResource, weibull_resource
+from fem_tether.resource import Band, ResourceError, WindResource, weibull_resource
 
 
 @pytest.fixture
@@ -124,3 +126,32 @@ def test_aep_plot_without_flexible_lengths(system, tmp_path):
                                          weibull_resource()),
                "flexible": aep_by_length(*system, [], [], [], weibull_resource())}
     assert _is_png(plot_aep(results, tmp_path / "aep.png"))
+
+
+def _by_length(aep_MWh):
+    n = len(aep_MWh)
+    return AepByLength(np.arange(1.0, n + 1.0) * 100.0, *(np.zeros(n) for _ in range(2)), np.asarray(aep_MWh),
+                       np.ones(n), np.asarray(aep_MWh) / 8760.0, np.zeros(n))
+
+
+def test_no_best_length_without_a_finite_positive_maximum():
+    """A best length needs a finite, positive maximum: none among zeros or NaNs;
+    a NaN beside finite values is not the maximum (argmax would pick it)."""
+    assert _by_length([0.0, 0.0]).best_length_m is None
+    assert _by_length([np.nan, np.nan]).best_length_m is None
+    assert _by_length([np.nan, 5.0, 3.0]).best_length_m == 200.0
+
+
+def test_sweep_aep_as_dict_has_null_for_undefined_values():
+    d = SweepAep(straight=_by_length([np.nan, 5.0]), flexible=_by_length([0.0, 0.0]), excluded_m=(),
+                 unchecked_m=()).as_dict()
+    assert d["lengths"][0]["aep_straight_MWh"] is None and d["lengths"][0]["cf_straight"] is None
+    assert d["best_length_straight_m"] == 200.0 and d["best_length_fe_m"] is None
+
+
+def test_a_band_with_undefined_probabilities_gives_no_aep(system):
+    """[resource] weibull_k = 1e-9 left NaN probabilities and an AEP of NaN: refused, naming the band."""
+    resource = WindResource((Band(0.0, 5000.0, np.array([10.0, 20.0]), np.array([np.nan])),), source="nan")
+    with pytest.raises(ResourceError, match=r"^the wind resource's band 0-5000 m has undefined probabilities "
+                       r"\(1 of 1 bins NaN or infinite\): no AEP on it; check \[resource\] weibull_k"):
+        aep_by_length(*system, 1343.0, 9.36, 2.86, resource)

@@ -94,6 +94,51 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, match):
     assert "Traceback" not in err and err.count("\n") == 1
 
 
+#: Every numeric option of every command, with the arguments its command needs besides it.
+NUMERIC_OPTIONS = [("straight", "--length"), ("straight", "--lengths"), ("straight --closed-form", "--rho"),
+                   ("straight --closed-form", "--cd"), ("curves", "--ge"), ("curves", "--phi-deg"),
+                   ("power", "--wind-speed"), ("simulate", "--length"), ("size", "--length"),
+                   ("crosscheck", "--length"), ("bench", "--repeats"), ("bench", "--memory"),
+                   ("mesh {out}", "--elements"), ("mesh {out} --elements 10", "--grading")]
+
+
+def test_every_numeric_option_is_in_the_extreme_values_test():
+    """A new numeric option joins :data:`NUMERIC_OPTIONS` (its range tested below)."""
+    numeric = {(name, opts[0]) for name, command in _commands(build_parser()) for action in command._actions
+               for opts in [action.option_strings] if opts and action.type not in (None, str)}
+    assert numeric == {(cmd.split()[0], option) for cmd, option in NUMERIC_OPTIONS}
+
+
+def _commands(parser):
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return sub.choices.items()
+
+
+#: A number a sane output never prints: NaN, infinity or more than 15 digits in a row.
+ABSURD_NUMBER = re.compile(r"\b(nan|inf|infinity)\b|\d{16,}", re.IGNORECASE)
+
+
+@pytest.mark.parametrize("command, option", NUMERIC_OPTIONS)
+@pytest.mark.parametrize("value", ["1e300", "1e-300", "nan", "inf", "-1", "0"])
+def test_extreme_option_values_exit_2_or_print_sane_numbers(capsys, tmp_path, command, option, value):
+    """power --wind-speed 1e300, curves --ge 1e-300, straight --closed-form --rho 1e308 printed
+    RuntimeWarnings, inf and 300-digit numbers with exit 0: every option has a physical range."""
+    argv = command.format(out=tmp_path / "m.vtu").split() + [f"{option}={value}"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        try:
+            code = main(argv)
+        except SystemExit as exc:
+            code = exc.code
+    out, err = capsys.readouterr()
+    if code == 2:           # one line naming the option, or the configuration key it sets
+        assert err.startswith("fem-tether: error: ") and err.count("\n") == 1
+        assert re.search(f"(argument |^fem-tether: error: ){option}", err) or (
+            option.startswith("--length") and "[tether] length_m" in err)
+    else:
+        assert code == 0 and not ABSURD_NUMBER.search(out), out
+
+
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
 @pytest.mark.parametrize("section, fewest", [("fe", 36), ("fd", 72)])
 def test_coarse_time_step_names_its_key(capsys, tmp_path, command, section, fewest):
@@ -137,13 +182,16 @@ def test_winch_lighter_than_its_line_is_refused_at_load(capsys, tmp_path, comman
 
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
 @pytest.mark.parametrize("tension_N, cause", [
+    (1e8, r"at t = 0 s, L = 1000 m, 40 elements: the gravity-only equilibrium did not converge: "
+          r"scaled residual .*; suspicious input: \[winch\] ground_tension_N = 1e\+08 N, 1\.64e\+05 times "
+          r"the line's weight \(608 N\)$"),
     (1000.0, r"at t = 0\.4\d* s .*L = 1000 m: .*the line went slack \(tension -\d+ N at s = \d+ m"),
 ])
 def test_winch_too_weak_for_the_line_is_a_solver_failure(capsys, tmp_path, command, tension_N, cause):
-    """A winch tension too low to hold the line against its weight (100 N) or
-    its drag (1000 N): one line naming the length, the time and the physical
-    cause, exit code 1, no traceback (was: ValueError from the ISA model, the
-    iterates having left the troposphere) and no warnings."""
+    """A winch tension below the line's weight (100 N), too low for its drag
+    (1000 N) or suspiciously high (1e8 N, which was said not to hold a 608 N
+    line): one line naming the length, the time, what diverged and the measured
+    tension-to-weight ratio, exit code 1, no traceback and no warnings."""
     cfg = tmp_path / "t.toml"
     cfg.write_text(f"[winch]\nground_tension_N = {tension_N}\n")
     with warnings.catch_warnings():

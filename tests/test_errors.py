@@ -14,9 +14,12 @@ from fem_tether.errors import (
     check_taut,
     left_atmosphere,
     slack,
+    newton_failure,
     slack_failure,
-    too_weak_for_weight,
+    static_start_failure,
 )
+from fem_tether.continuation import ContinuationFailed
+from types import SimpleNamespace
 from fem_tether.fe.integrator import SchemeError
 from fem_tether.fe.mesh import MeshError
 from fem_tether.reel import SpeedTableError
@@ -62,10 +65,36 @@ def test_slack_failure_adds_the_cause_only_if_slack():
 
 
 def test_cause_texts():
+    """An iterate above the troposphere is what was measured, not a too-low tension."""
     assert left_atmosphere(AltitudeError(12000.0)) == (
-        "the line left the atmosphere (altitude 12000 m is above the ISA troposphere (z <= 11000 m)): "
-        "the tension is too low to "
-        "hold it against its drag, weight and the wind")
-    assert too_weak_for_weight(1000.0, 5886.4) == (
-        "; no equilibrium even under gravity alone: the winch tension 1000 N cannot hold the line "
-        "(weight 5886 N) toward the kite")
+        "a Newton iterate left the atmosphere (altitude 12000 m is above the ISA troposphere (z <= 11000 m))")
+    assert newton_failure(3.2e-4, 20) == "scaled residual 3.200e-04 after 20 Newton iterations"
+    assert newton_failure(np.nan, 20) == "the Newton iteration diverged to nan (no cause measured)"
+
+
+TENSION_CASE = SimpleNamespace(newton_tol=1e-10, tension_mode=True, ground_tension_N=1000.0)
+
+
+def test_a_static_start_names_a_cause_only_where_measured():
+    """A NaN residual diverged (no cause); a failed gravity-only start with the winch
+    tension below the line's weight says so and what to raise; one far above it
+    names the tension as suspicious (was: 1e8 N 'cannot hold the line, weight 304 N')."""
+    nan = static_start_failure(ContinuationFailed(0.0, np.nan), TENSION_CASE, 600.0)
+    assert nan.startswith("the Newton iteration diverged to nan at 0 of the wind and drag load (no cause measured)")
+    weak = static_start_failure(ContinuationFailed(0.0, 0.4), TENSION_CASE, 5886.4)
+    assert weak == ("the gravity-only equilibrium did not converge: scaled residual 4.000e-01 above [time] "
+                    "newton_tol = 1e-10; the winch tension is below the line's weight: raise [winch] "
+                    "ground_tension_N (now 1000 N, 0.17 times the line's weight of 5886 N)")
+    strong = static_start_failure(ContinuationFailed(0.0, 2.8e-7), replace_tension(1e8), 608.0)
+    assert strong.endswith("; suspicious input: [winch] ground_tension_N = 1e+08 N, 1.64e+05 times the "
+                           "line's weight (608 N)")
+    partial = static_start_failure(ContinuationFailed(0.632804, 4.8e-8), replace_tension(5000.0), 1825.0)
+    assert partial == ("no convergence beyond 0.632804 of the wind and drag load: scaled residual 4.800e-08; "
+                       "to reach the full load raise [winch] ground_tension_N (now 5000 N, 2.74 times the "
+                       "line's weight of 1825 N), or shorten the line")
+    prescribed = SimpleNamespace(newton_tol=1e-10, tension_mode=False, ground_tension_N=0.0)
+    assert static_start_failure(ContinuationFailed(0.5, 1e-3), prescribed, 600.0).endswith("1.000e-03")
+
+
+def replace_tension(ground_tension_N):
+    return SimpleNamespace(**{**vars(TENSION_CASE), "ground_tension_N": ground_tension_N})

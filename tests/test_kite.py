@@ -7,10 +7,13 @@ import pytest
 
 from fem_tether.atmosphere import ISA
 from fem_tether.config import load_config
+from fem_tether.errors import InputError
 from fem_tether.kite import (
+    MIN_GLOBAL_EFFICIENCY,
     KiteGenDesign,
     characteristic_curves,
     characteristic_speeds,
+    check_tether_cd,
     global_efficiency,
     loyd_curves,
     loyd_optimum,
@@ -213,3 +216,25 @@ def test_plot_writes_png(design, tmp_path):
     data = path.read_bytes()
     assert data.startswith(b"\x89PNG\r\n\x1a\n") and len(data) > 10_000
     assert [p.name for p in tmp_path.iterdir()] == ["curves.png"]   # no temporary left
+
+
+@pytest.mark.parametrize("ge", [0.0034, 0.99, 28.5, float("nan")])
+def test_a_global_efficiency_outside_the_physical_range_is_refused(ge):
+    """curves --ge 0.0034 gave a full-force wind (5.94 m/s) below G_e = 5's: G_e from 1 to E only."""
+    with pytest.raises(InputError, match=r"^G_e = .*: outside the physical range \[1, E = 28\]"):
+        KiteGenDesign.from_config(load_config().kite, 2, efficiency=ge)
+
+
+def test_from_one_on_the_full_force_wind_falls_as_g_e_grows():
+    """The range's reason: above MIN_GLOBAL_EFFICIENCY less line drag means more force."""
+    kite = load_config().kite
+    ge = np.array([MIN_GLOBAL_EFFICIENCY, 2.0, 5.0, 15.0, 28.0])
+    full_force = characteristic_speeds(KiteGenDesign.from_config(kite, 2, efficiency=ge)).full_force_mps
+    assert np.all(np.diff(full_force) < 0)
+
+
+def test_tether_cd_bounded_by_the_lift_coefficient():
+    assert check_tether_cd(np.array([0.0, 0.5]), 1.0).tolist() == [0.0, 0.5]
+    for cd in (89.0, 1.0, -0.1, float("nan")):
+        with pytest.raises(InputError, match=r"^C_D,t = .*: outside the physical range \[0, C_L = 1\)"):
+            check_tether_cd(cd, 1.0)

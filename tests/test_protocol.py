@@ -32,11 +32,14 @@ class FakeState:
 @dataclass
 class FakeSolver:
     """Two cells; a step fails where ``fails(t, h)``; tensions ``tension(t)``;
-    every call of :meth:`step` is one Newton iteration."""
+    kite radius and strain ``geometry(state)`` (default: a taut inextensible
+    line); every call of :meth:`step` is one Newton iteration."""
 
     model: TetherCase = field(default_factory=lambda: CASE)
     fails: object = lambda t, h: False
     tension: object = lambda t: 500.0
+    geometry: object = lambda state: {"kite_radius_m": 100.0, "max_strain": 0.0}
+    compliance: float = 0.0
     steps: list = field(default_factory=list)        # (t, h) of the converged steps
     reels: list = field(default_factory=list)        # (t, length, speed) of the reeled calls
     name = "fake"
@@ -57,7 +60,7 @@ class FakeSolver:
         return state
 
     def line_state(self, state, fields):
-        values = {k: float(state.T[0]) for k in SERIES[:6]}
+        values = {k: float(state.T[0]) for k in SERIES[:6]} | self.geometry(state)
         if fields:
             values |= {k: np.zeros(3) for k in NODE_FIELDS} | {k: state.T for k in CELL_FIELDS}
         return values
@@ -73,6 +76,9 @@ class FakeSolver:
 
     def extra(self):
         return {"cells": 2}
+
+    def compliance_per_N(self):
+        return self.compliance
 
 
 def test_time_grid_windows_and_records():
@@ -125,6 +131,46 @@ def test_slack_line_fails_after_the_spin_up_and_is_named_as_a_cause_before():
     late = FakeSolver(tension=lambda t: -100.0 if t > 1.2 else 500.0)
     with pytest.raises(SolverDivergedError, match=r"^at t = 1\.2500 s, L = 100 m, the line went slack"):
         protocol.run(late, 0.25, 1, 1)
+
+
+def test_an_absurd_run_is_refused_naming_what_and_the_suspicious_input():
+    """A line stretched beyond its constraint's tolerance and a kite beyond the
+    line's reach (as [time] newton_tol = 1e8 left them: strain 3.67e4, a 2213 m
+    radius on a 500 m line) fail the run, naming both and newton_tol."""
+    absurd = FakeSolver(geometry=lambda state: {"kite_radius_m": 100.0 + 2000.0 * state.t,
+                                                "max_strain": 3.67e4 * state.t})
+    with pytest.raises(SolverDivergedError, match=r"^FAKE run, L = 100 m, is no solution of its model: "
+                       r"max \| \|r_s\| - 1 \| = 7\.34e\+04 \(beyond 0\.01 from t = 0\.2500 s\); "
+                       r"kite radius 4100 m on a line of 100 m \(beyond its reach from t = 0\.2500 s\); "
+                       r"suspicious input: \[time\] newton_tol = 1e-10"):
+        protocol.run(absurd, 0.25, 1, 1)
+
+
+def test_an_elastic_line_may_stretch_to_its_material_bound_only():
+    """An elastic line's strain is bounded by MAX_ELASTIC_STRAIN (not the
+    inextensible tolerance); beyond it the message names EA."""
+    from fem_tether.results import MAX_ELASTIC_STRAIN
+    stretched = {"kite_radius_m": 100.0, "max_strain": 0.5 * MAX_ELASTIC_STRAIN}
+    protocol.run(FakeSolver(geometry=lambda state: stretched, compliance=1e-6), 0.25, 1, 1)
+    broken = stretched | {"max_strain": 2.0 * MAX_ELASTIC_STRAIN}
+    with pytest.raises(SolverDivergedError, match=r"suspicious input: \[tether\] axial_stiffness_N = 1e\+06$"):
+        protocol.run(FakeSolver(geometry=lambda state: broken, compliance=1e-6), 0.25, 1, 1)
+
+
+def test_a_run_with_a_nan_series_is_refused_naming_it_and_when():
+    nan_radius = FakeSolver(geometry=lambda state: {"kite_radius_m": math.nan if state.t > 0.6 else 100.0,
+                                                    "max_strain": 0.0})
+    with pytest.raises(SolverDivergedError, match=r"^FAKE run, L = 100 m, is no solution of its model: "
+                       r"kite_radius_m is nan from t = 0\.7500 s$"):
+        protocol.run(nan_radius, 0.25, 1, 1)
+
+
+def test_a_nan_tension_is_a_divergence_not_a_slack_line():
+    """After the spin-up a NaN tension stops the run as diverged, not as slack."""
+    nan_late = FakeSolver(tension=lambda t: math.nan if t > 1.2 else 500.0)
+    with pytest.raises(SolverDivergedError, match=r"^at t = 1\.2500 s, L = 100 m, the tension diverged "
+                       r"to nan \(first at s = 25 m, 2 of 2 values\)$"):
+        protocol.run(nan_late, 0.25, 1, 1)
 
 
 def test_reel_schedule_lengths_energy_and_stop():

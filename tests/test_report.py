@@ -27,6 +27,13 @@ def test_json_text_is_sorted_and_indented():
     assert json_text({"b": 1, "a": [1.5]}) == '{\n  "a": [\n    1.5\n  ],\n  "b": 1\n}'
 
 
+def test_json_text_writes_undefined_numbers_as_null_never_nan():
+    """aep.json held a literal NaN (invalid JSON): undefined numbers are null."""
+    text = json_text({"a": float("nan"), "b": [np.inf, (np.float64(-np.inf), 2.0)], "c": {"d": np.nan}})
+    assert "NaN" not in text and "Infinity" not in text
+    assert json.loads(text) == {"a": None, "b": [None, [None, 2.0]], "c": {"d": None}}
+
+
 def _check(drag_fd_N):
     means = {"drag_N": 1000.0, "ground_tension_N": 150000.0, "kite_tension_N": 151000.0}
     fd = means | {"drag_N": drag_fd_N}
@@ -93,6 +100,20 @@ def test_aep_text():
     assert lines[3:] == ["best length: straight 400 m, flexible 400 m",
                          "left out (cross-check failed or not run): 800 m",
                          "pending, not run yet (--allow-incomplete): 800 m"]
+
+
+def test_aep_text_of_undefined_and_zero_aep_names_no_best_length():
+    """AEP undefined at one length and zero at the other: no best length, said why."""
+    result = {"lengths": [
+        {"length_m": 400.0, "aep_straight_MWh": None, "cf_straight": None, "aep_fe_MWh": None,
+         "cf_fe": None, "unchecked": False},
+        {"length_m": 800.0, "aep_straight_MWh": 0.0, "cf_straight": 0.0, "aep_fe_MWh": 0.0,
+         "cf_fe": 0.0, "unchecked": False}],
+        "best_length_straight_m": None, "best_length_fe_m": None, "excluded_m": [], "pending_m": []}
+    lines = aep_text(result).splitlines()
+    assert lines[1] == "      400           undefined    undefined           undefined    undefined"
+    assert lines[3] == ("best length: straight none (no length has a finite, positive AEP), "
+                        "flexible none (no length has a finite, positive AEP)")
 
 
 @pytest.fixture

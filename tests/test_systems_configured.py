@@ -6,6 +6,7 @@ import pytest
 
 from fem_tether import straight
 from fem_tether.config import load_config
+from fem_tether.errors import InputError
 from fem_tether.power import Cycle, cycle_curves, rated_power_W
 from fem_tether.summary import operating_ge, operating_tether_cd
 from fem_tether.systems import ke_yoyo, kitegen, loyd
@@ -72,3 +73,11 @@ def test_kitegen_active_phase_is_the_characteristic_curve():
     np.testing.assert_array_equal(system.active_power_W(WINDS),
                                   cycle_curves(WINDS, flown, Cycle()).active.power_W)
     assert from_config(load_config(system="ke-yoyo")).active_power_W(WINDS) is None
+
+
+@pytest.mark.parametrize("system", ["kitegen", "ke-yoyo", "loyd-1", "trevisi-gg"])
+def test_every_power_model_refuses_a_tether_cd_beyond_the_wings_lift(system):
+    """A C_D,t of 89 (an absurd run's) gave KiteGen 1.07 MW of ground-gen: every model refuses it."""
+    model = from_config(load_config(system=system))
+    with pytest.raises(InputError, match=r"^C_D,t = 89: outside the physical range \[0, C_L = "):
+        model.operating_point(10.0, 89.0)

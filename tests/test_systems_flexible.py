@@ -2,7 +2,7 @@
 
 import pytest
 
-from fem_tether.config import ConfigError
+from fem_tether.config import ConfigError, load_config
 from fem_tether.fe import solver as fe
 from fem_tether.output import write_run_hdf5
 from fem_tether.summary import operating_ge, operating_tether_cd
@@ -26,7 +26,7 @@ def test_fe_run_gives_the_cd_of_its_mean_drag(fe_file):
     """C_D,t of the file = eq. 1 of systems.tether_drag with the run's mean F_t; through
     systems.kitegen eq. 1 it is the run's G_e (seed 000 eq. 5.1) to 1e-13."""
     path, cfg, run = fe_file
-    cd = flexible_tether_cd(path, 400.0)
+    cd = flexible_tether_cd(path, cfg)
     assert cd == pytest.approx(operating_tether_cd(cfg, run.mean("drag_N")), rel=1e-15)
     assert global_efficiency(cfg.kite.cl, cfg.kite.efficiency, cd) == pytest.approx(
         operating_ge(cfg, run.mean("drag_N")), rel=1e-13)
@@ -34,20 +34,37 @@ def test_fe_run_gives_the_cd_of_its_mean_drag(fe_file):
 
 def test_fe_run_of_another_length_is_refused(fe_file):
     with pytest.raises(ConfigError, match=r"its line is 400 m, the system's 500 m"):
-        flexible_tether_cd(fe_file[0], 500.0)
+        flexible_tether_cd(fe_file[0], fe_file[1].with_length(500.0))
+
+
+def test_fe_run_of_another_system_is_refused_naming_what_differs(fe_file):
+    """A KiteGen file (11 mm, 120 m²) applied to a KE-yoyo-like case (30 mm, 500 m²):
+    only the length agrees; diameter, lines, kite area and path speed are named."""
+    path, cfg, _ = fe_file
+    other = cfg.replace(tether={"diameter_m": 0.03, "lines": 1}, kite={"area_m2": 500.0, "speed_mps": 60.0})
+    with pytest.raises(ConfigError, match=r"its case is not the system's \(diameter 0\.011 m \(the "
+                       r"system's 0\.03 m\); lines 2 \(the system's 1\); kite area 120 m² \(the system's "
+                       r"500 m²\); path speed 80 m/s \(the system's 60 m/s\)\)"):
+        flexible_tether_cd(path, other)
+
+
+def _sweep_case(path, length_m):
+    """The case of the sweep ``path`` at ``length_m``."""
+    from fem_tether.sweepfile import read_sweep
+    return read_sweep(path)["config"].with_length(length_m)
 
 
 def test_sweep_errors_name_the_length(unrun_sweep):
     with pytest.raises(ConfigError, match=r"no length 600 m in this sweep \(it has 400, 800 m"):
-        flexible_tether_cd(unrun_sweep, 600.0)
+        flexible_tether_cd(unrun_sweep, _sweep_case(unrun_sweep, 600.0))
     with pytest.raises(ConfigError, match=r"the FE run at 800 m has no result \(status failed\)"):
-        flexible_tether_cd(unrun_sweep, 800.0)
+        flexible_tether_cd(unrun_sweep, _sweep_case(unrun_sweep, 800.0))
 
 
 def test_missing_and_foreign_files(tmp_path):
     with pytest.raises(ConfigError, match="no such file"):
-        flexible_tether_cd(tmp_path / "none.h5", 400.0)
+        flexible_tether_cd(tmp_path / "none.h5", load_config())
     other = tmp_path / "other.h5"
     other.write_bytes(b"not hdf5")
     with pytest.raises(ConfigError, match="not a fem-tether sweep or FE run"):
-        flexible_tether_cd(other, 400.0)
+        flexible_tether_cd(other, load_config())

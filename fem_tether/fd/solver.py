@@ -64,7 +64,7 @@ from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.config import Config
-from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
+from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd import kite as kite_end
 from fem_tether.fd.system import Grid, NodalLoads, TetherFD
@@ -288,12 +288,9 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     try:
         r_int, T, R = continuation(solve, (r[1:-1].copy(), T, R))
     except ContinuationFailed as exc:
-        weak = model.tension_mode and exc.load_factor == 0.0
         raise SolverDivergedError(
             f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
-            f"{exc.reason()}"
-            + (too_weak_for_weight(model.ground_tension_N, model.eq.physics.weight_N(model.length_m))
-               if weak else "")) from None
+            f"{static_start_failure(exc, model, model.eq.physics.weight_N(model.length_m))}") from None
     return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
 
 
@@ -569,6 +566,9 @@ class FDSolver:
 
     def resolution(self) -> str:
         return f"{self.model.grid.M} segments"
+
+    def compliance_per_N(self) -> float:
+        return self.model.eq.physics.compliance_per_N
 
     def extra(self) -> dict:
         return {"segments": self.model.grid.M, "scheme": self.model.scheme}

@@ -32,7 +32,7 @@ from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.config import Config
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, left_atmosphere, too_weak_for_weight
+from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure
 from fem_tether.fe.mesh import unit_mesh_from_config
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -243,12 +243,9 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     try:
         r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
     except ContinuationFailed as exc:
-        weak = model.tension_mode and exc.load_factor == 0.0
-        raise SolverDivergedError(
-            f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
-            f"{sys_.spaces.n_elements} elements: {exc.reason()}"
-            + (too_weak_for_weight(model.ground_tension_N, sys_.physics.weight_N(model.length_m))
-               if weak else "")) from None
+        why = static_start_failure(exc, model, sys_.physics.weight_N(model.length_m))
+        raise SolverDivergedError(f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
+                                  f"{sys_.spaces.n_elements} elements: {why}") from None
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
@@ -539,6 +536,9 @@ class FESolver:
 
     def resolution(self) -> str:
         return f"{self.model.system.spaces.n_elements} elements"
+
+    def compliance_per_N(self) -> float:
+        return self.model.system.physics.compliance_per_N
 
     def extra(self) -> dict:
         return {"elements": self.model.system.spaces.n_elements}

@@ -23,7 +23,7 @@ import numpy as np
 
 from fem_tether import atmosphere, straight
 from fem_tether.config import Config, ConfigError
-from fem_tether.kite import KiteGenDesign, characteristic_curves
+from fem_tether.kite import KiteGenDesign, characteristic_curves, check_tether_cd
 from fem_tether.power import Cycle, operating_design
 from fem_tether.summary import operating_density_kg_m3, operating_tether_cd
 
@@ -37,7 +37,8 @@ class ConfiguredSystem:
 
     ``curve(wind_mps, tether_cd)`` gives one :class:`OperatingPoint` per wind
     speed (at the kite's altitude); ``straight_cd`` is the C_D,t of the
-    straight-line lumping its source used; ``parameters`` the model's own;
+    straight-line lumping its source used; ``cl`` the wing's (largest) lift
+    coefficient, which bounds every C_D,t; ``parameters`` the model's own;
     ``top_mps`` the end of its power curve (the cut-out); ``rated`` and
     ``active`` the model's own rated power and active-phase power, if it has them.
     """
@@ -45,14 +46,16 @@ class ConfiguredSystem:
     model: str
     parameters: object
     straight_cd: float
+    cl: float
     curve: Callable[..., list[OperatingPoint]]
     top_mps: float
     rated: Callable[[float], float] | None = None
     active: Callable[[np.ndarray, float], np.ndarray] | None = None
 
     def tether_cd(self, tether_cd=None) -> float:
-        """``tether_cd``, or the straight line's if None."""
-        return self.straight_cd if tether_cd is None else tether_cd
+        """``tether_cd``, or the straight line's if None; InputError if outside the
+        physical range of a kite of lift coefficient ``cl`` (:func:`fem_tether.kite.check_tether_cd`)."""
+        return check_tether_cd(self.straight_cd if tether_cd is None else tether_cd, self.cl)
 
     def power_curve(self, wind_mps, tether_cd=None) -> list[OperatingPoint]:
         """One operating point per wind speed; ``tether_cd`` None: the straight line."""
@@ -107,7 +110,7 @@ def _kitegen(cfg: Config) -> ConfiguredSystem:
                               cfg.tether.length_m, cfg.kite.efficiency, cfg.path.mean_abs_phi_deg())
     params = kitegen.KiteGenSystem(design, operating_tether_cd(cfg, straight.from_config(cfg, True).drag_N),
                                    Cycle(**cfg.cycle.to_dict()))
-    return ConfiguredSystem("kitegen", params, params.straight_cd,
+    return ConfiguredSystem("kitegen", params, params.straight_cd, cfg.kite.cl,
                             lambda w, cd: kitegen.power_curve(params, w, cd), top_mps(cfg),
                             lambda cd: kitegen.rated_power_W(params, cd),
                             lambda w, cd: characteristic_curves(w, kitegen.flown_design(params, cd)).power_W)
@@ -128,7 +131,7 @@ def _ke_yoyo(cfg: Config) -> ConfiguredSystem:
         generation_efficiency=cfg.cycle.eta_e, cycle_efficiency=cfg.system.cycle_efficiency,
         rated_power_W=cfg.system.rated_power_W or math.inf, cut_out_mps=cfg.system.cut_out_mps or math.inf,
         theta_rad=math.radians(k.theta0_deg), phi_rad=math.radians(k.design_phi_deg))
-    return ConfiguredSystem("ke-yoyo", params, float(ke_yoyo.line_drag_coefficient(params)),
+    return ConfiguredSystem("ke-yoyo", params, float(ke_yoyo.line_drag_coefficient(params)), cfg.kite.cl,
                             lambda w, cd: ke_yoyo.power_curve(params, w, tether_cd=cd), top_mps(cfg),
                             stated_rating(cfg))
 
@@ -148,7 +151,7 @@ def _loyd(cfg: Config) -> ConfiguredSystem:
         tether_cd_ref=cfg.drag.cd / LOYD_WIDTH_RATIO, lines=t.lines, zenith_rad=math.radians(k.theta0_deg),
         design_wind_mps=cfg.system.design_wind_mps)
     rho = operating_density_kg_m3(cfg)
-    return ConfiguredSystem("loyd", params, loyd.size_tether(params, rho).tether_cd,
+    return ConfiguredSystem("loyd", params, loyd.size_tether(params, rho).tether_cd, cfg.kite.cl,
                             lambda w, cd: loyd.power_curve(params, w, rho, cd), top_mps(cfg))
 
 
@@ -181,7 +184,7 @@ def _unified(cfg: Config) -> ConfiguredSystem:
         points = iter(unified_system.power_curve(params, wind_mps[on], rho, tether_cd))
         return [next(points) if o else OperatingPoint.off(w, tether_cd) for w, o in zip(wind_mps, on)]
 
-    return ConfiguredSystem("unified", params, params.straight_tether_cd, curve, top, stated_rating(cfg))
+    return ConfiguredSystem("unified", params, params.straight_tether_cd, cfg.kite.cl, curve, top, stated_rating(cfg))
 
 
 #: Loyd's reference width of a tether over its diameter: 4√A_T / d = 2√π (seed 003 eq. 2.17).

@@ -4,7 +4,10 @@ A sweep result (``fem-tether sweep``/``run``: ``drag_fe_N`` per length) or an
 FE run (``fem-tether simulate --out DIR``: ``fe.h5``, its mean ``drag_N``)
 holds the mean drag F_t per line lumped at the kite; with that file's own
 case (its kite area, speed, lines and air) it becomes the C_D,t of
-:func:`fem_tether.summary.operating_tether_cd`.  C_D,t is independent of the
+:func:`fem_tether.summary.operating_tether_cd`.  It is the system's only if
+the file's case is the system's: the same length, line diameter, number of
+lines, kite area and path speed (:data:`SAME_CASE`); a file of another case is
+refused, naming what differs.  C_D,t is independent of the
 kite speed while F_t grows as V_k²; that is what lets one FE run at the
 preset's speed stand for every wind speed of a power curve (the cylinder's
 C_d,c(Re) and the line's shape make it only approximately so).
@@ -12,6 +15,7 @@ C_d,c(Re) and the line's shape make it only approximately so).
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -21,16 +25,45 @@ from fem_tether.jobs import length_tag
 from fem_tether.summary import operating_tether_cd
 
 
-def flexible_tether_cd(path: str | Path, length_m: float) -> float:
-    """C_D,t of the flexible tether of length ``length_m`` (to 1 mm) in the result file ``path``.
+#: The case values a C_D,t is specific to, besides the length, and their names
+#: in messages: C_D,t = lines F_t / (1/2 rho A V_k^2) lumps the line's
+#: diameter and number into the kite's area and path speed.
+SAME_CASE = (("tether", "diameter_m", "diameter", "m"), ("tether", "lines", "lines", ""),
+             ("kite", "area_m2", "kite area", "m²"), ("kite", "speed_mps", "path speed", "m/s"))
+
+
+def case_differences(theirs: Config, ours: Config) -> list[str]:
+    """The :data:`SAME_CASE` values in which the file's case ``theirs`` differs
+    from the system's ``ours``, each as "NAME THEIRS (the system's OURS)"."""
+    differences = []
+    for section, key, name, unit in SAME_CASE:
+        a, b = getattr(getattr(theirs, section), key), getattr(getattr(ours, section), key)
+        if not math.isclose(a, b, rel_tol=1e-9):
+            differences.append(f"{name} {a:g}{unit and ' ' + unit} (the system's {b:g}{unit and ' ' + unit})")
+    return differences
+
+
+def _same_case(path: Path, theirs: Config, ours: Config) -> Config:
+    """``theirs`` if it is the case of ``ours`` (:data:`SAME_CASE`), else ConfigError naming
+    the values that differ."""
+    differences = case_differences(theirs, ours)
+    if differences:
+        raise ConfigError(f"--flexible {path}: its case is not the system's ({'; '.join(differences)}): "
+                          "its C_D,t does not apply; run this system's case (simulate --out or a sweep)")
+    return theirs
+
+
+def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
+    """C_D,t of the flexible tether of the system ``cfg`` (its length to 1 mm) in the result file ``path``.
 
     ConfigError (one line, naming the file) if the file is no result of ours,
-    has no such length, or its FE run at that length did not succeed.
+    has no such length, its FE run at that length did not succeed, or its case
+    differs from ``cfg``'s in a value of :data:`SAME_CASE` (each named).
     """
     from fem_tether.output import read_run_hdf5
     from fem_tether.sweepfile import is_sweep_result, read_sweep
 
-    path = Path(path)
+    path, length_m = Path(path), cfg.tether.length_m
     if not path.is_file():
         raise ConfigError(f"--flexible {path}: no such file")
     if is_sweep_result(path):
@@ -44,7 +77,8 @@ def flexible_tether_cd(path: str | Path, length_m: float) -> float:
         if not np.isfinite(drag_N):
             raise ConfigError(f"--flexible {path}: the FE run at {tags[i]} m has no result "
                               f"(status {data['status'][i]})")
-        return operating_tether_cd(data["config"].with_length(float(data["length_m"][i])), drag_N)
+        return operating_tether_cd(_same_case(path, data["config"].with_length(float(data["length_m"][i])), cfg),
+                                   drag_N)
     try:
         run = read_run_hdf5(path, snapshots=False)
     except (OSError, KeyError) as exc:
@@ -54,4 +88,4 @@ def flexible_tether_cd(path: str | Path, length_m: float) -> float:
     if length_tag(run.length_m) != length_tag(length_m):
         raise ConfigError(f"--flexible {path}: its line is {length_tag(run.length_m)} m, the system's "
                           f"{length_tag(length_m)} m (set [tether] length_m to match)")
-    return operating_tether_cd(run.config, run.mean("drag_N"))
+    return operating_tether_cd(_same_case(path, run.config, cfg), run.mean("drag_N"))
