@@ -20,7 +20,7 @@ import traceback
 import numpy as np
 
 from fem_tether import __version__, kite, report
-from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, TETHER_LENGTH_M, load_config
+from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config
 from fem_tether.errors import FemTetherError
 from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
 from fem_tether import stop
@@ -68,9 +68,6 @@ AIR_DENSITY_KG_M3 = (0.3, 2.0)
 #: Cross-flow drag coefficients of ``straight --cd``: the cylinder's C_d,c(Re)
 #: spans 0.31 (post-critical) to 26 at Re = 0.1 (fem_tether.drag_coefficient).
 CYLINDER_CD = (0.1, 30.0)
-#: Fastest wind of ``power --wind-speed`` [m/s]: the jet stream's strongest
-#: (about 100 m/s), far above any power curve's cut-out (25-30 m/s).
-MAX_WIND_MPS = 100.0
 
 _positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
 _element_count = _option(int, "a whole number", lambda v: 2 <= v <= MAX_ELEMENTS, f"from 2 to {MAX_ELEMENTS}")
@@ -78,7 +75,7 @@ _azimuth_deg = _option(float, "a number", lambda v: -90.0 < v < 90.0, "an azimut
 _length_m = _option(float, "a number", TETHER_LENGTH_M.admits, f"a cable length in {TETHER_LENGTH_M} m")
 _air_density = _between(*AIR_DENSITY_KG_M3, "an air density", "kg/m³", "the troposphere's")
 _cylinder_cd = _between(*CYLINDER_CD, "a drag coefficient", "", "a cylinder's C_d,c(Re)")
-_wind_mps = _between(0.0, MAX_WIND_MPS, "a wind speed", "m/s", "up to the jet stream's")
+_wind_mps = _between(0.0, MAX_WIND_MPS, "a wind speed", "m/s", "above the strongest gust measured")
 _grading = _between(1.0 / MAX_GRADING, MAX_GRADING, "a grading", "", "first over last element size")
 _global_efficiency = _option(float, "a number", lambda v: kite.MIN_GLOBAL_EFFICIENCY <= v < math.inf,
                              f"a global efficiency G_e >= {kite.MIN_GLOBAL_EFFICIENCY:g} (below it the kite "
