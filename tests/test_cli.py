@@ -288,3 +288,27 @@ def test_power_with_a_flexible_file_that_lacks_the_length(capsys, unrun_sweep):
 def test_unknown_system_is_a_one_line_error(capsys):
     code, _, err = run_cli(capsys, "config", "--system", "nope")
     assert code == 2 and err.startswith("fem-tether: error: --system nope: unknown system")
+
+
+def test_mesh_and_plots_never_replace_what_fem_tether_did_not_write(capsys, tmp_path):
+    """``mesh OUT`` replaces its own meshes only; ``--plot`` refuses a user's file, a
+    symbolic link and a FIFO (never a device), exit 2 naming it, the target untouched."""
+    mesh = tmp_path / "m.vtu"
+    assert run_cli(capsys, "mesh", str(mesh), "--elements", "10")[0] == 0
+    assert run_cli(capsys, "mesh", str(mesh), "--elements", "12")[0] == 0      # ours: replaced
+    mine = tmp_path / "mine.vtu"
+    mine.write_text("<my mesh/>")
+    code, _, err = run_cli(capsys, "mesh", str(mine), "--elements", "10")
+    assert code == 2 and "mine.vtu: it exists and fem-tether did not write it" in err
+    target = tmp_path / "real.png"
+    assert run_cli(capsys, "curves", "--plot", str(target))[0] == 0
+    assert run_cli(capsys, "curves", "--plot", str(target))[0] == 0           # ours: replaced
+    link, fifo, user = tmp_path / "link.png", tmp_path / "fifo.png", tmp_path / "user.png"
+    link.symlink_to(target)
+    os.mkfifo(fifo)
+    user.write_bytes(b"\x89PNG\r\n\x1a\nnot ours")
+    for path, problem in ((link, "it is a symbolic link"), (fifo, "it is a FIFO"),
+                          (user, "it exists and fem-tether did not write it")):
+        code, _, err = run_cli(capsys, "curves", "--plot", str(path))
+        assert code == 2 and err.count("\n") == 1 and f"cannot write {path}: {problem}" in err
+    assert mine.read_text() == "<my mesh/>" and link.is_symlink() and user.read_bytes().endswith(b"not ours")

@@ -107,3 +107,29 @@ def test_main_job_under_mpiexec(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.count("best length") == 1          # rank 0 alone reports
     assert "3 lengths on 2 rank(s)" in proc.stdout
+
+
+@pytest.mark.parametrize("name, content", [("index.html", "<html>my page</html>"), ("aep.json", '{"mine": 1}'),
+                                           ("drag_vs_length.png", "not a PNG of ours")])
+def test_run_refuses_a_users_file_in_its_folder_before_any_task(tmp_path, capsys, monkeypatch, name, content):
+    """(Was: replaced after the sweep.)  Exit 2 naming the file; nothing run, nothing written."""
+    monkeypatch.setattr("fem_tether.sweep.run_task", lambda *a: pytest.fail("a task ran"))
+    out = tmp_path / "r"
+    out.mkdir()
+    (out / name).write_text(content)
+    assert main(["run", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err == f"fem-tether: error: cannot write {out / name}: it exists and fem-tether did not write it " \
+                  "(move it away or choose another name)\n"
+    assert (out / name).read_text() == content and sorted(p.name for p in out.iterdir()) == [name, "sweep.h5.parts"]
+
+
+def test_a_second_run_into_the_same_folder_is_refused_naming_the_first(tmp_path, capsys, monkeypatch):
+    from fem_tether.atomic import exclusive
+
+    monkeypatch.setattr("fem_tether.sweep.run_task", lambda *a: pytest.fail("a task ran"))
+    out = tmp_path / "r"
+    with exclusive(out, directory=True):
+        assert main(["run", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"fem-tether: error: cannot write {out}: in use by fem-tether ") and err.count("\n") == 1

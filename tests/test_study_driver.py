@@ -152,3 +152,24 @@ def test_a_study_never_overwrites_a_file_it_did_not_write(tmp_path, capsys):
     assert main(["study", str(job), "--out", str(precious)]) == 2
     assert "x.h5: it exists and is not a fem-tether study result" in capsys.readouterr().err
     assert precious.read_text() == "precious\n" and not parts_dir(precious).exists()
+
+
+@pytest.mark.parametrize("what", ["report folder is a file", "report page is a user's"])
+def test_a_report_that_cannot_be_written_fails_before_the_study(tmp_path, capsys, monkeypatch, what):
+    """(Was: failed after the whole study.)"""
+    from fem_tether.study import tasks
+
+    monkeypatch.setattr(tasks.Study, "run", lambda *a: pytest.fail("a task ran"))
+    job = tmp_path / "s.toml"
+    job.write_text(KITEGEN_STUDY)
+    out = tmp_path / "x.h5"
+    if what == "report folder is a file":
+        (tmp_path / "x_report").write_text("mine")
+        problem = f"cannot write {tmp_path / 'x_report'}: it exists and is not a directory"
+    else:
+        (tmp_path / "x_report").mkdir()
+        (tmp_path / "x_report" / "index.html").write_text("<html>mine</html>")
+        problem = f"cannot write {tmp_path / 'x_report' / 'index.html'}: it exists and fem-tether did not write it"
+    assert main(["study", str(job), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and problem in err and not out.exists()

@@ -346,3 +346,29 @@ def test_a_sweep_of_point_mass_kites_is_gated_and_takes_g_e_at_their_speed(tmp_p
         cfg = job.config_for(500.0)
         assert mean_apparent > 1.2 * cfg.kite.speed_mps              # it flies faster than 80 m/s here
         assert f["ge_fe"][0] != pytest.approx(operating_ge(cfg, f["drag_fe_N"][0]), rel=1e-3)
+
+
+def test_a_second_sweep_into_the_same_file_is_refused_naming_the_first(tmp_path, capsys, monkeypatch):
+    """(Was: both overwrote each other's parts and exited 1 with an empty error.)"""
+    from fem_tether.atomic import exclusive
+
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    out = tmp_path / "s.h5"
+    monkeypatch.setattr(sw, "run_task", lambda *a: pytest.fail("a task ran"))
+    with exclusive(out):
+        assert main(["sweep", str(job), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"fem-tether: error: cannot write {out}: in use by fem-tether ") and err.count("\n") == 1
+
+
+def test_a_killed_sweeps_temporaries_are_removed_by_the_next(tiny_job, tmp_path):
+    out = tmp_path / "s.h5"
+    parts = parts_dir(out)
+    parts.mkdir()
+    stale = [parts / ".L400_fe.h5.tmp-4242-abcdef.h5", tmp_path / ".s.h5.tmp-4242-abcdef.h5"]
+    for path in stale:
+        path.write_text("half a file")
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert not any(path.exists() for path in stale)
+    assert not any(p.name.startswith(".") and ".tmp-" in p.name for p in [*tmp_path.iterdir(), *parts.iterdir()])

@@ -118,3 +118,18 @@ def test_cli_exit_codes(capsys, tmp_path, monkeypatch):
     monkeypatch.setattr("fem_tether.validation.run.CASES", (failing,))
     assert main(["validate", "--quick", "--out", str(out)]) == 1
     assert "| t/failing |" in capsys.readouterr().out
+
+
+def test_an_output_that_cannot_be_written_fails_before_the_first_case(tmp_path, capsys, monkeypatch):
+    """(Was: every case ran first.)"""
+    import fem_tether.validation as validation
+
+    monkeypatch.setattr(validation, "validate", lambda *a, **k: pytest.fail("a case ran"))
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    assert main(["validate", "--out", str(blocker)]) == 2
+    assert "it exists and is not a directory" in capsys.readouterr().err
+    (tmp_path / "v").mkdir()
+    (tmp_path / "v" / "validation.md").write_text("# my notes\n")
+    assert main(["validate", "--out", str(tmp_path / "v")]) == 2
+    assert "validation.md: it exists and fem-tether did not write it" in capsys.readouterr().err
