@@ -67,10 +67,41 @@ def check_taut(tension_N, s_mid_m, t_s: float, length_m: float) -> None:
         raise SolverDivergedError(f"at t = {t_s:.4f} s, L = {length_m:g} m, {cause}")
 
 
-def slack_failure(exc: SolverDivergedError, tension_N, s_mid_m) -> SolverDivergedError:
-    """``exc`` (a failed step) with the slack line named as its cause if the last
-    solved state, of tensions ``tension_N``, was slack."""
-    cause = slack(tension_N, s_mid_m)
+#: A line whose least tension is below this share of its largest is losing
+#: its tension (the last solved state before a failed step).
+NEAR_SLACK_SHARE = 0.2
+
+#: A line whose inertial tension and weight are this share of the kite's pull
+#: or more is heavy for it: KiteGen's lines carry 0.7 %, Loyd II's and III's
+#: steel 86-96 % where their steps fail (docs/systems.md §5).
+HEAVY_LINE_SHARE = 0.5
+
+
+def near_slack(tension_N, s_mid_m, inertia_N: float, weight_N: float) -> str:
+    """The measured state of a line too heavy for its kite ("" if it is not):
+    its inertial tension mu V_k^2 and weight mu g L against the kite's pull
+    (the largest tension), and its least tension."""
+    if not np.any(np.isfinite(tension_N)):
+        return ""
+    k = int(np.nanargmin(tension_N))
+    pull = float(np.nanmax(tension_N))
+    if not pull > 0.0:
+        return ""
+    carried, least = (inertia_N + weight_N) / pull, tension_N[k] / pull
+    if not (least < NEAR_SLACK_SHARE or carried >= HEAVY_LINE_SHARE):
+        return ""
+    return (f"the line's inertial tension mu V_k^2 ({inertia_N:.3g} N) and weight ({weight_N:.3g} N) are "
+            f"{100 * carried:.0f} % of the kite's pull ({pull:.3g} N), its least tension {tension_N[k]:.3g} N "
+            f"at s = {s_mid_m[k]:.0f} m ({100 * least:.0f} %): a line this heavy for the kite's speed "
+            "cannot follow it (a lighter line, a slower kite or a wider path)")
+
+
+def slack_failure(exc: SolverDivergedError, tension_N, s_mid_m, inertia_N: float = 0.0,
+                  weight_N: float = 0.0) -> SolverDivergedError:
+    """``exc`` (a failed step) with the cause measured in the last solved state,
+    of tensions ``tension_N``: the line was slack, or is too heavy for its
+    kite (:func:`near_slack`)."""
+    cause = slack(tension_N, s_mid_m) or near_slack(tension_N, s_mid_m, inertia_N, weight_N)
     return SolverDivergedError(f"{exc}; {cause}") if cause else exc
 
 

@@ -48,6 +48,7 @@ from fem_tether.case import TetherCase
 from fem_tether.config import Config
 from fem_tether.continuation import NotConverged
 from fem_tether.errors import SolverDivergedError, check_taut, newton_failure, slack_failure
+from fem_tether.loads import G_MPS2
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import (MAX_CONSTRAINT_STRAIN, MAX_ELASTIC_STRAIN, Recorder, TetherRun,
@@ -159,6 +160,16 @@ def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int
     return advance(solver, half, h / 2, stats, depth + 1)
 
 
+def line_loads_N(cfg: Config | None, length_m: float) -> tuple[float, float]:
+    """What the kite's pull must carry besides the drag: the line's inertial
+    tension mu V_k^2 at the kite's speed and its weight mu g L ((0, 0) without
+    a configuration)."""
+    if cfg is None:
+        return 0.0, 0.0
+    mu = cfg.tether.linear_density_kg_m
+    return mu * cfg.kite.speed_mps ** 2, mu * G_MPS2 * length_m
+
+
 def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods: int,
         output_every: int = 1, config: Config | None = None, progress: bool = False,
         reel: Reel = Reel(), initial=None) -> TetherRun:
@@ -193,7 +204,8 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
             try:
                 state = advance(solver, state, h, stats)
             except SolverDivergedError as exc:
-                raise slack_failure(exc, state.T, solver.tension_s_m()) from None
+                raise slack_failure(exc, state.T, solver.tension_s_m(),
+                                    *line_loads_N(config, solver.model.length_m)) from None
             state.t = t0 + i * h
             if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
                 check_taut(state.T, solver.tension_s_m(), state.t, solver.model.length_m)

@@ -98,3 +98,23 @@ def test_a_static_start_names_a_cause_only_where_measured():
 
 def replace_tension(ground_tension_N):
     return SimpleNamespace(**{**vars(TENSION_CASE), "ground_tension_N": ground_tension_N})
+
+def test_a_line_too_heavy_for_its_kite_is_named_from_the_measured_tensions():
+    """Loyd II's steel on its circle (docs/systems.md §5): inertia + weight 86 % of the pull."""
+    from fem_tether.errors import HEAVY_LINE_SHARE, NEAR_SLACK_SHARE, near_slack
+
+    s_m = np.array([100.0, 600.0, 1193.0])
+    text = near_slack(np.array([1.56e7, 1.0e7, 3.92e6]), s_m, 9.21e6, 4.26e6)
+    assert "are 86 % of the kite's pull (1.56e+07 N), its least tension 3.92e+06 N at s = 1193 m (25 %)" in text
+    assert near_slack(np.array([1.5e5, 1.4e5, 1.3e5]), s_m, 450.0, 608.0) == ""     # KiteGen: 0.7 %
+    assert near_slack(np.array([1.5e5, 1.4e5, 0.1 * 1.5e5]), s_m, 450.0, 608.0) != ""  # losing its tension
+    assert 0 < NEAR_SLACK_SHARE < HEAVY_LINE_SHARE < 1
+    assert near_slack(np.full(3, np.nan), s_m, 1.0, 1.0) == ""
+
+
+def test_loyds_steel_line_fails_naming_its_weight_and_inertia(capsys):
+    from fem_tether.cli import main
+
+    assert main(["simulate", "--system", "loyd-2", "--json"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "a line this heavy for the kite's speed cannot follow it" in err
