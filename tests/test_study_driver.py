@@ -173,3 +173,18 @@ def test_a_report_that_cannot_be_written_fails_before_the_study(tmp_path, capsys
     assert main(["study", str(job), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and problem in err and not out.exists()
+
+
+def test_a_second_study_into_the_same_file_is_refused_naming_the_first(tmp_path, capsys, monkeypatch):
+    """(Was: "'NoneType' object is not iterable", exit 3.)"""
+    from fem_tether.atomic import exclusive
+    from fem_tether.study import tasks
+
+    monkeypatch.setattr(tasks.Study, "run", lambda *a: pytest.fail("a task ran"))
+    job = tmp_path / "s.toml"
+    job.write_text(KITEGEN_STUDY)
+    out = tmp_path / "x.h5"
+    with exclusive(out):
+        assert main(["study", str(job), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"fem-tether: error: cannot write {out}: in use by fem-tether ") and err.count("\n") == 1
