@@ -463,7 +463,8 @@ def _run(args, comm=None) -> int:
             return code
     except (KeyboardInterrupt, FemTetherError, OSError) as exc:
         stop.clear()
-        return _fail(*reversed(exit_code(exc)))
+        code, line = exit_code(exc)
+        return _fail(line, code)
     except Exception:                    # a defect: its traceback, and the ranks still agree
         traceback.print_exc()
         return EXIT_FAILED
