@@ -25,7 +25,7 @@ from fem_tether.memory import peak_rss_MiB
 from fem_tether.progress import Progress
 from fem_tether.schedule import task_cost
 from fem_tether.store import PartsStore
-from fem_tether.sweepfile import assemble, check_out
+from fem_tether.sweepfile import assemble, check_out, update
 
 @dataclass(frozen=True)
 class SweepOutcome:
@@ -86,6 +86,7 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
             check_out(out)
             if check is not None:
                 check()
+            assemble(store, size)               # current from the start: each task then updates its length
         except InputError as exc:
             problem = exc
     problem = comm.bcast(problem, root=0)
@@ -107,7 +108,7 @@ def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
         if run_task(store, tasks[i]) == "reused":
             reused += 1
         else:
-            assemble(store, size)
+            update(store, tasks[i].length_m, size)
         if rank == 0:
             bar.update(store.done())
 

@@ -1,10 +1,16 @@
 """The sweep result file: assembled from the parts present, read back for the AEP.
 
-The rank that finished a task assembles ``<out>`` from the parts present (one
-rank at a time, under the parts directory's lock), so ``<out>`` is current
-from the first finished task on and an interrupted sweep leaves a readable
-file; a length whose tasks have not all run is ``pending``.  An existing
-``<out>`` that is not a sweep result is never overwritten.
+A sweep assembles ``<out>`` whole from the parts present when it starts and
+when it ends (:func:`assemble`, atomically); in between, the rank that
+finished a task brings that task's length up to date in place
+(:func:`update`: the work of one length, so a sweep's assembly work is linear
+in its lengths).  Both run one rank at a time, under the parts directory's
+lock.  So ``<out>`` is current after every finished task and an interrupted
+sweep leaves a readable file; a length whose tasks have not all run is
+``pending``.  (An update killed midway can leave ``<out>`` damaged, which
+:func:`read_sweep` says; the parts are whole, and running the sweep again
+writes ``<out>`` whole.)  An existing ``<out>`` that is not a sweep result is
+never overwritten.
 
 Result file (h5py), root datasets, one entry per length (NaN where not run),
 units and meanings in :mod:`fem_tether.quantities` (``where = "sweep"``) and in
@@ -67,11 +73,35 @@ def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
     """Write the result file from the parts present now (atomically, under
     the parts directory's lock); return the per-length results."""
     with store.lock():
-        results = [evaluate_length(store, L) for L in store.job.lengths_m]
-        with atomic_path(store.out) as tmp:
-            with h5py.File(tmp, "w") as f:
-                _write_result(f, store, n_ranks, results)
+        return _assemble(store, n_ranks)
+
+
+def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
+    """Bring the entries of one length in the result file up to date with its
+    parts (in place, under the lock); a missing result file is assembled whole."""
+    with store.lock():
+        if not store.out.exists():
+            _assemble(store, n_ranks)
+            return
+        result, parts = evaluate_length(store, length_m)
+        i = store.job.lengths_m.index(length_m)
+        with h5py.File(store.out, "r+") as f:
+            for name, value in (result.values | {"error": result.error, "status": result.status}).items():
+                f[name][i] = value
+            del f[_group_name(length_m)]
+            _write_length(f, store, result, parts)
+
+
+def _assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
+    results = [evaluate_length(store, L) for L in store.job.lengths_m]
+    with atomic_path(store.out) as tmp:
+        with h5py.File(tmp, "w") as f:
+            _write_result(f, store, n_ranks, results)
     return [r for r, _ in results]
+
+
+def _group_name(length_m: float) -> str:
+    return f"L{length_tag(length_m)}"
 
 
 def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> None:
@@ -86,17 +116,22 @@ def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> Non
     for name in ("status", "error"):
         _dataset(f, name, np.array([getattr(r, name) for r, _ in results], dtype=h5py.string_dtype()))
     for r, parts in results:
-        group = f.create_group(f"L{length_tag(r.length_m)}")
-        group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
-                           config_toml=store.stored_config(r.length_m).to_toml(),
-                           description=GROUP_DESCRIPTIONS["length"])
-        for solver, path in parts.items():
-            with h5py.File(path, "r") as src:      # a failed task's part: attributes only
-                sub = group.create_group(solver)
-                sub.attrs.update(dict(src.attrs))
-                sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
-                for name in src:
-                    src.copy(src[name], sub, name)
+        _write_length(f, store, r, parts)
+
+
+def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict) -> None:
+    """The group of one length: its configuration and status, its parts' runs."""
+    group = f.create_group(_group_name(r.length_m))
+    group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
+                       config_toml=store.stored_config(r.length_m).to_toml(),
+                       description=GROUP_DESCRIPTIONS["length"])
+    for solver, path in parts.items():
+        with h5py.File(path, "r") as src:      # a failed task's part: attributes only
+            sub = group.create_group(solver)
+            sub.attrs.update(dict(src.attrs))
+            sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
+            for name in src:
+                src.copy(src[name], sub, name)
 
 
 def is_sweep_result(path: Path) -> bool:
@@ -120,7 +155,7 @@ def read_sweep(path: str | Path) -> dict:
             data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
             data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
             data["config"] = Config.from_stored(f.attrs["config_toml"])
-            data["case_configs"] = tuple(Config.from_stored(f[f"L{length_tag(L)}"].attrs["config_toml"])
+            data["case_configs"] = tuple(Config.from_stored(f[_group_name(L)].attrs["config_toml"])
                                          for L in data["length_m"])
             data["attrs"] = {k: f.attrs[k] for k in f.attrs}
     except FileNotFoundError:

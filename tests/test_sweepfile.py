@@ -62,3 +62,90 @@ def test_check_out_refuses_a_file_it_did_not_write(tmp_path):
                        "fem-tether sweep result"):
         check_out(precious)
     assert precious.read_text() == "precious\n" and not parts_dir(precious).exists()
+
+
+@pytest.fixture
+def fake_solvers(tiny_cfg, monkeypatch):
+    """Both solvers replaced by one real 400 m FE run relabelled with each case (fast)."""
+    import dataclasses
+
+    from fem_tether import evaluate
+    from fem_tether.fe.solver import simulate
+
+    run = simulate(tiny_cfg)
+
+    def fake(solver):
+        return lambda cfg, progress=False: dataclasses.replace(run, solver=solver, config=cfg,
+                                                              length_m=cfg.tether.length_m)
+    monkeypatch.setattr(evaluate, "simulator", fake)
+
+
+def _sweep_work(tmp_path, n, monkeypatch):
+    """Configurations written (to_toml) and HDF5 objects copied by a serial sweep of n lengths."""
+    from mpi4py import MPI
+
+    from conftest import TINY_JOB
+    from fem_tether.config import Config
+    from fem_tether.jobs import load_job
+    from fem_tether.sweep import sweep
+
+    path = tmp_path / f"n{n}.toml"
+    path.write_text(TINY_JOB.replace("[400, 800]", str([400 + 100 * i for i in range(n)])))
+    job = load_job(path)
+    counts = {"to_toml": 0, "copy": 0}
+
+    def counted(name, real):
+        def call(*args, **kwargs):
+            counts[name] += 1
+            return real(*args, **kwargs)
+        return call
+    with monkeypatch.context() as m:
+        m.setattr(Config, "to_toml", counted("to_toml", Config.to_toml))
+        m.setattr(h5py.Group, "copy", counted("copy", h5py.Group.copy))
+        sweep(job, tmp_path / f"n{n}.h5", comm=MPI.COMM_SELF, progress=False)
+    return counts
+
+
+def test_a_sweeps_assembly_work_is_linear_in_its_lengths(tmp_path, fake_solvers, monkeypatch):
+    """Issue 25: every task used to assemble the whole file (every length's to_toml and
+    parts copied again: quadratic); four times the lengths now cost at most four times
+    the work (a task updates its own length)."""
+    small, large = _sweep_work(tmp_path, 3, monkeypatch), _sweep_work(tmp_path, 12, monkeypatch)
+    for name in small:
+        assert large[name] <= 4 * small[name], (name, small, large)
+
+
+def test_update_gives_the_file_assemble_gives(tiny_job, tmp_path, fake_solvers):
+    """A length brought up to date in place reads back as the whole file written anew."""
+    from fem_tether.evaluate import run_task
+    from fem_tether.jobs import Task
+    from fem_tether.store import PartsStore
+    from fem_tether.sweepfile import assemble, update
+
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    assemble(store, n_ranks=1)
+    for task in (Task(800.0, "fe"), Task(800.0, "fd"), Task(400.0, "fd")):
+        run_task(store, task)
+        update(store, task.length_m, n_ranks=1)
+    fresh = PartsStore(tiny_job, tmp_path / "fresh.h5")
+    fresh.directory.symlink_to(store.directory)
+    assemble(fresh, n_ranks=1)
+    a, b = read_sweep(store.out), read_sweep(fresh.out)
+    assert list(a["status"]) == ["pending", "ok"]
+    for name in ("length_m", "status", "error") + ROOT_DATASETS:
+        np.testing.assert_array_equal(a[name], b[name], err_msg=name)
+    assert a["case_configs"] == b["case_configs"]
+    with h5py.File(store.out) as f, h5py.File(fresh.out) as g:
+        assert set(f["L400"]) == set(g["L400"]) == {"fd"} and set(f["L800"]) == {"fe", "fd"}
+        np.testing.assert_array_equal(f["L800/fd/snapshots/tension_N"][()], g["L800/fd/snapshots/tension_N"][()])
+        assert dict(f["L800"].attrs) == dict(g["L800"].attrs)
+
+
+def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
+    from fem_tether.store import PartsStore
+    from fem_tether.sweepfile import update
+
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    update(store, 400.0, n_ranks=2)
+    data = read_sweep(store.out)
+    assert list(data["status"]) == ["pending", "pending"] and data["attrs"]["n_ranks"] == 2
