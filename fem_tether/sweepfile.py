@@ -39,11 +39,14 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.atomic import OutputError, atomic_path, check_writable
-from fem_tether.config import Config, ConfigError
 from fem_tether.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs import length_tag
 from fem_tether.quantities import attributes
+from fem_tether.reading import Reader
 from fem_tether.store import PartsStore, parts_dir
+
+#: A length's status: its tasks have all run and succeeded, some task has not run, some failed.
+STATUSES = ("ok", "pending", "failed")
 
 GROUP_DESCRIPTIONS = {
     "length": "one cable length: its configuration, status and error as attributes, its runs "
@@ -78,14 +81,18 @@ def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
 
 def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
     """Bring the entries of one length in the result file up to date with its
-    parts (in place, under the lock); a missing result file is assembled whole."""
+    parts (in place, under the lock).  The file is assembled whole instead if it
+    is missing or another process has it open (which keeps reading the file it
+    opened)."""
     with store.lock():
-        if not store.out.exists():
+        result, parts = evaluate_length(store, length_m)
+        try:
+            f = h5py.File(store.out, "r+")
+        except (FileNotFoundError, BlockingIOError):
             _assemble(store, n_ranks)
             return
-        result, parts = evaluate_length(store, length_m)
         i = store.job.lengths_m.index(length_m)
-        with h5py.File(store.out, "r+") as f:
+        with f:
             for name, value in (result.values | {"error": result.error, "status": result.status}).items():
                 f[name][i] = value
             del f[_group_name(length_m)]
@@ -143,24 +150,34 @@ def is_sweep_result(path: Path) -> bool:
         return False
 
 
+#: The root attributes of a result file and their kinds (:meth:`~fem_tether.reading.Reader.attr`).
+ROOT_ATTRS = {"config_toml": "str", "job_toml": "str", "fem_tether_version": "str", "n_ranks": "int",
+              "created_utc": "str"}
+
+
 def read_sweep(path: str | Path) -> dict:
     """Root datasets and attributes of a result file, as NumPy arrays and strings
     (``"file"``: the path as given; ``"case_configs"``: each length's configuration,
-    its sized line with ``[tether] sizing = "load"``)."""
-    if Path(path).is_dir():
-        raise ConfigError(f"{path}: is a directory, not a sweep result file")
-    try:
-        with h5py.File(path, "r") as f:
-            data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
-            data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
-            data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
-            data["config"] = Config.from_stored(f.attrs["config_toml"])
-            data["case_configs"] = tuple(Config.from_stored(f[_group_name(L)].attrs["config_toml"])
-                                         for L in data["length_m"])
-            data["attrs"] = {k: f.attrs[k] for k in f.attrs}
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: no such file") from None
-    except (OSError, KeyError) as exc:
-        raise ConfigError(f"{path}: not a fem-tether sweep result ({exc})") from None
+    its sized line with ``[tether] sizing = "load"``).
+
+    The file is checked as it is read (:class:`~fem_tether.reading.Reader`): one
+    :class:`~fem_tether.reading.ResultFileError` line names it if it is missing,
+    not a sweep result, or damaged (an attribute missing or not parsing, a root
+    dataset missing, of another length or type, a length's group missing)."""
+    reader = Reader(path, "sweep")
+    with reader.open() as f:
+        data = {"attrs": {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}}
+        data["config"] = reader.config(f)
+        lengths = reader.dataset(f, "length_m", shape=(None,))
+        if not (np.all(lengths > 0) and np.all(np.diff(lengths) > 0)):
+            raise reader.error("dataset /length_m is not increasing positive lengths")
+        data["length_m"] = lengths
+        for name in ROOT_DATASETS + ("status", "error"):
+            dtype = "int" if name == "crosscheck_ok" else "str" if name in ("status", "error") else "float"
+            data[name] = reader.dataset(f, name, dtype, shape=lengths.shape)
+        unknown = set(data["status"]) - set(STATUSES)
+        if unknown:
+            raise reader.error(f"dataset /status holds {str(sorted(unknown)[0])!r} (known: {', '.join(STATUSES)})")
+        data["case_configs"] = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
     data["file"] = str(path)
     return data

@@ -5,8 +5,9 @@ import h5py
 import numpy as np
 import pytest
 
+from damage import delete_attr, empty, foreign, replace_dataset, set_attr, text, truncate
 from fem_tether.atomic import OutputError
-from fem_tether.config import ConfigError
+from fem_tether.errors import InputError
 from fem_tether.evaluate import ROOT_DATASETS
 from fem_tether.store import parts_dir
 from fem_tether.sweepfile import check_out, is_sweep_result, read_sweep
@@ -42,10 +43,10 @@ def test_is_sweep_result(unrun_sweep, tmp_path):
 def test_read_sweep_refusals_name_the_file(tmp_path):
     text = tmp_path / "x.txt"
     text.write_text("precious\n")
-    for path, problem in ((tmp_path, "is a directory, not a sweep result file"),
+    for path, problem in ((tmp_path, "is a directory, not a fem-tether sweep result file"),
                           (tmp_path / "missing.h5", "no such file"),
                           (text, "not a fem-tether sweep result")):
-        with pytest.raises(ConfigError, match=f"^{path}: {problem}"):
+        with pytest.raises(InputError, match=f"^{path}: {problem}"):
             read_sweep(path)
 
 
@@ -149,3 +150,77 @@ def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
     update(store, 400.0, n_ranks=2)
     data = read_sweep(store.out)
     assert list(data["status"]) == ["pending", "pending"] and data["attrs"]["n_ranks"] == 2
+
+
+def test_update_while_another_process_reads_the_file_writes_it_whole(tiny_job, tmp_path, fake_solvers):
+    """A reader holding the file open (HDF5 locks it) neither stops the sweep nor
+    sees it change: the length's update is an assembly into a new file."""
+    import subprocess
+    import sys
+
+    from fem_tether.evaluate import run_task
+    from fem_tether.jobs import Task
+    from fem_tether.store import PartsStore
+    from fem_tether.sweepfile import assemble, update
+
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    assemble(store, n_ranks=1)
+    reader = subprocess.Popen([sys.executable, "-c", "import sys, h5py; f = h5py.File(sys.argv[1]); "
+                               "print(list(f['status'].asstr()[()]), flush=True); sys.stdin.read(); "
+                               "print(list(f['status'].asstr()[()]))", str(store.out)],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert reader.stdout.readline() == "['pending', 'pending']\n"
+    for task in (Task(400.0, "fe"), Task(400.0, "fd")):
+        run_task(store, task)
+        update(store, 400.0, n_ranks=1)
+    assert list(read_sweep(store.out)["status"]) == ["ok", "pending"]
+    assert reader.communicate("")[0] == "['pending', 'pending']\n"
+
+
+#: Ways to damage a sweep result and what the one line says (after "FILE: ").
+DAMAGES = {
+    "truncated": (truncate, "damaged fem-tether sweep result: unreadable HDF5 ("),
+    "dataset deleted": (replace_dataset("drag_fe_N", None),
+                        "damaged fem-tether sweep result: dataset /drag_fe_N is missing"),
+    "dataset shortened": (replace_dataset("ge_fe", [1.0]),
+                          "damaged fem-tether sweep result: dataset /ge_fe has shape (1,), expected 2"),
+    "status shortened": (replace_dataset("status", np.array(["ok"], dtype=h5py.string_dtype())),
+                         "damaged fem-tether sweep result: dataset /status has shape (1,), expected 2"),
+    "config_toml not TOML": (set_attr("config_toml", "[fe\nelements = "),
+                             "damaged fem-tether sweep result: attribute config_toml of / is not TOML (Expected"),
+    "config_toml not a configuration": (set_attr("config_toml", "[fe]\nelements = -3\n"),
+                                        "damaged fem-tether sweep result: attribute config_toml of / is not a "
+                                        "configuration ([fe] elements = -3: "),
+    "config_toml not text": (set_attr("config_toml", 3.0),
+                             "damaged fem-tether sweep result: attribute config_toml of / is not text"),
+    "attribute deleted": (delete_attr("n_ranks"), "damaged fem-tether sweep result: attribute n_ranks of / is missing"),
+    "wrong dtype": (replace_dataset("drag_fe_N", np.array(["a", "b"], dtype=h5py.string_dtype())),
+                    "damaged fem-tether sweep result: dataset /drag_fe_N holds object, not float"),
+    "floats for flags": (replace_dataset("crosscheck_ok", [0.5, 1.0]),
+                         "damaged fem-tether sweep result: dataset /crosscheck_ok holds float64, not int"),
+    "unknown status": (replace_dataset("status", np.array(["ok", "done"], dtype=h5py.string_dtype())),
+                       "damaged fem-tether sweep result: dataset /status holds 'done' (known: ok, pending, failed)"),
+    "length group deleted": (replace_dataset("L400", None),
+                             "damaged fem-tether sweep result: group /L400 is missing"),
+    "lengths unordered": (replace_dataset("length_m", [800.0, 400.0]),
+                          "damaged fem-tether sweep result: dataset /length_m is not increasing positive lengths"),
+    "not HDF5": (text, "not a fem-tether sweep result (not an HDF5 file)"),
+    "empty": (empty, "not a fem-tether sweep result (an empty file)"),
+    "another program's HDF5": (foreign, "not a fem-tether sweep result (an HDF5 file fem-tether did not write)"),
+}
+
+
+@pytest.mark.parametrize("argv", [["aep"], ["power", "--flexible"]])
+@pytest.mark.parametrize("damage", DAMAGES)
+def test_a_damaged_sweep_result_is_one_line_naming_it(unrun_sweep, damage, argv, capsys):
+    """Issue 25: a damaged config_toml was a TOMLDecodeError, unequal root datasets an
+    IndexError; every damage is now one line naming the file, exit 2."""
+    from fem_tether.cli import main
+
+    how, problem = DAMAGES[damage]
+    how(unrun_sweep)
+    if argv[0] == "power" and ("unreadable HDF5" in problem or problem.startswith("not a")):
+        problem = problem.replace("sweep result", "sweep result or fem-tether run")   # either is read there
+    assert main([*argv, str(unrun_sweep)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"fem-tether: error: {unrun_sweep}: {problem}"), err

@@ -24,16 +24,17 @@ from fem_tether.summary import operating_tether_cd
 def flexible_tether_cd(path: str | Path, length_m: float) -> float:
     """C_D,t of the flexible tether of length ``length_m`` (to 1 mm) in the result file ``path``.
 
-    ConfigError (one line, naming the file) if the file is no result of ours,
-    has no such length, or its FE run at that length did not succeed.
+    InputError (one line, naming the file) if the file is no result of ours or
+    is damaged, has no such length, or its FE run at that length did not succeed.
     """
     from fem_tether.output import read_run_hdf5
-    from fem_tether.sweepfile import is_sweep_result, read_sweep
+    from fem_tether.reading import file_kind
+    from fem_tether.sweepfile import read_sweep
 
     path = Path(path)
     if not path.is_file():
         raise ConfigError(f"--flexible {path}: no such file")
-    if is_sweep_result(path):
+    if file_kind(path, "sweep", "run") == "sweep":
         data = read_sweep(path)
         tags = [length_tag(v) for v in data["length_m"]]
         if length_tag(length_m) not in tags:
@@ -45,10 +46,7 @@ def flexible_tether_cd(path: str | Path, length_m: float) -> float:
             raise ConfigError(f"--flexible {path}: the FE run at {tags[i]} m has no result "
                               f"(status {data['status'][i]})")
         return operating_tether_cd(data["config"].with_length(float(data["length_m"][i])), drag_N)
-    try:
-        run = read_run_hdf5(path, snapshots=False)
-    except (OSError, KeyError) as exc:
-        raise ConfigError(f"--flexible {path}: not a fem-tether sweep or FE run ({exc})") from None
+    run = read_run_hdf5(path, snapshots=False)
     if run.solver != "fe" or not isinstance(run.config, Config):
         raise ConfigError(f"--flexible {path}: an FE run is needed (this is {run.solver!r})")
     if length_tag(run.length_m) != length_tag(length_m):
