@@ -192,7 +192,8 @@ class Reader:
 def _fits(actual: tuple, shape: tuple) -> bool:
     """Whether an array's ``actual`` shape is ``shape`` (None: any length; a last
     ``...``: any further axes)."""
-    fixed = shape[:-1] if shape and shape[-1] is ... else shape
-    if len(actual) < len(fixed) or (len(actual) != len(fixed) and fixed is shape):
+    open_ended = bool(shape) and shape[-1] is ...
+    fixed = shape[:-1] if open_ended else shape
+    if len(actual) < len(fixed) or (not open_ended and len(actual) != len(fixed)):
         return False
     return all(n is None or n == m for n, m in zip(fixed, actual))

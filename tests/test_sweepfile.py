@@ -1,16 +1,27 @@
 """The sweep result file (fem_tether.sweepfile): assembled from the parts present,
 read back, recognised, never written over a file it did not write."""
 
+import dataclasses
+import subprocess
+import sys
+
 import h5py
 import numpy as np
 import pytest
 
+from conftest import TINY_JOB
 from damage import delete_attr, empty, foreign, replace_dataset, set_attr, text, truncate
+from fem_tether import evaluate
 from fem_tether.atomic import OutputError
+from fem_tether.cli import main
+from fem_tether.config import Config
 from fem_tether.errors import InputError
-from fem_tether.evaluate import ROOT_DATASETS
-from fem_tether.store import parts_dir
-from fem_tether.sweepfile import check_out, is_sweep_result, read_sweep
+from fem_tether.evaluate import ROOT_DATASETS, run_task
+from fem_tether.fe.solver import simulate
+from fem_tether.jobs import Task, load_job
+from fem_tether.store import PartsStore, parts_dir
+from fem_tether.sweep import sweep
+from fem_tether.sweepfile import assemble, check_out, is_sweep_result, read_sweep, update
 
 
 def test_assemble_and_read_sweep_round_trip(unrun_sweep, tiny_job):
@@ -68,11 +79,6 @@ def test_check_out_refuses_a_file_it_did_not_write(tmp_path):
 @pytest.fixture
 def fake_solvers(tiny_cfg, monkeypatch):
     """Both solvers replaced by one real 400 m FE run relabelled with each case (fast)."""
-    import dataclasses
-
-    from fem_tether import evaluate
-    from fem_tether.fe.solver import simulate
-
     run = simulate(tiny_cfg)
 
     def fake(solver):
@@ -84,11 +90,6 @@ def fake_solvers(tiny_cfg, monkeypatch):
 def _sweep_work(tmp_path, n, monkeypatch):
     """Configurations written (to_toml) and HDF5 objects copied by a serial sweep of n lengths."""
     from mpi4py import MPI
-
-    from conftest import TINY_JOB
-    from fem_tether.config import Config
-    from fem_tether.jobs import load_job
-    from fem_tether.sweep import sweep
 
     path = tmp_path / f"n{n}.toml"
     path.write_text(TINY_JOB.replace("[400, 800]", str([400 + 100 * i for i in range(n)])))
@@ -118,11 +119,6 @@ def test_a_sweeps_assembly_work_is_linear_in_its_lengths(tmp_path, fake_solvers,
 
 def test_update_gives_the_file_assemble_gives(tiny_job, tmp_path, fake_solvers):
     """A length brought up to date in place reads back as the whole file written anew."""
-    from fem_tether.evaluate import run_task
-    from fem_tether.jobs import Task
-    from fem_tether.store import PartsStore
-    from fem_tether.sweepfile import assemble, update
-
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     assemble(store, n_ranks=1)
     for task in (Task(800.0, "fe"), Task(800.0, "fd"), Task(400.0, "fd")):
@@ -143,9 +139,6 @@ def test_update_gives_the_file_assemble_gives(tiny_job, tmp_path, fake_solvers):
 
 
 def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
-    from fem_tether.store import PartsStore
-    from fem_tether.sweepfile import update
-
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     update(store, 400.0, n_ranks=2)
     data = read_sweep(store.out)
@@ -155,14 +148,6 @@ def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
 def test_update_while_another_process_reads_the_file_writes_it_whole(tiny_job, tmp_path, fake_solvers):
     """A reader holding the file open (HDF5 locks it) neither stops the sweep nor
     sees it change: the length's update is an assembly into a new file."""
-    import subprocess
-    import sys
-
-    from fem_tether.evaluate import run_task
-    from fem_tether.jobs import Task
-    from fem_tether.store import PartsStore
-    from fem_tether.sweepfile import assemble, update
-
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     assemble(store, n_ranks=1)
     reader = subprocess.Popen([sys.executable, "-c", "import sys, h5py; f = h5py.File(sys.argv[1]); "
@@ -215,8 +200,6 @@ DAMAGES = {
 def test_a_damaged_sweep_result_is_one_line_naming_it(unrun_sweep, damage, argv, capsys):
     """Issue 25: a damaged config_toml was a TOMLDecodeError, unequal root datasets an
     IndexError; every damage is now one line naming the file, exit 2."""
-    from fem_tether.cli import main
-
     how, problem = DAMAGES[damage]
     how(unrun_sweep)
     if argv[0] == "power" and ("unreadable HDF5" in problem or problem.startswith("not a")):
