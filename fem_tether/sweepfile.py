@@ -2,15 +2,15 @@
 
 A sweep assembles ``<out>`` whole from the parts present when it starts and
 when it ends (:func:`assemble`, atomically); in between, the rank that
-finished a task brings that task's length up to date in place
-(:func:`update`: the work of one length, so a sweep's assembly work is linear
-in its lengths).  Both run one rank at a time, under the parts directory's
-lock.  So ``<out>`` is current after every finished task and an interrupted
-sweep leaves a readable file; a length whose tasks have not all run is
-``pending``.  (An update killed midway can leave ``<out>`` damaged, which
-:func:`read_sweep` says; the parts are whole, and running the sweep again
-writes ``<out>`` whole.)  An existing ``<out>`` that is not a sweep result is
-never overwritten.
+finished a task brings that task's length up to date (:func:`update`: the
+work of one length, so a sweep's assembly work is linear in its lengths).  An
+update writes in place into a shadow copy in the parts directory (the result
+file before the last update) and then renames it over ``<out>``, so ``<out>``
+is always a file written to its end, even if its writer is killed.  Both run
+one rank at a time, under the parts directory's lock.  So ``<out>`` is current
+after every finished task and an interrupted sweep leaves a readable file; a
+length whose tasks have not all run is ``pending``.  An existing ``<out>``
+that is not a sweep result is never overwritten.
 
 Result file (h5py), root datasets, one entry per length (NaN where not run),
 units and meanings in :mod:`fem_tether.quantities` (``where = "sweep"``) and in
@@ -32,13 +32,16 @@ per length with its configuration (its sized line, with ``[tether] sizing =
 from __future__ import annotations
 
 import datetime as _dt
+import json
+import os
+import shutil
 from pathlib import Path
 
 import h5py
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.atomic import OutputError, atomic_path, check_writable
+from fem_tether.atomic import OutputError, atomic_path, check_writable, write_json
 from fem_tether.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs import length_tag
 from fem_tether.quantities import attributes
@@ -80,23 +83,84 @@ def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
 
 
 def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
-    """Bring the entries of one length in the result file up to date with its
-    parts (in place, under the lock).  The file is assembled whole instead if it
-    is missing or another process has it open (which keeps reading the file it
-    opened)."""
+    """Bring one length of the result file up to date with its parts (under the
+    lock), at the cost of one length: written in place into the shadow copy,
+    which then replaces the result file; the file it replaced becomes the shadow,
+    lacking this length.  A writer killed midway leaves the result file
+    whole (lacking its length, which the next update writes too); a missing
+    result file is assembled whole."""
     with store.lock():
-        result, parts = evaluate_length(store, length_m)
-        try:
-            f = h5py.File(store.out, "r+")
-        except (FileNotFoundError, BlockingIOError):
+        if not store.out.exists():
             _assemble(store, n_ranks)
             return
-        i = store.job.lengths_m.index(length_m)
+        shadow, state = _shadow(store), _shadow_state(store)
+        out_lacks = state["out_lacks"] + [length_m]
+        write_json(_shadow_state_path(store), {"shadow_lacks": None, "out_lacks": out_lacks})
+        f = _open_shadow(store) if state["shadow_lacks"] is not None else None
+        if f is None:                   # a copy of the result file, lacking what it lacks
+            _copy(store.out, shadow)
+            f, state["shadow_lacks"] = h5py.File(shadow, "r+"), []
+        written = list(dict.fromkeys(state["shadow_lacks"] + out_lacks))
         with f:
-            for name, value in (result.values | {"error": result.error, "status": result.status}).items():
-                f[name][i] = value
-            del f[_group_name(length_m)]
-            _write_length(f, store, result, parts)
+            for L in written:
+                _write_entries(f, store, L)
+        previous = store.directory / ".previous.h5"
+        previous.unlink(missing_ok=True)
+        os.link(store.out, previous)
+        os.replace(shadow, store.out)
+        os.replace(previous, shadow)
+        write_json(_shadow_state_path(store), {"shadow_lacks": out_lacks, "out_lacks": []})
+
+
+def _shadow(store: PartsStore) -> Path:
+    """The shadow copy of the result file (the one before the last update)."""
+    return store.directory / ".shadow.h5"
+
+
+def _shadow_state_path(store: PartsStore) -> Path:
+    return store.directory / ".shadow.json"
+
+
+def _shadow_state(store: PartsStore) -> dict:
+    """The lengths the shadow lacks (None: no usable shadow, missing or its writer
+    killed) and those the result file lacks (their writer killed)."""
+    try:
+        state = json.loads(_shadow_state_path(store).read_text())
+        shadow_lacks, out_lacks = list(state["shadow_lacks"] or []), list(state["out_lacks"])
+        usable = state["shadow_lacks"] is not None and _shadow(store).exists()
+    except (OSError, ValueError, KeyError, TypeError):
+        return {"shadow_lacks": None, "out_lacks": []}
+    return {"shadow_lacks": shadow_lacks if usable else None, "out_lacks": out_lacks}
+
+
+def _open_shadow(store: PartsStore) -> h5py.File | None:
+    """The shadow open for writing; None if a reader still has it open (it was the
+    result file when the reader opened it)."""
+    try:
+        return h5py.File(_shadow(store), "r+")
+    except BlockingIOError:
+        return None
+
+
+def _drop_shadow(store: PartsStore) -> None:
+    for path in (_shadow(store), _shadow_state_path(store)):
+        path.unlink(missing_ok=True)
+
+
+def _copy(source: Path, target: Path) -> None:
+    """``target`` a copy of ``source``, written whole or not at all."""
+    with atomic_path(target) as tmp:
+        shutil.copyfile(source, tmp)
+
+
+def _write_entries(f: h5py.File, store: PartsStore, length_m: float) -> None:
+    """Rewrite the entries of one length in an open result file."""
+    result, parts = evaluate_length(store, length_m)
+    i = store.job.lengths_m.index(length_m)
+    for name, value in (result.values | {"error": result.error, "status": result.status}).items():
+        f[name][i] = value
+    del f[_group_name(length_m)]
+    _write_length(f, store, result, parts)
 
 
 def _assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
@@ -104,6 +168,7 @@ def _assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
     with atomic_path(store.out) as tmp:
         with h5py.File(tmp, "w") as f:
             _write_result(f, store, n_ranks, results)
+    _drop_shadow(store)
     return [r for r, _ in results]
 
 

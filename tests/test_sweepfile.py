@@ -110,11 +110,11 @@ def _sweep_work(tmp_path, n, monkeypatch):
 
 def test_a_sweeps_assembly_work_is_linear_in_its_lengths(tmp_path, fake_solvers, monkeypatch):
     """Issue 25: every task used to assemble the whole file (every length's to_toml and
-    parts copied again: quadratic); four times the lengths now cost at most four times
-    the work (a task updates its own length)."""
-    small, large = _sweep_work(tmp_path, 3, monkeypatch), _sweep_work(tmp_path, 12, monkeypatch)
-    for name in small:
-        assert large[name] <= 4 * small[name], (name, small, large)
+    parts copied again: quadratic); now each added length costs the same work (a task
+    updates its own length): going from 6 to 12 lengths costs twice what 3 to 6 did."""
+    work = {n: _sweep_work(tmp_path, n, monkeypatch) for n in (3, 6, 12)}
+    for name in work[3]:
+        assert work[12][name] - work[6][name] == 2 * (work[6][name] - work[3][name]), (name, work)
 
 
 def test_update_gives_the_file_assemble_gives(tiny_job, tmp_path, fake_solvers):
@@ -147,7 +147,7 @@ def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
 
 def test_update_while_another_process_reads_the_file_writes_it_whole(tiny_job, tmp_path, fake_solvers):
     """A reader holding the file open (HDF5 locks it) neither stops the sweep nor
-    sees it change: the length's update is an assembly into a new file."""
+    sees its file change: updates write other files, renamed over it."""
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     assemble(store, n_ranks=1)
     reader = subprocess.Popen([sys.executable, "-c", "import sys, h5py; f = h5py.File(sys.argv[1]); "
@@ -207,3 +207,31 @@ def test_a_damaged_sweep_result_is_one_line_naming_it(unrun_sweep, damage, argv,
     assert main([*argv, str(unrun_sweep)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"fem-tether: error: {unrun_sweep}: {problem}"), err
+
+
+def test_an_update_killed_midway_leaves_the_result_file_whole(tiny_job, tmp_path, fake_solvers, monkeypatch):
+    """The in-place writes go to the shadow copy: a writer killed while writing it (here:
+    the shadow cut short, then the process "dies") leaves the result file as it was,
+    and the next update writes the shadow anew from it."""
+    from fem_tether import sweepfile
+
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    assemble(store, n_ranks=1)
+    run_task(store, Task(400.0, "fe"))
+    update(store, 400.0, n_ranks=1)
+    before = store.out.read_bytes()
+
+    def killed(f, store, length_m):
+        f.close()
+        truncate(store.directory / ".shadow.h5")
+        raise KeyboardInterrupt
+    with monkeypatch.context() as m:
+        m.setattr(sweepfile, "_write_entries", killed)
+        run_task(store, Task(400.0, "fd"))
+        with pytest.raises(KeyboardInterrupt):
+            update(store, 400.0, n_ranks=1)
+    assert store.out.read_bytes() == before and list(read_sweep(store.out)["status"]) == ["pending", "pending"]
+    for task in (Task(800.0, "fe"), Task(800.0, "fd")):
+        run_task(store, task)
+        update(store, 800.0, n_ranks=1)
+    assert list(read_sweep(store.out)["status"]) == ["ok", "ok"]
