@@ -53,7 +53,9 @@ def file_kind(path: str | Path, *kinds: str) -> str:
     if it is none of them (or missing, or unreadable)."""
     reader = Reader(path, *kinds)
     with reader.open():
-        return reader.kind
+        pass
+    assert reader.kind is not None          # open() found it
+    return reader.kind
 
 
 def _is_hdf5(path: Path) -> bool:

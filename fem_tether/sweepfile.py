@@ -36,6 +36,7 @@ import json
 import os
 import shutil
 from pathlib import Path
+from typing import Any
 
 import h5py
 import numpy as np
@@ -231,7 +232,7 @@ def read_sweep(path: str | Path) -> dict:
     dataset missing, of another length or type, a length's group missing)."""
     reader = Reader(path, "sweep")
     with reader.open() as f:
-        data = {"attrs": {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}}
+        data: dict[str, Any] = {"attrs": {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}}
         data["config"] = reader.config(f)
         lengths = reader.dataset(f, "length_m", shape=(None,))
         if not (np.all(lengths > 0) and np.all(np.diff(lengths) > 0)):

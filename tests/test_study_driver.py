@@ -163,13 +163,15 @@ STUDY_DAMAGES = {
     "dataset deleted": (replace_dataset(f"{SURFACE}/aep_fe_MWh", None),
                         f"damaged fem-tether study result: dataset /{SURFACE}/aep_fe_MWh is missing"),
     "dataset shortened": (replace_dataset(f"{SURFACE}/aep_fe_MWh", [1.0]),
-                          f"damaged fem-tether study result: dataset /{SURFACE}/aep_fe_MWh has shape (1,), expected "),
+                          f"damaged fem-tether study result: dataset /{SURFACE}/aep_fe_MWh has shape (1,), "
+                          "expected "),
     "bins lost": (replace_dataset(f"{SURFACE}/drag_fe_N", np.zeros((5, 2))),
                   f"damaged fem-tether study result: dataset /{SURFACE}/drag_fe_N has shape (5, 2), expected "),
     "status of numbers": (replace_dataset(f"{SURFACE}/status", np.zeros(5)),
                           f"damaged fem-tether study result: dataset /{SURFACE}/status holds float64, not str"),
     "config_toml not TOML": (set_attr(f"{SURFACE}/config_toml", "[kite\n"),
-                             f"damaged fem-tether study result: attribute config_toml of /{SURFACE} is not TOML ("),
+                             f"damaged fem-tether study result: attribute config_toml of /{SURFACE} "
+                             "is not TOML ("),
     "surface missing": (set_attr("surfaces", [SURFACE, "kitegen/elsewhere"]),
                         "damaged fem-tether study result: group /kitegen/elsewhere is missing"),
     "optimum missing": (delete_attr(f"{SURFACE}/optimum_fe_aep_MWh"),
