@@ -59,7 +59,8 @@ from . import __version__
 from .atomic import atomic_outputs, atomic_path, generator_tag
 from .config import Config
 from .quantities import attributes
-from .results import CELL_FIELDS, KITE_SERIES, TetherRun
+from .reading import Reader
+from .results import CELL_FIELDS, KITE_SERIES, NODE_FIELDS, SERIES, TetherRun
 
 GROUPS = {
     "series": "time series, one value per time step",
@@ -131,31 +132,49 @@ def _python(value):
     return value.item() if isinstance(value, np.generic) else value
 
 
+#: The root attributes :func:`read_run_hdf5` reads and their kinds (:meth:`~fem_tether.reading.Reader.attr`).
+RUN_ATTRS = {"solver": "str", "length_m": "float", "period_s": "float", "average_start_s": "float",
+             "wall_s": "float"}
+
+
 def read_run_hdf5(path, config: Config | None = None, snapshots: bool = True) -> TetherRun:
     """Read a run written by :func:`write_run_hdf5` (``extra_attrs`` are not restored).
 
     ``config``: the run's configuration if the caller has it (the stored one is
     then not parsed again); ``snapshots=False`` leaves the snapshots out (empty)
-    when only the series are wanted."""
-    with h5py.File(path, "r") as f:
-        stored = f["snapshots"]
-        if not snapshots:
-            stored = {"time_s": stored["time_s"]}
-        if config is None and f.attrs["config_toml"]:
-            config = Config.from_stored(f.attrs["config_toml"])
-        return TetherRun(
-            solver=f.attrs["solver"],
-            length_m=float(f.attrs["length_m"]),
-            period_s=float(f.attrs["period_s"]),
-            time_s=f["series/time_s"][()],
-            series={k: v[()] for k, v in f["series"].items() if k != "time_s"},
-            snapshot_time_s=stored["time_s"][()],
-            snapshots={k: v[()] for k, v in stored.items() if k != "time_s"},
-            average_start_s=float(f.attrs["average_start_s"]),
-            config=config,
-            wall_s=float(f.attrs["wall_s"]),
-            extra={k: _python(v) for k, v in f["extra"].attrs.items() if k != "description"},
-        )
+    when only the series are wanted.  The file is checked as it is read
+    (:class:`~fem_tether.reading.Reader`): one
+    :class:`~fem_tether.reading.ResultFileError` line names it if it is missing,
+    not a run, or damaged (an attribute missing or not parsing, a series or
+    snapshot missing, of another length or type)."""
+    reader = Reader(path, "run")
+    with reader.open() as f:
+        attrs = {name: reader.attr(f, name, kind) for name, kind in RUN_ATTRS.items()}
+        if config is None and reader.attr(f, "config_toml", "str"):
+            config = reader.config(f)
+        group = reader.node(f, "series")
+        time_s = reader.dataset(group, "time_s", shape=(None,))
+        for name in SERIES:                         # every solver records them
+            reader.node(group, name, group=False)
+        series = {k: reader.dataset(group, k, shape=time_s.shape) for k in group if k != "time_s"}
+        snapshot_time_s, fields = _read_snapshots(reader, reader.node(f, "snapshots"), snapshots)
+        extra = {k: _python(v) for k, v in reader.node(f, "extra").attrs.items() if k != "description"}
+    return TetherRun(solver=attrs["solver"], length_m=attrs["length_m"], period_s=attrs["period_s"],
+                     time_s=time_s, series=series, snapshot_time_s=snapshot_time_s, snapshots=fields,
+                     average_start_s=attrs["average_start_s"], config=config, wall_s=attrs["wall_s"],
+                     extra=extra)
+
+
+def _read_snapshots(reader, group, fields: bool) -> tuple[np.ndarray, dict]:
+    """The snapshot times and (with ``fields``) the fields, each of one row per
+    snapshot and one column per node (node fields) or element (cell fields)."""
+    time_s = reader.dataset(group, "time_s", shape=(None,))
+    if not fields:
+        return time_s, {}
+    s_m = reader.dataset(group, "s_m", shape=(time_s.size, None))
+    columns = {k: s_m.shape[1] for k in NODE_FIELDS} | {k: s_m.shape[1] - 1 for k in CELL_FIELDS}
+    return time_s, {k: s_m if k == "s_m" else reader.dataset(group, k, shape=(time_s.size, columns.get(k), ...))
+                    for k in group if k != "time_s"}
 
 
 def write_paraview(run: TetherRun, directory, name: str = "tether") -> Path:

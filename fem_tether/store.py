@@ -22,7 +22,9 @@ from __future__ import annotations
 import fcntl
 import hashlib
 import json
+import os
 from contextlib import contextmanager
+from functools import cached_property
 from pathlib import Path
 
 import h5py
@@ -145,8 +147,17 @@ class PartsStore:
         return sum(self.status(t, self.inputs_key(t.length_m)) == "ok" for t in self.job.tasks)
 
     def done(self) -> int:
-        """How many of the job's tasks have a part, whatever its inputs or status."""
-        return sum(self.path(t).exists() for t in self.job.tasks)
+        """How many of the job's tasks have a part, whatever its inputs or status (one
+        listing of the directory, not a look-up per task: rank 0 asks after every task)."""
+        try:
+            present = os.listdir(self.directory)
+        except FileNotFoundError:
+            return 0
+        return len(self._part_names.intersection(present))
+
+    @cached_property
+    def _part_names(self) -> frozenset[str]:
+        return frozenset(self.path(t).name for t in self.job.tasks)
 
     @contextmanager
     def lock(self, name: str = ".assemble.lock"):

@@ -28,7 +28,7 @@ from fem_tether.progress import Progress
 from fem_tether.schedule import task_cost
 from fem_tether.stop import guard, sync
 from fem_tether.store import PartsStore
-from fem_tether.sweepfile import assemble, check_out
+from fem_tether.sweepfile import assemble, check_out, update
 
 @dataclass(frozen=True)
 class SweepOutcome:
@@ -96,6 +96,7 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool, check, 
             remove_temporaries(store.directory)
             if check is not None:
                 check()
+            assemble(store, size)               # current from the start: each task then updates its length
         except InputError as exc:
             problem = exc
     sync(comm)
@@ -118,7 +119,7 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool, check, 
         if run_task(store, tasks[i]) == "reused":
             reused += 1
         else:
-            assemble(store, size)
+            update(store, tasks[i].length_m, size)
         if rank == 0:
             bar.update(store.done())
 

@@ -1,10 +1,16 @@
 """The sweep result file: assembled from the parts present, read back for the AEP.
 
-The rank that finished a task assembles ``<out>`` from the parts present (one
-rank at a time, under the parts directory's lock), so ``<out>`` is current
-from the first finished task on and an interrupted sweep leaves a readable
-file; a length whose tasks have not all run is ``pending``.  An existing
-``<out>`` that is not a sweep result is never overwritten.
+A sweep assembles ``<out>`` whole from the parts present when it starts and
+when it ends (:func:`assemble`, atomically); in between, the rank that
+finished a task brings that task's length up to date (:func:`update`: the
+work of one length, so a sweep's assembly work is linear in its lengths).  An
+update writes in place into a shadow copy in the parts directory (the result
+file before the last update) and then renames it over ``<out>``, so ``<out>``
+is always a file written to its end, even if its writer is killed.  Both run
+one rank at a time, under the parts directory's lock.  So ``<out>`` is current
+after every finished task and an interrupted sweep leaves a readable file; a
+length whose tasks have not all run is ``pending``.  An existing ``<out>``
+that is not a sweep result is never overwritten.
 
 Result file (h5py), root datasets, one entry per length (NaN where not run),
 units and meanings in :mod:`fem_tether.quantities` (``where = "sweep"``) and in
@@ -25,20 +31,26 @@ per length with its configuration (its sized line, with ``[tether] sizing =
 
 from __future__ import annotations
 
-import os
 import datetime as _dt
+import json
+import os
+import shutil
 from pathlib import Path
+from typing import Any
 
 import h5py
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.atomic import OutputError, atomic_path, check_folder, check_writable
-from fem_tether.config import Config, ConfigError
+from fem_tether.atomic import OutputError, atomic_path, check_folder, check_writable, write_json
 from fem_tether.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs import length_tag
 from fem_tether.quantities import attributes
+from fem_tether.reading import Reader
 from fem_tether.store import PartsStore, parts_dir
+
+#: A length's status: its tasks have all run and succeeded, some task has not run, some failed.
+STATUSES = ("ok", "pending", "failed")
 
 GROUP_DESCRIPTIONS = {
     "length": "one cable length: its configuration, status and error as attributes, its runs "
@@ -68,11 +80,101 @@ def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
     """Write the result file from the parts present now (atomically, under
     the parts directory's lock); return the per-length results."""
     with store.lock():
-        results = [evaluate_length(store, L) for L in store.job.lengths_m]
-        with atomic_path(store.out) as tmp:
-            with h5py.File(tmp, "w") as f:
-                _write_result(f, store, n_ranks, results)
+        return _assemble(store, n_ranks)
+
+
+def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
+    """Bring one length of the result file up to date with its parts (under the
+    lock), at the cost of one length: written in place into the shadow copy,
+    which then replaces the result file; the file it replaced becomes the shadow,
+    lacking this length.  A writer killed midway leaves the result file
+    whole (lacking its length, which the next update writes too); a missing
+    result file is assembled whole."""
+    with store.lock():
+        if not store.out.exists():
+            _assemble(store, n_ranks)
+            return
+        shadow, state = _shadow(store), _shadow_state(store)
+        out_lacks = state["out_lacks"] + [length_m]
+        write_json(_shadow_state_path(store), {"shadow_lacks": None, "out_lacks": out_lacks})
+        f = _open_shadow(store) if state["shadow_lacks"] is not None else None
+        if f is None:                   # a copy of the result file, lacking what it lacks
+            _copy(store.out, shadow)
+            f, state["shadow_lacks"] = h5py.File(shadow, "r+"), []
+        written = list(dict.fromkeys(state["shadow_lacks"] + out_lacks))
+        with f:
+            for L in written:
+                _write_entries(f, store, L)
+        previous = store.directory / ".previous.h5"
+        previous.unlink(missing_ok=True)
+        os.link(store.out, previous)
+        os.replace(shadow, store.out)
+        os.replace(previous, shadow)
+        write_json(_shadow_state_path(store), {"shadow_lacks": out_lacks, "out_lacks": []})
+
+
+def _shadow(store: PartsStore) -> Path:
+    """The shadow copy of the result file (the one before the last update)."""
+    return store.directory / ".shadow.h5"
+
+
+def _shadow_state_path(store: PartsStore) -> Path:
+    return store.directory / ".shadow.json"
+
+
+def _shadow_state(store: PartsStore) -> dict:
+    """The lengths the shadow lacks (None: no usable shadow, missing or its writer
+    killed) and those the result file lacks (their writer killed)."""
+    try:
+        state = json.loads(_shadow_state_path(store).read_text())
+        shadow_lacks, out_lacks = list(state["shadow_lacks"] or []), list(state["out_lacks"])
+        usable = state["shadow_lacks"] is not None and _shadow(store).exists()
+    except (OSError, ValueError, KeyError, TypeError):
+        return {"shadow_lacks": None, "out_lacks": []}
+    return {"shadow_lacks": shadow_lacks if usable else None, "out_lacks": out_lacks}
+
+
+def _open_shadow(store: PartsStore) -> h5py.File | None:
+    """The shadow open for writing; None if a reader still has it open (it was the
+    result file when the reader opened it)."""
+    try:
+        return h5py.File(_shadow(store), "r+")
+    except BlockingIOError:
+        return None
+
+
+def _drop_shadow(store: PartsStore) -> None:
+    for path in (_shadow(store), _shadow_state_path(store)):
+        path.unlink(missing_ok=True)
+
+
+def _copy(source: Path, target: Path) -> None:
+    """``target`` a copy of ``source``, written whole or not at all."""
+    with atomic_path(target) as tmp:
+        shutil.copyfile(source, tmp)
+
+
+def _write_entries(f: h5py.File, store: PartsStore, length_m: float) -> None:
+    """Rewrite the entries of one length in an open result file."""
+    result, parts = evaluate_length(store, length_m)
+    i = store.job.lengths_m.index(length_m)
+    for name, value in (result.values | {"error": result.error, "status": result.status}).items():
+        f[name][i] = value
+    del f[_group_name(length_m)]
+    _write_length(f, store, result, parts)
+
+
+def _assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
+    results = [evaluate_length(store, L) for L in store.job.lengths_m]
+    with atomic_path(store.out) as tmp:
+        with h5py.File(tmp, "w") as f:
+            _write_result(f, store, n_ranks, results)
+    _drop_shadow(store)
     return [r for r, _ in results]
+
+
+def _group_name(length_m: float) -> str:
+    return f"L{length_tag(length_m)}"
 
 
 def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> None:
@@ -87,17 +189,22 @@ def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> Non
     for name in ("status", "error"):
         _dataset(f, name, np.array([getattr(r, name) for r, _ in results], dtype=h5py.string_dtype()))
     for r, parts in results:
-        group = f.create_group(f"L{length_tag(r.length_m)}")
-        group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
-                           config_toml=store.stored_config(r.length_m).to_toml(),
-                           description=GROUP_DESCRIPTIONS["length"])
-        for solver, path in parts.items():
-            with h5py.File(path, "r") as src:      # a failed task's part: attributes only
-                sub = group.create_group(solver)
-                sub.attrs.update(dict(src.attrs))
-                sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
-                for name in src:
-                    src.copy(src[name], sub, name)
+        _write_length(f, store, r, parts)
+
+
+def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict) -> None:
+    """The group of one length: its configuration and status, its parts' runs."""
+    group = f.create_group(_group_name(r.length_m))
+    group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
+                       config_toml=store.stored_config(r.length_m).to_toml(),
+                       description=GROUP_DESCRIPTIONS["length"])
+    for solver, path in parts.items():
+        with h5py.File(path, "r") as src:      # a failed task's part: attributes only
+            sub = group.create_group(solver)
+            sub.attrs.update(dict(src.attrs))
+            sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
+            for name in src:
+                src.copy(src[name], sub, name)
 
 
 def is_sweep_result(path: Path) -> bool:
@@ -109,24 +216,34 @@ def is_sweep_result(path: Path) -> bool:
         return False
 
 
+#: The root attributes of a result file and their kinds (:meth:`~fem_tether.reading.Reader.attr`).
+ROOT_ATTRS = {"config_toml": "str", "job_toml": "str", "fem_tether_version": "str", "n_ranks": "int",
+              "created_utc": "str"}
+
+
 def read_sweep(path: str | Path) -> dict:
     """Root datasets and attributes of a result file, as NumPy arrays and strings
     (``"file"``: the path as given; ``"case_configs"``: each length's configuration,
-    its sized line with ``[tether] sizing = "load"``)."""
-    if Path(path).is_dir():
-        raise ConfigError(f"{path}: is a directory, not a sweep result file")
-    try:
-        with h5py.File(path, "r") as f:
-            data = {name: f[name][()] for name in ("length_m",) + ROOT_DATASETS}
-            data["status"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["status"][()]])
-            data["error"] = np.array([s.decode() if isinstance(s, bytes) else s for s in f["error"][()]])
-            data["config"] = Config.from_stored(f.attrs["config_toml"])
-            data["case_configs"] = tuple(Config.from_stored(f[f"L{length_tag(L)}"].attrs["config_toml"])
-                                         for L in data["length_m"])
-            data["attrs"] = {k: f.attrs[k] for k in f.attrs}
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: no such file") from None
-    except (OSError, KeyError) as exc:
-        raise ConfigError(f"{path}: not a fem-tether sweep result ({exc})") from None
+    its sized line with ``[tether] sizing = "load"``).
+
+    The file is checked as it is read (:class:`~fem_tether.reading.Reader`): one
+    :class:`~fem_tether.reading.ResultFileError` line names it if it is missing,
+    not a sweep result, or damaged (an attribute missing or not parsing, a root
+    dataset missing, of another length or type, a length's group missing)."""
+    reader = Reader(path, "sweep")
+    with reader.open() as f:
+        data: dict[str, Any] = {"attrs": {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}}
+        data["config"] = reader.config(f)
+        lengths = reader.dataset(f, "length_m", shape=(None,))
+        if not (np.all(lengths > 0) and np.all(np.diff(lengths) > 0)):
+            raise reader.error("dataset /length_m is not increasing positive lengths")
+        data["length_m"] = lengths
+        for name in ROOT_DATASETS + ("status", "error"):
+            dtype = "int" if name == "crosscheck_ok" else "str" if name in ("status", "error") else "float"
+            data[name] = reader.dataset(f, name, dtype, shape=lengths.shape)
+        unknown = set(data["status"]) - set(STATUSES)
+        if unknown:
+            raise reader.error(f"dataset /status holds {str(sorted(unknown)[0])!r} (known: {', '.join(STATUSES)})")
+        data["case_configs"] = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
     data["file"] = str(path)
     return data

@@ -208,7 +208,7 @@ def test_a_second_writer_is_refused_naming_the_holder(tmp_path):
                 pass
         held = subprocess.run([sys.executable, "-c", "from fem_tether.atomic import exclusive\n"
                                f"with exclusive({str(out)!r}): pass"], capture_output=True, text=True)
-        assert held.returncode == 1 and f"in use by fem-tether" in held.stderr
+        assert held.returncode == 1 and "in use by fem-tether" in held.stderr
     with exclusive(out):          # released: the next writer takes it
         pass
     assert list(tmp_path.iterdir()) == []

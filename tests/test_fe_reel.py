@@ -6,7 +6,7 @@ import pytest
 
 from fem_tether.config import ConfigError, load_config
 from fem_tether.fe.solver import simulate
-from fem_tether.reel import Reel, SpeedTableError, read_speed_table, reel_from_config
+from fem_tether.reel import Reel, SpeedTableError, read_speed_table
 from fem_tether.results import period_average
 
 FAST = {"fe": {"elements": 12, "dt_s": 0.1}, "time": {"average_periods": 1}}

@@ -7,6 +7,7 @@ import meshio
 import numpy as np
 import pytest
 
+from damage import empty, foreign, replace_dataset, set_attr, text, truncate
 from fem_tether import __version__, output
 from fem_tether.config import load_config
 from fem_tether.fe.solver import simulate
@@ -160,3 +161,53 @@ def test_paraview_failure_leaves_nothing(run, tmp_path, monkeypatch):
         write_paraview(run, target)
     assert sorted(p.name for p in target.iterdir()) == before
     assert hidden(tmp_path) == []
+
+
+#: Ways to damage a run file (``simulate --out``) and what the one line says (after "FILE: ").
+RUN_DAMAGES = {
+    "truncated": (truncate, "damaged fem-tether sweep result or fem-tether run: unreadable HDF5 ("),
+    "series deleted": (replace_dataset("series/drag_N", None),
+                       "damaged fem-tether run: dataset /series/drag_N is missing"),
+    "series shortened": (replace_dataset("series/drag_N", [1.0, 2.0]),
+                         "damaged fem-tether run: dataset /series/drag_N has shape (2,), expected "),
+    "series of text": (replace_dataset("series/kite_tension_N", ["a"]),
+                       "damaged fem-tether run: dataset /series/kite_tension_N holds object, not float"),
+    "group deleted": (replace_dataset("extra", None), "damaged fem-tether run: group /extra is missing"),
+    "config_toml not TOML": (set_attr("config_toml", "[fe\n"),
+                             "damaged fem-tether run: attribute config_toml of / is not TOML ("),
+    "period not a number": (set_attr("period_s", "x"),
+                            "damaged fem-tether run: attribute period_s of / is not a finite number ('x')"),
+    "period not finite": (set_attr("period_s", np.nan),
+                          "damaged fem-tether run: attribute period_s of / is not a finite number (nan)"),
+    "not HDF5": (text, "not a fem-tether sweep result or fem-tether run (not an HDF5 file)"),
+    "empty": (empty, "not a fem-tether sweep result or fem-tether run (an empty file)"),
+    "another program's HDF5": (foreign, "not a fem-tether sweep result or fem-tether run (an HDF5 file "
+                                        "fem-tether did not write)"),
+}
+
+
+@pytest.mark.parametrize("damage", RUN_DAMAGES)
+def test_a_damaged_run_file_is_one_line_naming_it(run, tmp_path, damage, capsys):
+    """Issue 25: ``power --flexible`` of a damaged ``simulate --out`` file: one line, exit 2."""
+    from fem_tether.cli import main
+
+    path = write_run_hdf5(run, tmp_path / "fe.h5")
+    how, problem = RUN_DAMAGES[damage]
+    how(path)
+    assert main(["power", "--flexible", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"fem-tether: error: {path}: {problem}"), err
+
+
+@pytest.mark.parametrize("name, values, problem", [
+    ("snapshots/tension_N", np.zeros((2, 3)), "dataset /snapshots/tension_N has shape (2, 3), expected "),
+    ("snapshots/s_m", np.zeros(4), "dataset /snapshots/s_m has shape (4,), expected "),
+    ("snapshots/time_s", None, "dataset /snapshots/time_s is missing"),
+])
+def test_damaged_snapshots_are_named(run, tmp_path, name, values, problem):
+    from fem_tether.reading import ResultFileError
+
+    path = write_run_hdf5(run, tmp_path / "fe.h5")
+    replace_dataset(name, values)(path)
+    with pytest.raises(ResultFileError, match=f"^{path}: damaged fem-tether run: {re.escape(problem)}"):
+        read_run_hdf5(path)

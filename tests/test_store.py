@@ -2,6 +2,7 @@
 parts, what a rerun reuses."""
 
 import os
+from pathlib import Path
 
 import h5py
 import numpy as np
@@ -80,3 +81,15 @@ def test_combined_is_remembered_until_a_part_changes(store, tiny_cfg):
     assert store.combined(400.0, combine) == 2
     os.utime(store.path(task), ns=(0, 0))
     assert store.combined(400.0, combine) == 3 and store.combined(800.0, combine) == 4
+
+
+def test_done_counts_the_jobs_parts_in_one_listing(store, tiny_cfg, monkeypatch):
+    """Rank 0 asks after every task: one listing of the directory, not a look-up per
+    task (which made a sweep's progress quadratic in its lengths); other files do not count."""
+    assert store.done() == 0                                  # no directory yet
+    store.directory.mkdir()
+    for name in ("L400_fe.h5", "L1200_fe.h5", ".L800_fe.h5.tmp-1.h5", "L400_size.json"):
+        (store.directory / name).write_text("")
+    calls = []
+    monkeypatch.setattr(Path, "exists", lambda self: calls.append(self) or True)
+    assert store.done() == 1 and calls == []

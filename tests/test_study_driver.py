@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from conftest import KITEGEN_STUDY, STUDY_FAST
+from damage import delete_attr, empty, foreign, replace_dataset, set_attr, text, truncate
 
 from fem_tether.cli import main
 from fem_tether.store import parts_dir
@@ -188,3 +189,44 @@ def test_a_second_study_into_the_same_file_is_refused_naming_the_first(tmp_path,
         assert main(["study", str(job), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"fem-tether: error: cannot write {out}: in use by fem-tether ") and err.count("\n") == 1
+
+
+SURFACE = "kitegen/configured"
+
+#: Ways to damage a study result and what the one line says (after "FILE: ").
+STUDY_DAMAGES = {
+    "truncated": (truncate, "damaged fem-tether study result: unreadable HDF5 ("),
+    "dataset deleted": (replace_dataset(f"{SURFACE}/aep_fe_MWh", None),
+                        f"damaged fem-tether study result: dataset /{SURFACE}/aep_fe_MWh is missing"),
+    "dataset shortened": (replace_dataset(f"{SURFACE}/aep_fe_MWh", [1.0]),
+                          f"damaged fem-tether study result: dataset /{SURFACE}/aep_fe_MWh has shape (1,), "
+                          "expected "),
+    "bins lost": (replace_dataset(f"{SURFACE}/drag_fe_N", np.zeros((5, 2))),
+                  f"damaged fem-tether study result: dataset /{SURFACE}/drag_fe_N has shape (5, 2), expected "),
+    "status of numbers": (replace_dataset(f"{SURFACE}/status", np.zeros(5)),
+                          f"damaged fem-tether study result: dataset /{SURFACE}/status holds float64, not str"),
+    "config_toml not TOML": (set_attr(f"{SURFACE}/config_toml", "[kite\n"),
+                             f"damaged fem-tether study result: attribute config_toml of /{SURFACE} "
+                             "is not TOML ("),
+    "surface missing": (set_attr("surfaces", [SURFACE, "kitegen/elsewhere"]),
+                        "damaged fem-tether study result: group /kitegen/elsewhere is missing"),
+    "optimum missing": (delete_attr(f"{SURFACE}/optimum_fe_aep_MWh"),
+                        f"damaged fem-tether study result: attribute optimum_fe_aep_MWh of /{SURFACE} is missing"),
+    "not HDF5": (text, "not a fem-tether study result (not an HDF5 file)"),
+    "empty": (empty, "not a fem-tether study result (an empty file)"),
+    "another program's HDF5": (foreign, "not a fem-tether study result (an HDF5 file fem-tether did not write)"),
+}
+
+
+@pytest.mark.parametrize("damage", STUDY_DAMAGES)
+def test_a_damaged_study_result_is_one_line_naming_it(kitegen, tmp_path, damage):
+    """Issue 25: reading a damaged study result raises one line naming the file."""
+    from fem_tether.reading import ResultFileError
+
+    path = tmp_path / "study.h5"
+    shutil.copy(kitegen[1], path)
+    how, problem = STUDY_DAMAGES[damage]
+    how(path)
+    with pytest.raises(ResultFileError, match=f"^{re.escape(f'{path}: {problem}')}") as caught:
+        read_study(path)
+    assert "\n" not in str(caught.value)

@@ -169,9 +169,10 @@ def _start_sweep(tmp_path, out):
                                   preexec_fn=_default_sigint)
 
 
-def _wait_for(path, proc, timeout_s=120.0):
+def _wait_for_a_task(out, proc, timeout_s=120.0):
+    """Until the sweep into ``out`` has finished a task (its part is stored)."""
     start = time.monotonic()
-    while not path.exists():
+    while not any(parts_dir(out).glob("L*.h5")):
         assert proc.poll() is None, proc.communicate()
         assert time.monotonic() - start < timeout_s
         time.sleep(0.01)
@@ -180,7 +181,7 @@ def _wait_for(path, proc, timeout_s=120.0):
 def test_killed_sweep_leaves_a_current_file_that_aep_refuses(tmp_path, capsys):
     out = tmp_path / "s.h5"
     _, proc = _start_sweep(tmp_path, out)
-    _wait_for(out, proc)               # written as the first task finished
+    _wait_for_a_task(out, proc)
     proc.kill()
     proc.communicate()
     data = read_sweep(out)
@@ -193,7 +194,7 @@ def test_killed_sweep_leaves_a_current_file_that_aep_refuses(tmp_path, capsys):
 def test_ctrl_c_keeps_the_finished_tasks_and_says_how_to_resume(tmp_path):
     out = tmp_path / "s.h5"
     argv, proc = _start_sweep(tmp_path, out)
-    _wait_for(out, proc)
+    _wait_for_a_task(out, proc)
     proc.send_signal(signal.SIGINT)
     stdout, stderr = proc.communicate(timeout=120)
     assert proc.returncode == 130 and stdout == ""

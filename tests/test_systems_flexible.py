@@ -3,6 +3,7 @@
 import pytest
 
 from fem_tether.config import ConfigError, load_config
+from fem_tether.errors import InputError
 from fem_tether.fe import solver as fe
 from fem_tether.output import write_run_hdf5
 from fem_tether.summary import operating_ge, operating_tether_cd
@@ -66,5 +67,6 @@ def test_missing_and_foreign_files(tmp_path):
         flexible_tether_cd(tmp_path / "none.h5", load_config())
     other = tmp_path / "other.h5"
     other.write_bytes(b"not hdf5")
-    with pytest.raises(ConfigError, match="not a fem-tether sweep or FE run"):
+    with pytest.raises(InputError, match=f"^{other}: not a fem-tether sweep result or fem-tether run "
+                       r"\(not an HDF5 file\)$"):
         flexible_tether_cd(other, load_config())

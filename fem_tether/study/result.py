@@ -28,8 +28,8 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.atomic import OutputError, atomic_path, check_folder, check_writable
-from fem_tether.config import ConfigError
 from fem_tether.quantities import attributes, names
+from fem_tether.reading import Reader
 from fem_tether.store import parts_dir
 
 #: Per-point datasets, per point and bin, per point and edge (the quantities table's order).
@@ -99,21 +99,47 @@ def write_study(out: Path, job_toml: str, surfaces: list[dict]) -> None:
 
 def read_study(path: str | Path) -> dict:
     """The surfaces of a study file: ``{"job_toml", "version", "surfaces": {"system/site":
-    {dataset: array, "config_toml": str, "optimum": {"fe": dict | None, "straight": ...}}}}``."""
-    if not is_study_result(Path(path)):
-        raise ConfigError(f"{path}: not a fem-tether study result")
-    with h5py.File(path, "r") as f:
-        out: dict[str, Any] = {"job_toml": str(f.attrs["job_toml"]), "version": str(f.attrs["fem_tether_version"]),
-               "surfaces": {}}
-        for name in f.attrs["surfaces"]:
-            group = f[name]
-            data: dict[str, Any] = {key: group[key][()] for key in group}
-            for key in STRINGS:
-                data[key] = np.array([x.decode() if isinstance(x, bytes) else x for x in data[key]])
-            data["config_toml"] = str(group.attrs["config_toml"])
-            data["optimum"] = {}
-            for case in ("fe", "straight"):
-                best = {key: group.attrs[f"optimum_{case}_{key}"] for key in OPTIMUM_KEYS}
-                data["optimum"][case] = None if np.isnan(best["aep_MWh"]) else best
-            out["surfaces"][name] = data
+    {dataset: array, "config_toml": str, "optimum": {"fe": dict | None, "straight": ...}}}}``.
+
+    The file is checked as it is read (:class:`~fem_tether.reading.Reader`): one
+    :class:`~fem_tether.reading.ResultFileError` line names it if it is missing,
+    not a study result, or damaged (an attribute missing or not parsing, a surface
+    or dataset missing, of another shape or type)."""
+    reader = Reader(path, "study")
+    with reader.open() as f:
+        out: dict[str, Any] = {"job_toml": reader.toml(f, "job_toml"),
+                               "version": reader.attr(f, "fem_tether_version", "str"), "surfaces": {}}
+        surfaces = f.attrs["surfaces"]
+        if not all(isinstance(name, str) for name in np.ravel(surfaces)):
+            raise reader.error("attribute surfaces of / is not a list of system/site names")
+        for name in np.ravel(surfaces):
+            out["surfaces"][name] = _read_surface(reader, reader.node(f, name))
     return out
+
+
+def _read_surface(reader: Reader, group) -> dict[str, Any]:
+    """One surface: its datasets (per point [P], per point and bin [P, N] or edge
+    [P, E]), its configuration's text and its optima."""
+    bins = reader.dataset(group, "wind_mps", shape=(None,)).size
+    edges = reader.dataset(group, "edges_mps", shape=(None,)).size
+    points = reader.dataset(group, "length_m", shape=(None,)).size
+    data: dict[str, Any] = {"wind_mps": reader.dataset(group, "wind_mps"),
+                            "edges_mps": reader.dataset(group, "edges_mps")}
+    for name in POINT:
+        dtype = "str" if name in STRINGS else "int" if name in INTEGERS else "float"
+        node = reader.node(group, name, group=False)
+        across = {1: (), 2: (edges if name.startswith("power_edges_") else bins,)}.get(node.ndim, (None,))
+        data[name] = reader.dataset(group, name, dtype, shape=(points,) + across)
+    data["config_toml"] = reader.toml(group)
+    data["optimum"] = {}
+    for case in ("fe", "straight"):
+        best = {key: _optimum_value(reader, group, f"optimum_{case}_{key}") for key in OPTIMUM_KEYS}
+        data["optimum"][case] = None if np.isnan(best["aep_MWh"]) else best
+    return data
+
+
+def _optimum_value(reader: Reader, group, name: str):
+    """An optimum's attribute as stored: a number (NaN without an optimum) or a flag."""
+    if name not in group.attrs:
+        raise reader.error(f"attribute {name} of {group.name} is missing")
+    return group.attrs[name]

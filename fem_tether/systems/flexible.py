@@ -56,17 +56,18 @@ def _same_case(path: Path, theirs: Config, ours: Config) -> Config:
 def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
     """C_D,t of the flexible tether of the system ``cfg`` (its length to 1 mm) in the result file ``path``.
 
-    ConfigError (one line, naming the file) if the file is no result of ours,
-    has no such length, its FE run at that length did not succeed, or its case
-    differs from ``cfg``'s in a value of :data:`SAME_CASE` (each named).
+    InputError (one line, naming the file) if the file is no result of ours or
+    is damaged, has no such length, its FE run at that length did not succeed,
+    or its case differs from ``cfg``'s in a value of :data:`SAME_CASE` (each named).
     """
     from fem_tether.output import read_run_hdf5
-    from fem_tether.sweepfile import is_sweep_result, read_sweep
+    from fem_tether.reading import file_kind
+    from fem_tether.sweepfile import read_sweep
 
     path, length_m = Path(path), cfg.tether.length_m
     if not path.is_file():
         raise ConfigError(f"--flexible {path}: no such file")
-    if is_sweep_result(path):
+    if file_kind(path, "sweep", "run") == "sweep":
         data = read_sweep(path)
         tags = [length_tag(v) for v in data["length_m"]]
         if length_tag(length_m) not in tags:
@@ -79,10 +80,7 @@ def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
                               f"(status {data['status'][i]})")
         return operating_tether_cd(_same_case(path, data["config"].with_length(float(data["length_m"][i])), cfg),
                                    drag_N)
-    try:
-        run = read_run_hdf5(path, snapshots=False)
-    except (OSError, KeyError) as exc:
-        raise ConfigError(f"--flexible {path}: not a fem-tether sweep or FE run ({exc})") from None
+    run = read_run_hdf5(path, snapshots=False)
     if run.solver != "fe" or not isinstance(run.config, Config):
         raise ConfigError(f"--flexible {path}: an FE run is needed (this is {run.solver!r})")
     if length_tag(run.length_m) != length_tag(length_m):
