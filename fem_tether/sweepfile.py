@@ -89,7 +89,9 @@ def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
     which then replaces the result file; the file it replaced becomes the shadow,
     lacking this length.  A writer killed midway leaves the result file
     whole (lacking its length, which the next update writes too); a missing
-    result file is assembled whole."""
+    result file is assembled whole.  On a file system without hard links the
+    old result file cannot be kept as the shadow: the next update copies the
+    result file (a copy per update, still one length's solving and writing)."""
     with store.lock():
         if not store.out.exists():
             _assemble(store, n_ranks)
@@ -107,7 +109,12 @@ def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
                 _write_entries(f, store, L)
         previous = store.directory / ".previous.h5"
         previous.unlink(missing_ok=True)
-        os.link(store.out, previous)
+        try:
+            os.link(store.out, previous)
+        except OSError:                 # a file system without hard links: no shadow kept
+            os.replace(shadow, store.out)
+            write_json(_shadow_state_path(store), {"shadow_lacks": None, "out_lacks": []})
+            return
         os.replace(shadow, store.out)
         os.replace(previous, shadow)
         write_json(_shadow_state_path(store), {"shadow_lacks": out_lacks, "out_lacks": []})

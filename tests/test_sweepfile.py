@@ -138,6 +138,21 @@ def test_update_gives_the_file_assemble_gives(tiny_job, tmp_path, fake_solvers):
         assert dict(f["L800"].attrs) == dict(g["L800"].attrs)
 
 
+def test_update_without_hard_links_gives_the_same_file(tiny_job, tmp_path, fake_solvers, monkeypatch):
+    """A file system without hard links: each update copies the result file instead."""
+    def no_links(*args):
+        raise OSError(1, "Operation not permitted")
+
+    store = PartsStore(tiny_job, tmp_path / "r.h5")
+    assemble(store, n_ranks=1)
+    monkeypatch.setattr("fem_tether.sweepfile.os.link", no_links)
+    for task in (Task(800.0, "fe"), Task(800.0, "fd"), Task(400.0, "fd")):
+        run_task(store, task)
+        update(store, task.length_m, n_ranks=1)
+    assert list(read_sweep(store.out)["status"]) == ["pending", "ok"]
+    assert not (store.directory / ".previous.h5").exists()
+
+
 def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     update(store, 400.0, n_ranks=2)
