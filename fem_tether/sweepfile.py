@@ -156,7 +156,9 @@ def _drop_shadow(store: PartsStore) -> None:
 
 
 def _copy(source: Path, target: Path) -> None:
-    """``target`` a copy of ``source``, written whole or not at all."""
+    """``target`` (the parts folder's shadow, ours whatever state a killed
+    writer left it in) a copy of ``source``, written whole or not at all."""
+    target.unlink(missing_ok=True)
     with atomic_path(target) as tmp:
         shutil.copyfile(source, tmp)
 
