@@ -427,14 +427,17 @@ def main(argv=None) -> int:
             quiet.enter_context(contextlib.redirect_stderr(io.StringIO()))
         args = build_parser().parse_args(argv)
     if world is None:
-        return _run(args)
-    return _agree(world, _run(args, world)) if args.command in _PARALLEL_COMMANDS else _on_rank_zero(world, args)
+        return _report(*_run(args))
+    if args.command in _PARALLEL_COMMANDS:   # the line once every rank has stopped (what is kept is final)
+        code, stopped = _run(args, world)
+        return _report(_agree(world, code), stopped)
+    return _on_rank_zero(world, args)
 
 
 def _on_rank_zero(comm, args) -> int:
     """Rank 0 runs the command; the other ranks wait for its exit code asleep
     (not spinning on a core rank 0 may need)."""
-    return _agree(comm, _run(args) if comm.Get_rank() == 0 else EXIT_FAILED)
+    return _agree(comm, _report(*_run(args)) if comm.Get_rank() == 0 else EXIT_FAILED)
 
 
 def _agree(comm, code: int) -> int:
@@ -452,28 +455,28 @@ def _agree(comm, code: int) -> int:
     return int(shared[0])
 
 
-def _run(args, comm=None) -> int:
-    """The command's exit code; a stop on any rank of ``comm`` stops every rank
-    (:func:`fem_tether.stop.guard`), and rank 0 prints its one line."""
+def _run(args, comm=None) -> tuple[int, BaseException | None]:
+    """The command's exit code and, if it stopped, why; a stop on any rank of
+    ``comm`` stops every rank (:func:`fem_tether.stop.guard`)."""
     try:
         with guard(comm):
             code = args.func(args)
             if comm is not None:
                 stop.sync(comm)          # the ranks done first wait here, stoppable, for rank 0
-            return code
+            return code, None
     except (KeyboardInterrupt, FemTetherError, OSError) as exc:
         stop.clear()
-        code, line = exit_code(exc)
-        return _fail(line, code)
+        return exit_code(exc)[0], exc
     except Exception:                    # a defect: its traceback, and the ranks still agree
         traceback.print_exc()
-        return EXIT_FAILED
+        return EXIT_FAILED, None
 
 
-def _fail(message: str, code: int) -> int:
-    """One line on stderr (from rank 0 only under MPI) and the exit code."""
-    if _rank() == 0:
-        print(" ".join(message.split("\n")), file=sys.stderr)
+def _report(code: int, stopped: BaseException | None) -> int:
+    """The exit code, and why the command stopped in one line on stderr (from
+    rank 0 only under MPI)."""
+    if stopped is not None and _rank() == 0:
+        print(" ".join(exit_code(stopped)[1].split("\n")), file=sys.stderr)
     return code
 
 

@@ -54,11 +54,17 @@ def _combine_complete(store: PartsStore) -> None:
 
 
 class SweepInterrupted(KeyboardInterrupt):
-    """Ctrl-C during a sweep; the message says what is kept and how to resume."""
+    """Ctrl-C during a sweep; the message says what is kept and how to resume,
+    counted when it is read (under MPI once every rank has stopped: a task
+    another rank finished while stopping is counted too)."""
 
-    def __init__(self, kept: int, total: int, directory: Path):
-        self.kept, self.total, self.directory = kept, total, directory
-        super().__init__(f"{kept} of {total} tasks kept in {directory}; run the same command to resume")
+    def __init__(self, store: PartsStore):
+        self.store = store
+        super().__init__()
+
+    def __str__(self) -> str:
+        return (f"{self.store.kept()} of {len(self.store.job.tasks)} tasks kept in {self.store.directory}; "
+                "run the same command to resume")
 
 
 def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
@@ -103,14 +109,24 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool, check, 
     problem = comm.bcast(problem, root=0)
     if problem:
         raise problem
+    tasks = job.tasks
+    bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
+                   enabled=progress and rank == 0)
+    try:
+        return _run_tasks(store, comm, bar, idle, idle_cost_us)
+    except KeyboardInterrupt:       # from here on Ctrl-C says what is kept
+        bar.close()
+        raise SweepInterrupted(store) from None
+
+
+def _run_tasks(store: PartsStore, comm, bar: Progress, idle, idle_cost_us: float) -> SweepOutcome | None:
+    job, tasks = store.job, store.job.tasks
+    rank, size = comm.Get_rank(), comm.Get_size()
     # after an install the first import of a solver's kernels compiles them: each
     # rank compiles one solver's (not all of them, all at once), then loads the others' cached
     load_kernels(job.config, [job.solvers[rank % len(job.solvers)]])
     sync(comm)
     load_kernels(job.config, job.solvers)
-    tasks = job.tasks
-    bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
-                   enabled=progress and rank == 0)
     reused = 0
     seen = -1
 
@@ -133,11 +149,7 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool, check, 
             idle()
             idle = None
 
-    try:
-        distribute(comm, [task_cost(job, t) for t in tasks], run, idle_cost_us if idle else 0.0, waiting)
-    except KeyboardInterrupt:
-        bar.close()
-        raise SweepInterrupted(store.kept(), len(tasks), store.directory) from None
+    distribute(comm, [task_cost(job, t) for t in tasks], run, idle_cost_us if idle else 0.0, waiting)
     sync(comm)
     reused = comm.reduce(reused, root=0)
     if rank != 0:
