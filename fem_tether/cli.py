@@ -467,8 +467,11 @@ def _run(args, comm=None) -> tuple[int, BaseException | None]:
     except (KeyboardInterrupt, FemTetherError, OSError) as exc:
         stop.clear()
         return exit_code(exc)[0], exc
-    except Exception:                    # a defect: its traceback, and the ranks still agree
-        traceback.print_exc()
+    except Exception:
+        if stop.interrupted():           # what Ctrl-C broke (a library half-imported)
+            stop.clear()
+            return EXIT_INTERRUPTED, KeyboardInterrupt()
+        traceback.print_exc()            # a defect: its traceback, and the ranks still agree
         return EXIT_FAILED, None
 
 

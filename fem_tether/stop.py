@@ -105,8 +105,9 @@ def exit_code(exc: BaseException) -> tuple[int, str]:
 
     if isinstance(exc, RemoteStop):
         return exc.code, exc.line
-    if isinstance(exc, KeyboardInterrupt):
-        return EXIT_INTERRUPTED, f"fem-tether: interrupted{f': {exc}' if str(exc) else ''}"
+    if isinstance(exc, KeyboardInterrupt) or (interrupted() and not isinstance(exc, (InputError, OSError))):
+        why = str(exc) if isinstance(exc, KeyboardInterrupt) else ""
+        return EXIT_INTERRUPTED, f"fem-tether: interrupted{f': {why}' if why else ''}"
     if isinstance(exc, InputError):
         return EXIT_USAGE, f"fem-tether: error: {exc}"
     if isinstance(exc, SolverDivergedError):
@@ -157,18 +158,31 @@ def sync(comm) -> None:
         time.sleep(POLL_S)
 
 
+def _importing(frame) -> bool:
+    """Whether ``frame`` runs inside an import (a module's body being executed)."""
+    while frame is not None:
+        if frame.f_code.co_filename.startswith("<frozen importlib"):
+            return True
+        frame = frame.f_back
+    return False
+
+
 class _Interrupts:
     """Ctrl-C, remembered until the command has stopped: Python drops a
     ``KeyboardInterrupt`` raised inside a finaliser (h5py's weak references
-    run them often), so the loops that run long ask again (:func:`checkpoint`)."""
+    run them often), so the loops that run long ask again (:func:`checkpoint`).
+    One that comes during an import is only remembered: raised there, it
+    leaves the library half-imported (numba then fails with an ImportError),
+    so the next checkpoint raises it; a second one raises at once, and what
+    fails after it counts as interrupted (:func:`exit_code`)."""
 
     def __init__(self):
         self.seen = False
         self.raising = False
 
     def __call__(self, signum, frame) -> None:
-        self.seen = True
-        if self.raising:
+        again, self.seen = self.seen, True
+        if self.raising and (again or not _importing(frame)):    # a second Ctrl-C insists
             raise KeyboardInterrupt
 
 
@@ -177,14 +191,23 @@ _interrupts = _Interrupts()
 
 def defer_interrupts() -> None:
     """Until the command starts (:func:`interruptible`), remember Ctrl-C instead
-    of raising it (while the libraries load, before any rank can tell the others)."""
-    signal.signal(signal.SIGINT, _interrupts)
+    of raising it (while the libraries load, before any rank can tell the
+    others).  A process started with SIGINT ignored (``nohup``, a background
+    job) keeps ignoring it."""
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+        signal.signal(signal.SIGINT, _interrupts)
 
 
 def checkpoint() -> None:
     """Raise ``KeyboardInterrupt`` if Ctrl-C came and was not yet acted on."""
     if _interrupts.seen and _interrupts.raising:
         raise KeyboardInterrupt
+
+
+def interrupted() -> bool:
+    """Whether Ctrl-C came and was not yet acted on (what fails after it, a
+    half-imported library, was interrupted)."""
+    return _interrupts.seen
 
 
 def clear() -> None:
@@ -197,6 +220,9 @@ def interruptible() -> Iterator[None]:
     """Ctrl-C raises ``KeyboardInterrupt`` in the block, now if one came while
     deferred, and again at every :func:`checkpoint` until :func:`clear`."""
     if threading.current_thread() is not threading.main_thread() or _interrupts.raising:
+        yield
+        return
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:     # started ignoring it: keep ignoring
         yield
         return
     previous = signal.signal(signal.SIGINT, _interrupts)

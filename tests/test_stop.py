@@ -207,3 +207,21 @@ def _rank_pid_or_none(proc, rank):
         return _rank_pid(proc, rank)
     except AssertionError:
         return None
+
+
+@pytest.mark.parametrize("presses", [1, 2])
+def test_ctrl_c_while_the_kernels_compile_is_one_line(tmp_path, presses):
+    """An empty numba cache: the import compiles for seconds.  Raised inside it,
+    Ctrl-C left numba half-imported (an ImportError traceback, measured); once,
+    it now waits for the import to end, twice it stops at once; one line either way."""
+    (tmp_path / "six.toml").write_text(SIX)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    proc = subprocess.Popen([*CLI, "sweep", "six.toml", "--out", "s.h5"], cwd=tmp_path, env=env, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=_default_sigint)
+    time.sleep(2.0)
+    for _ in range(presses):
+        proc.send_signal(signal.SIGINT)
+        time.sleep(0.3)
+    code, stdout, stderr = _finish(proc)
+    assert code == 130 and stdout == "" and stderr.count("\n") == 1, stderr
+    assert stderr.startswith("fem-tether: interrupted"), stderr
