@@ -46,6 +46,7 @@ from pathlib import Path
 
 from fem_tether import __version__
 from fem_tether.errors import InputError
+from fem_tether.stop import checkpoint
 
 #: What fem-tether writes into its files to recognise them (PNG ``Software``,
 #: HTML ``generator``, the Markdown comment); the version follows it.
@@ -350,6 +351,7 @@ def atomic_outputs(files: Sequence = (), directories: Sequence = ()) -> Iterator
             yield [tmp for tmp, _, _ in pairs]
             if dropped:
                 raise dropped[0]
+            checkpoint()                # a Ctrl-C a finaliser dropped while writing: no commit
             _commit(pairs, token)
         except BaseException as exc:
             failure = (_writing_failed(pairs[0][1], exc)

@@ -118,7 +118,8 @@ def test_a_rerun_stopped_while_writing_keeps_the_old_pair(heavy_out, tmp_path, s
     out = tmp_path / "out"
     shutil.copytree(heavy_out / "out", out)
     before = _snapshot(out)
-    code, stderr = _stop_while_writing(["simulate", str(heavy_out / "heavy.toml"), "--out", str(out)], out, sig)
+    code, stderr = _stop_while_writing(["simulate", str(heavy_out / "heavy.toml"), "--out", str(out), "--json"],
+                                       out, sig)                        # --json: no progress lines
     assert code == (130 if sig == signal.SIGINT else -signal.SIGKILL), stderr
     if sig == signal.SIGINT:
         assert stderr.count("\n") == 1 and stderr.startswith("fem-tether: interrupted")
@@ -174,7 +175,7 @@ def test_a_full_disk_names_the_file_and_keeps_the_old_pair(heavy_out, tmp_path):
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
         resource.setrlimit(resource.RLIMIT_FSIZE, (200_000, 200_000))
 
-    done = subprocess.run([*CLI, "simulate", str(heavy_out / "heavy.toml"), "--out", str(out)],
+    done = subprocess.run([*CLI, "simulate", str(heavy_out / "heavy.toml"), "--out", str(out), "--json"],
                           capture_output=True, text=True, timeout=300, preexec_fn=limit)
     assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
     assert re.fullmatch(rf"fem-tether: error: cannot write {out}/fe_L500(\.h5)?: File too large\n", done.stderr)
