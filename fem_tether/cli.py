@@ -14,7 +14,6 @@ import io
 import math
 import os
 import sys
-import time
 import traceback
 
 import numpy as np
@@ -445,10 +444,7 @@ def _agree(comm, code: int) -> int:
     shared = np.array([code], dtype="i")
     try:
         with stop.interruptible():       # mpiexec passes Ctrl-C to every rank
-            request = comm.Ibcast(shared, root=0)
-            while not request.Test():
-                stop.checkpoint()
-                time.sleep(0.02)
+            stop.wait(comm.Ibcast(shared, root=0))
     except KeyboardInterrupt:
         stop.clear()
         return EXIT_INTERRUPTED

@@ -150,9 +150,13 @@ def guard(comm) -> Iterator[None]:
 def sync(comm) -> None:
     """Wait, interruptibly, until every rank of ``comm`` has come here (before a
     blocking collective, so that a rank that stopped cannot leave it waiting)."""
-    if comm.Get_size() == 1:
-        return
-    request = comm.Ibarrier()
+    if comm.Get_size() > 1:
+        wait(comm.Ibarrier())
+
+
+def wait(request) -> None:
+    """Wait for the MPI ``request`` asleep (not spinning on a core another rank
+    may need) and stoppable (:func:`checkpoint`)."""
     while not request.Test():
         checkpoint()
         time.sleep(POLL_S)
