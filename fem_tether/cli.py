@@ -21,7 +21,7 @@ import numpy as np
 from fem_tether import __version__, kite, report
 from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config
 from fem_tether.errors import FemTetherError
-from fem_tether.fe.mesh import MeshError, unit_nodes, write_unit_mesh
+from fem_tether.fe.mesh import unit_nodes, write_unit_mesh
 from fem_tether import stop
 from fem_tether.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
 
@@ -265,13 +265,7 @@ def cmd_bench(args):
 
 
 def cmd_mesh(args):
-    if not 2 <= args.elements <= MAX_ELEMENTS:
-        raise MeshError(f"--elements {args.elements}: must be from 2 to {MAX_ELEMENTS}")
-    nodes = unit_nodes(args.elements, args.grading)
-    if np.any(np.diff(nodes) <= 0):
-        raise MeshError(f"--grading {args.grading:g}: too strong for {args.elements} elements "
-                        "(the smallest elements vanish)")
-    path = write_unit_mesh(args.out, nodes)
+    path = write_unit_mesh(args.out, unit_nodes(args.elements, args.grading))   # options bounded by their types
     print(f"wrote {path}: {args.elements} elements on [0, 1], grading {args.grading:g}")
     return 0
 
@@ -393,7 +387,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False, system=False)
     c.add_argument("out", help="output file (.vtu, .xdmf, .vtk, ...)")
-    c.add_argument("--elements", type=_positive_int, required=True, help="number of elements (>= 2)")
+    c.add_argument("--elements", type=_element_count, required=True, help=f"number of elements (2 to {MAX_ELEMENTS})")
     c.add_argument("--grading", type=_grading, default=1.0,
                    help="first/last element size (> 1: finer toward the kite)")
     return p

@@ -24,14 +24,14 @@ from fem_tether.summary import run_summary
 from fem_tether.sweepfile import read_sweep
 
 
-def output_paths(cfg: Config, out) -> dict[str, Path]:
-    """The files of a run written below ``out``: ``hdf5``, ``paraview`` (a
-    folder) and, for a reel-out run, ``reel_plot``."""
+def output_paths(cfg: Config, out) -> tuple[dict[str, Path], Path]:
+    """The files of a run written below ``out`` (``hdf5`` and, for a reel-out
+    run, ``reel_plot``) and its ParaView folder."""
     stem = Path(out) / f"fe_L{cfg.tether.length_m:g}"
-    paths = {"hdf5": stem.with_suffix(".h5"), "paraview": stem}
+    files = {"hdf5": stem.with_suffix(".h5")}
     if cfg.winch.reel_out != "none":
-        paths["reel_plot"] = stem.with_name(stem.name + "_reel_drag.png")
-    return paths
+        files["reel_plot"] = stem.with_name(stem.name + "_reel_drag.png")
+    return files, stem
 
 
 def simulate_case(cfg: Config, out=None, sweep_file=None, progress=True) -> dict:
@@ -42,13 +42,11 @@ def simulate_case(cfg: Config, out=None, sweep_file=None, progress=True) -> dict
         read_sweep(sweep_file)                     # a bad overlay fails before the run
     with ExitStack() as stack:
         if out:
-            paths = output_paths(cfg, out)
-            files = [p for k, p in paths.items() if k != "paraview"]
-            for path in files:
+            files, folder = output_paths(cfg, out)
+            for path in files.values():            # before the run; again when committing
                 check_writable(path)
-            check_writable(paths["paraview"], directory=True)
-            stack.enter_context(exclusive(paths["paraview"], outputs=[*files, paths["paraview"]]))
-            commit = atomic_outputs(files=files, directories=[paths["paraview"]])
+            check_writable(folder, directory=True)
+            stack.enter_context(exclusive(folder, outputs=[*files.values(), folder]))
         sized = size_tether(cfg) if cfg.tether.sizing == "load" else None
         if sized:
             cfg = sized_case(cfg, sized)
@@ -57,15 +55,12 @@ def simulate_case(cfg: Config, out=None, sweep_file=None, progress=True) -> dict
         if sized:
             summary["sizing_diameters_m"] = list(sized.diameters_m)
         if out:
-            with commit as temporaries:
-                written = dict(zip([k for k in paths if k != "paraview"] + ["paraview"], temporaries))
-                save_hdf5(run, written["hdf5"], extra_attrs={"ge": summary["ge"],
-                                                              "straight_drag_N": summary["straight_drag_N"]})
-                save_paraview(run, written["paraview"])
-                if "reel_plot" in written:
-                    reel_drag_plot(run, cfg, written["reel_plot"], sweep_file)
-            summary["hdf5"] = str(paths["hdf5"])
-            summary["paraview"] = str(paths["paraview"] / "tether.pvd")
-            if "reel_plot" in paths:
-                summary["reel_plot"] = str(paths["reel_plot"])
+            with atomic_outputs(files=list(files.values()), directories=[folder]) as (*temporaries, tmp_folder):
+                tmp = dict(zip(files, temporaries))
+                save_hdf5(run, tmp["hdf5"], extra_attrs={"ge": summary["ge"],
+                                                          "straight_drag_N": summary["straight_drag_N"]})
+                save_paraview(run, tmp_folder)
+                if "reel_plot" in tmp:
+                    reel_drag_plot(run, cfg, tmp["reel_plot"], sweep_file)
+            summary |= {name: str(path) for name, path in files.items()} | {"paraview": str(folder / "tether.pvd")}
     return summary

@@ -107,3 +107,10 @@ def dense_fe_jacobian(sys_, ev, tension_mode=False):
     else:
         A[-1, -1] = ev.k_s
     return A
+
+
+def default_sigint():
+    """A child's ``preexec_fn``: Ctrl-C as from a terminal, even if pytest ignores it."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)

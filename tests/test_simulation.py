@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import is_png
+from conftest import is_png, default_sigint
 
 from fem_tether import simulation
 from fem_tether.atomic import OutputError, exclusive
@@ -82,14 +82,10 @@ def _cli(*argv, **kwargs):
     return subprocess.run([*CLI, *argv], capture_output=True, text=True, timeout=300, **kwargs)
 
 
-def _default_sigint():
-    signal.signal(signal.SIGINT, signal.SIG_DFL)   # as from a terminal, even if pytest ignores it
-
-
 def _stop_while_writing(argv, out, sig):
     """Start ``argv``, send ``sig`` once it writes its files below ``out``; its output."""
     proc = subprocess.Popen([*CLI, *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=_default_sigint)
+                            preexec_fn=default_sigint)
     try:
         start = time.monotonic()
         while not any(".tmp-" in p.name for p in out.iterdir()):

@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import default_sigint
+
 CLI = [sys.executable, "-m", "fem_tether"]
 MPIEXEC = shutil.which("mpiexec")
 needs_mpi = pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
@@ -55,10 +57,6 @@ average_periods = 2
 STOP_WITHIN_S = 60.0
 
 
-def _default_sigint():
-    signal.signal(signal.SIGINT, signal.SIG_DFL)   # as from a terminal, even if pytest ignores it
-
-
 def _children(pid: int) -> set[int]:
     """Every descendant of ``pid`` (from /proc)."""
     parents = {}
@@ -89,7 +87,7 @@ def _rank_pid(mpiexec: subprocess.Popen, rank: int) -> int:
 
 def _start(argv, cwd) -> subprocess.Popen:
     return subprocess.Popen(argv, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=_default_sigint)
+                            preexec_fn=default_sigint)
 
 
 def _wait_until(condition, proc, timeout_s=120.0):
@@ -225,7 +223,7 @@ def test_ctrl_c_while_the_kernels_compile_is_one_line(tmp_path, presses):
     (tmp_path / "six.toml").write_text(SIX)
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
     proc = subprocess.Popen([*CLI, "sweep", "six.toml", "--out", "s.h5"], cwd=tmp_path, env=env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=_default_sigint)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=default_sigint)
     time.sleep(2.0)
     for _ in range(presses):
         proc.send_signal(signal.SIGINT)

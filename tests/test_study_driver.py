@@ -13,7 +13,7 @@ import time
 import numpy as np
 import pytest
 
-from conftest import KITEGEN_STUDY, STUDY_FAST
+from conftest import KITEGEN_STUDY, STUDY_FAST, default_sigint
 from damage import delete_attr, empty, foreign, replace_dataset, set_attr, text, truncate
 
 from fem_tether.cli import main
@@ -76,10 +76,6 @@ def test_two_ranks_write_the_same_bytes(kitegen, tmp_path):
     assert filecmp.cmp(n1, tmp_path / "n2.h5", shallow=False)          # tolerance: none, the same bytes
 
 
-def _default_sigint():
-    signal.signal(signal.SIGINT, signal.SIG_DFL)   # as from a terminal, even if pytest ignores it
-
-
 def _runs_kept(directory) -> int:
     """Tether runs finished (their parts, not a temporary file)."""
     return len([p for p in directory.glob("*_v*.json") if not p.name.startswith(".")])
@@ -89,7 +85,7 @@ def _interrupt_after_more_runs(argv, directory, sig) -> subprocess.CompletedProc
     """Start the study, send ``sig`` once it has kept a tether run more than before; its output."""
     before = _runs_kept(directory) if directory.is_dir() else 0
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=_default_sigint)
+                            preexec_fn=default_sigint)
     try:
         start = time.monotonic()
         while not directory.is_dir() or _runs_kept(directory) <= before:

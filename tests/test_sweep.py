@@ -14,7 +14,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import TINY_JOB as TINY
+from conftest import TINY_JOB as TINY, default_sigint
 
 from fem_tether import sweep as sw
 from fem_tether.atomic import OutputError
@@ -157,16 +157,12 @@ def test_aep_of_an_incomplete_sweep_needs_allow_incomplete(tiny_job, tmp_path, c
     assert result["best_length_fe_m"] == 400.0 and result["lengths"][1]["aep_fe_MWh"] is None
 
 
-def _default_sigint():
-    signal.signal(signal.SIGINT, signal.SIG_DFL)   # as from a terminal, even if pytest ignores it
-
-
 def _start_sweep(tmp_path, out):
     job = tmp_path / "three.toml"
     job.write_text(THREE)
     argv = [*CLI, "sweep", str(job), "--out", str(out), "--json"]
     return argv, subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                  preexec_fn=_default_sigint)
+                                  preexec_fn=default_sigint)
 
 
 def _wait_for_a_task(out, proc, timeout_s=120.0):
