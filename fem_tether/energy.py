@@ -78,7 +78,9 @@ def energy_balance(run: TetherRun, cfg, window: slice | None = None) -> EnergyBa
     what the step held: its winch speed V_L (the series' value at its end) and
     its wing (a pumping cycle's recovery wing while V_L < 0,
     :meth:`~fem_tether.free_kite.FreeKite.for_reel_mps`), so a turn of the winch
-    is integrated exactly where the air force jumps as the wing is swapped."""
+    is integrated exactly where the air force jumps as the wing is swapped; the
+    air force at each sample is the one it was solved with (the roll sampled
+    at the step's start: the series' ``roll_deg`` one sample before)."""
     if run.snapshot_time_s.size != run.time_s.size:
         raise ValueError("energy_balance needs a snapshot at every step ([output] every = 1)")
     ph = physics_from_config(cfg)
@@ -87,7 +89,7 @@ def energy_balance(run: TetherRun, cfg, window: slice | None = None) -> EnergyBa
     kinetic, potential, aero, aero_left, diss = (np.empty(steps.size) for _ in range(5))
     speed = run.series["reel_out_mps"]
     kite = None
-    last: tuple = ()              # the previous sample's wing, r, v and roll
+    last: tuple = ()              # the previous sample's wing, r, v and the roll it was solved with
     for j, i in enumerate(steps):
         line = run.line(int(i))
         s, r, v = line["s_m"], line["position_m"], line["velocity_mps"]
@@ -103,7 +105,8 @@ def energy_balance(run: TetherRun, cfg, window: slice | None = None) -> EnergyBa
         potential[j] = G_MPS2 * (m @ r[:, 2] + m_k * r[-1, 2])
         v_mid = 0.5 * (v[1:] + v[:-1])
         diss[j] = -float(np.sum(h * np.einsum("ij,ij->i", line["drag_N_m"], v_mid)))
-        roll = math.radians(float(run.series["roll_deg"][i]))
+        # sample i was solved with the roll sampled at the step's start, i - 1 (the first: its own)
+        roll = math.radians(float(run.series["roll_deg"][max(int(i) - 1, 0)]))
         wing = kite.for_reel_mps(float(speed[i]))
         aero[j] = _aero_power_W(wing, r, v, roll)
         if j and wing.kite is not last[0].kite:      # the winch turned: the step's wing from its start

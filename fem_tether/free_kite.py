@@ -208,10 +208,11 @@ def recovery_wing(kite: PointMassKite, cd0: float) -> PointMassKite:
     return PointMassKite(kite.mass_kg, kite.area_m2, ConstantCoefficients(0.0, cd0))
 
 
-def series_values(steer: Steer, load: KiteLoad, velocity_mps) -> dict:
+def series_values(kite: FreeKite, steer: Steer, load: KiteLoad, velocity_mps) -> dict:
     """The kite's values of :data:`fem_tether.results.KITE_SERIES` at one solution:
-    its speed, |W_e|, α, the roll ψ held over the step, the turbine power and
-    the steering errors of the step's sample."""
+    its speed, |W_e|, α, the roll ψ of the sample at this instant (held over the
+    next step), the turbine power, the steering errors of that sample and the
+    laps of the path its nearest point has flown (``kite``'s path)."""
     aero = load.aero
     return {
         "kite_speed_mps": float(np.linalg.norm(velocity_mps)),
@@ -221,4 +222,5 @@ def series_values(steer: Steer, load: KiteLoad, velocity_mps) -> dict:
         "turbine_power_W": float(aero.turbine_power_W),
         "cross_track_m": steer.command.cross_track_m,
         "heading_error_deg": math.degrees(steer.command.heading_error_rad),
+        "path_laps": float(kite.steering.path.laps(steer.parameter_s)),
     }

@@ -78,6 +78,12 @@ class Circle:
         """Time of one loop: 2π / ω = 2π L sinρ / V."""
         return 2.0 * math.pi / self.rate_rad_s
 
+    def laps(self, t_s):
+        """Loops flown from the start point (the highest, β = 0) to parameter
+        ``t_s``: β(t) / 2π (whole at the start point; continuous, unwrapped,
+        also across :meth:`at_length`, which keeps β)."""
+        return self.angle(t_s) / (2.0 * math.pi)
+
     def angle(self, t_s):
         """β(t) = β0 + ω t (eq. 3.1; β0 = ``phase_rad``), unwrapped (2π per period)."""
         if isinstance(t_s, (int, float)):

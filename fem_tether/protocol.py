@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
@@ -48,11 +48,12 @@ from fem_tether.case import TetherCase
 from fem_tether.config import Config
 from fem_tether.continuation import NotConverged
 from fem_tether.errors import SolverDivergedError, check_taut, newton_failure, slack_failure
+from fem_tether.laps import LapRule, lap_window, spinup_end
 from fem_tether.loads import G_MPS2
 from fem_tether.progress import Progress
 from fem_tether.reel import Reel, reel_from_config
 from fem_tether.results import (MAX_CONSTRAINT_STRAIN, MAX_ELASTIC_STRAIN, Recorder, TetherRun,
-                                non_finite, overstretched, time_grid, winch_values)
+                                non_finite, overstretched, steps_per_period, time_grid, winch_values)
 from fem_tether.stop import checkpoint
 
 #: A change of V_L between steps larger than this (m/s) restarts the time
@@ -172,26 +173,33 @@ def line_loads_N(cfg: Config | None, length_m: float) -> tuple[float, float]:
 
 def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods: int,
         output_every: int = 1, config: Config | None = None, progress: bool = False,
-        reel: Reel = Reel(), initial=None) -> TetherRun:
+        reel: Reel = Reel(), initial=None, laps: LapRule | None = None) -> TetherRun:
     """Static start (or ``initial``), then whole periods of the end motion; the
     :class:`TetherRun` of the steps the module docstring lists.
 
     The step is ``period / ceil(period / dt_s)``; series are recorded every
     step, snapshots every ``output_every`` steps and at the end.  With an
     active ``reel`` the series carry L(t), V_L(t), the winch power T(0) V_L
-    and the energy delivered.
+    and the energy delivered.  With ``laps`` (a point-mass kite,
+    :mod:`fem_tether.laps`) the run flies until it has its window of whole
+    laps after a settled spin-up, the reel starting when the spin-up ends.
     """
     wall0 = time.perf_counter()
     period = solver.model.end.period_s
     h, n_steps = time_grid(period, dt_s, spinup_periods, average_periods)
+    limit = n_steps if laps is None else laps.max_steps(steps_per_period(period, dt_s))
     state = initial if initial is not None else solver.initial_state()
     t0 = state.t
     average_start_s = t0 + spinup_periods * period
+    spinup = window = None
+    if laps is not None and reel.active:
+        reel = replace(reel, start_s=math.inf)      # reeling starts when the spin-up ends
     start_length, energy_J, reel_mps = solver.model.length_m, 0.0, 0.0
     stats = Statistics()
-    record = Recorder(n_steps, output_every)
-    bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
-    for i in range(n_steps + 1):
+    record = Recorder(limit, output_every)
+    bar = Progress(limit if laps is None else n_steps, f"{solver.name.upper()} L = {start_length:g} m",
+                   enabled=progress)
+    for i in range(limit + 1):
         if i:
             length = solver.model.length_m
             reel_mps, was_reeling = reel.speed_mps(state.t, solver.kite_position_m(state), float(state.T[0]),
@@ -210,14 +218,33 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
             if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
                 check_taut(state.T, solver.tension_s_m(), state.t, solver.model.length_m)
             energy_J += h * reel_mps * state.T[0]
-            bar.update(i)
+            bar.update(min(i, n_steps - 1) if laps is not None else i)
             checkpoint()                 # a Ctrl-C a finaliser swallowed (fem_tether.stop)
-        done = i == n_steps or (reel.active and reel.stopped(solver.model.length_m, start_length))
-        record.add(i, state.t, solver.line_state(state, record.snapshot_due(i, done))
-                   | winch_values(solver.model.length_m, reel_mps, state.T[0], energy_J), last=done)
+        stopped = reel.active and reel.stopped(solver.model.length_m, start_length)
+        done = (i == limit or stopped) if laps is not None else (i == n_steps or stopped)
+        values = solver.line_state(state, record.snapshot_due(i, done))
+        record.add(i, state.t, values | winch_values(solver.model.length_m, reel_mps, state.T[0], energy_J),
+                   last=done)
+        if laps is not None and (done or i and record.lapped()):
+            spinup = spinup or spinup_end(*record.so_far(), laps, final=done)
+            if spinup is not None and reel.start_s == math.inf:
+                reel = replace(reel, start_s=state.t)
+            not_before = reel.start_s if reel.active else -math.inf
+            window = spinup and lap_window(*record.so_far(), laps, spinup, not_before, final=done)
+            if window is not None and not done:
+                record.snapshot(state.t, solver.line_state(state, True))
+                done = True
         if done:
             break
     bar.close()
+    if laps is not None and window is None:
+        flown = record.so_far()[1]["path_laps"]
+        raise SolverDivergedError(f"{solver.name.upper()} run, L = {start_length:g} m: the point-mass kite flew "
+                                  f"{np.nanmax(flown) - flown[0]:.2f} laps of its path in {state.t - t0:.1f} s, "
+                                  "no whole lap after its spin-up to average")
+    extra = solver.extra() | {"dt_s": h, "newton_iterations": stats.newton_iterations, "halvings": stats.halvings}
+    if window is not None:
+        average_start_s, extra = window.start_s, extra | window.values()
     return check_sane(solver, record.run(
         solver=solver.name,
         length_m=start_length,
@@ -225,8 +252,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
         average_start_s=average_start_s,
         config=config,
         wall_s=time.perf_counter() - wall0,
-        extra=solver.extra() | {"dt_s": h, "newton_iterations": stats.newton_iterations,
-                                "halvings": stats.halvings},
+        extra=extra,
     ))
 
 
@@ -251,8 +277,9 @@ def check_sane(solver: TetherSolver, result: TetherRun) -> TetherRun:
 
 def simulate(solver: TetherSolver, cfg: Config, dt_s: float, progress: bool = False) -> TetherRun:
     """:func:`run` as ``cfg`` configures it (``[time]`` periods, ``[output] every``,
-    reeling from ``[winch]`` after the spin-up), with the time step ``dt_s``."""
+    reeling from ``[winch]`` after the spin-up; a point-mass kite's whole laps,
+    :class:`~fem_tether.laps.LapRule`), with the time step ``dt_s``."""
     t = cfg.time
     reel = reel_from_config(cfg, start_s=t.spinup_periods * solver.model.end.period_s)
     return run(solver, dt_s, t.spinup_periods, t.average_periods,
-               cfg.output.every, config=cfg, progress=progress, reel=reel)
+               cfg.output.every, config=cfg, progress=progress, reel=reel, laps=LapRule.from_config(cfg))

@@ -38,12 +38,14 @@ QUANTITIES = (
     Quantity("series", "kite_speed_mps", "m/s", "point-mass kite: speed |dr(L, t)/dt| of the kite"),
     Quantity("series", "apparent_speed_mps", "m/s", "point-mass kite: apparent wind speed |W_e| at the kite"),
     Quantity("series", "aoa_deg", "deg", "point-mass kite: angle of attack alpha = alpha_0 + arcsin(w . e)"),
-    Quantity("series", "roll_deg", "deg", "point-mass kite: steering roll psi held over the step"),
+    Quantity("series", "roll_deg", "deg", "point-mass kite: steering roll psi sampled at this instant, held over the next step"),
     Quantity("series", "turbine_power_W", "W", "point-mass kite: on-board turbine power gamma_t D |W_e|, "
              "per line"),
     Quantity("series", "cross_track_m", "m", "point-mass kite: distance left of the reference path (NaN while "
              "depowered in a pumping cycle's recovery)"),
     Quantity("series", "heading_error_deg", "deg", "point-mass kite: heading left of the path's (NaN while depowered)"),
+    Quantity("series", "path_laps", "1", "point-mass kite: laps of the path flown by its nearest point, whole where "
+             "the kite passes the path's start point (NaN while depowered)"),
     Quantity("snapshots", "time_s", "s", "time of each snapshot of the whole line"),
     Quantity("snapshots", "s_m", "m", "arc length of each node from the winch (NaN padding)"),
     Quantity("snapshots", "position_m", "m", "node positions x, y, z (z up, winch at the origin)"),

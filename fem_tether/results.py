@@ -13,6 +13,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from fem_tether.laps import interval_mean
+
 if TYPE_CHECKING:
     from fem_tether.config import Config
 
@@ -24,10 +26,10 @@ SERIES = ("ground_tension_N", "kite_tension_N", "kite_radius_m", "drag_N", "drag
 #: Time series of a point-mass kite (``[kite] model = "point-mass"``,
 #: :mod:`fem_tether.free_kite`), recorded beside :data:`SERIES` when the solver
 #: gives them: the kite's speed, its apparent wind speed |W_e|, angle of attack,
-#: roll input ψ, on-board turbine power, and the steering's cross-track and
-#: heading errors.
+#: roll input ψ, on-board turbine power, the steering's cross-track and
+#: heading errors, and the laps of the path flown (:mod:`fem_tether.laps`).
 KITE_SERIES = ("kite_speed_mps", "apparent_speed_mps", "aoa_deg", "roll_deg", "turbine_power_W",
-               "cross_track_m", "heading_error_deg")
+               "cross_track_m", "heading_error_deg", "path_laps")
 
 #: Snapshot fields: per node (arc length from the winch, position, velocity)
 #: and per element (the rest); units and meanings in :mod:`fem_tether.quantities`.
@@ -65,17 +67,30 @@ class TetherRun:
         return {k: v[i, :n] if k in NODE_FIELDS else v[i, :n - 1] for k, v in self.snapshots.items()}
 
     @property
+    def average_end_s(self) -> float:
+        """The end of the averaging window: a point-mass kite's last averaged
+        lap's (:mod:`fem_tether.laps`, ``extra``), else the run's end."""
+        return float(self.extra.get("average_end_s", self.time_s[-1]))
+
+    @property
     def average_window(self) -> np.ndarray:
         """Boolean mask of the samples in the averaging window (ends included)."""
-        return self.time_s >= self.average_start_s - 1e-9 * self.period_s
+        slack = 1e-9 * self.period_s
+        return (self.time_s >= self.average_start_s - slack) & (self.time_s <= self.average_end_s + slack)
 
     @property
     def periods(self) -> int:
-        """Whole periods averaged."""
+        """Whole periods averaged (a point-mass kite: whole laps of its flight)."""
+        if "laps" in self.extra:
+            return int(self.extra["laps"])
         return int(round((self.time_s[-1] - self.average_start_s) / self.period_s))
 
     def mean(self, name: str) -> float:
-        """Time mean of a series over the averaging window (trapezoidal rule)."""
+        """Time mean of a series over the averaging window (trapezoidal rule;
+        a point-mass kite's window ends at lap crossings between samples,
+        :func:`fem_tether.laps.interval_mean`)."""
+        if "average_end_s" in self.extra:
+            return interval_mean(self.time_s, self.series[name], self.average_start_s, self.average_end_s)
         mask = self.average_window
         return period_mean(self.time_s[mask], self.series[name][mask])
 
@@ -141,8 +156,26 @@ class Recorder:
         self.rows[self.count] = [values[k] for k in self.names]
         self.count += 1
         if self.snapshot_due(step, last):
-            self.snap_t.append(t)
-            self.snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+            self.snapshot(t, values)
+
+    def snapshot(self, t: float, values: dict) -> None:
+        """Store the whole line of ``values`` at ``t`` (a run that ends where no snapshot was due)."""
+        if self.snap_t and self.snap_t[-1] == t:
+            return
+        self.snap_t.append(t)
+        self.snaps.append({k: values[k] for k in NODE_FIELDS + CELL_FIELDS})
+
+    def so_far(self) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """The times and series recorded so far (views, valid until the next :meth:`add`)."""
+        return self.times[:self.count], {k: self.rows[:self.count, j] for j, k in enumerate(self.names)}
+
+    def lapped(self) -> bool:
+        """Whether the last sample's ``path_laps`` passed a whole number since the one before."""
+        if self.count < 2 or "path_laps" not in self.names:
+            return False
+        j = self.names.index("path_laps")
+        before, now = self.rows[self.count - 2, j], self.rows[self.count - 1, j]
+        return bool(np.isfinite(before) and np.isfinite(now) and math.floor(now) > math.floor(before))
 
     def run(self, **fields) -> TetherRun:
         """The :class:`TetherRun`; ``fields`` are its remaining attributes."""

@@ -284,6 +284,11 @@ class FigureEight:
         """Time of one loop: s(2π) / V."""
         return self._loop_m / self.speed_mps
 
+    def laps(self, t_s):
+        """Loops flown from the path's start point to parameter ``t_s``: V t / s(2π)
+        (whole at the start point; continuous, unwrapped)."""
+        return self.speed_mps * np.asarray(t_s, dtype=float) / self._loop_m
+
     def parameter(self, t_s):
         """Path parameter τ(t), unwrapped (2π per period), from s(τ) = V t.
 

@@ -441,7 +441,7 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     }
     if model.kite is not None and state.steer is not None:
         load = model.kite.load(r[-1], v[-1], r[-1] - r[-2], state.steer.roll_rad)
-        series |= free_kite.series_values(state.steer, load, v[-1])
+        series |= free_kite.series_values(model.kite, state.steer, load, v[-1])
     if not fields:
         return series
     z_mid = 0.5 * (r[1:, 2] + r[:-1, 2])

@@ -16,7 +16,7 @@ the same way, its end moved along the path at the kite's steady crosswind
 speed (:meth:`~fem_tether.free_kite.FreeKite.start_speed_mps`); then it is
 released (:func:`release`): the end node becomes a free mass carrying the kite,
 whose force and Jacobian join the line's in the same Newton iteration
-(:func:`add_kite`), steered by a roll sampled at the start of each step.
+(:func:`add_kite`), steered by a roll sampled at each step's solution and held over the next step.
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ class State:
     T: np.ndarray                 # element tensions
     R: float                      # kite distance (a free kite's: held, unused)
     ev: Evaluation | None = None  # the converged evaluation at t, if any
-    steer: Steer | None = None    # a free kite: the steering sample held over the step to t
+    steer: Steer | None = None    # a free kite: the steering sample at t, held over the next step
     kite_load: KiteLoad | None = None   # a free kite: its force at the solution
 
 
@@ -269,7 +269,8 @@ def release(model: FEModel, state: State) -> tuple[FEModel, State]:
     first steering sample is taken at the start (the nearest path point from
     σ = 0: the start's end is at the path's first point at t = 0) and the accelerations and tensions are made consistent
     with the kite's force at its roll (:meth:`TetherSystem.consistent_start`),
-    the velocities being already consistent."""
+    the velocities being already consistent; the first step holds the roll
+    sampled again with those tensions (:func:`sampled`)."""
     kite = model.kite
     assert kite is not None, "release needs a model with a point-mass kite"
     sys_ = model.system
@@ -281,7 +282,8 @@ def release(model: FEModel, state: State) -> tuple[FEModel, State]:
     v, qdd, T = free.consistent_start(r, v, state.T, state.R, None, 0.0,
                                       end_force=_end_force(kite, r, steer.roll_rad))
     load = kite.load(r[-1], v[-1], r[-1] - r[-2], steer.roll_rad)
-    return model, State(state.t, Kinematics(r, v, qdd, qdd.copy()), T, state.R, steer=steer, kite_load=load)
+    released = State(state.t, Kinematics(r, v, qdd, qdd.copy()), T, state.R, steer=steer, kite_load=load)
+    return model, sampled(model, released)      # the first step's roll, from the consistent tensions
 
 
 def _end_force(kite: FreeKite, r, roll_rad: float):
@@ -307,6 +309,19 @@ def add_kite(system: TetherSystem, ev: Evaluation, kite: FreeKite, r, v, roll_ra
     return load
 
 
+def sampled(model: FEModel, state: State) -> State:
+    """``state`` with the steering's sample at its instant (:meth:`FreeKite.steer`,
+    the nearest path point found from that of ``state``'s previous sample): the
+    roll the next step holds, and the path point whose laps the run's means
+    count (:mod:`fem_tether.laps`)."""
+    kite = model.kite
+    assert kite is not None and state.steer is not None, "a free kite's state carries its last steering sample"
+    r, v = state.kin.q, state.kin.v
+    steer = kite.steer(state.t, state.steer.parameter_s, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]),
+                       _end_line_drag_N(model, state))
+    return replace(state, steer=steer)
+
+
 def _end_line_drag_N(model: FEModel, state: State) -> np.ndarray:
     """The line's drag on the end node, ``(Q f_t)_N``: the last element's share,
     for the steering law's balance (:meth:`~fem_tether.free_kite.FreeKite.steer`)."""
@@ -322,9 +337,10 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     ``stats``); raises :class:`NotConverged`.  A compiled system takes the whole
     step in one call (:meth:`TetherSystem.solve_step`); the NumPy iteration below
     is its reference, and a free kite's iteration (with the compiled evaluation
-    when the system is compiled): the kite's roll is sampled at the step's start
-    (:meth:`~fem_tether.free_kite.FreeKite.steer`, which raises
-    :class:`SolverDivergedError` when the kite has lost its path) and held."""
+    when the system is compiled): the kite's roll is ``state``'s sample, held
+    over the step, and the new state gets its own (:func:`sampled`;
+    :meth:`~fem_tether.free_kite.FreeKite.steer` raises
+    :class:`SolverDivergedError` when the kite has lost its path)."""
     sys_ = model.system
     t_new = state.t + h
     e = model.end.direction_at(t_new)
@@ -337,11 +353,9 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
                                                  f_ref, model.reel_mps, model.newton_tol, model.max_newton,
                                                  stats)
         return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
-    steer = load = None
+    steer, load = state.steer, None
     if kite is not None:
-        assert state.steer is not None, "a free kite's state carries its last steering sample"
-        steer = kite.steer(state.t, state.steer.parameter_s, kin.q[-1], kin.v[-1], kin.q[-1] - kin.q[-2],
-                           float(state.T[-1]), _end_line_drag_N(model, state))
+        assert steer is not None, "a free kite's state carries its steering sample"
     c_a, c_v = model.scheme.coefficients(h)
     k_s = sys_.row_scale(f_ref)
     kept = sys_.kept
@@ -387,7 +401,8 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
             if chord:
                 kept.factors = factors
                 kept.keep(True, *made_for)
-            return State(t_new, kin, T, R, ev, steer, load)
+            new = State(t_new, kin, T, R, ev, steer, load)
+            return new if kite is None else sampled(model, new)
         if not chord:
             try:
                 factors = sys_.factorize(ev)
@@ -422,7 +437,7 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
         "max_strain": strain,
     }
     if state.steer is not None and state.kite_load is not None:
-        series |= free_kite_module.series_values(state.steer, state.kite_load, v[-1])
+        series |= free_kite_module.series_values(model.kite, state.steer, state.kite_load, v[-1])
     if not fields:
         return series
     return series | {
@@ -484,23 +499,28 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)
     system = system.with_spaces(system.spaces.with_first_length(system.spaces.h_m[0] + growth, mu))
     kite = model.kite
-    if kite is not None:          # the wing flown at this reel speed; the steering's path on the new sphere
+    free = kite is not None and system.free_end
+    if kite is not None and state.steer is not None:
+        # the wing flown at this reel speed; the steering's path on the new sphere, through the
+        # kite's path point (its σ: NaN after a depowered sample, then any phase)
         kite = kite.for_reel_mps(reel_mps)
-        kite = replace(kite, steering=replace(kite.steering,
-                                              path=end_at_length(cast(EndMotion, kite.steering.path),
-                                                                 length_m, state.t)))
+        sigma = state.steer.parameter_s
+        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, sigma if math.isfinite(sigma) else 0.0)
+        kite = replace(kite, steering=replace(kite.steering, path=path))
     model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
                     end=end_at_length(model.end, length_m, state.t), kite=kite)
     if restart:
         end_force = None
-        if kite is not None and system.free_end:
-            assert state.steer is not None, "a free kite's state carries its last steering sample"
+        if free:
+            assert kite is not None and state.steer is not None
             end_force = _end_force(kite, kin.q, state.steer.roll_rad)
         v, qdd, T = system.consistent_start(kin.q, kin.v, T, state.R, model.end.state(state.t, 1.0),
                                             model.ground_tension_N, reel_mps, free_radius=True,
                                             end_force=end_force)
         kin = Kinematics(kin.q, v, qdd, qdd.copy())
-    return model, State(state.t, kin, T, state.R, steer=state.steer)
+    state = State(state.t, kin, T, state.R, steer=state.steer)
+    # the roll the next step holds, sampled on the new path
+    return model, sampled(model, state) if free else state
 
 
 @dataclass
