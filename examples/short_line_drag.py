@@ -6,8 +6,8 @@ F_t is the line's drag lumped at the kite (Roselli 2016 eq. 4.1), period-mean:
     |f| = 1/2 rho(z) C_d,c(Re) d v_n^2  (against the normal relative speed v_n)
 
 The straight rod (Roselli §4.1) sweeps at v_n = (s/L) V_k.  The flexible line's
-excess is e = F_t(line) / F_t(rod) - 1, measured in three parts (one part's
-JSON on stdout with ``python examples/short_line_drag.py PART``, all three as
+excess is e = F_t(line) / F_t(rod) - 1, measured in four parts (one part's
+JSON on stdout with ``python examples/short_line_drag.py PART``, all four as
 docs/study.md §8's tables without PART):
 
 * ``wind``: e with the wind (the rod with the wind's normal component) and in
@@ -26,7 +26,9 @@ docs/study.md §8's tables without PART):
   parallel along the line, z off s cos th0).  e_v is split by quarters of the
   line, beside each quarter's rms ratio sqrt(sum h s <v_n^2> / sum h s (s V_k / L)^2);
 * ``eight``: the still-air e, e_v and shape against the eight's size, W and H
-  scaled by k at the same V_k (the tips' turn radius 2 H^2 / W scales with k).
+  scaled by k at the same V_k (the tips' turn radius 2 H^2 / W scales with k);
+* ``systems``: ``wind`` and ``speed`` for the KE-yoyo (875 m, 48.4 m/s) and
+  Trevisi's wing (500 m, 51 m/s) on the same eight (docs/systems.md §5).
 
 Run: ``python examples/short_line_drag.py``.
 """
@@ -54,14 +56,17 @@ STEPS = {"fe": {"dt_s": 0.025}, "fd": {"dt_s": 0.0125}}
 #: the eight may span at most 1 rad of azimuth (k <= 1.49).
 EIGHT_FACTORS = {400.0: (0.5, 0.75, 1.0, 1.45), 900.0: (0.5, 1.0, 2.0, 3.0)}
 
+#: The other systems on the 190 m x 95 m eight (docs/systems.md §5): (system, L [m]).
+SYSTEMS = (("ke-yoyo", 875.0), ("trevisi-gg", 500.0))
 
-def config(length_m, still_air=False, **sections):
-    """The default case on a line of ``length_m`` at :data:`STEPS` (still air:
+
+def config(length_m, still_air=False, system="kitegen", **sections):
+    """The ``system``'s case on a line of ``length_m`` at :data:`STEPS` (still air:
     [wind] profile = "none"), every step stored; ``sections`` override key by key."""
     base = {"tether": {"length_m": float(length_m)}, "output": {"every": 1}, **STEPS}
     if still_air:
         base["wind"] = {"profile": "none"}
-    return load_config(overrides=merged(base, sections))
+    return load_config(system=system, overrides=merged(base, sections))
 
 
 def run_line(cfg, solver="fe"):
@@ -77,10 +82,10 @@ def excess(cfg, solver="fe"):
     return {"line_N": line_N, "rod_N": rod_N, "excess": line_N / rod_N - 1.0}
 
 
-def wind_share(length_m, solver="fe", **sections):
+def wind_share(length_m, solver="fe", system="kitegen", **sections):
     """e with the wind and in still air, the still-air share e_still / e_wind and
     the wind's part e_wind - e_still (a fraction of F_t(rod))."""
-    windy, still = (excess(config(length_m, still_air=s, **sections), solver) for s in (False, True))
+    windy, still = (excess(config(length_m, s, system, **sections), solver) for s in (False, True))
     return {"wind": windy, "still": still, "still_share": still["excess"] / windy["excess"],
             "wind_part": windy["excess"] - still["excess"]}
 
@@ -113,12 +118,12 @@ def window(run):
             "drag_N": np.linalg.norm(moment, axis=1) / np.linalg.norm(r[:, -1], axis=1)}
 
 
-def speed_decomposition(length_m, solver="fe", quarters=4, **sections):
+def speed_decomposition(length_m, solver="fe", system="kitegen", quarters=4, **sections):
     """Still air: F_t [N] of the rod; of the rod on the line's elements at (s/L) V_k,
     at the mean profile vbar_n(s) and at v_n(s, t) (F_v); of the line (its series'
     mean and the snapshots' moment).  Each as e against the rod; the shape's part
     (1 + e) / (1 + e_v) - 1; e_v by quarters of the line and their rms speed ratios."""
-    cfg = config(length_m, still_air=True, **sections)
+    cfg = config(length_m, True, system, **sections)
     run = run_line(cfg, solver)
     w = window(run)
     t, s, h, vn = w["time_s"], w["s_m"], w["h_m"], w["vn_mps"]
@@ -159,7 +164,10 @@ def eight_size(length_m, factors, solver="fe", **sections):
 PARTS = {"wind": lambda: {L: {solver: wind_share(L, solver) for solver in ("fe", "fd")} for L in LENGTHS_M},
          "speed": lambda: {L: {solver: speed_decomposition(L, solver) for solver in ("fe", "fd")}
                            for L in LENGTHS_M},
-         "eight": lambda: {L: eight_size(L, factors) for L, factors in EIGHT_FACTORS.items()}}
+         "eight": lambda: {L: eight_size(L, factors) for L, factors in EIGHT_FACTORS.items()},
+         "systems": lambda: {f"{system} {L:.0f} m": {solver: {"wind": wind_share(L, solver, system),
+                                                              "speed": speed_decomposition(L, solver, system)}
+                                                     for solver in ("fe", "fd")} for system, L in SYSTEMS}}
 
 
 def points(fraction):
@@ -173,7 +181,7 @@ def both(rows, get):
 
 
 def tables(parts) -> str:
-    """The three parts as Markdown tables (docs/study.md §8): e in % of F_t(rod), FE (FD)."""
+    """The four parts as Markdown tables (docs/study.md §8): e in % of F_t(rod), FE (FD)."""
     wind, speed, eight = (parts[name] for name in ("wind", "speed", "eight"))
     out = ["| L [m] | e, wind [%] | e, still air [%] | still-air share e_still / e_wind | wind's part [points] |",
            "|---|---|---|---|---|"]
@@ -195,6 +203,19 @@ def tables(parts) -> str:
     out += [f"| {L:.0f} | {k} | {190 * k:.0f} x {95 * k:.0f} | {r['turn_radius_m']:.0f} | {r['period_s']:.2f} "
             f"| {points(r['excess'])} | {points(r['speed_excess'])} | {points(r['shape'])} |"
             for L, rows in eight.items() for k, r in rows.items()]
+    out += ["", "| system, L | rod, still air / wind [kN] | line, still air / wind [kN] | e, wind [%] "
+            "| e, still air [%] | wind's part [points] | e_v [%] | shape [points] "
+            "| rms v_n / ((s/L) V_k) by quarter, FE |", "|---|---|---|---|---|---|---|---|---|"]
+    for name, r in parts["systems"].items():
+        fe = r["fe"]["wind"]
+        out.append(f"| {name} | {fe['still']['rod_N'] / 1e3:.2f} / {fe['wind']['rod_N'] / 1e3:.2f} "
+                   f"| {fe['still']['line_N'] / 1e3:.2f} / {fe['wind']['line_N'] / 1e3:.2f} "
+                   f"| {both(r, lambda x: x['wind']['wind']['excess'])} "
+                   f"| {both(r, lambda x: x['wind']['still']['excess'])} "
+                   f"| {both(r, lambda x: x['wind']['wind_part'])} "
+                   f"| {both(r, lambda x: x['speed']['excess']['rod at v_n(s, t)'])} "
+                   f"| {both(r, lambda x: x['speed']['shape'])} "
+                   f"| {', '.join(f'{q:.3f}' for q in r['fe']['speed']['rms_speed_ratio_by_quarter'])} |")
     return "\n".join(out)
 
 
