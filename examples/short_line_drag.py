@@ -28,7 +28,8 @@ docs/study.md §8's tables without PART):
 * ``eight``: the still-air e, e_v and shape against the eight's size, W and H
   scaled by k at the same V_k (the tips' turn radius 2 H^2 / W scales with k);
 * ``systems``: ``wind`` and ``speed`` for the KE-yoyo (875 m, 48.4 m/s) and
-  Trevisi's wing (500 m, 51 m/s) on the same eight (docs/systems.md §5).
+  Trevisi's wing (500 m, 51 m/s) on the same eight, and for Loyd I's steel
+  line on its circle (400 m, 106 m/s; docs/systems.md §5).
 
 Run: ``python examples/short_line_drag.py``.
 """
@@ -56,8 +57,9 @@ STEPS = {"fe": {"dt_s": 0.025}, "fd": {"dt_s": 0.0125}}
 #: the eight may span at most 1 rad of azimuth (k <= 1.49).
 EIGHT_FACTORS = {400.0: (0.5, 0.75, 1.0, 1.45), 900.0: (0.5, 1.0, 2.0, 3.0)}
 
-#: The other systems on the 190 m x 95 m eight (docs/systems.md §5): (system, L [m]).
-SYSTEMS = (("ke-yoyo", 875.0), ("trevisi-gg", 500.0))
+#: The other systems (docs/systems.md §5), the first two on the 190 m x 95 m eight,
+#: Loyd I on its circle: (system, L [m]).
+SYSTEMS = (("ke-yoyo", 875.0), ("trevisi-gg", 500.0), ("loyd-1", 400.0))
 
 
 def config(length_m, still_air=False, system="kitegen", **sections):

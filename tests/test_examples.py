@@ -1,6 +1,7 @@
 """The examples in examples/ run as shipped, and each reproduces its number."""
 
 import importlib.util
+import re
 from pathlib import Path
 
 import numpy as np
@@ -193,6 +194,20 @@ def test_short_line_drag_is_the_line_speed_on_the_tight_eight():
     assert d["drag_N"]["line (snapshots)"] == pytest.approx(d["drag_N"]["line"], rel=1e-9)
     sizes = ex.eight_size(400.0, (0.75, 1.0, 1.45))
     assert sizes[0.75]["excess"] > 1.5 * sizes[1.0]["excess"] > 2.25 * sizes[1.45]["excess"] > 0
+
+
+def test_short_line_drag_table_of_study_md_is_the_example_s():
+    """docs/study.md §8's wind table at 400 m is what the example computes: e with
+    the wind, in still air and the wind's part, FE and FD (to its 0.01 points)."""
+    ex = example("short_line_drag")
+    text = (EXAMPLES.parent / "docs" / "study.md").read_text(encoding="utf-8")
+    section = text.split("### Why the short flexible line drags more than the straight rod")[1]
+    row = next(line for line in section.splitlines() if line.startswith("| 400 |"))
+    shown = [float(x) for x in re.findall(r"[+-]\d+\.\d+", row)]
+    r = {solver: ex.wind_share(400.0, solver) for solver in ("fe", "fd")}
+    computed = [100.0 * r[solver][key]["excess"] for key in ("wind", "still") for solver in ("fe", "fd")]
+    computed += [100.0 * r[solver]["wind_part"] for solver in ("fe", "fd")]
+    assert shown == pytest.approx(computed, abs=0.0051)
 
 
 @pytest.mark.parametrize("name", ["study_kitegen", "study_ke_yoyo", "study_trevisi_gg"])
