@@ -6,8 +6,8 @@ F_t is the line's drag lumped at the kite (Roselli 2016 eq. 4.1), period-mean:
     |f| = 1/2 rho(z) C_d,c(Re) d v_n^2  (against the normal relative speed v_n)
 
 The straight rod (Roselli §4.1) sweeps at v_n = (s/L) V_k.  The flexible line's
-excess is e = F_t(line) / F_t(rod) - 1, measured in four parts (one part's
-JSON on stdout with ``python examples/short_line_drag.py PART``, all four as
+excess is e = F_t(line) / F_t(rod) - 1, measured in five parts (one part's
+JSON on stdout with ``python examples/short_line_drag.py PART``, all five as
 docs/study.md §8's tables without PART):
 
 * ``wind``: e with the wind (the rod with the wind's normal component) and in
@@ -27,6 +27,8 @@ docs/study.md §8's tables without PART):
   line, beside each quarter's rms ratio sqrt(sum h s <v_n^2> / sum h s (s V_k / L)^2);
 * ``eight``: the still-air e, e_v and shape against the eight's size, W and H
   scaled by k at the same V_k (the tips' turn radius 2 H^2 / W scales with k);
+* ``bins``: ``wind`` (FE) at design-study bins, each at its operating point
+  (V_a, T_0, the profile scaled to the bin's wind at the kite);
 * ``systems``: ``wind`` and ``speed`` for the KE-yoyo (875 m, 48.4 m/s) and
   Trevisi's wing (500 m, 51 m/s) on the same eight, and for Loyd I's steel
   line on its circle (400 m, 106 m/s; docs/systems.md §5).
@@ -45,6 +47,7 @@ from fem_tether.config.model import merged
 from fem_tether.fe.solver import simulate
 from fem_tether.loads import crossflow_drag
 from fem_tether.results import period_mean
+from fem_tether.study import plan
 
 #: Lengths [m] of the decomposition (KiteGen's default case otherwise).
 LENGTHS_M = (400.0, 500.0, 600.0, 800.0, 900.0, 1000.0)
@@ -57,17 +60,21 @@ STEPS = {"fe": {"dt_s": 0.025}, "fd": {"dt_s": 0.0125}}
 #: the eight may span at most 1 rad of azimuth (k <= 1.49).
 EIGHT_FACTORS = {400.0: (0.5, 0.75, 1.0, 1.45), 900.0: (0.5, 1.0, 2.0, 3.0)}
 
+#: The design study's bins measured (docs/study.md §8, KiteGen): L [m] -> wind at the kite [m/s].
+BINS = {400.0: (12.0, 20.0, 28.0), 800.0: (12.0, 20.0, 28.0)}
+
 #: The other systems (docs/systems.md §5), the first two on the 190 m x 95 m eight,
 #: Loyd I on its circle: (system, L [m]).
 SYSTEMS = (("ke-yoyo", 875.0), ("trevisi-gg", 500.0), ("loyd-1", 400.0))
 
 
 def config(length_m, still_air=False, system="kitegen", **sections):
-    """The ``system``'s case on a line of ``length_m`` at :data:`STEPS` (still air:
-    [wind] profile = "none"), every step stored; ``sections`` override key by key."""
+    """The ``system``'s case on a line of ``length_m`` at :data:`STEPS`, every step
+    stored; ``sections`` override key by key.  Still air: [wind] profile = "none"
+    in place of ``sections``' [wind]."""
     base = {"tether": {"length_m": float(length_m)}, "output": {"every": 1}, **STEPS}
     if still_air:
-        base["wind"] = {"profile": "none"}
+        sections = {**sections, "wind": {"profile": "none"}}
     return load_config(system=system, overrides=merged(base, sections))
 
 
@@ -90,6 +97,16 @@ def wind_share(length_m, solver="fe", system="kitegen", **sections):
     windy, still = (excess(config(length_m, s, system, **sections), solver) for s in (False, True))
     return {"wind": windy, "still": still, "still_share": still["excess"] / windy["excess"],
             "wind_part": windy["excess"] - still["excess"]}
+
+
+def bin_share(length_m, wind_mps):
+    """``wind_share`` at a study bin's operating point (its V_a, T_0 per line and
+    [wind] scale, :func:`fem_tether.study.plan.run_config`); the still-air run at
+    the same V_a and T_0."""
+    case = plan.run_config(config(length_m), plan.operating_points(config(length_m), [wind_mps])[0])
+    point = {"kite": {"speed_mps": case.kite.speed_mps}, "winch": {"ground_tension_N": case.winch.ground_tension_N}}
+    share = wind_share(length_m, **point, wind={"scale": case.wind.scale})
+    return {"apparent_speed_mps": case.kite.speed_mps, "ground_tension_N": case.winch.ground_tension_N, **share}
 
 
 def rod_moment_N(cfg, s_m, h_m, vn_mps):
@@ -167,6 +184,7 @@ PARTS = {"wind": lambda: {L: {solver: wind_share(L, solver) for solver in ("fe",
          "speed": lambda: {L: {solver: speed_decomposition(L, solver) for solver in ("fe", "fd")}
                            for L in LENGTHS_M},
          "eight": lambda: {L: eight_size(L, factors) for L, factors in EIGHT_FACTORS.items()},
+         "bins": lambda: {L: {v: bin_share(L, v) for v in speeds} for L, speeds in BINS.items()},
          "systems": lambda: {f"{system} {L:.0f} m": {solver: {"wind": wind_share(L, solver, system),
                                                               "speed": speed_decomposition(L, solver, system)}
                                                      for solver in ("fe", "fd")} for system, L in SYSTEMS}}
@@ -183,7 +201,7 @@ def both(rows, get):
 
 
 def tables(parts) -> str:
-    """The four parts as Markdown tables (docs/study.md §8): e in % of F_t(rod), FE (FD)."""
+    """The five parts as Markdown tables (docs/study.md §8): e in % of F_t(rod), FE (FD)."""
     wind, speed, eight = (parts[name] for name in ("wind", "speed", "eight"))
     out = ["| L [m] | e, wind [%] | e, still air [%] | still-air share e_still / e_wind | wind's part [points] |",
            "|---|---|---|---|---|"]
@@ -205,6 +223,11 @@ def tables(parts) -> str:
     out += [f"| {L:.0f} | {k} | {190 * k:.0f} x {95 * k:.0f} | {r['turn_radius_m']:.0f} | {r['period_s']:.2f} "
             f"| {points(r['excess'])} | {points(r['speed_excess'])} | {points(r['shape'])} |"
             for L, rows in eight.items() for k, r in rows.items()]
+    out += ["", "| L [m] | V_w at the kite [m/s] | V_a [m/s] | e, wind [%] | e, still air [%] "
+            "| still-air share | wind's part [points] |", "|---|---|---|---|---|---|---|"]
+    out += [f"| {L:.0f} | {v:.0f} | {r['apparent_speed_mps']:.1f} | {points(r['wind']['excess'])} "
+            f"| {points(r['still']['excess'])} | {r['still_share']:.0%} | {points(r['wind_part'])} |"
+            for L, rows in parts["bins"].items() for v, r in rows.items()]
     out += ["", "| system, L | rod, still air / wind [kN] | line, still air / wind [kN] | e, wind [%] "
             "| e, still air [%] | wind's part [points] | e_v [%] | shape [points] "
             "| rms v_n / ((s/L) V_k) by quarter, FE |", "|---|---|---|---|---|---|---|---|---|"]
