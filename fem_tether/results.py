@@ -128,8 +128,9 @@ class Recorder:
     """Collects the series every step and the snapshots every ``output_every``
     steps (and at the last step) of a run, then builds its :class:`TetherRun`.
 
-    The series go into arrays allocated for the whole run (``n_steps + 1``
-    samples), so memory grows with simulated time only by the snapshots.  The
+    The series go into arrays allocated for the most steps the run may take
+    (``n_steps + 1`` samples: a point-mass kite's run may end earlier, when it
+    has its laps), so memory grows with simulated time only by the snapshots.  The
     series are :data:`SERIES` and those of :data:`KITE_SERIES` the first
     sample has."""
 
