@@ -25,6 +25,7 @@ from .config import Config
 from .errors import InputError
 from .kite import KiteGenDesign
 from .power import Cycle, cycle_curves, operating_design, rated_power_W
+from .quantities import lumped_name
 from .resource import Band, Resource, ResourceError
 from .resource import check_config as check_resource_config
 from .resource import from_config as resource_from_config
@@ -216,15 +217,17 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
             f"{lengths.size} lengths pending ({', '.join(f'{v:g}' for v in lengths[pending])} m); "
             "run the same sweep again to finish it, or allow an incomplete sweep "
             "(--allow-incomplete)")
-    drag_fe = np.asarray(sweep_data["drag_fe_N"], dtype=float)
-    drag_straight = np.asarray(sweep_data["drag_straight_N"], dtype=float)
+    lumping = cfg.drag.tether_drag_lumping
+    drag_fe = np.asarray(sweep_data[lumped_name("drag_fe_N", lumping)], dtype=float)
+    drag_straight = np.asarray(sweep_data[lumped_name("drag_straight_N", lumping)], dtype=float)
     checked = np.asarray(sweep_data["crosscheck_ok"]) == 1
     has_fe = np.isfinite(drag_fe)
     keep = has_fe & (checked | allow_unchecked)
     has_straight = np.isfinite(drag_straight)
     cases = sweep_data.get("case_configs")
     case = np.array(cases, dtype=object) if cases is not None else None
-    drag_fixed = np.asarray(sweep_data.get("drag_fixed_N", np.full(lengths.shape, np.nan)), dtype=float)
+    drag_fixed = np.asarray(sweep_data.get(lumped_name("drag_fixed_N", lumping), np.full(lengths.shape, np.nan)),
+                            dtype=float)
     has_fixed = np.isfinite(drag_fixed)
     return SweepAep(
         straight=aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource,

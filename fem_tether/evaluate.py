@@ -21,10 +21,10 @@ from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import SolverDivergedError
 from fem_tether.fe import solver as fe_solver
 from fem_tether.jobs import Task
-from fem_tether.quantities import names
+from fem_tether.quantities import lumped_name, names
 from fem_tether.sizing import margin, peak_tension_N
 from fem_tether.store import PartsStore
-from fem_tether.summary import operating_ge
+from fem_tether.summary import lumped_drags_N, operating_ge, run_speed_mps
 
 
 def simulator(solver: str):
@@ -108,6 +108,7 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
     cfg = store.stored_config(length_m)
     key = store.inputs_key(length_m)
     res = LengthResult(length_m)
+    lumping = cfg.drag.tether_drag_lumping
     v = dict.fromkeys(ROOT_DATASETS, float("nan"))
     v["crosscheck_ok"] = 0
     v["mean_phi_deg"] = cfg.path.mean_abs_phi_deg()
@@ -125,17 +126,18 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
             continue
         runs[solver] = store.read(task, snapshots=compared)
     if "fe" in runs:
-        v["drag_fe_N"] = runs["fe"].mean("drag_N")
+        drags = lumped_drags_N(runs["fe"], cfg)
+        v["drag_fe_N"], v["drag_power_fe_N"] = drags["moment"], drags["power"]
         v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
-        apparent = runs["fe"].mean("apparent_speed_mps") if "apparent_speed_mps" in runs["fe"].series else None
-        v["ge_fe"] = operating_ge(cfg, v["drag_fe_N"], apparent)     # a point-mass kite: at its own speed
+        v["ge_fe"] = operating_ge(cfg, drags[lumping], run_speed_mps(runs["fe"], cfg))  # a point-mass kite: at its own speed
         v["peak_tension_N"] = peak_tension_N(runs["fe"])
         v["margin"] = margin(cfg, v["peak_tension_N"])
     v["d_m"] = cfg.tether.diameter_m
     sizing = store.stored_sizing(length_m) if cfg.tether.sizing == "load" else None
     if sizing:
-        v["drag_fixed_N"] = sizing.fixed_drag_N
-        v["ge_fixed"] = operating_ge(job.config_for(length_m), sizing.fixed_drag_N)
+        v["drag_fixed_N"], v["drag_power_fixed_N"] = sizing.fixed_drag_N, sizing.fixed_power_drag_N
+        v["ge_fixed"] = operating_ge(job.config_for(length_m),
+                                     v[lumped_name("drag_fixed_N", lumping)])
     if "fd" in runs:
         v["drag_fd_N"] = runs["fd"].mean("drag_N")
         v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")
@@ -145,8 +147,9 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
         v["rel_diff_drag"] = check.rel_diff["drag"]
         v["rel_diff_shape"] = check.rel_diff["shape"]
     if job.straight:
-        v["drag_straight_N"] = straight.from_config(cfg, with_wind=True).drag_N
-        v["ge_straight"] = operating_ge(cfg, v["drag_straight_N"])
+        line = straight.from_config(cfg, with_wind=True)
+        v["drag_straight_N"], v["drag_power_straight_N"] = line.drag_N, line.power_drag_N
+        v["ge_straight"] = operating_ge(cfg, line.lumped_N(lumping))
     res.values = v
     if errors:
         res.status, res.error = "failed", "; ".join(errors)

@@ -210,12 +210,15 @@ def recovery_wing(kite: PointMassKite, cd0: float) -> PointMassKite:
 
 def series_values(kite: FreeKite, steer: Steer, load: KiteLoad, velocity_mps) -> dict:
     """The kite's values of :data:`fem_tether.results.KITE_SERIES` at one solution:
-    its speed, |W_e|, α, the roll ψ of the sample at this instant (held over the
-    next step), the turbine power, the steering errors of that sample and the
-    laps of the path its nearest point has flown (``kite``'s path)."""
+    its speed and the speed cubed, |W_e|, α, the roll ψ of the sample at this
+    instant (held over the next step), the turbine power, the steering errors
+    of that sample and the laps of the path its nearest point has flown
+    (``kite``'s path)."""
     aero = load.aero
+    speed = float(np.linalg.norm(velocity_mps))
     return {
-        "kite_speed_mps": float(np.linalg.norm(velocity_mps)),
+        "kite_speed_mps": speed,
+        "kite_speed_cubed_m3_s3": speed**3,
         "apparent_speed_mps": float(np.linalg.norm(aero.apparent_wind_mps)),
         "aoa_deg": math.degrees(aero.angle_of_attack_rad),
         "roll_deg": math.degrees(steer.roll_rad),

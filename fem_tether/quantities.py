@@ -30,12 +30,16 @@ QUANTITIES = (
     Quantity("series", "kite_radius_m", "m", "distance |r(L, t)| of the kite from the winch"),
     Quantity("series", "drag_N", "N", "line drag F_t lumped at the kite, |M_d| / |r_kite| (eq. 4.1)"),
     Quantity("series", "drag_against_N", "N", "component of F_t opposing the kite's velocity"),
+    Quantity("series", "drag_power_W", "W", "line drag power P_t = -int f_t . dr/dt ds, > 0 taken from the "
+             "line's motion, per line (docs/physics.md §9)"),
     Quantity("series", "max_strain", "1", "largest | |r_s| - 1 | over the elements"),
     Quantity("series", "length_m", "m", "paid-out line length L(t)"),
     Quantity("series", "reel_out_mps", "m/s", "winch speed V_L(t), > 0 pays out"),
     Quantity("series", "winch_power_W", "W", "mechanical power at the winch T(0, t) V_L(t), per line"),
     Quantity("series", "winch_energy_J", "J", "time integral of winch_power_W since the start, per line"),
     Quantity("series", "kite_speed_mps", "m/s", "point-mass kite: speed |dr(L, t)/dt| of the kite"),
+    Quantity("series", "kite_speed_cubed_m3_s3", "m3/s3", "point-mass kite: kite_speed_mps cubed (its mean "
+             "normalises the power-equivalent drag F_P)"),
     Quantity("series", "apparent_speed_mps", "m/s", "point-mass kite: apparent wind speed |W_e| at the kite"),
     Quantity("series", "aoa_deg", "deg", "point-mass kite: angle of attack alpha = alpha_0 + arcsin(w . e)"),
     Quantity("series", "roll_deg", "deg", "point-mass kite: steering roll psi sampled at this instant, held over the next step"),
@@ -57,10 +61,14 @@ QUANTITIES = (
     Quantity("snapshots", "drag_N_m", "N/m", "cross-flow drag load f_t of each element, x, y, z"),
     Quantity("sweep", "length_m", "m", "cable length of each case"),
     Quantity("sweep", "drag_fe_N", "N", "mean F_t per line, FE solver"),
+    Quantity("sweep", "drag_power_fe_N", "N", "power-equivalent drag F_P = <P_t> V^2 / <V_k^3> per line, FE solver "
+             "(docs/physics.md §9)"),
     Quantity("sweep", "drag_fd_N", "N", "mean F_t per line, FD solver"),
     Quantity("sweep", "drag_straight_N", "N", "F_t per line of the straight line (with the wind's normal component)"),
-    Quantity("sweep", "ge_fe", "1", "G_e = L/(D_k + 2 F_t) (eq. 5.1) with the FE F_t, rho at L cos(theta0)"),
-    Quantity("sweep", "ge_straight", "1", "G_e with the straight line's F_t"),
+    Quantity("sweep", "drag_power_straight_N", "N", "F_P = P_t / V_k per line of the straight line (with the wind)"),
+    Quantity("sweep", "ge_fe", "1", "G_e = L/(D_k + 2 F) (eq. 5.1) with the FE drag lumped as [drag] "
+             "tether_drag_lumping (F_P or F_t), rho at L cos(theta0)"),
+    Quantity("sweep", "ge_straight", "1", "G_e with the straight line's drag, lumped the same way"),
     Quantity("sweep", "crosscheck_ok", "1", "1 if the FE/FD cross-check passed, 0 if it failed or did not run"),
     Quantity("sweep", "mean_phi_deg", "deg", "mean |phi| of the flown eight"),
     Quantity("sweep", "kite_tension_fe_N", "N", "mean kite-end tension, FE solver"),
@@ -71,7 +79,8 @@ QUANTITIES = (
     Quantity("sweep", "peak_tension_N", "N", "largest tension at either end of the line over the averaged periods, FE solver"),
     Quantity("sweep", "margin", "1", "breaking load of the line ([tether] material) over peak_tension_N"),
     Quantity("sweep", "drag_fixed_N", "N", "sizing = load: mean F_t per line of the configured (unsized) line, FE solver"),
-    Quantity("sweep", "ge_fixed", "1", "sizing = load: G_e with drag_fixed_N"),
+    Quantity("sweep", "drag_power_fixed_N", "N", "sizing = load: F_P per line of the configured (unsized) line, FE solver"),
+    Quantity("sweep", "ge_fixed", "1", "sizing = load: G_e with the configured line's drag, lumped as ge_fe"),
     Quantity("sweep", "status", "", "ok, pending (a task has not run) or failed"),
     Quantity("sweep", "error", "", "the failed tasks' error messages, or empty"),
     Quantity("study", "wind_mps", "m/s", "the study's wind speeds at the kite (bins; NaN: the configured case)"),
@@ -101,10 +110,14 @@ QUANTITIES = (
     Quantity("study", "tether_force_N", "N", "traction of all lines of each bin's operating point"),
     Quantity("study", "reel_out_mps", "m/s", "reel-out speed of each bin's operating point (flown only with [study] reel_out = true)"),
     Quantity("study", "drag_fe_N", "N", "mean F_t per line of each bin's FE run (NaN: the kite does not fly)"),
+    Quantity("study", "drag_power_fe_N", "N", "power-equivalent drag F_P = <P_t> / V_a per line of each bin's FE run "
+             "(docs/physics.md §9)"),
     Quantity("study", "drag_straight_N", "N", "F_t per line of the straight line at each bin (eq. 4.1, with wind)"),
-    Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F_t / (1/2 rho A V_a^2) of each bin, flexible"),
-    Quantity("study", "cd_straight", "1", "C_D,t of each bin, straight line"),
-    Quantity("study", "ge_fe", "1", "G_e = L / (D_k + lines F_t) (eq. 5.1) at each bin, flexible"),
+    Quantity("study", "drag_power_straight_N", "N", "F_P per line of the straight line at each bin (with wind)"),
+    Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F / (1/2 rho A V_a^2) of each bin, flexible, "
+             "F lumped as [drag] tether_drag_lumping (F_P or F_t)"),
+    Quantity("study", "cd_straight", "1", "C_D,t of each bin, straight line, lumped the same way"),
+    Quantity("study", "ge_fe", "1", "G_e = L / (D_k + lines F) (eq. 5.1) at each bin, flexible"),
     Quantity("study", "ge_straight", "1", "G_e at each bin, straight line"),
     Quantity("study", "power_fe_W", "W", "electrical power at each bin with its flexible C_D,t"),
     Quantity("study", "power_straight_W", "W", "electrical power at each bin with its straight-line C_D,t"),
@@ -131,6 +144,12 @@ def attributes(where: str, name: str) -> dict[str, str]:
 
 def names(where: str) -> tuple[str, ...]:
     return tuple(q.name for q in QUANTITIES if q.where == where)
+
+
+def lumped_name(name: str, lumping: str) -> str:
+    """The stored name of a drag ``name`` (``drag_fe_N``, the moment's F_t) lumped as
+    ``lumping``: itself, or ``drag_power_fe_N`` for the power's F_P."""
+    return name if lumping == "moment" else name.replace("drag_", "drag_power_", 1)
 
 
 def markdown_rows(where: str) -> list[str]:

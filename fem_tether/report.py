@@ -192,10 +192,12 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
              f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   "
              f"(straight line {s['straight_drag_N']:.1f} N)",
              f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N",
+             f"  F_P (drag power lumped)   {s['power_drag_N']:10.1f} N   "
+             f"(straight line {s['straight_power_drag_N']:.1f} N; mean P_t {s['mean_drag_power_W'] / 1e3:.1f} kW)",
              f"  mean ground tension       {s['mean_ground_tension_N']:10.1f} N",
              f"  mean kite-end tension     {s['mean_kite_tension_N']:10.1f} N",
              f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m",
-             f"  G_e                       {s['ge']:10.2f}",
+             f"  G_e                       {s['ge']:10.2f}   (tether drag lumped: {s['tether_drag_lumping']})",
              f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}",
              f"  peak tension              {s['peak_tension_N']:10.1f} N   (d = {1e3 * s['diameter_m']:.3f} mm "
              f"{s['material']}, breaking load {s['breaking_load_N']:.1f} N, margin {s['margin']:.3f})"]

@@ -20,16 +20,18 @@ if TYPE_CHECKING:
 
 #: Time series every solver records, one value per time step (units and
 #: meanings: :mod:`fem_tether.quantities`, ``where = "series"``).
-SERIES = ("ground_tension_N", "kite_tension_N", "kite_radius_m", "drag_N", "drag_against_N",
+SERIES = ("ground_tension_N", "kite_tension_N", "kite_radius_m", "drag_N", "drag_against_N", "drag_power_W",
           "max_strain", "length_m", "reel_out_mps", "winch_power_W", "winch_energy_J")
 
 #: Time series of a point-mass kite (``[kite] model = "point-mass"``,
 #: :mod:`fem_tether.free_kite`), recorded beside :data:`SERIES` when the solver
-#: gives them: the kite's speed, its apparent wind speed |W_e|, angle of attack,
-#: roll input ψ, on-board turbine power, the steering's cross-track and
-#: heading errors, and the laps of the path flown (:mod:`fem_tether.laps`).
-KITE_SERIES = ("kite_speed_mps", "apparent_speed_mps", "aoa_deg", "roll_deg", "turbine_power_W",
-               "cross_track_m", "heading_error_deg", "path_laps")
+#: gives them: the kite's speed and its cube (whose mean normalises the
+#: power-equivalent tether drag, :mod:`fem_tether.moment`), its apparent wind
+#: speed |W_e|, angle of attack, roll input ψ, on-board turbine power, and the
+#: steering's cross-track and heading errors, and the laps of the path flown
+#: (:mod:`fem_tether.laps`).
+KITE_SERIES = ("kite_speed_mps", "kite_speed_cubed_m3_s3", "apparent_speed_mps", "aoa_deg", "roll_deg",
+               "turbine_power_W", "cross_track_m", "heading_error_deg", "path_laps")
 
 #: Snapshot fields: per node (arc length from the winch, position, velocity)
 #: and per element (the rest); units and meanings in :mod:`fem_tether.quantities`.

@@ -61,6 +61,8 @@ class Sizing:
     peak_tensions_N: tuple[float, ...]
     #: mean F_t per line of the configured line's run (the fixed-tether reference)
     fixed_drag_N: float
+    #: that run's power-equivalent drag F_P per line (:func:`fem_tether.summary.lumped_drags_N`)
+    fixed_power_drag_N: float
 
     @property
     def iterations(self) -> int:
@@ -87,7 +89,7 @@ class Sizing:
     @classmethod
     def from_dict(cls, data: dict) -> Sizing:
         return cls(data["material"], data["safety_factor"], tuple(data["diameters_m"]),
-                   tuple(data["peak_tensions_N"]), data["fixed_drag_N"])
+                   tuple(data["peak_tensions_N"]), data["fixed_drag_N"], data["fixed_power_drag_N"])
 
 
 def material_of(cfg: Config) -> materials.Material:
@@ -178,7 +180,9 @@ def size_tether(cfg: Config, simulate: Callable | None = None) -> Sizing:
     run_case = simulate or (lambda case: fe_solver.simulate(case))
     length = cfg.tether.length_m
     case = cfg
-    diameters, peaks, fixed_drag = [cfg.tether.diameter_m], [], float("nan")
+    from fem_tether.summary import lumped_drags_N
+
+    diameters, peaks, fixed = [cfg.tether.diameter_m], [], {"moment": float("nan"), "power": float("nan")}
     for j in range(MAX_ITERATIONS):
         try:
             run = run_case(case)
@@ -186,12 +190,12 @@ def size_tether(cfg: Config, simulate: Callable | None = None) -> Sizing:
             raise SolverDivergedError(f"tether sizing, L = {length:g} m, iteration {j + 1} "
                                       f"(d = {1e3 * diameters[-1]:.4g} mm): {exc}") from None
         if j == 0:
-            fixed_drag = run.mean("drag_N")
+            fixed = lumped_drags_N(run, cfg)
         peaks.append(peak_tension_N(run))
         diameters.append(next_diameter_m(cfg, peaks[-1]))
         if abs(diameters[-1] - diameters[-2]) < TOLERANCE * diameters[-2]:
             return Sizing(cfg.tether.material, cfg.tether.safety_factor, tuple(diameters), tuple(peaks),
-                          fixed_drag)
+                          fixed["moment"], fixed["power"])
         case = sized_config(cfg, diameters[-1])
     raise SizingError(f"tether sizing, L = {length:g} m: d did not settle to {100 * TOLERANCE:g} % in "
                       f"{MAX_ITERATIONS} FE runs (d = {', '.join(f'{1e3 * d:.4g}' for d in diameters)} mm); "

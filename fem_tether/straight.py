@@ -6,12 +6,18 @@ linearly from 0 at the ground to the kite speed ``V_k`` at ``s = L``.  The
 drag per unit length follows the cross-flow principle (:mod:`fem_tether.loads`,
 eqs. 4.2-4.3 / 4.9-4.10) with rho(z), mu(z), C_d,c(Re) and optionally the wind's
 normal component; its moment about the ground point gives the equivalent force
-at the kite F_t = |M_d| / L (eq. 4.1, :mod:`fem_tether.moment`).
+at the kite F_t = |M_d| / L (eq. 4.1, :mod:`fem_tether.moment`), and the
+same quadrature gives its drag power P_t = -int f_t . v ds and the
+power-equivalent force F_P = P_t / V_k (:mod:`fem_tether.moment`: the rod's
+kite flies at the constant V_k).
 
 With constant rho and C_d in quiet air the integral has the closed form
 (Houska & Diehl; seed 000 eq. 4.6)::
 
-    F_t = rho C_d,c d L V_k^2 / 8
+    F_t = rho C_d,c d L V_k^2 / 8,
+
+and F_P is the same (both are (c V_k^2 / L^2) int_0^L s^2 ds with c = ½ rho C_d,c d);
+with a wind normal to the rod they differ (docs/physics.md §10).
 """
 
 from __future__ import annotations
@@ -25,7 +31,7 @@ import numpy as np
 from fem_tether import atmosphere, drag_coefficient, wind
 from fem_tether.config import Config
 from fem_tether.loads import crossflow_drag
-from fem_tether.moment import drag_moment_Nm
+from fem_tether.moment import drag_moment_Nm, drag_power_W
 
 
 def closed_form_drag_N(rho_kg_m3, cd, diameter_m, length_m, speed_mps):
@@ -35,13 +41,18 @@ def closed_form_drag_N(rho_kg_m3, cd, diameter_m, length_m, speed_mps):
 
 @dataclass(frozen=True)
 class StraightLineDrag:
-    """Result of the integral form: F_t and the flow state at the line's top."""
+    """Result of the integral form: F_t, F_P and the flow state at the line's top."""
 
     drag_N: float
     length_m: float
     cd_top: float
     re_top: float
     mean_density_kg_m3: float
+    power_drag_N: float
+
+    def lumped_N(self, lumping: str) -> float:
+        """The drag lumped as ``lumping`` (``[drag] tether_drag_lumping``): F_t or F_P."""
+        return {"moment": self.drag_N, "power": self.power_drag_N}[lumping]
 
 
 def _gauss_points(length_m, n_panels, order=4):
@@ -56,7 +67,8 @@ def _gauss_points(length_m, n_panels, order=4):
 
 def straight_line_drag(length_m, theta_rad, diameter_m, speed_mps, air, drag,
                        wind_profile=None, n_panels=2000) -> StraightLineDrag:
-    """Integral form of the straight-line drag (seed 000 eqs. 4.1-4.3).
+    """Integral form of the straight-line drag (seed 000 eqs. 4.1-4.3), lumped both
+    ways (:mod:`fem_tether.moment`).
 
     ``air`` has ``density_kg_m3(z)`` and ``viscosity_Pa_s(z)``, ``drag`` has
     ``cd(re)``; ``wind_profile`` (``velocity_mps(z)``) adds the wind's normal
@@ -83,6 +95,7 @@ def straight_line_drag(length_m, theta_rad, diameter_m, speed_mps, air, drag,
         cd_top=float(top.cd[0]),
         re_top=float(top.re[0]),
         mean_density_kg_m3=float(np.sum(rho * w) / length_m),
+        power_drag_N=float(drag_power_W(v_line, load.force, w) / speed_mps),
     )
 
 

@@ -1,9 +1,11 @@
 """Post-processing of one tether run: period means, G_e, straight-line comparison.
 
-G_e = L / (D_k + lines F_t) (seed 000 eq. 5.1) with the air density at the
-operating altitude L cos(theta0), and the straight-line F_t of the same case
-(seed 000 §4.1, with the wind's normal component as the flexible line has it)
-for comparison; the sweep uses the same two.
+G_e = L / (D_k + lines F) (seed 000 eq. 5.1) with the air density at the
+operating altitude L cos(theta0) and F the line's drag lumped at the kite as
+``[drag] tether_drag_lumping`` says (:mod:`fem_tether.moment`: the moment's F_t
+of eq. 4.1 or the power's F_P), and the straight line of the same case (seed
+000 §4.1, with the wind's normal component as the flexible line has it) lumped
+the same way for comparison; the sweep uses the same two.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import numpy as np
 
 from fem_tether import atmosphere, kite, sizing, straight
 from fem_tether.config import Config
+from fem_tether.moment import power_equivalent_force_N
 from fem_tether.power import operating_altitude_m
 from fem_tether.reel import Reel
 from fem_tether.systems.tether_drag import flexible_tether_cd
@@ -33,25 +36,56 @@ def operating_ge(cfg: Config, drag_N, speed_mps: float | None = None) -> float:
                                         speed_mps or k.speed_mps, cfg.tether.lines))
 
 
-def operating_tether_cd(cfg: Config, drag_N) -> float:
+def operating_tether_cd(cfg: Config, drag_N, speed_mps: float | None = None) -> float:
     """C_D,t = lines F_t / (½ ρ A V_k²) of the configured case with tether drag
-    ``drag_N`` per line (:mod:`fem_tether.systems.tether_drag`), ρ as :func:`operating_ge`'s."""
+    ``drag_N`` per line (:mod:`fem_tether.systems.tether_drag`), ρ and the speed
+    ``speed_mps`` as :func:`operating_ge`'s."""
     k = cfg.kite
     return float(flexible_tether_cd(drag_N, cfg.tether.lines, operating_density_kg_m3(cfg), k.area_m2,
-                                    k.speed_mps))
+                                    speed_mps or k.speed_mps))
+
+
+def run_speed_mps(run, cfg: Config) -> float:
+    """The kite speed a run's C_D,t and G_e are taken at: ``[kite] speed_mps`` (a
+    prescribed end), a point-mass kite's mean apparent wind speed."""
+    if "apparent_speed_mps" in run.series:
+        return run.mean("apparent_speed_mps")
+    return cfg.kite.speed_mps
+
+
+def lumped_drags_N(run, cfg: Config) -> dict[str, float]:
+    """A run's mean drag per line lumped at the kite both ways (:mod:`fem_tether.moment`):
+    ``"moment"`` <F_t> (seed 000 eq. 4.1) and ``"power"`` F_P = <P_t> V² / <V_k³>,
+    V = :func:`run_speed_mps`, <V_k³> a point-mass kite's (V_k³ of ``[kite]
+    speed_mps`` for a prescribed end: F_P = <P_t> / V_k)."""
+    speed = run_speed_mps(run, cfg)
+    cubed = run.mean("kite_speed_cubed_m3_s3") if "kite_speed_cubed_m3_s3" in run.series else speed**3
+    return {"moment": run.mean("drag_N"),
+            "power": float(power_equivalent_force_N(run.mean("drag_power_W"), cubed, speed))}
+
+
+def lumped_drag_N(run, cfg: Config) -> float:
+    """A run's mean drag per line lumped as ``[drag] tether_drag_lumping`` (:func:`lumped_drags_N`)."""
+    return lumped_drags_N(run, cfg)[cfg.drag.tether_drag_lumping]
 
 
 def run_summary(run, cfg: Config) -> dict:
     """Period means, straight-line comparison, G_e, and the line's peak tension,
     breaking load and margin (:mod:`fem_tether.sizing`) of one tether run."""
     means = run.means()
-    ge = operating_ge(cfg, means["mean_drag_N"], means.get("mean_apparent_speed_mps"))
+    lumping = cfg.drag.tether_drag_lumping
+    drags = lumped_drags_N(run, cfg)
+    ge = operating_ge(cfg, drags[lumping], run_speed_mps(run, cfg))
     peak = sizing.peak_tension_N(run)
+    line = straight.from_config(cfg, with_wind=True)
     return {
         "solver": run.solver,
         "length_m": run.length_m,
         "mean_drag_N": means["mean_drag_N"],
         "mean_drag_against_N": means["mean_drag_against_N"],
+        "mean_drag_power_W": means["mean_drag_power_W"],
+        "power_drag_N": drags["power"],
+        "tether_drag_lumping": lumping,
         "mean_ground_tension_N": means["mean_ground_tension_N"],
         "mean_kite_tension_N": means["mean_kite_tension_N"],
         "mean_kite_radius_m": means["mean_kite_radius_m"],
@@ -62,7 +96,8 @@ def run_summary(run, cfg: Config) -> dict:
         "peak_tension_N": peak,
         "breaking_load_N": sizing.breaking_load_N(cfg),
         "margin": sizing.margin(cfg, peak),
-        "straight_drag_N": straight.from_config(cfg, with_wind=True).drag_N,
+        "straight_drag_N": line.drag_N,
+        "straight_power_drag_N": line.power_drag_N,
         "ge": float(ge),
         "length_end_m": float(run.series["length_m"][-1]),
         "winch_energy_J": float(run.series["winch_energy_J"][-1]),

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fem_tether.moment import cross, drag_moment_Nm, equivalent_force
+from fem_tether.moment import cross, drag_moment_Nm, drag_power_W, equivalent_force, power_equivalent_force_N
 
 
 def test_point_force_at_the_kite_is_recovered():
@@ -31,3 +31,12 @@ def test_cross_is_numpys_to_the_bit():
     a, b = rng.normal(size=(50, 3)), rng.normal(size=(50, 3))
     np.testing.assert_array_equal(cross(a, b), np.cross(a, b))
     np.testing.assert_array_equal(cross(a[0], b), np.cross(a[0], b))
+
+
+def test_drag_power_of_a_point_force_and_its_equivalent_force():
+    """P_t = -w f . v (positive when the drag opposes the motion); a kite at a
+    constant speed: F_P = <P_t> V^2 / V^3 = <P_t> / V."""
+    f, v = np.array([[0.0, 50.0, 0.0]]), np.array([[3.0, -10.0, 0.0]])
+    assert drag_power_W(v, f, np.array([2.0])) == pytest.approx(1000.0)
+    assert power_equivalent_force_N(1000.0, 10.0**3, 10.0) == pytest.approx(100.0)
+    assert power_equivalent_force_N(1000.0, 2.0 * 10.0**3, 10.0) == pytest.approx(50.0)

@@ -25,7 +25,7 @@ def test_the_table_covers_what_the_solvers_record():
     assert set(quantities.names("snapshots")) == {"time_s", *NODE_FIELDS, *CELL_FIELDS}
     assert quantities.names("sweep") == ("length_m",) + ROOT_DATASETS + ("status", "error")
     units = {q.unit for q in quantities.QUANTITIES}
-    assert units <= {"s", "m", "m/s", "N", "N/m", "W", "J", "MW h", "deg", "1", ""}
+    assert units <= {"s", "m", "m/s", "m3/s3", "N", "N/m", "W", "J", "MW h", "deg", "1", ""}
     assert all(q.meaning for q in quantities.QUANTITIES)
 
 

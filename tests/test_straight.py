@@ -49,3 +49,47 @@ def test_wind_normal_component_increases_drag():
                              drag_coefficient.ConstantDrag(1.2), wind.PowerWind(10.0, 20.0, 0.0))
     vn = 10.0 * np.cos(np.radians(45))
     assert res.drag_N == pytest.approx(0.5 * 1.2 * 0.011 * 1.2 * vn**2 * 1000.0 / 2, rel=1e-6)
+
+
+class UniformWind:
+    """A wind V_w e_x at every height."""
+
+    def __init__(self, speed_mps):
+        self.speed_mps = speed_mps
+
+    def velocity_mps(self, z):
+        return np.outer(np.ones_like(z), [self.speed_mps, 0.0, 0.0])
+
+
+def test_both_lumpings_of_a_rod_in_quiet_air_are_the_quarter_rule():
+    """Quiet air, constant rho and C_d: F_t = |M_d| / L and F_P = P_t / V_k are both
+    c V_k^2 L / 4 (c = ½ rho C_d d; f = c (V s/L)^2, moment int s f ds, power int f V s/L ds)."""
+    res = straight_line_drag(1000.0, np.radians(45), 0.011, 80.0,
+                             atmosphere.ConstantAir(1.2, 1.8e-5), drag_coefficient.ConstantDrag(1.2))
+    quarter = 0.5 * 1.2 * 1.2 * 0.011 * 80.0**2 * 1000.0 / 4.0
+    assert res.drag_N == pytest.approx(quarter, rel=1e-9)
+    assert res.power_drag_N == pytest.approx(quarter, rel=1e-9)
+    assert res.lumped_N("moment") == res.drag_N and res.lumped_N("power") == res.power_drag_N
+
+
+def test_the_lumpings_of_a_rod_in_a_uniform_wind_are_the_hand_integrals():
+    """A uniform wind V_w e_x on the rod at theta: its normal part W = V_w cos(theta)
+    along -e_theta, the rod's V s/L along e_y, |v_n| = sqrt(W^2 + (V s/L)^2),
+    f = c |v_n| v_n.  By hand (u = V s / L):
+
+        A = c W int s |v_n| ds = c W (L/V)^2 ((W^2 + V^2)^{3/2} - W^3) / 3,
+        B = c (V/L) int s^2 |v_n| ds = c (V/L) (L/V)^3 J(V),
+        J(u) = u (2u^2 + W^2) sqrt(u^2 + W^2) / 8 - W^4/8 ln((u + sqrt(u^2 + W^2)) / W),
+
+    F_t = sqrt(A^2 + B^2) / L (the moment has both parts) and F_P = B / L (only
+    the part along the motion does work): the two lumpings differ."""
+    L, V, theta, d, rho, cd, vw = 1000.0, 80.0, np.radians(45), 0.011, 1.2, 1.2, 12.0
+    res = straight_line_drag(L, theta, d, V, atmosphere.ConstantAir(rho, 1.8e-5),
+                             drag_coefficient.ConstantDrag(cd), UniformWind(vw))
+    c, W = 0.5 * rho * cd * d, vw * np.cos(theta)
+    a = c * W * (L / V) ** 2 * ((W**2 + V**2) ** 1.5 - W**3) / 3.0
+    j = V * (2 * V**2 + W**2) * np.sqrt(V**2 + W**2) / 8.0 - W**4 / 8.0 * np.log((V + np.hypot(V, W)) / W)
+    b = c * (V / L) * (L / V) ** 3 * j
+    assert res.drag_N == pytest.approx(np.hypot(a, b) / L, rel=1e-9)
+    assert res.power_drag_N == pytest.approx(b / L, rel=1e-9)
+    assert res.drag_N / res.power_drag_N - 1.0 > 1e-3

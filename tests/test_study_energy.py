@@ -63,15 +63,18 @@ def study(tmp_path):
 
 
 def _store_runs(study, cd_of_wind, failing=()) -> list[Task]:
-    """Store each bin's run with the drag that gives C_D,t = cd_of_wind(V) (None: the
-    straight line's); the bins in ``failing`` failed."""
+    """Store each bin's run with the drags, both lumpings, that give C_D,t = cd_of_wind(V)
+    (None: the straight line's); the bins in ``failing`` failed."""
     tasks = study.run_tasks([POINT])
     for task in tasks:
         case = study.case(POINT, task.node)
         wind_mps = study.job.wind_mps[task.node]
-        drag_N = (energy.straight.from_config(case, with_wind=True).drag_N if cd_of_wind is None
-                  else cd_of_wind(wind_mps) / operating_tether_cd(case, 1.0))
-        values = {"status": "ok", "drag_fe_N": drag_N, "peak_tension_N": case.winch.ground_tension_N}
+        line = energy.straight.from_config(case, with_wind=True)
+        drags = ((line.drag_N, line.power_drag_N) if cd_of_wind is None
+                 else (cd_of_wind(wind_mps) / operating_tether_cd(case, 1.0),) * 2)
+        drag_N = drags[0]
+        values = {"status": "ok", "drag_fe_N": drags[0], "drag_power_fe_N": drags[1],
+                  "peak_tension_N": case.winch.ground_tension_N}
         if task.kind == "check":
             values |= {"drag_fd_N": drag_N, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3}
         if task.node in failing:

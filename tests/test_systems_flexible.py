@@ -23,14 +23,18 @@ def fe_file(tmp_path_factory):
     return write_run_hdf5(run, tmp_path_factory.mktemp("fe") / "fe_L400.h5"), cfg, run
 
 
-def test_fe_run_gives_the_cd_of_its_mean_drag(fe_file):
-    """C_D,t of the file = eq. 1 of systems.tether_drag with the run's mean F_t; through
+@pytest.mark.parametrize("lumping", ["power", "moment"])
+def test_fe_run_gives_the_cd_of_its_mean_drag(fe_file, lumping):
+    """C_D,t of the file = eq. 1 of systems.tether_drag with the run's mean drag lumped
+    as the system's [drag] tether_drag_lumping says (F_P = <P_t> / V_k, or F_t); through
     systems.kitegen eq. 1 it is the run's G_e (seed 000 eq. 5.1) to 1e-13."""
     path, cfg, run = fe_file
-    cd = flexible_tether_cd(path, cfg)
-    assert cd == pytest.approx(operating_tether_cd(cfg, run.mean("drag_N")), rel=1e-15)
+    system = cfg.replace(drag={"tether_drag_lumping": lumping})
+    drag = run.mean("drag_N") if lumping == "moment" else run.mean("drag_power_W") / cfg.kite.speed_mps
+    cd = flexible_tether_cd(path, system)
+    assert cd == pytest.approx(operating_tether_cd(cfg, drag), rel=1e-14)
     assert global_efficiency(cfg.kite.cl, cfg.kite.efficiency, cd) == pytest.approx(
-        operating_ge(cfg, run.mean("drag_N")), rel=1e-13)
+        operating_ge(cfg, drag), rel=1e-13)
 
 
 def test_fe_run_of_another_length_is_refused(fe_file):

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
+from fem_tether.moment import LUMPINGS
+
 from .settings import Section, ZeroOr, between, from_to, one_of, setting, up_to, zero_to
 
 # Every number a user sets is bounded to where it means something; each limit's
@@ -258,6 +260,11 @@ class Drag(Section):
                          one_of("cylinder", "constant"))
     cd: float = setting(1.2, "-", "cross-flow drag coefficient for model = 'constant'", up_to(3.0))
     skin_friction_cf: float = setting(0.0, "-", "tangential skin-friction coefficient c_f (0: none)", zero_to(0.1))
+    tether_drag_lumping: str = setting("power", "-", "how the line's drag becomes the kite's C_D,t and G_e in "
+                                       "the power models, AEP and studies: 'power' (the force at the kite "
+                                       "dissipating the line's drag power, the one that reproduces the free "
+                                       "kite, docs/physics.md §9) or 'moment' (Roselli eq. 4.1)",
+                                       one_of(*LUMPINGS))
 
 
 @dataclass(frozen=True)

@@ -71,7 +71,7 @@ from fem_tether.fd.system import Grid, NodalLoads, TetherFD
 from fem_tether import free_kite
 from fem_tether.free_kite import FreeKite, Steer
 from fem_tether.tether import TetherPhysics, physics_from_config
-from fem_tether.moment import drag_moment_Nm, equivalent_force
+from fem_tether.moment import drag_moment_Nm, drag_power_W, equivalent_force
 from fem_tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether import protocol
 from fem_tether.protocol import Statistics, expect_converged, speed_jumped
@@ -419,8 +419,9 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     """Series values and, with ``fields``, the snapshot fields of one solution.
 
     Drag is evaluated at every node (one-sided tangents at the ends; the line
-    leaves the winch at V_L tau_{1/2}); F_t from eq. 4.1 with the nodes'
-    control-volume weights (trapezoidal).  Per-segment fields: tension
+    leaves the winch at V_L tau_{1/2}); F_t from eq. 4.1 and the drag power P_t
+    with the nodes' control-volume weights (trapezoidal), P_t with the velocities
+    the drag is evaluated with.  Per-segment fields: tension
     T_{k+1/2}; |V_n| and f_t averaged from the two nodes; Re and C_d from that
     |V_n| at the segment midpoint's altitude.
     """
@@ -429,6 +430,9 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
     loads = state.drag if state.drag is not None else model.eq.line_loads(r, v, model.reel_mps)
     moment = drag_moment_Nm(r, loads.force, g.trap_weights)
     drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
+    v_drag = v.copy()
+    if model.reel_mps:
+        v_drag[0] = model.reel_mps * loads.tangent[0]
     d = r[1:] - r[:-1]
     seg = np.sqrt((d * d).sum(axis=1))           # |r_{k+1} - r_k|
     series = {
@@ -437,6 +441,7 @@ def line_state(model: FDModel, state: State, fields: bool = True) -> dict:
         "kite_radius_m": math.sqrt(r[-1].dot(r[-1])),
         "drag_N": float(drag),
         "drag_against_N": float(against) if against is not None else 0.0,
+        "drag_power_W": float(drag_power_W(v_drag, loads.force, g.trap_weights)),
         "max_strain": float(np.abs(seg / g.h - 1.0).max()),
     }
     if model.kite is not None and state.steer is not None:

@@ -324,17 +324,23 @@ def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_
 
 
 @numba.njit(cache=True, error_model="numpy")
-def line_series(r, v, r_mid, force, h, length, out):
+def line_series(r, v, r_mid, force, h, length, tau, reel_mps, out):
     """A solution's series values, the twin of the NumPy lines of
     :func:`fem_tether.fe.solver.line_state` (the formulas of :mod:`fem_tether.moment`):
-    ``out = (F_t, F_against, |r_N|, max_e ||D r|_e / h_e - 1|)`` with the drag
-    moment ``M_d = sum_e h_e r_mid,e x f_e`` (seed 000 eq. 4.1), ``F_t = |M_d| / r_k``
-    and ``F_against = -((M_d x e_r) / r_k) . v_N / |v_N|`` (0 for a kite at rest)."""
+    ``out = (F_t, F_against, |r_N|, max_e ||D r|_e / h_e - 1|, P_t)`` with the drag
+    moment ``M_d = sum_e h_e r_mid,e x f_e`` (seed 000 eq. 4.1), ``F_t = |M_d| / r_k``,
+    ``F_against = -((M_d x e_r) / r_k) . v_N / |v_N|`` (0 for a kite at rest) and
+    the drag power ``P_t = -sum_e h_e f_e . v_mid,e`` (:func:`midpoints`' v_mid: node 0
+    moves with V_L tau_0 while reeling)."""
     m = np.zeros(3)
+    out[4] = 0.0
     for e in range(r_mid.shape[0]):
         m[0] += h[e] * (r_mid[e, 1] * force[e, 2] - r_mid[e, 2] * force[e, 1])
         m[1] += h[e] * (r_mid[e, 2] * force[e, 0] - r_mid[e, 0] * force[e, 2])
         m[2] += h[e] * (r_mid[e, 0] * force[e, 1] - r_mid[e, 1] * force[e, 0])
+        for i in range(3):
+            v_a = reel_mps * tau[0, i] if (e == 0 and reel_mps != 0.0) else v[e, i]
+            out[4] -= h[e] * force[e, i] * 0.5 * (v[e + 1, i] + v_a)
     k = r.shape[0] - 1
     r_k = math.sqrt(r[k, 0] * r[k, 0] + r[k, 1] * r[k, 1] + r[k, 2] * r[k, 2])
     out[0] = math.sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]) / r_k
@@ -461,7 +467,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
         if not math.isfinite(worst):
             return NOT_CONVERGED
         if worst <= newton_tol:
-            line_series(r, v, r_mid, force, h, length, series)
+            line_series(r, v, r_mid, force, h, length, tau, reel_mps, series)
             info[3] = 1.0 if factored else 0.0
             return CONVERGED
         if not chord:

@@ -59,7 +59,7 @@ class Evaluation:
     load: CrossflowDrag                # drag at the element midpoints
     band: np.ndarray | None = None     # Jacobian without R row/column, LAPACK gbsv storage
     r_col: np.ndarray | None = None    # column of R (rows 0..n-2)
-    series: np.ndarray | None = None   # F_t, F_against, |r_N|, max strain, if a compiled step gave them
+    series: np.ndarray | None = None   # F_t, F_against, |r_N|, max strain, P_t, if a compiled step gave them
 
     @property
     def ab(self) -> np.ndarray:
@@ -334,7 +334,7 @@ class TetherSystem:
         k_s = self.row_scale(force_ref_N)
         c_a, c_v = scheme.coefficients(dt_s)
         outputs = self._outputs()
-        series, info = np.empty(4), np.zeros(4)
+        series, info = np.empty(5), np.zeros(4)
         kept = self.kept
         status = self._kernel.solve_step(
             r_new, T_new, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma,

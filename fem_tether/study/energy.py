@@ -37,6 +37,7 @@ import numpy as np
 from fem_tether import straight
 from fem_tether.aep import aep_on_band
 from fem_tether.errors import InputError
+from fem_tether.quantities import lumped_name
 from fem_tether.sizing import margin, short_of_margin
 from fem_tether.summary import operating_ge, operating_tether_cd
 from fem_tether.systems.configured import from_config
@@ -99,13 +100,16 @@ def point_energy(study, point: Point) -> dict:
     edges = band.edges_mps
     nodes = np.array(study.job.wind_mps or [math.nan], dtype=float)
     n = nodes.size
+    lumping = cfg.drag.tether_drag_lumping
     v = {name: np.full(n, math.nan) for name in
-         ("drag_fe_N", "drag_straight_N", "cd_fe", "cd_straight", "ge_fe", "ge_straight")}
+         ("drag_fe_N", "drag_power_fe_N", "drag_straight_N", "drag_power_straight_N", "cd_fe", "cd_straight",
+          "ge_fe", "ge_straight")}
     for node, case in enumerate(_straight_cases(study, point)):
         if case is not None:
-            v["drag_straight_N"][node] = straight.from_config(case, with_wind=True).drag_N
-            v["cd_straight"][node] = operating_tether_cd(case, v["drag_straight_N"][node])
-            v["ge_straight"][node] = operating_ge(case, v["drag_straight_N"][node])
+            line = straight.from_config(case, with_wind=True)
+            v["drag_straight_N"][node], v["drag_power_straight_N"][node] = line.drag_N, line.power_drag_N
+            v["cd_straight"][node] = operating_tether_cd(case, line.lumped_N(lumping))
+            v["ge_straight"][node] = operating_ge(case, line.lumped_N(lumping))
     errors, peaks, gate = [], [], {}
     for task in study.run_tasks([point]):
         run = study.stored(task)
@@ -116,9 +120,10 @@ def point_energy(study, point: Point) -> dict:
             continue
         case = study.case(point, task.node)
         peaks.append(run["peak_tension_N"])
-        v["drag_fe_N"][task.node] = run["drag_fe_N"]
-        v["cd_fe"][task.node] = operating_tether_cd(case, run["drag_fe_N"])
-        v["ge_fe"][task.node] = operating_ge(case, run["drag_fe_N"])
+        v["drag_fe_N"][task.node], v["drag_power_fe_N"][task.node] = run["drag_fe_N"], run["drag_power_fe_N"]
+        drag = run[lumped_name("drag_fe_N", lumping)]
+        v["cd_fe"][task.node] = operating_tether_cd(case, drag)
+        v["ge_fe"][task.node] = operating_ge(case, drag)
         if task.kind == "check":
             gate = {"gate_wind_mps": float(nodes[task.node]), "crosscheck_ok": int(run["crosscheck_ok"]),
                     "rel_diff_drag": run["rel_diff_drag"], "rel_diff_shape": run["rel_diff_shape"]}

@@ -28,11 +28,12 @@ from fem_tether.config import Config
 from fem_tether.crosscheck import checkable, compare
 from fem_tether.errors import InputError, SolverDivergedError
 from fem_tether.evaluate import simulator
+from fem_tether.quantities import lumped_name
 from fem_tether.resource import Resource
 from fem_tether.schedule import run_cost_us
 from fem_tether.sizing import peak_tension_N
 from fem_tether.store import inputs_key
-from fem_tether.summary import operating_tether_cd
+from fem_tether.summary import lumped_drags_N, operating_tether_cd
 from fem_tether.systems.operating_point import OperatingPoint
 
 from . import energy, plan
@@ -97,7 +98,8 @@ class Study:
         values = self.stored(Task("seed", point))
         if values is None or values["status"] != "ok":
             return None
-        return operating_tether_cd(self.config(point), values["drag_fe_N"])
+        cfg = self.config(point)
+        return operating_tether_cd(cfg, values[lumped_name("drag_fe_N", cfg.drag.tether_drag_lumping)])
 
     def operating_points(self, point: Point, line: str = "flexible") -> list[OperatingPoint] | None:
         """The stored operating points of a point (None if not computed yet): of the
@@ -229,7 +231,8 @@ class Study:
     def _tether_run(self, task: Task) -> dict:
         try:
             if task.kind == "seed":
-                fe_run, values = simulator("fe")(self.config(task.point)), {}
+                case = self.config(task.point)
+                fe_run, values = simulator("fe")(case), {}
             elif task.kind == "check":
                 case = checkable(self.case(task.point, task.node))
                 fe_run = simulator("fe")(case)
@@ -238,13 +241,15 @@ class Study:
                 values = {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
                           "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
             else:
-                fe_run, values = simulator("fe")(self.case(task.point, task.node)), {}
+                case = self.case(task.point, task.node)
+                fe_run, values = simulator("fe")(case), {}
         except (InputError, SolverDivergedError) as exc:
             return {"status": "failed", "error": f"{task.name}: {exc}"}
         except Exception as exc:  # a defect must not cost the other runs their results
             last = traceback.extract_tb(exc.__traceback__)[-1]
             return {"status": "failed", "error": f"{task.name}: {type(exc).__name__}: {exc} "
                                                  f"({Path(last.filename).name}:{last.lineno})"}
-        return {"status": "ok", "drag_fe_N": fe_run.mean("drag_N"),
+        drags = lumped_drags_N(fe_run, case)
+        return {"status": "ok", "drag_fe_N": drags["moment"], "drag_power_fe_N": drags["power"],
                 "kite_tension_fe_N": fe_run.mean("kite_tension_N"), "peak_tension_N": peak_tension_N(fe_run),
                 **values}

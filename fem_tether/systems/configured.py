@@ -104,11 +104,13 @@ def top_mps(cfg: Config) -> float:
 def _kitegen(cfg: Config) -> ConfiguredSystem:
     """Seed 000's KiteGen: ``[kite]`` (wing E, zones), ``[cycle]`` (recovery),
     the eight's mean |φ| and ρ at the operating altitude (seed 000 §5.1);
-    straight line: the eq. 4.1 integral with the wind (:mod:`fem_tether.straight`)."""
+    straight line: the eq. 4.1 integral with the wind (:mod:`fem_tether.straight`),
+    lumped as ``[drag] tether_drag_lumping``."""
     design = operating_design(KiteGenDesign.from_config(cfg.kite, cfg.tether.lines),
                               atmosphere.from_config(cfg.air),
                               cfg.tether.length_m, cfg.kite.efficiency, cfg.path.mean_abs_phi_deg())
-    params = kitegen.KiteGenSystem(design, operating_tether_cd(cfg, straight.from_config(cfg, True).drag_N),
+    params = kitegen.KiteGenSystem(design, operating_tether_cd(cfg, straight.from_config(cfg, True).lumped_N(
+                                       cfg.drag.tether_drag_lumping)),
                                    Cycle(**cfg.cycle.to_dict()))
     return ConfiguredSystem("kitegen", params, params.straight_cd, cfg.kite.cl,
                             lambda w, cd: kitegen.power_curve(params, w, cd), top_mps(cfg),

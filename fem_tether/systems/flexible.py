@@ -1,8 +1,11 @@
 """The flexible tether's drag coefficient C_D,t from a result file of our FE solver.
 
-A sweep result (``fem-tether sweep``/``run``: ``drag_fe_N`` per length) or an
-FE run (``fem-tether simulate --out DIR``: ``fe.h5``, its mean ``drag_N``)
-holds the mean drag F_t per line lumped at the kite; with that file's own
+A sweep result (``fem-tether sweep``/``run``: ``drag_fe_N`` and
+``drag_power_fe_N`` per length) or an FE run (``fem-tether simulate --out DIR``:
+``fe.h5``, its ``drag_N`` and ``drag_power_W`` series) holds the mean drag per
+line lumped at the kite, the moment's F_t or the power's F_P (``[drag]
+tether_drag_lumping`` of the system's configuration chooses,
+:mod:`fem_tether.moment`); with that file's own
 case (its kite area, speed, lines and air) it becomes the C_D,t of
 :func:`fem_tether.summary.operating_tether_cd`.  It is the system's only if
 the file's case is the system's: the same length, line diameter, number of
@@ -22,7 +25,8 @@ import numpy as np
 
 from fem_tether.config import Config, ConfigError
 from fem_tether.jobs import length_tag
-from fem_tether.summary import operating_tether_cd
+from fem_tether.quantities import lumped_name
+from fem_tether.summary import lumped_drags_N, operating_tether_cd
 
 
 #: The case values a C_D,t is specific to, besides the length, and their names
@@ -74,7 +78,7 @@ def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
             raise ConfigError(f"--flexible {path}: no length {length_tag(length_m)} m in this sweep "
                               f"(it has {', '.join(tags)} m; set [tether] length_m to one of them)")
         i = tags.index(length_tag(length_m))
-        drag_N = float(data["drag_fe_N"][i])
+        drag_N = float(data[lumped_name("drag_fe_N", cfg.drag.tether_drag_lumping)][i])
         if not np.isfinite(drag_N):
             raise ConfigError(f"--flexible {path}: the FE run at {tags[i]} m has no result "
                               f"(status {data['status'][i]})")
@@ -86,4 +90,5 @@ def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
     if length_tag(run.length_m) != length_tag(length_m):
         raise ConfigError(f"--flexible {path}: its line is {length_tag(run.length_m)} m, the system's "
                           f"{length_tag(length_m)} m (set [tether] length_m to match)")
-    return operating_tether_cd(_same_case(path, run.config, cfg), run.mean("drag_N"))
+    case = _same_case(path, run.config, cfg)
+    return operating_tether_cd(case, lumped_drags_N(run, case)[cfg.drag.tether_drag_lumping])

@@ -20,6 +20,7 @@ from fem_tether.evaluate import run_crosscheck
 from fem_tether.fe.solver import build_model, simulate
 from fem_tether.kite_dynamics import PointMassKite, steady_crosswind
 from fem_tether.results import TetherRun
+from fem_tether.summary import lumped_drags_N, operating_tether_cd, run_speed_mps
 
 from .case import Check
 
@@ -65,6 +66,33 @@ def crosswind_deviations(run: TetherRun, cfg) -> tuple[float, float]:
                                  float(np.arctan2(e_r[1], e_r[0])), 0.0, rho)
         tension.append(line["tension_N"][-1] / state.tension_N - 1.0)
     return float(np.max(np.abs(speed))), float(np.max(np.abs(tension)))
+
+
+def lumped_kite_deviations(run: TetherRun, cfg) -> dict[str, dict[str, float]]:
+    """The free kite against the point-mass kite with the line lumped at it, both
+    lumpings (:func:`fem_tether.summary.lumped_drags_N`): per lumping its C_D,t =
+    lines F / (½ ρ A V²) (ρ at L cos ϑ0, V the run's mean apparent speed, as G_e
+    takes them) and the mean over the spun-up snapshots of the steady crosswind
+    state (:func:`steady_crosswind`, massless, at the kite's (ϑ, φ), wind and ρ at
+    its altitude, that C_D,t) relative to the run's mean kite speed and kite-end
+    tension: ``{"moment": {"cd": .., "speed": .., "tension": ..}, "power": ...}``."""
+    kite = build_model(cfg).kite
+    assert kite is not None, "a point-mass kite's run"
+    massless = PointMassKite(0.0, kite.kite.area_m2, kite.kite.aerodynamics, kite.kite.base_aoa_rad,
+                             kite.kite.turbine_factor)
+    speed = run_speed_mps(run, cfg)
+    ends = [(line["position_m"][-1]) for line in (run.line(i) for i, t in enumerate(run.snapshot_time_s)
+                                                   if t >= run.average_start_s - 1e-9)]
+    out = {}
+    for lumping, drag in lumped_drags_N(run, cfg).items():
+        cd = operating_tether_cd(cfg, drag, speed)
+        states = [steady_crosswind(massless, float(kite.wind.speed_mps(r[2])), float(np.arccos(r[2] / np.linalg.norm(r))),
+                                   float(np.arctan2(r[1], r[0])), 0.0, float(kite.air.density_kg_m3(np.array(r[2]))),
+                                   cd) for r in ends]
+        out[lumping] = {"cd": cd,
+                        "speed": float(np.mean([s.kite_speed_mps for s in states])) / run.mean("kite_speed_mps") - 1,
+                        "tension": float(np.mean([s.tension_N for s in states])) / run.mean("kite_tension_N") - 1}
+    return out
 
 
 def crosswind_law(quick: bool) -> tuple[Check, ...]:
