@@ -41,8 +41,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from fem_tether.orbit import Circle
+    from fem_tether.trajectory import FigureEight
 
 #: Gravitational acceleration (m/s²), along −z.
 GRAVITY_MPS2 = 9.81
@@ -180,8 +185,8 @@ class Steering:
     −7.25° … 46.68°).
     """
 
-    path: object
-    """The reference path: a FigureEight or a Circle (anything with ``state(σ)``)."""
+    path: FigureEight | Circle
+    """The reference path: a FigureEight or a Circle (``state(σ)``, ``laps(σ)``)."""
     mass_kg: float
     """m: the kite's mass (with on-board turbines; for a flexible tether the end
     node's share of the line)."""

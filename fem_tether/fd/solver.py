@@ -56,7 +56,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import cast
 
 import numpy as np
 
@@ -512,7 +511,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
     if kite is not None and state.steer is not None:
         kite = kite.for_reel_mps(reel_mps)
         sigma = state.steer.parameter_s     # NaN after a depowered sample: any phase, the next search is global
-        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, sigma if math.isfinite(sigma) else 0.0)
+        path = kite.steering.path.at_length(length_m, sigma if math.isfinite(sigma) else 0.0)
         kite = replace(kite, steering=replace(kite.steering, path=path))
     model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
                     reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t), kite=kite)

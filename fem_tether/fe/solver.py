@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import cast
 
 import numpy as np
 from scipy.optimize import brentq
@@ -439,7 +438,7 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
         "drag_power_W": power,
         "max_strain": strain,
     }
-    if state.steer is not None and state.kite_load is not None:
+    if model.kite is not None and state.steer is not None and state.kite_load is not None:
         series |= free_kite_module.series_values(model.kite, state.steer, state.kite_load, v[-1])
     if not fields:
         return series
@@ -517,7 +516,7 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
         # kite's path point (its σ: NaN after a depowered sample, then any phase)
         kite = kite.for_reel_mps(reel_mps)
         sigma = state.steer.parameter_s
-        path = end_at_length(cast(EndMotion, kite.steering.path), length_m, sigma if math.isfinite(sigma) else 0.0)
+        path = kite.steering.path.at_length(length_m, sigma if math.isfinite(sigma) else 0.0)
         kite = replace(kite, steering=replace(kite.steering, path=path))
     model = replace(model, system=system, length_m=length_m, reel_mps=reel_mps,
                     end=end_at_length(model.end, length_m, state.t), kite=kite)
