@@ -275,10 +275,10 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     v = frac * (kite_radius_m * e_dot)
     acc = frac * (kite_radius_m * e_ddot)
     zero = np.zeros_like(r)
-    f_ref = model.force_ref_N(T, model.eq.physics)
 
     def solve(load_factor, x):
         eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor), model.eq.compiled)
+        f_ref = model.force_ref_N(x[1], model.eq.physics)
 
         def evaluate(r_int, T, R, jacobian=True):
             return eq.evaluate(_nodes(model, r_int, R, e), v, zero, T, e, f_ref, jacobian=jacobian)

@@ -228,17 +228,17 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     v = (s / model.length_m)[:, None] * (kite_radius_m * e_dot)
     acc = (s / model.length_m)[:, None] * (kite_radius_m * e_ddot)
     zero = np.zeros_like(r)
-    f_ref = model.force_ref_N(T, sys_.physics)
 
     def solve(load_factor, x):
         loaded = sys_.with_physics(with_load_factor(sys_.physics, load_factor))
+        f_ref = model.force_ref_N(sys_.unpack(x)[1], sys_.physics)
 
         def evaluate(x, jacobian=True):
             r, T, R = loaded.unpack(x)
             return loaded.evaluate(r, v, zero, T, R, e, model.ground_tension_N, model.radius_m,
                                    f_ref, jacobian=jacobian)
 
-        return _newton(evaluate, loaded.newton_step, x, f_ref, model.newton_tol, max_iter)
+        return _newton(evaluate, loaded.full_newton_step, x, f_ref, model.newton_tol, max_iter)
 
     try:
         r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
