@@ -258,7 +258,11 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     atmosphere (measured for 3 to 200 segments at 0.5 to 0.9 L); the ramp
     reaches it in a few load steps and costs one extra solve (load 0) where
     the full load converges directly.  The known one of ``T_{1/2}`` (= T_0,
-    tension mode) and R (prescribed) is the case's, not the guess's.  Raises
+    tension mode) and R (prescribed) is the case's, not the guess's.  Each
+    load step scales its residuals by the force of the tensions it starts
+    from (:meth:`TetherCase.force_ref_N`): the guess's, ~1e-2 N for a
+    1e-6 kg/m line at a prescribed radius, stalled the loaded line's ~1e4 N at
+    a scaled residual of 1.1e-10.  Raises
     :class:`SolverDivergedError` (time, length, segments, residual) if the
     load cannot be raised to its full value.
     """

@@ -198,7 +198,9 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     equilibrium is solved from ``guess = (r, T, R)`` (default
     :func:`initial_guess`, the catenary), then the full load is tried in one
     step and, where that fails, in halved load steps, each a backtracking
-    Newton solve (:func:`_newton`, ``max_iter`` iterations) from the last
+    Newton solve (:func:`_newton`, ``max_iter`` iterations, the whole
+    Jacobian's step :meth:`TetherSystem.full_newton_step`, residuals scaled by
+    the force of the tensions the load step starts from) from the last
     equilibrium.  Raises :class:`SolverDivergedError` (time, length, elements,
     residual) if the load cannot be raised to its full value.
 
@@ -210,8 +212,14 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     was rounding noise, 1e2 to 1e3 times the true one; with 2 and 3 uniform
     elements here (4 elsewhere) LAPACK found an exact zero pivot and the
     solve stopped at the guess's residual (3.65e-2 for 4 elements at 1000 m).
-    The catenary guess removes that singularity (bordered and full-system
-    steps agree to 1e-11).  Separately, a slack line (prescribed radius
+    The catenary guess removed that singularity only where its sag survives
+    round-off: at T_0 above ~2e5 line weights the guess is the straight line
+    again (a 1 N line at 1e6 N failed under gravity alone), so the static
+    steps solve the whole Jacobian, regular at the straight line (cond 2.6e5
+    there); the bordered and full steps agree to 1e-11 where both are regular.
+    The residual's scale is taken per load step: in prescribed mode the
+    guess's tension (~1e-2 N for a 1e-6 kg/m line) scaled the loaded line's
+    ~1e4 N, stalling at a scaled residual of 1.0e-10.  Separately, a slack line (prescribed radius
     < ~0.95 L) is blown by the drag (up to ~80 times its weight) far from its
     catenary, and Newton's first full-load steps threw it above the
     atmosphere: the load ramp reaches it in 2 to 6 load steps.  A trust region
