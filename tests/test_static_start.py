@@ -8,13 +8,23 @@ guesses and the point-mass kite.  Before the fix the FE start failed wherever
 T_0 was ~2e5 times the line's weight or more (a light line held at 1e6 N,
 the near-massless 11 mm line at the default 150 kN), and a near-massless line
 at a prescribed radius failed in both solvers.
+
+A winch tension far below the line's drag at the kite's speed (~20 kN for
+the default 1000 m, 11 mm line; T_0 of 1 to 1000 N) starts physically or is
+refused naming [winch] ground_tension_N: before the check after the start
+Newton returned lines hanging up to 370 m below the ground (100 N on the
+1e-4 kg/m line: the kite pulled in to 0.08 L, the line 214 m below) and, on
+8 FE elements at 3 kN, a tension of -3.3 kN.
 """
+
+import re
 
 import numpy as np
 import pytest
 
 from fem_tether.config import Config, ConfigError
 from fem_tether.config.sections import MAX_FORCE_N
+from fem_tether.errors import GROUND_TOLERANCE_SHARE, SolverDivergedError
 from fem_tether.fd import solver as fd
 from fem_tether.fe import solver as fe
 
@@ -159,3 +169,68 @@ def test_point_mass_kite_starts(mu_kg_m, tension_N):
     fd_state = fd_solver.initial_state()
     _assert_equilibrium("fd", fd.build_model(cfg), fd_state)
     assert fd_state.steer is not None
+
+
+#: Winch tensions far below the default line's drag at the kite's speed
+#: (~20 kN), and 3 kN just above the ~2.8 kN from which the 40-element and
+#: 100-segment starts are physical (0.14 of the drag).
+LOW_T0_N = (1.0, 10.0, 100.0, 1000.0, 3000.0)
+
+
+def _starts_physically_or_names_the_winch(solver, count=None, **sections):
+    """The static start of the configured case: above the ground (z >= -1e-6 L)
+    and taut (:func:`_assert_equilibrium`), returned as ``(model, state)``;
+    or refused at load naming [winch] ground_tension_N (None); or a
+    :class:`SolverDivergedError` of one line naming that key (returned)."""
+    try:
+        cfg = _config(solver, count, **sections)
+    except ConfigError as exc:
+        assert str(exc).startswith("[winch] ground_tension_N = ") and "\n" not in str(exc)
+        return None
+    model = SOLVERS[solver].build_model(cfg)
+    try:
+        state = SOLVERS[solver].static_equilibrium(model)
+    except SolverDivergedError as exc:
+        assert "\n" not in str(exc) and "raise [winch] ground_tension_N" in str(exc), str(exc)
+        return exc
+    r, _ = _nodes_and_lengths(solver, model, state)
+    assert r[:, 2].min() >= -GROUND_TOLERANCE_SHARE * model.length_m, (r[:, 2].min(), state.R / model.length_m)
+    _assert_equilibrium(solver, model, state)
+    return model, state
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("count", [8, None, 200])
+@pytest.mark.parametrize("mu_kg_m", [0.062, 1e-4])
+@pytest.mark.parametrize("tension_N", LOW_T0_N)
+def test_winch_far_below_the_drag_starts_physically_or_names_the_key(solver, count, mu_kg_m, tension_N):
+    """Tension mode, 1000 m, T_0 of 1 to 3000 N on the default line (below its
+    608 N weight refused at load) and the 1 N line, 8, the default (40 / 100)
+    and 200 elements (segments): a start above the ground with positive
+    tensions, or one line naming [winch] ground_tension_N.  Was: 'equilibria'
+    up to 370 m below the ground (FD 8 segments at 1000 N: R = -0.31 L) and
+    a tension of -3.3 kN (FE 8 elements at 3 kN)."""
+    _starts_physically_or_names_the_winch(solver, count, tether={"linear_density_kg_m": mu_kg_m},
+                                          winch={"ground_tension_N": tension_N})
+
+
+@pytest.mark.parametrize("solver, count, mu_kg_m, tension_N, cause", [
+    ("fd", None, 1e-4, 100.0, r"100 segments: the line hangs 214 m below the ground \(at s = \d+ m\); T\(0\) = "
+     r"100 N cannot hold it against its drag of ~20 kN at the kite's speed \(its weight 0\.981 N\): raise "
+     r"\[winch\] ground_tension_N$"),
+    ("fe", None, 0.062, 1000.0, r"40 elements: the line hangs 106 m below the ground .*T\(0\) = 1000 N cannot "
+     r"hold it against its drag of ~20 kN .*\(its weight 608 N\): raise \[winch\] ground_tension_N$"),
+    ("fe", 8, 0.062, 3000.0, r"8 elements: its tension is -3\.29e\+03 N at s = \d+ m \(a string carries no "
+     r"compression\); T\(0\) = 3000 N cannot hold it .*: raise \[winch\] ground_tension_N$"),
+    ("fd", None, 1e-4, 10.0, r"100 segments: no convergence beyond .* raise \[winch\] ground_tension_N \(now "
+     r"10 N, 0\.000501 times the line's drag of ~20 kN at the kite's speed; its weight 0\.981 N\), or shorten"),
+])
+def test_low_winch_tension_names_the_cause_measured(solver, count, mu_kg_m, tension_N, cause):
+    """The measured cause in the one line: how far below the ground the start
+    hangs, or its negative tension, and T(0) against the line's drag at the
+    kite's speed (~20 kN), not its weight (the continuation's failure too:
+    was '10.2 times the line's weight of 0.981 N')."""
+    exc = _starts_physically_or_names_the_winch(solver, count, tether={"linear_density_kg_m": mu_kg_m},
+                                                winch={"ground_tension_N": tension_N})
+    assert isinstance(exc, SolverDivergedError)
+    assert re.search(cause, str(exc)), str(exc)

@@ -32,7 +32,7 @@ from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.config import Config
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure
+from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure, unphysical_start
 from fem_tether.fe.mesh import unit_mesh_from_config
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -202,7 +202,12 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     Jacobian's step :meth:`TetherSystem.full_newton_step`, residuals scaled by
     the force of the tensions the load step starts from) from the last
     equilibrium.  Raises :class:`SolverDivergedError` (time, length, elements,
-    residual) if the load cannot be raised to its full value.
+    residual) if the load cannot be raised to its full value, and (naming the
+    cause, :func:`fem_tether.errors.unphysical_start`) if the equilibrium
+    reached has a tension that is not positive or, in tension mode, hangs
+    below the ground: Newton converges to such states where T_0 is far below
+    the line's drag (100 N on the default line: the kite at 0.08 L, the line
+    214 m below the ground; 3 kN on 8 elements: a tension of -3.3 kN).
 
     Why (measured): the former start, Newton from the straight line in tension
     mode, failed or succeeded by rounding.  Not a local minimum of the
@@ -248,12 +253,25 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
 
         return _newton(evaluate, loaded.full_newton_step, x, f_ref, model.newton_tol, max_iter)
 
+    def taut_drag_N():
+        """The drag of the start's velocity field on the straight line to the kite, |sum h f|."""
+        try:
+            ev = sys_.evaluate(s[:, None] * e, v, zero, np.full(sys_.spaces.n_elements, model.ground_tension_N),
+                               model.length_m, e, model.ground_tension_N, model.radius_m, 1.0, jacobian=False)
+        except AltitudeError:
+            return None
+        return float(np.linalg.norm(sys_.spaces.h_m @ ev.load.force))
+
+    where = f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {sys_.spaces.n_elements} elements"
+    weight_N = sys_.physics.weight_N(model.length_m)
     try:
         r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
     except ContinuationFailed as exc:
-        why = static_start_failure(exc, model, sys_.physics.weight_N(model.length_m))
-        raise SolverDivergedError(f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
-                                  f"{sys_.spaces.n_elements} elements: {why}") from None
+        why = static_start_failure(exc, model, weight_N, taut_drag_N() if model.tension_mode else None)
+        raise SolverDivergedError(f"{where}: {why}") from None
+    if unphysical_start(r[:, 2], s, T, sys_.spaces.s_mid_m, model, weight_N):
+        why = unphysical_start(r[:, 2], s, T, sys_.spaces.s_mid_m, model, weight_N, taut_drag_N())
+        raise SolverDivergedError(f"{where}: {why}")
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 
