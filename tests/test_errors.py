@@ -17,6 +17,7 @@ from fem_tether.errors import (
     newton_failure,
     slack_failure,
     static_start_failure,
+    unphysical_start,
 )
 from fem_tether.continuation import ContinuationFailed
 from types import SimpleNamespace
@@ -78,7 +79,9 @@ TENSION_CASE = SimpleNamespace(newton_tol=1e-10, tension_mode=True, ground_tensi
 def test_a_static_start_names_a_cause_only_where_measured():
     """A NaN residual diverged (no cause); a failed gravity-only start with the winch
     tension below the line's weight says so and what to raise; one far above it
-    names the tension as suspicious (was: 1e8 N 'cannot hold the line, weight 304 N')."""
+    names no cause (was: 'suspicious input', for a failure the static start's
+    own bordered Newton step made, issue 26 item 4); a failed first load step
+    is not the gravity-only equilibrium's failure."""
     nan = static_start_failure(ContinuationFailed(0.0, np.nan), TENSION_CASE, 600.0)
     assert nan.startswith("the Newton iteration diverged to nan at 0 of the wind and drag load (no cause measured)")
     weak = static_start_failure(ContinuationFailed(0.0, 0.4), TENSION_CASE, 5886.4)
@@ -86,8 +89,12 @@ def test_a_static_start_names_a_cause_only_where_measured():
                     "newton_tol = 1e-10; the winch tension is below the line's weight: raise [winch] "
                     "ground_tension_N (now 1000 N, 0.17 times the line's weight of 5886 N)")
     strong = static_start_failure(ContinuationFailed(0.0, 2.8e-7), replace_tension(1e8), 608.0)
-    assert strong.endswith("; suspicious input: [winch] ground_tension_N = 1e+08 N, 1.64e+05 times the "
-                           "line's weight (608 N)")
+    assert strong == "the gravity-only equilibrium did not converge: scaled residual 2.800e-07 above [time] " \
+                     "newton_tol = 1e-10"
+    first_step = static_start_failure(ContinuationFailed(0.0, 3.5e-4, attempted=2.0 ** -40), replace_tension(1e5),
+                                      0.0098)
+    assert first_step.startswith("no convergence beyond 0 of the wind and drag load: scaled residual 3.500e-04; "
+                                 "to reach the full load raise [winch] ground_tension_N (now 100000 N, ")
     partial = static_start_failure(ContinuationFailed(0.632804, 4.8e-8), replace_tension(5000.0), 1825.0)
     assert partial == ("no convergence beyond 0.632804 of the wind and drag load: scaled residual 4.800e-08; "
                        "to reach the full load raise [winch] ground_tension_N (now 5000 N, 2.74 times the "
@@ -98,6 +105,41 @@ def test_a_static_start_names_a_cause_only_where_measured():
 
 def replace_tension(ground_tension_N):
     return SimpleNamespace(**{**vars(TENSION_CASE), "ground_tension_N": ground_tension_N})
+
+
+def test_a_failed_start_measures_the_winch_against_the_drag_where_it_is_larger():
+    """T_0 far below the line's drag at the kite's speed (10 N against ~20 kN on a
+    0.98 N line): the ratio is to the drag, with the weight named; was '10.2
+    times the line's weight of 0.981 N'.  A drag below the weight changes nothing."""
+    failed = ContinuationFailed(0.15, 1.0e-10, attempted=0.16)
+    text = static_start_failure(failed, replace_tension(10.0), 0.981, 1.996e4)
+    assert text.endswith("raise [winch] ground_tension_N (now 10 N, 0.000501 times the line's drag of ~20 kN "
+                         "at the kite's speed; its weight 0.981 N), or shorten the line")
+    assert static_start_failure(failed, replace_tension(5000.0), 1825.0, 100.0) == \
+        static_start_failure(failed, replace_tension(5000.0), 1825.0)
+
+
+def test_an_unphysical_start_names_its_depth_or_tension_and_the_key():
+    """A converged start below the ground (tension mode) or with a non-positive
+    tension (either mode) is named, with T(0) against the larger of the drag and
+    the weight; a start at z = 0 within round-off, taut, is none; prescribed
+    mode is not checked for the ground."""
+    case = SimpleNamespace(**{**vars(replace_tension(100.0)), "length_m": 1000.0})
+    s_m = np.array([0.0, 500.0, 1000.0])
+    s_mid = np.array([250.0, 750.0])
+    taut = np.array([100.0, 99.9])
+    assert unphysical_start(np.array([0.0, -3.5e-18, 40.0]), s_m, taut, s_mid, case, 0.981, 2e4) == ""
+    below = unphysical_start(np.array([0.0, -214.0, 50.0]), s_m, taut, s_mid, case, 0.981, 1.996e4)
+    assert below == ("the line hangs 214 m below the ground (at s = 500 m); T(0) = 100 N cannot hold it "
+                     "against its drag of ~20 kN at the kite's speed (its weight 0.981 N): raise [winch] "
+                     "ground_tension_N")
+    folded = unphysical_start(np.array([0.0, 10.0, 50.0]), s_m, np.array([100.0, -3290.0]), s_mid, case, 608.0)
+    assert folded == ("its tension is -3.29e+03 N at s = 750 m (a string carries no compression); T(0) = 100 N "
+                      "cannot hold it against its weight of 608 N: raise [winch] ground_tension_N")
+    prescribed = SimpleNamespace(**{**vars(case), "tension_mode": False})
+    assert unphysical_start(np.array([0.0, -60.0, 50.0]), s_m, taut, s_mid, prescribed, 608.0) == ""
+    assert unphysical_start(np.array([0.0, 1.0, 50.0]), s_m, np.array([0.0, 5.0]), s_mid, prescribed, 608.0) == \
+        "its tension is 0 N at s = 250 m (a string carries no compression)"
 
 def test_a_line_too_heavy_for_its_kite_is_named_from_the_measured_tensions():
     """Loyd II's steel on its circle (docs/systems.md §5): inertia + weight 86 % of the pull."""

@@ -63,7 +63,7 @@ from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.config import Config
-from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure
+from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure, unphysical_start
 from fem_tether.drag_coefficient import ConstantDrag
 from fem_tether.fd import kite as kite_end
 from fem_tether.fd.system import Grid, NodalLoads, TetherFD
@@ -257,9 +257,18 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     atmosphere (measured for 3 to 200 segments at 0.5 to 0.9 L); the ramp
     reaches it in a few load steps and costs one extra solve (load 0) where
     the full load converges directly.  The known one of ``T_{1/2}`` (= T_0,
-    tension mode) and R (prescribed) is the case's, not the guess's.  Raises
+    tension mode) and R (prescribed) is the case's, not the guess's.  Each
+    load step scales its residuals by the force of the tensions it starts
+    from (:meth:`TetherCase.force_ref_N`): the guess's, ~1e-2 N for a
+    1e-6 kg/m line at a prescribed radius, stalled the loaded line's ~1e4 N at
+    a scaled residual of 1.1e-10.  Raises
     :class:`SolverDivergedError` (time, length, segments, residual) if the
-    load cannot be raised to its full value.
+    load cannot be raised to its full value, and (naming the cause,
+    :func:`fem_tether.errors.unphysical_start`) if the equilibrium reached
+    has a tension that is not positive or, in tension mode, hangs below the
+    ground: Newton converges to such states where T_0 is far below the line's
+    drag (100 N on the default line: the kite at 0.08 L, the line 214 m below
+    the ground; 1 kN on 8 segments: the kite at R = -0.31 L).
     """
     g = model.grid
     r, T, R = initial_guess(model, t) if guess is None else guess
@@ -274,23 +283,36 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     v = frac * (kite_radius_m * e_dot)
     acc = frac * (kite_radius_m * e_ddot)
     zero = np.zeros_like(r)
-    f_ref = model.force_ref_N(T, model.eq.physics)
 
     def solve(load_factor, x):
         eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor), model.eq.compiled)
+        f_ref = model.force_ref_N(x[1], model.eq.physics)
 
         def evaluate(r_int, T, R, jacobian=True):
             return eq.evaluate(_nodes(model, r_int, R, e), v, zero, T, e, f_ref, jacobian=jacobian)
 
         return _static_newton(model, evaluate, x, max_iter)
 
+    def taut_drag_N():
+        """The drag of the start's velocity field on the straight line to the kite, |sum w f|."""
+        try:
+            force = model.eq.line_loads(g.s_m[:, None] * e, v).force
+        except AltitudeError:
+            return None
+        return float(np.linalg.norm(g.trap_weights @ force))
+
+    where = f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments"
+    weight_N = model.eq.physics.weight_N(model.length_m)
     try:
         r_int, T, R = continuation(solve, (r[1:-1].copy(), T, R))
     except ContinuationFailed as exc:
-        raise SolverDivergedError(
-            f"FD static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {g.M} segments: "
-            f"{static_start_failure(exc, model, model.eq.physics.weight_N(model.length_m))}") from None
-    return State(t, _nodes(model, r_int, R, e), v, acc, T.copy(), float(R))
+        why = static_start_failure(exc, model, weight_N, taut_drag_N() if model.tension_mode else None)
+        raise SolverDivergedError(f"{where}: {why}") from None
+    r = _nodes(model, r_int, R, e)
+    s_mid = _segment_midpoints_m(model)
+    if unphysical_start(r[:, 2], g.s_m, T, s_mid, model, weight_N):
+        raise SolverDivergedError(f"{where}: {unphysical_start(r[:, 2], g.s_m, T, s_mid, model, weight_N, taut_drag_N())}")
+    return State(t, r, v, acc, T.copy(), float(R))
 
 
 def _coefficients(model: FDModel, prev: State | None, cur: State, h: float):

@@ -31,7 +31,7 @@ from fem_tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.catenary import Catenary
 from fem_tether.config import Config
 from fem_tether.atmosphere import AltitudeError
-from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure
+from fem_tether.errors import SolverDivergedError, left_atmosphere, static_start_failure, unphysical_start
 from fem_tether.fe.mesh import unit_mesh_from_config
 from fem_tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.fe.spaces import build_spaces
@@ -197,9 +197,16 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     equilibrium is solved from ``guess = (r, T, R)`` (default
     :func:`initial_guess`, the catenary), then the full load is tried in one
     step and, where that fails, in halved load steps, each a backtracking
-    Newton solve (:func:`_newton`, ``max_iter`` iterations) from the last
+    Newton solve (:func:`_newton`, ``max_iter`` iterations, the whole
+    Jacobian's step :meth:`TetherSystem.full_newton_step`, residuals scaled by
+    the force of the tensions the load step starts from) from the last
     equilibrium.  Raises :class:`SolverDivergedError` (time, length, elements,
-    residual) if the load cannot be raised to its full value.
+    residual) if the load cannot be raised to its full value, and (naming the
+    cause, :func:`fem_tether.errors.unphysical_start`) if the equilibrium
+    reached has a tension that is not positive or, in tension mode, hangs
+    below the ground: Newton converges to such states where T_0 is far below
+    the line's drag (100 N on the default line: the kite at 0.08 L, the line
+    214 m below the ground; 3 kN on 8 elements: a tension of -3.3 kN).
 
     Why (measured): the former start, Newton from the straight line in tension
     mode, failed or succeeded by rounding.  Not a local minimum of the
@@ -209,8 +216,14 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     was rounding noise, 1e2 to 1e3 times the true one; with 2 and 3 uniform
     elements here (4 elsewhere) LAPACK found an exact zero pivot and the
     solve stopped at the guess's residual (3.65e-2 for 4 elements at 1000 m).
-    The catenary guess removes that singularity (bordered and full-system
-    steps agree to 1e-11).  Separately, a slack line (prescribed radius
+    The catenary guess removed that singularity only where its sag survives
+    round-off: at T_0 above ~2e5 line weights the guess is the straight line
+    again (a 1 N line at 1e6 N failed under gravity alone), so the static
+    steps solve the whole Jacobian, regular at the straight line (cond 2.6e5
+    there); the bordered and full steps agree to 1e-11 where both are regular.
+    The residual's scale is taken per load step: in prescribed mode the
+    guess's tension (~1e-2 N for a 1e-6 kg/m line) scaled the loaded line's
+    ~1e4 N, stalling at a scaled residual of 1.0e-10.  Separately, a slack line (prescribed radius
     < ~0.95 L) is blown by the drag (up to ~80 times its weight) far from its
     catenary, and Newton's first full-load steps threw it above the
     atmosphere: the load ramp reaches it in 2 to 6 load steps.  A trust region
@@ -227,24 +240,37 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     v = (s / model.length_m)[:, None] * (kite_radius_m * e_dot)
     acc = (s / model.length_m)[:, None] * (kite_radius_m * e_ddot)
     zero = np.zeros_like(r)
-    f_ref = model.force_ref_N(T, sys_.physics)
 
     def solve(load_factor, x):
         loaded = sys_.with_physics(with_load_factor(sys_.physics, load_factor))
+        f_ref = model.force_ref_N(sys_.unpack(x)[1], sys_.physics)
 
         def evaluate(x, jacobian=True):
             r, T, R = loaded.unpack(x)
             return loaded.evaluate(r, v, zero, T, R, e, model.ground_tension_N, model.radius_m,
                                    f_ref, jacobian=jacobian)
 
-        return _newton(evaluate, loaded.newton_step, x, f_ref, model.newton_tol, max_iter)
+        return _newton(evaluate, loaded.full_newton_step, x, f_ref, model.newton_tol, max_iter)
 
+    def taut_drag_N():
+        """The drag of the start's velocity field on the straight line to the kite, |sum h f|."""
+        try:
+            ev = sys_.evaluate(s[:, None] * e, v, zero, np.full(sys_.spaces.n_elements, model.ground_tension_N),
+                               model.length_m, e, model.ground_tension_N, model.radius_m, 1.0, jacobian=False)
+        except AltitudeError:
+            return None
+        return float(np.linalg.norm(sys_.spaces.h_m @ ev.load.force))
+
+    where = f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, {sys_.spaces.n_elements} elements"
+    weight_N = sys_.physics.weight_N(model.length_m)
     try:
         r, T, R = sys_.unpack(continuation(solve, sys_.pack(r, T, R)))
     except ContinuationFailed as exc:
-        why = static_start_failure(exc, model, sys_.physics.weight_N(model.length_m))
-        raise SolverDivergedError(f"static equilibrium at t = {t:g} s, L = {model.length_m:g} m, "
-                                  f"{sys_.spaces.n_elements} elements: {why}") from None
+        why = static_start_failure(exc, model, weight_N, taut_drag_N() if model.tension_mode else None)
+        raise SolverDivergedError(f"{where}: {why}") from None
+    if unphysical_start(r[:, 2], s, T, sys_.spaces.s_mid_m, model, weight_N):
+        why = unphysical_start(r[:, 2], s, T, sys_.spaces.s_mid_m, model, weight_N, taut_drag_N())
+        raise SolverDivergedError(f"{where}: {why}")
     return State(t, Kinematics(r.copy(), v, acc, acc.copy()), T.copy(), R)
 
 

@@ -31,7 +31,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from scipy import sparse
 from scipy.linalg.lapack import dgbsv, dgbtrf, dgbtrs
+from scipy.sparse.linalg import splu
 
 from fem_tether.atmosphere import AltitudeError
 from fem_tether.continuation import NotConverged
@@ -527,6 +529,34 @@ class TetherSystem:
         """Solve J dx = -residual with the evaluation's own Jacobian
         (:meth:`factorize`, then :meth:`Factors.step`)."""
         return self.factorize(ev).step(ev.residual)
+
+    def full_newton_step(self, ev: Evaluation) -> np.ndarray:
+        """Solve J dx = -residual with the whole Jacobian, the R row and column
+        included, by a sparse LU (the static start's step; :meth:`newton_step`
+        eliminates R by bordering instead).
+
+        Why: bordering factorises J0, the Jacobian with R held, and J0 of a
+        straight inextensible line between fixed ends is singular (it carries
+        any tension); J, with the winch row T_0 = T_ground, is not.  Measured
+        on a 1 N line of 1000 m held at 1e6 N (8 elements): cond J0 = 1.8e17,
+        cond J = 2.6e5, where the catenary's sag is below round-off and the
+        guess is the straight line.  Raises ``LinAlgError`` on a singular J.
+        """
+        assert ev.r_col is not None, "full_newton_step needs an evaluation with the Jacobian"
+        m = self.n - 1
+        ab = ev.ab
+        diagonals = [ab[BAND + k, :m - k] if k >= 0 else ab[BAND + k, -k:] for k in range(-BAND, BAND + 1)]
+        j0 = sparse.diags(diagonals, [-k for k in range(-BAND, BAND + 1)], shape=(m, m))
+        row = np.zeros((1, self.n))
+        if self.tension_mode:
+            row[0, 3] = 1.0
+        else:
+            row[0, -1] = ev.k_s
+        jac = sparse.bmat([[j0, ev.r_col[:, None]], [row[:, :-1], row[:, -1:]]], format="csc")
+        try:
+            return splu(jac).solve(-ev.residual)
+        except RuntimeError as exc:          # SuperLU: "Factor is exactly singular"
+            raise np.linalg.LinAlgError(str(exc)) from None
 
 
 class KeptFactors:
