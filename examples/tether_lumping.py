@@ -2,7 +2,10 @@
 KiteGen's free kite at 1000 m (docs/free-kite.md §10's case: 40 graded elements,
 dt 0.05 s, 2 periods of spin-up, 10 averaged) against the point-mass kite with
 the line's drag lumped at it, moment-equivalent (Roselli eq. 4.1) and
-power-equivalent.  Prints the table of docs/physics.md §9 (about 10 s)."""
+power-equivalent.  Prints the table of docs/physics.md §9 (about 10 s).
+
+Run: ``python examples/tether_lumping.py``.
+"""
 
 from fem_tether.config import load_config
 from fem_tether.fe.solver import simulate

@@ -20,7 +20,7 @@ def example(name):
 
 #: Every example, in README's order ("Python API").
 NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite", "study_assumptions",
-         "tab51_gap", "short_line_drag")
+         "tab51_gap", "short_line_drag", "tether_lumping")
 
 
 def test_every_example_opens_with_its_equations_and_how_to_run_it():
