@@ -73,17 +73,17 @@ def test_sweep_aep_checks_every_length_and_the_shortest_line_is_nearly_straight(
     """500, 1000, 2000 m: every cross-check passes, every AEP is positive, and the
     result file and the four plots are written into the given directory.
 
-    At 500 m the flexible and the straight AEP agree within 2 %: there the
-    flexible line drags 3.2 % more than the straight one (converged FE, 80
-    elements at dt = 0.025 s), which lowers G_e and the AEP by about 1.3 %;
-    the example's 10 elements at dt = 0.1 s give 3.4 % and -1.3 %.  The 2 %
-    leaves 0.7 points for the coarse grid (dt = 0.2 s would overstate F_t by
-    2 % and the AEP gap reach 2.1 %, hence the example's dt = 0.1 s)."""
+    At 500 m the flexible and the straight AEP agree within 3 %: there the
+    flexible line's power-equivalent drag (the default lumping, docs/physics.md
+    §9.1) is 5.3 % above the straight one's (converged FE, 80 elements at
+    dt = 0.025 s; the moment's F_t 3.2 %), which lowers G_e and the AEP by
+    about 2.1 %; the example's 10 elements at dt = 0.1 s give 5.8 % and
+    -2.3 %.  The 3 % leaves 0.7 points for the coarse grid."""
     r = example("sweep_aep").main(tmp_path)
     assert list(r["length_m"]) == [500.0, 1000.0, 2000.0]
     assert np.all(r["crosscheck_ok"] == 1)
     assert np.all(r["aep_fe_MWh"] > 0) and np.all(r["aep_straight_MWh"] > 0)
-    assert r["aep_fe_MWh"][0] == pytest.approx(r["aep_straight_MWh"][0], rel=0.02)
+    assert r["aep_fe_MWh"][0] == pytest.approx(r["aep_straight_MWh"][0], rel=0.03)
     assert r["file"].is_file() and r["file"].parent == tmp_path
     assert all(path.is_file() and path.parent == tmp_path for path in r["plots"].values())
 

@@ -134,7 +134,8 @@ def test_summary_table_of_a_sweep_with_nothing_run(data):
 def test_summary_table_of_a_passed_and_a_failed_cross_check(data):
     data |= {"status": np.array(["ok", "ok"]), "error": np.array(["", ""]),
              "crosscheck_ok": np.array([1, 0]), "rel_diff_drag": np.array([0.01, 0.0512]),
-             "drag_fe_N": np.array([4000.0, 8000.0]), "ge_fe": np.array([18.0, 13.0])}
+             "drag_fe_N": np.array([4000.0, 8000.0]), "drag_power_fe_N": np.array([4100.0, 8200.0]),
+             "ge_fe": np.array([18.0, 13.0])}
     lines = summary_table(data, sweep_aep(data, allow_unchecked=True)).splitlines()
     assert "      4.00" in lines[2] and lines[2].endswith("  ok")
     assert lines[3].endswith("  FAILED (5.1 % on F_t)")

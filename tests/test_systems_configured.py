@@ -16,11 +16,12 @@ WINDS = np.linspace(0.0, 30.0, 61)
 
 
 def test_kitegen_through_tether_cd_is_the_kitegen_through_ge():
-    """G_e of C_D,t (eq. 1 of systems.kitegen) = seed 000 eq. 5.1's G_e of the same drag (1e-13);
-    the cycle power then equals power.cycle_curves at that G_e (1e-13)."""
+    """G_e of C_D,t (eq. 1 of systems.kitegen) = seed 000 eq. 5.1's G_e of the same drag (1e-13),
+    the straight line's lumped as [drag] tether_drag_lumping says (default: power); the cycle
+    power then equals power.cycle_curves at that G_e (1e-13)."""
     cfg = load_config().with_length(2192.0)
     system = from_config(cfg)
-    drag_N = straight.from_config(cfg, True).drag_N
+    drag_N = straight.from_config(cfg, True).lumped_N(cfg.drag.tether_drag_lumping)
     assert system.straight_cd == pytest.approx(operating_tether_cd(cfg, drag_N), rel=1e-15)
     flown = kitegen.flown_design(system.parameters)
     assert flown.efficiency == pytest.approx(operating_ge(cfg, drag_N), rel=1e-13)

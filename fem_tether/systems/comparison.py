@@ -2,8 +2,8 @@
 
 >>> from fem_tether.config import load_config
 >>> cfg = load_config()
->>> round(from_config(cfg).straight_cd, 4)            # KiteGen's two 1000 m lines, straight
-0.0567
+>>> round(from_config(cfg).straight_cd, 4)            # KiteGen's two 1000 m lines, straight, power-lumped
+0.0562
 >>> rows = compare(cfg, [25.0], flexible_cd=0.03)
 >>> sorted(rows[0])
 ['flexible', 'straight', 'wind_mps']
