@@ -78,6 +78,10 @@ class LapRule:
 MAX_PERIODS_PER_LAP = 4
 
 
+#: The window's values a run stores in ``extra`` (:meth:`LapWindow.values`) and its summary reports.
+LAP_KEYS = ("laps", "spinup_laps", "laps_settled", "lap_spread", "lap_tolerance")
+
+
 @dataclass(frozen=True)
 class LapWindow:
     """Whole laps of a free kite's run, and how settled they are."""

@@ -186,9 +186,10 @@ def size_text(s: dict) -> str:
 def simulate_text(s: dict, cfg: Config, written: bool) -> str:
     """``fem-tether simulate``: the run's summary (:func:`fem_tether.summary.run_summary`)
     and, if ``written``, its files."""
+    averaged = (f"{s['laps']} whole laps averaged after {s['spinup_laps']} of spin-up" if "laps" in s else
+                f"{s['periods']} periods averaged (period {s['period_s']:.2f} s)")
     lines = [f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements (at the end), "
-             f"dt = {s['dt_s']:.4f} s, {s['periods']} periods averaged (period {s['period_s']:.2f} s), "
-             f"wall {s['wall_s']:.2f} s",
+             f"dt = {s['dt_s']:.4f} s, {averaged}, wall {s['wall_s']:.2f} s",
              f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   "
              f"(straight line {s['straight_drag_N']:.1f} N)",
              f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N",
@@ -206,6 +207,11 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
                   f"{s['mean_apparent_speed_mps']:.2f} m/s, mean power {s['mean_power_W'] / 1e3:.1f} kW per line",
                   f"  steering: cross-track RMS {s['cross_track_rms_m']:.2f} m, largest roll "
                   f"{s['max_abs_roll_deg']:.1f} deg"]
+    if "laps" in s:
+        lines.append(f"  laps: lap-to-lap spread {100 * s['lap_spread']:.3g} % over the averaged laps; "
+                     + ("spin-up settled" if s["laps_settled"] else
+                        f"warning: spin-up not settled within [time] lap_tolerance = {s['lap_tolerance']:g} "
+                        "by [time] max_spinup_periods laps"))
     if "cycles" in s:
         lines.append(f"  pumping: {s['cycles']} whole cycle(s): out {s['cycle_energy_out_J'] / 1e6:.2f} MJ in "
                      f"{s['cycle_time_out_s']:.1f} s, in {s['cycle_energy_in_J'] / 1e6:.3f} MJ in "

@@ -14,6 +14,7 @@ import numpy as np
 
 from fem_tether import atmosphere, kite, sizing, straight
 from fem_tether.config import Config
+from fem_tether.laps import LAP_KEYS
 from fem_tether.moment import power_equivalent_force_N
 from fem_tether.power import operating_altitude_m
 from fem_tether.reel import Reel
@@ -111,8 +112,9 @@ def run_summary(run, cfg: Config) -> dict:
 def free_kite_summary(run) -> dict:
     """A point-mass kite's flight over the averaging window ({} for a prescribed
     end): mean kite and apparent speeds, mean mechanical power per line (winch
-    T(0) V_L plus on-board turbines), the cross-track RMS of the steering and
-    the largest roll."""
+    T(0) V_L plus on-board turbines), the cross-track RMS of the steering, the
+    largest roll and, over whole laps (:mod:`fem_tether.laps`), the laps
+    averaged, the spin-up's laps, whether it settled and the lap-to-lap spread."""
     if "kite_speed_mps" not in run.series:
         return {}
     window = run.average_window
@@ -125,7 +127,7 @@ def free_kite_summary(run) -> dict:
         "mean_power_W": means["mean_winch_power_W"] + means["mean_turbine_power_W"],
         "cross_track_rms_m": float(np.sqrt(np.mean(track ** 2))) if track.size else float("nan"),
         "max_abs_roll_deg": float(np.max(np.abs(run.series["roll_deg"][window]))),
-    }
+    } | {key: run.extra[key] for key in LAP_KEYS if key in run.extra}
 
 
 def cycle_summary(run, cfg: Config) -> dict:

@@ -123,3 +123,17 @@ def test_reeling_starts_when_the_spinup_has_settled_and_the_means_are_whole_reel
           f"{whole.size - 1} whole laps: {100 * bias:+.1f} %")
     covered = (former.time_s[-1] - former.average_start_s) / (whole[1] - whole[0])
     assert abs(covered - round(covered)) > 0.1          # the former window was not whole laps
+
+
+def test_the_summary_and_the_text_say_the_laps(eight):
+    """simulate's summary and text report the laps averaged, the spin-up's and the spread."""
+    from fem_tether.report import simulate_text
+    from fem_tether.summary import run_summary
+
+    cfg = free_kite()
+    s = run_summary(eight[0], cfg) | {"elements": 20, "dt_s": eight[0].extra["dt_s"], "wall_s": 0.0,
+                                      "period_s": eight[0].period_s}
+    assert (s["laps"], s["spinup_laps"], s["laps_settled"]) == (2, 1, True) and s["lap_spread"] < 1e-5
+    text = simulate_text(s, cfg, written=False)
+    assert "2 whole laps averaged after 1 of spin-up" in text.splitlines()[0]
+    assert "spin-up settled" in text
