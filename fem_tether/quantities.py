@@ -142,6 +142,13 @@ def attributes(where: str, name: str) -> dict[str, str]:
     return {"units": q.unit, "description": q.meaning}
 
 
+#: Stored datasets that files written before them lack, and what added them: a
+#: reader names it (:meth:`fem_tether.reading.Reader.node`) instead of calling
+#: such a file damaged.
+ADDED = {name: "the power-equivalent tether drag ([drag] tether_drag_lumping)"
+         for name in ("drag_power_W", "drag_power_fe_N", "drag_power_straight_N", "drag_power_fixed_N")}
+
+
 def names(where: str) -> tuple[str, ...]:
     return tuple(q.name for q in QUANTITIES if q.where == where)
 

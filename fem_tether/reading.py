@@ -21,6 +21,7 @@ import numpy as np
 
 from fem_tether.config import Config
 from fem_tether.errors import InputError
+from fem_tether.quantities import ADDED
 
 #: What each kind of result file is called in messages.
 KINDS = {"run": "fem-tether run", "sweep": "fem-tether sweep result", "study": "fem-tether study result"}
@@ -129,6 +130,9 @@ class Reader:
     def node(self, parent, name: str, group: bool = True):
         """The group (or, ``group=False``, the dataset) ``name`` of ``parent``."""
         where = f"{parent.name.rstrip('/')}/{name}"
+        if name not in parent and not group and name in ADDED:
+            raise ResultFileError(f"{self.path}: a {self.what} of an earlier fem-tether, without dataset {where} "
+                                  f"({ADDED[name]}): run its job again with this version")
         if name not in parent:
             raise self.error(f"{'group' if group else 'dataset'} {where} is missing")
         node = parent[name]

@@ -182,6 +182,10 @@ DAMAGES = {
     "truncated": (truncate, "damaged fem-tether sweep result: unreadable HDF5 ("),
     "dataset deleted": (replace_dataset("drag_fe_N", None),
                         "damaged fem-tether sweep result: dataset /drag_fe_N is missing"),
+    "written before the power lumping": (replace_dataset("drag_power_fe_N", None),
+                                         "a fem-tether sweep result of an earlier fem-tether, without dataset "
+                                         "/drag_power_fe_N (the power-equivalent tether drag ([drag] "
+                                         "tether_drag_lumping)): run its job again with this version"),
     "dataset shortened": (replace_dataset("ge_fe", [1.0]),
                           "damaged fem-tether sweep result: dataset /ge_fe has shape (1,), expected 2"),
     "status shortened": (replace_dataset("status", np.array(["ok"], dtype=h5py.string_dtype())),
