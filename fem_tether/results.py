@@ -88,13 +88,10 @@ class TetherRun:
         return int(round((self.time_s[-1] - self.average_start_s) / self.period_s))
 
     def mean(self, name: str) -> float:
-        """Time mean of a series over the averaging window (trapezoidal rule;
-        a point-mass kite's window ends at lap crossings between samples,
-        :func:`fem_tether.laps.interval_mean`)."""
-        if "average_end_s" in self.extra:
-            return interval_mean(self.time_s, self.series[name], self.average_start_s, self.average_end_s)
-        mask = self.average_window
-        return period_mean(self.time_s[mask], self.series[name][mask])
+        """Time mean of a series over the averaging window (the trapezoidal rule,
+        :func:`fem_tether.laps.interval_mean`: a point-mass kite's window starts
+        and ends at lap crossings between samples)."""
+        return interval_mean(self.time_s, self.series[name], self.average_start_s, self.average_end_s)
 
     def means(self) -> dict[str, float]:
         return {f"mean_{name}": self.mean(name) for name in self.series}
@@ -103,8 +100,7 @@ class TetherRun:
 def period_mean(t, y) -> float:
     """(1/(t_end - t_0)) int y dt by the trapezoidal rule."""
     t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
-    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+    return interval_mean(t, y, float(t[0]), float(t[-1]))
 
 
 def winch_values(length_m, reel_mps, ground_tension_N, energy_J) -> dict:
