@@ -197,8 +197,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     start_length, energy_J, reel_mps = solver.model.length_m, 0.0, 0.0
     stats = Statistics()
     record = Recorder(limit, output_every)
-    bar = Progress(limit if laps is None else n_steps, f"{solver.name.upper()} L = {start_length:g} m",
-                   enabled=progress)
+    bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
     for i in range(limit + 1):
         if i:
             length = solver.model.length_m
@@ -218,10 +217,10 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
             if state.t >= average_start_s - 0.5 * h:    # the start's transients are spun up
                 check_taut(state.T, solver.tension_s_m(), state.t, solver.model.length_m)
             energy_J += h * reel_mps * state.T[0]
-            bar.update(min(i, n_steps - 1) if laps is not None else i)
+            bar.update(min(i, n_steps))     # a free kite's laps may outlast the nominal periods
             checkpoint()                 # a Ctrl-C a finaliser swallowed (fem_tether.stop)
         stopped = reel.active and reel.stopped(solver.model.length_m, start_length)
-        done = (i == limit or stopped) if laps is not None else (i == n_steps or stopped)
+        done = i == limit or stopped
         values = solver.line_state(state, record.snapshot_due(i, done))
         record.add(i, state.t, values | winch_values(solver.model.length_m, reel_mps, state.T[0], energy_J),
                    last=done)
