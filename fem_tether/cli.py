@@ -435,14 +435,14 @@ def _on_rank_zero(comm, args) -> int:
 
 def _agree(comm, code: int) -> int:
     """Rank 0's exit code on every rank (each waits for it interruptibly), once
-    every rank has arrived: the broadcast alone may complete on rank 0 before
-    the others have stopped (an eager send), and what rank 0 then reports as
-    kept would miss a part another rank was still committing (measured: "1 of
-    12 tasks kept", 2 reused by the rerun)."""
+    every rank has arrived (:func:`fem_tether.stop.arrived`): the broadcast
+    alone may complete on rank 0 before the others have stopped (an eager
+    send), and what rank 0 then reports as kept would miss a part another rank
+    was still committing (measured: "1 of 12 tasks kept", 2 reused by the rerun)."""
     shared = np.array([code], dtype="i")
     try:
         with stop.interruptible():       # mpiexec passes Ctrl-C to every rank
-            stop.wait(comm.Ibarrier())
+            stop.arrived(comm)
             stop.wait(comm.Ibcast(shared, root=0))
     except KeyboardInterrupt:
         stop.clear()

@@ -154,6 +154,23 @@ def sync(comm) -> None:
         wait(comm.Ibarrier())
 
 
+#: The tag of a rank's word to rank 0 that it has stopped (:func:`arrived`).
+ARRIVED_TAG = 18
+
+
+def arrived(comm) -> None:
+    """Every rank of ``comm`` tells rank 0 that it has stopped, and rank 0 waits
+    (:func:`wait`) until each has: afterwards what the ranks left on disk is
+    final.  Point-to-point, not a barrier: a rank stopped inside a collective
+    (:func:`sync`) leaves it pending, and a new collective would be matched
+    with it."""
+    if comm.Get_rank() != 0:
+        wait(comm.Isend(bytearray(1), dest=0, tag=ARRIVED_TAG))
+        return
+    for rank in range(1, comm.Get_size()):
+        wait(comm.Irecv(bytearray(1), source=rank, tag=ARRIVED_TAG))
+
+
 def wait(request) -> None:
     """Wait for the MPI ``request`` asleep (not spinning on a core another rank
     may need) and stoppable (:func:`checkpoint`)."""
