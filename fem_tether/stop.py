@@ -157,18 +157,31 @@ def sync(comm) -> None:
 #: The tag of a rank's word to rank 0 that it has stopped (:func:`arrived`).
 ARRIVED_TAG = 18
 
+#: How long rank 0 waits for the other ranks' word that they have stopped [s].
+ARRIVAL_S = 5.0
 
-def arrived(comm) -> None:
-    """Every rank of ``comm`` tells rank 0 that it has stopped, and rank 0 waits
-    (:func:`wait`) until each has: afterwards what the ranks left on disk is
-    final.  Point-to-point, not a barrier: a rank stopped inside a collective
-    (:func:`sync`) leaves it pending, and a new collective would be matched
-    with it."""
+
+def arrived(comm, within_s: float = ARRIVAL_S) -> None:
+    """Every rank of ``comm`` tells rank 0 that it has stopped, and rank 0 waits,
+    stoppable, until each has or ``within_s`` has passed: what the ranks left
+    on disk is then final (a part another rank was committing when the stop
+    came is in it).  Point-to-point, not a barrier: a rank stopped inside a
+    collective (:func:`sync`) leaves it pending, and a new collective would be
+    matched with it.  Bounded, so that a rank that cannot stop (inside a
+    blocking call) does not keep rank 0, whose exit ends the job, waiting."""
     if comm.Get_rank() != 0:
         wait(comm.Isend(bytearray(1), dest=0, tag=ARRIVED_TAG))
         return
-    for rank in range(1, comm.Get_size()):
-        wait(comm.Irecv(bytearray(1), source=rank, tag=ARRIVED_TAG))
+    words = [comm.Irecv(bytearray(1), source=rank, tag=ARRIVED_TAG) for rank in range(1, comm.Get_size())]
+    deadline = time.monotonic() + within_s
+    while not all(word.Test() for word in words):
+        if time.monotonic() > deadline:
+            for word in words:
+                if not word.Test():
+                    word.Cancel()
+            return
+        checkpoint()
+        time.sleep(POLL_S)
 
 
 def wait(request) -> None:

@@ -16,6 +16,8 @@ import pytest
 
 from conftest import default_sigint
 
+from fem_tether import stop
+
 CLI = [sys.executable, "-m", "fem_tether"]
 MPIEXEC = shutil.which("mpiexec")
 needs_mpi = pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
@@ -231,3 +233,50 @@ def test_ctrl_c_while_the_kernels_compile_is_one_line(tmp_path, presses):
     code, stdout, stderr = _finish(proc)
     assert code == 130 and stdout == "" and _said(stderr).count("\n") == 1, stderr
     assert _said(stderr).startswith("fem-tether: interrupted"), stderr
+
+
+class _Request:
+    def __init__(self, done: bool):
+        self.done, self.cancelled = done, False
+
+    def Test(self):
+        return self.done
+
+    def Cancel(self):
+        self.cancelled = True
+
+
+class _Comm:
+    """Rank ``rank`` of ``size`` whose receives complete if ``answered``."""
+
+    def __init__(self, rank: int, size: int, answered: bool):
+        self.rank, self.size, self.answered, self.sent, self.words = rank, size, answered, [], []
+
+    def Get_rank(self):
+        return self.rank
+
+    def Get_size(self):
+        return self.size
+
+    def Isend(self, buffer, dest, tag):
+        self.sent.append((dest, tag))
+        return _Request(True)
+
+    def Irecv(self, buffer, source, tag):
+        self.words.append(_Request(self.answered))
+        return self.words[-1]
+
+
+def test_rank_zero_hears_every_rank_stop_or_waits_no_longer_than_its_bound():
+    """stop.arrived: the other ranks send their word to rank 0; rank 0 returns
+    once each has come, or after within_s with the missing words cancelled."""
+    other = _Comm(1, 3, answered=True)
+    stop.arrived(other)
+    assert other.sent == [(0, stop.ARRIVED_TAG)]
+    heard = _Comm(0, 3, answered=True)
+    stop.arrived(heard)
+    assert len(heard.words) == 2 and not any(w.cancelled for w in heard.words)
+    silent = _Comm(0, 3, answered=False)
+    started = time.monotonic()
+    stop.arrived(silent, within_s=0.2)
+    assert 0.2 <= time.monotonic() - started < 2.0 and all(w.cancelled for w in silent.words)
