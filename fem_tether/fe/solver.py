@@ -197,10 +197,12 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
     equilibrium is solved from ``guess = (r, T, R)`` (default
     :func:`initial_guess`, the catenary), then the full load is tried in one
     step and, where that fails, in halved load steps, each a backtracking
-    Newton solve (:func:`_newton`, ``max_iter`` iterations, the whole
-    Jacobian's step :meth:`TetherSystem.full_newton_step`, residuals scaled by
+    Newton solve (:func:`_newton`, ``max_iter`` iterations, residuals scaled by
     the force of the tensions the load step starts from) from the last
-    equilibrium.  Raises :class:`SolverDivergedError` (time, length, elements,
+    equilibrium: with the banded bordered step (:meth:`TetherSystem.newton_step`)
+    and, where that fails, again with the whole Jacobian's
+    (:meth:`TetherSystem.full_newton_step`, a sparse LU: 2.4 ms more per start
+    of the benchmark's 10-element line if taken always).  Raises :class:`SolverDivergedError` (time, length, elements,
     residual) if the load cannot be raised to its full value, and (naming the
     cause, :func:`fem_tether.errors.unphysical_start`) if the equilibrium
     reached has a tension that is not positive or, in tension mode, hangs
@@ -250,7 +252,10 @@ def static_equilibrium(model: FEModel, t=0.0, max_iter=40, guess=None) -> State:
             return loaded.evaluate(r, v, zero, T, R, e, model.ground_tension_N, model.radius_m,
                                    f_ref, jacobian=jacobian)
 
-        return _newton(evaluate, loaded.full_newton_step, x, f_ref, model.newton_tol, max_iter)
+        try:
+            return _newton(evaluate, loaded.newton_step, x, f_ref, model.newton_tol, max_iter)
+        except NotConverged:     # the bordered step is singular on a (nearly) straight line: the whole J's
+            return _newton(evaluate, loaded.full_newton_step, x, f_ref, model.newton_tol, max_iter)
 
     def taut_drag_N():
         """The drag of the start's velocity field on the straight line to the kite, |sum h f|."""
