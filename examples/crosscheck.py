@@ -22,8 +22,8 @@ Run: ``python examples/crosscheck.py``.
 """
 
 from fem_tether.config import load_config
-from fem_tether.evaluate import run_crosscheck
-from fem_tether.report import crosscheck_text
+from fem_tether.jobs.evaluate import run_crosscheck
+from fem_tether.report.text import crosscheck_text
 
 
 def main() -> dict:

@@ -24,9 +24,9 @@ import sys
 from pathlib import Path
 
 from fem_tether.config import load_config
-from fem_tether.fe.solver import simulate
-from fem_tether.output import write_paraview, write_run_hdf5
-from fem_tether.summary import run_summary
+from fem_tether.tether.fe.solver import simulate
+from fem_tether.io.output import write_paraview, write_run_hdf5
+from fem_tether.performance.summary import run_summary
 
 
 def main(out_dir="out/fe_run") -> dict:

@@ -18,8 +18,8 @@ Run: ``python examples/reel_out.py``.
 """
 
 from fem_tether.config import load_config
-from fem_tether.fe.solver import simulate
-from fem_tether.results import period_average
+from fem_tether.tether.fe.solver import simulate
+from fem_tether.tether.results import period_average
 
 
 def main() -> dict:

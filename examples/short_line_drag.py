@@ -41,13 +41,15 @@ import sys
 
 import numpy as np
 
-from fem_tether import atmosphere, drag_coefficient, fd, straight
+from fem_tether.physics import atmosphere, drag_coefficient
+from fem_tether.tether import fd
+from fem_tether.performance import straight
 from fem_tether.config import load_config
 from fem_tether.config.model import merged
-from fem_tether.fe.solver import simulate
-from fem_tether.loads import crossflow_drag
-from fem_tether.results import period_mean
-from fem_tether.study import plan
+from fem_tether.tether.fe.solver import simulate
+from fem_tether.physics.loads import crossflow_drag
+from fem_tether.tether.results import period_mean
+from fem_tether.jobs.study import plan
 
 #: Lengths [m] of the decomposition (KiteGen's default case otherwise).
 LENGTHS_M = (400.0, 500.0, 600.0, 800.0, 900.0, 1000.0)
@@ -101,7 +103,7 @@ def wind_share(length_m, solver="fe", system="kitegen", **sections):
 
 def bin_share(length_m, wind_mps):
     """``wind_share`` at a study bin's operating point (its V_a, T_0 per line and
-    [wind] scale, :func:`fem_tether.study.plan.run_config`); the still-air run at
+    [wind] scale, :func:`fem_tether.jobs.study.plan.run_config`); the still-air run at
     the same V_a and T_0."""
     case = plan.run_config(config(length_m), plan.operating_points(config(length_m), [wind_mps])[0])
     point = {"kite": {"speed_mps": case.kite.speed_mps}, "winch": {"ground_tension_N": case.winch.ground_tension_N}}

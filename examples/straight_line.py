@@ -21,7 +21,7 @@ straight column) at the seed's lengths.
 Run: ``python examples/straight_line.py``.
 """
 
-from fem_tether import straight
+from fem_tether.performance import straight
 from fem_tether.config import load_config
 
 CONSTANT = {"air": {"model": "constant", "density_kg_m3": 1.225},

@@ -22,10 +22,10 @@ Run: ``python examples/study_assumptions.py``.
 import json
 
 from fem_tether.config import load_config
-from fem_tether.fe.solver import simulate
-from fem_tether.study import plan
-from fem_tether.summary import operating_tether_cd
-from fem_tether.systems.configured import from_config
+from fem_tether.tether.fe.solver import simulate
+from fem_tether.jobs.study import plan
+from fem_tether.performance.summary import operating_tether_cd
+from fem_tether.performance.configured import from_config
 
 #: (system, length [m], wind speeds at the kite [m/s]) measured.
 CASES = [("kitegen", 1000.0, (12.0, 20.0, 28.0)), ("kitegen", 3000.0, (22.0, 28.0)),

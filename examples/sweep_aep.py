@@ -31,12 +31,12 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether.aep import sweep_aep
-from fem_tether.figures import write_plots
-from fem_tether.jobs import job_from_dict
-from fem_tether.report import aep_text, sweep_text
-from fem_tether.sweep import sweep
-from fem_tether.sweepfile import read_sweep
+from fem_tether.performance.aep import sweep_aep
+from fem_tether.report.figures import write_plots
+from fem_tether.jobs.job import job_from_dict
+from fem_tether.report.text import aep_text, sweep_text
+from fem_tether.jobs.sweep import sweep
+from fem_tether.jobs.sweepfile import read_sweep
 
 JOB = {"sweep": {"lengths_m": [500.0, 1000.0, 2000.0]},
        "fe": {"elements": 10, "dt_s": 0.1},

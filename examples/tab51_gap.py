@@ -35,11 +35,12 @@ import time
 
 import numpy as np
 
-from fem_tether import fd, straight
+from fem_tether.tether import fd
+from fem_tether.performance import straight
 from fem_tether.config import load_config
-from fem_tether.fe.solver import simulate
-from fem_tether.results import period_average
-from fem_tether.summary import operating_density_kg_m3, operating_ge
+from fem_tether.tether.fe.solver import simulate
+from fem_tether.tether.results import period_average
+from fem_tether.performance.summary import operating_density_kg_m3, operating_ge
 
 #: Roselli 2016 Tab. 5.1: L [m] -> G_e (straight lines, flexible ropes).
 TABLE_5_1 = {500: (15.38, 15.38), 919: (11.14, 11.16), 1343: (8.68, 9.36), 1768: (7.09, 8.42),

@@ -8,8 +8,9 @@ Run: ``python examples/tether_lumping.py``.
 """
 
 from fem_tether.config import load_config
-from fem_tether.fe.solver import simulate
-from fem_tether.summary import lumped_drags_N, operating_ge, run_speed_mps
+from fem_tether.tether.fe.solver import simulate
+from fem_tether.performance.summary import operating_ge
+from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
 from fem_tether.validation.free_kite import lumped_kite_deviations
 
 cfg = load_config(overrides={"kite": {"model": "point-mass"}, "fe": {"elements": 40, "dt_s": 0.05},

@@ -11,7 +11,7 @@ power curve P(V) on the histogram p_i of its altitudes is (Roselli eq. 5.2)
 
 - Tower: the cubic curve P = P_r (V^3 - V_ci^3)/(V_r^3 - V_ci^3) through the
   paper's 1 MW at 9 m/s (cut-in 4, rated 11.17, cut-out 25 m/s;
-  fem_tether.tower), on a 50-150 m band.
+  fem_tether.physics.tower), on a 50-150 m band.
 - KE-yoyo: the "ke-yoyo" preset's power model (eq. 20, rated 2 MW, cut-out
   25 m/s), on the 200-500 and 500-800 m bands pooled, and on the 500-800 m
   band alone, where its 875 m lines at 46.5 deg fly (602 m).
@@ -24,10 +24,10 @@ import math
 
 import numpy as np
 
-from fem_tether.aep import aep_on_band, sweep_resource
+from fem_tether.performance.aep import aep_on_band, sweep_resource
 from fem_tether.config import load_config
-from fem_tether.systems.configured import from_config
-from fem_tether.tower import FIG_8_KE_YOYO, FIG_8_TOWER
+from fem_tether.performance.configured import from_config
+from fem_tether.physics.tower import FIG_8_KE_YOYO, FIG_8_TOWER
 
 #: Seed 001 Table II, De Bilt.
 SEED_CF = {"tower": 0.36, "ke-yoyo": 0.71}

@@ -1,7 +1,7 @@
 """``fem-tether`` and ``python -m fem_tether``: the command line.
 
 Ctrl-C while the libraries load is held back until the command starts
-(:func:`fem_tether.stop.defer_interrupts`), where it stops every MPI rank
+(:func:`fem_tether.core.stop.defer_interrupts`), where it stops every MPI rank
 and prints one line, exit 130, like any other interrupt.  A command that
 failed or was stopped leaves at once, without the libraries' exit handlers:
 a stopped MPI rank's pending requests can never complete (MPI_Finalize would
@@ -11,7 +11,7 @@ complain), and HDF5 after a failed write (a full disk) can crash its own.
 import os
 import sys
 
-from fem_tether.stop import defer_interrupts
+from fem_tether.core.stop import defer_interrupts
 
 
 def main() -> int:

@@ -18,12 +18,14 @@ import traceback
 
 import numpy as np
 
-from fem_tether import __version__, kite, report
-from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config
-from fem_tether.errors import FemTetherError
-from fem_tether.fe.mesh import unit_nodes, write_unit_mesh
-from fem_tether import stop
-from fem_tether.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
+from fem_tether import __version__
+from fem_tether.physics import kite
+from fem_tether.report import text as report
+from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config, preset_summaries
+from fem_tether.core.errors import FemTetherError
+from fem_tether.core.mesh import unit_nodes, write_unit_mesh
+from fem_tether.core import stop
+from fem_tether.core.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
 
 DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
                "energy systems (FE model with an independent FD cross-check).")
@@ -65,7 +67,7 @@ def _between(low: float, high: float, what: str, unit: str, why: str, low_open: 
 #: top (0.36 at 11 km) to the densest surface air (about 1.5 at -50 °C).
 AIR_DENSITY_KG_M3 = (0.3, 2.0)
 #: Cross-flow drag coefficients of ``straight --cd``: the cylinder's C_d,c(Re)
-#: spans 0.31 (post-critical) to 26 at Re = 0.1 (fem_tether.drag_coefficient).
+#: spans 0.31 (post-critical) to 26 at Re = 0.1 (fem_tether.physics.drag_coefficient).
 CYLINDER_CD = (0.1, 30.0)
 
 _positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
@@ -99,15 +101,13 @@ def cmd_config(args):
 
 
 def cmd_systems(args):
-    from fem_tether.systems import catalog
-
-    rows = catalog.summaries()
+    rows = preset_summaries()
     print(report.json_text({"systems": rows}) if args.json else report.systems_text(rows))
     return 0
 
 
 def cmd_straight(args):
-    from fem_tether import straight
+    from fem_tether.performance import straight
 
     cfg = _config(args)
     lengths = args.lengths or [args.length or cfg.tether.length_m]
@@ -118,7 +118,7 @@ def cmd_straight(args):
 
 
 def cmd_curves(args):
-    from fem_tether.plots import plot_characteristic_curves
+    from fem_tether.report.plots import plot_characteristic_curves
 
     cfg = _config(args)
     if args.ge is not None:
@@ -135,7 +135,8 @@ def cmd_curves(args):
 
 
 def cmd_power(args):
-    from fem_tether.systems import comparison, flexible
+    from fem_tether.performance import comparison
+    from fem_tether.jobs import flexible
 
     cfg = _config(args)
     flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg) if args.flexible else None
@@ -146,7 +147,7 @@ def cmd_power(args):
     if args.flexible:
         data["flexible_file"] = args.flexible
     if args.plot:
-        from fem_tether.plots import plot_system_power
+        from fem_tether.report.plots import plot_system_power
 
         fine = comparison.curve_speeds(cfg, comparison.CURVE_STEP_MPS / 4)
         title = f"{cfg.system.name} ({cfg.system.model} model), tether {cfg.tether.length_m:g} m"
@@ -156,7 +157,7 @@ def cmd_power(args):
 
 
 def cmd_simulate(args):
-    from fem_tether.simulation import simulate_case
+    from fem_tether.commands.simulation import simulate_case
 
     cfg = _config(args, args.length)
     summary = simulate_case(cfg, args.out, args.sweep, progress=not args.json)
@@ -165,7 +166,7 @@ def cmd_simulate(args):
 
 
 def cmd_size(args):
-    from fem_tether.sizing import size_tether
+    from fem_tether.performance.sizing import size_tether
 
     cfg = _config(args, args.length)
     data = report.size_summary(cfg, size_tether(cfg))
@@ -174,7 +175,7 @@ def cmd_size(args):
 
 
 def cmd_crosscheck(args):
-    from fem_tether.evaluate import run_crosscheck
+    from fem_tether.jobs.evaluate import run_crosscheck
 
     cfg = _config(args, args.length)
     fd_cfg = _config(argparse.Namespace(config=args.fd_config, system=args.system), args.length) \
@@ -191,8 +192,8 @@ def _rank() -> int:
 
 
 def cmd_sweep(args):
-    from fem_tether.jobs import load_job
-    from fem_tether.sweep import sweep
+    from fem_tether.jobs.job import load_job
+    from fem_tether.jobs.sweep import sweep
 
     job = load_job(args.job, args.system)
     outcome = sweep(job, args.out, progress=not args.json)
@@ -204,14 +205,14 @@ def cmd_sweep(args):
 
 
 def cmd_study(args):
-    from fem_tether.study.driver import run_study
-    from fem_tether.study.job import load_study
+    from fem_tether.jobs.study.driver import run_study
+    from fem_tether.jobs.study.job import load_study
 
     job = load_study(args.job, args.system)
     outcome = run_study(job, args.out, progress=not args.json, allow_unchecked=args.allow_unchecked)
     if outcome is None:
         return 0
-    from fem_tether.study.report import write_report
+    from fem_tether.report.study import write_report
 
     page = write_report(args.out)
     summary = report.study_summary(outcome, args.out, page)
@@ -220,8 +221,8 @@ def cmd_study(args):
 
 
 def cmd_aep(args):
-    from fem_tether.aep import sweep_aep
-    from fem_tether.sweepfile import read_sweep
+    from fem_tether.performance.aep import sweep_aep
+    from fem_tether.jobs.sweepfile import read_sweep
 
     result = sweep_aep(read_sweep(args.file), args.wind, args.allow_unchecked,
                        args.allow_incomplete).as_dict()
@@ -230,7 +231,7 @@ def cmd_aep(args):
 
 
 def cmd_run(args):
-    from fem_tether.pipeline import main_job
+    from fem_tether.commands.pipeline import main_job
 
     result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete, args.system)
     if result is None:
@@ -253,7 +254,7 @@ def cmd_validate(args):
 
 
 def cmd_bench(args):
-    from fem_tether import bench
+    from fem_tether.commands import bench
 
     if args.memory:
         result = bench.memory(args.memory)
@@ -411,7 +412,7 @@ def _world():
 def main(argv=None) -> int:
     """Run a command.  Under ``mpiexec -n N`` only ``sweep``, ``study`` and
     ``run`` use the ranks, and a stop of any rank (Ctrl-C, an error) stops
-    them all (:mod:`fem_tether.stop`); any other command runs on rank 0 alone
+    them all (:mod:`fem_tether.core.stop`); any other command runs on rank 0 alone
     and the other ranks wait for it.  Every rank exits with rank 0's code."""
     world = _world()
     with contextlib.ExitStack() as quiet:
@@ -435,7 +436,7 @@ def _on_rank_zero(comm, args) -> int:
 
 def _agree(comm, code: int) -> int:
     """Rank 0's exit code on every rank (each waits for it interruptibly), once
-    every rank has arrived (:func:`fem_tether.stop.arrived`): the broadcast
+    every rank has arrived (:func:`fem_tether.core.stop.arrived`): the broadcast
     alone may complete on rank 0 before the others have stopped (an eager
     send), and what rank 0 then reports as kept would miss a part another rank
     was still committing (measured: "1 of 12 tasks kept", 2 reused by the rerun)."""
@@ -452,7 +453,7 @@ def _agree(comm, code: int) -> int:
 
 def _run(args, comm=None) -> tuple[int, BaseException | None]:
     """The command's exit code and, if it stopped, why; a stop on any rank of
-    ``comm`` stops every rank (:func:`fem_tether.stop.guard`)."""
+    ``comm`` stops every rank (:func:`fem_tether.core.stop.guard`)."""
     try:
         with guard(comm):
             code = args.func(args)

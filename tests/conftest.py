@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 from fem_tether.config import load_config
-from fem_tether.jobs import Task, load_job
-from fem_tether.results import SERIES, TetherRun
-from fem_tether.store import PartsStore
-from fem_tether.sweepfile import assemble
+from fem_tether.jobs.job import Task, load_job
+from fem_tether.tether.results import SERIES, TetherRun
+from fem_tether.jobs.store import PartsStore
+from fem_tether.jobs.sweepfile import assemble
 
 #: A sweep job small enough for the suite: coarse meshes and steps, one averaged period.
 TINY_JOB = """[sweep]

@@ -226,7 +226,7 @@ def test_bench_prints_its_table_from_report(capsys, monkeypatch):
               "scaling": {"dt_s": 0.1, "runs": [{"elements": 20, "steps": 288, "wall_s": 0.3,
                                                  "peak_rss_MiB": 93.0}],
                           "fit_intercept_s": 0.0333, "fit_s_per_element": 0.01333, "fit_max_rel_dev": 0.0}}
-    monkeypatch.setattr("fem_tether.bench.bench", lambda repeats: result)
+    monkeypatch.setattr("fem_tether.commands.bench.bench", lambda repeats: result)
     code, out, _ = run_cli(capsys, "bench")
     assert code == 0 and out.splitlines() == [
         "fem-tether bench: L = 3000 m (28.8 s simulated)",
@@ -251,7 +251,7 @@ def test_bench_prints_its_table_from_report(capsys, monkeypatch):
 def test_bench_json_has_the_cheapest_fe_settings_cost_and_real_time_factor(capsys, monkeypatch):
     """``fem-tether bench --json`` carries ``fe_us_per_step`` and ``real_time_factor``
     (of the FE cheapest setting) from bench()."""
-    monkeypatch.setattr("fem_tether.bench.bench",
+    monkeypatch.setattr("fem_tether.commands.bench.bench",
                         lambda repeats: {"fe_us_per_step": 1234.5, "real_time_factor": 20.0})
     code, out, _ = run_cli(capsys, "bench", "--json")
     assert code == 0 and json.loads(out) == {"fe_us_per_step": 1234.5, "real_time_factor": 20.0}
@@ -263,7 +263,7 @@ def test_bench_memory_runs_one_fe_setting(capsys, monkeypatch):
     result = {"case": "L = 3000 m", "solver": "fe", "elements": 5000, "dt_s": 0.1, "steps": 290,
               "wall_s": 29.0, "drag_N": 1.0, "newton_iterations": 1160, "simulated_s": 29.0,
               "peak_rss_MiB": 180.2, "run_rss_MiB": 90.04}
-    monkeypatch.setattr("fem_tether.bench.memory", lambda elements: result | {"elements": elements})
+    monkeypatch.setattr("fem_tether.commands.bench.memory", lambda elements: result | {"elements": elements})
     code, out, _ = run_cli(capsys, "bench", "--memory", "5000")
     assert code == 0 and out.splitlines() == [
         "fem-tether bench --memory: L = 3000 m, FE 5000 elements, dt = 0.1000 s, 290 steps: "

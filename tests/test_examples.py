@@ -213,7 +213,7 @@ def test_short_line_drag_table_of_study_md_is_the_example_s():
 @pytest.mark.parametrize("name", ["study_kitegen", "study_ke_yoyo", "study_trevisi_gg"])
 def test_study_jobs_load(name):
     """The study jobs of docs/study.md §8 are valid jobs (every point's case and band checked)."""
-    from fem_tether.study.job import load_study
+    from fem_tether.jobs.study.job import load_study
 
     job = load_study(EXAMPLES / f"{name}.toml")
     assert len(job.points) >= 16 and job.wind_mps is not None

@@ -24,15 +24,15 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any
 
-from fem_tether.errors import ConfigError
-from fem_tether.systems import catalog
-from fem_tether.orbit import Circle
-from fem_tether.trajectory import FigureEight
+from fem_tether.core.errors import ConfigError
+from fem_tether.config import catalog
+from fem_tether.physics.orbit import Circle
+from fem_tether.physics.trajectory import FigureEight
 
-from . import rules
-from .sections import (FD, FE, MOVED, REDEFINED, Air, Crosscheck, Cycle, Drag, Kite, Output, Resource, System,
-                       Tether, Time, Unified, Wind, Winch)
-from .tomlio import read_toml, resolve_paths, section_toml
+from fem_tether.config import rules
+from fem_tether.config.sections import (FD, FE, MOVED, REDEFINED, Air, Crosscheck, Cycle, Drag, Kite, Output,
+                                        Resource, System, Tether, Time, Unified, Wind, Winch)
+from fem_tether.config.tomlio import read_toml, resolve_paths, section_toml
 
 #: The kite paths by the name ``[kite] path`` takes.
 PATHS: dict[str, type[FigureEight] | type[Circle]] = {"eight": FigureEight, "circle": Circle}
@@ -134,7 +134,7 @@ def merged(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:
 
 def load_config(path: str | Path | None = None, overrides: dict | None = None,
                 system: str | None = None) -> Config:
-    """Defaults, then the preset of ``system`` (:mod:`fem_tether.systems.catalog`),
+    """Defaults, then the preset of ``system`` (:mod:`fem_tether.config.catalog`),
     then the TOML file at ``path``, then ``overrides``.  File names in the
     file are relative to the file, and must exist and read; a key the user
     sets (in the file or ``overrides``) that the case ignores is an error."""
@@ -145,3 +145,14 @@ def load_config(path: str | Path | None = None, overrides: dict | None = None,
     rules.check_given(cfg, given, Config.from_dict(preset))
     rules.check_files(cfg)
     return cfg
+
+
+def preset_summaries() -> list[dict[str, Any]]:
+    """One row per preset: name, model, description, and the tether the solvers run."""
+    rows = []
+    for name in catalog.names():
+        cfg = load_config(system=name)
+        rows.append({"name": name, "model": cfg.system.model, "description": cfg.system.description,
+                     "length_m": cfg.tether.length_m, "lines": cfg.tether.lines,
+                     "diameter_m": cfg.tether.diameter_m, "area_m2": cfg.kite.area_m2})
+    return rows

@@ -1,6 +1,6 @@
 """Rules across sections: the case must be one the solvers can solve.
 
-Each rule raises :class:`~fem_tether.errors.ConfigError` naming the key to
+Each rule raises :class:`~fem_tether.core.errors.ConfigError` naming the key to
 change.  The limits and their reasons are in docs/numerics.md.
 """
 
@@ -10,15 +10,15 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from fem_tether.errors import ConfigError, InputError
-from fem_tether.loads import G_MPS2
-from fem_tether.results import CELL_FIELDS, KITE_SERIES, SERIES, steps_per_period
+from fem_tether.core.errors import ConfigError, InputError
+from fem_tether.physics.loads import G_MPS2
+from fem_tether.core.quantities import CELL_FIELDS, KITE_SERIES, SERIES
 
-from .sections import CEILING_M
-from .settings import toml_value
+from fem_tether.config.sections import CEILING_M
+from fem_tether.config.settings import toml_value
 
 if TYPE_CHECKING:
-    from .model import Config
+    from fem_tether.config.model import Config
 
 #: Fewest time steps per period of the path, per time-step key.  From the
 #: convergence of mean F_t in dt (default case, 500 m is the worst length):
@@ -51,6 +51,12 @@ MAX_RUN_BYTES = 2 * 2**30
 
 #: Numbers per node of a snapshot (results.NODE_FIELDS: s, and r and v in 3-D).
 SNAPSHOT_PER_NODE = 7
+
+
+def steps_per_period(period_s: float, dt_s: float) -> int:
+    """Whole steps of at most ``dt_s`` in a period, ceil(period / dt) (at least
+    one): the one rounding rule of both solvers and of the configuration's checks."""
+    return max(1, math.ceil(period_s / dt_s - 1e-9))
 
 
 def check(cfg: Config) -> None:
@@ -176,16 +182,16 @@ def _read_file_key(cfg: Config, section: str, name: str) -> None:
     """Read the file of key ``[section] name`` as a run reads it (imported here:
     the readers need scipy and meshio, which a configuration without files does not)."""
     if (section, name) == ("fe", "mesh"):
-        from fem_tether.fe.mesh import unit_mesh_from_config
+        from fem_tether.core.mesh import unit_mesh_from_config
         unit_mesh_from_config(cfg.fe)
     elif (section, name) == ("resource", "csv"):
-        from fem_tether.resource import read_resource_csv
+        from fem_tether.physics.resource import read_resource_csv
         read_resource_csv(cfg.resource.csv)
     elif (section, name) == ("winch", "reel_out_table"):
-        from fem_tether.reel import read_speed_table
+        from fem_tether.physics.reel import read_speed_table
         _check_table_direction(cfg, read_speed_table(cfg.winch.reel_out_table)[1])
     elif (section, name) == ("kite", "polar"):
-        from fem_tether.kite_dynamics import read_polar
+        from fem_tether.physics.kite_dynamics import read_polar
         read_polar(cfg.kite.polar)
 
 

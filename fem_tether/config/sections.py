@@ -9,17 +9,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
-from fem_tether.moment import LUMPINGS
+from fem_tether.physics.moment import LUMPINGS
 
-from .settings import Section, ZeroOr, between, from_to, one_of, setting, up_to, zero_to
+from fem_tether.config.settings import Section, ZeroOr, between, from_to, one_of, setting, up_to, zero_to
+from fem_tether.core.mesh import MAX_ELEMENTS, MAX_GRADING
 
 # Every number a user sets is bounded to where it means something; each limit's
 # reason is beside it, and `fem-tether config` prints every key's range.
 
-#: Most elements (FE) or segments (FD) accepted: both solvers were run at
-#: this size (static start and a period of the eight, default case); beyond
-#: it no run has shown that they converge or how long they take.
-MAX_ELEMENTS = 10000
 
 #: Highest altitude of the ISA troposphere the atmosphere model covers [m].
 CEILING_M = 11000.0
@@ -85,10 +82,6 @@ MAX_PERIODS = 1000
 #: of 1e8 accepted iterates 1500 m off the sphere (issue 25).
 NEWTON_TOL = from_to(1e-12, 1e-6)
 
-#: Mesh grading (first/last element size): 1e3 at most, either way.  The default
-#: case's mean F_t at grading 1e3 is within 0.1 % of grading 4's; at 1e9 the
-#: static start failed (the last elements 1e-9 of the first).
-MAX_GRADING = 1e3
 
 #: Polar angles [deg] of a path's centre and a circle's cone: within 1 deg of the
 #: zenith or the horizon no path of a kite's size fits (theta0_deg = 1e-300 put
@@ -100,7 +93,7 @@ TIME_STEP_S = up_to(60.0)
 
 #: Axial stiffness EA [N]: from 1 kN (a rubber cord) to 1e18 N, the stiffest an
 #: elastic line is run at (it reproduces the inextensible line,
-#: tests/test_fe_solver.py); beyond it the strain T/EA is below round-off.
+#: tests/tether/test_fe_solver.py); beyond it the strain T/EA is below round-off.
 AXIAL_STIFFNESS_N = from_to(1e3, 1e18)
 
 #: Kite masses [kg]: four times the heaviest preset's (loyd-1, the C-5A's 233 t).
@@ -135,7 +128,6 @@ MIN_BAND_M = 10.0
 #: Narrowest wind-speed bin [m/s]: an anemometer's resolution, 0.1 m/s (at most
 #: 1000 bins to MAX_WIND_MPS); bins of 1e-6 m/s ran over 120 s without a word.
 MIN_BIN_MPS = 0.1
-
 
 
 #: The power models of :mod:`fem_tether.systems`, by the name ``[system] model`` takes.
@@ -231,7 +223,7 @@ class Tether(Section):
                                     zero_to(10.0))
     sizing: str = setting("fixed", "-", "'fixed' (diameter_m, linear_density_kg_m, axial_stiffness_N as given) "
                           "or 'load' (all three sized in material to the FE run's peak tension, from diameter_m "
-                          "on; fem_tether.sizing)", one_of("fixed", "load"))
+                          "on; fem_tether.performance.sizing)", one_of("fixed", "load"))
     material: str = setting("sk99", "-", "line material for sizing and the margin: 'sk99' (Dyneema, Roselli "
                             "2016 Tab. 2.1), 'steel' (345 MPa working stress) or 'carbon' (2137 MPa; both "
                             "Lourenco 2014) or 'trevisi' (Dyneema, 1.5 GPa strength, fly-gen conductor; "
@@ -379,7 +371,7 @@ class Time(Section):
     spinup_periods: int = setting(1, "-", "periods of the path flown before averaging (a point-mass kite: "
                                   "its least laps of spin-up)", from_to(0, MAX_PERIODS))
     average_periods: int = setting(2, "-", "whole periods averaged (a point-mass kite: whole laps of its own "
-                                   "flight, fem_tether.laps)", from_to(1, MAX_PERIODS))
+                                   "flight, fem_tether.tether.laps)", from_to(1, MAX_PERIODS))
     lap_tolerance: float = setting(1e-3, "-", "point-mass kite: the spin-up ends at the first lap whose means "
                                    "differ from the next lap's by at most this (relative)", up_to(0.5))
     max_spinup_periods: int = setting(50, "-", "point-mass kite: laps after which the spin-up ends unsettled "

@@ -13,7 +13,7 @@ import json
 import math
 from typing import Any, Callable, ClassVar, Self
 
-from fem_tether.errors import ConfigError
+from fem_tether.core.errors import ConfigError
 
 Check = Callable[[Any], "str | None"]
 

@@ -8,11 +8,11 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from fem_tether.errors import ConfigError
-from fem_tether.inputfile import read_text
+from fem_tether.core.errors import ConfigError
+from fem_tether.core.inputfile import read_text
 
-from .rules import FILE_KEYS, NOT_FILES
-from .settings import Section, toml_value
+from fem_tether.config.rules import FILE_KEYS, NOT_FILES
+from fem_tether.config.settings import Section, toml_value
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:
@@ -21,7 +21,7 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
 
 def toml_and_text(path: str | Path) -> tuple[dict[str, Any], str]:
-    """A TOML file's tables and its text (read once, through :func:`~fem_tether.inputfile.read_text`)."""
+    """A TOML file's tables and its text (read once, through :func:`~fem_tether.core.inputfile.read_text`)."""
     text = read_text(path, ConfigError)
     try:
         return tomllib.loads(text), text

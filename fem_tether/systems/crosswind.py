@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..loads import G_MPS2
+from fem_tether.physics.loads import G_MPS2
 
 #: Oswald efficiency of the wing (seed 004 §3.1.2, after its ref. [26])
 OSWALD_EFFICIENCY = 0.9
@@ -45,18 +45,6 @@ def drag_coefficient(cd0, cl, aspect_ratio, tether_cd, oswald=OSWALD_EFFICIENCY)
     coefficient referred to the kite area may stand in its place.
     """
     return cd0 + induced_drag_coefficient(cl, aspect_ratio, oswald) + tether_cd
-
-
-def tether_mass_per_length_kg_m(structural_area_m2, structural_density_kg_m3,
-                                conductor_area_m2=0.0, conductor_density_kg_m3=0.0,
-                                insulation_factor=1.0):
-    """m_r = A_σ ρ_σ + η_is A_el ρ_el (seed 004 eq. 3.16).
-
-    A_σ carries the load; A_el is the conductor that brings the on-board
-    power down (zero for ground generation), η_is ≥ 1 adds its insulation.
-    """
-    return (structural_area_m2 * structural_density_kg_m3
-            + insulation_factor * conductor_area_m2 * conductor_density_kg_m3)
 
 
 def conductor_area_m2(power_W, voltage_V, loss_W, length_m, resistivity_ohm_m):

@@ -7,11 +7,11 @@ cycle up in one static equation, its eq. 20:
     E_eq = C̄_L / C_D,eq,   C_D,eq = C̄_D (1 + 2 r d_l C_D,l / (4 A C̄_D)),              (21)
 
 with W the wind at the kite's mean altitude Z̄ = cosθ (r̲ + r̄)/2, θ the
-angle of the lines **from the vertical** (as ϑ in :mod:`fem_tether.kite`),
+angle of the lines **from the vertical** (as ϑ in :mod:`fem_tether.physics.kite`),
 ṙ the reel-out speed of the traction phase, η_e the efficiency of the
 generators (eq. 19) and η_c the cycle efficiency that *multiplies* the mean
 power (it lumps the passive phase's energy and time; here
-``cycle_efficiency``; :class:`fem_tether.power.Cycle`'s ``eta_c`` is a
+``cycle_efficiency``; :class:`fem_tether.systems.power.Cycle`'s ``eta_c`` is a
 different factor that *divides* an explicit recovery energy).
 
 Eq. 21's line term is C_D,t = 2 C_D,l d_l r / (4A): two lines of diameter
@@ -24,7 +24,7 @@ eq. 21.  Every function takes ``tether_cd``: ``None`` is eq. 21's term at the
 mean line length, a number replaces it (a flexible-tether value from the FE
 solver).
 
-Eq. 20 at fixed θ, φ is the crosswind law of :mod:`fem_tether.kite` with E
+Eq. 20 at fixed θ, φ is the crosswind law of :mod:`fem_tether.physics.kite` with E
 replaced by E_eq, so its optimal reel-out speed is Loyd's, ṙ = W sinθ cosφ/3.
 Above the rated power (2 MW, the paper's Fig. 8) the reel-out speed is raised
 past that optimum until eq. 20 gives the rated power; above the cut-out speed
@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether import kite
+from fem_tether.physics import kite
 from fem_tether.systems.operating_point import OperatingPoint
 from fem_tether.systems.tether_drag import straight_tether_cd
 
@@ -195,7 +195,7 @@ def mean_power_W(system: KEYoyo, wind_mps, reel_out_mps, rho_kg_m3=None, tether_
     """P̄ = η_e η_c C |W sinθ cosφ − ṙ|² ṙ: the cycle-mean electrical power (seed 001 eq. 20).
 
     Eq. 20 as printed, without the rated-power limit; the traction-phase
-    power C |W sinθ cosφ − ṙ|² ṙ is :func:`fem_tether.kite.power_W` with E_eq.
+    power C |W sinθ cosφ − ṙ|² ṙ is :func:`fem_tether.physics.kite.power_W` with E_eq.
     """
     rho = _density(system, rho_kg_m3)
     traction_power = kite.power_W(rho, system.area_m2, system.cl,
@@ -214,7 +214,7 @@ def optimal_reel_out_mps(system: KEYoyo, wind_mps):
     """ṙ = W sinθ cosφ / 3: the maximum of eq. 20 over ṙ (seed 000 eqs. 2.51–2.54).
 
     dP̄/dṙ ∝ (v − ṙ)(v − 3ṙ) with v = W sinθ cosφ; η_e, η_c, ρ and E_eq
-    only scale P̄, so the optimum is Loyd's (:func:`fem_tether.kite.loyd_optimum`
+    only scale P̄, so the optimum is Loyd's (:func:`fem_tether.physics.kite.loyd_optimum`
     with ``projection`` = sinθ cosφ).
     """
     return np.asarray(wind_mps, dtype=float) * system.projection / 3.0

@@ -1,7 +1,7 @@
 """KiteGen (seed 000): the four-zone active phase and the side-slip recovery as operating points.
 
-The physics is :mod:`fem_tether.kite` (zones A–D, seed 000 eqs. 2.55–2.57)
-and :mod:`fem_tether.power` (the cycle with seed 004 eq. 3.24's recovery);
+The physics is :mod:`fem_tether.physics.kite` (zones A–D, seed 000 eqs. 2.55–2.57)
+and :mod:`fem_tether.systems.power` (the cycle with seed 004 eq. 3.24's recovery);
 this module feeds it a tether drag coefficient C_D,t
 (:mod:`fem_tether.systems.tether_drag`) through the global efficiency
 
@@ -10,7 +10,7 @@ this module feeds it a tether drag coefficient C_D,t
 which is seed 000 eq. 5.1, G_e = L / (D_k + lines·F_t), divided by ½ρAV_k²,
 and answers with :class:`~fem_tether.systems.operating_point.OperatingPoint`.
 
->>> from fem_tether.kite import KiteGenDesign
+>>> from fem_tether.physics.kite import KiteGenDesign
 >>> from fem_tether.config import load_config
 >>> cfg = load_config()
 >>> system = KiteGenSystem(KiteGenDesign.from_config(cfg.kite, 2, phi_deg=1.28, rho_kg_m3=0.91), straight_cd=0.13)
@@ -29,11 +29,11 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from fem_tether.kite import KiteGenDesign
-from fem_tether import power
-from fem_tether.power import Cycle, cycle_curves
+from fem_tether.physics.kite import KiteGenDesign
+from fem_tether.systems import power
+from fem_tether.systems.power import Cycle, cycle_curves
 
-from .operating_point import OperatingPoint
+from fem_tether.systems.operating_point import OperatingPoint
 
 
 def global_efficiency(cl, wing_efficiency, tether_cd):
@@ -46,9 +46,9 @@ class KiteGenSystem:
     """A KiteGen flown on one line length.
 
     ``design`` carries the wing's E, the air density at the operating altitude
-    and the mean |φ| of the eight (:func:`fem_tether.power.operating_design`);
+    and the mean |φ| of the eight (:func:`fem_tether.systems.power.operating_design`);
     ``straight_cd`` is the straight-line lumping seed 000 used (its eq. 4.1
-    integral, :mod:`fem_tether.straight`) as a C_D,t.
+    integral, :mod:`fem_tether.performance.straight`) as a C_D,t.
     """
 
     design: KiteGenDesign
@@ -67,12 +67,12 @@ def flown_design(system: KiteGenSystem, tether_cd=None) -> KiteGenDesign:
 
 
 def rated_power_W(system: KiteGenSystem, tether_cd=None) -> float:
-    """P_rated of the cycle with this tether (:func:`fem_tether.power.rated_power_W`)."""
+    """P_rated of the cycle with this tether (:func:`fem_tether.systems.power.rated_power_W`)."""
     return float(power.rated_power_W(flown_design(system, tether_cd), system.cycle))
 
 
 def power_curve(system: KiteGenSystem, wind_mps, tether_cd=None) -> list[OperatingPoint]:
-    """The operating point at each wind speed (the cycle of :func:`fem_tether.power.cycle_curves`).
+    """The operating point at each wind speed (the cycle of :func:`fem_tether.systems.power.cycle_curves`).
 
     ``tether_cd`` None: the straight line (``system.straight_cd``).  Mode
     "off" where the cycle yields nothing (zones A, B, or a recovery dearer

@@ -52,10 +52,10 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import brentq
 
-from ..kite import loyd_optimum
-from ..material import tether_diameter_m
-from .operating_point import OperatingPoint
-from .tether_drag import straight_tether_cd
+from fem_tether.physics.kite import loyd_optimum
+from fem_tether.physics.material import tether_diameter_m
+from fem_tether.systems.operating_point import OperatingPoint
+from fem_tether.systems.tether_drag import straight_tether_cd
 
 #: acceleration of gravity used by seed 003 (§3.2.4.1) [m/s²]
 G_MPS2 = 9.8
@@ -261,7 +261,7 @@ def loyd_modes(system: LoydSystem, wind_mps, rho_kg_m3: float = 1.225, tether_cd
       move crosswind adds no drag);
     - crosswind kite, lift power (ground-gen): Loyd's optimum of seed 000
       eqs. 2.53–2.54 with E = C_L/(C_D + C_D,t),
-      :func:`fem_tether.kite.loyd_optimum`;
+      :func:`fem_tether.physics.kite.loyd_optimum`;
     - crosswind kite, drag power (fly-gen): :func:`flight` at D_p = ½ (D_k + D_T).
 
     For large L/D both crosswind modes tend to (4/27) ½ ρ A C_L (L/D)² (p V_w)³,

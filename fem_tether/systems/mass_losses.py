@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
-from ..loads import G_MPS2
+from fem_tether.physics.loads import G_MPS2
 
 #: readings of the force balance 3.74 (see the module docstring)
 BALANCES = ("seed", "exact")

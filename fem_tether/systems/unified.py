@@ -36,8 +36,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..power import reel_in_force_N
-from .crosswind import wind_power_density_W_m2
+from fem_tether.systems.power import reel_in_force_N
+from fem_tether.systems.crosswind import wind_power_density_W_m2
 
 
 def relative_wind_ratio(kite_angle_rad, gamma_out, gamma_t):
@@ -108,7 +108,7 @@ def reel_in_lift_to_drag(elevation_rad, gamma_in):
 def reel_in_force_exact_N(rho_kg_m3, area_m2, cd0, wind_mps, reel_in_mps, elevation_rad):
     """T_r = D √(1 + (L/D)²), D = ½ ρ A C_d0 V_a²  (seed 004 eqs. 3.21–3.23).
 
-    :func:`fem_tether.power.reel_in_force_N` is its approximation T_r ≈ D
+    :func:`fem_tether.systems.power.reel_in_force_N` is its approximation T_r ≈ D
     (eq. 3.24) for small β and γ_in above 1.
     """
     drag = reel_in_force_N(rho_kg_m3, area_m2, cd0, wind_mps, reel_in_mps, elevation_rad)

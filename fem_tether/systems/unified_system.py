@@ -23,15 +23,17 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize
 
-from ..power import reel_in_force_N
-from .crosswind import (OSWALD_EFFICIENCY, conductor_area_m2, drag_coefficient, kite_inclination_rad,
-                        sag_coefficient_per_m, tether_mass_per_length_kg_m)
-from .mass_losses import BALANCES, force_scale_N, mass_angle_rad, mass_efficiency, weight_term_N
-from .operating_point import OperatingPoint
-from .tether_drag import straight_tether_cd
-from .unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W, disc_induction_factor,
-                      ground_power_W, loyd_power_bound_W, onboard_power_W, reel_in_force_exact_N,
-                      reel_in_power_W)
+from fem_tether.systems.power import reel_in_force_N
+from fem_tether.systems.crosswind import (OSWALD_EFFICIENCY, conductor_area_m2, drag_coefficient,
+                                          kite_inclination_rad, sag_coefficient_per_m)
+from fem_tether.physics.material import tether_mass_per_length_kg_m
+from fem_tether.systems.mass_losses import (BALANCES, force_scale_N, mass_angle_rad, mass_efficiency,
+                                            weight_term_N)
+from fem_tether.systems.operating_point import OperatingPoint
+from fem_tether.systems.tether_drag import straight_tether_cd
+from fem_tether.systems.unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W,
+                                        disc_induction_factor, ground_power_W, loyd_power_bound_W,
+                                        onboard_power_W, reel_in_force_exact_N, reel_in_power_W)
 
 #: generation modes a system may be allowed (seed 004 §3.3: GG, FG or both)
 SYSTEM_MODES = ("ground-gen", "fly-gen", "both")

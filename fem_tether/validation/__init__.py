@@ -17,8 +17,8 @@ Usage::
     v.counts, v.ok
 """
 
-from .case import Case, Check, Explanation, Result, judge
-from .run import SelectionError, Validation, select, validate
+from fem_tether.validation.case import Case, Check, Explanation, Result, judge
+from fem_tether.validation.run import SelectionError, Validation, select, validate
 
 __all__ = ["Case", "Check", "Explanation", "Result", "SelectionError", "Validation", "judge", "select",
            "validate"]

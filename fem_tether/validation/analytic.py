@@ -1,7 +1,7 @@
 """Both solvers against analytic solutions (the checks of docs/validation.md,
 "Verification of the solvers against analytic solutions").
 
-- the static catenary of a uniform chain pinned at both ends (:mod:`fem_tether.catenary`):
+- the static catenary of a uniform chain pinned at both ends (:mod:`fem_tether.physics.catenary`):
   second-order convergence of positions and tensions under refinement;
 - the taut string: fundamental frequency f = sqrt(T/μ)/(2L), and the energy
   kinetic + T0 (L - R) that trapezoidal Newmark conserves;
@@ -17,15 +17,17 @@ from dataclasses import replace
 
 import numpy as np
 
-from fem_tether import atmosphere, drag_coefficient, fd, protocol, straight
-from fem_tether.catenary import Catenary
+from fem_tether.physics import atmosphere, drag_coefficient
+from fem_tether.tether import fd, protocol
+from fem_tether.performance import straight
+from fem_tether.physics.catenary import Catenary
 from fem_tether.config import Config, load_config
-from fem_tether.fe import solver as fe
-from fem_tether.fe.integrator import Kinematics
-from fem_tether.tether import physics_from_config
-from fem_tether.trajectory import Stationary
+from fem_tether.tether.fe import solver as fe
+from fem_tether.tether.fe.integrator import Kinematics
+from fem_tether.tether.line import physics_from_config
+from fem_tether.physics.trajectory import Stationary
 
-from .case import Check
+from fem_tether.validation.case import Check
 
 #: Quiet air: ρ = 1.2 kg/m³, C_d = 1.2, no wind (docs/validation.md).
 QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},

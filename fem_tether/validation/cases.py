@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from functools import partial
 
-from . import analytic, free_kite, numerics, seed000, systems
-from .case import Case
+from fem_tether.validation import analytic, free_kite, numerics, seed000, systems
+from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
 STRING = "analytic: taut string, f = sqrt(T/mu)/(2L)"

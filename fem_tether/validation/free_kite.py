@@ -5,7 +5,7 @@
   (Roselli 2016 eqs. 2.35/2.45; Fagiano et al. 2010 eq. 17) and pulls the
   traction of Roselli 2016 eq. 2.46; a fly-gen kite with C_L/(C_D (1 + γ_t))
   for E (Trevisi 2019 eq. 3.34);
-- the energy balance of a KiteGen flight over a whole period (:mod:`fem_tether.energy`);
+- the energy balance of a KiteGen flight over a whole period (:mod:`fem_tether.tether.energy`);
 - path tracking: KiteGen's eight at 1000 m over ten periods;
 - the FE <-> FD cross-check of the coupled runs at 500 and 1000 m.
 """
@@ -15,14 +15,15 @@ from __future__ import annotations
 import numpy as np
 
 from fem_tether.config import load_config
-from fem_tether.energy import energy_balance
-from fem_tether.evaluate import run_crosscheck
-from fem_tether.fe.solver import build_model, simulate
-from fem_tether.kite_dynamics import PointMassKite, steady_crosswind
-from fem_tether.results import TetherRun
-from fem_tether.summary import lumped_drags_N, operating_tether_cd, run_speed_mps
+from fem_tether.tether.energy import energy_balance
+from fem_tether.jobs.evaluate import run_crosscheck
+from fem_tether.tether.fe.solver import build_model, simulate
+from fem_tether.physics.kite_dynamics import PointMassKite, steady_crosswind
+from fem_tether.tether.results import TetherRun
+from fem_tether.performance.summary import operating_tether_cd
+from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
 
-from .case import Check
+from fem_tether.validation.case import Check
 
 #: A kite on a line so thin and light that its drag and weight are negligible (d = 0.1 mm,
 #: μ = 0.1 g/m: F_t ~ 150 N, weight 0.4 N, against ~1 MN), in a height-independent wind
@@ -70,7 +71,7 @@ def crosswind_deviations(run: TetherRun, cfg) -> tuple[float, float]:
 
 def lumped_kite_deviations(run: TetherRun, cfg) -> dict[str, dict[str, float]]:
     """The free kite against the point-mass kite with the line lumped at it, both
-    lumpings (:func:`fem_tether.summary.lumped_drags_N`): per lumping its C_D,t =
+    lumpings (:func:`fem_tether.tether.lumping.lumped_drags_N`): per lumping its C_D,t =
     lines F / (½ ρ A V²) (ρ at L cos ϑ0, V the run's mean apparent speed, as G_e
     takes them) and the mean over the spun-up snapshots of the steady crosswind
     state (:func:`steady_crosswind`, massless, at the kite's (ϑ, φ), wind and ρ at

@@ -9,7 +9,7 @@ solvers are second order in space and time (P1/P0 and central differences;
 generalised-α and BDF2), so p = 2 within 0.5 (the tests' p > 1.5).
 
 Agreement: the FE and the FD solver on the default case compared by
-:func:`fem_tether.crosscheck.compare`: at the shipped settings against the
+:func:`fem_tether.tether.crosscheck.compare`: at the shipped settings against the
 shipped ``[crosscheck]`` tolerances, and at the finest settings against 0.05 %
 in the means (a tenth of the 0.5 % docs/validation.md asks of the default
 case: both discretisation errors are below 1e-4 there) and 1e-4 L in shape.
@@ -19,14 +19,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from fem_tether import fd
+from fem_tether.tether import fd
 from fem_tether.config import Config, load_config
-from fem_tether.crosscheck import checkable, compare, limits_of
-from fem_tether.evaluate import run_crosscheck
-from fem_tether.fe import solver as fe
+from fem_tether.tether.crosscheck import checkable, compare, limits_of
+from fem_tether.jobs.evaluate import run_crosscheck
+from fem_tether.tether.fe import solver as fe
 
-from .analytic import QUIET, observed_orders
-from .case import Check
+from fem_tether.validation.analytic import QUIET, observed_orders
+from fem_tether.validation.case import Check
 
 CONVERGENCE_CASE = QUIET | {"tether": {"length_m": 3000.0}, "time": {"average_periods": 1}}
 #: (solver section, key refined, its values from coarse to fine, the section's other key held)

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 from fnmatch import fnmatchcase
 
 from fem_tether import __version__
-from fem_tether.errors import InputError
+from fem_tether.core.errors import InputError
 
-from .case import VERDICTS, Case, Check, Result, judge
-from .cases import CASES
+from fem_tether.validation.case import VERDICTS, Case, Check, Result, judge
+from fem_tether.validation.cases import CASES
 
 
 class SelectionError(InputError):

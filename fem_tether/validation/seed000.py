@@ -14,16 +14,17 @@ from functools import lru_cache
 
 import numpy as np
 
-from fem_tether import atmosphere, straight
-from fem_tether.aep import aep_by_length, sweep_resource
+from fem_tether.physics import atmosphere
+from fem_tether.performance import straight
+from fem_tether.performance.aep import aep_by_length, sweep_resource
 from fem_tether.config import load_config
-from fem_tether.fe import solver as fe
-from fem_tether.kite import KiteGenDesign, characteristic_speeds, characteristic_view
-from fem_tether.power import SEED_GE, SEED_LENGTHS_M, SEED_MEAN_PHI_DEG, operating_design
-from fem_tether.summary import operating_ge
-from fem_tether.trajectory import FigureEight
+from fem_tether.tether.fe import solver as fe
+from fem_tether.physics.kite import KiteGenDesign, characteristic_speeds, characteristic_view
+from fem_tether.systems.power import SEED_GE, SEED_LENGTHS_M, SEED_MEAN_PHI_DEG, operating_design
+from fem_tether.performance.summary import operating_ge
+from fem_tether.physics.trajectory import FigureEight
 
-from .case import Check, Explanation
+from fem_tether.validation.case import Check, Explanation
 
 #: Roselli 2016 §4.1: the straight line's F_t at 1000 m, integral with ρ(z) and C_d,c(Re) in
 #: quiet air, and closed form eq. 4.6 with ρ = 1.1835 kg/m³ (mean over 0-707 m), C_d,c = 1.27.

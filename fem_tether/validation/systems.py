@@ -10,14 +10,14 @@ import math
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fem_tether.material import tether_diameter_m
+from fem_tether.physics.material import tether_diameter_m
 from fem_tether.systems.ke_yoyo import TABLE_I, equivalent_drag_coefficient
 from fem_tether.systems.loyd import C_5A, MAKANI_M600, drag_power_W, loyd_tether_cd
 from fem_tether.systems.mass_losses import force_scale_N, mass_angle_rad, mass_efficiency, weight_term_N
 from fem_tether.systems.unified import production_power_W
 from fem_tether.systems.unified_system import UnifiedSystem, power_at_factors
 
-from .case import Check
+from fem_tether.validation.case import Check
 
 #: Trevisi 2019 Table 3.1's case: θ 20°, G_e 10, C_d 0.15, A 100 m², m 2000 kg, ρ 1.225, V_w 10 m/s.
 TABLE_3_1_THETA_RAD = math.radians(20.0)

@@ -10,10 +10,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from fem_tether.atomic import atomic_path, check_folder, check_writable, generator_tag, write_json
+from fem_tether.core.atomic import atomic_path, check_folder, check_writable, generator_tag, write_json
 
-from .case import DOCUMENTS, VERDICTS, Result, format_difference, format_tolerance
-from .run import Validation
+from fem_tether.validation.case import DOCUMENTS, VERDICTS, Result, format_difference, format_tolerance
+from fem_tether.validation.run import Validation
 
 MARKDOWN_NAME, JSON_NAME = "validation.md", "validation.json"
 

@@ -1,0 +1,236 @@
+"""``fem-tether bench``: cost and accuracy of the FE and FD solvers on one case.
+
+Case: L = 3000 m, quiet air, rho = 1.2 kg/m3, C_d = 1.2, tension mode
+(150 kN), the default eight; one period of spin-up and three averaged periods
+(4 periods of the eight, 29 s simulated).  Every setting of each solver's grid
+(elements or segments x time step) runs the same case; the error of its mean
+F_t is measured against a refined FE run with 4x the finest elements and 1/4
+of the finest time step, in the same process (a refined FD run is printed
+beside it: the two limits agree).  Wall times are the best over ``repeats``
+rounds on one core (both solvers are single-threaded): a round runs every
+setting in turn (:func:`_best_of_rounds`), each twice in a child of its own
+(:data:`RUNS_PER_CHILD`), so a setting's runs are spread over the whole
+benchmark, not made back to back.  Measured why: this machine's speed drifts
+by up to 2x for seconds at a time (the same 40-element setting took 171 and
+326 us per step a minute apart), and runs back to back measure such a
+window, not the code; and a fresh child's first run is 25-30 % slower than
+its second (its first touches of the inherited memory).  The
+FD/FE ratio compares the cheapest setting of each within the tolerance,
+measured in this one run.
+
+Each setting runs in a child process of its own, forked for it (the parent
+runs no solver, but has loaded the compiled kernels), so its memory figures are its own: ``run_rss_MiB`` is how
+much the child's peak resident set size (``ru_maxrss``) exceeds its resident
+set at the fork, i.e. what the run itself added (its arrays, snapshots and
+solver state), and ``peak_rss_MiB`` is the peak of a process running it: the
+parent's resident set (Python and the imported libraries, ``base_rss_MiB``)
+plus that increase.  (The child's own ``ru_maxrss`` would undercount: the
+library pages it shares with the parent count only once touched.)
+Newton iterations per step and the real-time factor (simulated s / wall s)
+come from the same runs.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from fem_tether.tether import fd
+from fem_tether.config import load_config
+from fem_tether.jobs.evaluate import load_kernels
+from fem_tether.tether.fe import solver as fe
+from fem_tether.core.memory import peak_rss_MiB
+
+BENCH_CASE = {
+    "tether": {"length_m": 3000.0},
+    "air": {"model": "constant", "density_kg_m3": 1.2},
+    "drag": {"model": "constant", "cd": 1.2},
+    "wind": {"profile": "none"},
+    "winch": {"mode": "tension"},
+    "time": {"spinup_periods": 1, "average_periods": 3},
+    "output": {"every": 1000000},
+}
+ELEMENTS = (10, 20, 40, 80)
+TIME_STEPS_S = (0.2, 0.1, 0.05)
+FD_SEGMENTS = (25, 50, 100)
+FD_TIME_STEPS_S = (0.1, 0.05, 0.025)
+SCALING_ELEMENTS = (20, 80, 320, 1280, 5120)
+SCALING_DT_S = 0.1
+SCALING_REPEATS = 3
+"""Rounds of the cost-vs-elements fit (the best of them per element count)."""
+RUNS_PER_CHILD = 2
+"""Runs of a setting in each round's child (the faster counts)."""
+TOLERANCE = 0.005
+
+
+@dataclass(frozen=True)
+class BenchRow:
+    solver: str
+    elements: int
+    dt_s: float
+    steps: int
+    wall_s: float
+    drag_N: float
+    rel_error: float
+    newton_iterations: int = 0
+    simulated_s: float = 0.0
+    peak_rss_MiB: float = 0.0
+    run_rss_MiB: float = 0.0
+
+    @property
+    def us_per_element_step(self) -> float:
+        return 1e6 * self.wall_s / (self.elements * self.steps)
+
+    @property
+    def us_per_step(self) -> float:
+        return 1e6 * self.wall_s / self.steps
+
+    @property
+    def newton_per_step(self) -> float:
+        return self.newton_iterations / self.steps
+
+    @property
+    def real_time_factor(self) -> float:
+        """Simulated seconds per wall-clock second."""
+        return self.simulated_s / self.wall_s
+
+    def as_dict(self) -> dict:
+        return asdict(self) | {"us_per_element_step": self.us_per_element_step,
+                               "us_per_step": self.us_per_step, "newton_per_step": self.newton_per_step,
+                               "real_time_factor": self.real_time_factor}
+
+
+def _measure(solver, resolution, dt_s, repeats, base_MiB=0.0) -> dict:
+    """One setting in this process: best-of-``repeats`` wall time, the run's
+    figures and the peak RSS (see the module docstring)."""
+    at_start = peak_rss_MiB()
+    cfg = load_config(overrides=BENCH_CASE)
+    if solver == "fe":
+        cfg = cfg.replace(fe={"elements": resolution, "dt_s": dt_s})
+    else:
+        cfg = cfg.replace(fd={"segments": resolution, "dt_s": dt_s})
+    simulate = fe.simulate if solver == "fe" else fd.simulate
+    best, run = np.inf, None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        run = simulate(cfg)
+        best = min(best, time.perf_counter() - t0)
+    assert run is not None
+    run_MiB = peak_rss_MiB() - at_start
+    return {"solver": solver, "elements": resolution, "dt_s": run.extra["dt_s"],
+            "steps": run.time_s.size - 1, "wall_s": best, "drag_N": run.mean("drag_N"),
+            "newton_iterations": int(run.extra["newton_iterations"]),
+            "simulated_s": float(run.time_s[-1] - run.time_s[0]),
+            "peak_rss_MiB": base_MiB + run_MiB, "run_rss_MiB": run_MiB}
+
+
+def _child(conn, args) -> None:
+    try:
+        conn.send(_measure(*args))
+    except BaseException as exc:      # the parent raises it
+        conn.send(exc)
+    finally:
+        conn.close()
+
+
+def _run(solver, resolution, dt_s, repeats) -> dict:
+    """:func:`_measure` of one setting in a child process forked for it (so that
+    its peak RSS is its own); ``resolution`` is the FE element count or the FD
+    segment count.  The compiled kernels are loaded here first, so the child
+    inherits them and no setting's time or memory counts their one-time loading."""
+    load_kernels(load_config(overrides=BENCH_CASE), ("fe", "fd"))
+    ctx = multiprocessing.get_context("fork")
+    parent, child = ctx.Pipe(duplex=False)
+    base = peak_rss_MiB()             # this process runs no solver: its peak is its imports
+    process = ctx.Process(target=_child, args=(child, (solver, resolution, dt_s, repeats, base)))
+    process.start()
+    child.close()
+    try:
+        result = parent.recv()
+    finally:
+        process.join()
+    if isinstance(result, BaseException):
+        raise result
+    return result
+
+
+def _row(m: dict, reference_N: float) -> BenchRow:
+    return BenchRow(rel_error=abs(m["drag_N"] / reference_N - 1.0), **m)
+
+
+def _best_of_rounds(settings, rounds) -> list[dict]:
+    """:func:`_run` of every ``(solver, resolution, dt_s, repeats)`` setting once per
+    round, for ``rounds`` rounds; per setting the run with the least wall time
+    (``wall_s`` the best, the memory figures the largest of the rounds)."""
+    best: list[dict] = [{} for _ in settings]
+    for _ in range(rounds):
+        for i, setting in enumerate(settings):
+            m = _run(*setting)
+            if not best[i]:
+                best[i] = m
+            else:
+                best[i] = (m if m["wall_s"] < best[i]["wall_s"] else best[i]) | {
+                    k: max(m[k], best[i][k]) for k in ("peak_rss_MiB", "run_rss_MiB")}
+    return best
+
+
+def _cheapest(rows):
+    ok = [r for r in rows if r.rel_error <= TOLERANCE]
+    return min(ok, key=lambda r: r.wall_s) if ok else None
+
+
+def memory(elements: int, dt_s: float = SCALING_DT_S) -> dict:
+    """``fem-tether bench --memory N``: wall time and peak RSS of one FE run of
+    the benchmark case with ``elements`` elements (in a child process)."""
+    return _run("fe", elements, dt_s, 1) | {
+        "case": "L = 3000 m, quiet air, rho = 1.2, C_d = 1.2, tension mode, 1 + 3 periods"}
+
+
+def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
+          fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=5) -> dict:
+    """Run both grids and the references; return the tables and the summary."""
+    ref_run = _run("fe", 4 * max(elements), min(time_steps_s) / 4, 1)
+    ref = ref_run["drag_N"]
+    fd_ref_run = _run("fd", 4 * max(fd_segments), min(fd_time_steps_s) / 4, 1)
+    fe_settings = [("fe", n, dt, RUNS_PER_CHILD) for n in elements for dt in time_steps_s]
+    fd_settings = [("fd", n, dt, RUNS_PER_CHILD) for n in fd_segments for dt in fd_time_steps_s]
+    measured = _best_of_rounds(fe_settings + fd_settings, repeats)
+    rows = [_row(m, ref) for m in measured[:len(fe_settings)]]
+    fd_rows = [_row(m, ref) for m in measured[len(fe_settings):]]
+    cheapest, fd_cheapest = _cheapest(rows), _cheapest(fd_rows)
+    scaling = [{k: m[k] for k in ("elements", "steps", "wall_s", "peak_rss_MiB")}
+               for m in _best_of_rounds([("fe", n, SCALING_DT_S, RUNS_PER_CHILD) for n in scaling_elements],
+                                        SCALING_REPEATS)]
+    n_el = np.array([r["elements"] for r in scaling], dtype=float)
+    wall = np.array([r["wall_s"] for r in scaling])
+    slope, intercept = np.polyfit(n_el, wall, 1, w=1.0 / wall)     # least relative deviations
+    return {
+        "case": "L = 3000 m, quiet air, rho = 1.2, C_d = 1.2, tension mode, 1 + 3 periods",
+        "simulated_s": ref_run["simulated_s"],
+        "cpu_count": os.cpu_count(),
+        "memory": (f"peak RSS: this process with its imports ({peak_rss_MiB():.0f} MiB) plus the "
+                   "increase (run) of a child forked per setting"),
+        "reference": {"elements": 4 * max(elements), "dt_s": ref_run["dt_s"],
+                      "drag_N": ref, "wall_s": ref_run["wall_s"], "peak_rss_MiB": ref_run["peak_rss_MiB"]},
+        "fd_reference": {"segments": 4 * max(fd_segments), "dt_s": fd_ref_run["dt_s"],
+                         "drag_N": fd_ref_run["drag_N"], "wall_s": fd_ref_run["wall_s"],
+                         "peak_rss_MiB": fd_ref_run["peak_rss_MiB"]},
+        "rows": [r.as_dict() for r in rows + fd_rows],
+        "cheapest": None if cheapest is None else cheapest.as_dict(),
+        "fd_cheapest": None if fd_cheapest is None else fd_cheapest.as_dict(),
+        "fd_over_fe_wall": (fd_cheapest.wall_s / cheapest.wall_s
+                            if cheapest and fd_cheapest else None),
+        "fe_us_per_step": None if cheapest is None else cheapest.us_per_step,
+        "fe_us_per_step_10_to_40": [f(r.us_per_step for r in rows if 10 <= r.elements <= 40)
+                                    for f in (min, max)],
+        "real_time_factor": None if cheapest is None else cheapest.real_time_factor,
+        "tolerance": TOLERANCE,
+        "scaling": {"dt_s": SCALING_DT_S, "runs": scaling, "fit_intercept_s": float(intercept),
+                    "fit_s_per_element": float(slope),
+                    "fit_max_rel_dev": float(np.max(np.abs(intercept + slope * n_el - wall) / wall))},
+    }
+

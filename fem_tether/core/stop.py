@@ -1,0 +1,274 @@
+"""One stop for every rank: an interrupt or a failure on any MPI rank ends them all.
+
+A rank that is interrupted (Ctrl-C, or a signal to that rank alone) or fails
+tells every other rank, over a communicator of its own, its exit code and the
+one line to print.  Each rank's watcher thread polls for that message and
+interrupts its main thread, which raises :class:`KeyboardInterrupt` wherever
+it is (between two bytecodes; a compiled kernel call finishes first).  Every
+collective the package calls waits first in an interruptible loop
+(:func:`sync`), so no rank waits for one that stopped.  The CLI then prints
+one line on rank 0 and every rank exits with the same code
+(:func:`exit_code`).
+
+Ctrl-C is remembered until the command has stopped, and the long loops ask
+for it (:func:`checkpoint`): Python drops a ``KeyboardInterrupt`` raised
+inside a finaliser.  Ctrl-C while the libraries load (before any rank could
+tell the others) is held back (:func:`defer_interrupts`) until the command
+starts inside its guard, so that it too stops every rank.
+
+Without MPI (one process) :func:`guard` does nothing.
+"""
+
+from __future__ import annotations
+
+import _thread
+import signal
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+#: Exit codes: a user's mistake, a failed solve (or a defect), an interrupt.
+EXIT_USAGE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 1, 130
+
+#: Tag of the stop message on the guard's own communicator.
+STOP_TAG = 17
+
+#: How often the watcher looks for a stop message, and a waiting rank for its collective [s].
+POLL_S = 0.05
+
+#: How long a stopping rank waits for its stop messages to leave [s].
+SEND_TIMEOUT_S = 5.0
+
+
+class RemoteStop(KeyboardInterrupt):
+    """Another rank stopped this one: its exit code and the line to print."""
+
+    def __init__(self, rank: int, code: int, line: str):
+        self.rank, self.code, self.line = rank, code, line
+        super().__init__(line)
+
+
+class _Watcher:
+    """The stop channel of one communicator: announce a stop, and notice one."""
+
+    def __init__(self, comm):
+        self.comm = comm.Dup()           # its messages never meet the package's own
+        self.received: RemoteStop | None = None
+        self.announced = False
+        self._armed = threading.Lock()
+        self._done = threading.Event()
+        self._thread = threading.Thread(target=self._watch, name="fem-tether stop watcher", daemon=True)
+        self._thread.start()
+
+    def _watch(self) -> None:
+        from mpi4py import MPI
+
+        while not self._done.wait(POLL_S):
+            status = MPI.Status()
+            if self.comm.Iprobe(source=MPI.ANY_SOURCE, tag=STOP_TAG, status=status):
+                code, line = self.comm.recv(source=status.Get_source(), tag=STOP_TAG)
+                with self._armed:
+                    if self._done.is_set() or self.announced:
+                        return
+                    self.received = RemoteStop(status.Get_source(), code, line)
+                    _thread.interrupt_main()
+                return
+
+    def announce(self, code: int, line: str) -> None:
+        """Tell every other rank to stop (once, unless this rank was told)."""
+        with self._armed:
+            if self.received is not None or self.announced:
+                return
+            self.announced = True
+        rank = self.comm.Get_rank()
+        requests = [self.comm.isend((code, line), dest=r, tag=STOP_TAG)
+                    for r in range(self.comm.Get_size()) if r != rank]
+        deadline = time.monotonic() + SEND_TIMEOUT_S
+        while requests and time.monotonic() < deadline:
+            requests = [r for r in requests if not r.Test()]
+            time.sleep(0.01)
+
+    def close(self) -> None:
+        with self._armed:
+            self._done.set()
+        self._thread.join()
+
+
+_active: dict[int, _Watcher] = {}
+
+
+def exit_code(exc: BaseException) -> tuple[int, str]:
+    """The exit code and the one line the CLI prints for ``exc``."""
+    from fem_tether.core.errors import InputError, SolverDivergedError
+
+    if isinstance(exc, RemoteStop):
+        return exc.code, exc.line
+    if isinstance(exc, KeyboardInterrupt) or (interrupted() and not isinstance(exc, (InputError, OSError))):
+        why = str(exc) if isinstance(exc, KeyboardInterrupt) else ""
+        return EXIT_INTERRUPTED, f"fem-tether: interrupted{f': {why}' if why else ''}"
+    if isinstance(exc, InputError):
+        return EXIT_USAGE, f"fem-tether: error: {exc}"
+    if isinstance(exc, SolverDivergedError):
+        return EXIT_FAILED, f"fem-tether: solver failed: {exc}"
+    if isinstance(exc, OSError):
+        where = f"{exc.filename}: " if exc.filename else ""
+        return EXIT_USAGE, f"fem-tether: error: {where}{exc.strerror or exc}"
+    return EXIT_FAILED, f"fem-tether: internal error: {type(exc).__name__}: {exc}"
+
+
+@contextmanager
+def guard(comm) -> Iterator[None]:
+    """Stop every rank of ``comm`` when any of them stops inside the block
+    (and, on any number of ranks, let Ctrl-C stop the block: :func:`interruptible`).
+
+    An exception leaving the block on this rank is announced to the others
+    (with its exit code and line) and re-raised; a stop announced by another
+    rank arrives here as :class:`RemoteStop` (a ``KeyboardInterrupt``, so
+    what catches Ctrl-C to keep its parts catches it too).  Nested guards of
+    one communicator share one watcher."""
+    if comm is None or comm.Get_size() == 1 or id(comm) in _active:
+        with interruptible():
+            yield
+        return
+    watcher = _active[id(comm)] = _Watcher(comm)
+    try:
+        with interruptible():
+            yield
+    except BaseException as exc:
+        told = watcher.received
+        if told is not None and not (told.code == EXIT_INTERRUPTED and isinstance(exc, KeyboardInterrupt)):
+            raise told from None     # an interrupt keeps this rank's words (what it kept)
+        watcher.announce(*exit_code(exc))
+        raise
+    finally:
+        del _active[id(comm)]
+        watcher.close()
+
+
+def sync(comm) -> None:
+    """Wait, interruptibly, until every rank of ``comm`` has come here (before a
+    blocking collective, so that a rank that stopped cannot leave it waiting)."""
+    if comm.Get_size() > 1:
+        wait(comm.Ibarrier())
+
+
+#: The tag of a rank's word to rank 0 that it has stopped (:func:`arrived`).
+ARRIVED_TAG = 18
+
+#: How long rank 0 waits for the other ranks' word that they have stopped [s].
+ARRIVAL_S = 5.0
+
+
+def arrived(comm, within_s: float = ARRIVAL_S) -> None:
+    """Every rank of ``comm`` tells rank 0 that it has stopped, and rank 0 waits,
+    stoppable, until each has or ``within_s`` has passed: what the ranks left
+    on disk is then final (a part another rank was committing when the stop
+    came is in it).  Point-to-point, not a barrier: a rank stopped inside a
+    collective (:func:`sync`) leaves it pending, and a new collective would be
+    matched with it.  Bounded, so that a rank that cannot stop (inside a
+    blocking call) does not keep rank 0, whose exit ends the job, waiting."""
+    if comm.Get_rank() != 0:
+        wait(comm.Isend(bytearray(1), dest=0, tag=ARRIVED_TAG))
+        return
+    words = [comm.Irecv(bytearray(1), source=rank, tag=ARRIVED_TAG) for rank in range(1, comm.Get_size())]
+    deadline = time.monotonic() + within_s
+    while not all(word.Test() for word in words):
+        if time.monotonic() > deadline:
+            for word in words:
+                if not word.Test():
+                    word.Cancel()
+            return
+        checkpoint()
+        time.sleep(POLL_S)
+
+
+def wait(request) -> None:
+    """Wait for the MPI ``request`` asleep (not spinning on a core another rank
+    may need) and stoppable (:func:`checkpoint`)."""
+    while not request.Test():
+        checkpoint()
+        time.sleep(POLL_S)
+
+
+def _importing(frame) -> bool:
+    """Whether ``frame`` runs inside an import (a module's body being executed)."""
+    while frame is not None:
+        if frame.f_code.co_filename.startswith("<frozen importlib"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+class _Interrupts:
+    """Ctrl-C, remembered until the command has stopped: Python drops a
+    ``KeyboardInterrupt`` raised inside a finaliser (h5py's weak references
+    run them often), so the loops that run long ask again (:func:`checkpoint`).
+    One that comes during an import is only remembered: raised there, it
+    leaves the library half-imported (numba then fails with an ImportError),
+    so the next checkpoint raises it; a second one raises at once, and what
+    fails after it counts as interrupted (:func:`exit_code`)."""
+
+    def __init__(self):
+        self.seen = False
+        self.raising = False
+
+    def __call__(self, signum, frame) -> None:
+        again, self.seen = self.seen, True
+        if self.raising and (again or not _importing(frame)):    # a second Ctrl-C insists
+            raise KeyboardInterrupt
+
+
+_interrupts = _Interrupts()
+
+
+def defer_interrupts() -> None:
+    """Until the command starts (:func:`interruptible`), remember Ctrl-C instead
+    of raising it (while the libraries load, before any rank can tell the
+    others).  A process started with SIGINT ignored (``nohup``, a background
+    job) keeps ignoring it."""
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+        signal.signal(signal.SIGINT, _interrupts)
+
+
+def checkpoint() -> None:
+    """Raise ``KeyboardInterrupt`` if Ctrl-C came and was not yet acted on."""
+    if _interrupts.seen and _interrupts.raising:
+        raise KeyboardInterrupt
+
+
+def interrupted() -> bool:
+    """Whether Ctrl-C came and was not yet acted on (what fails after it, a
+    half-imported library, was interrupted)."""
+    return _interrupts.seen
+
+
+def clear() -> None:
+    """The interrupt has been acted on (the command ended)."""
+    _interrupts.seen = False
+
+
+@contextmanager
+def interruptible() -> Iterator[None]:
+    """Ctrl-C raises ``KeyboardInterrupt`` in the block, now if one came while
+    deferred, and again at every :func:`checkpoint` until :func:`clear`."""
+    if threading.current_thread() is not threading.main_thread() or _interrupts.raising:
+        yield
+        return
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:     # started ignoring it: keep ignoring
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, _interrupts)
+    hook = sys.unraisablehook
+    sys.unraisablehook = lambda unraisable: (None if issubclass(unraisable.exc_type, KeyboardInterrupt)
+                                             else hook(unraisable))   # dropped, and asked for again
+    _interrupts.raising = True
+    try:
+        checkpoint()
+        yield
+        checkpoint()                     # one a finaliser dropped is not lost: the block ends interrupted
+    finally:
+        _interrupts.raising = False
+        sys.unraisablehook = hook
+        signal.signal(signal.SIGINT, previous)

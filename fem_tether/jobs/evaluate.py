@@ -1,0 +1,160 @@
+"""Evaluation of one cable length: its solver runs and what follows from them.
+
+:func:`run_crosscheck` runs the FE and the FD solver on one case and compares
+them; :func:`run_task` runs one solver of a sweep's length into the parts
+store; :func:`evaluate_length` combines a length's stored runs with the
+straight line into the values of the sweep result (F_t, G_e, cross-check,
+the line's diameter, peak tension and margin; with a sized line also the F_t
+and G_e of the configured one, the sizing loop's first run).
+"""
+
+from __future__ import annotations
+
+import importlib
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from fem_tether.config import Config
+from fem_tether.tether import fd
+from fem_tether.performance import straight
+from fem_tether.tether.crosscheck import checkable, compare
+from fem_tether.core.errors import SolverDivergedError
+from fem_tether.tether.fe import solver as fe_solver
+from fem_tether.jobs.job import Task
+from fem_tether.core.quantities import lumped_name, names
+from fem_tether.performance.sizing import margin, peak_tension_N
+from fem_tether.jobs.store import PartsStore
+from fem_tether.performance.summary import operating_ge
+from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
+
+
+def simulator(solver: str):
+    """The ``simulate`` of the solver ``"fe"`` or ``"fd"``, looked up at each call
+    (so that a replaced solver function is the one that runs)."""
+    return fe_solver.simulate if solver == "fe" else fd.simulate
+
+
+#: The compiled kernels of each solver (numba compiles them on the first import
+#: after an install and caches them; a later import loads them).
+KERNEL_MODULES = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.fd.kernel"}
+
+
+def load_kernels(cfg: Config, solvers) -> None:
+    """Import the compiled kernels of those ``solvers`` whose section of ``cfg``
+    asks for them (``kernel = "compiled"``): compiled now, or loaded from the cache."""
+    for solver in solvers:
+        if getattr(cfg, solver).kernel == "compiled":
+            importlib.import_module(KERNEL_MODULES[solver])
+
+
+def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):
+    """Run the FE and the FD solver on the configured case and compare them.
+
+    ``fd_cfg`` gives the FD run a configuration of its own (default: ``cfg``);
+    both run at the FE's length, with enough snapshots (:func:`checkable`);
+    tolerances are ``cfg``'s.  Returns ``(CrossCheck, fe_run, fd_run)``.
+    """
+    cfg = checkable(cfg)
+    fd_cfg = checkable(fd_cfg.with_length(cfg.tether.length_m)) if fd_cfg else cfg
+    fe_run = simulator("fe")(cfg, progress=progress)
+    fd_run = simulator("fd")(fd_cfg, progress=progress)
+    return compare(fe_run, fd_run, cfg.crosscheck), fe_run, fd_run
+
+
+def run_task(store: PartsStore, task: Task) -> str:
+    """Run one task unless a matching successful part exists; return
+    ``"reused"`` (a stored part matched), ``"ok"`` or ``"failed"``."""
+    key = store.inputs_key(task.length_m)
+    if store.status(task, key) == "ok":
+        return "reused"
+    cfg = store.job.config_for(task.length_m)
+    try:
+        cfg = store.config_for(task.length_m)       # with [tether] sizing = "load": sized now or stored
+        run = simulator(task.solver)(cfg)
+    except SolverDivergedError as exc:
+        store.write_failure(task, cfg, key, f"{task.solver.upper()}: {exc}")
+        return "failed"
+    except Exception as exc:  # a defect must not cost the other lengths their results
+        last = traceback.extract_tb(exc.__traceback__)[-1]
+        store.write_failure(task, cfg, key, f"{task.solver.upper()}: {type(exc).__name__}: {exc} "
+                                            f"({Path(last.filename).name}:{last.lineno})")
+        return "failed"
+    store.write_run(task, run, key)
+    return "ok"
+
+
+@dataclass
+class LengthResult:
+    length_m: float
+    status: str = "ok"          # "ok", "pending" (a task has not run) or "failed"
+    error: str = ""
+    values: dict = field(default_factory=dict)
+
+
+#: The per-length values, which are the numeric root datasets of a sweep result
+#: (one value per length), in the quantities table's order.
+ROOT_DATASETS = tuple(n for n in names("sweep") if n not in ("length_m", "status", "error"))
+
+
+def evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:
+    """Combine the stored parts of one length: cross-check, straight line, G_e.
+
+    Returns the result and the part paths found (solver -> path); remembered
+    by the store while the parts on disk do not change."""
+    return store.combined(length_m, lambda: _evaluate_length(store, length_m))
+
+
+def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:
+    job = store.job
+    cfg = store.stored_config(length_m)
+    key = store.inputs_key(length_m)
+    res = LengthResult(length_m)
+    lumping = cfg.drag.tether_drag_lumping
+    v = dict.fromkeys(ROOT_DATASETS, float("nan"))
+    v["crosscheck_ok"] = 0
+    v["mean_phi_deg"] = cfg.path.mean_abs_phi_deg()
+    runs, parts, errors, pending = {}, {}, [], False
+    status = {solver: store.status(Task(length_m, solver), key) for solver in job.solvers}
+    compared = status.get("fe") == status.get("fd") == "ok"    # only then are snapshots read
+    for solver in job.solvers:
+        task = Task(length_m, solver)
+        if status[solver] is None:
+            pending = True
+            continue
+        parts[solver] = store.path(task)
+        if status[solver] != "ok":
+            errors.append(store.error(task))
+            continue
+        runs[solver] = store.read(task, snapshots=compared)
+    if "fe" in runs:
+        drags = lumped_drags_N(runs["fe"], cfg)
+        v["drag_fe_N"], v["drag_power_fe_N"] = drags["moment"], drags["power"]
+        v["kite_tension_fe_N"] = runs["fe"].mean("kite_tension_N")
+        v["ge_fe"] = operating_ge(cfg, drags[lumping], run_speed_mps(runs["fe"], cfg))  # a point-mass kite: at its own speed
+        v["peak_tension_N"] = peak_tension_N(runs["fe"])
+        v["margin"] = margin(cfg, v["peak_tension_N"])
+    v["d_m"] = cfg.tether.diameter_m
+    sizing = store.stored_sizing(length_m) if cfg.tether.sizing == "load" else None
+    if sizing:
+        v["drag_fixed_N"], v["drag_power_fixed_N"] = sizing.fixed_drag_N, sizing.fixed_power_drag_N
+        v["ge_fixed"] = operating_ge(job.config_for(length_m),
+                                     v[lumped_name("drag_fixed_N", lumping)])
+    if "fd" in runs:
+        v["drag_fd_N"] = runs["fd"].mean("drag_N")
+        v["kite_tension_fd_N"] = runs["fd"].mean("kite_tension_N")
+    if "fe" in runs and "fd" in runs:
+        check = compare(runs["fe"], runs["fd"], cfg.crosscheck)
+        v["crosscheck_ok"] = int(check.ok)
+        v["rel_diff_drag"] = check.rel_diff["drag"]
+        v["rel_diff_shape"] = check.rel_diff["shape"]
+    if job.straight:
+        line = straight.from_config(cfg, with_wind=True)
+        v["drag_straight_N"], v["drag_power_straight_N"] = line.drag_N, line.power_drag_N
+        v["ge_straight"] = operating_ge(cfg, line.lumped_N(lumping))
+    res.values = v
+    if errors:
+        res.status, res.error = "failed", "; ".join(errors)
+    elif pending:
+        res.status = "pending"
+    return res, parts

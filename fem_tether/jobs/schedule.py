@@ -1,0 +1,56 @@
+"""Which rank runs which task: estimated costs, longest processing time first.
+
+Tasks are assigned to ranks by longest processing time first on an estimated
+cost (time steps x a measured per-step cost of each solver, linear in its
+points); the assignment only decides where a task runs,
+never what it computes, so every number is the same whatever the number of
+ranks.
+"""
+
+from __future__ import annotations
+
+from fem_tether.config import Config
+from fem_tether.jobs.job import Job, Task
+from fem_tether.tether.results import time_grid
+
+#: Cost of one time step of each solver, ``overhead + per_point x points`` in
+#: microseconds, measured on 2026-11-30 with the compiled whole-step kernels:
+#: in the default job (1 + 2 periods), in one slow window of this machine, an
+#: FE run of 41 nodes took 0.093-0.124 s for 436 steps and an FD run of 101
+#: nodes 0.39-0.59 s for 871 steps (an FD run 4.2-5.5 FE runs); the bench case
+#: at 5000 elements 10-13 ms per FE step, at 1600 segments (default physics,
+#: 1768 m) 4.5-6.0 ms per FD step.  Only the ratios matter (they order and
+#: balance the tasks).
+STEP_COST_US = {"fe": (70.0, 1.8), "fd": (90.0, 2.7)}
+
+
+def run_cost_us(cfg: Config, solver: str) -> float:
+    """Estimated cost of one run of ``solver`` ("fe" or "fd") on ``cfg`` in
+    microseconds: time steps x (overhead + per_point x points) (:data:`STEP_COST_US`)."""
+    from fem_tether.tether.fe.solver import unit_mesh_from_config
+
+    t = cfg.time
+    dt = cfg.fe.dt_s if solver == "fe" else cfg.fd.dt_s
+    steps = time_grid(cfg.path.period_s, dt, t.spinup_periods, t.average_periods)[1]
+    points = unit_mesh_from_config(cfg.fe).size if solver == "fe" else cfg.fd.segments + 1
+    overhead_us, per_point_us = STEP_COST_US[solver]
+    return float(steps * (overhead_us + per_point_us * points))
+
+
+def task_cost(job: Job, task: Task) -> float:
+    """Estimated cost of a sweep task in microseconds (:func:`run_cost_us`).  With
+    the default job the estimate puts an FD run at 5.0 FE runs, as measured (4.2-5.5)."""
+    return run_cost_us(job.config_for(task.length_m), task.solver)
+
+
+def assign(costs: list[float], n_ranks: int, rank0_load: float = 0.0) -> list[list[int]]:
+    """Longest processing time first: each task, costliest first, to the least
+    loaded rank (ties to the lowest rank); deterministic.  Rank 0 starts with
+    ``rank0_load``, the cost of other work it does (in the costs' unit)."""
+    loads = [rank0_load] + [0.0] * (n_ranks - 1)
+    owners: list[list[int]] = [[] for _ in range(n_ranks)]
+    for i in sorted(range(len(costs)), key=lambda i: (-costs[i], i)):
+        rank = min(range(n_ranks), key=lambda r: (loads[r], r))
+        loads[rank] += costs[i]
+        owners[rank].append(i)
+    return owners

@@ -1,0 +1,177 @@
+"""The durable parts of a sweep: one HDF5 file per finished task.
+
+Every finished task is written at once, atomically, to its own file in
+``<out>.parts/`` by the rank that ran it, so nothing finished is lost when a
+sweep is interrupted.  A part records the key of the inputs it was computed
+from (:func:`inputs_key`: configuration, package version and the contents of
+the files it names); re-running the same job reuses the parts whose key
+matches.  A task whose solve failed is stored too, as attributes only (its
+status and error), so the other tasks go on and the failure is reported.
+
+With ``[tether] sizing = "load"`` a length's tasks run its sized line
+(:mod:`fem_tether.performance.sizing`): the first task of the length to need it sizes the
+line under the length's lock and stores the result (``L<length>_size.json``,
+keyed like the parts); a task of the same length on another rank waits for
+the lock and reads it.  The sizing is a function of the length's
+configuration alone, so the sized line is the same whatever the number of
+ranks and whichever rank sizes it.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import hashlib
+import json
+import os
+from contextlib import contextmanager
+from functools import cached_property
+from pathlib import Path
+
+import h5py
+
+from fem_tether import __version__
+from fem_tether.core.atomic import atomic_path, write_json
+from fem_tether.config import FILE_KEYS, NOT_FILES, Config
+from fem_tether.jobs.job import Job, Task, length_tag
+from fem_tether.io.output import read_run_hdf5, write_run_hdf5
+from fem_tether.tether.results import TetherRun
+from fem_tether.performance.sizing import Sizing, size_tether, sized_case
+
+
+def parts_dir(out: Path) -> Path:
+    """Where the parts of the result file ``out`` are kept."""
+    return out.with_name(out.name + ".parts")
+
+
+def inputs_key(cfg: Config) -> str:
+    """What a task's result depends on: its configuration, the package version
+    and the contents of the files the configuration names (a mesh, a table)."""
+    digest = hashlib.sha256((cfg.to_toml() + __version__).encode())
+    for section, name in FILE_KEYS:
+        value = getattr(getattr(cfg, section), name)
+        if value not in NOT_FILES:
+            digest.update(Path(value).read_bytes())
+    return digest.hexdigest()
+
+
+class PartsStore:
+    """The parts of one job's sweep into the result file ``out``.
+
+    Besides the files, it remembers for its lifetime (one sweep) what was
+    combined from each length's parts, so that assembling after every task
+    does not read and compare the unchanged lengths again.
+    """
+
+    def __init__(self, job: Job, out: str | Path):
+        self.job = job
+        self.out = Path(out)
+        self.directory = parts_dir(self.out)
+        self._combined: dict = {}
+
+    def path(self, task: Task) -> Path:
+        return self.directory / f"{task.name}.h5"
+
+    def inputs_key(self, length_m: float) -> str:
+        """The inputs key of the tasks of one length."""
+        return inputs_key(self.job.config_for(length_m))
+
+    def sizing_path(self, length_m: float) -> Path:
+        return self.directory / f"L{length_tag(length_m)}_size.json"
+
+    def stored_sizing(self, length_m: float) -> Sizing | None:
+        """The stored sizing of a length if its inputs match the job's, else None."""
+        try:
+            data = json.loads(self.sizing_path(length_m).read_text())
+        except (OSError, ValueError):
+            return None
+        if data.get("inputs_key") != self.inputs_key(length_m):
+            return None
+        return Sizing.from_dict(data["sizing"])
+
+    def sizing(self, length_m: float) -> Sizing:
+        """The sizing of a length: stored, or computed now and stored (under the
+        length's lock, so that it is computed once)."""
+        with self.lock(f".L{length_tag(length_m)}_size.lock"):
+            stored = self.stored_sizing(length_m)
+            if stored is not None:
+                return stored
+            sizing = size_tether(self.job.config_for(length_m))
+            write_json(self.sizing_path(length_m), {"inputs_key": self.inputs_key(length_m),
+                                                   "sizing": sizing.to_dict()}, allow_nan=True)
+            return sizing
+
+    def config_for(self, length_m: float) -> Config:
+        """The configuration the tasks of a length run: the job's, or with
+        ``[tether] sizing = "load"`` its sized line (sized now if not stored)."""
+        cfg = self.job.config_for(length_m)
+        return sized_case(cfg, self.sizing(length_m)) if cfg.tether.sizing == "load" else cfg
+
+    def stored_config(self, length_m: float) -> Config:
+        """The configuration of a length's stored runs: the sized line if its sizing
+        is stored, else the job's (a length not sized yet has no runs)."""
+        cfg = self.job.config_for(length_m)
+        sizing = self.stored_sizing(length_m) if cfg.tether.sizing == "load" else None
+        return sized_case(cfg, sizing) if sizing else cfg
+
+    def status(self, task: Task, key: str) -> str | None:
+        """Status of the stored part of ``task`` if its inputs match ``key``, else None."""
+        try:
+            with h5py.File(self.path(task), "r") as f:
+                if f.attrs.get("inputs_key") != key:
+                    return None
+                return str(f.attrs.get("status", "ok"))
+        except (OSError, KeyError):
+            return None
+
+    def error(self, task: Task) -> str:
+        """The error recorded in the part of a failed task."""
+        with h5py.File(self.path(task), "r") as f:
+            return str(f.attrs["error"])
+
+    def read(self, task: Task, snapshots: bool = True) -> TetherRun:
+        """The stored run of a task whose part matches the job's inputs (its
+        configuration is the length's, :meth:`stored_config`, not parsed again); ``snapshots=False``: the
+        series only."""
+        return read_run_hdf5(self.path(task), self.stored_config(task.length_m), snapshots)
+
+    def write_run(self, task: Task, run: TetherRun, key: str) -> None:
+        write_run_hdf5(run, self.path(task), extra_attrs={"status": "ok", "inputs_key": key})
+
+    def write_failure(self, task: Task, cfg: Config, key: str, error: str) -> None:
+        with atomic_path(self.path(task)) as tmp, h5py.File(tmp, "w") as f:
+            f.attrs.update(config_toml=cfg.to_toml(), inputs_key=key, status="failed", error=error,
+                           fem_tether_version=__version__)
+
+    def kept(self) -> int:
+        """How many of the job's tasks have a stored successful part (reused by a rerun)."""
+        return sum(self.status(t, self.inputs_key(t.length_m)) == "ok" for t in self.job.tasks)
+
+    def done(self) -> int:
+        """How many of the job's tasks have a part, whatever its inputs or status (one
+        listing of the directory, not a look-up per task: rank 0 asks after every task)."""
+        try:
+            present = os.listdir(self.directory)
+        except FileNotFoundError:
+            return 0
+        return len(self._part_names.intersection(present))
+
+    @cached_property
+    def _part_names(self) -> frozenset[str]:
+        return frozenset(self.path(t).name for t in self.job.tasks)
+
+    @contextmanager
+    def lock(self, name: str = ".assemble.lock"):
+        """One assembler (or sizer of a length) at a time (ranks finishing tasks
+        together); released on exit or kill."""
+        self.directory.mkdir(parents=True, exist_ok=True)
+        with open(self.directory / name, "a") as fh:
+            fcntl.flock(fh, fcntl.LOCK_EX)
+            yield
+
+    def combined(self, length_m: float, combine):
+        """``combine()`` of one length, remembered while its parts on disk do not change."""
+        stamps = tuple(path.stat().st_mtime_ns if path.exists() else None
+                       for path in (self.path(Task(length_m, s)) for s in self.job.solvers))
+        if self._combined.get(length_m, (None,))[0] != stamps:
+            self._combined[length_m] = (stamps, combine())
+        return self._combined[length_m][1]

@@ -1,0 +1,143 @@
+"""The study result file: one group per AEP surface, written once at the end.
+
+Layout (h5py), units and meanings in :mod:`fem_tether.core.quantities`
+(``where = "study"``) and in each dataset's ``units`` and ``description``::
+
+    /                       attrs job_toml, fem_tether_version, surfaces
+    /<system>/<site>/       attrs config_toml (the system at the site), optimum_fe_*, optimum_straight_*
+        wind_mps [N]        the study's wind speeds (NaN: "configured", one bin)
+        edges_mps [E]       the resource's bin edges
+        length_m, diameter_m, refined, status, error, aep_fe_MWh, ...    [P] one per point
+        drag_fe_N, cd_fe, ge_fe, power_fe_W, apparent_speed_mps, ...    [P, N] per point and bin
+        power_edges_fe_W, power_edges_straight_W                         [P, E]
+
+Points are the grid (lengths x diameters, in the job's order) then the refined
+points.  The file holds no time or rank count, so the same job gives the same
+bytes whatever the number of ranks or interruptions (datasets are written
+without HDF5's object timestamps).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from fem_tether import __version__
+from fem_tether.core.atomic import PAGE_NAME, OutputError, atomic_path, check_folder, check_writable
+from fem_tether.core.quantities import attributes, names
+from fem_tether.io.reading import Reader
+from fem_tether.jobs.store import parts_dir
+
+#: Per-point datasets, per point and bin, per point and edge (the quantities table's order).
+POINT = tuple(n for n in names("study") if n not in ("wind_mps", "edges_mps"))
+STRINGS = ("status", "error")
+INTEGERS = ("refined", "crosscheck_ok")
+OPTIMUM_KEYS = ("length_m", "diameter_m", "aep_MWh", "capacity_factor", "bracketed_length", "bracketed_diameter",
+                "strength_limited")
+
+
+def is_study_result(path: Path) -> bool:
+    try:
+        with h5py.File(path, "r") as f:
+            return "job_toml" in f.attrs and "surfaces" in f.attrs
+    except OSError:
+        return False
+
+
+def report_dir(out) -> Path:
+    """Where the report of the study file ``out`` goes: ``<out without suffix>_report/``."""
+    out = Path(out)
+    return out.with_name(f"{out.stem}_report")
+
+
+def check_out(out: Path) -> None:
+    """Before a study: ``out``, its parts and its report page can be written,
+    and ``out`` and the page are not files some other program wrote."""
+    if os.path.lexists(out) and not is_study_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether study result "
+                          "(move it away or choose another file)")
+    check_writable(out)
+    check_folder(parts_dir(out))
+    check_writable(check_folder(report_dir(out)) / PAGE_NAME)
+
+
+def _dataset(group, name, data):
+    if name in STRINGS:
+        data = np.array(data, dtype=h5py.string_dtype())
+    else:
+        data = np.array(data, dtype=np.int8 if name in INTEGERS else float)
+    group.create_dataset(name, data=data, track_times=False).attrs.update(attributes("study", name))
+
+
+def write_study(out: Path, job_toml: str, surfaces: list[dict]) -> None:
+    """Write the result file atomically.  ``surfaces``: one dict per surface with
+    ``system``, ``site``, ``config_toml``, ``wind_mps``, ``edges_mps``, ``points``
+    (one dict per point with the :data:`POINT` values) and ``optimum``
+    (``"fe"``/``"straight"`` -> an :class:`~fem_tether.jobs.study.optimum.Optimum` dict or None)."""
+    with atomic_path(out) as tmp:
+        with h5py.File(tmp, "w", track_order=False) as f:
+            f.attrs.update(job_toml=job_toml, fem_tether_version=__version__,
+                           surfaces=[f"{s['system']}/{s['site']}" for s in surfaces])
+            for s in surfaces:
+                group = f.require_group(s["system"]).create_group(s["site"])
+                group.attrs["config_toml"] = s["config_toml"]
+                for case, best in s["optimum"].items():
+                    for key in OPTIMUM_KEYS:
+                        value = getattr(best, key) if best is not None else np.nan
+                        group.attrs[f"optimum_{case}_{key}"] = value
+                _dataset(group, "wind_mps", s["wind_mps"])
+                _dataset(group, "edges_mps", s["edges_mps"])
+                for name in POINT:
+                    _dataset(group, name, [p[name] for p in s["points"]])
+
+
+def read_study(path: str | Path) -> dict:
+    """The surfaces of a study file: ``{"job_toml", "version", "surfaces": {"system/site":
+    {dataset: array, "config_toml": str, "optimum": {"fe": dict | None, "straight": ...}}}}``.
+
+    The file is checked as it is read (:class:`~fem_tether.io.reading.Reader`): one
+    :class:`~fem_tether.io.reading.ResultFileError` line names it if it is missing,
+    not a study result, or damaged (an attribute missing or not parsing, a surface
+    or dataset missing, of another shape or type)."""
+    reader = Reader(path, "study")
+    with reader.open() as f:
+        out: dict[str, Any] = {"job_toml": reader.toml(f, "job_toml"),
+                               "version": reader.attr(f, "fem_tether_version", "str"), "surfaces": {}}
+        surfaces = f.attrs["surfaces"]
+        if not all(isinstance(name, str) for name in np.ravel(surfaces)):
+            raise reader.error("attribute surfaces of / is not a list of system/site names")
+        for name in np.ravel(surfaces):
+            out["surfaces"][name] = _read_surface(reader, reader.node(f, name))
+    return out
+
+
+def _read_surface(reader: Reader, group) -> dict[str, Any]:
+    """One surface: its datasets (per point [P], per point and bin [P, N] or edge
+    [P, E]), its configuration's text and its optima."""
+    bins = reader.dataset(group, "wind_mps", shape=(None,)).size
+    edges = reader.dataset(group, "edges_mps", shape=(None,)).size
+    points = reader.dataset(group, "length_m", shape=(None,)).size
+    data: dict[str, Any] = {"wind_mps": reader.dataset(group, "wind_mps"),
+                            "edges_mps": reader.dataset(group, "edges_mps")}
+    for name in POINT:
+        dtype = "str" if name in STRINGS else "int" if name in INTEGERS else "float"
+        node = reader.node(group, name, group=False)
+        across = {1: (), 2: (edges if name.startswith("power_edges_") else bins,)}.get(node.ndim, (None,))
+        data[name] = reader.dataset(group, name, dtype, shape=(points,) + across)
+    data["config_toml"] = reader.toml(group)
+    data["optimum"] = {}
+    for case in ("fe", "straight"):
+        best = {key: _optimum_value(reader, group, f"optimum_{case}_{key}") for key in OPTIMUM_KEYS}
+        data["optimum"][case] = None if np.isnan(best["aep_MWh"]) else best
+    return data
+
+
+def _optimum_value(reader: Reader, group, name: str):
+    """An optimum's attribute as stored: a number (NaN without an optimum) or a flag."""
+    if name not in group.attrs:
+        raise reader.error(f"attribute {name} of {group.name} is missing")
+    return group.attrs[name]

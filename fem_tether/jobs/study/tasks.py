@@ -1,0 +1,256 @@
+"""The tasks of a study and how each one runs into its part.
+
+Four kinds, in four phases (each needs the parts of the one before):
+
+* ``seed``: the FE run of a point's configured case (the main job's run),
+  whose C_D,t the operating points are computed with;
+* ``ops``: a point's operating points at the study's wind speeds (its power
+  model, :func:`fem_tether.jobs.study.plan.operating_points`), with the seed's
+  C_D,t (the bins' runs fly them) and with the straight line's (its baseline);
+* ``fe`` / ``check``: the tether run of one bin of a point: the FE solver, or
+  at the gated bin the FE and the FD solver compared (the FE <-> FD gate);
+* ``aep``: a point's AEP, straight and flexible (:mod:`fem_tether.jobs.study.energy`).
+
+With ``wind_mps = "configured"`` a point has one bin, the configured case,
+and no ``seed`` or ``ops`` task.  A task whose case the configuration rules refuse or
+whose solve fails stores the error; the others go on.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+from fem_tether.performance.aep import sweep_resource
+from fem_tether.config import Config
+from fem_tether.tether.crosscheck import checkable, compare
+from fem_tether.core.errors import InputError, SolverDivergedError
+from fem_tether.jobs.evaluate import simulator
+from fem_tether.core.quantities import lumped_name
+from fem_tether.physics.resource import Resource
+from fem_tether.jobs.schedule import run_cost_us
+from fem_tether.performance.sizing import peak_tension_N
+from fem_tether.jobs.store import inputs_key
+from fem_tether.performance.summary import operating_tether_cd
+from fem_tether.tether.lumping import lumped_drags_N
+from fem_tether.systems.operating_point import OperatingPoint
+
+from fem_tether.jobs.study import energy, plan
+from fem_tether.jobs.study.job import Point, StudyJob
+from fem_tether.jobs.study.parts import StudyParts, key_of
+
+#: Estimated cost of one operating point of a power model [us]: Trevisi's
+#: optimised model 0.19 s on this machine (2026-11-30), the closed forms ~20 us.
+OPERATING_POINT_COST_US = {"unified": 1.9e5}
+CLOSED_FORM_COST_US = 20.0
+
+
+@dataclass(frozen=True)
+class Task:
+    """One unit of a study's work: ``kind`` of a point (and of one bin)."""
+
+    kind: str            # "seed", "ops", "fe", "check" or "aep"
+    point: Point
+    node: int = -1       # the bin: index into the study's wind speeds (0: the configured one)
+
+    @property
+    def name(self) -> str:
+        return f"{self.point.name}_{self.kind}" if self.node < 0 else f"{self.point.name}_v{self.node}_{self.kind}"
+
+
+class Study:
+    """A study job with its parts: what each task needs, costs and stores."""
+
+    def __init__(self, job: StudyJob, out: str | Path):
+        self.job = job
+        self.parts = StudyParts(out)
+        self._configs: dict[Point, Config] = {}
+        self._cases: dict[tuple[Point, int], Config | InputError] = {}
+        self._runs: dict[Point, list[Task]] = {}
+        self._resources: dict[tuple[str, str], Resource] = {}
+        self._keys: dict[Task, str] = {}
+
+    # -- inputs ---------------------------------------------------------------
+    def config(self, point: Point) -> Config:
+        if point not in self._configs:
+            self._configs[point] = self.job.point_config(point)
+        return self._configs[point]
+
+    def resource(self, point: Point) -> Resource:
+        """The wind resource of a point's site (the same for every point of a surface)."""
+        surface = (point.system, point.site)
+        if surface not in self._resources:
+            self._resources[surface] = sweep_resource(self.config(point))
+        return self._resources[surface]
+
+    @property
+    def configured(self) -> bool:
+        """One operating point per point: the configured case."""
+        return self.job.wind_mps is None
+
+    def key(self, task: Task, *extra: str) -> str:
+        return key_of(task.kind, self.config(task.point).to_toml(), repr(self.job.wind_mps),
+                      repr(self.job.crosscheck), *extra)
+
+    def seed_cd(self, point: Point) -> float | None:
+        """C_D,t of the point's seed run (the configured case), None if it failed or has not run."""
+        values = self.stored(Task("seed", point))
+        if values is None or values["status"] != "ok":
+            return None
+        cfg = self.config(point)
+        return operating_tether_cd(cfg, values[lumped_name("drag_fe_N", cfg.drag.tether_drag_lumping)])
+
+    def operating_points(self, point: Point, line: str = "flexible") -> list[OperatingPoint] | None:
+        """The stored operating points of a point (None if not computed yet): of the
+        ``"flexible"`` line (the bins' runs fly them) or of the ``"straight"`` one."""
+        values = self.stored(Task("ops", point))
+        return None if values is None else [OperatingPoint(**op) for op in values[line]]
+
+    def bins(self, point: Point) -> list[int]:
+        """The bins of a point that need a tether run (its operating points known)."""
+        if self.configured:
+            return [0]
+        ops = self.operating_points(point)
+        return [] if ops is None else [i for i, op in enumerate(ops) if plan.flies(op)]
+
+    def case(self, point: Point, node: int) -> Config:
+        """The tether run's case of one bin (ConfigError if the rules refuse it)."""
+        if (point, node) not in self._cases:
+            cfg = self.config(point)
+            if self.configured:
+                self._cases[point, node] = checkable(cfg) if self.job.crosscheck else cfg
+            else:
+                ops = self.operating_points(point)
+                if ops is None:
+                    raise RuntimeError(f"{point.name}: its operating points are not stored yet")
+                try:
+                    self._cases[point, node] = plan.run_config(cfg, ops[node], self.job.reel_out)
+                except InputError as exc:
+                    self._cases[point, node] = exc
+        case = self._cases[point, node]
+        if isinstance(case, InputError):
+            raise case
+        return case
+
+    def gate(self, point: Point) -> int | None:
+        """The bin the FE <-> FD gate runs at (None without a gate or a flying bin)."""
+        bins = self.bins(point)
+        if not self.job.crosscheck or not bins:
+            return None
+        cases = {}
+        for node in bins:
+            try:
+                cases[node] = self.case(point, node)
+            except InputError:          # its run fails and says why; the gate runs elsewhere
+                continue
+        return list(cases)[plan.gate_index(list(cases.values()))] if cases else None
+
+    # -- the phases' tasks -----------------------------------------------------
+    def seed_tasks(self, points: list[Point]) -> list[Task]:
+        return [] if self.configured else [Task("seed", p) for p in points]
+
+    def ops_tasks(self, points: list[Point]) -> list[Task]:
+        return [] if self.configured else [Task("ops", p) for p in points]
+
+    def run_tasks(self, points: list[Point]) -> list[Task]:
+        return [task for point in points for task in self._point_runs(point)]
+
+    def _point_runs(self, point: Point) -> list[Task]:
+        """A point's tether runs (remembered once its operating points are known)."""
+        if point in self._runs:
+            return self._runs[point]
+        gate = self.gate(point)
+        runs = [Task("check" if node == gate else "fe", point, node) for node in self.bins(point)]
+        if self.configured or self.operating_points(point) is not None:
+            self._runs[point] = runs
+        return runs
+
+    def aep_tasks(self, points: list[Point]) -> list[Task]:
+        return [Task("aep", p) for p in points]
+
+    def cost_us(self, task: Task) -> float:
+        """Estimated cost in microseconds (:func:`fem_tether.jobs.schedule.run_cost_us` for runs)."""
+        cfg = self.config(task.point)
+        per_point = OPERATING_POINT_COST_US.get(cfg.system.model, CLOSED_FORM_COST_US)
+        if task.kind == "ops":
+            return 2.0 * per_point * len(self.job.wind_mps or ())
+        if task.kind == "seed":
+            return run_cost_us(self.config(task.point), "fe")
+        if task.kind == "aep":
+            return per_point * energy.evaluations(self.job)
+        try:
+            case = self.case(task.point, task.node)
+        except InputError:
+            return 0.0
+        return run_cost_us(case, "fe") + (run_cost_us(case, "fd") if task.kind == "check" else 0.0)
+
+    # -- running one task --------------------------------------------------------
+    def run_key(self, task: Task) -> str:
+        try:
+            return key_of(task.kind, inputs_key(self.case(task.point, task.node)))
+        except InputError as exc:
+            return key_of(task.kind, str(exc))
+
+    def task_key(self, task: Task) -> str:
+        """The key of a task's inputs (remembered: its inputs do not change during a study)."""
+        if task not in self._keys:
+            if task.kind in ("fe", "check"):
+                self._keys[task] = self.run_key(task)
+            elif task.kind == "seed":
+                self._keys[task] = key_of(task.kind, inputs_key(self.config(task.point)))
+            elif task.kind == "aep":
+                self._keys[task] = self.key(task, *(self.task_key(t) for t in self.run_tasks([task.point])))
+            elif task.kind == "ops":
+                self._keys[task] = self.key(task, self.task_key(Task("seed", task.point)))
+            else:
+                self._keys[task] = self.key(task)
+        return self._keys[task]
+
+    def stored(self, task: Task) -> dict | None:
+        return self.parts.read(task.name, self.task_key(task))
+
+    def run(self, task: Task) -> bool:
+        """Run ``task`` unless its part is stored; True if it ran.  The part records
+        the task's wall time (``wall_s``, for the scaling model; not in the result file)."""
+        key = self.task_key(task)
+        if self.parts.read(task.name, key) is not None:
+            return False
+        t0 = time.perf_counter()
+        if task.kind == "ops":
+            cfg, seed_cd = self.config(task.point), self.seed_cd(task.point)
+            values = {line: [asdict(op) for op in plan.operating_points(cfg, self.job.wind_mps, cd)]
+                      for line, cd in (("flexible", seed_cd), ("straight", None))}
+        elif task.kind == "aep":
+            values = energy.point_energy(self, task.point)
+        else:
+            values = self._tether_run(task)
+        self.parts.write(task.name, key, values | {"wall_s": time.perf_counter() - t0})
+        return True
+
+    def _tether_run(self, task: Task) -> dict:
+        try:
+            if task.kind == "seed":
+                case = self.config(task.point)
+                fe_run, values = simulator("fe")(case), {}
+            elif task.kind == "check":
+                case = checkable(self.case(task.point, task.node))
+                fe_run = simulator("fe")(case)
+                fd_run = simulator("fd")(case)
+                check = compare(fe_run, fd_run, case.crosscheck)
+                values = {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
+                          "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
+            else:
+                case = self.case(task.point, task.node)
+                fe_run, values = simulator("fe")(case), {}
+        except (InputError, SolverDivergedError) as exc:
+            return {"status": "failed", "error": f"{task.name}: {exc}"}
+        except Exception as exc:  # a defect must not cost the other runs their results
+            last = traceback.extract_tb(exc.__traceback__)[-1]
+            return {"status": "failed", "error": f"{task.name}: {type(exc).__name__}: {exc} "
+                                                 f"({Path(last.filename).name}:{last.lineno})"}
+        drags = lumped_drags_N(fe_run, case)
+        return {"status": "ok", "drag_fe_N": drags["moment"], "drag_power_fe_N": drags["power"],
+                "kite_tension_fe_N": fe_run.mean("kite_tension_N"), "peak_tension_N": peak_tension_N(fe_run),
+                **values}

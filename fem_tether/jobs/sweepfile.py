@@ -1,0 +1,258 @@
+"""The sweep result file: assembled from the parts present, read back for the AEP.
+
+A sweep assembles ``<out>`` whole from the parts present when it starts and
+when it ends (:func:`assemble`, atomically); in between, the rank that
+finished a task brings that task's length up to date (:func:`update`: the
+work of one length, so a sweep's assembly work is linear in its lengths).  An
+update writes in place into a shadow copy in the parts directory (the result
+file before the last update) and then renames it over ``<out>``, so ``<out>``
+is always a file written to its end, even if its writer is killed.  Both run
+one rank at a time, under the parts directory's lock.  So ``<out>`` is current
+after every finished task and an interrupted sweep leaves a readable file; a
+length whose tasks have not all run is ``pending``.  An existing ``<out>``
+that is not a sweep result is never overwritten.
+
+Result file (h5py), root datasets, one entry per length (NaN where not run),
+units and meanings in :mod:`fem_tether.core.quantities` (``where = "sweep"``) and in
+each dataset's ``units`` and ``description`` attributes::
+
+    length_m, drag_fe_N, drag_fd_N, drag_straight_N, ge_fe, ge_straight,
+    crosscheck_ok (int8: 1 ok, 0 failed or not run), mean_phi_deg,
+    kite_tension_fe_N, kite_tension_fd_N, rel_diff_drag, rel_diff_shape,
+    d_m, peak_tension_N, margin, drag_fixed_N, ge_fixed, status ("ok" | "pending" | "failed"), error (message or "")
+
+root attributes ``config_toml`` (the job's configuration), ``job_toml``,
+``fem_tether_version``, ``n_ranks``, ``created_utc``; one group ``L<length>``
+per length with its configuration (its sized line, with ``[tether] sizing =
+"load"``) and status as attributes and subgroups
+``fe`` and ``fd`` holding the whole run as :mod:`fem_tether.io.output` writes it
+(series, means, snapshots).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import shutil
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from fem_tether import __version__
+from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check_writable, write_json
+from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
+from fem_tether.jobs.job import length_tag
+from fem_tether.core.quantities import attributes
+from fem_tether.io.reading import Reader
+from fem_tether.jobs.store import PartsStore, parts_dir
+
+#: A length's status: its tasks have all run and succeeded, some task has not run, some failed.
+STATUSES = ("ok", "pending", "failed")
+
+GROUP_DESCRIPTIONS = {
+    "length": "one cable length: its configuration, status and error as attributes, its runs "
+              "in fe and fd",
+    "fe": "the FE run of this length (single-run layout, fem_tether.io.output; attributes only "
+          "if it failed)",
+    "fd": "the FD run of this length (single-run layout, fem_tether.io.output; attributes only "
+          "if it failed)",
+}
+
+
+def _dataset(f, name, data):
+    f.create_dataset(name, data=data).attrs.update(attributes("sweep", name))
+
+
+def check_out(out: Path) -> None:
+    """Before a sweep: ``out`` and its parts directory can be written, and ``out``
+    is not a file some other program wrote."""
+    if os.path.lexists(out) and not is_sweep_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether sweep result "
+                          "(move it away or choose another file)")
+    check_writable(out)
+    check_folder(parts_dir(out))
+
+
+def assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
+    """Write the result file from the parts present now (atomically, under
+    the parts directory's lock); return the per-length results."""
+    with store.lock():
+        return _assemble(store, n_ranks)
+
+
+def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
+    """Bring one length of the result file up to date with its parts (under the
+    lock), at the cost of one length: written in place into the shadow copy,
+    which then replaces the result file; the file it replaced becomes the shadow,
+    lacking this length.  A writer killed midway leaves the result file
+    whole (lacking its length, which the next update writes too); a missing
+    result file is assembled whole.  On a file system without hard links the
+    old result file cannot be kept as the shadow: the next update copies the
+    result file (a copy per update, still one length's solving and writing)."""
+    with store.lock():
+        if not store.out.exists():
+            _assemble(store, n_ranks)
+            return
+        shadow, state = _shadow(store), _shadow_state(store)
+        out_lacks = state["out_lacks"] + [length_m]
+        write_json(_shadow_state_path(store), {"shadow_lacks": None, "out_lacks": out_lacks})
+        f = _open_shadow(store) if state["shadow_lacks"] is not None else None
+        if f is None:                   # a copy of the result file, lacking what it lacks
+            _copy(store.out, shadow)
+            f, state["shadow_lacks"] = h5py.File(shadow, "r+"), []
+        written = list(dict.fromkeys(state["shadow_lacks"] + out_lacks))
+        with f:
+            for L in written:
+                _write_entries(f, store, L)
+        previous = store.directory / ".previous.h5"
+        previous.unlink(missing_ok=True)
+        try:
+            os.link(store.out, previous)
+        except OSError:                 # a file system without hard links: no shadow kept
+            os.replace(shadow, store.out)
+            write_json(_shadow_state_path(store), {"shadow_lacks": None, "out_lacks": []})
+            return
+        os.replace(shadow, store.out)
+        os.replace(previous, shadow)
+        write_json(_shadow_state_path(store), {"shadow_lacks": out_lacks, "out_lacks": []})
+
+
+def _shadow(store: PartsStore) -> Path:
+    """The shadow copy of the result file (the one before the last update)."""
+    return store.directory / ".shadow.h5"
+
+
+def _shadow_state_path(store: PartsStore) -> Path:
+    return store.directory / ".shadow.json"
+
+
+def _shadow_state(store: PartsStore) -> dict:
+    """The lengths the shadow lacks (None: no usable shadow, missing or its writer
+    killed) and those the result file lacks (their writer killed)."""
+    try:
+        state = json.loads(_shadow_state_path(store).read_text())
+        shadow_lacks, out_lacks = list(state["shadow_lacks"] or []), list(state["out_lacks"])
+        usable = state["shadow_lacks"] is not None and _shadow(store).exists()
+    except (OSError, ValueError, KeyError, TypeError):
+        return {"shadow_lacks": None, "out_lacks": []}
+    return {"shadow_lacks": shadow_lacks if usable else None, "out_lacks": out_lacks}
+
+
+def _open_shadow(store: PartsStore) -> h5py.File | None:
+    """The shadow open for writing; None if a reader still has it open (it was the
+    result file when the reader opened it)."""
+    try:
+        return h5py.File(_shadow(store), "r+")
+    except BlockingIOError:
+        return None
+
+
+def _drop_shadow(store: PartsStore) -> None:
+    for path in (_shadow(store), _shadow_state_path(store)):
+        path.unlink(missing_ok=True)
+
+
+def _copy(source: Path, target: Path) -> None:
+    """``target`` (the parts folder's shadow, ours whatever state a killed
+    writer left it in) a copy of ``source``, written whole or not at all."""
+    target.unlink(missing_ok=True)
+    with atomic_path(target) as tmp:
+        shutil.copyfile(source, tmp)
+
+
+def _write_entries(f: h5py.File, store: PartsStore, length_m: float) -> None:
+    """Rewrite the entries of one length in an open result file."""
+    result, parts = evaluate_length(store, length_m)
+    i = store.job.lengths_m.index(length_m)
+    for name, value in (result.values | {"error": result.error, "status": result.status}).items():
+        f[name][i] = value
+    del f[_group_name(length_m)]
+    _write_length(f, store, result, parts)
+
+
+def _assemble(store: PartsStore, n_ranks: int) -> list[LengthResult]:
+    results = [evaluate_length(store, L) for L in store.job.lengths_m]
+    with atomic_path(store.out) as tmp:
+        with h5py.File(tmp, "w") as f:
+            _write_result(f, store, n_ranks, results)
+    _drop_shadow(store)
+    return [r for r, _ in results]
+
+
+def _group_name(length_m: float) -> str:
+    return f"L{length_tag(length_m)}"
+
+
+def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> None:
+    job = store.job
+    f.attrs.update(config_toml=job.config.to_toml(), job_toml=job.toml,
+                   fem_tether_version=__version__, n_ranks=n_ranks,
+                   created_utc=_dt.datetime.now(_dt.timezone.utc).isoformat())
+    _dataset(f, "length_m", np.array(job.lengths_m))
+    for name in ROOT_DATASETS:
+        _dataset(f, name, np.array([r.values[name] for r, _ in results],
+                                   dtype=np.int8 if name == "crosscheck_ok" else float))
+    for name in ("status", "error"):
+        _dataset(f, name, np.array([getattr(r, name) for r, _ in results], dtype=h5py.string_dtype()))
+    for r, parts in results:
+        _write_length(f, store, r, parts)
+
+
+def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict) -> None:
+    """The group of one length: its configuration and status, its parts' runs."""
+    group = f.create_group(_group_name(r.length_m))
+    group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
+                       config_toml=store.stored_config(r.length_m).to_toml(),
+                       description=GROUP_DESCRIPTIONS["length"])
+    for solver, path in parts.items():
+        with h5py.File(path, "r") as src:      # a failed task's part: attributes only
+            sub = group.create_group(solver)
+            sub.attrs.update(dict(src.attrs))
+            sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
+            for name in src:
+                src.copy(src[name], sub, name)
+
+
+def is_sweep_result(path: Path) -> bool:
+    """Whether ``path`` is a file this module wrote (safe to replace)."""
+    try:
+        with h5py.File(path, "r") as f:
+            return "job_toml" in f.attrs and "length_m" in f and "status" in f
+    except OSError:
+        return False
+
+
+#: The root attributes of a result file and their kinds (:meth:`~fem_tether.io.reading.Reader.attr`).
+ROOT_ATTRS = {"config_toml": "str", "job_toml": "str", "fem_tether_version": "str", "n_ranks": "int",
+              "created_utc": "str"}
+
+
+def read_sweep(path: str | Path) -> dict:
+    """Root datasets and attributes of a result file, as NumPy arrays and strings
+    (``"file"``: the path as given; ``"case_configs"``: each length's configuration,
+    its sized line with ``[tether] sizing = "load"``).
+
+    The file is checked as it is read (:class:`~fem_tether.io.reading.Reader`): one
+    :class:`~fem_tether.io.reading.ResultFileError` line names it if it is missing,
+    not a sweep result, or damaged (an attribute missing or not parsing, a root
+    dataset missing, of another length or type, a length's group missing)."""
+    reader = Reader(path, "sweep")
+    with reader.open() as f:
+        data: dict[str, Any] = {"attrs": {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}}
+        data["config"] = reader.config(f)
+        lengths = reader.dataset(f, "length_m", shape=(None,))
+        if not (np.all(lengths > 0) and np.all(np.diff(lengths) > 0)):
+            raise reader.error("dataset /length_m is not increasing positive lengths")
+        data["length_m"] = lengths
+        for name in ROOT_DATASETS + ("status", "error"):
+            dtype = "int" if name == "crosscheck_ok" else "str" if name in ("status", "error") else "float"
+            data[name] = reader.dataset(f, name, dtype, shape=lengths.shape)
+        unknown = set(data["status"]) - set(STATUSES)
+        if unknown:
+            raise reader.error(f"dataset /status holds {str(sorted(unknown)[0])!r} (known: {', '.join(STATUSES)})")
+        data["case_configs"] = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
+    data["file"] = str(path)
+    return data

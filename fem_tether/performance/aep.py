@@ -1,0 +1,257 @@
+"""Annual energy production and capacity factor against cable length (seed 000 §5.3).
+
+Each length L flies the KiteGen design with its G_e and mean φ
+(:func:`fem_tether.systems.power.operating_design`) in the resource band holding its
+mean altitude L cosϑ0; its cycle-mean power curve is evaluated at the band's
+bin edges and integrated by eq. 5.2.  Probability outside the bins (a
+Weibull's tail above the last edge) produces nothing, as if the machine cut
+out there; it is reported as ``unbinned_probability``.  Usage::
+
+    design = KiteGenDesign.from_config(cfg.kite, cfg.tether.lines)
+    straight = aep_by_length(design, ISA(), SEED_LENGTHS_M, SEED_GE["straight"], SEED_MEAN_PHI_DEG,
+                             weibull_resource())
+    straight.aep_MWh, straight.capacity_factor, straight.best_length_m
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether.physics import wind
+from fem_tether.config import Config
+from fem_tether.core.errors import InputError
+from fem_tether.physics.kite import KiteGenDesign
+from fem_tether.systems.power import Cycle, cycle_curves, operating_design, rated_power_W
+from fem_tether.core.quantities import lumped_name
+from fem_tether.physics.resource import Band, Resource, ResourceError
+from fem_tether.physics.resource import check_config as check_resource_config
+from fem_tether.physics.resource import from_config as resource_from_config
+
+HOURS_PER_YEAR = 8760.0
+
+
+def annual_energy_Wh(power_at_edges_W, probability):
+    """AEP = Σ_i ½ (P(V_i) + P(V_{i+1})) f(V_i < V < V_{i+1}) · 8760 h  (seed 000 eq. 5.2).
+
+    ``power_at_edges_W`` has one more entry than ``probability`` along the last axis.
+    """
+    p = np.asarray(power_at_edges_W, dtype=float)
+    return np.sum(0.5 * (p[..., :-1] + p[..., 1:]) * probability, axis=-1) * HOURS_PER_YEAR
+
+
+def capacity_factor(aep_Wh, rated_power_W):
+    """CF = AEP / (P_rated · 8760 h): the mean power over the rated power (seed 001 §IV)."""
+    return np.asarray(aep_Wh) / (np.asarray(rated_power_W) * HOURS_PER_YEAR)
+
+
+@dataclass(frozen=True)
+class BandAep:
+    """AEP and capacity factor of one power curve on one band's histogram."""
+
+    aep_MWh: float
+    rated_power_W: float
+    capacity_factor: float
+    unbinned_probability: float
+
+
+def check_band(band: Band) -> Band:
+    """``band`` if its probabilities are finite, else :class:`ResourceError` naming
+    the band and the inputs it comes from (no AEP is defined on it)."""
+    if np.all(np.isfinite(band.probability)) and np.isfinite(band.remainder):
+        return band
+    raise ResourceError(f"the wind resource's band {band.low_m:g}-{band.high_m:g} m has undefined "
+                        f"probabilities ({np.count_nonzero(~np.isfinite(band.probability))} of "
+                        f"{band.probability.size} bins NaN or infinite): no AEP on it; check "
+                        "[resource] weibull_k and the wind profile, or the --wind CSV")
+
+
+def aep_on_band(power_W, band: Band, rated_power_W: float) -> BandAep:
+    """Eq. 5.2 and CF of the power curve ``power_W`` (a function of the wind
+    speed, vectorised) on ``band`` (:func:`check_band`), with rated power P_rated."""
+    check_band(band)
+    aep_Wh = float(annual_energy_Wh(power_W(band.edges_mps), band.probability))
+    return BandAep(aep_Wh / 1e6, rated_power_W, float(capacity_factor(aep_Wh, rated_power_W)), band.remainder)
+
+
+@dataclass(frozen=True)
+class AepByLength:
+    """AEP and capacity factor per cable length; P_rated is the cycle-mean curve's maximum."""
+
+    length_m: np.ndarray
+    band_low_m: np.ndarray
+    band_high_m: np.ndarray
+    aep_MWh: np.ndarray
+    rated_power_W: np.ndarray
+    capacity_factor: np.ndarray
+    unbinned_probability: np.ndarray
+
+    @property
+    def best_length_m(self) -> float | None:
+        """The length of the largest AEP; None without a finite, positive maximum
+        (no lengths, every AEP zero or undefined): no length is best then."""
+        aep = np.where(np.isfinite(self.aep_MWh), self.aep_MWh, -np.inf)
+        return float(self.length_m[np.argmax(aep)]) if aep.size and np.max(aep) > 0.0 else None
+
+
+def _by_length(lengths, theta_rad, resource: Resource, curve_at) -> AepByLength:
+    """:func:`aep_on_band` per length: ``curve_at(i)`` gives length i's power curve
+    (a function of the wind speed) and its rated power; the band holds z = L cosϑ0."""
+    bands = [resource.band_for_length(length, theta_rad) for length in lengths]
+    results = [aep_on_band(power_W, band, rated_W)
+               for (power_W, rated_W), band in zip(map(curve_at, range(len(bands))), bands)]
+
+    def column(values):
+        return np.array(list(values), dtype=float)
+
+    return AepByLength(length_m=lengths, band_low_m=column(b.low_m for b in bands),
+                       band_high_m=column(b.high_m for b in bands),
+                       aep_MWh=column(r.aep_MWh for r in results),
+                       rated_power_W=column(r.rated_power_W for r in results),
+                       capacity_factor=column(r.capacity_factor for r in results),
+                       unbinned_probability=column(r.unbinned_probability for r in results))
+
+
+def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean_phi_deg,
+                  resource: Resource, cycle: Cycle = Cycle()) -> AepByLength:
+    """AEP (eq. 5.2) and capacity factor of ``design`` flown on each length, with
+    its G_e and mean φ (seed 000 Tab. 5.1–5.2 values, for instance).
+
+    The design's ρ is that of ``air`` at z = L cosϑ0, the band the one holding
+    z (:meth:`WindResource.band_for_length`).
+    """
+    lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
+    ge = np.broadcast_to(global_efficiency, lengths.shape)
+    phi = np.broadcast_to(mean_phi_deg, lengths.shape)
+
+    def curve_at(i):
+        flown = operating_design(design, air, lengths[i], ge[i], phi[i])
+        return (lambda wind_mps: cycle_curves(wind_mps, flown, cycle).power_W), rated_power_W(flown, cycle)
+
+    return _by_length(lengths, design.theta_rad, resource, curve_at)
+
+
+def aep_of_system(cfg: Config, lengths_m, drag_N, resource: Resource, cases=None) -> AepByLength:
+    """AEP (eq. 5.2) and capacity factor of the configured system (any ``[system]
+    model``, :mod:`fem_tether.performance.configured`) on each length, with the tether
+    drag F_t per line of that length as its C_D,t
+    (:func:`fem_tether.performance.summary.operating_tether_cd`); ``cases``, if given, the
+    configuration of each length (a sized line's), else ``cfg`` at each length."""
+    from fem_tether.performance.summary import operating_tether_cd
+    from fem_tether.performance.configured import from_config
+
+    lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
+    drags = np.broadcast_to(drag_N, lengths.shape)
+
+    def curve_at(i):
+        case = cases[i] if cases is not None else cfg.with_length(lengths[i])
+        cd = operating_tether_cd(case, drags[i])
+        system = from_config(case)
+        return (lambda wind_mps: system.electrical_power_W(wind_mps, cd)), system.rated_power_W(cd)
+
+    return _by_length(lengths, np.radians(cfg.kite.theta0_deg), resource, curve_at)
+
+
+class IncompleteSweepError(InputError):
+    """The sweep has lengths whose tasks have not run (an interrupted or running sweep)."""
+
+
+@dataclass(frozen=True)
+class SweepAep:
+    """AEP of a sweep's lengths, straight and flexible, with the cross-check gate."""
+
+    straight: AepByLength
+    flexible: AepByLength
+    excluded_m: tuple[float, ...]      # flexible lengths left out (failed cross-check or solve)
+    unchecked_m: tuple[float, ...]     # flexible lengths kept with --allow-unchecked
+    pending_m: tuple[float, ...] = ()  # lengths not finished (kept only with allow_incomplete)
+    fixed: AepByLength | None = None   # [tether] sizing = "load": the configured (unsized) line's
+
+    def as_dict(self) -> dict:
+        """Per length its AEP and CF, straight and flexible, and the best lengths;
+        a value is None (JSON null) where it is undefined: a length left out, an
+        AEP or CF that is not finite, no best length without a finite, positive
+        maximum (:attr:`AepByLength.best_length_m`)."""
+        def at(result: AepByLength, length, name):
+            j = np.flatnonzero(result.length_m == length)
+            value = float(getattr(result, name)[j[0]]) if j.size else np.nan
+            return value if np.isfinite(value) else None
+
+        lengths = np.union1d(self.straight.length_m, self.flexible.length_m)
+        rows = [{"length_m": float(length),
+                 "aep_straight_MWh": at(self.straight, length, "aep_MWh"),
+                 "cf_straight": at(self.straight, length, "capacity_factor"),
+                 "aep_fe_MWh": at(self.flexible, length, "aep_MWh"),
+                 "cf_fe": at(self.flexible, length, "capacity_factor"),
+                 **({"aep_fixed_MWh": at(self.fixed, length, "aep_MWh")} if self.fixed else {}),
+                 "unchecked": float(length) in self.unchecked_m} for length in lengths]
+        return {"lengths": rows,
+                "best_length_straight_m": self.straight.best_length_m,
+                "best_length_fe_m": self.flexible.best_length_m,
+                "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m),
+                "pending_m": list(self.pending_m)}
+
+
+def aep_of_sweep(sweep_data: Mapping, resource: Resource,
+                 allow_unchecked: bool = False, allow_incomplete: bool = False) -> SweepAep:
+    """AEP for the lengths of a sweep result (:func:`fem_tether.jobs.sweepfile.read_sweep`).
+
+    Straight lines: every length with a straight-line G_e.  Flexible lines:
+    the lengths whose FE run succeeded and whose cross-check passed; with
+    ``allow_unchecked`` also those whose cross-check failed or did not run
+    (listed in ``unchecked_m``).  Each length flies its own configuration
+    (its sized line with ``[tether] sizing = "load"``); a sized sweep also gives
+    the AEP of the configured line (``fixed``: the sizing loop's first FE run,
+    not cross-checked).  A sweep with ``pending`` lengths raises
+    :class:`IncompleteSweepError` naming them, unless ``allow_incomplete``
+    (then they are listed in ``pending_m`` and gated like the others).
+    """
+    cfg = sweep_data["config"]
+    lengths = np.asarray(sweep_data["length_m"], dtype=float)
+    pending = np.asarray(sweep_data["status"]) == "pending"
+    if pending.any() and not allow_incomplete:
+        raise IncompleteSweepError(
+            f"{sweep_data.get('file', 'sweep')}: incomplete sweep, {np.count_nonzero(pending)} of "
+            f"{lengths.size} lengths pending ({', '.join(f'{v:g}' for v in lengths[pending])} m); "
+            "run the same sweep again to finish it, or allow an incomplete sweep "
+            "(--allow-incomplete)")
+    lumping = cfg.drag.tether_drag_lumping
+    drag_fe = np.asarray(sweep_data[lumped_name("drag_fe_N", lumping)], dtype=float)
+    drag_straight = np.asarray(sweep_data[lumped_name("drag_straight_N", lumping)], dtype=float)
+    checked = np.asarray(sweep_data["crosscheck_ok"]) == 1
+    has_fe = np.isfinite(drag_fe)
+    keep = has_fe & (checked | allow_unchecked)
+    has_straight = np.isfinite(drag_straight)
+    cases = sweep_data.get("case_configs")
+    case = np.array(cases, dtype=object) if cases is not None else None
+    drag_fixed = np.asarray(sweep_data.get(lumped_name("drag_fixed_N", lumping), np.full(lengths.shape, np.nan)),
+                            dtype=float)
+    has_fixed = np.isfinite(drag_fixed)
+    return SweepAep(
+        straight=aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource,
+                               None if case is None else case[has_straight]),
+        flexible=aep_of_system(cfg, lengths[keep], drag_fe[keep], resource, None if case is None else case[keep]),
+        fixed=aep_of_system(cfg, lengths[has_fixed], drag_fixed[has_fixed], resource) if has_fixed.any() else None,
+        excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
+        unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
+        pending_m=tuple(float(v) for v in lengths[pending]),
+    )
+
+
+def sweep_resource(cfg: Config, wind_csv=None) -> Resource:
+    """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
+    return resource_from_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
+
+
+def check_resource(cfg: Config, wind_csv=None) -> None:
+    """Raise the error :func:`sweep_resource` would raise, without computing the resource."""
+    check_resource_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
+
+
+def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
+    """AEP of a sweep result with the configured (or given) wind resource."""
+    cfg = data["config"]
+    return aep_of_sweep(data, sweep_resource(cfg, wind_csv),
+                        allow_unchecked, allow_incomplete)

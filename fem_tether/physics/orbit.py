@@ -1,0 +1,158 @@
+"""The kite's circle: a circular orbit on the sphere flown at constant speed.
+
+Seed 003 (Lourenço 2014, §3.2.1) flies its kites on a circle: "the kite flight
+path is circular about an orbit axis directly downwind from the anchor point,
+one radian down from the z axis and 0.4 radians up to orbit axis", at the
+angular position of a uniform circular motion (eq. 3.1)::
+
+    β = β0 + β̇0 t,
+
+the point at β found by Rodrigues' rotation (eq. 3.2) of the starting point v
+by the angle β about the orbit axis u::
+
+    v_rot = v cos β + (u × v) sin β + u (u·v)(1 − cos β).
+
+This module makes the circle precise in the frame of the figure-eight
+(:mod:`fem_tether.physics.trajectory`; x downwind, z up, docs/physics.md §1), on the
+sphere of nominal radius L (the cable length):
+
+* orbit axis u = (sinϑ0, 0, cosϑ0), in the x–z plane at polar angle ϑ0 from
+  the vertical (``[kite] theta0_deg``; Lourenço: 1 rad);
+* cone half-angle ρ: every point of the circle is at the angle ρ from u
+  (``[kite] circle_radius_deg``; Lourenço: 0.4 rad);
+* start at the highest point, polar angle ϑ0 − ρ: β0 = 0 (Lourenço: "β is
+  zero in the highest position", v = (R, θ, φ) = (400 m, 0.6 rad, 0)); β0 is
+  ``phase_rad``, which :meth:`Circle.at_length` sets when a reeled line changes L;
+* β grows by the right-hand rule about u, as in eq. 3.2 (counter-clockwise
+  seen from downwind, from the tip of u), so the kite leaves the top towards −y.
+
+With a = −e_ϑ(ϑ0) = (−cosϑ0, 0, sinϑ0) (up, in the plane of the circle) and
+b = u × a = (0, −1, 0), eq. 3.2 with v = L(cosρ u + sinρ a) reads::
+
+    ê(β) = cosρ u + sinρ (cosβ a + sinβ b).
+
+Lourenço imposes the rotation rate β̇0 (3 rpm, then 5.5 rpm); here, as on the
+eight, the speed V is imposed, so β̇0 = ω = V / (L sinρ) and the period is
+2π L sinρ / V (Lourenço's 5.5 rpm on 400 m at 0.4 rad is 89.7 m/s).  Constant
+speed is exact on a circle: position, velocity and acceleration are analytic.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, functions_of, gauss_legendre_nodes
+
+
+@dataclass(frozen=True)
+class Circle:
+    """Circle of cone half-angle ρ about the axis at polar angle ϑ0, on the
+    sphere of radius L, flown at constant speed V (module docstring)."""
+
+    length_m: float
+    theta0_rad: float
+    radius_rad: float
+    speed_mps: float
+    phase_rad: float = 0.0
+
+    @classmethod
+    def from_config(cls, kite, length_m):
+        """The circle of the ``[kite]`` section on a line of ``length_m``."""
+        return cls(
+            length_m=float(length_m),
+            theta0_rad=math.radians(kite.theta0_deg),
+            radius_rad=math.radians(kite.circle_radius_deg),
+            speed_mps=float(kite.speed_mps),
+        )
+
+    @property
+    def rate_rad_s(self):
+        """ω = β̇0 = V / (L sinρ): the angular rate about the axis."""
+        return self.speed_mps / (self.length_m * math.sin(self.radius_rad))
+
+    @property
+    def period_s(self):
+        """Time of one loop: 2π / ω = 2π L sinρ / V."""
+        return 2.0 * math.pi / self.rate_rad_s
+
+    def laps(self, t_s):
+        """Loops flown from the start point (the highest, β = 0) to parameter
+        ``t_s``: β(t) / 2π (whole at the start point; continuous, unwrapped,
+        also across :meth:`at_length`, which keeps β)."""
+        return self.angle(t_s) / (2.0 * math.pi)
+
+    def angle(self, t_s):
+        """β(t) = β0 + ω t (eq. 3.1; β0 = ``phase_rad``), unwrapped (2π per period)."""
+        if isinstance(t_s, (int, float)):
+            return self.phase_rad + self.rate_rad_s * float(t_s)
+        return self.phase_rad + self.rate_rad_s * np.asarray(t_s, dtype=float)
+
+    def at_length(self, length_m, t_s):
+        """The circle on the sphere of a line of ``length_m``, at the same β at
+        ``t_s`` (a line reeled at ``t_s``): β0' = β(t_s) − ω' t_s.  The phase
+        must carry over, as ω = V/(L sinρ) changes with L; β(t) along a reeled
+        line is then ∫ V/(L(t) sinρ) dt, the kite's speed staying V R/L."""
+        moved = replace(self, length_m=float(length_m))
+        return replace(moved, phase_rad=self.angle(t_s) - moved.rate_rad_s * float(t_s))
+
+    def _unit(self, beta, k_up, k_side, k_axis):
+        """Global components of k_axis u + k_up a + k_side b, shape β.shape + (3,)
+        (k_up and k_side shaped like β, k_axis a number)."""
+        f = functions_of(beta)
+        st, ct = math.sin(self.theta0_rad), math.cos(self.theta0_rad)
+        components = [k_axis * st - k_up * ct, -k_side, k_axis * ct + k_up * st]
+        return np.array(components) if f is math else np.stack(components, axis=-1)
+
+    def _point(self, beta):
+        """ê(β) = cosρ u + sinρ (cosβ a + sinβ b)."""
+        f = functions_of(beta)
+        sr = math.sin(self.radius_rad)
+        return self._unit(beta, sr * f.cos(beta), sr * f.sin(beta), math.cos(self.radius_rad))
+
+    def direction_at(self, t_s):
+        """ê(β(t)): the kite's direction alone (a time step's boundary
+        condition), equal to ``state(t, 1.0)[0]``."""
+        return self._point(self.angle(t_s))
+
+    def state(self, t_s, radius_m=None):
+        """Position, velocity, acceleration of R ê(β(t)).
+
+        R = radius_m (default L; scalar or broadcastable with t) scales the
+        nominal path and is held constant in time, so the speed is V R / L.
+        Each array has shape broadcast(t, R).shape + (3,)::
+
+            r = R ê,
+            ṙ = R ω sinρ (−sinβ a + cosβ b),
+            r̈ = −R ω² sinρ (cosβ a + sinβ b)   (towards the axis).
+        """
+        beta = self.angle(t_s)
+        f = functions_of(beta)
+        c, s = f.cos(beta), f.sin(beta)
+        omega, sr = self.rate_rad_s, math.sin(self.radius_rad)
+        velocity = self._unit(beta, -omega * sr * s, omega * sr * c, 0.0)
+        acceleration = self._unit(beta, -omega ** 2 * sr * c, -omega ** 2 * sr * s, 0.0)
+        R = np.asarray(self.length_m if radius_m is None else radius_m, dtype=float)[..., None]
+        return R * self._point(beta), R * velocity, R * acceleration
+
+    def angles(self, t_s):
+        """Polar angle ϑ and azimuth φ of the kite at times t, in radians."""
+        return self._angles(self.angle(t_s))
+
+    def _angles(self, beta):
+        """ϑ = arccos ê_z and φ = atan2(ê_y, ê_x) at β."""
+        e = self._point(beta)
+        return np.arccos(e[..., 2]), np.arctan2(e[..., 1], e[..., 0])
+
+    def mean_abs_phi_deg(self):
+        """Time average of |φ| over one loop, in degrees.
+
+        At constant rate this is (1/2π) ∫₀^2π |φ(β)| dβ; composite
+        Gauss–Legendre with knots at the kinks β = 0, π of |φ| (top and bottom,
+        where φ = 0).
+        """
+        _, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
+        phi = self._angles(nodes)[1]
+        return float(np.degrees((np.abs(phi) * weights).sum() / (2.0 * np.pi)))

@@ -1,0 +1,284 @@
+"""Path-following steering: the roll input ψ that holds a kite on a reference path.
+
+The kite flies on the sphere of its tether (global frame x downwind, z up;
+docs/steering.md).  Its only steering input is the roll ψ: the lift L is tilted
+about the apparent wind by ψ, so ``L sinψ`` pushes the kite across its own
+flight direction in the tangent plane of the sphere.  Seed 003 (Lourenço 2014,
+§5.1 "Future Work") reports that a PID on the kite's angles did not hold its
+circle; this law holds the figure-eight (:mod:`fem_tether.physics.trajectory`) and the circle
+(:mod:`fem_tether.physics.orbit`) by *inverting the lateral equation of motion*:
+
+* the reference is the nearest point of the path, tracked continuously in the
+  path's own time σ (``path.state(σ)`` gives r, r' and r'' at the constant
+  path speed V_p): Newton from the previous σ, so at the eight's crossing the
+  point stays on the branch the kite flies;
+* at that point: tangent t = r'/V_p, left normal n = ê × t (ê = r/|r|, the
+  outward normal of the sphere), geodesic curvature κ_g = r''·n / V_p²
+  (positive turning left seen from outside the sphere);
+* errors: cross-track e = (p − r)·n (kite left of the path > 0) and heading
+  error η = atan2(v·n, v·t) (kite heading left of the path > 0), with p the
+  kite's position scaled to the path's sphere and v its tangential velocity;
+* lateral acceleration command (V = |v| the kite's speed)::
+
+      a_⊥ = V² κ_g cosη / (1 − κ_g e) + (4V²/ℓ) [η_d(e) − η],   η_d = −atan(e/ℓ),
+
+  the first term the feed-forward (the turn rate of the nearest point; V² κ_g
+  on the path), the second the feedback: the heading loop of gain 4V/ℓ
+  steering towards the approach angle η_d, which aims at the path a look-ahead
+  distance ℓ ahead;
+* roll from the lateral balance m a_⊥ = (F_0 + m g)·n_k + L sinψ, with F_0 the
+  aerodynamic force at ψ = 0 and n_k = ê_k × v/V the kite's own left normal::
+
+      sinψ = (m a_⊥ − (F_0 + m g)·n_k) / L,   ψ_min ≤ ψ ≤ ψ_max.
+
+Linearised on a straight path (ė = Vη, η̇ = (a_⊥ − V²κ_g)/V) the errors obey
+ë + (4V/ℓ) ė + (4V²/ℓ²) e = 0: a critically damped double pole at s = −2V/ℓ,
+an error decaying as (1 + 2x/ℓ) exp(−2x/ℓ) over the distance x flown.  On the
+exact path (e = η = 0) both feedback terms vanish and ψ is the feed-forward.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from fem_tether.physics.orbit import Circle
+    from fem_tether.physics.trajectory import FigureEight
+
+#: Gravitational acceleration (m/s²), along −z.
+GRAVITY_MPS2 = 9.81
+
+#: Newton steps of :func:`nearest_point` from the previous parameter (each
+#: squares the error; the previous σ of a time step is within a few metres).
+N_NEWTON = 3
+
+#: Points of one loop searched for the nearest when there is no previous
+#: parameter, and the Newton steps that refine it (a sample is within half a
+#: sample's arc, ~2 m on the 578 m KiteGen eight, of the nearest point).
+LOOP_SAMPLES = 256
+N_NEWTON_GLOBAL = 6
+
+
+def cross(a, b):
+    """a × b of two 3-vectors (``numpy.cross`` costs ~20 times more on one pair)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+@dataclass(frozen=True)
+class PathPoint:
+    """A point of the reference path and its local geometry on the sphere."""
+
+    parameter_s: float
+    """σ: the path's own time (arc length / path speed V_p), unwrapped."""
+    position_m: np.ndarray
+    """r(σ) on the sphere of radius L."""
+    tangent: np.ndarray
+    """t = r'/V_p, unit."""
+    normal: np.ndarray
+    """n = ê × t: unit, in the tangent plane, to the left of the path seen from outside."""
+    curvature_per_m: float
+    """Geodesic curvature κ_g = r''·n / V_p² (1/m; > 0 turning left)."""
+    path_speed_mps: float
+    """V_p = |r'|, the speed at which the path object flies its path."""
+
+
+def path_point(path, parameter_s) -> PathPoint:
+    """The point of ``path`` (a :class:`~fem_tether.physics.trajectory.FigureEight` or
+    :class:`~fem_tether.physics.orbit.Circle`) at its time σ, from r, r', r'' of
+    ``path.state(σ)``: t = r'/|r'|, n = (r/|r|) × t, κ_g = r''·n/|r'|²."""
+    r, dr, d2r = path.state(float(parameter_s))
+    speed = float(np.linalg.norm(dr))
+    tangent = dr / speed
+    normal = cross(r / np.linalg.norm(r), tangent)
+    return PathPoint(float(parameter_s), r, tangent, normal, float(d2r @ normal) / speed ** 2, speed)
+
+
+def nearest_point(path, position_m, guess_s, iterations=N_NEWTON) -> PathPoint:
+    """The point of the path nearest the kite at ``position_m``, found from the
+    previous parameter ``guess_s`` (a local, not a global, minimum of the distance).
+
+    Newton on f(σ) = (r(σ) − p)·r'(σ) = 0 with f'(σ) = |r'|² + (r − p)·r'',
+    p the kite's position scaled to the path's sphere.  The step is limited to
+    ±|p − r|/V_p + 1 s of path time, so the point moves continuously along the
+    branch it is on (at the eight's crossing the other branch, half a loop away
+    in σ, is never reached).  Raises ValueError if the kite is so far off the
+    path that the distance has no minimum near ``guess_s`` (f' ≤ 0: the kite
+    beyond the path's local centre of curvature).  ``iterations`` Newton steps
+    (one suffices to correct a σ carried by :func:`parameter_rate`).  A NaN
+    ``guess_s`` (no previous point: a kite that tracked no path, such as a
+    pumping cycle's depowered recovery) starts from the nearest of
+    :data:`LOOP_SAMPLES` points of one loop, with :data:`N_NEWTON_GLOBAL` steps.
+    """
+    p = np.asarray(position_m, dtype=float)
+    sigma = float(guess_s)
+    if math.isnan(sigma):
+        samples = np.linspace(0.0, path.period_s, LOOP_SAMPLES, endpoint=False)
+        points = np.array([path.state(float(x))[0] for x in samples])
+        gaps = points / np.linalg.norm(points, axis=1)[:, None] - p / np.linalg.norm(p)
+        sigma = float(samples[np.argmin(np.einsum("ij,ij->i", gaps, gaps))])
+        iterations = max(iterations, N_NEWTON_GLOBAL)
+    for _ in range(iterations):
+        r, dr, d2r = path.state(sigma)
+        offset = r - p * (np.linalg.norm(r) / np.linalg.norm(p))
+        slope = float(dr @ dr + offset @ d2r)
+        if slope <= 0.0:
+            raise ValueError(f"position_m={p.tolist()} is beyond the path's centre of curvature at "
+                             f"parameter {sigma:.6g} s: no nearest point near guess_s={guess_s}")
+        limit = float(np.linalg.norm(offset)) / math.sqrt(float(dr @ dr)) + 1.0
+        sigma -= float(np.clip((offset @ dr) / slope, -limit, limit))
+    return path_point(path, sigma)
+
+
+def parameter_rate(point: PathPoint, position_m, velocity_mps) -> float:
+    """dσ/dt of the nearest point of a kite moving at ``velocity_mps``.
+
+    From d/dt [(r(σ) − p)·r'(σ)] = 0:  σ̇ = (ṗ·r') / (|r'|² + (r − p)·r''),
+    with p the kite's position scaled to the path's sphere (ṗ: its velocity's
+    tangential part, scaled alike) and r'' = V_p² (κ_g n − ê/|r|) on a path of
+    constant speed on the sphere;
+    on the path this is V cosη / V_p, inside a left turn it is faster by
+    1/(1 − κ_g e).  For an integrator that carries σ as a state.
+    """
+    r = point.position_m
+    p = np.asarray(position_m, dtype=float)
+    radius, distance = float(np.linalg.norm(r)), float(np.linalg.norm(p))
+    offset = r - p * (radius / distance)
+    v = np.asarray(velocity_mps, dtype=float)
+    v_scaled = (v - (v @ p) * p / distance ** 2) * (radius / distance)
+    V_p = point.path_speed_mps
+    d2r = V_p ** 2 * (point.curvature_per_m * point.normal - r / radius ** 2)
+    return float(v_scaled @ point.tangent) * V_p / (V_p ** 2 + float(offset @ d2r))
+
+
+@dataclass(frozen=True)
+class Command:
+    """One output of :meth:`Steering.command`."""
+
+    roll_rad: float
+    """ψ, within [roll_min_rad, roll_max_rad]."""
+    feedforward_rad: float
+    """ψ_ff: the roll of the feed-forward alone (a_⊥ = V² κ_g), unlimited."""
+    cross_track_m: float
+    """e = (p − r)·n: the kite's distance to the left of the path."""
+    heading_error_rad: float
+    """η = atan2(v·n, v·t): the kite's heading left of the path's, in (−π, π]."""
+    saturated: bool
+    """True when the limits clipped ψ."""
+
+
+@dataclass(frozen=True)
+class Steering:
+    """The path-following law of the module docstring for a kite of mass m.
+
+    Tuning (docs/steering.md): ``lookahead_m`` ℓ sets the closed-loop double
+    pole −ω = −2V/ℓ; :meth:`for_path` takes ℓ = R_min/2, half the path's
+    smallest turn radius, so an error decays to 41 % ((1 + 2) e⁻²) over a
+    distance flown of ℓ.  A roll actuator of lag τ_a keeps the loop stable iff
+    ω τ_a < 2 (Routh on τ_a s³ + s² + 2ωs + ω²): take ℓ ≥ 4 V τ_a (ω τ_a ≤ 0.5)
+    when that is larger.  A law sampled every h and held is stable iff ω h < 1
+    (:func:`sampled_lookahead_m`; the lag τ_a ≈ h/2 reading overstates this
+    bound fourfold): take ℓ ≥ 4 V h (ω h ≤ 0.5) when that is larger.  The limits bound ψ (seed 003 §3.2.3 flies the M600's circle open-loop at
+    −7.25° … 46.68°).
+    """
+
+    path: FigureEight | Circle
+    """The reference path: a FigureEight or a Circle (``state(σ)``, ``laps(σ)``)."""
+    mass_kg: float
+    """m: the kite's mass (with on-board turbines; for a flexible tether the end
+    node's share of the line)."""
+    lookahead_m: float
+    """ℓ: look-ahead distance of the approach angle η_d = −atan(e/ℓ)."""
+    roll_min_rad: float = -0.5
+    """ψ_min: least roll (negative turns right)."""
+    roll_max_rad: float = 0.5
+    """ψ_max: largest roll."""
+
+    def __post_init__(self):
+        if not self.mass_kg > 0.0:
+            raise ValueError(f"mass_kg must be positive, got {self.mass_kg}")
+        if not self.lookahead_m > 0.0:
+            raise ValueError(f"lookahead_m must be positive, got {self.lookahead_m}")
+        if not -math.pi / 2 < self.roll_min_rad < self.roll_max_rad < math.pi / 2:
+            raise ValueError(f"roll limits must satisfy -pi/2 < roll_min_rad < roll_max_rad < pi/2, got "
+                             f"roll_min_rad={self.roll_min_rad}, roll_max_rad={self.roll_max_rad}")
+
+    @classmethod
+    def for_path(cls, path, mass_kg, roll_min_rad=-0.5, roll_max_rad=0.5):
+        """The law with the tuning rule ℓ = R_min / 2 (:func:`min_turn_radius_m`)."""
+        return cls(path, mass_kg, 0.5 * min_turn_radius_m(path), roll_min_rad, roll_max_rad)
+
+    def lateral_acceleration(self, point: PathPoint, speed_mps, cross_track_m, heading_error_rad):
+        """a_⊥ = V² κ_g cosη / (1 − κ_g e) + (4V²/ℓ)(η_d − η), η_d = −atan(e/ℓ).
+
+        The factor 1/(1 − κ_g e) is held ≤ 2 (the kite at most half the turn
+        radius inside the turn; beyond, the nearest point is ill-defined).
+        """
+        kappa, e, eta = point.curvature_per_m, cross_track_m, heading_error_rad
+        feedforward = kappa * math.cos(eta) / max(1.0 - kappa * e, 0.5)
+        wrapped = math.remainder(-math.atan(e / self.lookahead_m) - eta, 2.0 * math.pi)
+        return speed_mps ** 2 * (feedforward + 4.0 * wrapped / self.lookahead_m)
+
+    def command(self, point: PathPoint, position_m, velocity_mps, aero_force_N, lift_N) -> Command:
+        """The roll ψ for a kite at ``position_m`` moving at ``velocity_mps``.
+
+        ``point`` is the nearest point of the path (:func:`nearest_point`),
+        ``aero_force_N`` the aerodynamic force vector F_0 at ψ = 0 (lift, drag
+        and any lumped tether or turbine drag) and ``lift_N`` the lift L.
+        sinψ = (m a_⊥ − (F_0 + m g)·n_k)/L, n_k = ê_k × v/V (module docstring).
+        """
+        if not lift_N > 0.0:
+            raise ValueError(f"lift_N must be positive to steer, got {lift_N}")
+        p = np.asarray(position_m, dtype=float)
+        e_k = p / np.linalg.norm(p)
+        v = np.asarray(velocity_mps, dtype=float)
+        v = v - (v @ e_k) * e_k
+        speed = float(np.linalg.norm(v))
+        if not speed > 0.0:
+            raise ValueError(f"velocity_mps={v.tolist()} has no speed across the tether to steer")
+        radius = float(np.linalg.norm(point.position_m))
+        e = float((p * (radius / np.linalg.norm(p)) - point.position_m) @ point.normal)
+        eta = math.atan2(float(v @ point.normal), float(v @ point.tangent))
+        gravity = np.array([0.0, 0.0, -self.mass_kg * GRAVITY_MPS2])
+        passive = float((np.asarray(aero_force_N, dtype=float) + gravity) @ cross(e_k, v / speed))
+        sin_ff = (self.mass_kg * speed ** 2 * point.curvature_per_m - passive) / lift_N
+        sin_roll = (self.mass_kg * self.lateral_acceleration(point, speed, e, eta) - passive) / lift_N
+        low, high = math.sin(self.roll_min_rad), math.sin(self.roll_max_rad)
+        return Command(roll_rad=math.asin(min(max(sin_roll, low), high)),
+                       feedforward_rad=math.asin(min(max(sin_ff, -1.0), 1.0)),
+                       cross_track_m=e, heading_error_rad=eta, saturated=not low <= sin_roll <= high)
+
+
+def sampled_lookahead_m(speed_mps, sample_s):
+    """ℓ = 4 V h: the least look-ahead of a law sampled every h and held over the
+    sample (zero-order hold, the time step of a simulation), ω h = 2 V h / ℓ = 1/2.
+
+    On a straight path the linearised loop is ë = a, the command
+    a_k = −ω² e_k − 2ω ė_k held over [t_k, t_k + h].  Exactly integrated over
+    the sample, (e, ė h) goes to A (e, ė h) with, x = ω h,
+    trace A = 2 − 2x − x²/2 and det A = 1 − 2x + x²/2; Jury's conditions
+    (1 ± trace + det > 0, |det| < 1) reduce to 4 − 4x > 0 and 0 < x < 4: the
+    sampled loop is stable iff ω h < 1.  At ω h = 1/2 its poles are real,
+    0.70 and 0.18 per sample (the continuous loop's e^(−ωh) = 0.61): damped
+    as the continuous design.  Measured on the flexible line (KiteGen eight,
+    1000 m, h = 0.05 s, ℓ = 9.34 m, ω h ≈ 1.0 at V ≈ 92 m/s): the heading error
+    grew to 30° within a loop and the run diverged; at ω h ≈ 0.5 (ℓ = 18.4 m
+    or h = 0.025 s) it tracks to 0.21 m and 0.03 m RMS (docs/free-kite.md).
+
+    >>> sampled_lookahead_m(90.0, 0.05)
+    18.0
+    """
+    return 4.0 * speed_mps * sample_s
+
+
+def min_turn_radius_m(path, samples=2048):
+    """R_min = 1 / max |κ_g| over one loop of the path, sampled at ``samples``
+    equal steps of σ (the 190 × 95 m eight: 18.7 m, near the top and bottom
+    of each lobe, 94 m at its tips; the circle: L tanρ, the geodesic radius
+    of a cone of half-angle ρ)."""
+    curvature = max(abs(path_point(path, s).curvature_per_m)
+                    for s in np.linspace(0.0, path.period_s, samples, endpoint=False))
+    return 1.0 / curvature

@@ -1,0 +1,91 @@
+"""The FD line's end node carrying a point-mass kite: its equation of motion and Jacobian rows.
+
+With ``[kite] model = "point-mass"`` the end node r_M is no longer moved
+along the path: it carries the kite (:class:`fem_tether.tether.free_kite.FreeKite`,
+one line's share of it) and its equation is the control-volume balance of
+the interior nodes (:mod:`.system`) over the last half segment, with the kite
+added (docs/free-kite-fd.md)::
+
+    (m_k + m_M) a_M + T_{M-1/2} tau_{M-1/2} - (h_{M-1}/2) (w + f_M) - F(r_M, v_M, d, psi) = 0
+
+- ``m_M = mu h_{M-1} / 2``: the half segment's line mass, the lumped mass the
+  kinematic end carried already (:attr:`.system.Grid.trap_weights`), so the
+  nodal masses still sum to mu L and the kite's node is the interior nodes'
+  control volume cut at the end;
+- ``T_{M-1/2} tau_{M-1/2}``: the line's pull, the flux through the inner face
+  of that volume (the outer face is the kite's bridle);
+- ``(h_{M-1}/2)(w + f_M)``: the half segment's weight and drag, the drag f_M
+  at the node with the one-sided tangent tau_{M-1/2} (the drag the reported
+  line loads already use there);
+- ``F = F_aero + m_k g`` of :meth:`FreeKite.load` with the last segment
+  ``d = r_M - r_{M-1}`` as the tether at the kite and the roll psi held over
+  the step.
+
+The time scheme is the line's (:mod:`.solver`): v_M and a_M are the BDF2 (or
+implicit-Euler) formulas at the new time level, so every term is implicit and
+``dv_M/dr_M = c_v = a0``, ``da_M/dr_M = c_a = a0^2``.  The row is scaled like
+the momentum rows (a force over F_ref); its derivatives (before the scale),
+with ``K = (T_{M-1/2} / l_{M-1}) (I - tau tau^T)``, ``D = df/dtau (I - tau tau^T) / l_{M-1}``
+and the kite's J_r, J_v, J_d (:class:`fem_tether.tether.free_kite.KiteLoad`)::
+
+    d/dr_M        = (m_k + m_M) c_a I + K - (h_{M-1}/2) (df_M/dr_M + D) - (J_r + c_v J_v + J_d)
+    d/dr_{M-1}    = -K + (h_{M-1}/2) D + J_d
+    d/dT_{M-1/2}  = tau_{M-1/2}
+
+``df_M/dr_M`` is the drag's derivative through v_M and the altitude
+(:meth:`.system.TetherFD.drag_derivative`).  The line's rows come from
+:meth:`.system.TetherFD.evaluate` (NumPy or compiled) on the free grid
+(:attr:`.system.Grid.free_end`), in whose band these rows are put
+(:meth:`.system.Grid.put_end_rows`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fem_tether.tether.fd.system import Evaluation, TetherFD
+from fem_tether.tether.free_kite import FreeKite
+
+_EYE = np.eye(3)
+_NO_DIRECTION = np.zeros(3)     # a free grid has no kinematic end to direct
+
+
+def end_mass_kg(eq: TetherFD, kite: FreeKite) -> float:
+    """m_k + m_M: the kite's mass and the last half segment's line mass."""
+    return kite.kite.mass_kg + eq.physics.linear_density_kg_m * 0.5 * eq.grid.h[-1]
+
+
+def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_ref_N: float,
+             c_a=0.0, c_v=0.0, jacobian=True, reel_mps=0.0) -> Evaluation:
+    """Scaled residual and (when read) banded Jacobian of the line with the kite at
+    its end, at nodal r, v, a (M+1, 3) and tensions T (M,): the line's
+    equations (:meth:`TetherFD.evaluate`, same arguments) and the kite's rows
+    of the module docstring, ``roll_rad`` the roll ψ held over the step."""
+    g, ph = eq.grid, eq.physics
+    line = eq.evaluate(r, v, a, T, _NO_DIRECTION, force_ref_N, c_a, c_v, jacobian=jacobian, reel_mps=reel_mps)
+    d = r[-1] - r[-2]
+    tau = d / line.length_m[-1]
+    load = kite.load(r[-1], v[-1], d, roll_rad)
+    half = 0.5 * g.h[-1]
+    mass = end_mass_kg(eq, kite)
+    residual = line.residual
+    residual[-3:] = (mass * a[-1] + T[-1] * tau - half * (ph.weight_N_m + line.drag.force[-1])
+                     - load.force_N) / force_ref_N
+
+    def build():
+        ab = line.ab
+        ell = line.length_m[-1]
+        proj = _EYE - np.outer(tau, tau)
+        stiffness = (T[-1] / ell) * proj
+        z = r[-1:, 2]
+        air = ph.air.state(z, gradients=True)
+        drag = eq.nodal_drag(r[-1:], v[-1:], tau[None, :], air, jacobian=True)
+        d_tangent = drag.d_dtau[0] @ proj / ell
+        d_end = (mass * c_a * _EYE + stiffness - half * (eq.drag_derivative(z, drag, air, slice(None), c_v)[0]
+                                                         + d_tangent)
+                 - (load.d_position + c_v * load.d_velocity + load.d_tether))
+        d_before = -stiffness + half * d_tangent + load.d_tether
+        g.put_end_rows(ab, d_end / force_ref_N, d_before / force_ref_N, tau / force_ref_N)
+        return ab
+
+    return Evaluation(residual, line.length_m, line.drag, build)

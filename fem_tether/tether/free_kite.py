@@ -1,0 +1,230 @@
+"""The kite end as a steered point mass flying under its forces (``[kite] model = "point-mass"``).
+
+Instead of being moved along its path, the line's end node carries a kite: a
+point mass under its aerodynamic force (:mod:`fem_tether.physics.kite_dynamics`, eqs.
+(1)–(3): seed 001 eqs. 8–16, seed 003 eq. 2.11, seed 004 eqs. 3.31–3.33), its
+weight and the line's pull.  The end node's equation of motion is the line's
+interior one with the kite added (docs/free-kite.md)::
+
+    (m_k + m_N) r̈_N + T_L τ_L − (Q f_t)_N − m_N g − m_k g − F_aero(r_N, ṙ_N, τ_L, ψ) = 0,
+
+m_N the node's share of the line's mass, τ_L the direction of the last
+element (the tether's direction at the kite, eq. (1)'s e) and ψ the roll.
+
+One line of n: the model is solved per line ([tether] lines = n identical
+lines from the winch to the kite), so each line's end carries 1/n of the
+kite: mass m_k = m/n and area A/n (the same C_L, C_D), and each line's F_t is
+the per-line drag as today.
+
+Steering: ψ comes from the path-following law of :mod:`fem_tether.physics.steering`
+evaluated at the start of each time step and held over it (a sampled
+controller, zero-order hold): :meth:`FreeKite.steer` tracks the nearest point
+of the reference path (the configured eight or circle) from the previous one.
+The law's mass is the kite's plus the end node's share of the line
+(``end_mass_kg``), the mass the lateral balance accelerates.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from fem_tether.physics.atmosphere import AirModel
+from fem_tether.core.errors import ConfigError, SolverDivergedError
+from fem_tether.physics.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, Polar,
+                                              aerodynamic_force_N, aerodynamic_load, gravity_force_N,
+                                              read_polar, steady_crosswind)
+from fem_tether.physics.loads import G_MPS2
+from fem_tether.physics.steering import (Command, Steering, min_turn_radius_m, nearest_point,
+                                         sampled_lookahead_m)
+from fem_tether.systems.tether_drag import straight_tether_cd
+from fem_tether.physics.wind import WindProfile
+
+
+@dataclass(frozen=True)
+class KiteLoad:
+    """The kite's force on the end node and its derivatives (dF = J dx)."""
+
+    force_N: np.ndarray
+    """F_aero + m_k g [N], shape (3,)"""
+    d_position: np.ndarray
+    """∂F/∂r_N at a fixed tether vector d (through V_w(z) and ρ(z)) (3, 3)"""
+    d_velocity: np.ndarray
+    """∂F/∂ṙ_N (3, 3)"""
+    d_tether: np.ndarray
+    """∂F/∂d, d = r_N − r_{N−1} the last element (its direction is τ_L) (3, 3)"""
+    aero: AerodynamicForce
+    """the aerodynamic force and its state (apparent wind, α, C_L, C_D, turbine power)"""
+
+
+@dataclass(frozen=True)
+class Steer:
+    """One sample of the steering law."""
+
+    roll_rad: float
+    """ψ held over the next time step"""
+    parameter_s: float
+    """σ of the nearest path point (the next sample's first guess)"""
+    command: Command
+    """the law's output: cross-track and heading errors, saturation"""
+
+
+@dataclass(frozen=True)
+class FreeKite:
+    """One line's share of a point-mass kite, its steering and its air."""
+
+    kite: PointMassKite
+    """the kite per line: mass m/n, area A/n"""
+    steering: Steering
+    """the path-following law and its reference path"""
+    wind: WindProfile
+    air: AirModel
+    start_tether_cd: float = 0.0
+    """C_D,t of the line lumped at the kite for the static start's speed (:meth:`start_speed_mps`)"""
+    gravity_mps2: float = G_MPS2
+    wings: tuple[PointMassKite, PointMassKite] | None = None
+    """a pumping cycle's (``[winch] reel_out = "cycle"``) powered wing and its depowered
+    recovery wing (:func:`recovery_wing`); :attr:`kite` is the one flown"""
+
+    @property
+    def depowered(self) -> bool:
+        """Whether the kite flies its recovery wing (a pumping cycle's reel-in)."""
+        return self.wings is not None and self.kite is self.wings[1]
+
+    def for_reel_mps(self, reel_mps: float) -> FreeKite:
+        """The kite as flown while the winch reels at ``reel_mps``: a pumping cycle's
+        recovery wing while the line is reeled in (V_L < 0), its powered wing
+        otherwise; without :attr:`wings` always itself.  The solvers swap it when
+        the winch turns (``reeled``), so neither knows the reel's law."""
+        if self.wings is None:
+            return self
+        wing = self.wings[1] if reel_mps < 0.0 else self.wings[0]
+        return self if wing is self.kite else replace(self, kite=wing)
+
+    def load(self, r, v, tether, roll_rad: float) -> KiteLoad:
+        """F = F_aero(r, v, τ_L, ψ) + m_k g and its Jacobians; ``tether`` is the
+        last element's vector d = r_N − r_{N−1}."""
+        aero, jac = aerodynamic_load(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
+        return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
+                        jac.velocity, jac.tether, aero)
+
+    def steer(self, t_s: float, parameter_s: float, r, v, tether, tension_N: float = 0.0,
+              line_drag_N=0.0) -> Steer:
+        """The roll ψ for the kite at ``r`` moving at ``v`` (:meth:`Steering.command`),
+        with the nearest path point found from ``parameter_s``; the law's F_0 is the
+        aerodynamic force at ψ = 0 plus the line's pull −T_L τ_L on the kite
+        (``tension_N`` = T_L along the last element ``tether``: its sideways part,
+        the sag and the line's own inertia, the law balances like any other
+        force) and its lift L = ½ ρ |W_e|² A C_L.  ``line_drag_N`` is the drag
+        of the line's share at the kite's node (the law's mass includes that
+        share, so its weight is already in the law's m g): the law's feedback
+        acts through m a_⊥, so for a light kite every force on the node must be
+        in F_0 (docs/free-kite-fd.md: without it a massless kite flew 11 m off
+        its circle).  Raises
+        :class:`SolverDivergedError` (time, position, cause) when the kite has lost
+        its path: no nearest point, no lift or no speed across the tether.
+
+        A depowered kite (:attr:`depowered`, a cycle's recovery) has no lift to
+        steer with: ψ = 0, and the sample's σ and errors are NaN (no path is
+        tracked); the first powered sample after it finds the nearest path point
+        afresh (:func:`~fem_tether.physics.steering.nearest_point` from the loop's best
+        sample, ``parameter_s`` NaN)."""
+        if self.depowered:
+            return Steer(0.0, math.nan, Command(0.0, 0.0, math.nan, math.nan, False))
+        try:
+            point = nearest_point(self.steering.path, r, parameter_s)
+            aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, 0.0, tether=tether)
+            rho = float(self.air.density_kg_m3(float(r[2])))
+            lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
+            pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
+            command = self.steering.command(point, r, v, aero.force_N + pull + line_drag_N, lift_N)
+        except ValueError as exc:
+            raise SolverDivergedError(f"the point-mass kite lost its path at t = {t_s:.4f} s, at "
+                                      f"{np.round(np.asarray(r, dtype=float), 1).tolist()} m: {exc}") from None
+        return Steer(command.roll_rad, point.parameter_s, command)
+
+    def start_speed_mps(self, length_m: float) -> float:
+        """The steady crosswind speed at the path's first point (the static start's
+        kite speed): :func:`~fem_tether.physics.kite_dynamics.steady_crosswind` of this kite,
+        massless, in the wind and air at its altitude, with the line's drag lumped
+        as :attr:`start_tether_cd`.  Only the start uses it: the spin-up periods
+        let the kite find its own speed."""
+        return start_speed_mps(self.kite, self.steering.path, self.wind, self.air, self.start_tether_cd,
+                               length_m)
+
+
+def start_speed_mps(kite: PointMassKite, path, wind: WindProfile, air: AirModel, tether_cd: float,
+                    length_m: float) -> float:
+    """:meth:`FreeKite.start_speed_mps` of ``kite`` on ``path`` with the line lumped as ``tether_cd``."""
+    theta, phi = path.angles(0.0)
+    z = length_m * math.cos(float(theta))
+    massless = PointMassKite(0.0, kite.area_m2, kite.aerodynamics, kite.base_aoa_rad, kite.turbine_factor)
+    state = steady_crosswind(massless, float(wind.speed_mps(z)), float(theta), float(phi), 0.0,
+                             float(air.density_kg_m3(z)), tether_cd)
+    return state.kite_speed_mps
+
+
+def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> FreeKite | None:
+    """The configured point-mass kite per line (None for ``[kite] model = "prescribed"``);
+    ``end_mass_kg`` is the end node's share of the line's mass (the steering law's
+    mass is the kite's plus it).  The look-ahead ℓ is ``[kite] lookahead_m`` or
+    else the larger of half the path's smallest turn radius and, for a law
+    sampled every time step h, 4 V₀ h (:func:`~fem_tether.physics.steering.sampled_lookahead_m`,
+    V₀ the start speed), with h the larger of ``[fe] dt_s`` and ``[fd] dt_s``:
+    both solvers fly the same law, so the cross-check compares the same flight."""
+    k = cfg.kite
+    if k.model != "point-mass":
+        return None
+    lines = cfg.tether.lines
+    aerodynamics: ConstantCoefficients | Polar
+    if k.polar:
+        aerodynamics = read_polar(k.polar)
+    else:
+        aerodynamics = ConstantCoefficients(k.cl, k.cl / k.efficiency)
+    try:
+        kite = PointMassKite(cfg.system.kite_mass_kg / lines, k.area_m2 / lines, aerodynamics,
+                             math.radians(k.base_aoa_deg), k.turbine_factor)
+    except ValueError as exc:
+        raise ConfigError(f"[kite] model = \"point-mass\": {exc}") from None
+    path = cfg.path
+    # the line lumped as a straight rod (seed 004 eq. 3.14) with C_d,c = 1.2, the seeds' value
+    start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
+    lookahead = k.lookahead_m or max(
+        0.5 * min_turn_radius_m(path),
+        sampled_lookahead_m(start_speed_mps(kite, path, wind, air, start_cd, cfg.tether.length_m),
+                            max(cfg.fe.dt_s, cfg.fd.dt_s)))
+    steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
+                        math.radians(k.roll_max_deg))
+    wings = (kite, recovery_wing(kite, cfg.cycle.reel_in_cd0)) if cfg.winch.reel_out == "cycle" else None
+    return FreeKite(kite, steering, wind, air, start_cd, wings=wings)
+
+
+def recovery_wing(kite: PointMassKite, cd0: float) -> PointMassKite:
+    """The wing depowered for a pumping cycle's recovery: KiteGen's side-slip
+    (Roselli 2016 §2.1.2: the stalled wing's lift "drops down") as Trevisi 2019
+    eq. 3.24 models it, pure drag C_d0 on the apparent wind; the same mass and
+    area, no turbines."""
+    return PointMassKite(kite.mass_kg, kite.area_m2, ConstantCoefficients(0.0, cd0))
+
+
+def series_values(kite: FreeKite, steer: Steer, load: KiteLoad, velocity_mps) -> dict:
+    """The kite's values of :data:`fem_tether.tether.results.KITE_SERIES` at one solution:
+    its speed and the speed cubed, |W_e|, α, the roll ψ of the sample at this
+    instant (held over the next step), the turbine power, the steering errors
+    of that sample and the laps of the path its nearest point has flown
+    (``kite``'s path)."""
+    aero = load.aero
+    speed = float(np.linalg.norm(velocity_mps))
+    return {
+        "kite_speed_mps": speed,
+        "kite_speed_cubed_m3_s3": speed**3,
+        "apparent_speed_mps": float(np.linalg.norm(aero.apparent_wind_mps)),
+        "aoa_deg": math.degrees(aero.angle_of_attack_rad),
+        "roll_deg": math.degrees(steer.roll_rad),
+        "turbine_power_W": float(aero.turbine_power_W),
+        "cross_track_m": steer.command.cross_track_m,
+        "heading_error_deg": math.degrees(steer.command.heading_error_rad),
+        "path_laps": float(kite.steering.path.laps(steer.parameter_s)),
+    }

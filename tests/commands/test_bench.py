@@ -1,0 +1,43 @@
+"""fem_tether.commands.bench: one setting measured in a forked child (the whole benchmark
+takes minutes; tests/test_cli.py checks its printed form)."""
+
+from fem_tether.commands import bench
+
+
+def test_a_setting_reports_cost_newton_iterations_and_memory():
+    m = bench._run("fe", 10, 0.2, 1)
+    row = bench._row(m, m["drag_N"])
+    assert row.rel_error == 0.0 and row.steps > 0 and row.wall_s > 0
+    assert row.newton_per_step >= 1.0
+    assert abs(row.simulated_s - 28.8) < 0.5 and row.real_time_factor == row.simulated_s / row.wall_s
+    assert row.us_per_step == 1e6 * row.wall_s / row.steps
+    assert 0.0 <= row.run_rss_MiB < row.peak_rss_MiB
+    d = row.as_dict()
+    assert {"us_per_step", "newton_per_step", "real_time_factor", "peak_rss_MiB"} <= d.keys()
+
+
+def test_an_error_in_the_child_is_raised_in_the_parent():
+    try:
+        bench._run("fe", 1, 0.2, 1)
+    except Exception as exc:
+        assert "elements" in str(exc)
+    else:
+        raise AssertionError("1 element ran")
+
+
+def test_rounds_keep_the_fastest_run_and_the_largest_memory(monkeypatch):
+    """Each round runs every setting once; per setting the least wall time counts,
+    with the largest memory figures of its rounds."""
+    walls = iter([3.0, 5.0, 1.0, 6.0, 2.0, 4.0])
+    calls = []
+
+    def fake_run(solver, resolution, dt_s, repeats):
+        calls.append(resolution)
+        wall = next(walls)
+        return {"wall_s": wall, "peak_rss_MiB": 10 * wall, "run_rss_MiB": wall, "elements": resolution}
+
+    monkeypatch.setattr(bench, "_run", fake_run)
+    best = bench._best_of_rounds([("fe", 10, 0.2, 2), ("fe", 20, 0.2, 2)], rounds=3)
+    assert calls == [10, 20, 10, 20, 10, 20]        # interleaved, not back to back
+    assert [b["wall_s"] for b in best] == [1.0, 4.0]
+    assert [b["peak_rss_MiB"] for b in best] == [30.0, 60.0]

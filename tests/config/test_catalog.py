@@ -1,0 +1,97 @@
+"""System presets: each loads as a configuration and as a job, cites its sources, and agrees
+with its own power model where a value was derived from it."""
+
+import math
+
+import pytest
+
+from fem_tether.config import ConfigError, load_config, preset_summaries
+from fem_tether.jobs.job import load_job
+from fem_tether.config import catalog
+from fem_tether.systems import ke_yoyo, loyd
+from fem_tether.performance.configured import LOYD_WIDTH_RATIO, from_config
+
+PRESETS = catalog.names()
+
+
+def test_the_documents_systems_are_shipped():
+    assert PRESETS == ["ke-yoyo", "kitegen", "loyd-1", "loyd-2", "loyd-3", "makani-m600", "trevisi-fg",
+                       "trevisi-gg"]
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_preset_is_a_valid_configuration_and_job(name):
+    cfg = load_config(system=name)
+    assert cfg.system.name == name
+    job = load_job(system=name)
+    assert job.config == cfg and min(job.lengths_m) <= cfg.tether.length_m <= max(job.lengths_m)
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_every_value_cites_its_source(name):
+    """Every key of a preset has a comment (source, or the model it was derived from)."""
+    for line in catalog.path(name).read_text().splitlines():
+        if "=" in line and not line.lstrip().startswith("#") and not line.startswith("["):
+            key = line.split("=")[0].strip()
+            assert "#" in line or key in ("name", "model", "description", "lengths_m", "crosscheck",
+                                          "straight"), f"{name}: {line!r} has no source"
+
+
+def test_a_file_overrides_the_preset_and_options_override_the_file(tmp_path):
+    path = tmp_path / "c.toml"
+    path.write_text("[tether]\nlength_m = 500.0\n")
+    cfg = load_config(path, {"kite": {"cl": 1.1}}, system="ke-yoyo")
+    assert (cfg.tether.length_m, cfg.kite.cl, cfg.tether.diameter_m) == (500.0, 1.1, 0.03)
+
+
+def test_unknown_system_is_named():
+    with pytest.raises(ConfigError, match=r"--system kitgen: unknown system \(known: ke-yoyo, kitegen"):
+        load_config(system="kitgen")
+
+
+def test_ke_yoyo_preset_flies_its_model_at_10_mps():
+    """The FE run's kite speed and winch tension are the model's at 10 m/s (to the preset's 3-4 digits)."""
+    cfg = load_config(system="ke-yoyo")
+    point = from_config(cfg).operating_point(10.0)
+    assert cfg.kite.speed_mps == pytest.approx(point.apparent_speed_mps, rel=1e-3)
+    assert 2 * cfg.winch.ground_tension_N == pytest.approx(point.tether_force_N, rel=1e-4)
+    assert cfg.tether.linear_density_kg_m == pytest.approx(970.0 * math.pi * 0.03**2 / 4, rel=1e-4)
+
+
+@pytest.mark.parametrize("name, source", [("loyd-1", loyd.LOYD_I), ("loyd-2", loyd.LOYD_II),
+                                          ("loyd-3", loyd.LOYD_III), ("makani-m600", loyd.MAKANI_M600)])
+def test_loyd_presets_are_the_seed_systems_with_their_sized_tether(name, source):
+    """Seed 003's Tables 3.1/4.1 systems; the tether of eq. 3.7 at the design wind (5 digits)."""
+    cfg = load_config(system=name)
+    params = from_config(cfg).parameters
+    assert (params.area_m2, params.cl, params.lift_to_drag, params.tether_length_m, params.working_stress_Pa) \
+        == (source.area_m2, source.cl, source.lift_to_drag, source.tether_length_m, source.working_stress_Pa)
+    assert params.tether_density_kg_m3 == pytest.approx(source.tether_density_kg_m3, rel=1e-4)
+    assert params.tether_cd_ref == pytest.approx(source.tether_cd_ref, rel=1e-4)
+    assert cfg.drag.cd == pytest.approx(0.04 * LOYD_WIDTH_RATIO, rel=1e-4)
+    sized = loyd.size_tether(source, 1.225)
+    point = loyd.operating_point(source, 10.0, 1.225)
+    assert cfg.tether.diameter_m == pytest.approx(sized.diameter_m, rel=1e-4)
+    assert cfg.winch.ground_tension_N == pytest.approx(sized.tension_N, rel=1e-4)
+    assert cfg.kite.speed_mps == pytest.approx(point.apparent_speed_mps, rel=1e-3)
+
+
+def test_summaries_list_every_preset_with_its_tether():
+    rows = {r["name"]: r for r in preset_summaries()}
+    assert set(rows) == set(PRESETS)
+    assert (rows["ke-yoyo"]["lines"], rows["ke-yoyo"]["diameter_m"]) == (2, 0.03)
+    assert ke_yoyo.TABLE_I.area_m2 == rows["ke-yoyo"]["area_m2"]
+
+
+@pytest.mark.parametrize("name", ["trevisi-gg", "trevisi-fg"])
+def test_trevisi_presets_fly_their_model_at_10_mps(name):
+    """Kite speed, tension and the line's mass per length (with the fly-gen conductor, eq. 3.16)
+    are the unified model's at 10 m/s (to the preset's 4-5 digits)."""
+    cfg = load_config(system=name)
+    system = from_config(cfg)
+    point = system.operating_point(10.0)
+    assert point.mode == cfg.unified.modes
+    assert cfg.kite.speed_mps == pytest.approx(point.apparent_speed_mps, rel=1e-3)
+    assert cfg.winch.ground_tension_N == pytest.approx(point.tether_force_N, rel=1e-3)
+    assert cfg.tether.linear_density_kg_m == pytest.approx(system.parameters.tether_mass_per_length_kg_m,
+                                                            rel=1e-4)

@@ -1,0 +1,207 @@
+"""Configuration: defaults, TOML round trip, one-line errors naming the key."""
+
+import tomllib
+
+import pytest
+
+from fem_tether.physics import wind
+from fem_tether.config import SECTIONS, Config, ConfigError, load_config
+
+
+def test_defaults_are_the_seed_case():
+    cfg = load_config()
+    assert cfg.tether.length_m == 1000.0 and cfg.tether.diameter_m == 0.011
+    assert cfg.tether.linear_density_kg_m == 0.062 and cfg.tether.lines == 2
+    assert cfg.winch.mode == "tension" and cfg.winch.ground_tension_N == 150000.0
+    assert cfg.winch.reel_out == "none"
+    assert cfg.kite.speed_mps == 80.0 and cfg.kite.efficiency == 28.0
+
+
+def test_toml_round_trip(tmp_path):
+    text = Config().to_toml()
+    assert tomllib.loads(text) == Config().to_dict()
+    path = tmp_path / "c.toml"
+    path.write_text('[tether]\nlength_m = 3000\n[wind]\nprofile = "none"\n')
+    cfg = load_config(path)
+    assert cfg.tether.length_m == 3000.0 and isinstance(cfg.tether.length_m, float)
+    assert cfg.wind.profile == "none" and cfg.air.model == "isa"
+
+
+@pytest.mark.parametrize("overrides, match", [
+    ({"tether": {"lenght_m": 1.0}}, r"\[tether\] lenght_m: unknown key"),
+    ({"tehter": {}}, r"\[tehter\]: unknown section"),
+    ({"tether": {"length_m": "long"}}, r'\[tether\] length_m = "long": expected a number'),
+    ({"tether": {"length_m": -5.0}}, r"\[tether\] length_m = -5.0: must be in \[10, 22000\]"),
+    ({"tether": {"lines": 1.5}}, r"\[tether\] lines = 1.5: expected an integer"),
+    ({"tether": {"lines": True}}, r"\[tether\] lines = true: expected an integer"),
+    ({"air": {"model": "mars"}}, r'\[air\] model = "mars": must be one of "isa", "exponential", "constant"'),
+    ({"kite": {"theta0_deg": 95.0}}, r"\[kite\] theta0_deg = 95.0: must be in \[1, 89\]"),
+    ({"fe": {"rho_inf": 1.5}}, r"\[fe\] rho_inf = 1.5"),
+])
+def test_bad_values_name_the_key(overrides, match):
+    with pytest.raises(ConfigError, match=match) as info:
+        load_config(overrides=overrides)
+    assert "\n" not in str(info.value)
+
+
+def test_bad_files(tmp_path):
+    with pytest.raises(ConfigError, match="no such file"):
+        load_config(tmp_path / "missing.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[tether\nlength_m = 1")
+    with pytest.raises(ConfigError, match="invalid TOML"):
+        load_config(bad)
+
+
+@pytest.mark.parametrize("section, dt_s, fewest", [("fe", 1.0, 36), ("fe", 60.0, 36), ("fd", 1.0, 72)])
+def test_time_step_must_resolve_the_eight(section, dt_s, fewest):
+    """A step too coarse for the eight's period (7.23 s) is an input error that
+    names the key, the steps per period and the largest allowed value; the
+    largest allowed value itself is accepted."""
+    with pytest.raises(ConfigError) as info:
+        load_config(overrides={section: {"dt_s": dt_s}})
+    message = str(info.value)
+    assert message.startswith(f"[{section}] dt_s = {dt_s!r}:") and f"at least {fewest} needed" in message
+    largest = float(message.rsplit("= ", 1)[1])
+    assert largest == pytest.approx(7.233 / fewest, rel=1e-3)
+    load_config(overrides={section: {"dt_s": largest}})
+
+
+@pytest.mark.parametrize("overrides, now", [
+    ({"time": {"dt_s": 0.1}}, "[fe] dt_s"),
+    ({"time": {"scheme": "hht"}}, "[fe] scheme"),
+    ({"fe": {"min_element_m": 1.0}}, "[winch] min_element_m"),
+    ({"kite": {"speed_ms": 70.0}}, "[kite] speed_mps"),
+])
+def test_a_moved_or_renamed_key_says_where_it_is_now(overrides, now):
+    (section, values), = overrides.items()
+    with pytest.raises(ConfigError, match=rf"^\[{section}\] {next(iter(values))}: now \[") as info:
+        load_config(overrides=overrides)
+    assert str(info.value).endswith(now)
+
+
+def test_variants_are_new_checked_configurations():
+    """replace / with_length return new checked objects; the original is unchanged."""
+    cfg = load_config()
+    longer = cfg.with_length(3000.0)
+    assert longer.tether.length_m == 3000.0 and cfg.tether.length_m == 1000.0
+    assert longer.path.period_s > cfg.path.period_s
+    assert cfg.replace(fe={"elements": 20}).fe.elements == 20 and cfg.fe.elements == 40
+    with pytest.raises(ConfigError, match=r"^\[tether\] length_m = -1.0: must be in \[10, 22000\]$"):
+        cfg.with_length(-1.0)
+    with pytest.raises(ConfigError, match=r"^\[fd\] dt_s = 1.0: "):
+        cfg.replace(fd={"dt_s": 1.0})
+
+
+def test_every_key_has_a_unit_and_a_meaning():
+    for section in SECTIONS:
+        for name, default, unit, doc in section.describe():
+            assert unit and doc, f"[{section.NAME}] {name}"
+            assert not name.endswith("_ms"), f"[{section.NAME}] {name}: m/s is spelled _mps"
+
+
+def test_a_stored_configuration_of_an_earlier_version_reads_with_its_keys_moved():
+    """Result files keep their configuration; keys written by an earlier version
+    are read where they are now (a user file with them is an error instead)."""
+    cfg = Config.from_stored('[time]\ndt_s = 0.1\naverage_periods = 1\n[kite]\nspeed_ms = 70.0\n')
+    assert cfg.fe.dt_s == 0.1 and cfg.time.average_periods == 1 and cfg.kite.speed_mps == 70.0
+    assert Config.from_stored(Config().to_toml()) == Config()
+
+
+def test_the_power_law_speed_is_now_a_weibull_scale():
+    """``[wind] reference_speed_mps`` was the mean at the reference height; a user
+    file with it is an error naming the new key, and a stored configuration
+    reads as the same wind (scale = mean / Gamma(1 + 1/k) to 1e-12, unbounded)."""
+    with pytest.raises(ConfigError, match=r"^\[wind\] reference_speed_mps: now \[wind\] reference_scale_mps"):
+        Config().replace(wind={"reference_speed_mps": 9.5})
+    cfg = Config.from_stored('[wind]\nprofile = "power"\nreference_speed_mps = 9.5\n'
+                             '[resource]\nweibull_k = 2.12\n')
+    profile = wind.from_config(cfg.wind, cfg.resource.weibull_k)
+    assert profile.speed_mps(20.0) == pytest.approx(9.5, rel=1e-12)
+    assert cfg.wind.boundary_layer_top_m == 0.0 and profile.speed_mps(2000.0) > profile.speed_mps(500.0)
+
+
+# issue 25: every numeric control is bounded at load, each bound named in the message
+@pytest.mark.parametrize("overrides, match", [
+    ({"time": {"newton_tol": 1e8}}, r"^\[time\] newton_tol = 100000000.0: must be in \[1e-12, 1e-06\]$"),
+    ({"time": {"max_newton": 10**6}}, r"^\[time\] max_newton = 1000000: must be in \[1, 100\]$"),
+    ({"time": {"average_periods": 10**9}}, r"^\[time\] average_periods = 1000000000: must be in \[1, 1000\]$"),
+    ({"fe": {"grading": 1e9}}, r"^\[fe\] grading = 1000000000.0: must be in \[0.001, 1000\]$"),
+    ({"fe": {"gamma": 0.1}}, r"^\[fe\] gamma = 0.1: must be in \[0.5, 1\]$"),
+    ({"wind": {"scale": 1e300}}, r"^\[wind\] scale = 1e\+300: must be in \(0, 100\]$"),
+    ({"resource": {"weibull_k": 1e-9}}, r"^\[resource\] weibull_k = 1e-09: must be in \[0.5, 10\]$"),
+    ({"resource": {"bin_width_mps": 1e-6}}, r"^\[resource\] bin_width_mps = 1e-06: must be in \[0.1, 10\]$"),
+    ({"tether": {"length_m": 1e308}}, r"^\[tether\] length_m = 1e\+308: must be in \[10, 22000\]$"),
+    ({"tether": {"length_m": 2e154}}, r"^\[tether\] length_m = 2e\+154: must be in \[10, 22000\]$"),
+    ({"kite": {"speed_mps": 1e-6}}, r"^\[kite\] speed_mps = 1e-06: must be in \[1, 250\]$"),
+    ({"kite": {"speed_mps": 1e6}}, r"^\[kite\] speed_mps = 1000000.0: must be in \[1, 250\]$"),
+    ({"kite": {"eight_width_m": 1e-3}}, r"^\[kite\] eight_width_m = 0.001: must be in \[1, 22000\]$"),
+    ({"winch": {"ground_tension_N": 1e-300}}, r"^\[winch\] ground_tension_N = 1e-300: must exceed the weight"),
+])
+def test_numeric_controls_are_bounded(overrides, match):
+    with pytest.raises(ConfigError, match=match):
+        load_config(overrides=overrides)
+
+
+@pytest.mark.parametrize("dt_s", [1e-9, 5e-324])
+def test_a_run_of_too_many_steps_is_refused_naming_the_step(dt_s):
+    """dt_s = 1e-9 asked for 162 GiB, 5e-324 overflowed: the steps are estimated in floats at load."""
+    with pytest.raises(ConfigError, match=r"^\[fe\] dt_s = .*time steps for 3 periods .* at most 2e\+06"):
+        load_config(overrides={"fe": {"dt_s": dt_s}})
+
+
+def test_a_run_of_too_much_memory_is_refused_naming_the_snapshots():
+    """10 000 elements stored every step for 1000 periods: far over 2 GiB."""
+    with pytest.raises(ConfigError, match=r"^\[output\] every = 1: .* GiB, at most 2 GiB"):
+        load_config(overrides={"fe": {"elements": 10000}, "output": {"every": 1},
+                               "time": {"average_periods": 1000}})
+
+
+def test_every_range_is_printed_with_its_key():
+    text = Config().to_toml()
+    assert "newton_tol = 1e-10  # Newton tolerance on residuals scaled by the tension; in [1e-12, 1e-06]" in text
+    assert "length_m = 1000.0  # cable length L (per line); in [10, 22000] [m]" in text
+
+
+def test_a_key_the_path_ignores_is_an_error_when_set(tmp_path):
+    case = tmp_path / "c.toml"
+    case.write_text('[kite]\npath = "circle"\neight_width_m = 300.0\n')
+    with pytest.raises(ConfigError, match=r'^\[kite\] eight_width_m = 300.0: \[kite\] path = "circle" ignores it'):
+        load_config(case)
+    case.write_text(Config().to_toml().replace('path = "eight"', 'path = "circle"'))
+    assert load_config(case).kite.path == "circle"      # a dumped file's defaults are not the user's choice
+
+
+@pytest.mark.parametrize("winch, side", [({"reel_out_speed_mps": 5.0, "reel_out_stop_m": 500.0}, "out"),
+                                         ({"reel_out_speed_mps": -5.0, "reel_out_stop_m": 1500.0}, "in")])
+def test_the_reel_stop_is_where_the_reel_goes(winch, side):
+    with pytest.raises(ConfigError, match=rf"^\[winch\] reel_out_stop_m = .*: never reached, the winch reels {side}"):
+        load_config(overrides={"winch": {"reel_out": "constant", **winch}})
+
+
+@pytest.mark.parametrize("name", ["/dev/zero", "."])
+def test_a_configuration_that_is_not_a_regular_file_is_refused(name):
+    with pytest.raises(ConfigError, match="not a regular file"):
+        load_config(name)
+
+
+def test_a_configuration_too_large_is_refused(tmp_path):
+    big = tmp_path / "big.toml"
+    big.write_bytes(b"#" * (17 * 2**20))
+    with pytest.raises(ConfigError, match=r"big.toml: \d+ bytes, more than an input file may have \(16 MiB\)"):
+        load_config(big)
+
+
+@pytest.mark.parametrize("key, text, match", [
+    ("polar", "alpha_deg,cl,cd\n0,1,0.1\n1,x,0.1\n", r"^\[kite\] polar = .*line 3: expected three numbers"),
+    ("reel_out_table", "time_s,speed_mps\n0,1\nx\n", r"^\[winch\] reel_out_table = .*line 3: expected two numbers"),
+    ("csv", b"\xff\xfe", r"^\[resource\] csv = .*: not UTF-8 text"),
+])
+def test_a_malformed_input_file_is_refused_at_load(tmp_path, key, text, match):
+    path = tmp_path / "f.csv"
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    overrides = {"kite": {"model": "point-mass", "polar": str(path)}} if key == "polar" else \
+        {"winch": {"reel_out": "table", "reel_out_table": str(path)}} if key == "reel_out_table" else \
+        {"resource": {"csv": str(path)}}
+    with pytest.raises(ConfigError, match=match):
+        load_config(overrides=overrides)

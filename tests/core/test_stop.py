@@ -1,0 +1,282 @@
+"""One stop for every rank (fem_tether.core.stop): Ctrl-C or an error on any MPI rank
+ends every rank with one line and one exit code; Ctrl-C while the libraries
+load is one line too.  Each case starts ``mpiexec`` as a user would and
+fails, rather than hangs, if a rank is left running."""
+
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import default_sigint
+
+from fem_tether.core import stop
+
+CLI = [sys.executable, "-m", "fem_tether"]
+MPIEXEC = shutil.which("mpiexec")
+needs_mpi = pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
+
+#: Six lengths of a coarse case: about 1 s of work per task.
+SIX = """[sweep]
+lengths_m = [500, 700, 900, 1100, 1300, 1500]
+crosscheck = true
+straight = true
+
+[fe]
+elements = 30
+dt_s = 0.2
+
+[fd]
+segments = 20
+dt_s = 0.05
+
+[time]
+average_periods = 12
+"""
+
+STUDY = """[study]
+systems = ["kitegen"]
+lengths_m = [400, 800]
+diameters_m = [0.011]
+wind_mps = [12, 18]
+crosscheck = false
+
+[fe]
+elements = 10
+dt_s = 0.1
+
+[time]
+average_periods = 2
+"""
+
+#: A stopped job must end within this after the signal [s].
+STOP_WITHIN_S = 60.0
+
+
+def _children(pid: int) -> set[int]:
+    """Every descendant of ``pid`` (from /proc)."""
+    parents = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            parents[int(entry.name)] = int(fields[1])
+    found, frontier = set(), {pid}
+    while frontier:
+        frontier = {p for p, parent in parents.items() if parent in frontier} - found
+        found |= frontier
+    return found
+
+
+def _rank_pid(mpiexec: subprocess.Popen, rank: int) -> int:
+    for pid in _children(mpiexec.pid):
+        try:
+            environ = Path(f"/proc/{pid}/environ").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        if f"PMI_RANK={rank}".encode() in environ and b"fem_tether" in Path(f"/proc/{pid}/cmdline").read_bytes():
+            return pid
+    raise AssertionError(f"no rank {rank} below mpiexec {mpiexec.pid}")
+
+
+def _start(argv, cwd) -> subprocess.Popen:
+    return subprocess.Popen(argv, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=default_sigint)
+
+
+def _wait_until(condition, proc, timeout_s=120.0):
+    start = time.monotonic()
+    while not condition():
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() - start < timeout_s
+        time.sleep(0.01)
+
+
+def _finish(proc) -> tuple[int, str, str]:
+    """Exit code, stdout, stderr of ``proc``, which must end by itself."""
+    try:
+        stdout, stderr = proc.communicate(timeout=STOP_WITHIN_S)
+    except subprocess.TimeoutExpired:
+        for pid in _children(proc.pid):
+            os.kill(pid, signal.SIGKILL)
+        proc.kill()
+        raise AssertionError("a rank kept running after the stop") from None
+    return proc.returncode, stdout, stderr
+
+
+#: A progress line (on stderr every 5 s when it is not a terminal; docs: README "Commands").
+PROGRESS = re.compile(r"^[\w ().,=-]+: \d+/\d+ \(\d+ %\), [\d.]+ s elapsed, ETA ")
+
+
+def _said(stderr: str) -> str:
+    """``stderr`` without its progress lines: what the command said."""
+    return "".join(line for line in stderr.splitlines(keepends=True) if not PROGRESS.match(line))
+
+
+def _without_mpiexec(stdout: str) -> str:
+    """``stdout`` without mpiexec's own lines (it says it passes Ctrl-C on)."""
+    return "".join(line for line in stdout.splitlines(keepends=True) if not line.startswith("[mpiexec@"))
+
+
+def _kept_line(stderr: str) -> re.Match | None:
+    """The one line of an interrupted sweep."""
+    return re.fullmatch(r"fem-tether: interrupted: (\d+) of 12 tasks kept in (.*); run the same "
+                        r"command to resume\n", _said(stderr))
+
+
+@needs_mpi
+@pytest.mark.parametrize("rank", [0, 1])
+def test_ctrl_c_to_one_rank_of_a_sweep_stops_every_rank(tmp_path, rank):
+    (tmp_path / "six.toml").write_text(SIX)
+    proc = _start([MPIEXEC, "-n", "2", *CLI, "sweep", "six.toml", "--out", "s.h5"], tmp_path)
+    parts = tmp_path / "s.h5.parts"
+    _wait_until(lambda: parts.is_dir() and any(p.name.startswith("L") for p in parts.iterdir()), proc)  # a task kept
+    os.kill(_rank_pid(proc, rank), signal.SIGINT)
+    code, stdout, stderr = _finish(proc)
+    assert code == 130 and stdout == "" and _kept_line(stderr), stderr
+    rerun = subprocess.run([MPIEXEC, "-n", "2", *CLI, "sweep", "six.toml", "--out", "s.h5"], cwd=tmp_path,
+                           capture_output=True, text=True, timeout=300)
+    assert rerun.returncode == 0, rerun.stderr
+    assert f"({_kept_line(stderr).group(1)} of 12 tasks reused" in rerun.stdout
+
+
+@needs_mpi
+def test_a_failing_write_on_one_rank_stops_every_rank_with_one_line(tmp_path):
+    (tmp_path / "six.toml").write_text(SIX)
+    (tmp_path / "s.h5.parts" / "L900_fe.h5").mkdir(parents=True)    # that part cannot be written
+    proc = _start([MPIEXEC, "-n", "2", *CLI, "sweep", "six.toml", "--out", "s.h5"], tmp_path)
+    code, stdout, stderr = _finish(proc)
+    assert code == 2 and _said(stderr) == "fem-tether: error: cannot write s.h5.parts/L900_fe.h5: it is a directory\n"
+
+
+@needs_mpi
+def test_ctrl_c_to_one_rank_of_a_study_stops_every_rank(tmp_path):
+    (tmp_path / "study.toml").write_text(STUDY)
+    proc = _start([MPIEXEC, "-n", "2", *CLI, "study", "study.toml", "--out", "s.h5"], tmp_path)
+    parts = tmp_path / "s.h5.parts"
+    _wait_until(lambda: parts.is_dir() and any(not p.name.startswith(".") for p in parts.iterdir()), proc)
+    os.kill(_rank_pid(proc, 1), signal.SIGINT)
+    code, stdout, stderr = _finish(proc)
+    assert code == 130 and re.fullmatch(r"fem-tether: interrupted: finished tasks kept in .*; run the same "
+                                        r"command to resume\n", _said(stderr)), stderr
+
+
+@needs_mpi
+def test_ctrl_c_while_rank_zero_draws_the_main_jobs_plots(tmp_path):
+    """The other rank has finished its tasks and waits for rank 0: both stop, one line."""
+    (tmp_path / "six.toml").write_text(SIX.replace("average_periods = 12", "average_periods = 2"))
+    out = tmp_path / "r"
+    proc = _start([MPIEXEC, "-n", "2", *CLI, "run", "six.toml", "--out", "r"], tmp_path)
+    _wait_until(lambda: out.is_dir() and any(p.suffix == ".png" or ".png.tmp-" in p.name
+                                            for p in out.iterdir()), proc, timeout_s=300)
+    proc.send_signal(signal.SIGINT)          # Ctrl-C at the terminal: mpiexec passes it to every rank
+    code, stdout, stderr = _finish(proc)
+    if code == 0:
+        pytest.skip("the main job ended before the interrupt")
+    assert code == 130 and _said(stderr).count("\n") == 1 and _said(stderr).startswith("fem-tether: interrupted")
+    assert "BAD TERMINATION" not in stdout + stderr and _without_mpiexec(stdout) == ""
+    assert not any(".tmp-" in p.name for p in out.iterdir())
+
+
+@pytest.mark.parametrize("mpi", [False, pytest.param(True, marks=needs_mpi)])
+@pytest.mark.parametrize("delay_s", [0.3, 1.0])   # from the package's first line; not Python's own start
+def test_ctrl_c_while_the_libraries_load_is_one_line(tmp_path, mpi, delay_s):
+    (tmp_path / "six.toml").write_text(SIX)
+    argv = [*([MPIEXEC, "-n", "2"] if mpi else []), *CLI, "sweep", "six.toml", "--out", "s.h5"]
+    proc = _start(argv, tmp_path)
+    time.sleep(delay_s)
+    proc.send_signal(signal.SIGINT)
+    code, stdout, stderr = _finish(proc)
+    assert code == 130 and _without_mpiexec(stdout) == "", stderr
+    assert _said(stderr).count("\n") == 1 and _said(stderr).startswith("fem-tether: interrupted"), stderr
+
+
+@needs_mpi
+def test_ctrl_c_to_one_rank_while_the_libraries_load(tmp_path):
+    (tmp_path / "six.toml").write_text(SIX)
+    proc = _start([MPIEXEC, "-n", "2", *CLI, "sweep", "six.toml", "--out", "s.h5"], tmp_path)
+    _wait_until(lambda: _children(proc.pid) and _rank_pid_or_none(proc, 1), proc)
+    time.sleep(0.3)                      # past Python's own start, into the imports
+    os.kill(_rank_pid(proc, 1), signal.SIGINT)
+    code, stdout, stderr = _finish(proc)
+    assert code == 130 and _said(stderr).count("\n") == 1 and _said(stderr).startswith("fem-tether: interrupted"), stderr
+
+
+def _rank_pid_or_none(proc, rank):
+    try:
+        return _rank_pid(proc, rank)
+    except AssertionError:
+        return None
+
+
+@pytest.mark.parametrize("presses", [1, 2])
+def test_ctrl_c_while_the_kernels_compile_is_one_line(tmp_path, presses):
+    """An empty numba cache: the import compiles for seconds.  Raised inside it,
+    Ctrl-C left numba half-imported (an ImportError traceback, measured); once,
+    it now waits for the import to end, twice it stops at once; one line either way."""
+    (tmp_path / "six.toml").write_text(SIX)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    proc = subprocess.Popen([*CLI, "sweep", "six.toml", "--out", "s.h5"], cwd=tmp_path, env=env, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=default_sigint)
+    time.sleep(2.0)
+    for _ in range(presses):
+        proc.send_signal(signal.SIGINT)
+        time.sleep(0.3)
+    code, stdout, stderr = _finish(proc)
+    assert code == 130 and stdout == "" and _said(stderr).count("\n") == 1, stderr
+    assert _said(stderr).startswith("fem-tether: interrupted"), stderr
+
+
+class _Request:
+    def __init__(self, done: bool):
+        self.done, self.cancelled = done, False
+
+    def Test(self):
+        return self.done
+
+    def Cancel(self):
+        self.cancelled = True
+
+
+class _Comm:
+    """Rank ``rank`` of ``size`` whose receives complete if ``answered``."""
+
+    def __init__(self, rank: int, size: int, answered: bool):
+        self.rank, self.size, self.answered, self.sent, self.words = rank, size, answered, [], []
+
+    def Get_rank(self):
+        return self.rank
+
+    def Get_size(self):
+        return self.size
+
+    def Isend(self, buffer, dest, tag):
+        self.sent.append((dest, tag))
+        return _Request(True)
+
+    def Irecv(self, buffer, source, tag):
+        self.words.append(_Request(self.answered))
+        return self.words[-1]
+
+
+def test_rank_zero_hears_every_rank_stop_or_waits_no_longer_than_its_bound():
+    """stop.arrived: the other ranks send their word to rank 0; rank 0 returns
+    once each has come, or after within_s with the missing words cancelled."""
+    other = _Comm(1, 3, answered=True)
+    stop.arrived(other)
+    assert other.sent == [(0, stop.ARRIVED_TAG)]
+    heard = _Comm(0, 3, answered=True)
+    stop.arrived(heard)
+    assert len(heard.words) == 2 and not any(w.cancelled for w in heard.words)
+    silent = _Comm(0, 3, answered=False)
+    started = time.monotonic()
+    stop.arrived(silent, within_s=0.2)
+    assert 0.2 <= time.monotonic() - started < 2.0 and all(w.cancelled for w in silent.words)

@@ -1,0 +1,31 @@
+"""Task scheduling: longest processing time first balances the ranks."""
+
+from fem_tether.jobs.schedule import assign
+
+
+def test_longest_processing_time_assignment_balances():
+    costs = [500, 919, 1343, 1768, 2192, 2616, 3000]
+    owners = assign(costs, 2)
+    loads = [sum(costs[i] for i in o) for o in owners]
+    assert sorted(sum(owners, [])) == list(range(7))
+    assert max(loads) / (sum(costs) / 2) < 1.02
+    assert assign(costs, 1) == [sorted(range(7), key=lambda i: -costs[i])]
+
+
+def test_task_cost_is_steps_times_the_solvers_step_cost():
+    """The default job: an FD task (870 steps of 101 nodes) costs what its steps
+    cost by STEP_COST_US, more than an FE task (435 steps of 41 nodes)."""
+    from fem_tether.jobs.job import Task, load_job
+    from fem_tether.jobs.schedule import STEP_COST_US, task_cost
+    job = load_job()
+    fe, fd = task_cost(job, Task(500.0, "fe")), task_cost(job, Task(500.0, "fd"))
+    assert fe == 435 * (STEP_COST_US["fe"][0] + 41 * STEP_COST_US["fe"][1])
+    assert fd == 870 * (STEP_COST_US["fd"][0] + 101 * STEP_COST_US["fd"][1]) > fe
+
+
+def test_rank0_load_counts_as_work_already_assigned():
+    """A head start on rank 0 moves tasks to the other ranks: with 10 units of
+    other work, rank 0 takes the 3 and the 1 and rank 1 the 8 and the 5 (14 against 13)."""
+    costs = [8.0, 5.0, 3.0, 1.0]
+    assert assign(costs, 2, rank0_load=10.0) == [[2, 3], [0, 1]]
+    assert assign(costs, 2) == [[0, 3], [1, 2]]

@@ -1,0 +1,371 @@
+"""Sweeps: durable parts, resume, failures, interruption, MPI reproducibility."""
+
+import json
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import TINY_JOB as TINY, default_sigint
+
+from fem_tether.jobs import sweep as sw
+from fem_tether.core.atomic import OutputError
+from fem_tether.cli import main
+from fem_tether.core.errors import SolverDivergedError
+from fem_tether.jobs.evaluate import ROOT_DATASETS
+from fem_tether.jobs.job import Job, load_job
+from fem_tether.jobs.store import PartsStore, parts_dir
+from fem_tether.jobs.sweepfile import assemble, read_sweep
+
+ROOT = Path(__file__).parents[2]
+QUICK = ROOT / "sweeps" / "quick.toml"
+
+
+THREE = TINY.replace("lengths_m = [400, 800]", "lengths_m = [400, 800, 1200]")
+CLI = [sys.executable, "-m", "fem_tether.cli"]
+
+
+def _self_comm():
+    from mpi4py import MPI
+    return MPI.COMM_SELF
+
+
+def test_serial_sweep_writes_the_documented_schema(tiny_job, tmp_path):
+    out = tmp_path / "r.h5"
+    outcome = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert [r.status for r in outcome.lengths] == ["ok", "ok"]
+    assert (outcome.tasks, outcome.reused, outcome.n_ranks) == (4, 0, 1)
+    with h5py.File(out) as f:
+        for name in ("length_m", "drag_fe_N", "drag_fd_N", "drag_straight_N", "ge_fe", "ge_straight",
+                     "crosscheck_ok", "mean_phi_deg", "status"):
+            assert f[name].shape == (2,), name
+        for attr in ("config_toml", "fem_tether_version", "n_ranks", "created_utc", "job_toml"):
+            assert attr in f.attrs
+        assert list(f["length_m"][()]) == [400.0, 800.0]
+        assert "series" in f["L400/fe"] and "snapshots" in f["L800/fd"]
+        assert np.all(f["crosscheck_ok"][()] == 1)
+        assert f["ge_fe"][0] > f["ge_fe"][1] > 0
+
+
+def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch):
+    out = tmp_path / "r.h5"
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    calls = []
+    from fem_tether.tether.fe import solver as fe_solver
+    real = fe_solver.simulate
+
+    def flaky(cfg, progress=False):
+        calls.append(cfg.tether.length_m)
+        if cfg.tether.length_m == 800.0:
+            raise SolverDivergedError("time step did not converge at t = 1.0 s, L = 800 m")
+        return real(cfg, progress)
+
+    monkeypatch.setattr(fe_solver, "simulate", flaky)
+    # nothing to do: every stored part matches the job, and the outcome says so
+    assert sw.sweep(tiny_job, out, comm=_self_comm(), progress=False).reused == 4
+    assert calls == []
+    # lose one part: only that task runs again, and its failure is recorded
+    (parts_dir(out) / "L800_fe.h5").unlink()
+    outcome = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert calls == [800.0] and outcome.reused == 3
+    assert [r.status for r in outcome.lengths] == ["ok", "failed"]
+    data = read_sweep(out)
+    assert "L = 800 m" in data["error"][1] and data["status"][0] == "ok"
+    assert np.isnan(data["drag_fe_N"][1]) and np.isfinite(data["drag_fe_N"][0])
+
+
+def test_changed_config_is_recomputed(tiny_job, tmp_path):
+    out = tmp_path / "r.h5"
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    before = (parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns
+    changed = Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
+                     tiny_job.config.replace(drag={"model": "constant"}), tiny_job.toml)
+    sw.sweep(changed, out, comm=_self_comm(), progress=False)
+    assert (parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns != before
+
+
+def test_cli_sweep_exit_code_and_json(tmp_path, capsys):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    code = main(["sweep", str(job), "--out", str(tmp_path / "r.h5"), "--json"])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0 and [r["status"] for r in data["lengths"]] == ["ok", "ok"]
+    code = main(["sweep", str(tmp_path / "missing.toml"), "--out", str(tmp_path / "x.h5")])
+    assert code == 2 and "missing.toml: no such file" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_mpi_two_ranks_give_identical_numbers(tmp_path):
+    """The quick job with -n 1 and -n 2 (mpiexec, subprocesses): bitwise equal."""
+    exe = [sys.executable, "-m", "fem_tether.cli"]
+    for n, name in ((1, "n1.h5"), (2, "n2.h5")):
+        proc = subprocess.run(["mpiexec", "-n", str(n), *exe, "sweep", str(QUICK), "--out",
+                               str(tmp_path / name)], capture_output=True, text=True, timeout=600)
+        assert proc.returncode == 0, proc.stderr
+    with h5py.File(tmp_path / "n1.h5") as a, h5py.File(tmp_path / "n2.h5") as b:
+        assert (a.attrs["n_ranks"], b.attrs["n_ranks"]) == (1, 2)
+        for name in ROOT_DATASETS + ("length_m",):
+            assert np.array_equal(a[name][()], b[name][()], equal_nan=True), name
+        assert np.array_equal(a["L3000/fe/series/drag_N"][()], b["L3000/fe/series/drag_N"][()])
+
+
+def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, monkeypatch):
+    """Each finished task is in the result file before the next one starts, the
+    lengths still to run marked pending (not failed): a kill leaves it current."""
+    out = tmp_path / "r.h5"
+    real, seen = sw.run_task, []
+
+    def observed(store, task):
+        job = store.job
+        done = {p.stem for p in store.directory.glob("L*.h5")}
+        if done:
+            data = read_sweep(out)
+            expected = ["ok" if {f"L{L:g}_fe", f"L{L:g}_fd"} <= done else "pending"
+                        for L in job.lengths_m]
+            assert list(data["status"]) == expected and set(data["error"]) == {""}
+            assert list(np.isfinite(data["drag_fe_N"])) == [f"L{L:g}_fe" in done for L in job.lengths_m]
+            seen.append(len(done))
+        return real(store, task)
+
+    monkeypatch.setattr(sw, "run_task", observed)
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert seen == [1, 2, 3]
+
+
+def test_aep_of_an_incomplete_sweep_needs_allow_incomplete(tiny_job, tmp_path, capsys):
+    out = tmp_path / "r.h5"
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    (parts_dir(out) / "L800_fd.h5").unlink()
+    assemble(PartsStore(tiny_job, out), 1)          # as a sweep killed before that task leaves it
+    data = read_sweep(out)
+    assert list(data["status"]) == ["ok", "pending"] and list(data["error"]) == ["", ""]
+    assert np.isfinite(data["drag_fe_N"][1]) and data["crosscheck_ok"][1] == 0
+    assert main(["aep", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "1 of 2 lengths pending (800 m)" in err and "--allow-incomplete" in err
+    assert main(["aep", str(out), "--allow-incomplete", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["pending_m"] == [800.0] and result["excluded_m"] == []
+    assert result["best_length_fe_m"] == 400.0 and result["lengths"][1]["aep_fe_MWh"] is None
+
+
+def _start_sweep(tmp_path, out):
+    job = tmp_path / "three.toml"
+    job.write_text(THREE)
+    argv = [*CLI, "sweep", str(job), "--out", str(out), "--json"]
+    return argv, subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                  preexec_fn=default_sigint)
+
+
+def _wait_for_a_task(out, proc, timeout_s=120.0):
+    """Until the sweep into ``out`` has finished a task (its part is stored)."""
+    start = time.monotonic()
+    while not any(parts_dir(out).glob("L*.h5")):
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() - start < timeout_s
+        time.sleep(0.01)
+
+
+def test_killed_sweep_leaves_a_current_file_that_aep_refuses(tmp_path, capsys):
+    out = tmp_path / "s.h5"
+    _, proc = _start_sweep(tmp_path, out)
+    _wait_for_a_task(out, proc)
+    proc.kill()
+    proc.communicate()
+    data = read_sweep(out)
+    assert "pending" in data["status"] and "failed" not in data["status"]
+    assert np.count_nonzero(data["status"] == "ok") < 3
+    assert main(["aep", str(out)]) == 2
+    assert "pending" in capsys.readouterr().err
+
+
+def test_ctrl_c_keeps_the_finished_tasks_and_says_how_to_resume(tmp_path):
+    out = tmp_path / "s.h5"
+    argv, proc = _start_sweep(tmp_path, out)
+    _wait_for_a_task(out, proc)
+    proc.send_signal(signal.SIGINT)
+    stdout, stderr = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and stdout == ""
+    match = re.fullmatch(r"fem-tether: interrupted: (\d) of 6 tasks kept in (.*); run the same "
+                         r"command to resume\n", stderr)
+    assert match, stderr
+    kept = int(match.group(1))
+    assert 1 <= kept < 6 and match.group(2) == str(parts_dir(out))
+    rerun = subprocess.run(argv, capture_output=True, text=True, timeout=300)
+    assert rerun.returncode == 0, rerun.stderr
+    assert json.loads(rerun.stdout)["reused_tasks"] == kept
+
+
+def test_sweep_never_overwrites_a_file_it_did_not_write(tiny_job, tmp_path, capsys):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    precious = tmp_path / "x.h5"
+    precious.write_text("precious\n")
+    assert main(["sweep", str(job), "--out", str(precious)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "x.h5: it exists and is not a fem-tether sweep result" in err
+    assert precious.read_text() == "precious\n" and not parts_dir(precious).exists()
+    with h5py.File(precious, "w") as f:          # an HDF5 file, but not a sweep result
+        f["data"] = [1.0]
+    with pytest.raises(OutputError, match="not a fem-tether sweep result"):
+        sw.sweep(tiny_job, precious, comm=_self_comm(), progress=False)
+    with h5py.File(precious) as f:
+        assert list(f) == ["data"]
+
+
+@pytest.mark.parametrize("argv", [
+    ["run", "{job}", "--out", "{blocker}"],
+    ["run", "{job}", "--out", "{blocker}/deeper"],
+    ["sweep", "{job}", "--out", "{blocker}/s.h5"],
+    ["simulate", "--out", "{blocker}"],
+])
+def test_out_below_a_regular_file_says_not_a_directory(tmp_path, capsys, argv):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    blocker = tmp_path / "notdir"
+    blocker.write_text("a file\n")
+    assert main([a.format(job=job, blocker=blocker) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{blocker} is not a directory" in err and "File exists" not in err
+
+
+def test_cli_reports_reused_tasks(tmp_path, capsys):
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY.replace("[400, 800]", "[400]"))
+    out = tmp_path / "r"
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    assert "(0 of 2 tasks reused from the stored parts, 2 run)" in capsys.readouterr().out
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    assert "(2 of 2 tasks reused from the stored parts, 0 run)" in capsys.readouterr().out
+    assert main(["sweep", str(job), "--out", str(out / "sweep.h5"), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert (data["tasks"], data["reused_tasks"]) == (2, 2)
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_other_commands_run_on_rank_zero_alone(tmp_path):
+    """Under mpiexec a command other than sweep/run works once; every rank exits with its code."""
+    def mpi(*argv):
+        return subprocess.run(["mpiexec", "-n", "2", *CLI, *argv], capture_output=True, text=True,
+                              timeout=300)
+
+    proc = mpi("straight", "--lengths", "500,1000", "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert [r["length_m"] for r in json.loads(proc.stdout)["rows"]] == [500, 1000]   # one document
+    proc = mpi("config", str(tmp_path / "missing.toml"))
+    assert proc.returncode == 2 and proc.stderr.count("missing.toml: no such file") == 1
+    proc = mpi("straight", "--length", "x")
+    assert proc.returncode == 2 and proc.stderr.count("is not a number") == 1
+
+
+def test_a_failed_solve_is_recorded_quietly(tmp_path):
+    """A real divergence (a heavy line in constant air, slack near the kite): both
+    errors are recorded (the FD's as the slack line it is; before the slack check it
+    reported means of a line in compression), no RuntimeWarning on stderr, and the
+    table says the check did not run."""
+    from fem_tether.performance.aep import sweep_aep
+    from fem_tether.report.text import summary_table
+
+    job = tmp_path / "heavy.toml"
+    job.write_text(TINY.replace("[400, 800]", "[400]") + "[tether]\nlinear_density_kg_m = 2.0\n"
+                   "[air]\nmodel = \"constant\"\n[drag]\nmodel = \"constant\"\n")
+    out = tmp_path / "h.h5"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        outcome = sw.sweep(load_job(job), out, comm=_self_comm(), progress=False)
+        data = read_sweep(out)
+        table = summary_table(data, sweep_aep(data))
+    assert [r.status for r in outcome.lengths] == ["failed"]
+    assert data["error"][0].startswith("FE: time step did not converge")
+    assert "FD: at t = " in data["error"][0] and "the line went slack" in data["error"][0]
+    assert np.isnan(data["drag_fe_N"][0]) and np.isnan(data["drag_fd_N"][0])
+    assert "not run; FE: time step did not converge" in table and "nan %" not in table
+
+
+def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_sweep(tiny_job, tmp_path):
+    """The outcome has the peak RSS of each rank (one here); a ``check`` that raises an
+    InputError stops the sweep before any task, with that error."""
+    from fem_tether.core.errors import InputError
+    outcome = sw.sweep(tiny_job, tmp_path / "r.h5", comm=_self_comm(), progress=False)
+    assert len(outcome.peak_rss_MiB) == 1 and outcome.peak_rss_MiB[0] == pytest.approx(sw.peak_rss_MiB())
+
+    def bad():
+        raise InputError("bad resource")
+    with pytest.raises(InputError, match="bad resource"):
+        sw.sweep(tiny_job, tmp_path / "s.h5", comm=_self_comm(), progress=False, check=bad)
+    assert not (tmp_path / "s.h5").exists() and not list(parts_dir(tmp_path / "s.h5").glob("*.h5"))
+
+
+def test_a_sweep_flies_the_circle(tmp_path):
+    """The tiny job with ``[kite] path = "circle"``: both lengths run and pass the cross-check,
+    and the stored mean |φ| is the circle's, the same at every length (its angular size
+    does not depend on L), not the eight's."""
+    path = tmp_path / "circle.toml"
+    path.write_text(TINY + '[kite]\npath = "circle"\n')
+    job = load_job(path)
+    out = tmp_path / "r.h5"
+    outcome = sw.sweep(job, out, comm=_self_comm(), progress=False)
+    assert [r.status for r in outcome.lengths] == ["ok", "ok"]
+    circle = job.config_for(400.0).path
+    with h5py.File(out) as f:
+        assert np.all(f["crosscheck_ok"][()] == 1)
+        np.testing.assert_allclose(f["mean_phi_deg"][()], circle.mean_abs_phi_deg(), rtol=1e-12)
+    eight = job.config_for(400.0).replace(kite={"path": "eight"}).path
+    assert circle.mean_abs_phi_deg() == pytest.approx(21.44, abs=0.01)   # the eight's: 11.08 at 400 m
+    assert eight.mean_abs_phi_deg() == pytest.approx(11.08, abs=0.01)
+
+
+def test_a_sweep_of_point_mass_kites_is_gated_and_takes_g_e_at_their_speed(tmp_path):
+    """Issue 13 ("sweeps and run accept the dynamic kite"): a sweep of the point-mass
+    kite runs both solvers, cross-checks them (at equal phase) and computes G_e at the
+    kite's own mean apparent speed, not at [kite] speed_mps.  The shipped solver
+    settings: at the tiny job's FE dt of 0.2 s the FE kite's roll is held four times
+    longer than the FD kite's and the two flights differ by 2 % (the gate fails)."""
+    from fem_tether.performance.summary import operating_ge
+
+    (tmp_path / "job.toml").write_text("[sweep]\nlengths_m = [500]\n[time]\naverage_periods = 1\n"
+                                       "[kite]\nmodel = \"point-mass\"\n")
+    job = load_job(tmp_path / "job.toml")
+    outcome = sw.sweep(job, tmp_path / "r.h5", comm=_self_comm(), progress=False)
+    assert [r.status for r in outcome.lengths] == ["ok"]
+    with h5py.File(tmp_path / "r.h5") as f:
+        assert f["crosscheck_ok"][0] == 1
+        apparent = f["L500/fe/series/apparent_speed_mps"][()]
+        mean_apparent = float(np.mean(apparent[len(apparent) // 2:]))
+        cfg = job.config_for(500.0)
+        assert mean_apparent > 1.2 * cfg.kite.speed_mps              # it flies faster than 80 m/s here
+        assert f["ge_fe"][0] != pytest.approx(operating_ge(cfg, f["drag_fe_N"][0]), rel=1e-3)
+
+
+def test_a_second_sweep_into_the_same_file_is_refused_naming_the_first(tmp_path, capsys, monkeypatch):
+    """(Was: both overwrote each other's parts and exited 1 with an empty error.)"""
+    from fem_tether.core.atomic import exclusive
+
+    job = tmp_path / "tiny.toml"
+    job.write_text(TINY)
+    out = tmp_path / "s.h5"
+    monkeypatch.setattr(sw, "run_task", lambda *a: pytest.fail("a task ran"))
+    with exclusive(out):
+        assert main(["sweep", str(job), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"fem-tether: error: cannot write {out}: in use by fem-tether ") and err.count("\n") == 1
+
+
+def test_a_killed_sweeps_temporaries_are_removed_by_the_next(tiny_job, tmp_path):
+    out = tmp_path / "s.h5"
+    parts = parts_dir(out)
+    parts.mkdir()
+    stale = [parts / ".L400_fe.h5.tmp-4242-abcdef.h5", tmp_path / ".s.h5.tmp-4242-abcdef.h5"]
+    for path in stale:
+        path.write_text("half a file")
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert not any(path.exists() for path in stale)
+    assert not any(p.name.startswith(".") and ".tmp-" in p.name for p in [*tmp_path.iterdir(), *parts.iterdir()])

@@ -1,0 +1,71 @@
+"""The reeling law: the controlled speed makes the kite pull the nominal force."""
+
+import numpy as np
+import pytest
+
+from fem_tether.physics import kite
+from fem_tether.physics.atmosphere import ISA
+from fem_tether.config import ConfigError, load_config
+from fem_tether.physics.reel import Reel, reel_from_config
+from fem_tether.physics.wind import PowerWind, weibull_mean_mps
+
+
+def test_controlled_speed_gives_the_nominal_traction():
+    """At the returned V_L, eq. 4.17 gives lines x T_0 = 300 kN (1e-9)."""
+    cfg = load_config(overrides={"winch": {"reel_out": "controlled"}, "wind": {"profile": "power",
+                                 "reference_scale_mps": 12.0, "alpha": 0.15}})
+    law = reel_from_config(cfg).law
+    p = 1200.0 * np.array([np.sin(0.7) * np.cos(0.05), np.sin(0.7) * np.sin(0.05), np.cos(0.7)])
+    v_l = law.reel_out_mps(p)
+    assert 0.0 < v_l < 13.5
+    z = p[2]
+    force = kite.traction_force_N(ISA().density_kg_m3(z), 120.0, 1.0, 28.0,
+                                  PowerWind(weibull_mean_mps(12.0, 2.0), 20.0, 0.15, 500.0).speed_mps(z), 0.7, 0.05, v_l)
+    assert force == pytest.approx(300e3, rel=1e-9)
+
+
+def test_speed_is_held_within_bounds_and_starts_after_spin_up():
+    cfg = load_config(overrides={"winch": {"reel_out": "controlled"}, "wind": {"profile": "power",
+                                 "reference_scale_mps": 40.0}})
+    reel = reel_from_config(cfg, start_s=5.0)
+    top = np.array([700.0, 0.0, 700.0])
+    assert reel.speed_mps(4.9, top) == 0.0
+    assert reel.speed_mps(5.0, top) == pytest.approx(13.5)       # capped at max_reel_out_mps
+    assert reel.law.reel_out_mps(np.array([1.0, 0.0, 0.0])) == 0.0   # no wind at the ground
+    assert Reel().speed_mps(100.0, top) == 0.0 and not Reel().active
+    stop = Reel("constant", 0.0, 800.0, 10.0)
+    assert not stop.stopped(799.0, 500.0) and stop.stopped(800.0, 500.0)
+    assert Reel("constant", 0.0, 300.0, -10.0).stopped(300.0, 500.0)
+
+
+def test_hold_steps_the_reel_speed_by_half_the_newton_correction():
+    """V_L <- V_L + 1/2 (T_0 - T_set)(W_r - V_L)/(2 T_0): faster above the set tension,
+    slower below, unchanged at it, within [0, max_reel_out_mps]."""
+    cfg = load_config(overrides={"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}})
+    reel = reel_from_config(cfg)
+    law = reel.law
+    p = np.array([700.0, 0.0, 700.0])
+    w_r = law.radial_wind_mps(p)
+    assert reel.speed_mps(10.0, p, 150e3, 2.0) == pytest.approx(2.0)
+    assert reel.speed_mps(10.0, p, 300e3, 2.0) == pytest.approx(2.0 + 0.5 * 150e3 * (w_r - 2.0) / 600e3)
+    assert reel.speed_mps(10.0, p, 100e3, 0.1) == 0.0
+    capped = reel_from_config(cfg.replace(kite={"max_reel_out_mps": 2.5}))
+    assert capped.speed_mps(10.0, p, 1e9, 2.0) == 2.5
+
+
+def test_hold_needs_a_point_mass_kite():
+    with pytest.raises(ConfigError, match="reel_out = \"hold\": needs \\[kite\\] model"):
+        load_config(overrides={"winch": {"reel_out": "hold"}})
+
+
+def test_a_point_mass_kite_reels_out_at_the_held_tension():
+    """KiteGen at 1000 m, default wind: the winch holds T_0 = 150 kN within 2 % over
+    two periods of reeling (measured +0.6 %); the kite flies at ~65 m/s, its lift
+    balancing the nominal force (docs/free-kite.md)."""
+    from fem_tether.tether.fe.solver import simulate
+
+    cfg = load_config(overrides={"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"},
+                                 "fe": {"elements": 20}, "time": {"spinup_periods": 1, "average_periods": 2}})
+    run = simulate(cfg.with_length(1000.0))
+    assert run.mean("ground_tension_N") == pytest.approx(150e3, rel=0.02)
+    assert run.mean("reel_out_mps") > 0.5 and run.series["length_m"][-1] > 1010.0

@@ -1,0 +1,143 @@
+"""What the commands print (fem_tether.report.text), from given results: no solver runs."""
+
+import json
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from fem_tether.performance.aep import sweep_aep
+from fem_tether.tether.crosscheck import CrossCheck
+from fem_tether.jobs.evaluate import LengthResult
+from fem_tether.report.text import (aep_text, crosscheck_text, json_text, reused, summary_table,
+                                    sweep_summary, sweep_text)
+from fem_tether.jobs.sweepfile import read_sweep
+
+TOLERANCES = {"drag_rel": 0.02, "tension_rel": 0.01, "shape_rel": 0.005}
+
+
+def test_json_text_is_sorted_and_indented():
+    assert json_text({"b": 1, "a": [1.5]}) == '{\n  "a": [\n    1.5\n  ],\n  "b": 1\n}'
+
+
+def test_json_text_writes_undefined_numbers_as_null_never_nan():
+    """aep.json held a literal NaN (invalid JSON): undefined numbers are null."""
+    text = json_text({"a": float("nan"), "b": [np.inf, (np.float64(-np.inf), 2.0)], "c": {"d": np.nan}})
+    assert "NaN" not in text and "Infinity" not in text
+    assert json.loads(text) == {"a": None, "b": [None, [None, 2.0]], "c": {"d": None}}
+
+
+def _check(drag_fd_N):
+    means = {"drag_N": 1000.0, "ground_tension_N": 150000.0, "kite_tension_N": 151000.0}
+    fd = means | {"drag_N": drag_fd_N}
+    rel = {"drag": abs(drag_fd_N / 1000.0 - 1.0), "ground_tension": 0.0, "kite_tension": 0.0,
+           "shape": 0.001}
+    return CrossCheck(800.0, means, fd, rel, TOLERANCES, ok=rel["drag"] <= 0.02)
+
+
+def _fe_run(lengths_m):
+    return SimpleNamespace(series={"length_m": np.asarray(lengths_m, dtype=float)})
+
+
+def test_crosscheck_text_lists_each_quantity_with_its_tolerance():
+    text = crosscheck_text(_check(1010.0), _fe_run([800.0, 800.0]))
+    lines = text.splitlines()
+    assert lines[0] == "FE <-> FD cross-check, L = 800 m"
+    assert lines[2] == "  mean drag                  1000.0 N       1010.0 N     1.000 %    2.00 %"
+    assert lines[4].startswith("  mean kite_tension") and lines[4].endswith("0.000 %    1.00 %")
+    assert lines[5] == "  shape (max |r_FE - r_FD| / L)                  0.100 %    0.50 %"
+    assert lines[-1] == "  cross-check PASSED" and "reel-out" not in text
+    failed = crosscheck_text(_check(1100.0), _fe_run([800.0, 900.0]))
+    assert "(reel-out: largest differences of the one-period means" in failed
+    assert failed.endswith("cross-check FAILED")
+
+
+def _outcome():
+    values = {"drag_fe_N": 4000.0, "drag_fd_N": 4010.0, "drag_straight_N": 5100.0, "crosscheck_ok": 1,
+              "d_m": 0.011, "margin": 1.25}
+    return SimpleNamespace(n_ranks=2, tasks=4, reused=1, lengths=[
+        LengthResult(400.0, values=values),
+        LengthResult(800.0, "failed", "FE: diverged", values | {"drag_fe_N": float("nan"),
+                                                                "crosscheck_ok": 0})])
+
+
+def test_sweep_text_and_summary():
+    outcome = _outcome()
+    assert reused(outcome) == "1 of 4 tasks reused from the stored parts, 3 run"
+    assert sweep_text(outcome, "r.h5", 1.2).splitlines() == [
+        "sweep of 2 lengths -> r.h5 (1 of 4 tasks reused from the stored parts, 3 run)",
+        "  L =    400 m: F_t FE    4000.0 N, FD    4010.0 N, straight    5100.0 N, cross-check ok, "
+        "d 11.000 mm, margin 1.250",
+        "  L =    800 m: F_t FE       nan N, FD    4010.0 N, straight    5100.0 N, cross-check "
+        "FAILED/not run, d 11.000 mm, margin 1.250  [FE: diverged]"]
+    short = sweep_text(outcome, "r.h5", 1.3).splitlines()
+    assert short[-1] == ("warning: margin below the safety factor 1.3: 1.250 at 400 m, 1.250 at 800 m (the "
+                         "line's breaking load over its peak tension; [tether] sizing = \"load\" sizes it)")
+    summary = sweep_summary(outcome, "r.h5")
+    assert json.loads(json_text(summary)) == summary         # NaN written as null: valid JSON
+    assert summary["lengths"][1]["drag_fe_N"] is None and summary["lengths"][1]["error"] == "FE: diverged"
+    assert (summary["file"], summary["n_ranks"], summary["tasks"], summary["reused_tasks"]) == ("r.h5", 2, 4, 1)
+
+
+def test_aep_text():
+    result = {"lengths": [
+        {"length_m": 400.0, "aep_straight_MWh": 6642.0, "cf_straight": 0.344, "aep_fe_MWh": 7000.4,
+         "cf_fe": 0.36, "unchecked": True},
+        {"length_m": 800.0, "aep_straight_MWh": 6051.0, "cf_straight": 0.314, "aep_fe_MWh": None,
+         "cf_fe": None, "unchecked": False}],
+        "best_length_straight_m": 400.0, "best_length_fe_m": 400.0, "excluded_m": [800.0],
+        "pending_m": [800.0]}
+    lines = aep_text(result).splitlines()
+    assert lines[1] == "      400                6642        0.344                7000        0.360  (unchecked)"
+    assert lines[2].endswith("left out               (pending)")
+    assert lines[3:] == ["best length: straight 400 m, flexible 400 m",
+                         "left out (cross-check failed or not run): 800 m",
+                         "pending, not run yet (--allow-incomplete): 800 m"]
+
+
+def test_aep_text_of_undefined_and_zero_aep_names_no_best_length():
+    """AEP undefined at one length and zero at the other: no best length, said why."""
+    result = {"lengths": [
+        {"length_m": 400.0, "aep_straight_MWh": None, "cf_straight": None, "aep_fe_MWh": None,
+         "cf_fe": None, "unchecked": False},
+        {"length_m": 800.0, "aep_straight_MWh": 0.0, "cf_straight": 0.0, "aep_fe_MWh": 0.0,
+         "cf_fe": 0.0, "unchecked": False}],
+        "best_length_straight_m": None, "best_length_fe_m": None, "excluded_m": [], "pending_m": []}
+    lines = aep_text(result).splitlines()
+    assert lines[1] == "      400           undefined    undefined           undefined    undefined"
+    assert lines[3] == ("best length: straight none (no length has a finite, positive AEP), "
+                        "flexible none (no length has a finite, positive AEP)")
+
+
+@pytest.fixture
+def data(unrun_sweep):
+    return read_sweep(unrun_sweep)
+
+
+def test_summary_table_of_a_sweep_with_nothing_run(data):
+    lines = summary_table(data, sweep_aep(data, allow_incomplete=True)).splitlines()
+    assert lines[2].endswith("nan  not run; pending")
+    assert f"{data['drag_straight_N'][1] / 1e3:.2f}" in lines[3]
+    assert lines[3].endswith("not run; FE: time step did not converge; FD: time step did not converge")
+    assert lines[4:] == ["best length: straight 400 m, flexible none (no length passed the cross-check)",
+                         "left out of the flexible AEP (cross-check failed or not run): 800 m",
+                         "pending (not run yet, --allow-incomplete): 400 m"]
+
+
+def test_summary_table_of_a_passed_and_a_failed_cross_check(data):
+    data |= {"status": np.array(["ok", "ok"]), "error": np.array(["", ""]),
+             "crosscheck_ok": np.array([1, 0]), "rel_diff_drag": np.array([0.01, 0.0512]),
+             "drag_fe_N": np.array([4000.0, 8000.0]), "drag_power_fe_N": np.array([4100.0, 8200.0]),
+             "ge_fe": np.array([18.0, 13.0])}
+    lines = summary_table(data, sweep_aep(data, allow_unchecked=True)).splitlines()
+    assert "      4.00" in lines[2] and lines[2].endswith("  ok")
+    assert lines[3].endswith("  FAILED (5.1 % on F_t)")
+    assert lines[-1] == "kept without a passed cross-check (--allow-unchecked): 800 m"
+
+
+def test_peak_memory_per_rank_in_the_sweep_texts():
+    outcome = _outcome()
+    outcome.peak_rss_MiB = (180.4, 201.6)
+    assert sweep_text(outcome, "r.h5", 1.2).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
+    summary = sweep_summary(outcome, "r.h5")
+    assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6

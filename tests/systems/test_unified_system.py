@@ -1,0 +1,224 @@
+"""Seed 004's unified system: power at factors, the optimised operating point, power curves."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fem_tether.config import load_config
+from fem_tether.physics.kite import loyd_optimum
+from fem_tether.performance.configured import from_config
+from fem_tether.systems.unified import loyd_power_bound_W
+from fem_tether.systems.unified_system import (UnifiedSystem, operating_point, optimal_cycle,
+                                               power_at_factors, power_curve)
+
+#: a 3 MW system in the range of seed 004 §5.4 (A 70 m²; the rest ours), both modes allowed
+SYSTEM = UnifiedSystem(area_m2=70.0, cl=1.5, aspect_ratio=12.0, mass_kg=1000.0,
+                       elevation_rad=math.radians(25.0), tether_diameter_m=0.04,
+                       tether_length_m=600.0, rated_power_W=3e6, modes="both", turbine_area_m2=10.0)
+
+
+def _loyd_system():
+    """Ground-gen, no mass, weightless tether, no limits, η_out = 1: Loyd's setting."""
+    return replace(SYSTEM, modes="ground-gen", mass_kg=0.0, tether_density_kg_m3=0.0,
+                   rated_power_W=math.inf, eta_out=1.0)
+
+
+def test_zero_mass_free_recovery_is_loyd():
+    """Production phase alone (recovery costs nothing), m = 0, straight weightless tether:
+    the optimum is Loyd's (kite.loyd_optimum with C_l = C_L, E = G_e, projection cosβ):
+    power and reel-out speed to 1e-6 relative, at 7 and 12 m/s."""
+    system = _loyd_system()
+    cd = power_at_factors(system, 10.0, 0.1, 1.0, 0.0).cd
+    for wind in (7.0, 12.0):
+        op = operating_point(system, wind, recovery=False)
+        v_out, p = loyd_optimum(1.225, system.area_m2, system.cl, system.cl / cd, wind,
+                                projection=math.cos(system.elevation_rad))
+        assert op.mechanical_power_W == pytest.approx(float(p), rel=1e-6)
+        assert op.electrical_power_W == pytest.approx(float(p), rel=1e-6)
+        assert op.reel_out_mps == pytest.approx(float(v_out), rel=1e-6)
+        assert op.mode == "ground-gen" and op.gamma_t == 0.0
+
+
+def test_perturbed_starts_reach_the_same_optimum():
+    """SLSQP from different starts, (γ_out, γ_in, γ_t) at C_L,max or with a C_L: power to 1e-7
+    relative, factors and C_L to 1e-4, below rated (12 m/s), with the rated power held (25 m/s)
+    and, pure fly-gen under a 400 kN cap, with C_L lowered to hold the force (25 m/s).  The start
+    (0.6, 5, 0.25) does not fly at 12 m/s (the weight): the grid takes over."""
+    starts = ((0.2, 2.0, 0.1), (0.6, 5.0, 0.25), (0.1, 1.0, 0.05, 0.6), (0.3, 3.0, 0.3, 1.2))
+    fly_gen = replace(SYSTEM, modes="fly-gen", max_tether_force_N=4e5)
+    for system, wind in ((SYSTEM, 12.0), (SYSTEM, 25.0), (fly_gen, 25.0)):
+        results = [optimal_cycle(system, wind, starts=[start]) for start in starts]
+        results.append(optimal_cycle(system, wind))
+        for cycle in results[1:]:
+            assert cycle.electrical_power_W == pytest.approx(results[0].electrical_power_W, rel=1e-7)
+            for name in ("gamma_out", "gamma_in", "gamma_t", "cl"):
+                assert getattr(cycle, name) == pytest.approx(getattr(results[0], name), abs=1e-4)
+    assert results[0].cl < fly_gen.cl - 0.1
+
+
+def test_operating_point_reports_the_optimal_cycle():
+    """operating_point is optimal_cycle's optimum (powers, force, factors, V_out = γ_out V_w),
+    power_curve its repetition."""
+    cycle = optimal_cycle(SYSTEM, 12.0)
+    op = operating_point(SYSTEM, 12.0)
+    assert power_curve(SYSTEM, [0.0, 12.0]) == [operating_point(SYSTEM, 0.0), op]
+    assert (op.mode, op.tether_cd) == ("both", cycle.tether_cd)
+    assert (op.electrical_power_W, op.mechanical_power_W, op.tether_force_N, op.apparent_speed_mps) == \
+        (cycle.electrical_power_W, cycle.mechanical_power_W, cycle.tether_force_N, cycle.apparent_speed_mps)
+    assert (op.gamma_out, op.gamma_in, op.gamma_t) == (cycle.gamma_out, cycle.gamma_in, cycle.gamma_t)
+    assert op.reel_out_mps == cycle.gamma_out * 12.0
+
+
+def test_power_curve_over_the_whole_range_with_limits_active():
+    """0–30 m/s, every mode, force cap 400 kN: off at 0 m/s, electrical power ≤ P_rated and
+    tether force ≤ the cap (to 1e-6), C_L within [C_L,min, C_L,max], the cap active somewhere
+    and the rating too (ground-gen and both), every mode flying from its cut-in to 30 m/s
+    (fly-gen too: it sheds force by lowering C_L), and the mechanical power under the Loyd
+    bound (docs §6) at the point's own C_d and G_e at every speed."""
+    capped = replace(SYSTEM, max_tether_force_N=4e5)
+    winds = np.arange(0.0, 31.0, 2.0)
+    for modes in ("ground-gen", "fly-gen", "both"):
+        system = replace(capped, modes=modes)
+        cycles = [optimal_cycle(system, w) for w in winds]
+        assert cycles[0] is None
+        on = [c for c in cycles if c is not None]
+        assert on and cycles[-len(on):] == on, modes
+        for wind, c in zip(winds[-len(on):], on):
+            assert c.electrical_power_W <= system.rated_power_W * (1 + 1e-6)
+            assert c.tether_force_N <= system.force_limit_N * (1 + 1e-6)
+            assert system.cl_bounds[0] <= c.cl <= system.cl_bounds[1]
+            bound = loyd_power_bound_W(1.225, system.area_m2, c.cd, c.ge, wind, system.elevation_rad,
+                                       system.max_gamma_t(c.cd))
+            assert c.mechanical_power_W <= bound * (1 + 1e-9)
+            assert c.mechanical_power_W >= c.electrical_power_W
+        assert any(c.tether_force_N >= system.force_limit_N * (1 - 1e-6) for c in on), modes
+        if modes != "fly-gen":      # at the cap, pure fly-gen makes 2.1 MW of its 3 at 30 m/s
+            assert any(c.electrical_power_W >= system.rated_power_W * (1 - 1e-6) for c in on), modes
+
+
+def test_fly_gen_sheds_force_by_lowering_lift_and_cuts_out_if_it_is_held():
+    """A pure fly-gen system under a 400 kN cap: γ_t is bounded by the rotors' induction limit,
+    so above some wind only a lower C_L keeps the force within the cap (seed 004 §5.4: C_L falls
+    once a limit binds).  Held at C_L,max (min_cl = cl) it cannot fly within the cap at 30 m/s
+    and is "off"; below the limits both give the same point (12 m/s, C_L = C_L,max)."""
+    system = replace(SYSTEM, modes="fly-gen", max_tether_force_N=4e5)
+    held = replace(system, min_cl=system.cl)
+    assert held.cl_bounds == (1.5, 1.5)
+    free = optimal_cycle(system, 30.0)
+    assert free.cl < system.cl and free.tether_force_N == pytest.approx(4e5, rel=1e-6)
+    assert operating_point(system, 30.0).mode == "fly-gen"
+    assert operating_point(held, 30.0).mode == "off"
+    low = optimal_cycle(system, 12.0)
+    assert low.cl == system.cl
+    assert low.electrical_power_W == pytest.approx(optimal_cycle(held, 12.0).electrical_power_W, rel=1e-9)
+
+
+def test_optimal_lift_with_induced_drag_is_the_closed_form():
+    """No mass, weightless tether, γ_t = 0: the cycle power is P_w A C_d(1 + G_e²)^{3/2} times a
+    function of γ_out, γ_in alone (eqs. 3.47, 3.50; the reel-in flies at C_d0), so the best
+    C_L maximises (C_d² + C_L²)^{3/2}/C_d² with C_d = c + kC_L², c = C_d0 + C_d,t,
+    k = 1/(π AR e): x = kC_L² is the smaller root of 2kx² + (4kc − 1)x + 2kc² + 3c = 0
+    (x ≈ 3c: induced drag three times the rest).  With AR = 4 and C_L,max = 3 it is interior
+    (C_L = 2.276); the optimiser finds it to 1e-6 relative, with and without the recovery, and
+    it gives more power than C_L,max at the same factors."""
+    system = replace(_loyd_system(), cl=3.0, aspect_ratio=4.0)
+    k = 1.0 / (math.pi * system.aspect_ratio * system.oswald)
+    c = system.cd0 + system.straight_tether_cd
+    b = 1.0 - 4.0 * k * c
+    best_cl = math.sqrt((b - math.sqrt(b * b - 8.0 * k * (2.0 * k * c * c + 3.0 * c))) / (4.0 * k) / k)
+    assert 2.0 < best_cl < system.cl
+    for recovery in (False, True):
+        cycle = optimal_cycle(system, 9.0, recovery=recovery)
+        assert cycle.cl == pytest.approx(best_cl, rel=1e-6)
+        at_max = power_at_factors(system, 9.0, cycle.gamma_out, cycle.gamma_in, 0.0, recovery=recovery)
+        assert cycle.electrical_power_W > at_max.electrical_power_W
+
+
+def test_below_rated_the_lift_is_the_largest():
+    """Without binding limits and with the induced drag's optimum above C_L,max (here
+    √(3cπARe) ≈ 3.7 > 1.5), C_L = C_L,max at every speed up to rated, every mode."""
+    for modes in ("ground-gen", "fly-gen", "both"):
+        for wind in (7.0, 12.0):
+            assert optimal_cycle(replace(SYSTEM, modes=modes), wind).cl == pytest.approx(SYSTEM.cl, rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["trevisi-gg", "trevisi-fg"])
+def test_trevisi_presets_power_never_falls_with_wind(name):
+    """The presets' electrical power is non-decreasing in wind speed up to the 25 m/s cut-out
+    (to 1e-9 of rated), non-zero from cut-in to cut-out and ≤ P_rated; the fly-gen wing holds
+    its rated power above ~15 m/s by lowering C_L (C_L < C_L,max at 25 m/s)."""
+    system = from_config(load_config(system=name))
+    params = system.parameters
+    winds = np.arange(0.0, 25.5, 1.0)
+    power_W = system.electrical_power_W(winds)
+    assert np.all(np.diff(power_W) >= -1e-9 * params.rated_power_W)
+    on = power_W > 0
+    assert on[-1] and np.all(on[np.argmax(on):])
+    assert np.all(power_W <= params.rated_power_W * (1 + 1e-9))
+    assert power_W[-1] == pytest.approx(params.rated_power_W, rel=1e-9)
+    if name == "trevisi-fg":
+        assert optimal_cycle(params, 25.0).cl < params.cl
+
+
+def test_tether_cd_none_is_eq_3_14_and_a_passed_value_is_used():
+    """None: C_d,t = lines C_⊥ d r/(4A) (eq. 3.14) recorded; a larger passed C_d,t lowers
+    the power, a smaller one raises it, the same value reproduces None's point exactly."""
+    straight = SYSTEM.straight_tether_cd
+    assert straight == pytest.approx(0.9 * 0.04 * 600.0 / (4 * 70.0))
+    base = operating_point(SYSTEM, 10.0)
+    assert base.tether_cd == straight
+    same = operating_point(SYSTEM, 10.0, tether_cd=straight)
+    assert same.electrical_power_W == pytest.approx(base.electrical_power_W, rel=1e-12)
+    more = operating_point(SYSTEM, 10.0, tether_cd=2 * straight)
+    less = operating_point(SYSTEM, 10.0, tether_cd=0.5 * straight)
+    assert more.tether_cd == 2 * straight
+    assert more.electrical_power_W < base.electrical_power_W < less.electrical_power_W
+
+
+def test_sag_tilts_the_tether_and_costs_power():
+    """A heavier tether (m_r × 4) tilts θ further from β and lowers the power at the same factors."""
+    light = power_at_factors(SYSTEM, 10.0, 0.2, 2.0, 0.1)
+    heavy = power_at_factors(replace(SYSTEM, tether_density_kg_m3=4 * 970.0), 10.0, 0.2, 2.0, 0.1)
+    assert SYSTEM.elevation_rad < light.theta_rad < heavy.theta_rad
+    assert heavy.electrical_power_W < light.electrical_power_W
+
+
+def test_calm_air_is_off():
+    op = operating_point(SYSTEM, 0.0)
+    assert (op.mode, op.electrical_power_W, op.tether_force_N) == ("off", 0.0, 0.0)
+    assert not power_at_factors(SYSTEM, 0.0, 0.2, 2.0, 0.1).flies
+
+
+@pytest.mark.parametrize("field, value", [
+    ("area_m2", -1.0), ("cl", 0.0), ("mass_kg", -5.0), ("eta_in", 0.0), ("eta_out", 1.5),
+    ("elevation_rad", math.pi / 2), ("modes", "kite-gen"), ("tether_lines", 0),
+    ("mass_balance", "taylor"), ("min_disc_efficiency", 0.4), ("insulation_factor", 0.5),
+    ("turbine_area_m2", 0.0), ("rated_power_W", math.inf), ("tether_diameter_m", 0.0), ("min_cl", 0.0),
+    ("min_cl", 2.0)])
+def test_bad_parameters_are_named(field, value):
+    with pytest.raises(ValueError, match=field):
+        replace(SYSTEM, **{field: value})
+
+
+def test_bad_arguments_are_named():
+    for kwargs, name in ((dict(gamma_out=-0.1), "gamma_out"), (dict(tether_cd=-0.01), "tether_cd"),
+                         (dict(gamma_t=50.0), "gamma_t"), (dict(wind_mps=-1.0), "wind_mps"),
+                         (dict(cl=1.6), "cl"), (dict(cl=0.0), "cl")):
+        arguments = dict(wind_mps=10.0, gamma_out=0.2, gamma_in=2.0, gamma_t=0.1) | kwargs
+        with pytest.raises(ValueError, match=name):
+            power_at_factors(SYSTEM, **arguments)
+    with pytest.raises(ValueError, match="wind_mps"):
+        operating_point(SYSTEM, -2.0)
+    with pytest.raises(ValueError, match="tether_cd"):
+        operating_point(SYSTEM, 10.0, tether_cd=-0.1)
+
+
+def test_table_3_1_system_carries_the_table():
+    """UnifiedSystem.table_3_1(): C_d = 0.15, G_e = 10, θ = 20° at any force (weightless line),
+    evaluated at C_L = C_L,max = 1.5 unless told."""
+    c = power_at_factors(UnifiedSystem.table_3_1(), 10.0, 0.33, 2.0, 0.0)
+    assert c.cl == 1.5
+    assert (c.cd, c.ge) == pytest.approx((0.15, 10.0), rel=1e-14)
+    assert c.theta_rad == pytest.approx(math.radians(20.0), rel=1e-14)
