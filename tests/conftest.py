@@ -92,21 +92,11 @@ def series_run(time_s, series, average_start_s, period_s=1.0):
                      {"s_m": np.zeros((1, 2))}, average_start_s, None)
 
 
-def dense_fe_jacobian(sys_, ev, tension_mode=False):
-    """The FE Newton matrix of an evaluation as a dense array: the band, the R
-    column and the R row (tension mode: dT_0 = 0; otherwise k_s dR, as a
-    prescribed radius or a free end has it)."""
-    n, m = sys_.n, sys_.n - 1
-    A = np.zeros((n, n))
-    for j in range(m):
-        for i in range(max(0, j - 6), min(m, j + 7)):
-            A[i, j] = ev.ab[6 + i - j, j]
-    A[:m, -1] = ev.r_col
-    if tension_mode:
-        A[-1, 3] = 1.0
-    else:
-        A[-1, -1] = ev.k_s
-    return A
+def dense_fe_jacobian(sys_, ev):
+    """The FE Newton matrix of an evaluation as a dense array
+    (:meth:`~fem_tether.tether.fe.system.TetherSystem.jacobian_matrix`: the band,
+    the R column and the R row)."""
+    return sys_.jacobian_matrix(ev).toarray()
 
 
 def default_sigint():

@@ -360,9 +360,6 @@ class FE(Section):
     hht_alpha: float = setting(-0.1, "-", "HHT alpha", between(-1.0 / 3.0, 0.0, (True, True)))
     beta: float = setting(0.25, "-", "Newmark beta", from_to(0.25, 1.0))
     gamma: float = setting(0.5, "-", "Newmark gamma", from_to(0.5, 1.0))
-    kernel: str = setting("compiled", "-", "FE equations evaluated by 'compiled' loops (numba) or by "
-                          "'numpy' array expressions (the reference; same numbers to ~1e-14)",
-                          one_of("compiled", "numpy"))
 
 
 @dataclass(frozen=True)
@@ -443,6 +440,12 @@ SECTIONS: tuple[type[Section], ...] = (System, Unified, Tether, Air, Drag, Wind,
 REDEFINED = {
     ("wind", "reference_speed_mps"): "now [wind] reference_scale_mps, the Weibull scale A at reference_height_m "
                                      "(reference_speed_mps was the mean there, A Gamma(1 + 1/k))",
+}
+
+#: Keys of earlier versions that are gone with nothing in their place: (section, key) -> what
+#: became of them.  A file that sets one is an error saying so; a stored configuration drops it.
+REMOVED = {
+    ("fe", "kernel"): "was removed in 0.2: the FE equations are always the compiled kernel",
 }
 
 #: Keys of earlier versions and where they are now: (section, key) -> (section, key).

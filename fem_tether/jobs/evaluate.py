@@ -41,10 +41,10 @@ KERNEL_MODULES = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.
 
 
 def load_kernels(cfg: Config, solvers) -> None:
-    """Import the compiled kernels of those ``solvers`` whose section of ``cfg``
-    asks for them (``kernel = "compiled"``): compiled now, or loaded from the cache."""
+    """Import the compiled kernels of ``solvers``: the FE's always, the FD's where
+    ``[fd] kernel = "compiled"``; compiled now, or loaded from the cache."""
     for solver in solvers:
-        if getattr(cfg, solver).kernel == "compiled":
+        if solver == "fe" or cfg.fd.kernel == "compiled":
             importlib.import_module(KERNEL_MODULES[solver])
 
 

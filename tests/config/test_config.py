@@ -108,6 +108,22 @@ def test_a_stored_configuration_of_an_earlier_version_reads_with_its_keys_moved(
     assert Config.from_stored(Config().to_toml()) == Config()
 
 
+def test_the_fe_kernel_key_is_gone(tmp_path):
+    """``[fe] kernel`` chose between the compiled loops and NumPy array
+    expressions of the FE equations; only the kernel is left.  A file or an
+    override that sets it is a one-line error saying so; a stored configuration
+    of an earlier version reads without it."""
+    message = r"^\[fe\] kernel was removed in 0\.2: the FE equations are always the compiled kernel$"
+    with pytest.raises(ConfigError, match=message):
+        Config().replace(fe={"kernel": "compiled"})
+    path = tmp_path / "case.toml"
+    path.write_text('[fe]\nelements = 20\nkernel = "numpy"\n')
+    with pytest.raises(ConfigError, match=message):
+        load_config(path)
+    assert Config.from_stored('[fe]\nelements = 20\nkernel = "numpy"\n') == Config().replace(fe={"elements": 20})
+    assert "kernel" not in Config().to_dict()["fe"]
+
+
 def test_the_power_law_speed_is_now_a_weibull_scale():
     """``[wind] reference_speed_mps`` was the mean at the reference height; a user
     file with it is an error naming the new key, and a stored configuration

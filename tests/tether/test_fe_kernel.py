@@ -1,4 +1,6 @@
-"""The compiled kernels evaluate the same equations as the NumPy reference."""
+"""The compiled kernels of the FE equations: the whole step solves the step's
+equations, fails and reports as it should, and the band LU solves as LAPACK's.
+(Their Jacobian against central differences of their residual: test_fe_system.py.)"""
 
 import dataclasses
 import subprocess
@@ -6,11 +8,13 @@ import sys
 
 import numpy as np
 import pytest
+from scipy.linalg.lapack import dgbtrf
 
 from fem_tether.config import load_config
 from fem_tether.tether.continuation import NotConverged
 from fem_tether.tether.fe import solver as fe
 from fem_tether.tether.fe.integrator import Kinematics
+from fem_tether.tether.fe.system import BAND, solve_band
 from fem_tether.tether.protocol import Statistics
 from fem_tether.physics.trajectory import Stationary
 
@@ -27,121 +31,113 @@ CASES = {
 
 
 @pytest.mark.parametrize("overrides, reel_mps", CASES.values(), ids=CASES.keys())
-def test_residual_and_jacobian_equal_the_numpy_reference(overrides, reel_mps):
-    """At perturbed states (positions, velocities, accelerations, tensions, R):
-    residual, banded Jacobian and R column within 1e-13 of the largest entry,
-    drag, Reynolds number and C_d within 1e-13 relative; the Newton step (the
-    kernel's band LU against LAPACK's ``dgbsv``) within 1e-11 of its largest entry."""
+def test_the_whole_step_solves_the_step_equations(overrides, reel_mps):
+    """Three steps (dt 0.2 s, 0.05 s, 0.2 s) from a perturbed start, the later
+    ones with kept factors: each solution's velocities and accelerations are the
+    integrator's (:class:`~fem_tether.tether.fe.integrator.Step`) for its
+    positions (1e-12 of the largest velocity, 1e-9 of the largest acceleration:
+    a = (q - q_known) / (beta h^2) multiplies the positions' round-off by ~1e3
+    at h = 0.05 s), the equations evaluated anew there are within the Newton
+    tolerance and equal the step's own evaluation, and the step's series values
+    (the kernel's ``line_series``) equal the formulas of ``line_state`` within 1e-12."""
     cfg = load_config(overrides={"tether": {"length_m": 1000.0}} | overrides)
-    model = fe.build_model(cfg)
+    model = dataclasses.replace(fe.build_model(cfg), reel_mps=reel_mps)
+    sys_ = model.system
     st = fe.initial_state(model)
-    numpy_sys = dataclasses.replace(model.system, compiled=False)
-    compiled_sys = dataclasses.replace(model.system, compiled=True)
-    rng = np.random.default_rng(7)
-    for _ in range(5):
-        r = st.kin.q + rng.normal(size=st.kin.q.shape)
-        v = st.kin.v + 3.0 * rng.normal(size=st.kin.q.shape)
-        qdd = st.kin.qdd + rng.normal(size=st.kin.q.shape)
-        T = st.T * (1.0 + 0.1 * rng.random(st.T.size))
-        args = (r, v, qdd, T, st.R * 0.999, model.end.state(0.7, 1.0)[0], 150e3, 1001.0, 1e5,
-                rng.uniform(1, 50), rng.uniform(1, 20))
-        a = compiled_sys.evaluate(*args, reel_mps=reel_mps)
-        b = numpy_sys.evaluate(*args, reel_mps=reel_mps)
-        for x, y in ((a.residual, b.residual), (a.band, b.band), (a.r_col, b.r_col)):
-            assert np.max(np.abs(x - y)) <= 1e-13 * np.max(np.abs(y))
-        dx_a, dx_b = compiled_sys.newton_step(a), numpy_sys.newton_step(b)
-        assert np.max(np.abs(dx_a - dx_b)) <= 1e-11 * np.max(np.abs(dx_b))
-        for x, y in ((a.load.force, b.load.force), (a.load.re, b.load.re), (a.load.cd, b.load.cd),
-                     (a.tau, b.tau), (a.length_m, b.length_m), (a.r_mid, b.r_mid)):
-            np.testing.assert_allclose(x, y, rtol=1e-13, atol=1e-13 * np.max(np.abs(y)))
-
-
-@pytest.mark.parametrize("overrides, reel_mps", CASES.values(), ids=CASES.keys())
-def test_compiled_step_equals_the_numpy_step(overrides, reel_mps):
-    """Three steps (dt 0.2 s, 0.05 s, 0.2 s) from a perturbed start: the whole
-    compiled step (predictor, kinematics and Newton in one call) against the
-    NumPy iteration: positions, velocities, tensions, R and the drag within
-    1e-12 of their largest entry, accelerations within 1e-9 (a = (q - q_known) /
-    (beta h^2) multiplies the positions' round-off by ~1e3 at h = 0.05 s), the
-    same Newton iterations, and the step's series values (the kernel's
-    ``line_series`` against the NumPy formulas of ``line_state``) within 1e-12."""
-    cfg = load_config(overrides={"tether": {"length_m": 1000.0}} | overrides)
-    compiled = fe.build_model(cfg)
-    compiled = dataclasses.replace(compiled, reel_mps=reel_mps)
-    reference = dataclasses.replace(compiled, system=dataclasses.replace(compiled.system, compiled=False))
-    st = fe.initial_state(compiled)
     rng = np.random.default_rng(11)
     st.kin.v += 0.5 * rng.normal(size=st.kin.v.shape) * (np.arange(len(st.kin.v)) > 0)[:, None]
-    states = {"compiled": st, "numpy": st}
     for h in (0.2, 0.05, 0.2):
-        stats = {k: Statistics() for k in states}
-        states = {k: fe._step(m, states[k], h, stats[k])
-                  for k, m in (("compiled", compiled), ("numpy", reference))}
-        a, b = states["compiled"], states["numpy"]
-        for x, y, tol in ((a.kin.q, b.kin.q, 1e-12), (a.kin.v, b.kin.v, 1e-12), (a.T, b.T, 1e-12),
-                          (a.R, b.R, 1e-12), (a.ev.load.force, b.ev.load.force, 1e-12),
-                          (a.kin.a, b.kin.a, 1e-9), (a.kin.qdd, b.kin.qdd, 1e-9)):
+        stats = Statistics()
+        new = fe._step(model, st, h, stats)
+        assert 1 <= stats.newton_iterations <= model.max_newton
+        kin = st.kin.step(h, model.scheme).kinematics(new.kin.q)
+        for x, y, tol in ((new.kin.v, kin.v, 1e-12), (new.kin.a, kin.a, 1e-9), (new.kin.qdd, kin.qdd, 1e-9)):
             assert np.max(np.abs(x - y)) <= tol * np.max(np.abs(y))
-        assert stats["compiled"].newton_iterations == stats["numpy"].newton_iterations
-        assert a.ev.series is not None and b.ev.series is None
-        sa, sb = fe.line_state(compiled, a, False), fe.line_state(reference, b, False)
-        for key in sb:
-            assert sa[key] == pytest.approx(sb[key], rel=1e-12, abs=1e-14), key
+        f_ref = model.force_ref_N(st.T, sys_.physics)
+        c_a, c_v = model.scheme.coefficients(h)
+        ev = sys_.evaluate(new.kin.q, new.kin.v, new.kin.qdd, new.T, new.R, model.end.direction_at(new.t),
+                           model.ground_tension_N, model.radius_m, f_ref, c_a, c_v, jacobian=False,
+                           reel_mps=reel_mps)
+        assert np.max(np.abs(ev.residual)) <= model.newton_tol * f_ref
+        np.testing.assert_array_equal(ev.residual, new.ev.residual)
+        np.testing.assert_array_equal(ev.load.force, new.ev.load.force)
+        assert new.ev.series is not None
+        kernel_series = fe.line_state(model, new, False)
+        numpy_series = fe.line_state(model, dataclasses.replace(new, ev=dataclasses.replace(new.ev, series=None)),
+                                     False)
+        for key in numpy_series:
+            assert kernel_series[key] == pytest.approx(numpy_series[key], rel=1e-12, abs=1e-14), key
+        st = new
 
 
 @pytest.mark.parametrize("max_newton", [1, 2])
-def test_compiled_step_fails_as_the_numpy_step(max_newton):
-    """Too few Newton iterations: both raise NotConverged with the same residual."""
+def test_a_step_that_fails_reports_its_last_residual(max_newton):
+    """Too few Newton iterations: NotConverged with the scaled residual of the
+    last iterate, the same as the predictor and ``max_newton - 1`` Newton steps
+    of the system's own evaluations (:meth:`TetherSystem.newton_step`) give."""
     cfg = load_config(overrides={"tether": {"length_m": 1000.0}, "fe": {"elements": 8}})
-    compiled = dataclasses.replace(fe.build_model(cfg), max_newton=max_newton)
-    reference = dataclasses.replace(compiled, system=dataclasses.replace(compiled.system, compiled=False))
-    st = fe.initial_state(compiled)
-    failures = []
-    for model in (compiled, reference):
-        with pytest.raises(NotConverged) as exc:
-            fe._step(model, st, 0.2, Statistics())
-        failures.append(exc.value.residual)
-    assert failures[0] == pytest.approx(failures[1], rel=1e-10)
+    model = dataclasses.replace(fe.build_model(cfg), max_newton=max_newton)
+    sys_ = model.system
+    st = fe.initial_state(model)
+    h = 0.2
+    c_a, c_v = model.scheme.coefficients(h)
+    f_ref = model.force_ref_N(st.T, sys_.physics)
+    step = st.kin.step(h, model.scheme)
+    x = sys_.pack(st.kin.predict(h), st.T, st.R)
+    for i in range(max_newton):
+        r, T, R = sys_.unpack(x)
+        kin = step.kinematics(r)
+        ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, model.end.direction_at(h), model.ground_tension_N,
+                           model.radius_m, f_ref, c_a, c_v)
+        residual = np.max(np.abs(ev.residual)) / f_ref
+        x = x + sys_.newton_step(ev)
+    assert residual > model.newton_tol
+    with pytest.raises(NotConverged) as exc:
+        fe._step(model, st, h, Statistics())
+    assert exc.value.residual == pytest.approx(residual, rel=1e-10)
 
 
-def test_compiled_step_names_the_altitude_it_left_the_atmosphere_at():
+def test_a_step_names_the_altitude_it_left_the_atmosphere_at():
     """An iterate above the ISA troposphere (here: a kite end 12 km up) is a
-    NotConverged that says so, from either path."""
+    NotConverged that says so."""
     cfg = load_config(overrides={"tether": {"length_m": 14000.0}, "fe": {"elements": 8},
                                  "winch": {"mode": "prescribed"}, "kite": {"radius_m": 13900.0}})
-    compiled = fe.build_model(cfg, end=Stationary((0.0, 0.0, 1.0)))
-    reference = dataclasses.replace(compiled, system=dataclasses.replace(compiled.system, compiled=False))
-    n = compiled.system.spaces.n_elements
+    model = fe.build_model(cfg, end=Stationary((0.0, 0.0, 1.0)))
+    n = model.system.spaces.n_elements
     s = np.linspace(0.0, 13900.0, n + 1)
     kin = Kinematics(np.stack([0.1 * s, 0 * s, s], axis=1), np.zeros((n + 1, 3)), np.zeros((n + 1, 3)),
                      np.zeros((n + 1, 3)))
     st = fe.State(0.0, kin, np.full(n, 1e5), 13900.0)
-    for model in (compiled, reference):
-        with pytest.raises(NotConverged, match="left the atmosphere"):
-            fe._step(model, st, 0.2, Statistics())
+    with pytest.raises(NotConverged, match="left the atmosphere"):
+        fe._step(model, st, 0.2, Statistics())
 
 
-def test_runs_with_either_kernel_agree():
-    """A whole run (default physics, 1000 m, 12 elements): period means of the
-    drag and the tensions within 1e-12 relative, same Newton iterations."""
-    cfg = load_config(overrides={"tether": {"length_m": 1000.0}, "fe": {"elements": 12, "dt_s": 0.2},
-                                 "time": {"spinup_periods": 0, "average_periods": 1}})
-    runs = {k: fe.simulate(cfg.replace(fe={"kernel": k})) for k in ("compiled", "numpy")}
-    for key in ("drag_N", "kite_tension_N", "ground_tension_N"):
-        a, b = runs["compiled"].mean(key), runs["numpy"].mean(key)
-        assert abs(a - b) <= 1e-12 * abs(b), key
-    assert runs["compiled"].extra["newton_iterations"] == runs["numpy"].extra["newton_iterations"]
+def test_band_factors_solve_as_lapack():
+    """The kernel's band LU with partial pivoting (:func:`.kernel.factorize`, LAPACK's
+    ``dgbtf2``) on a random band that needs pivoting: the pivots of LAPACK's
+    ``dgbtrf`` and the solution of its ``dgbsv`` within 1e-12."""
+    from fem_tether.tether.fe import kernel
+
+    n = 40
+    rng = np.random.default_rng(5)
+    band = np.zeros((3 * BAND + 1, n), order="F")
+    for j in range(n):
+        for i in range(max(0, j - BAND), min(n, j + BAND + 1)):
+            band[2 * BAND + i - j, j] = rng.normal()
+    rhs = rng.normal(size=n)
+    _, lapack_ipiv, info = dgbtrf(band.copy(), BAND, BAND)
+    assert info == 0
+    expected = solve_band(np.array(band, order="F"), rhs.copy())
+    ipiv, z = np.empty(n, np.int64), np.empty(n)
+    assert kernel.factorize(band, rhs, ipiv, z)
+    np.testing.assert_array_equal(ipiv, lapack_ipiv)
+    assert not np.array_equal(ipiv, np.arange(n))
+    assert np.max(np.abs(z - expected)) <= 1e-12 * np.max(np.abs(expected))
 
 
-def test_compiled_is_the_default():
-    assert load_config().fe.kernel == "compiled"
-    assert fe.build_model(load_config()).system.compiled
-
-
-@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
-def test_singular_jacobian_raises(kernel):
-    """A singular band (here: all zero) is a LinAlgError from either solver."""
-    model = fe.build_model(load_config(overrides={"fe": {"elements": 4, "kernel": kernel}}))
+def test_singular_jacobian_raises():
+    """A singular band (here: all zero) is a LinAlgError."""
+    model = fe.build_model(load_config(overrides={"fe": {"elements": 4}}))
     st = fe.initial_state(model)
     sys_ = model.system
     ev = sys_.evaluate(st.kin.q, st.kin.v, st.kin.qdd, st.T, st.R, model.end.state(0.0, 1.0)[0],
@@ -151,15 +147,14 @@ def test_singular_jacobian_raises(kernel):
         sys_.newton_step(ev)
 
 
-def test_numba_is_imported_only_by_a_compiled_system():
-    """The CLI and the FE package import without numba; making a compiled
-    system imports the kernels (a fresh interpreter checks it)."""
+def test_numba_is_imported_only_by_a_system():
+    """The CLI and the FE package import without numba; making a model (its
+    system) imports the kernels (a fresh interpreter checks it)."""
     code = ("import sys\n"
             "import fem_tether.cli, fem_tether.tether.fe.solver as fe\n"
             "from fem_tether.config import load_config\n"
+            "cfg = load_config()\n"
             "assert 'numba' not in sys.modules\n"
-            "fe.build_model(load_config(overrides={'fe': {'kernel': 'numpy'}}))\n"
-            "assert 'numba' not in sys.modules\n"
-            "fe.build_model(load_config())\n"
+            "fe.build_model(cfg)\n"
             "assert 'numba' in sys.modules and 'fem_tether.tether.fe.kernel' in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)

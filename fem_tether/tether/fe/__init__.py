@@ -3,7 +3,8 @@
 Modules: :mod:`.mesh` (unit meshes on [0, 1] read and written with meshio),
 :mod:`.spaces` (constant operators assembled once with scikit-fem),
 :mod:`.integrator` (generalised-alpha / HHT / Newmark coefficients),
-:mod:`.system` (residual and banded Jacobian of one time step),
+:mod:`.system` (residual and banded Jacobian of one time step, their layout and solves),
+:mod:`.kernel` (their compiled loops, the one implementation of the equations),
 :mod:`.solver` (static equilibrium, Newton, time stepping).
 """
 

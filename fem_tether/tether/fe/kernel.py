@@ -1,11 +1,14 @@
 """Compiled kernels of the FE tether equations: residual and banded Jacobian, loop by loop.
 
-The same equations as :meth:`.system.TetherSystem.evaluate` (whose NumPy
-implementation is the reference, and the tests hold the two together), written
-as loops over elements that numba compiles to machine code.  On the small
-systems of a tether (tens of elements) the NumPy version spends its time in the
-overhead of ~150 array operations per Newton iteration; compiled, an iteration
-costs about as much as a few of them.  Geometry (:func:`midpoints`) gives the
+The one implementation of the equations of :mod:`.system` (its module
+docstring; :meth:`.system.TetherSystem.evaluate` calls :func:`evaluate`),
+written as loops over elements that numba compiles to machine code.  On the
+small systems of a tether (tens of elements) NumPy array expressions spent
+their time in the overhead of ~150 array operations per Newton iteration;
+compiled, an iteration costs about as much as a few of them.  The tests check
+the Jacobian against central differences of the residual
+(``tests/tether/test_fe_kernel.py``, ``test_fe_system.py``), and the
+solutions against the analytic catenary and the FD solver.  Geometry (:func:`midpoints`) gives the
 altitudes where the leaf physics is evaluated, by its compiled twins
 (:mod:`fem_tether.physics.environment_kernel`: air, wind, drag coefficient; the
 drag's own loops in :mod:`fem_tether.physics.loads_kernel`, shared with the FD
@@ -112,8 +115,8 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along
 def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
              density_gradient, viscosity_gradient, shear, mass, interior, w, h, diameter_m,
              skin_friction_cf, k_s, compliance_per_N, damping_time_s, c_a, c_v, reel_mps, band):
-    """The banded Jacobian without the R row and column (:meth:`.system.TetherSystem._jacobian`),
-    accumulated into ``band`` (zeroed here).
+    """The banded Jacobian without the R row and column, the derivative of
+    :func:`residual`, accumulated into ``band`` (zeroed here).
 
     Element e puts on node a's rows (a interior), node b's columns,
     ``sgn_a sgn_b T/|dr| P - w_a (sgn_b df/dtau P/|dr| + df/dr_mid)`` with
@@ -376,8 +379,8 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
                damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
                series, info, band, ipiv, z, factored):
     """One generalised-alpha time step of size ``dt_s`` from the state
-    ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as the
-    NumPy path of :func:`fem_tether.tether.fe.solver._step` takes it.
+    ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as
+    :func:`fem_tether.tether.fe.solver._step` takes it in Python for a free kite.
 
     The unknowns ``r``, ``T`` and R start from the predictor
     ``q_n + dt v_n + dt^2/2 a_n`` with ``T_n`` and ``R_n``

@@ -85,7 +85,7 @@ def build_model(cfg: Config, end: EndMotion | None = None,
     kite = free_kite_module.from_config(cfg, float(spaces.mass_kg[-1]), physics.wind, physics.air)
     if kite is not None and end is None:
         case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
-    system = TetherSystem(spaces, physics, case["tension_mode"], compiled=cfg.fe.kernel == "compiled")
+    system = TetherSystem(spaces, physics, case["tension_mode"])
     return FEModel(system=system, scheme=scheme_from_config(cfg.fe), kite=kite, **case)
 
 
@@ -305,7 +305,7 @@ def release(model: FEModel, state: State) -> tuple[FEModel, State]:
     kite = model.kite
     assert kite is not None, "release needs a model with a point-mass kite"
     sys_ = model.system
-    free = TetherSystem(sys_.spaces, sys_.physics, False, sys_.compiled, end_mass_kg=kite.kite.mass_kg)
+    free = TetherSystem(sys_.spaces, sys_.physics, False, end_mass_kg=kite.kite.mass_kg)
     model = replace(model, system=free, tension_mode=False, radius_m=state.R)
     r, v = state.kin.q, state.kin.v
     steer = kite.steer(state.t, 0.0, r[-1], v[-1], r[-1] - r[-2], float(state.T[-1]),
@@ -365,10 +365,10 @@ def _end_line_drag_N(model: FEModel, state: State) -> np.ndarray:
 
 def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     """One generalised-alpha step of size h solved by Newton (iterations counted in
-    ``stats``); raises :class:`NotConverged`.  A compiled system takes the whole
-    step in one call (:meth:`TetherSystem.solve_step`); the NumPy iteration below
-    is its reference, and a free kite's iteration (with the compiled evaluation
-    when the system is compiled): the kite's roll is ``state``'s sample, held
+    ``stats``); raises :class:`NotConverged`.  A kinematic end takes the whole
+    step in one call (:meth:`TetherSystem.solve_step`); a free kite's step is the
+    same iteration in Python, the kite's force added to each of the kernel's
+    evaluations (:func:`add_kite`): the kite's roll is ``state``'s sample, held
     over the step, and the new state gets its own (:func:`sampled`;
     :meth:`~fem_tether.tether.free_kite.FreeKite.steer` raises
     :class:`SolverDivergedError` when the kite has lost its path)."""
@@ -378,15 +378,14 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     f_ref = model.force_ref_N(state.T, sys_.physics)
     kin = state.kin
     kite = model.kite if sys_.free_end else None
-    if sys_.compiled and kite is None:
+    if kite is None:
         r, T, R, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h,
                                                  model.scheme, e, model.ground_tension_N, model.radius_m,
                                                  f_ref, model.reel_mps, model.newton_tol, model.max_newton,
                                                  stats)
         return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
     steer, load = state.steer, None
-    if kite is not None:
-        assert steer is not None, "a free kite's state carries its steering sample"
+    assert steer is not None, "a free kite's state carries its steering sample"
     c_a, c_v = model.scheme.coefficients(h)
     k_s = sys_.row_scale(f_ref)
     kept = sys_.kept
@@ -410,8 +409,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
             ev = sys_.evaluate(r, kin.v, kin.qdd, T, R, e, model.ground_tension_N, model.radius_m,
                                f_ref, c_a, c_v, jacobian=not chord, reel_mps=model.reel_mps)
             above = ""
-            if kite is not None and steer is not None:
-                load = add_kite(sys_, ev, kite, r, kin.v, steer.roll_rad, c_v)
+            load = add_kite(sys_, ev, kite, r, kin.v, steer.roll_rad, c_v)
         except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
             if not checking:
                 raise NotConverged(worst, left_atmosphere(exc)) from None
@@ -432,8 +430,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
             if chord:
                 kept.factors = factors
                 kept.keep(True, *made_for)
-            new = State(t_new, kin, T, R, ev, steer, load)
-            return new if kite is None else sampled(model, new)
+            return sampled(model, State(t_new, kin, T, R, ev, steer, load))
         if not chord:
             try:
                 factors = sys_.factorize(ev)
@@ -451,7 +448,7 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
     ev = state.ev or sys_.evaluate(r, v, state.kin.qdd, state.T, state.R,
                                    model.end.state(state.t, 1.0)[0], model.ground_tension_N,
                                    model.radius_m, 1.0, jacobian=False)
-    if ev.series is not None:      # a compiled step's (:func:`.kernel.line_series`, the same formulas)
+    if ev.series is not None:      # a whole step's (:func:`.kernel.line_series`, the same formulas)
         drag, against, radius, strain, power = ev.series.tolist()
     else:
         moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
@@ -529,14 +526,12 @@ def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,
         kin = Kinematics(*(np.insert(getattr(kin, k), 1, rows[k], axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.insert(T, 0, T[0])
         spaces = build_spaces(np.insert(sp.s_m, 1, f * s1) / model.length_m, model.length_m, mu)
-        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled,
-                              model.system.end_mass_kg)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.end_mass_kg)
     elif growth < 0 and sp.h_m[0] + growth < min_element_m and sp.n_elements > 1:
         kin = Kinematics(*(np.delete(getattr(kin, k), 1, axis=0) for k in ("q", "v", "a", "qdd")))
         T = np.delete(T, 0)
         spaces = build_spaces(np.delete(sp.s_m, 1) / model.length_m, model.length_m, mu)
-        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.compiled,
-                              model.system.end_mass_kg)
+        system = TetherSystem(spaces, model.system.physics, model.tension_mode, model.system.end_mass_kg)
     else:
         system = model.system
     restart = system is not model.system or speed_jumped(model.reel_mps, reel_mps)

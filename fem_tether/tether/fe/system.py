@@ -15,6 +15,11 @@ instead a node like the interior ones, with the kite's mass added to its own
 and the kite's force added by :meth:`TetherSystem.add_end_force`; R then has
 no role (its column is zero, its row holds R at ``radius_m``).
 
+The equations are evaluated, and their Newton steps solved, by the compiled
+loops of :mod:`.kernel` (imported, and so compiled or loaded from numba's
+cache, when the first system is made); this module lays out their inputs and
+outputs.
+
 Unknowns and equations share one interleaved ordering,
 ``[r_0, T_0, r_1, T_1, ..., r_N, R]`` (index ``4i + k`` for r_i, ``4e + 3``
 for T_e, ``4N + 3`` for R), so the Jacobian without the R row and column is
@@ -32,7 +37,7 @@ from typing import Any
 
 import numpy as np
 from scipy import sparse
-from scipy.linalg.lapack import dgbsv, dgbtrf, dgbtrs
+from scipy.linalg.lapack import dgbsv
 from scipy.sparse.linalg import splu
 
 from fem_tether.physics.atmosphere import AltitudeError
@@ -44,9 +49,6 @@ from fem_tether.tether.line import TetherPhysics
 
 BAND = 6
 """Sub- and super-diagonals of the Jacobian without the R row and column."""
-_EYE = np.eye(3)
-_SGN = np.array([-1.0, 1.0])
-_SGN_B = _SGN[None, None, :, None, None]   # sgn_b of an element's node b
 
 
 @dataclass
@@ -61,7 +63,7 @@ class Evaluation:
     load: CrossflowDrag                # drag at the element midpoints
     band: np.ndarray | None = None     # Jacobian without R row/column, LAPACK gbsv storage
     r_col: np.ndarray | None = None    # column of R (rows 0..n-2)
-    series: np.ndarray | None = None   # F_t, F_against, |r_N|, max strain, P_t, if a compiled step gave them
+    series: np.ndarray | None = None   # F_t, F_against, |r_N|, max strain, P_t, if a whole step gave them
 
     @property
     def ab(self) -> np.ndarray:
@@ -83,21 +85,16 @@ def solve_band(band: np.ndarray, rhs: np.ndarray) -> np.ndarray:
 
 @dataclass
 class TetherSystem:
-    """Discrete tether on a mesh: evaluates residuals and solves Newton steps.
-
-    ``compiled`` evaluates the equations with the compiled loops of
-    :mod:`.kernel` (imported, and so compiled or loaded from numba's cache,
-    when the first such system is made); otherwise with the NumPy array
-    expressions below, the reference the kernels are tested against."""
+    """Discrete tether on a mesh: evaluates residuals and solves Newton steps
+    by the compiled loops of :mod:`.kernel`."""
 
     spaces: TetherSpaces
     physics: TetherPhysics
     tension_mode: bool
-    compiled: bool = True
     end_mass_kg: float | None = None
     """the free end's point mass (a kite) added to node N's; None: the end is kinematic"""
     _idx: dict = field(init=False, repr=False)
-    _kernel: Any = field(init=False, repr=False)      # the module fem_tether.tether.fe.kernel, if compiled
+    _kernel: Any = field(init=False, repr=False)      # the module fem_tether.tether.fe.kernel
     _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag tables
     kept: "KeptFactors" = field(init=False, repr=False)  # a step's factors for the next (KeptFactors)
 
@@ -113,19 +110,8 @@ class TetherSystem:
             interior[-1] = 1.0
         self.interior = interior
         self._idx = self._band_indices()
-        node_interior = interior[np.stack([np.arange(n_el), np.arange(1, n_el + 1)], axis=1)]
-        sgn = np.array([-1.0, 1.0])
-        # sgn_a sgn_b and sgn_a of an element's node a in the rows of interior nodes only
-        self._sgn_ab = (sgn[:, None] * sgn[None, :] * node_interior[:, :, None])[:, :, :, None, None]
-        self._sgn_a = sgn[None, :, None] * node_interior[:, :, None]
-        self._interior_ab = node_interior
-        if self.compiled:
-            self._kernel = importlib.import_module("fem_tether.tether.fe.kernel")
-            self._kernel_env = importlib.import_module("fem_tether.physics.environment_kernel").tables(self.physics)
-        else:
-            self._kernel, self._kernel_env = None, ()
-        self._scatter = np.concatenate([self._idx[k].ravel() for k in ("rr", "rT", "Tr", "TT", "mass")]) \
-            + BAND * (self.n - 1)
+        self._kernel = importlib.import_module("fem_tether.tether.fe.kernel")
+        self._kernel_env = importlib.import_module("fem_tether.physics.environment_kernel").tables(self.physics)
         self._set_lengths()
 
     def _set_lengths(self):
@@ -134,11 +120,9 @@ class TetherSystem:
         self.kept = KeptFactors(self.n)
         sp = self.spaces
         self.load_weights = self._load_weights()
-        self._interior_weights = (self.load_weights * self._interior_ab)[:, :, None, None, None]
         self.mass_kg = sp.mass_kg.copy()
         if self.free_end:
             self.mass_kg[-1] += self.end_mass_kg
-        self._interior_mass = (self.mass_kg * self.interior)[:, None] * np.ones(3)
         self._h_mean = sp.h_m.mean()
 
     @property
@@ -153,8 +137,7 @@ class TetherSystem:
         other.physics = physics
         other.weight = physics.weight_N_m
         other.kept = KeptFactors(self.n)
-        if self.compiled:
-            other._kernel_env = importlib.import_module("fem_tether.physics.environment_kernel").tables(physics)
+        other._kernel_env = importlib.import_module("fem_tether.physics.environment_kernel").tables(physics)
         return other
 
     def with_spaces(self, spaces: TetherSpaces) -> "TetherSystem":
@@ -187,31 +170,28 @@ class TetherSystem:
         return ((BAND + rows - cols) * m + cols).ravel()
 
     def _band_indices(self):
+        """Flat indices into the band (``gbsv`` storage, as raveled) of the
+        entries :meth:`_saddle` fills: node rows x T columns, T rows x node
+        columns and the nodes' diagonal."""
         n_el = self.spaces.n_elements
         e = np.arange(n_el)
         k = np.arange(3)
         node = np.stack([e, e + 1], axis=1)                          # (n_el, 2)
-        # node-node blocks (e, a, b, i, j)
-        rows = 4 * node[:, :, None, None, None] + k[None, None, None, :, None]
-        cols = 4 * node[:, None, :, None, None] + k[None, None, None, None, :]
-        rows, cols = np.broadcast_arrays(rows, cols)
         # node rows x T column (e, a, i) and T row x node columns (e, b, j)
         r_nt = 4 * node[:, :, None] + k
         c_nt = np.broadcast_to((4 * e + 3)[:, None, None], r_nt.shape)
         diag_nodes = 4 * np.arange(n_el + 1)[:, None] + k          # (n_nodes, 3)
-        diag_t = 4 * e + 3
         return {
-            "rr": self._flat(rows, cols),
             "rT": self._flat(r_nt, c_nt),
             "Tr": self._flat(c_nt, r_nt),
-            "TT": self._flat(diag_t, diag_t),
             "mass": self._flat(diag_nodes, diag_nodes),
         }
 
     # --- equations --------------------------------------------------------
     def evaluate(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
                  force_ref_N, c_a=0.0, c_v=0.0, jacobian=True, reel_mps=0.0) -> Evaluation:
-        """Scaled residual (and banded Jacobian) at positions r, velocities v.
+        """Scaled residual (and banded Jacobian) at positions r, velocities v,
+        by :func:`.kernel.evaluate` in one call.
 
         ``c_a = dqdd/dr`` and ``c_v = dv/dr`` come from the time integrator
         (both 0 for a static solve with frozen velocities).  ``reel_mps`` is the
@@ -219,44 +199,20 @@ class TetherSystem:
         at the origin, with the material velocity V_L tau_0.  The operators act
         element by element: ``(D r)_e = r_{e+1} - r_e``, ``D^T`` gives node i
         ``y_{i-1} - y_i`` and ``Q`` gives it ``Q_{i,i-1} f_{i-1} + Q_{i,i} f_i``.
+        Raises :class:`~fem_tether.physics.atmosphere.AltitudeError` where a
+        midpoint is above the ISA troposphere.
         """
-        if self.compiled:
-            return self._evaluate_compiled(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
-                                           force_ref_N, c_a, c_v, jacobian, reel_mps)
-        ph = self.physics
         k_s = self.row_scale(force_ref_N)
-        dr = r[1:] - r[:-1]
-        length = np.sqrt(np.add.reduce(dr * dr, axis=1))
-        tau = dr / length[:, None]
-        if reel_mps:
-            v = v.copy()
-            v[0] = reel_mps * tau[0]
-        r_mid = 0.5 * (r[1:] + r[:-1])
-        v_mid = 0.5 * (v[1:] + v[:-1])
-        z = r_mid[:, 2]
-        v_rel = ph.wind.velocity_mps(z) - v_mid
-        air = ph.air.state(z, gradients=jacobian)
-        load = crossflow_drag(v_rel, tau, air.density_kg_m3, air.viscosity_Pa_s,
-                              ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
-        res = np.empty(self.n)
-        node_res = res.reshape(-1, 4)[:, :3]
-        internal = self._nodal_difference(T[:, None] * tau)
-        line_load = self._nodal_load(load.force + self.weight)
-        np.subtract(self.mass_kg[:, None] * qdd + internal, line_load, out=node_res)
-        node_res *= self.interior[:, None]
-        node_res[0] = k_s * r[0]
-        if not self.free_end:
-            node_res[-1] = k_s * (r[-1] - R * kite_dir)
-        dv = v[1:] - v[:-1] if ph.damping_time_s else None
-        constraint = length - self.spaces.h_m * (1.0 + ph.compliance_per_N * T)
-        if dv is not None:
-            constraint = constraint + ph.damping_time_s * np.einsum("ij,ij->i", tau, dv)
-        res[3:-1:4] = k_s * constraint
-        res[-1] = (T[0] - ground_tension_N) if self.tension_mode else k_s * (R - radius_m)
-        out = Evaluation(res, k_s, tau, length, r_mid, load)
+        outputs = self._outputs()
+        band = np.empty((3 * BAND + 1, self.n - 1), order="F")
+        above = self._kernel.evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v,
+                                      float(reel_mps), jacobian, *self._line_constants(), *outputs, band)
+        if above >= 0:
+            raise AltitudeError(float(np.max(outputs[3][:, 2])))
+        out = self._evaluation(k_s, outputs)
         if jacobian:
-            out.band, out.r_col = self._jacobian(T, tau, length, dv, z, air, load, k_s, c_a, c_v,
-                                                 kite_dir, reel_mps)
+            out.band = band
+            out.r_col = self.r_column(kite_dir, k_s)
         return out
 
     def row_scale(self, force_ref_N: float) -> float:
@@ -302,22 +258,6 @@ class TetherSystem:
         res, tau, length, r_mid, force, vn, vn_mps, re, cd = outputs
         return Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
 
-    def _evaluate_compiled(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
-                           force_ref_N, c_a, c_v, jacobian, reel_mps) -> Evaluation:
-        """:meth:`evaluate` by :func:`.kernel.evaluate`, in one call."""
-        k_s = self.row_scale(force_ref_N)
-        outputs = self._outputs()
-        band = np.empty((3 * BAND + 1, self.n - 1), order="F")
-        above = self._kernel.evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v,
-                                      float(reel_mps), jacobian, *self._line_constants(), *outputs, band)
-        if above >= 0:
-            raise AltitudeError(float(np.max(outputs[3][:, 2])))
-        out = self._evaluation(k_s, outputs)
-        if jacobian:
-            out.band = band
-            out.r_col = self.r_column(kite_dir, k_s)
-        return out
-
     def solve_step(self, q, v, a, qdd, T, R, dt_s, scheme, kite_dir, ground_tension_N, radius_m,
                    force_ref_N, reel_mps, newton_tol, max_newton, stats):
         """One time step of size ``dt_s`` from the kinematics ``(q, v, a, qdd)``
@@ -327,8 +267,9 @@ class TetherSystem:
 
         Returns ``(r, T, R, v, a, qdd, evaluation)`` at the solution (the
         evaluation with its series values, :func:`.kernel.line_series`); raises
-        :class:`~fem_tether.tether.continuation.NotConverged` as the NumPy iteration
-        does (with the altitude when an iterate left the atmosphere).  The
+        :class:`~fem_tether.tether.continuation.NotConverged` as the free kite's
+        iteration (:func:`fem_tether.tether.fe.solver._step`) does (with the
+        altitude when an iterate left the atmosphere).  The
         iterations are added to ``stats.newton_iterations``."""
         r_new = np.empty_like(q)
         v_new, a_new, qdd_new = np.empty_like(v), np.empty_like(v), np.empty_like(v)
@@ -353,67 +294,6 @@ class TetherSystem:
             raise NotConverged(float(info[1]),
                                left_atmosphere(AltitudeError(float(np.max(outputs[3][:, 2])))))
         raise NotConverged(float(info[1]))
-
-    @staticmethod
-    def _nodal_difference(y):
-        """``D^T y``: node i gets ``y_{i-1} - y_i`` (the missing neighbour counts 0)."""
-        out = np.zeros((y.shape[0] + 1, 3))
-        out[:-1] -= y
-        out[1:] += y
-        return out
-
-    def _nodal_load(self, f):
-        """``Q f``: node i gets ``Q_{i,i-1} f_{i-1} + Q_{i,i} f_i``."""
-        w = self.load_weights
-        out = np.zeros((f.shape[0] + 1, 3))
-        out[:-1] = w[:, 0, None] * f
-        out[1:] += w[:, 1, None] * f
-        return out
-
-    def _jacobian(self, T, tau, length, dv, z, air, load, k_s, c_a, c_v, kite_dir, reel_mps=0.0):
-        """Banded Jacobian in LAPACK ``gbsv`` storage and the R column.
-
-        Element e with nodes a, b (sgn = -1, +1) and Q's weights w_a puts on
-        node a's rows, column of node b, ``sgn_a sgn_b K_geo - w_a (sgn_b F_tau + F_mid)``,
-        only where node a is interior; its constraint row is ``k_s sgn_b c_e^T``
-        (c_e = tau_e plus Kelvin-Voigt terms) and node a's column of T_e is ``sgn_a tau_e``.
-        """
-        ph = self.physics
-        proj = _EYE - tau[:, :, None] * tau[:, None, :]
-        # geometric stiffness of D^T (T tau): sgn_a sgn_b T/|dr| (I - tau tau^T)
-        k_geo = (T / length)[:, None, None] * proj
-        # drag f_e(r_a, r_b, v_a, v_b): df/dr_b = df/dtau P/|dr| sgn_b + 1/2 df/dz_mid,
-        # df/dv_b = -1/2 df/dV_rel; altitude enters through wind(z), rho(z), mu(z)
-        df_dz = load.d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + load.d_drho * air.density_gradient_kg_m4[:, None] \
-            + load.d_dmu * air.viscosity_gradient_Pa_s_m[:, None]
-        d_tau = load.d_dtau @ proj / length[:, None, None]
-        d_mid = -0.5 * c_v * load.d_dvrel
-        d_mid[:, :, 2] += 0.5 * df_dz
-        w = self._interior_weights
-        block = self._sgn_ab * k_geo[:, None, None] \
-            - w * (_SGN_B * d_tau[:, None, None] + d_mid[:, None, None])
-        if reel_mps:   # element 0's midpoint velocity is 1/2 (V_L tau_0 + v_1), not 1/2 (v_0 + v_1)
-            turn = (0.5 * reel_mps / length[0]) * (load.d_dvrel[0] @ proj[0])
-            block[0] += (_SGN_B[0] * w[0]) * turn
-            block[0, :, 0] -= w[0, :, 0] * (0.5 * c_v) * load.d_dvrel[0]
-        rT = self._sgn_a * tau[:, None, :]
-        # constraint rows: d|dr|/dr_b = sgn_b tau, plus Kelvin-Voigt terms
-        c_row = tau
-        if dv is not None:
-            c_row = c_row + ph.damping_time_s * (np.einsum("nij,nj->ni", proj, dv) / length[:, None]
-                                                 + c_v * tau)
-        Tr = k_s * _SGN[None, :, None] * c_row[:, None, :]
-        TT = (-k_s * ph.compliance_per_N) * self.spaces.h_m
-        mass = c_a * self._interior_mass
-        mass[self.interior == 0.0] = k_s
-        m = self.n - 1
-        band = np.bincount(
-            self._scatter,
-            weights=np.concatenate([block.ravel(), rT.ravel(), Tr.ravel(), TT, mass.ravel()]),
-            minlength=(3 * BAND + 1) * m,
-        ).reshape(3 * BAND + 1, m)
-        return band, self.r_column(kite_dir, k_s)
 
     def consistent_start(self, r, v_guess, T, R, kite, ground_tension_N, reel_mps=0.0,
                          free_radius=False, end_force=None):
@@ -514,35 +394,23 @@ class TetherSystem:
         assert ev.band is not None and ev.r_col is not None, \
             "factorize needs an evaluation with the Jacobian, not yet factorised"
         band, ev.band = ev.band, None
-        if self.compiled:
-            ipiv, z = np.empty(self.n - 1, np.int64), np.empty(self.n - 1)
-            if not self._kernel.factorize(band, ev.r_col, ipiv, z):
-                raise np.linalg.LinAlgError("singular matrix")
-            return Factors(band, ipiv, z, self.tension_mode, ev.k_s, self._kernel)
-        lu, ipiv, info = dgbtrf(band, BAND, BAND, overwrite_ab=1)
-        if info > 0:
+        ipiv, z = np.empty(self.n - 1, np.int64), np.empty(self.n - 1)
+        if not self._kernel.factorize(band, ev.r_col, ipiv, z):
             raise np.linalg.LinAlgError("singular matrix")
-        z, _ = dgbtrs(lu, BAND, BAND, ev.r_col, ipiv)
-        return Factors(lu, ipiv, z, self.tension_mode, ev.k_s)
+        return Factors(band, ipiv, z, self.tension_mode, ev.k_s, self._kernel)
 
     def newton_step(self, ev: Evaluation) -> np.ndarray:
         """Solve J dx = -residual with the evaluation's own Jacobian
         (:meth:`factorize`, then :meth:`Factors.step`)."""
         return self.factorize(ev).step(ev.residual)
 
-    def full_newton_step(self, ev: Evaluation) -> np.ndarray:
-        """Solve J dx = -residual with the whole Jacobian, the R row and column
-        included, by a sparse LU (the static start's step; :meth:`newton_step`
-        eliminates R by bordering instead).
-
-        Why: bordering factorises J0, the Jacobian with R held, and J0 of a
-        straight inextensible line between fixed ends is singular (it carries
-        any tension); J, with the winch row T_0 = T_ground, is not.  Measured
-        on a 1 N line of 1000 m held at 1e6 N (8 elements): cond J0 = 1.8e17,
-        cond J = 2.6e5, where the catenary's sag is below round-off and the
-        guess is the straight line.  Raises ``LinAlgError`` on a singular J.
-        """
-        assert ev.r_col is not None, "full_newton_step needs an evaluation with the Jacobian"
+    def jacobian_matrix(self, ev: Evaluation) -> sparse.csc_matrix:
+        """The whole Jacobian J of an evaluation, as a sparse matrix: its band
+        (``J0``), the R column and the R row (tension mode: ``dT_0``, the winch
+        row T_0 = T_ground; otherwise ``k dR``, R prescribed or, for a free end,
+        held)."""
+        assert ev.band is not None and ev.r_col is not None, \
+            "jacobian_matrix needs an evaluation with the Jacobian, not yet factorised"
         m = self.n - 1
         ab = ev.ab
         diagonals = [ab[BAND + k, :m - k] if k >= 0 else ab[BAND + k, -k:] for k in range(-BAND, BAND + 1)]
@@ -552,9 +420,22 @@ class TetherSystem:
             row[0, 3] = 1.0
         else:
             row[0, -1] = ev.k_s
-        jac = sparse.bmat([[j0, ev.r_col[:, None]], [row[:, :-1], row[:, -1:]]], format="csc")
+        return sparse.bmat([[j0, ev.r_col[:, None]], [row[:, :-1], row[:, -1:]]], format="csc")
+
+    def full_newton_step(self, ev: Evaluation) -> np.ndarray:
+        """Solve J dx = -residual with the whole Jacobian (:meth:`jacobian_matrix`),
+        the R row and column included, by a sparse LU (the static start's step; :meth:`newton_step`
+        eliminates R by bordering instead).
+
+        Why: bordering factorises J0, the Jacobian with R held, and J0 of a
+        straight inextensible line between fixed ends is singular (it carries
+        any tension); J, with the winch row T_0 = T_ground, is not.  Measured
+        on a 1 N line of 1000 m held at 1e6 N (8 elements): cond J0 = 1.8e17,
+        cond J = 2.6e5, where the catenary's sag is below round-off and the
+        guess is the straight line.  Raises ``LinAlgError`` on a singular J.
+        """
         try:
-            return splu(jac).solve(-ev.residual)
+            return splu(self.jacobian_matrix(ev)).solve(-ev.residual)
         except RuntimeError as exc:          # SuperLU: "Factor is exactly singular"
             raise np.linalg.LinAlgError(str(exc)) from None
 
@@ -565,8 +446,8 @@ class KeptFactors:
     Jacobian.  The next step reuses them only when all four are the same (it
     then starts with a chord step, :func:`fem_tether.tether.fe.solver._step` and
     :func:`.kernel.solve_step`); the system's mesh and physics are fixed for
-    one object.  The compiled steps keep theirs in ``band``, ``ipiv``, ``z``
-    (allocated once), the NumPy steps a :class:`Factors` in ``factors``."""
+    one object.  The whole-step kernel keeps its in ``band``, ``ipiv``, ``z``
+    (allocated once), a free kite's Newton iteration a :class:`Factors` in ``factors``."""
 
     def __init__(self, n: int):
         self.band = np.empty((3 * BAND + 1, n - 1), order="F")
@@ -590,34 +471,24 @@ class Factors:
     :meth:`step` solves ``J dx = -residual`` bordered with the R row and column:
     with ``J0 y = -residual[:-1]``, ``dx = y - z dR``, the last equation being
     ``T_0 = T_ground`` (tension mode: ``dT_0 = 0``, row e_3 with no R entry) or
-    ``R = R_prescribed`` (``k dR = -residual[-1]``).  By LAPACK (``dgbtrf``,
-    ``dgbtrs``) or, with ``kernel``, by its compiled twin."""
+    ``R = R_prescribed`` (``k dR = -residual[-1]``).  By the ``kernel``'s
+    band solves (:func:`.kernel.band_solve`, :func:`.kernel.bordered_step`)."""
 
     lu: np.ndarray
     ipiv: np.ndarray
     z: np.ndarray
     tension_mode: bool
     k_s: float
-    kernel: Any = None
+    kernel: Any                       # the module fem_tether.tether.fe.kernel
 
     def for_column(self, r_col: np.ndarray) -> "Factors":
         """These factors with ``z = J0^-1 r_col`` for another R column (the next
         step's kite direction)."""
-        z = np.empty(r_col.size)
-        if self.kernel is not None:
-            z[:] = r_col
-            self.kernel.band_solve(self.lu, self.ipiv, z)
-        else:
-            z, _ = dgbtrs(self.lu, BAND, BAND, r_col, self.ipiv)
+        z = r_col.copy()
+        self.kernel.band_solve(self.lu, self.ipiv, z)
         return Factors(self.lu, self.ipiv, z, self.tension_mode, self.k_s, self.kernel)
 
     def step(self, residual: np.ndarray) -> np.ndarray:
         dx = np.empty(residual.size)
-        if self.kernel is not None:
-            self.kernel.bordered_step(self.lu, self.ipiv, self.z, residual, self.tension_mode, self.k_s, dx)
-            return dx
-        y, _ = dgbtrs(self.lu, BAND, BAND, -residual[:-1], self.ipiv)
-        dR = (-residual[-1] - y[3]) / (-self.z[3]) if self.tension_mode else -residual[-1] / self.k_s
-        dx[:-1] = y - self.z * dR
-        dx[-1] = dR
+        self.kernel.bordered_step(self.lu, self.ipiv, self.z, residual, self.tension_mode, self.k_s, dx)
         return dx
