@@ -30,8 +30,8 @@ from fem_tether.physics.orbit import Circle
 from fem_tether.physics.trajectory import FigureEight
 
 from fem_tether.config import rules
-from fem_tether.config.sections import (FD, FE, MOVED, REDEFINED, Air, Crosscheck, Cycle, Drag, Kite, Output,
-                                        Resource, System, Tether, Time, Unified, Wind, Winch)
+from fem_tether.config.sections import (FD, FE, MOVED, REDEFINED, RETIRED, Air, Crosscheck, Cycle, Drag, Kite,
+                                        Output, Resource, System, Tether, Time, Unified, Wind, Winch)
 from fem_tether.config.tomlio import read_toml, resolve_paths, section_toml
 
 #: The kite paths by the name ``[kite] path`` takes.
@@ -69,10 +69,13 @@ class Config:
     @classmethod
     def from_stored(cls, text: str) -> Config:
         """The configuration stored in a result file (its ``config_toml``), with
-        keys an earlier version kept elsewhere moved to where they are now."""
+        keys an earlier version kept elsewhere moved to where they are now and
+        the keys it had that are gone (:data:`RETIRED`) dropped."""
         data: dict[str, dict[str, Any]] = {}
         for section, values in tomllib.loads(text).items():
             for key, value in values.items():
+                if (section, key) in RETIRED:
+                    continue
                 new_section, new_key = MOVED.get((section, key), (section, key))
                 data.setdefault(new_section, {})[new_key] = value
         return cls.from_dict(_redefined(data))
@@ -91,6 +94,8 @@ class Config:
                     raise ConfigError("[{}] {}: now [{}] {}".format(name, key, *MOVED[name, key]))
                 if (name, key) in REDEFINED:
                     raise ConfigError(f"[{name}] {key}: {REDEFINED[name, key]}")
+                if (name, key) in RETIRED:
+                    raise ConfigError(f"[{name}] {key} {RETIRED[name, key]}")
             changed[name] = getattr(self, name).replace(**values)
         return dataclasses.replace(self, **changed)
 

@@ -41,10 +41,11 @@ KERNEL_MODULES = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.
 
 
 def load_kernels(cfg: Config, solvers) -> None:
-    """Import the compiled kernels of those ``solvers`` whose section of ``cfg``
-    asks for them (``kernel = "compiled"``): compiled now, or loaded from the cache."""
+    """Import the compiled kernels of ``solvers``: compiled now, or loaded from the
+    cache (the FD solver's always, its equations are only the kernel; the FE
+    solver's where ``[fe] kernel = "compiled"``)."""
     for solver in solvers:
-        if getattr(cfg, solver).kernel == "compiled":
+        if getattr(getattr(cfg, solver), "kernel", "compiled") == "compiled":
             importlib.import_module(KERNEL_MODULES[solver])
 
 
