@@ -385,9 +385,6 @@ class FD(Section):
     scheme: str = setting("bdf2", "-", "FD time scheme: 'bdf2' or 'euler' (the seed's)", one_of("bdf2", "euler"))
     dt_s: float = setting(0.025, "s", "FD time step (BDF2's error constant is larger than generalized-alpha's)",
                           TIME_STEP_S)
-    kernel: str = setting("compiled", "-", "FD equations evaluated and solved by 'compiled' loops (numba) or "
-                          "by 'numpy' array expressions and LAPACK (the reference; same numbers to ~1e-14)",
-                          one_of("compiled", "numpy"))
 
 
 @dataclass(frozen=True)
@@ -446,6 +443,7 @@ REDEFINED = {
 #: became of them.  A file that sets one is an error saying so; a stored configuration drops it.
 REMOVED = {
     ("fe", "kernel"): "was removed in 0.2: the FE equations are always the compiled kernel",
+    ("fd", "kernel"): "was removed in 0.2: the FD equations are always the compiled kernel",
 }
 
 #: Keys of earlier versions and where they are now: (section, key) -> (section, key).

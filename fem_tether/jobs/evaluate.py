@@ -41,11 +41,10 @@ KERNEL_MODULES = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.
 
 
 def load_kernels(cfg: Config, solvers) -> None:
-    """Import the compiled kernels of ``solvers``: the FE's always, the FD's where
-    ``[fd] kernel = "compiled"``; compiled now, or loaded from the cache."""
+    """Import the compiled kernels of ``solvers`` (their equations are only the
+    kernels): compiled now, or loaded from numba's cache."""
     for solver in solvers:
-        if solver == "fe" or cfg.fd.kernel == "compiled":
-            importlib.import_module(KERNEL_MODULES[solver])
+        importlib.import_module(KERNEL_MODULES[solver])
 
 
 def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):

@@ -137,6 +137,21 @@ def test_the_power_law_speed_is_now_a_weibull_scale():
     assert cfg.wind.boundary_layer_top_m == 0.0 and profile.speed_mps(2000.0) > profile.speed_mps(500.0)
 
 
+def test_the_fd_kernel_key_is_retired(tmp_path):
+    """``[fd] kernel`` chose the NumPy or the compiled FD equations; only the
+    compiled kernel is left: a file or option that sets it is a one-line error
+    saying so, and a stored configuration of an earlier version (which wrote
+    every key) reads without it."""
+    path = tmp_path / "c.toml"
+    path.write_text('[fd]\nkernel = "numpy"\n')
+    message = r"^\[fd\] kernel was removed in 0\.2: the FD equations are always the compiled kernel$"
+    with pytest.raises(ConfigError, match=message):
+        load_config(path)
+    with pytest.raises(ConfigError, match=message):
+        Config().replace(fd={"kernel": "compiled"})
+    assert Config.from_stored('[fd]\nsegments = 40\nkernel = "compiled"\n') == Config().replace(fd={"segments": 40})
+
+
 # issue 25: every numeric control is bounded at load, each bound named in the message
 @pytest.mark.parametrize("overrides, match", [
     ({"time": {"newton_tol": 1e8}}, r"^\[time\] newton_tol = 100000000.0: must be in \[1e-12, 1e-06\]$"),

@@ -43,27 +43,25 @@ def test_independent_of_the_fe_code():
 
 
 # Jacobian --------------------------------------------------------------------------
-@pytest.mark.parametrize("kernel", ["compiled", "numpy"])
 @pytest.mark.parametrize("mode, reel_mps", [("tension", 0.0), ("prescribed", 0.0),
                                            ("tension", 12.0), ("prescribed", -7.0)])
-def test_banded_jacobian_matches_finite_differences(mode, reel_mps, kernel):
+def test_banded_jacobian_matches_finite_differences(mode, reel_mps):
     """Analytic banded Jacobian (drag, wind shear, ISA gradients, Kelvin-Voigt)
     equals central finite differences to 1e-6 of its largest entry; with
     reeling on a non-uniform grid (short winch segment, unequal segments) and
     the line leaving the winch at V_L tau_{1/2} (which enters the damped
     winch segment's strain rate).  Assembled when first read after a residual
-    without the drag's derivatives, it is bitwise the same.  Both kernels
-    (compiled and NumPy)."""
+    without the drag's derivatives, it is bitwise the same."""
     elastic = mode == "prescribed"
     cfg = load_config(overrides={
         "winch": {"mode": mode}, "kite": {"radius_m": 280.0},
         "drag": {"skin_friction_cf": 0.01},
         "tether": {"length_m": 300.0, "elasticity": "elastic" if elastic else "inextensible",
                    "damping_time_s": 0.01 if elastic else 0.0}})
-    model = fd.build_model(cfg.replace(fd={"segments": 6, "kernel": kernel}))
+    model = fd.build_model(cfg.replace(fd={"segments": 6}))
     if reel_mps:
         grid = Grid.from_lengths([13.0, 50.0, 37.0, 50.0, 50.0, 39.0, 61.0], mode == "tension")
-        model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=300.0,
+        model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=300.0,
                         reel_mps=reel_mps)
     g = model.grid
     rng = np.random.default_rng(1)

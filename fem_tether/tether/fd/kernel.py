@@ -1,11 +1,13 @@
 """Compiled kernels of the FD tether equations: residual, banded Jacobian, their solve, a whole step.
 
-The same equations as :meth:`.system.TetherFD.evaluate` (whose NumPy
-implementation is the reference, and the tests hold the two together), written
-as loops over nodes and segments that numba compiles to machine code.  A
-Newton iteration of the NumPy version spends its time in the overhead of
-~100 small array operations; compiled, it costs about as much as a few of
-them.  :func:`evaluate` is one evaluation of the equations: the tangents
+The equations of :mod:`.system`, in their one implementation
+(:class:`.system.TetherFD` evaluates and solves them here), written as loops
+over nodes and segments that numba compiles to machine code: as NumPy array
+expressions a Newton iteration spent its time in the overhead of ~100 small
+array operations; compiled, it costs about as much as a few of them.  The
+tests hold the Jacobian to central differences of the residual, and the
+solver to analytic cases and to the independent FE solver.
+:func:`evaluate` is one evaluation of the equations: the tangents
 (:func:`directions`), the leaf physics at the nodes by its compiled twins
 (air, wind and drag coefficient, :mod:`fem_tether.physics.environment_kernel`; the
 drag's loops, :mod:`fem_tether.physics.loads_kernel`, shared with the FE kernels),
@@ -19,8 +21,8 @@ reference); only the leaf physics is shared.
 
 Notation as in :mod:`.system`: nodes 0..M, segments ``k + 1/2``
 (k = 0..M-1), interior nodes i = 1..M-1.  The Jacobian's entries are computed
-in the layout order of :meth:`.system.Grid.assemble`, which puts them in the
-band (``solve_banded`` storage).
+in the layout order of :meth:`.system.Grid.kernel_layout`, which :func:`assemble`
+puts in the band (``solve_banded`` storage).
 
 Compiled when first imported (one signature per kernel) and cached on disk
 next to this file (numba's ``cache=True``), so only the first run after an
@@ -71,7 +73,7 @@ def jit(*types):
 
 @jit(M, M, V)
 def directions(r, unit, length):
-    """Unit tangents of the line r_0 .. r_M (:class:`.system.Directions`): rows
+    """Unit tangents of the line r_0 .. r_M: rows
     0..M-1 ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k``, rows M..2M the nodal
     tangents, ``(r_{i+1} - r_{i-1}) / |r_{i+1} - r_{i-1}|`` inside and the end
     segments' at the two ends; ``length`` the norms they were divided by."""
@@ -135,9 +137,8 @@ def _stiffness(T, unit, length, k, out):
 def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
              density_gradient, viscosity_gradient, shear, diameter_m, skin_friction_cf, mu,
              compliance_per_N, damping_time_s, c_a, c_v, force_ref_N, hbar, h, values):
-    """The entries of the banded Jacobian of :func:`residual`
-    (:meth:`.system.TetherFD._jacobian`) in the layout order of
-    :meth:`.system.Grid.assemble`, into ``values``.  ``unit`` and ``length`` are
+    """The entries of the banded Jacobian of :func:`residual` in the layout
+    order of :meth:`.system.Grid.kernel_layout` (:func:`assemble`), into ``values``.  ``unit`` and ``length`` are
     the rows of :func:`directions`; the nodal flow and drag coefficient, the
     air and the wind shear are given at every node.
 
@@ -205,7 +206,7 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
 
 @jit(VC, "i8[:]", "i8[:]", "i8[:]", V, VC)
 def assemble(values, put, kite_first, kite_target, kite_dir, flat):
-    """The band of :meth:`.system.Grid.assemble`, flattened, from the entries
+    """The band (:meth:`.system.Grid.band`), flattened, from the entries
     ``values`` in layout order: ``flat[put] = values`` (dropped entries into
     the last element), and in tension mode each row's three entries of the
     kite node ``R e``, from ``kite_first``, summed along e into ``kite_target``."""
@@ -305,7 +306,7 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     """One evaluation of the equations (:meth:`.system.TetherFD.evaluate`) at nodal
     r, v, a (M+1, 3) and tensions T (M,): the scaled residual into ``res`` and,
     ``with_jacobian``, the banded Jacobian (time coefficients ``c_a = da/dr``,
-    ``c_v = dv/dr``) into ``band`` (:meth:`.system.Grid.assemble`'s storage,
+    ``c_v = dv/dr``) into ``band`` (:meth:`.system.Grid.empty_band`: the band
     flattened, with the sink entry after it); the tangents and the drag at every
     node into ``nodal``.  The line leaves the winch node at ``V_L tau_{1/2}``
     (``reel_mps`` = V_L).  The air, wind and C_d(Re) at the nodes come with
@@ -346,7 +347,7 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
 
 @numba.njit(cache=True, error_model="numpy")
 def _predictor(r, v, a, T, R, h):
-    """The unknowns in the full layout (:meth:`.system.Grid.pack`): the interior
+    """The unknowns in the full layout (module docstring of :mod:`.system`): the interior
     nodes predicted at ``r + h v + h^2/2 a``, the tensions T and the kite distance R."""
     n_seg = T.shape[0]
     x = np.empty(4 * n_seg - 2)

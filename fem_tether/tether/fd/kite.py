@@ -33,26 +33,44 @@ and the kite's J_r, J_v, J_d (:class:`fem_tether.tether.free_kite.KiteLoad`)::
     d/dT_{M-1/2}  = tau_{M-1/2}
 
 ``df_M/dr_M`` is the drag's derivative through v_M and the altitude
-(:meth:`.system.TetherFD.drag_derivative`).  The line's rows come from
-:meth:`.system.TetherFD.evaluate` (NumPy or compiled) on the free grid
-(:attr:`.system.Grid.free_end`), in whose band these rows are put
-(:meth:`.system.Grid.put_end_rows`).
+(:func:`_end_drag_derivatives`).  The line's rows, and the drag f_M in the
+kite's, come from the compiled kernel (:meth:`.system.TetherFD.evaluate`) on
+the free grid (:attr:`.system.Grid.free_end`), in whose band these rows are
+put (:meth:`.system.Grid.put_end_rows`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from fem_tether.tether.fd.system import Evaluation, TetherFD
+from fem_tether.physics.loads import crossflow_drag
+from fem_tether.tether.fd.system import NO_DIRECTION, Evaluation, TetherFD
 from fem_tether.tether.free_kite import FreeKite
 
 _EYE = np.eye(3)
-_NO_DIRECTION = np.zeros(3)     # a free grid has no kinematic end to direct
 
 
 def end_mass_kg(eq: TetherFD, kite: FreeKite) -> float:
     """m_k + m_M: the kite's mass and the last half segment's line mass."""
     return kite.kite.mass_kg + eq.physics.linear_density_kg_m * 0.5 * eq.grid.h[-1]
+
+
+def _end_drag_derivatives(physics, r_end, v_end, tau, c_v):
+    """The end node's drag f_M (one-sided tangent ``tau``, the line's ``physics``,
+    a :class:`~fem_tether.tether.line.TetherPhysics`) differentiated: in r_M
+    through the velocity v_M = c_v r_M + .. and the altitude,
+    ``df/dr_M = -c_v df/dV_rel + (df/dV_rel e_x V_w'(z) + df/drho rho'(z) + df/dmu mu_air'(z)) e_z^T``,
+    and in ``tau`` (3, 3 each); by :func:`fem_tether.physics.loads.crossflow_drag`."""
+    z = r_end[2:3]
+    air = physics.air.state(z, gradients=True)
+    drag = crossflow_drag(physics.wind.velocity_mps(z) - v_end[None, :], tau[None, :], air.density_kg_m3,
+                          air.viscosity_Pa_s, physics.diameter_m, physics.drag, physics.skin_friction_cf,
+                          jacobian=True)
+    d_dvrel = drag.d_dvrel[0]
+    df_dr = -c_v * d_dvrel
+    df_dr[:, 2] += (d_dvrel[:, 0] * physics.wind.shear_per_s(z)[0] + drag.d_drho[0] * air.density_gradient_kg_m4[0]
+                    + drag.d_dmu[0] * air.viscosity_gradient_Pa_s_m[0])
+    return df_dr, drag.d_dtau[0]
 
 
 def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_ref_N: float,
@@ -62,7 +80,7 @@ def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_re
     equations (:meth:`TetherFD.evaluate`, same arguments) and the kite's rows
     of the module docstring, ``roll_rad`` the roll ψ held over the step."""
     g, ph = eq.grid, eq.physics
-    line = eq.evaluate(r, v, a, T, _NO_DIRECTION, force_ref_N, c_a, c_v, jacobian=jacobian, reel_mps=reel_mps)
+    line = eq.evaluate(r, v, a, T, NO_DIRECTION, force_ref_N, c_a, c_v, jacobian=jacobian, reel_mps=reel_mps)
     d = r[-1] - r[-2]
     tau = d / line.length_m[-1]
     load = kite.load(r[-1], v[-1], d, roll_rad)
@@ -77,12 +95,9 @@ def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_re
         ell = line.length_m[-1]
         proj = _EYE - np.outer(tau, tau)
         stiffness = (T[-1] / ell) * proj
-        z = r[-1:, 2]
-        air = ph.air.state(z, gradients=True)
-        drag = eq.nodal_drag(r[-1:], v[-1:], tau[None, :], air, jacobian=True)
-        d_tangent = drag.d_dtau[0] @ proj / ell
-        d_end = (mass * c_a * _EYE + stiffness - half * (eq.drag_derivative(z, drag, air, slice(None), c_v)[0]
-                                                         + d_tangent)
+        df_dr, df_dtau = _end_drag_derivatives(ph, r[-1], v[-1], tau, c_v)
+        d_tangent = df_dtau @ proj / ell
+        d_end = (mass * c_a * _EYE + stiffness - half * (df_dr + d_tangent)
                  - (load.d_position + c_v * load.d_velocity + load.d_tether))
         d_before = -stiffness + half * d_tangent + load.d_tether
         g.put_end_rows(ab, d_end / force_ref_N, d_before / force_ref_N, tau / force_ref_N)

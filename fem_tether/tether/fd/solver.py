@@ -46,10 +46,10 @@ the path at the kite's start speed, then each step solves line and kite
 together (:func:`_free_step`: 4M unknowns, T_{1/2} among them), the roll of
 the steering's sample at the step's start held over it.
 
-Configuration: ``[fd] segments``, ``[fd] scheme`` ("bdf2" or "euler") and
-``[fd] kernel`` ("compiled" or "numpy", :class:`~.system.TetherFD`);
-reeling uses ``[winch]`` and the segment bounds ``[winch] min_element_m`` and
-``[winch] max_element_m``.
+Configuration: ``[fd] segments`` and ``[fd] scheme`` ("bdf2" or "euler");
+the equations are evaluated and solved by the compiled kernel
+(:class:`~.system.TetherFD`, :mod:`.kernel`).  Reeling uses ``[winch]`` and
+the segment bounds ``[winch] min_element_m`` and ``[winch] max_element_m``.
 """
 
 from __future__ import annotations
@@ -116,7 +116,7 @@ def _switched(physics: TetherPhysics, gravity: bool, drag: bool) -> TetherPhysic
 
 def build_model(cfg: Config, end: EndMotion | None = None, gravity=True, drag=True,
                 physics: TetherPhysics | None = None) -> FDModel:
-    """FD model of the configured case (``[fd] segments``, ``scheme`` and ``kernel``).
+    """FD model of the configured case (``[fd] segments`` and ``scheme``).
 
     ``end`` overrides the configured path (e.g. ``trajectory.Stationary``);
     ``gravity=False`` / ``drag=False`` switch those loads off (the mass stays).
@@ -132,15 +132,13 @@ def build_model(cfg: Config, end: EndMotion | None = None, gravity=True, drag=Tr
     if kite is not None and end is None:
         case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
     grid = Grid(case["length_m"], segments, case["tension_mode"], free_end=kite is not None)
-    return FDModel(eq=TetherFD(grid, physics, cfg.fd.kernel == "compiled"), scheme=cfg.fd.scheme, kite=kite,
-                   **case)
+    return FDModel(eq=TetherFD(grid, physics), scheme=cfg.fd.scheme, kite=kite, **case)
 
 
 def _moved_end(model: FDModel) -> FDModel:
     """A free-kite model with its end moved along ``model.end`` instead (the static start's)."""
     eq = model.eq
-    return replace(model, eq=TetherFD(Grid.from_lengths(eq.grid.h, model.tension_mode), eq.physics, eq.compiled),
-                   kite=None)
+    return replace(model, eq=TetherFD(Grid.from_lengths(eq.grid.h, model.tension_mode), eq.physics), kite=None)
 
 
 def _sampled(model: FDModel, state: State, parameter_s: float) -> Steer:
@@ -286,7 +284,7 @@ def static_equilibrium(model: FDModel, t=0.0, max_iter=40, guess=None) -> State:
     zero = np.zeros_like(r)
 
     def solve(load_factor, x):
-        eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor), model.eq.compiled)
+        eq = TetherFD(g, with_load_factor(model.eq.physics, load_factor))
         f_ref = model.force_ref_N(x[1], model.eq.physics)
 
         def evaluate(r_int, T, R, jacobian=True):
@@ -343,63 +341,30 @@ def _rates(r, cur: State, a0: float, history):
 
 def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
     """One implicit step of size h after ``cur`` (``prev``: the BDF2 history) solved by
-    Newton (iterations counted in ``stats``); raises :class:`NotConverged`.  The
-    compiled line runs the whole iteration in one kernel call
-    (:meth:`TetherFD.solve_step`), the NumPy line the loop below."""
+    Newton in one kernel call (:meth:`TetherFD.solve_step`; iterations counted
+    in ``stats``); raises :class:`NotConverged`."""
     t_new = cur.t + h
     e = model.end.direction_at(t_new)
     a0, a2 = _coefficients(model, prev, cur, h)
     f_ref = model.force_ref_N(cur.T, model.eq.physics)
-    if model.eq.compiled:
-        history = (prev.r, prev.v) if a2 and prev is not None else (cur.r, cur.v)
-        r, v, acc, T, R, drag, iterations, failure = model.eq.solve_step(
-            (cur.r, cur.v, cur.a, cur.T, float(cur.R)), history, e, h, a0, a2, f_ref, model.reel_mps,
-            model.newton_tol, model.max_newton)
-        stats.newton_iterations += iterations
-        if failure is not None:
-            raise failure
-        return State(t_new, r, v, acc, T, float(R), drag)
-    g = model.grid
-    # the unknowns in one vector of the full layout (views r_int, T, R into it);
-    # the Newton update adds to its active part in place
-    x = g.pack((cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:-1], cur.T, cur.R)
-    r_int, T, _ = g.split(x)
-    active = g.active(x)
-    history = _history(prev, cur, a2)
-    r = np.zeros_like(cur.r)         # r_0 = 0 (the winch)
-
-    worst = last = math.inf            # last: the residual before worst
-    for _ in range(model.max_newton):
-        R = x[-1]
-        r[1:-1] = r_int
-        r[-1] = R * e
-        v, acc = _rates(r, cur, a0, history)
-        try:
-            ev = model.eq.evaluate(r, v, acc, T, e, f_ref, c_a=a0 * a0, c_v=a0,
-                                   jacobian=not expect_converged(worst, last, model.newton_tol),
-                                   reel_mps=model.reel_mps)
-        except AltitudeError as exc:     # an iterate left the atmosphere's range: not converging
-            raise NotConverged(worst, left_atmosphere(exc)) from None
-        stats.newton_iterations += 1
-        worst, last = float(np.abs(ev.residual).max()), worst
-        if not math.isfinite(worst):
-            break
-        if worst <= model.newton_tol:
-            return State(t_new, r, v, acc, T.copy(), float(R), ev.drag)
-        try:
-            active -= model.eq.solve(ev.ab, ev.residual)
-        except np.linalg.LinAlgError:
-            break
-    raise NotConverged(worst)
+    history = (prev.r, prev.v) if a2 and prev is not None else (cur.r, cur.v)
+    r, v, acc, T, R, drag, iterations, failure = model.eq.solve_step(
+        (cur.r, cur.v, cur.a, cur.T, float(cur.R)), history, e, h, a0, a2, f_ref, model.reel_mps,
+        model.newton_tol, model.max_newton)
+    stats.newton_iterations += iterations
+    if failure is not None:
+        raise failure
+    return State(t_new, r, v, acc, T, float(R), drag)
 
 
 def _free_step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
     """One implicit step of size h of the line with the kite at its free end
     (:mod:`.kite`), the roll of ``cur``'s steering sample held over it; then
     the steering's sample of the new state.  Newton on all 4M unknowns in
-    Python, each iterate evaluated by the line's kernel (compiled or NumPy)
-    and the kite's rows; the Jacobian is skipped where the iterate is expected
-    to converge, as in :func:`_step`.  Raises :class:`NotConverged`."""
+    Python, each iterate evaluated by the line's kernel and the kite's rows
+    (:func:`.kite.evaluate`); the Jacobian is skipped where the iterate is
+    expected to converge, as in the kernel's step (:func:`_step`).  Raises
+    :class:`NotConverged`."""
     kite = model.kite
     assert kite is not None and cur.steer is not None
     t_new = cur.t + h
@@ -536,7 +501,7 @@ def reeled(model: FDModel, prev: State | None, state: State, length_m: float, re
         sigma = state.steer.parameter_s     # NaN after a depowered sample: any phase, the next search is global
         path = kite.steering.path.at_length(length_m, sigma if math.isfinite(sigma) else 0.0)
         kite = replace(kite, steering=replace(kite.steering, path=path))
-    model = replace(model, eq=TetherFD(grid, model.eq.physics, model.eq.compiled), length_m=length_m,
+    model = replace(model, eq=TetherFD(grid, model.eq.physics), length_m=length_m,
                     reel_mps=reel_mps, end=end_at_length(model.end, length_m, state.t), kite=kite)
     if restart:
         end_mass = 0.0 if kite is None else kite_end.end_mass_kg(model.eq, kite)

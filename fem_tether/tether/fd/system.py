@@ -50,44 +50,14 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.linalg import lapack
 
 from fem_tether.physics.atmosphere import AltitudeError
 from fem_tether.tether.continuation import NotConverged
 from fem_tether.core.errors import left_atmosphere
-from fem_tether.physics.loads import crossflow_drag
 from fem_tether.tether.line import TetherPhysics
 
 _EYE = np.eye(3)
-
-
-def _unit(d):
-    n = np.sqrt(np.einsum("ij,ij->i", d, d))
-    return d / n[:, None], n
-
-
-def _outer(a, b):
-    return np.einsum("ni,nj->nij", a, b)
-
-
-class Directions:
-    """Unit tangents of the line r_0 .. r_M, normalised in one go: of the segments,
-    ``tau_{k+1/2} = (r_{k+1} - r_k) / l_k`` (``tau``, ``ell``: (M,)), and at the
-    nodes 0..M, central inside and one-sided at the ends, with the lengths they
-    were normalised by (``tangent``, ``tangent_len``: (M+1,)); ``unit`` holds
-    both, the segments' rows first."""
-
-    def __init__(self, r):
-        M = r.shape[0] - 1
-        d = np.empty((2 * M + 1, 3))
-        np.subtract(r[1:], r[:-1], out=d[:M])
-        np.subtract(r[2:], r[:-2], out=d[M + 1: 2 * M])
-        d[M] = d[0]
-        d[2 * M] = d[M - 1]
-        self.unit, length = _unit(d)
-        self.tau, self.ell = self.unit[:M], length[:M]
-        self.length = length
-        self.tangent, self.tangent_len = self.unit[M:], length[M:]
+NO_DIRECTION = np.zeros(3)     # e(t) for evaluations that do not use it (a free end; no Jacobian)
 
 
 @dataclass
@@ -125,7 +95,6 @@ class Grid:
         self.free_end = bool(free_end)
         self.n_full = 4 * M if free_end else 4 * M - 2
         self.n = 4 * M if free_end else 4 * M - 3        # active unknowns = equations
-        self.eye_stack = np.tile(_EYE, (2 * M + 1, 1, 1))    # I, once per row of Directions.unit
         ds = float(length_m) / M
         self._set_lengths(np.full(M, ds), np.linspace(0.0, float(length_m), M + 1))
         self._layout()
@@ -150,23 +119,6 @@ class Grid:
         self.trap_weights[1:-1] = self.hbar
         self.trap_weights[0] = 0.5 * h[0]
         self.trap_weights[-1] = 0.5 * h[-1]
-        # hbar_i of every momentum entry of the Jacobian in layout order, signed as
-        # TetherFD._jacobian's blocks are: r_i +, r_{i+1} -, r_{i-1} -, T_{i+1/2} -,
-        # T_{i-1/2} +; views of it give hbar_i per 3x3 block entry and per vector
-        # component, and 1/h_k per component is stored likewise (full-shape
-        # operands: faster than broadcasting (n, 1) columns)
-        n = self.M - 1
-        self.momentum_weights = np.empty(33 * n)
-        blocks = self.momentum_weights[: 27 * n].reshape(3, n, 9)
-        rows = self.momentum_weights[27 * n:].reshape(2, n, 3)
-        blocks[0] = self.hbar[:, None]
-        blocks[1:] = -blocks[0]
-        rows[1] = self.hbar[:, None]
-        rows[0] = -rows[1]
-        self.hbar_blocks = blocks[0].reshape(n, 3, 3)
-        self.hbar_rows = rows[1]
-        self.inv_h_rows = np.empty((self.M, 3))
-        self.inv_h_rows[:] = (1.0 / h)[:, None]
 
     def with_first_length(self, h0_m: float) -> "Grid":
         """The same grid with the winch segment ``h_0`` changed to ``h0_m`` (the
@@ -253,7 +205,6 @@ class Grid:
         # column (times e(t)); each such group is three consecutive entries
         kite_at = np.flatnonzero(self._kite_entry & keep)
         self._kite_first = kite_at[::3]
-        self._kite_groups = self._kite_first[:, None] + np.arange(3)
         self._kite_target = self._flat[self._kite_first]
         self._put = self._flat.copy()
         self._put[kite_at] = self._dump
@@ -272,20 +223,6 @@ class Grid:
         dT[-1] = full[4 * self.M - 4]
         return body[:, 1:], dT, full[-1]
 
-    def pack(self, r_int, T, R) -> np.ndarray:
-        """The unknowns interior nodes (M-1, 3), tensions (M,) and kite distance
-        R in one vector of the full layout (4M - 2)."""
-        x = np.empty(self.n_full)
-        body = x[: 4 * self.M - 4].reshape(self.M - 1, 4)
-        body[:, 1:] = r_int
-        x[0: 4 * self.M - 3: 4] = T
-        x[-1] = R
-        return x
-
-    def split(self, x):
-        """Views (r_int (M-1, 3), T (M,)) into a full-layout vector, and R."""
-        return x[: 4 * self.M - 4].reshape(self.M - 1, 4)[:, 1:], x[0: 4 * self.M - 3: 4], float(x[-1])
-
     def pack_nodes(self, r_nodes, T) -> np.ndarray:
         """A free end's unknowns (:attr:`free_end`): nodes 1..M (M, 3) and tensions (M,)
         in one vector ``[T_{1/2}, r_1, T_{3/2}, r_2, ..]`` (4M)."""
@@ -300,22 +237,9 @@ class Grid:
         body = x.reshape(self.M, 4)
         return body[:, 1:], body[:, 0]
 
-    def active(self, x):
-        """The view of the active unknowns (the Newton update's) in a full-layout vector."""
-        return x[1:] if self.tension_mode else x[:-1]
-
-    def assemble(self, values, kite_dir):
-        """Banded matrix (solve_banded storage) from the entry values in layout order."""
-        ab = np.zeros(self._dump + 1)
-        ab[self._put] = values
-        if self._kite_groups.size:
-            w = values[self._kite_groups] * np.asarray(kite_dir)
-            ab[self._kite_target] = w[:, 0] + w[:, 1] + w[:, 2]
-        return self.band(ab)
-
     def put_end_rows(self, ab, d_end, d_before, d_tension) -> None:
         """A free end's rows (the kite's equation) into the band ``ab``
-        (:meth:`assemble`'s, in place): their derivatives in r_M (3, 3), in
+        (:meth:`band`'s, in place): their derivatives in r_M (3, 3), in
         r_{M-1} (3, 3) and in T_{M-1/2} (3,), rows by components."""
         ab[self._end_entries] = np.concatenate([np.ravel(d_end), np.ravel(d_before), d_tension])
 
@@ -330,27 +254,9 @@ class Grid:
 
     def kernel_layout(self) -> tuple:
         """The lengths and band layout as :data:`.kernel.GRID`: hbar, h, the
-        destinations of the entries (:meth:`assemble`), the kite node's groups
-        and their targets, and the band's lower and upper widths."""
+        destinations of the entries (:func:`.kernel.assemble`), the kite node's
+        groups and their targets, and the band's lower and upper widths."""
         return (self.hbar, self.h, self._put, self._kite_first, self._kite_target, self.lower, self.upper)
-
-    def solve(self, ab, rhs):
-        """Solution of the banded system ``ab`` (solve_banded storage) for ``rhs``.
-
-        LAPACK ``gbsv`` on a copy of ``ab`` with the ``lower`` rows of fill-in
-        above it: what :func:`scipy.linalg.solve_banded` does, without its
-        per-call checks.  The copy is in Fortran order, so that LAPACK factors
-        it in place (no second copy).  Raises :class:`numpy.linalg.LinAlgError`
-        if singular.
-        """
-        lu = np.zeros((2 * self.lower + self.upper + 1, self.n), order="F")
-        lu[self.lower:] = ab
-        _, _, x, info = lapack.dgbsv(self.lower, self.upper, lu, rhs, overwrite_ab=True)
-        if info > 0:
-            raise np.linalg.LinAlgError("singular matrix")
-        if info < 0:
-            raise ValueError(f"illegal value in argument {-info} of gbsv")
-        return x
 
 
 class Evaluation:
@@ -380,50 +286,27 @@ class Evaluation:
 class TetherFD:
     """The discrete equations of one line: residual, Jacobian, nodal loads.
 
-    ``compiled`` evaluates the equations and solves the Newton systems with the
-    compiled loops of :mod:`.kernel` (imported, and so compiled or loaded from
-    numba's cache, when the first such line is made); otherwise with the NumPy
-    array expressions below and LAPACK (:meth:`Grid.solve`), the reference the
-    kernels are tested against."""
+    Evaluated, and their Newton systems solved, by the compiled loops of
+    :mod:`.kernel` (imported, and so compiled or loaded from numba's cache,
+    when the first line is made: the package itself imports without numba)."""
 
-    def __init__(self, grid: Grid, physics: TetherPhysics, compiled: bool = True):
+    def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
-        self.compiled = compiled
-        self._kernel: Any = None
-        self._kernel_args: tuple = ()        # the line's physics and grid as the kernels take them
-        if compiled:
-            self._kernel = importlib.import_module("fem_tether.tether.fd.kernel")
-            self._kernel_args = (self._kernel.physics_tables(physics), grid.kernel_layout())
-        self._weight = np.empty((grid.M - 1, 3))      # w at each interior node
-        self._weight[:] = physics.weight_N_m
-        self._constraint_T: np.ndarray | None = None
+        self._kernel: Any = importlib.import_module("fem_tether.tether.fd.kernel")
+        self._kernel_args: tuple = (self._kernel.physics_tables(physics), grid.kernel_layout())
 
     # --- loads -----------------------------------------------------------------
-    def nodal_drag(self, r, v, tangent, air=None, jacobian=False):
-        """Drag at nodes r moving with v, with unit tangents ``tangent``; ``air``
-        is the air's state at their altitudes, if known."""
-        ph = self.physics
-        z = r[:, 2]
-        v_rel = ph.wind.velocity_mps(z) - v
-        if air is None:
-            air = ph.air.state(z)
-        return crossflow_drag(v_rel, tangent, air.density_kg_m3, air.viscosity_Pa_s,
-                              ph.diameter_m, ph.drag, ph.skin_friction_cf, jacobian=jacobian)
-
     def line_loads(self, r, v, reel_mps=0.0) -> NodalLoads:
-        """Drag at every node 0..M; one-sided tangents at the two ends.
+        """Drag at every node 0..M of the line r moving with v; one-sided tangents
+        at the two ends (:func:`.kernel.evaluate`'s, without the Jacobian).
 
         With reeling (``reel_mps`` = V_L) the line leaves the winch node with
-        the material velocity V_L tau_{1/2}.  (:attr:`Evaluation.drag` is the
-        same for the r and v of an evaluation, to round-off with the compiled
-        kernel.)"""
-        tangent = Directions(r).tangent
-        if reel_mps:
-            v = v.copy()
-            v[0] = reel_mps * tangent[0]
-        load = self.nodal_drag(r, v, tangent)
-        return NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent)
+        the material velocity V_L tau_{1/2}.  (The same as :attr:`Evaluation.drag`
+        of an evaluation at r and v.)"""
+        zero = np.zeros(self.grid.M)
+        return self.evaluate(r, v, np.zeros_like(r), zero, NO_DIRECTION, 1.0, jacobian=False,
+                             reel_mps=reel_mps).drag
 
     # --- equations ---------------------------------------------------------------
     @property
@@ -433,13 +316,16 @@ class TetherFD:
 
     def evaluate(self, r, v, a, T, kite_dir, force_ref_N, c_a=0.0, c_v=0.0,
                  jacobian=True, reel_mps=0.0) -> Evaluation:
-        """Scaled residual and banded Jacobian at nodal r, v, a (M+1, 3) and tensions T (M,).
+        """Scaled residual and banded Jacobian at nodal r, v, a (M+1, 3) and tensions T (M,),
+        by :func:`.kernel.evaluate`; raises :class:`AltitudeError` for a node
+        above the ISA troposphere.
 
         The Jacobian is assembled when the result's ``ab`` is first read.
         ``jacobian`` says whether the drag's derivatives are evaluated with the
         residual (for an iterate whose Jacobian will be needed) or, if ``ab``
-        is read, only then (drag evaluated twice; for an iterate expected to
-        converge or a trial point of a line search).
+        is read, only then (by a second kernel call: the same values again,
+        and the band; for an iterate expected to converge or a trial point of
+        a line search).
 
         ``c_a = da/dr`` and ``c_v = dv/dr`` of the time discretisation (0 for
         statics).  ``reel_mps`` is the winch speed V_L: node 0 stays at the
@@ -448,57 +334,6 @@ class TetherFD:
         ``tau_{1/2} . (v_1 - V_L tau_{1/2}) = tau_{1/2} . v_1 - V_L``, whose
         derivative in r is the same as without reeling.
         """
-        if self.compiled:
-            return self._evaluate_compiled(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, jacobian, reel_mps)
-        g, ph = self.grid, self.physics
-        h, M = g.h, g.M
-        mu = ph.linear_density_kg_m
-        dirs = Directions(r)
-        tau, ell, tangent = dirs.tau, dirs.ell, dirs.tangent
-        if reel_mps:
-            v = v.copy()
-            v[0] = reel_mps * tau[0]
-        flux = T[:, None] * tau
-        # drag at the interior nodes with the central tangent (the equations'),
-        # and at the two ends with the one-sided ones (for line_loads)
-        air = ph.air.state(r[:, 2], gradients=jacobian)
-        load = self.nodal_drag(r, v, tangent, air, jacobian=jacobian)
-        f = load.force[1:-1]
-        mom = mu * a[1:-1] - (flux[1:] - flux[:-1]) / g.hbar_rows - self._weight - f
-        con = ell - h * (1.0 + ph.compliance_per_N * T)
-        if ph.damping_time_s:
-            con = con + ph.damping_time_s * np.einsum("ij,ij->i", tau, v[1:] - v[:-1])
-        res = np.empty(g.n)
-        body = res[0: 4 * M - 4].reshape(M - 1, 4)
-        np.divide(con[:-1], h[:-1], out=body[:, 0])
-        np.multiply(mom, g.hbar_rows / force_ref_N, out=body[:, 1:])
-        res[4 * M - 4] = con[-1] / h[-1]
-
-        def build():
-            if jacobian:        # the drag's derivatives came with the residual, at every node
-                drag, drag_air, inner = load, air, slice(1, -1)
-            else:               # ... or are evaluated now, at the interior nodes
-                drag_air = ph.air.state(r[1:-1, 2], gradients=True)
-                drag = self.nodal_drag(r[1:-1], v[1:-1], tangent[1:-1], drag_air, jacobian=True)
-                inner = slice(None)
-            return self._jacobian(r, v, T, dirs, drag, drag_air, inner, force_ref_N, kite_dir, c_a, c_v)
-
-        return Evaluation(res, ell, NodalLoads(load.force, load.vn_mps, load.re, load.cd, tangent),
-                          build)
-
-    def _nodal(self) -> tuple:
-        """Arrays for what a compiled evaluation leaves at the nodes (:data:`.kernel.NODAL`)."""
-        n = self.grid.M + 1
-        return np.empty((2 * n - 1, 3)), np.empty(2 * n - 1), np.empty((n, 3)), np.empty(n), np.empty(n), np.empty(n)
-
-    def _nodal_loads(self, nodal) -> NodalLoads:
-        unit, _, force, vn_mps, re, cd = nodal
-        return NodalLoads(force, vn_mps, re, cd, unit[self.grid.M:])
-
-    def _evaluate_compiled(self, r, v, a, T, kite_dir, force_ref_N, c_a, c_v, jacobian,
-                           reel_mps) -> Evaluation:
-        """:meth:`evaluate` by :func:`.kernel.evaluate`; a Jacobian not asked for
-        now by a second call (the same values again, and the band) when first read."""
         g = self.grid
         nodal, res, band = self._nodal(), np.empty(g.n), g.empty_band()
 
@@ -515,6 +350,15 @@ class TetherFD:
 
         run(jacobian)
         return Evaluation(res, nodal[1][: g.M], self._nodal_loads(nodal), build)
+
+    def _nodal(self) -> tuple:
+        """Arrays for what an evaluation leaves at the nodes (:data:`.kernel.NODAL`)."""
+        n = self.grid.M + 1
+        return np.empty((2 * n - 1, 3)), np.empty(2 * n - 1), np.empty((n, 3)), np.empty(n), np.empty(n), np.empty(n)
+
+    def _nodal_loads(self, nodal) -> NodalLoads:
+        unit, _, force, vn_mps, re, cd = nodal
+        return NodalLoads(force, vn_mps, re, cd, unit[self.grid.M:])
 
     def solve_step(self, cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_tol,
                    max_newton) -> tuple:
@@ -540,87 +384,20 @@ class TetherFD:
         return r, v, a, T, R, self._nodal_loads(nodal), iterations, failure
 
     def solve(self, ab, rhs):
-        """Solution of the banded system ``ab`` (:meth:`Grid.assemble`'s storage)
-        for ``rhs``: by the compiled band LU of :mod:`.kernel` or by LAPACK
-        (:meth:`Grid.solve`).  Raises :class:`numpy.linalg.LinAlgError` if singular."""
-        if not self.compiled:
-            return self.grid.solve(ab, rhs)
+        """Solution of the banded system ``ab`` (:meth:`Grid.band`'s storage) for
+        ``rhs`` by the band LU of :func:`.kernel.solve`.  Raises
+        :class:`numpy.linalg.LinAlgError` if singular."""
         x = np.empty(self.grid.n)
         if not self._kernel.solve(ab, self.grid.upper, rhs, x):
             raise np.linalg.LinAlgError("singular matrix")
         return x
 
-    def _jacobian(self, r, v, T, dirs, drag, air, inner, force_ref_N, kite_dir, c_a, c_v):
-        """Banded Jacobian of :meth:`evaluate`'s residual from its intermediate values.
-
-        ``drag`` and ``air`` (the drag with its derivatives and the air's state
-        with its gradients) are taken at the interior nodes ``inner`` of theirs.
-        With ``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)``
-        (= dF_{k+1/2}/dr_{k+1}) and the derivative through the nodal tangent
-        ``D_i = df/dtau_i (I - tau_i tau_i^T) / |r_{i+1} - r_{i-1}|``, the momentum
-        rows (before their scale hbar_i / F_ref) are::
-
-            dm_i/dr_i         = mu c_a I + (K_i + K_{i-1}) / hbar_i - df_i/dr_i
-            dm_i/dr_{i+1}     = -(K_i / hbar_i + D_i)
-            dm_i/dr_{i-1}     = -(K_{i-1} / hbar_i - D_i)
-            dm_i/dT_{i+1/2}   = -tau_{i+1/2} / hbar_i,   dm_i/dT_{i-1/2} = tau_{i-1/2} / hbar_i
-
-        (the signs go with the scale, :attr:`Grid.momentum_weights`); the
-        constraint rows (scale 1/h_k) are ``dg_k/dr_{k+1} = -dg_k/dr_k = c_k``
-        (:meth:`_constraint_row`) and ``dg_k/dT_{k+1/2} = -h_k / EA``.
-        """
-        g = self.grid
-        M = g.M
-        tau, ell = dirs.tau, dirs.ell
-        projections = g.eye_stack - _outer(dirs.unit, dirs.unit)     # I - tau tau^T
-        proj = projections[:M]
-        K = (T / ell)[:, None, None] * proj
-        values = np.empty(33 * (M - 1) + 7 * M)          # in layout order (Grid._layout)
-        momentum = values[: 33 * (M - 1)]
-        blocks = momentum[: 27 * (M - 1)].reshape(3, M - 1, 3, 3)    # r_i, r_{i+1}, r_{i-1}
-        np.add(K[1:], K[:-1], out=blocks[0])
-        blocks[0] /= g.hbar_blocks
-        blocks[0] += (self.physics.linear_density_kg_m * c_a) * g.eye_stack[: M - 1]
-        blocks[0] -= self.drag_derivative(r[1:-1, 2], drag, air, inner, c_v)
-        np.divide(K[1:], g.hbar_blocks, out=blocks[1])
-        np.divide(K[:-1], g.hbar_blocks, out=blocks[2])
-        d_next = drag.d_dtau[inner] @ projections[M + 1: 2 * M] / dirs.tangent_len[1:-1, None, None]
-        blocks[1] += d_next
-        blocks[2] -= d_next
-        tensions = momentum[27 * (M - 1):].reshape(2, M - 1, 3)         # T_{i+1/2}, T_{i-1/2}
-        np.divide(tau[1:], g.hbar_rows, out=tensions[0])
-        np.divide(tau[:-1], g.hbar_rows, out=tensions[1])
-        momentum *= g.momentum_weights / force_ref_N
-        nodes = values[33 * (M - 1): -M].reshape(2, M, 3)               # r_{k+1}, r_k
-        np.multiply(self._constraint_row(tau, proj, ell, v, c_v), g.inv_h_rows, out=nodes[0])
-        np.negative(nodes[0], out=nodes[1])
-        if self._constraint_T is None:       # d g_k / d T_{k+1/2}, scaled: fixed on a grid
-            self._constraint_T = (-g.h * self.physics.compliance_per_N) * (1.0 / g.h)
-        values[-M:] = self._constraint_T
-        return g.assemble(values, kite_dir)
-
-    def drag_derivative(self, z, drag, air, inner, c_v):
-        """df_i/dr_i of the drag at the interior nodes (altitudes z), through the
-        velocity v_i = c_v r_i + .. (``-c_v df/dV_rel``) and through the
-        altitude, in the z column: ``df/dz = df/dV_rel e_x V_w'(z) + df/drho rho'(z)
-        + df/dmu mu_air'(z)``."""
-        ph = self.physics
-        d_dvrel = drag.d_dvrel[inner]
-        df_dz = d_dvrel[:, :, 0] * ph.wind.shear_per_s(z)[:, None] \
-            + drag.d_drho[inner] * air.density_gradient_kg_m4[inner, None] \
-            + drag.d_dmu[inner] * air.viscosity_gradient_Pa_s_m[inner, None]
-        df_dr = -c_v * d_dvrel
-        df_dr[:, :, 2] += df_dz
-        return df_dr
-
-    def _constraint_row(self, tau, proj, ell, v, c_v):
-        """c_k = dg_k/dr_{k+1} of the constraint ``l_k - h_k (1 + T/EA) + eta tau . dv``:
-        ``tau`` and, with damping, ``eta ((I - tau tau^T) dv / l_k + c_v tau)``."""
-        eta = self.physics.damping_time_s
-        if not eta:
-            return tau
-        dv = v[1:] - v[:-1]
-        return tau + eta * (np.einsum("nij,nj->ni", proj, dv) / ell[:, None] + c_v * tau)
+    def _assemble(self, values, kite_dir) -> np.ndarray:
+        """The band (:meth:`Grid.band`) of the entries ``values`` in layout order
+        (:func:`.kernel.assemble`; the kite node's entries summed along ``kite_dir``)."""
+        flat = self.grid.empty_band()
+        self._kernel.assemble(values, *self.grid.kernel_layout()[2:5], np.asarray(kite_dir, dtype=float), flat)
+        return self.grid.band(flat)
 
     def consistent_velocity(self, r, v_guess, R, kite, reel_mps=0.0, end_mass_kg=0.0):
         """Velocities of the inextensible line on its constraints, closest to
@@ -646,7 +423,8 @@ class TetherFD:
         """
         g = self.grid
         M = g.M
-        tau, _ = _unit(r[1:] - r[:-1])
+        d = r[1:] - r[:-1]
+        tau = d / np.sqrt(np.einsum("ij,ij->i", d, d))[:, None]
         m = self.mass_kg[1:-1]
         zero3 = np.zeros((M - 1, 3, 3))
         values = np.concatenate([
@@ -664,12 +442,12 @@ class TetherFD:
             body[:, 0] = con[:-1]
             full[4 * M - 4] = con[-1]
             full[4 * M - 3:] = end_mass_kg * v_guess[-1]
-            ab = g.assemble(values, np.zeros(3))
+            ab = self._assemble(values, NO_DIRECTION)
             g.put_end_rows(ab, end_mass_kg * _EYE, np.zeros((3, 3)), tau[-1])
             v[1:] = g.split_nodes(self.solve(ab, full))[0]
             return v, 0.0
         e, e_dot = kite
-        ab = g.assemble(values, e)
+        ab = self._assemble(values, e)
         con[-1] -= tau[-1] @ (R * e_dot)        # the kite's known velocity R e'
         body[:, 0] = con[:-1]
         full[4 * M - 4] = con[-1]
