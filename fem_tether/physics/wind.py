@@ -24,7 +24,7 @@ import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -133,6 +133,12 @@ class WindProfile(Protocol):
 class _Profile:
     """The NumPy methods of a profile: its law (:attr:`compiled`) over arrays of
     altitudes of any shape.  A single profile gives its ``law`` and ``parameters``."""
+
+    if TYPE_CHECKING:
+        law: Any
+
+        @property
+        def parameters(self) -> np.ndarray: ...
 
     @property
     def compiled(self) -> tuple[int, np.ndarray]:
