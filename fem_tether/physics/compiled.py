@@ -7,15 +7,27 @@ numbers) into output arrays, and its parameters.  The loops of its module
 (and through them the NumPy methods of the model classes and the solvers'
 kernels) take the function as the address of its compiled code, an integer:
 an argument numba reads as cheaply as a float, where a function object
-(numba's first-class function type) costs about 17 us per call of a kernel to
-unbox (numba 0.68, measured), more than a tenth of an FE time step.
-:func:`caller` turns the address back into a function of the signature inside
-compiled code.  One call per set of points, not per point: a call through an
-address is not inlined, and per point the calls of an FE Newton iteration
-cost 3-4 % of the FE step (measured).
+(numba's first-class function type) costs 17-45 us per call of a kernel to
+unbox (numba 0.68, measured), a third of an FE time step of the default
+case.  :func:`caller` turns the address back into a function of the
+signature inside compiled code.  One call per set of points, not per point:
+a call through an address is not inlined (per point, a two-profile wind at
+40 altitudes took 3.5 instead of 1.6 us).  The kernels take a model's
+address, parameters and constant as separate arguments, not as a tuple: a
+tuple holding an array costs about 0.25 us more to read per call (measured).
+
+An address holds in the process that compiled (or loaded) the function only:
+a model computes its ``compiled`` form when asked, so it is the model that
+travels to another process, never that form.  :func:`caller` and
+:func:`address` use numba's layout of a first-class function value (its
+``jit_addr``, the entry of numba's calling convention); the models' tests
+run every function through them.
 
 The functions and loops compile when first called, not when imported, and
-are cached on disk next to their modules (numba's ``cache=True``).
+are cached on disk next to their modules (numba's ``cache=True``).  A
+solver's kernel caches the loops it calls with it (numba checks a cache
+against its own source file only), but not the models' functions, which it
+calls by address: a model edited is a model compiled again.
 """
 
 from __future__ import annotations
