@@ -28,7 +28,8 @@ if TYPE_CHECKING:
 MIN_STEPS_PER_PERIOD = {("fe", "dt_s"): 36, ("fd", "dt_s"): 72}
 
 #: Keys that name files: a relative name in a file is read relative to that file.
-FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"), ("kite", "polar"))
+FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"), ("kite", "polar"),
+             ("wind", "table_csv"))
 
 #: Values of file keys that are not files.
 NOT_FILES = ("", "uniform", "graded")
@@ -68,8 +69,11 @@ def check(cfg: Config) -> None:
     must allow a split into two admissible halves, the kite's path must fit
     the sphere of the line (the eight's azimuth within 1 rad; polar angles
     inside (0, 90) deg) and stay below the ISA ceiling, and both time steps
-    must resolve its period (:data:`MIN_STEPS_PER_PERIOD`).
+    must resolve its period (:data:`MIN_STEPS_PER_PERIOD`); a tabulated wind
+    needs its file.
     """
+    if cfg.wind.profile == "table" and not cfg.wind.table_csv:
+        raise ConfigError("[wind] table_csv: a CSV file is needed for profile = \"table\"")
     _check_winch(cfg)
     winch = cfg.winch
     if not winch.max_element_m > 2.0 * winch.min_element_m:
@@ -193,6 +197,9 @@ def _read_file_key(cfg: Config, section: str, name: str) -> None:
     elif (section, name) == ("kite", "polar"):
         from fem_tether.physics.kite_dynamics import read_polar
         read_polar(cfg.kite.polar)
+    elif (section, name) == ("wind", "table_csv"):
+        from fem_tether.physics.wind import read_wind_table
+        read_wind_table(cfg.wind.table_csv)
 
 
 def check_given(cfg: Config, given: dict, base: Config) -> None:

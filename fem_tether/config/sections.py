@@ -262,7 +262,8 @@ class Drag(Section):
 @dataclass(frozen=True)
 class Wind(Section):
     NAME = "wind"
-    profile: str = setting("log", "-", "'log' (De Bilt), 'power' or 'none'", one_of("log", "power", "none"))
+    profile: str = setting("log", "-", "'log' (De Bilt), 'power', 'table' (measured, table_csv) or 'none'",
+                           one_of("log", "power", "table", "none"))
     season: str = setting("annual", "-", "De Bilt log-law season", one_of("winter", "summer", "annual"))
     reference_scale_mps: float = setting(9.5, "m/s", "power law: Weibull scale A of the wind at "
                                          "reference_height_m; the mean there is A Gamma(1 + 1/k), k = "
@@ -273,6 +274,9 @@ class Wind(Section):
                            "large city; 0.20 high crops, hedges and shrubs)", between(0.0, 1.0, (True, False)))
     boundary_layer_top_m: float = setting(500.0, "m", "power law: the wind is constant above this height "
                                           "(Trevisi eq. 3.91: 500 m; 0: never)", zero_to(CEILING_M))
+    table_csv: str = setting("", "-", "profile = 'table': CSV height_m,speed_mps of a measured profile, heights "
+                             "increasing from >= 0 (linear between rows and from 0 at the ground to the first, "
+                             "constant above the last)")
     scale: float = setting(1.0, "-", "factor on the profile's speed at every height (a design study sets "
                            "it so that the wind at the kite is a power-curve bin's speed; 1: as given)",
                            up_to(MAX_WIND_SCALE))

@@ -8,6 +8,12 @@ from the ISA table (Tab. 4.1), which these formulas reproduce.  Seed 004
 rho_0 = 1.225 kg/m3, H_p = 8550 m (:class:`ExponentialAir`): 1.0 % below the
 ISA at 500 m, 2.0 % at 1000 m, 5.1 % at 3000 m (its density falls faster).
 
+Each model is one compiled function of :data:`AIR_SIGNATURE`, (rho, mu,
+d rho/dz, d mu/dz) at a set of altitudes from the model's parameters, and a
+ceiling above which it does not hold; :func:`air_state` runs it, for the NumPy
+methods of the models and for the solvers' kernels (:mod:`.compiled`).  A new
+air model is one such function and one class here.
+
 >>> air = ISA()
 >>> air.density_kg_m3([0.0, 1000.0]).round(3)
 array([1.225, 1.112])
@@ -15,13 +21,16 @@ array([1.225, 1.112])
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
 import numpy.typing as npt
+from numba.core import types
 
 from fem_tether.core.errors import InputError
+from fem_tether.physics.compiled import address, caller, jit
 
 SEA_LEVEL_TEMPERATURE_K = 288.15
 SEA_LEVEL_PRESSURE_PA = 101325.0
@@ -36,6 +45,16 @@ TROPOPAUSE_M = 11000.0
 PRESSURE_EXPONENT = STANDARD_GRAVITY_M_S2 / (GAS_CONSTANT_J_KG_K * LAPSE_RATE_K_M)
 
 
+#: An air model: (parameters, z [m]) -> rho [kg/m3], mu [Pa s], d rho/dz [kg/m4], d mu/dz [Pa s/m]
+#: into the last four arrays, at every altitude of z
+AIR_SIGNATURE = types.void(*(types.float64[:],) * 6)
+#: A model as :func:`air_state` and the kernels take it, as numba types: the address
+#: of its function, its parameters, its ceiling [m].
+COMPILED = ("i8", "f8[:]", "f8")
+_air_at = caller(AIR_SIGNATURE)
+_NO_PARAMETERS = np.empty(0)
+
+
 class AltitudeError(InputError):
     """An altitude above the troposphere, where the ISA model does not hold."""
 
@@ -45,35 +64,70 @@ class AltitudeError(InputError):
                          f"(z <= {TROPOPAUSE_M:.0f} m)")
 
 
-def _altitude(z_m) -> np.ndarray:
-    z = np.asarray(z_m, dtype=float)
-    if z.size and z.max() > TROPOPAUSE_M:
-        raise AltitudeError(float(np.max(z)))
-    return z
-
-
+@jit
 def temperature_K(z_m):
-    """T = T0 - L z, T0 = 288.15 K, L = 0.0065 K/m (ISA, ICAO Doc 7488)."""
-    return SEA_LEVEL_TEMPERATURE_K - LAPSE_RATE_K_M * _altitude(z_m)
+    """T = T0 - L z, T0 = 288.15 K, L = 0.0065 K/m (ISA, ICAO Doc 7488; z <= 11000 m)."""
+    return SEA_LEVEL_TEMPERATURE_K - LAPSE_RATE_K_M * z_m
 
 
-def pressure_Pa(z_m):
+@jit
+def pressure_at_temperature_Pa(temperature):
     """p = p0 (T/T0)^(g0/(R L)), p0 = 101325 Pa (ISA, ICAO Doc 7488)."""
-    return _pressure_at(temperature_K(z_m))
-
-
-def _pressure_at(temperature):
     return SEA_LEVEL_PRESSURE_PA * (temperature / SEA_LEVEL_TEMPERATURE_K) ** PRESSURE_EXPONENT
 
 
-def _density_at(temperature):
-    return _pressure_at(temperature) / (GAS_CONSTANT_J_KG_K * temperature)
-
-
+@jit
 def sutherland_viscosity_Pa_s(temperature):
     """mu = beta T^1.5 / (T + S), beta = 1.458e-6 kg/(m s K^0.5), S = 110.4 K (ISA)."""
-    t = np.asarray(temperature, dtype=float)
-    return SUTHERLAND_BETA * t**1.5 / (t + SUTHERLAND_S_K)
+    return SUTHERLAND_BETA * temperature**1.5 / (temperature + SUTHERLAND_S_K)
+
+
+@jit
+def isa_air(parameters, z_m, rho, mu, drho_dz, dmu_dz):
+    """The ISA troposphere (no parameters): T(z), rho = p(T) / (R T) (ideal gas),
+    mu(T) by Sutherland's law, d rho/dz = -(g0/(R L) - 1) L rho / T (from
+    rho ~ T^(g0/(R L) - 1)) and d mu/dz = -L mu (1.5/T - 1/(T + S))."""
+    for i in range(z_m.shape[0]):
+        t = temperature_K(z_m[i])
+        rho[i] = pressure_at_temperature_Pa(t) / (GAS_CONSTANT_J_KG_K * t)
+        mu[i] = sutherland_viscosity_Pa_s(t)
+        drho_dz[i] = -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * rho[i] / t
+        dmu_dz[i] = -LAPSE_RATE_K_M * mu[i] * (1.5 / t - 1.0 / (t + SUTHERLAND_S_K))
+
+
+@jit
+def constant_air(parameters, z_m, rho, mu, drho_dz, dmu_dz):
+    """Uniform air, parameters (rho, mu): rho(z) = rho, mu(z) = mu, zero gradients."""
+    for i in range(z_m.shape[0]):
+        rho[i], mu[i], drho_dz[i], dmu_dz[i] = parameters[0], parameters[1], 0.0, 0.0
+
+
+@jit
+def exponential_air(parameters, z_m, rho, mu, drho_dz, dmu_dz):
+    """rho = rho_0 exp(-z/H_p) (seed 004 eq. 3.90), d rho/dz = -rho / H_p, and a
+    uniform mu; parameters (rho_0, mu, H_p)."""
+    for i in range(z_m.shape[0]):
+        rho[i] = parameters[0] * np.exp(-z_m[i] / parameters[2])
+        mu[i] = parameters[1]
+        drho_dz[i] = -rho[i] / parameters[2]
+        dmu_dz[i] = 0.0
+
+
+@jit
+def air_state(function_address, parameters, ceiling_m, z_m, rho, mu, drho_dz, dmu_dz):
+    """rho, mu and their altitude gradients at the altitudes ``z_m`` by the
+    model's function (the model as :data:`COMPILED`).  Returns the index of the
+    first altitude above the model's ceiling (then nothing computed), or -1."""
+    for i in range(z_m.shape[0]):
+        if z_m[i] > ceiling_m:
+            return i
+    _air_at(function_address)(parameters, z_m, rho, mu, drho_dz, dmu_dz)
+    return -1
+
+
+def pressure_Pa(z_m):
+    """p(T(z)) (ISA, ICAO Doc 7488)."""
+    return pressure_at_temperature_Pa(temperature_K(np.asarray(z_m, dtype=float)))
 
 
 @dataclass
@@ -89,7 +143,10 @@ class AirState:
 
 class AirModel(Protocol):
     """Air properties against altitude z (m), as the loads use them (:class:`ISA`,
-    :class:`ConstantAir`)."""
+    :class:`ConstantAir`, :class:`ExponentialAir`)."""
+
+    @property
+    def compiled(self) -> tuple[int, np.ndarray, float]: ...
 
     def density_kg_m3(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
@@ -102,82 +159,68 @@ class AirModel(Protocol):
     def state(self, z_m: npt.ArrayLike, gradients: bool = False) -> AirState: ...
 
 
-def _density_gradient_at(temperature, density):
-    """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
-    return -(PRESSURE_EXPONENT - 1.0) * LAPSE_RATE_K_M * density / temperature
+class _Air:
+    """The NumPy methods of an air model: its compiled function (:attr:`compiled`)
+    over arrays of altitudes of any shape."""
 
+    compiled: tuple[int, np.ndarray, float]
 
-def _viscosity_gradient_at(temperature, viscosity):
-    """d mu/dz = -L mu (1.5/T - 1/(T + S)), differentiating Sutherland's law."""
-    return -LAPSE_RATE_K_M * viscosity * (1.5 / temperature - 1.0 / (temperature + SUTHERLAND_S_K))
-
-
-@dataclass(frozen=True)
-class ISA:
-    """ISA troposphere, valid for z <= 11000 m (:class:`AltitudeError` above)."""
+    def state(self, z_m, gradients=False) -> AirState:
+        """rho, mu (and d rho/dz, d mu/dz) at the altitudes ``z_m``; raises
+        :class:`AltitudeError` if one is above the model's ceiling."""
+        z = np.asarray(z_m, dtype=float)
+        flat = z.ravel()
+        out = np.empty((4, flat.size))
+        if air_state(*self.compiled, flat, *out) >= 0:
+            raise AltitudeError(float(np.max(flat)))
+        rho, mu, drho_dz, dmu_dz = (row.reshape(z.shape)[()] for row in out)
+        return AirState(rho, mu, drho_dz, dmu_dz) if gradients else AirState(rho, mu)
 
     def density_kg_m3(self, z_m):
-        """rho = p / (R T) (ideal gas; ISA, ICAO Doc 7488)."""
-        return _density_at(temperature_K(z_m))
+        """rho(z) [kg/m3]."""
+        return self.state(z_m).density_kg_m3
 
     def viscosity_Pa_s(self, z_m):
-        """mu(T(z)) by Sutherland's law."""
-        return sutherland_viscosity_Pa_s(temperature_K(z_m))
+        """mu(z) [Pa s]."""
+        return self.state(z_m).viscosity_Pa_s
 
     def density_gradient_kg_m4(self, z_m):
-        """d rho/dz = -(g0/(R L) - 1) L rho / T, from rho ~ T^(g0/(R L) - 1)."""
-        t = temperature_K(z_m)
-        return _density_gradient_at(t, _density_at(t))
+        """d rho/dz [kg/m4]."""
+        return self.state(z_m, gradients=True).density_gradient_kg_m4
 
     def viscosity_gradient_Pa_s_m(self, z_m):
-        """d mu/dz = -L mu (1.5/T - 1/(T + S)), differentiating Sutherland's law."""
-        t = temperature_K(z_m)
-        return _viscosity_gradient_at(t, sutherland_viscosity_Pa_s(t))
-
-    def state(self, z_m, gradients=False):
-        """rho, mu (and d rho/dz, d mu/dz) as the methods above, from one T(z)."""
-        t = temperature_K(z_m)
-        rho, mu = _density_at(t), sutherland_viscosity_Pa_s(t)
-        if not gradients:
-            return AirState(rho, mu)
-        return AirState(rho, mu, _density_gradient_at(t, rho), _viscosity_gradient_at(t, mu))
+        """d mu/dz [Pa s/m]."""
+        return self.state(z_m, gradients=True).viscosity_gradient_Pa_s_m
 
 
 @dataclass(frozen=True)
-class ConstantAir:
-    """Air of uniform density and viscosity at every altitude."""
+class ISA(_Air):
+    """ISA troposphere (:func:`isa_air`), valid for z <= 11000 m (:class:`AltitudeError` above)."""
+
+    @property
+    def compiled(self):
+        """(:func:`isa_air`, no parameters, ceiling 11000 m)."""
+        return address(isa_air, AIR_SIGNATURE), _NO_PARAMETERS, TROPOPAUSE_M
+
+
+@dataclass(frozen=True)
+class ConstantAir(_Air):
+    """Air of uniform density and viscosity at every altitude (:func:`constant_air`)."""
 
     rho_kg_m3: float
     mu_Pa_s: float
 
-    def density_kg_m3(self, z_m):
-        """rho(z) = rho."""
-        return np.full(np.shape(z_m), self.rho_kg_m3)
-
-    def viscosity_Pa_s(self, z_m):
-        """mu(z) = mu."""
-        return np.full(np.shape(z_m), self.mu_Pa_s)
-
-    def density_gradient_kg_m4(self, z_m):
-        """d rho/dz = 0."""
-        return np.zeros(np.shape(z_m))
-
-    def viscosity_gradient_Pa_s_m(self, z_m):
-        """d mu/dz = 0."""
-        return np.zeros(np.shape(z_m))
-
-    def state(self, z_m, gradients=False):
-        """rho, mu (and their zero gradients)."""
-        if not gradients:
-            return AirState(self.density_kg_m3(z_m), self.viscosity_Pa_s(z_m))
-        return AirState(self.density_kg_m3(z_m), self.viscosity_Pa_s(z_m),
-                        self.density_gradient_kg_m4(z_m), self.viscosity_gradient_Pa_s_m(z_m))
+    @property
+    def compiled(self):
+        """(:func:`constant_air`, (rho, mu), no ceiling)."""
+        return address(constant_air, AIR_SIGNATURE), np.array([self.rho_kg_m3, self.mu_Pa_s]), math.inf
 
 
 @dataclass(frozen=True)
-class ExponentialAir:
+class ExponentialAir(_Air):
     """rho = rho_0 exp(-z/H_p) (seed 004 eq. 3.90: rho_0 = 1.225 kg/m3, H_p = 8550 m)
-    and a uniform viscosity mu (seed 004 has none: it needs no Reynolds number)."""
+    and a uniform viscosity mu (seed 004 has none: it needs no Reynolds number);
+    :func:`exponential_air`."""
 
     rho0_kg_m3: float = 1.225
     mu_Pa_s: float = 1.789e-5
@@ -187,28 +230,11 @@ class ExponentialAir:
         if not self.scale_height_m > 0:
             raise ValueError(f"scale_height_m = {self.scale_height_m!r}: must be > 0")
 
-    def density_kg_m3(self, z_m):
-        """rho = rho_0 exp(-z/H_p) (seed 004 eq. 3.90)."""
-        return self.rho0_kg_m3 * np.exp(-np.asarray(z_m, dtype=float) / self.scale_height_m)
-
-    def viscosity_Pa_s(self, z_m):
-        """mu(z) = mu."""
-        return np.full(np.shape(z_m), self.mu_Pa_s)
-
-    def density_gradient_kg_m4(self, z_m):
-        """d rho/dz = -rho / H_p."""
-        return -self.density_kg_m3(z_m) / self.scale_height_m
-
-    def viscosity_gradient_Pa_s_m(self, z_m):
-        """d mu/dz = 0."""
-        return np.zeros(np.shape(z_m))
-
-    def state(self, z_m, gradients=False):
-        """rho, mu (and d rho/dz, d mu/dz) as the methods above."""
-        rho, mu = self.density_kg_m3(z_m), self.viscosity_Pa_s(z_m)
-        if not gradients:
-            return AirState(rho, mu)
-        return AirState(rho, mu, -rho / self.scale_height_m, self.viscosity_gradient_Pa_s_m(z_m))
+    @property
+    def compiled(self):
+        """(:func:`exponential_air`, (rho_0, mu, H_p), no ceiling)."""
+        return (address(exponential_air, AIR_SIGNATURE),
+                np.array([self.rho0_kg_m3, self.mu_Pa_s, self.scale_height_m]), math.inf)
 
 
 def from_config(air) -> ISA | ConstantAir | ExponentialAir:

@@ -14,17 +14,27 @@ Seed 000 §4.1 uses two branches, and so does :class:`CylinderDrag`:
   C_d = C_i (Re/Re_i)^s_i on each interval; above the last node the last value
   is held.
 
+Each model is one compiled function of :data:`DRAG_SIGNATURE`, (C_d,c,
+dC_d,c/dRe) at a set of Reynolds numbers from its parameters;
+:func:`drag_coefficient_state` runs it, times a factor (:class:`ScaledDrag`),
+for the NumPy methods of the models, :func:`fem_tether.physics.loads.crossflow_drag`
+and the solvers' kernels (:mod:`.compiled`).
+
 >>> CylinderDrag().cd([10.0, 1e3, 5e5]).round(2)
 array([2.71, 0.95, 0.31])
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
 import numpy.typing as npt
+from numba.core import types
+
+from fem_tether.physics.compiled import address, caller, jit
 
 BELAN_TORDELLA_MAX_RE = 40.0
 
@@ -78,82 +88,86 @@ LOG_RE = np.log(EXPERIMENTAL_CURVE[:, 0])
 LOG_CD = np.log(EXPERIMENTAL_CURVE[:, 1])
 SLOPE = np.diff(LOG_CD) / np.diff(LOG_RE)
 
+#: A drag-coefficient model: (parameters, Re) -> C_d,c, dC_d,c/dRe into the last two
+#: arrays, at every Reynolds number of Re
+DRAG_SIGNATURE = types.void(*(types.float64[:],) * 4)
+#: A model as :func:`drag_coefficient_state` and the kernels take it, as numba types:
+#: the address of its function, its parameters, the factor lambda on C_d.
+COMPILED = ("i8", "f8[:]", "f8")
+_drag_at = caller(DRAG_SIGNATURE)
 
-def _reynolds(re) -> np.ndarray:
-    re = np.asarray(re, dtype=float)
-    if (re < 0.0).any():
-        raise ValueError(f"Reynolds number {np.min(re)} is negative")
-    return re
 
-
+@jit
 def belan_tordella_b(re):
     """B(Re) = 1.16 + 5.1e-3 Re - 1.9e-5 Re^2 (seed 000 eq. 4.5)."""
     return 1.16 + 5.1e-3 * re - 1.9e-5 * re**2
 
 
-def _belan_tordella_parts(re):
-    """4 (pi/Re)^(1/2) and B(Re), the factors both Belan-Tordella formulas share."""
-    with np.errstate(divide="ignore"):
-        return 4.0 * np.sqrt(np.pi / re), belan_tordella_b(re)
+@jit
+def belan_tordella_cd_and_dcd_dre(re):
+    """C_d,c = 4 (pi/Re)^(1/2) B(Re) (seed 000 eqs. 4.4-4.5; inf at Re = 0) and
+    dC_d,c/dRe = 4 (pi/Re)^(1/2) (B'(Re) - B(Re) / (2 Re)), B' = 5.1e-3 - 3.8e-5 Re."""
+    scale = 4.0 * math.sqrt(math.pi / re)
+    b = belan_tordella_b(re)
+    return scale * b, scale * (5.1e-3 - 3.8e-5 * re - b / (2.0 * re))
 
 
+@jit
 def belan_tordella_cd(re):
     """C_d,c = 4 (pi/Re)^(1/2) B(Re) (seed 000 eqs. 4.4-4.5); inf at Re = 0."""
-    scale, b = _belan_tordella_parts(np.asarray(re, dtype=float))
-    return scale * b
+    return belan_tordella_cd_and_dcd_dre(re)[0]
 
 
-def _belan_tordella_slope(re, scale, b):
-    """4 (pi/Re)^(1/2) (B'(Re) - B(Re) / (2 Re)) from the shared factors."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return scale * (5.1e-3 - 3.8e-5 * re - b / (2.0 * re))
+@jit
+def experimental_cd_and_dcd_dre(re):
+    """C_d = C_i (Re/Re_i)^s_i on the interval i holding Re (clipped to the table;
+    the last value above 1e7) and dC_d/dRe = s_i C_d / Re (the right-hand slope at
+    the nodes; 0 above 1e7)."""
+    log_re = math.log(re)
+    i = min(max(np.searchsorted(LOG_RE, log_re, side="right") - 1, 0), SLOPE.shape[0] - 1)
+    cd = math.exp(LOG_CD[i] + SLOPE[i] * (min(log_re, LOG_RE[-1]) - LOG_RE[i]))
+    return cd, (SLOPE[i] if log_re < LOG_RE[-1] else 0.0) * cd / re
 
 
-def belan_tordella_dcd_dre(re):
-    """dC_d,c/dRe = 4 (pi/Re)^(1/2) (B'(Re) - B(Re) / (2 Re)), B' = 5.1e-3 - 3.8e-5 Re."""
-    re = np.asarray(re, dtype=float)
-    return _belan_tordella_slope(re, *_belan_tordella_parts(re))
-
-
-def belan_tordella_cd_and_dcd_dre(re):
-    """(C_d,c, dC_d,c/dRe) of the Belan-Tordella branch, sharing (pi/Re)^(1/2) and B(Re)."""
-    re = np.asarray(re, dtype=float)
-    scale, b = _belan_tordella_parts(re)
-    return scale * b, _belan_tordella_slope(re, scale, b)
-
-
-def _segment(log_re):
-    """Index i of the interval [Re_i, Re_i+1) holding each ln Re (clipped to the table)."""
-    return np.minimum(np.maximum(np.searchsorted(LOG_RE, log_re, side="right") - 1, 0), len(SLOPE) - 1)
-
-
-def _power_law(log_re, i):
-    """C_i (Re/Re_i)^s_i on interval i (the last value above the table)."""
-    return np.exp(LOG_CD[i] + SLOPE[i] * (np.minimum(log_re, LOG_RE[-1]) - LOG_RE[i]))
-
-
+@jit
 def experimental_cd(re):
     """C_d = C_i (Re/Re_i)^s_i, s_i = ln(C_i+1/C_i) / ln(Re_i+1/Re_i); last value above 1e7."""
-    log_re = np.log(re)
-    return _power_law(log_re, _segment(log_re))
+    return experimental_cd_and_dcd_dre(re)[0]
 
 
-def experimental_dcd_dre(re):
-    """dC_d/dRe = s_i C_d / Re on the interval (right-hand slope at the nodes); 0 above 1e7."""
-    return experimental_cd_and_dcd_dre(re)[1]
+@jit
+def cylinder_drag(parameters, re, cd, dcd_dre):
+    """C_d,c(Re) and its slope (no parameters): Belan-Tordella below Re = 40, the
+    experimental curve from there on."""
+    for i in range(re.shape[0]):
+        if re[i] < BELAN_TORDELLA_MAX_RE:
+            cd[i], dcd_dre[i] = belan_tordella_cd_and_dcd_dre(re[i])
+        else:
+            cd[i], dcd_dre[i] = experimental_cd_and_dcd_dre(re[i])
 
 
-def experimental_cd_and_dcd_dre(re):
-    """(C_d, dC_d/dRe) of the experimental curve, sharing ln Re, the interval and C_d."""
-    log_re = np.log(re)
-    i = _segment(log_re)
-    cd = _power_law(log_re, i)
-    slope = np.where(log_re < LOG_RE[-1], SLOPE[i], 0.0)
-    return cd, slope * cd / re
+@jit
+def constant_drag(parameters, re, cd, dcd_dre):
+    """C_d,c = parameters[0] at every Reynolds number, dC_d,c/dRe = 0."""
+    for i in range(re.shape[0]):
+        cd[i], dcd_dre[i] = parameters[0], 0.0
+
+
+@jit
+def drag_coefficient_state(function_address, parameters, factor, re, cd, dcd_dre):
+    """lambda C_d,c(Re) and lambda dC_d,c/dRe at the Reynolds numbers ``re`` by the
+    model's function (the model as :data:`COMPILED`)."""
+    _drag_at(function_address)(parameters, re, cd, dcd_dre)
+    for i in range(re.shape[0]):
+        cd[i] = factor * cd[i]
+        dcd_dre[i] = factor * dcd_dre[i]
 
 
 class DragModel(Protocol):
     """A cross-flow drag coefficient C_d,c(Re) and its derivative, as the loads use it."""
+
+    @property
+    def compiled(self) -> tuple[int, np.ndarray, float]: ...
 
     def cd(self, re: npt.ArrayLike) -> np.ndarray: ...
 
@@ -162,83 +176,66 @@ class DragModel(Protocol):
     def cd_and_dcd_dre(self, re: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]: ...
 
 
-def _two_branches(re, low_branch, high_branch):
-    """``low_branch`` below Re = BELAN_TORDELLA_MAX_RE, ``high_branch`` from there on;
-    each branch returns a tuple of arrays, and so does this.
-
-    A branch holding every Re is evaluated on the whole array; otherwise the
-    high branch is evaluated on max(Re, BELAN_TORDELLA_MAX_RE) (its own Re
-    unchanged) and the low one's values replace it where Re is below.
-    """
-    re = _reynolds(re)
-    low = re < BELAN_TORDELLA_MAX_RE
-    if not low.any():
-        return tuple(part[()] for part in high_branch(re))
-    if low.all():
-        return tuple(part[()] for part in low_branch(re))
-    outs = high_branch(np.maximum(re, BELAN_TORDELLA_MAX_RE))
-    for out, low_part in zip(outs, low_branch(re[low])):
-        out[low] = low_part
-    return outs
-
-
-@dataclass(frozen=True)
-class CylinderDrag:
-    """C_d,c(Re): Belan-Tordella below Re = 40, the experimental curve above."""
-
-    def cd(self, re):
-        """C_d,c(Re) for Re >= 0 (inf at Re = 0)."""
-        return _two_branches(re, lambda r: (belan_tordella_cd(r),), lambda r: (experimental_cd(r),))[0]
-
-    def dcd_dre(self, re):
-        """dC_d,c/dRe of the same two branches (-inf at Re = 0)."""
-        return _two_branches(re, lambda r: (belan_tordella_dcd_dre(r),),
-                             lambda r: (experimental_dcd_dre(r),))[0]
+class _Drag:
+    """The NumPy methods of a drag model: its compiled function (:attr:`compiled`)
+    over arrays of Reynolds numbers of any shape."""
 
     def cd_and_dcd_dre(self, re):
-        """(C_d,c(Re), dC_d,c/dRe) with one branch split, as :meth:`cd` and :meth:`dcd_dre`."""
-        return _two_branches(re, belan_tordella_cd_and_dcd_dre, experimental_cd_and_dcd_dre)
+        """(C_d,c(Re), dC_d,c/dRe) for Re >= 0 (a ValueError for a negative one)."""
+        re = np.asarray(re, dtype=float)
+        if (re < 0.0).any():
+            raise ValueError(f"Reynolds number {np.min(re)} is negative")
+        flat = re.ravel()
+        out = np.empty((2, flat.size))
+        drag_coefficient_state(*self.compiled, flat, out[0], out[1])
+        out = out.reshape((2,) + re.shape)
+        return out[0][()], out[1][()]
+
+    def cd(self, re):
+        """C_d,c(Re)."""
+        return self.cd_and_dcd_dre(re)[0]
+
+    def dcd_dre(self, re):
+        """dC_d,c/dRe."""
+        return self.cd_and_dcd_dre(re)[1]
 
 
 @dataclass(frozen=True)
-class ConstantDrag:
-    """C_d,c = value at every Reynolds number."""
+class CylinderDrag(_Drag):
+    """C_d,c(Re): Belan-Tordella below Re = 40, the experimental curve above
+    (:func:`cylinder_drag`; inf at Re = 0, its slope -inf)."""
+
+    @property
+    def compiled(self):
+        """(:func:`cylinder_drag`, no parameters, 1)."""
+        return address(cylinder_drag, DRAG_SIGNATURE), np.empty(0), 1.0
+
+
+@dataclass(frozen=True)
+class ConstantDrag(_Drag):
+    """C_d,c = value at every Reynolds number (:func:`constant_drag`)."""
 
     value: float
 
-    def cd(self, re):
-        """C_d,c(Re) = value."""
-        return np.full(np.shape(re), self.value)
-
-    def dcd_dre(self, re):
-        """dC_d,c/dRe = 0."""
-        return np.zeros(np.shape(re))
-
-    def cd_and_dcd_dre(self, re):
-        """(C_d,c, dC_d,c/dRe) = (value, 0)."""
-        return self.cd(re), self.dcd_dre(re)
+    @property
+    def compiled(self):
+        """(:func:`constant_drag`, (value,), 1)."""
+        return address(constant_drag, DRAG_SIGNATURE), np.array([self.value]), 1.0
 
 
 @dataclass(frozen=True)
-class ScaledDrag:
+class ScaledDrag(_Drag):
     """A drag-coefficient model times a factor: C_d(Re) -> lambda C_d(Re) (the
     load continuation's ramp, :mod:`fem_tether.tether.continuation`)."""
 
     base: DragModel
     factor: float
 
-    def cd(self, re):
-        """lambda C_d(Re)."""
-        return self.factor * self.base.cd(re)
-
-    def dcd_dre(self, re):
-        """lambda dC_d/dRe."""
-        return self.factor * self.base.dcd_dre(re)
-
-    def cd_and_dcd_dre(self, re):
-        """(lambda C_d, lambda dC_d/dRe)."""
-        cd, dcd = self.base.cd_and_dcd_dre(re)
-        return self.factor * cd, self.factor * dcd
+    @property
+    def compiled(self):
+        """The base's function and parameters, lambda times its factor."""
+        function_address, parameters, factor = self.base.compiled
+        return function_address, parameters, self.factor * factor
 
 
 def from_config(drag) -> CylinderDrag | ConstantDrag:

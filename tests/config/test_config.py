@@ -236,3 +236,28 @@ def test_a_malformed_input_file_is_refused_at_load(tmp_path, key, text, match):
         {"resource": {"csv": str(path)}}
     with pytest.raises(ConfigError, match=match):
         load_config(overrides=overrides)
+
+
+def test_the_wind_table_key_is_checked_at_load(tmp_path):
+    """[wind] profile = "table" needs [wind] table_csv, a file that
+    :func:`fem_tether.physics.wind.read_wind_table` reads: one-line ConfigErrors
+    naming the key (and the file's line)."""
+    with pytest.raises(ConfigError, match=r'^\[wind\] table_csv: a CSV file is needed for profile = "table"$'):
+        load_config(overrides={"wind": {"profile": "table"}})
+    with pytest.raises(ConfigError, match=r"^\[wind\] table_csv = .*missing.csv\": no such file$"):
+        load_config(overrides={"wind": {"profile": "table", "table_csv": str(tmp_path / "missing.csv")}})
+    path = tmp_path / "wind.csv"
+    path.write_text("height_m,speed_mps\n0,0\n50,x\n")
+    with pytest.raises(ConfigError, match=r"^\[wind\] table_csv = .*wind.csv line 3: expected two numbers, "
+                                          r"got '50,x'$"):
+        load_config(overrides={"wind": {"profile": "table", "table_csv": str(path)}})
+    with pytest.raises(ConfigError, match=r"^\[wind\] profile = \"tabel\""):
+        load_config(overrides={"wind": {"profile": "tabel"}})
+    path.write_text("height_m,speed_mps\n0,0\n50,6\n")
+    assert load_config(overrides={"wind": {"profile": "table", "table_csv": str(path)}}).wind.table_csv == str(path)
+
+
+def test_a_relative_wind_table_is_read_next_to_the_case(tmp_path):
+    (tmp_path / "wind.csv").write_text("height_m,speed_mps\n0,0\n50,6\n")
+    (tmp_path / "case.toml").write_text('[wind]\nprofile = "table"\ntable_csv = "wind.csv"\n')
+    assert load_config(tmp_path / "case.toml").wind.table_csv == str(tmp_path / "wind.csv")

@@ -98,3 +98,49 @@ def test_state_is_the_single_properties(air):
     np.testing.assert_array_equal(state.density_gradient_kg_m4, air.density_gradient_kg_m4(z))
     np.testing.assert_array_equal(state.viscosity_gradient_Pa_s_m, air.viscosity_gradient_Pa_s_m(z))
     assert air.state(z).density_gradient_kg_m4 is None
+
+
+def test_isa_equals_the_icao_formulas_written_out():
+    """rho = p0 (T/T0)^(g0/(R L)) / (R T) and Sutherland's mu with T = T0 - L z,
+    written out here with the ICAO constants, at 50 altitudes to 11 km (1e-15)."""
+    z = np.linspace(-100.0, atmosphere.TROPOPAUSE_M, 50)
+    t = 288.15 - 0.0065 * z
+    rho = 101325.0 * (t / 288.15) ** (9.80665 / (287.05287 * 0.0065)) / (287.05287 * t)
+    mu = 1.458e-6 * t**1.5 / (t + 110.4)
+    state = ISA().state(z)
+    np.testing.assert_allclose(state.density_kg_m3, rho, rtol=1e-15)
+    np.testing.assert_allclose(state.viscosity_Pa_s, mu, rtol=1e-15)
+    np.testing.assert_allclose(atmosphere.pressure_Pa(z), rho * 287.05287 * t, rtol=1e-15)
+
+
+@pytest.mark.parametrize("air", [ISA(), ExponentialAir(), ConstantAir(1.2, 1.8e-5)])
+@pytest.mark.parametrize("z", [0.0, 700.0, 2000.0, 10000.0])
+def test_gradients_against_finite_differences(air, z):
+    """d rho/dz and d mu/dz of :meth:`state` against central differences (h = 1 m)."""
+    h = 1.0
+    state = air.state(np.array([z - h, z, z + h]), gradients=True)
+    for value, gradient in ((state.density_kg_m3, state.density_gradient_kg_m4),
+                            (state.viscosity_Pa_s, state.viscosity_gradient_Pa_s_m)):
+        assert gradient[1] == pytest.approx((value[2] - value[0]) / (2 * h), rel=1e-6, abs=1e-18)
+
+
+def test_air_state_returns_the_first_altitude_above_the_ceiling():
+    """The compiled loop of the NumPy methods and the kernels: the index of the
+    first altitude above the ISA troposphere; no ceiling for the other models."""
+    z = np.array([100.0, atmosphere.TROPOPAUSE_M + 1.0, atmosphere.TROPOPAUSE_M + 5.0])
+    out = [np.empty(3) for _ in range(4)]
+    assert atmosphere.air_state(*ISA().compiled, z, *out) == 1
+    assert atmosphere.air_state(*ConstantAir(1.2, 1.8e-5).compiled, z, *out) == -1
+    assert atmosphere.air_state(*ExponentialAir().compiled, z, *out) == -1
+    np.testing.assert_array_equal(out[0], ExponentialAir().density_kg_m3(z))
+
+
+def test_state_with_and_without_gradients():
+    z = np.array([[0.0, 300.0], [900.0, 4000.0]])
+    air = ISA()
+    plain, full = air.state(z), air.state(z, gradients=True)
+    assert plain.density_gradient_kg_m4 is None and plain.viscosity_gradient_Pa_s_m is None
+    np.testing.assert_array_equal(plain.density_kg_m3, full.density_kg_m3)
+    np.testing.assert_array_equal(full.density_gradient_kg_m4, air.density_gradient_kg_m4(z))
+    np.testing.assert_array_equal(full.viscosity_gradient_Pa_s_m, air.viscosity_gradient_Pa_s_m(z))
+    assert full.density_kg_m3.shape == z.shape

@@ -3,7 +3,7 @@ import pytest
 
 from fem_tether.physics import drag_coefficient
 from fem_tether.config import load_config
-from fem_tether.physics.drag_coefficient import EXPERIMENTAL_CURVE, ConstantDrag, CylinderDrag
+from fem_tether.physics.drag_coefficient import EXPERIMENTAL_CURVE, ConstantDrag, CylinderDrag, ScaledDrag
 
 CD = CylinderDrag()
 
@@ -119,3 +119,37 @@ def test_cd_and_dcd_dre_is_cd_and_dcd_dre(drag, re):
         cd, dcd = drag.cd_and_dcd_dre(re)
         np.testing.assert_array_equal(cd, drag.cd(re))
         np.testing.assert_array_equal(dcd, drag.dcd_dre(re))
+
+
+@pytest.mark.parametrize("drag, factor", [(ScaledDrag(CD, 0.37), 0.37), (ScaledDrag(ConstantDrag(1.1), 0.0), 0.0),
+                                          (ScaledDrag(ScaledDrag(CD, 0.5), 0.4), 0.2)])
+def test_scaled_drag_is_the_factor_times_its_model(drag, factor):
+    """lambda C_d and lambda dC_d/dRe (a scaled scaled model: the product of the factors)."""
+    re = np.geomspace(1e-2, 1e8, 300)
+    base = drag.base.base if isinstance(drag.base, ScaledDrag) else drag.base
+    cd, dcd = drag.cd_and_dcd_dre(re)
+    np.testing.assert_allclose(cd, factor * base.cd(re), rtol=1e-15)
+    np.testing.assert_allclose(dcd, factor * base.dcd_dre(re), rtol=1e-15)
+
+
+def test_drag_coefficient_state_is_the_loop_of_the_models_and_kernels():
+    """The compiled loop the NumPy methods and the solvers' kernels run: the
+    model's function times the factor, from the model's compiled form."""
+    re = np.concatenate([np.geomspace(1e-3, 1e8, 380), [39.999999, 40.0, 1e3, 2e5, 1e7, 2e7]])
+    cd, dcd = np.empty(re.size), np.empty(re.size)
+    drag_coefficient.drag_coefficient_state(*ScaledDrag(CD, 0.37).compiled, re, cd, dcd)
+    np.testing.assert_array_equal(cd, 0.37 * CD.cd(re))
+    np.testing.assert_array_equal(dcd, 0.37 * CD.dcd_dre(re))
+
+
+def test_belan_tordella_formulas():
+    """C_d = 4 (pi/Re)^(1/2) B and its slope, by hand, and the slope against a central difference."""
+    for re in (0.5, 7.0, 33.0):
+        b = drag_coefficient.belan_tordella_b(re)
+        assert b == pytest.approx(1.16 + 5.1e-3 * re - 1.9e-5 * re**2, rel=1e-15)
+        cd, dcd = drag_coefficient.belan_tordella_cd_and_dcd_dre(re)
+        assert cd == pytest.approx(4 * np.sqrt(np.pi / re) * b, rel=1e-15)
+        h = 1e-6 * re
+        fd = (drag_coefficient.belan_tordella_cd(re + h) - drag_coefficient.belan_tordella_cd(re - h)) / (2 * h)
+        assert dcd == pytest.approx(fd, rel=1e-7)
+        assert drag_coefficient.experimental_cd(re + 40.0) == CD.cd(re + 40.0)

@@ -9,8 +9,9 @@ tests hold the Jacobian to central differences of the residual, and the
 solver to analytic cases and to the independent FE solver.
 :func:`evaluate` is one evaluation of the equations: the tangents
 (:func:`directions`), the leaf physics at the nodes by its compiled twins
-(air, wind and drag coefficient, :mod:`fem_tether.physics.environment_kernel`; the
-drag's loops, :mod:`fem_tether.physics.loads_kernel`, shared with the FE kernels),
+(the air, wind and drag-coefficient loops of :mod:`fem_tether.physics.atmosphere`,
+:mod:`fem_tether.physics.wind` and :mod:`fem_tether.physics.drag_coefficient`; the
+drag's loops, :mod:`fem_tether.physics.loads`, shared with the FE kernels),
 the residual (:func:`residual`) and, when asked, the Jacobian's entries
 (:func:`jacobian`) assembled into the band (:func:`assemble`).
 :func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``;
@@ -36,17 +37,21 @@ import math
 import numba
 import numpy as np
 
-from fem_tether.physics.environment_kernel import air_state, drag_coefficient_state, tables, wind_state
-from fem_tether.physics.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
+from fem_tether.physics import atmosphere, drag_coefficient, wind
+from fem_tether.physics.atmosphere import air_state
+from fem_tether.physics.drag_coefficient import drag_coefficient_state
+from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
+from fem_tether.physics.wind import wind_state
 from fem_tether.tether.protocol_kernel import expect_converged, max_abs
 
 __all__ = ["assemble", "directions", "evaluate", "jacobian", "physics_tables", "residual", "solve",
            "solve_step"]
 
 V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
-PHYSICS = f"Tuple(({V}, {M}, {V}, {V}, UniTuple({F}, 5)))"
+PHYSICS = (f"Tuple(({', '.join(atmosphere.COMPILED + wind.COMPILED + drag_coefficient.COMPILED)}, {V}, "
+           f"UniTuple({F}, 5)))")
 """A line's physics (:func:`physics_tables`): the air, wind and
-drag-coefficient tables of :func:`fem_tether.physics.environment_kernel.tables`, the
+drag-coefficient models one after the other (their ``compiled`` forms), the
 weight w per length (3) and ``(mu, 1/EA, eta, d, c_f)``."""
 
 
@@ -60,7 +65,8 @@ vectors and lengths), and the drag force, |V_n|, Re and C_d."""
 
 def physics_tables(physics) -> tuple:
     """A :class:`~fem_tether.tether.line.TetherPhysics` as :data:`PHYSICS`."""
-    return (*tables(physics), np.asarray(physics.weight_N_m, dtype=float),
+    return (*physics.air.compiled, *physics.wind.compiled, *physics.drag.compiled,
+            np.asarray(physics.weight_N_m, dtype=float),
             tuple(float(c) for c in (physics.linear_density_kg_m, physics.compliance_per_N,
                                      physics.damping_time_s, physics.diameter_m, physics.skin_friction_cf)))
 
@@ -311,8 +317,9 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     node into ``nodal``.  The line leaves the winch node at ``V_L tau_{1/2}``
     (``reel_mps`` = V_L).  The air, wind and C_d(Re) at the nodes come with
     their derivatives.  Returns -1, or the index of the first node above the
-    ISA troposphere (then nothing after the air is computed)."""
-    air, wind_rows, drag, weight, line = physics
+    air model's ceiling, the ISA troposphere (then nothing after the air is computed)."""
+    (air_function, air_parameters, ceiling_m, wind_function, wind_rows, drag_function, drag_parameters,
+     drag_factor, weight, line) = physics
     mu, compliance_per_N, damping_time_s, diameter_m, skin_friction_cf = line
     hbar, h, put, kite_first, kite_target, _, _ = grid
     unit, length, force, vn_mps, re, cd = nodal
@@ -325,14 +332,15 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
             v_line[0, c] = reel_mps * unit[0, c]
     z = r[:, 2]
     rho, mu_air, drho_dz, dmu_dz = np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes)
-    above = air_state(air, z, rho, mu_air, drho_dz, dmu_dz)
+    above = air_state(air_function, air_parameters, ceiling_m, z, rho, mu_air, drho_dz, dmu_dz)
     if above >= 0:
         return above
     wind_mps, shear_per_s, along, dcd_dre = np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes)
-    wind_state(wind_rows, z, wind_mps, shear_per_s)
+    wind_state(wind_function, wind_rows, z, wind_mps, shear_per_s)
     v_rel, vn = np.empty((n_nodes, 3)), np.empty((n_nodes, 3))
-    normal_flow(v_line, wind_mps, tangent, rho, mu_air, diameter_m, v_rel, along, vn, vn_mps, re)
-    drag_coefficient_state(drag, re, cd, dcd_dre)
+    relative_velocity(wind_mps, v_line, v_rel)
+    normal_flow(v_rel, tangent, rho, mu_air, diameter_m, along, vn, vn_mps, re)
+    drag_coefficient_state(drag_function, drag_parameters, drag_factor, re, cd, dcd_dre)
     drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf, force)
     residual(a, v_line, T, unit[:n_seg], length[:n_seg], force, weight, hbar, h, mu, compliance_per_N,
              damping_time_s, force_ref_N, res)

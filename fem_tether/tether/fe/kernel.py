@@ -9,10 +9,12 @@ compiled, an iteration costs about as much as a few of them.  The tests check
 the Jacobian against central differences of the residual
 (``tests/tether/test_fe_kernel.py``, ``test_fe_system.py``), and the
 solutions against the analytic catenary and the FD solver.  Geometry (:func:`midpoints`) gives the
-altitudes where the leaf physics is evaluated, by its compiled twins
-(:mod:`fem_tether.physics.environment_kernel`: air, wind, drag coefficient; the
-drag's own loops in :mod:`fem_tether.physics.loads_kernel`, shared with the FD
-kernels); :func:`residual` and :func:`jacobian` assemble the equations, and
+altitudes where the leaf physics is evaluated, by the compiled loops of its
+modules (the air, wind and drag coefficient of :mod:`fem_tether.physics.atmosphere`,
+:mod:`fem_tether.physics.wind` and :mod:`fem_tether.physics.drag_coefficient`, given as
+their :attr:`compiled` models, :func:`environment`; the drag's loops in
+:mod:`fem_tether.physics.loads`, shared with the FD kernels and the NumPy
+callers); :func:`residual` and :func:`jacobian` assemble the equations, and
 :func:`factorize` and :func:`bordered_step` solve for a Newton step.
 :func:`evaluate` is one evaluation in one call, :func:`solve_step` a whole
 time step (predictor, kinematics, Newton's iteration and the step's series
@@ -38,13 +40,16 @@ import math
 import numba
 import numpy as np
 
-from fem_tether.physics.environment_kernel import air_state, drag_coefficient_state, wind_state
+from fem_tether.physics import atmosphere, drag_coefficient, wind
+from fem_tether.physics.atmosphere import air_state
+from fem_tether.physics.drag_coefficient import drag_coefficient_state
+from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
+from fem_tether.physics.wind import wind_state
 from fem_tether.tether.fe.system import BAND
-from fem_tether.physics.loads_kernel import derivative_work, drag_derivatives, drag_force, normal_flow
 from fem_tether.tether.protocol_kernel import max_abs, reuse_factors
 
-__all__ = ["band_solve", "bordered_step", "evaluate", "factorize", "jacobian", "line_series", "midpoints", "normal_flow",
-           "residual", "solve_step"]
+__all__ = ["band_solve", "bordered_step", "environment", "evaluate", "factorize", "jacobian", "line_series",
+           "midpoints", "residual", "solve_step"]
 
 V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
 BF = "f8[::1, :]"                                         # the band: Fortran order
@@ -82,7 +87,7 @@ def midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv):
 def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
              skin_friction_cf, weight, mass, interior, w, h, k_s, compliance_per_N, damping_time_s,
              tension_mode, ground_tension_N, radius_m, force, res):
-    """The drag ``force`` (:func:`~fem_tether.physics.loads_kernel.drag_force`) and the scaled residual (module
+    """The drag ``force`` (:func:`~fem_tether.physics.loads.drag_force`) and the scaled residual (module
     docstring of :mod:`.system`): node rows ``m qdd + D^T (T tau) - Q (f_t + w)``
     at interior nodes (and a free end), kinematic rows ``k r_0`` and ``k (r_N - R e)``, constraint
     rows ``k (|D r|_e - h_e (1 + T_e/EA) + eta tau_e . (D v)_e)`` and the closing row."""
@@ -287,35 +292,45 @@ def bordered_step(band, ipiv, z, residual, tension_mode, k_s, dx):
     dx[n - 1] = dR
 
 
-#: The arguments of :func:`evaluate` after its outputs' inputs: the models as numbers
-#: (:func:`fem_tether.physics.environment_kernel.tables`), then the line's constants.
-LINE = (V, M, V, F, F, V, V, V, M, V, F, F, B)
+def environment(physics) -> tuple:
+    """The air, wind and drag-coefficient models of a
+    :class:`~fem_tether.tether.line.TetherPhysics` as the kernels take them, one
+    after the other (their ``compiled`` forms:
+    :data:`fem_tether.physics.atmosphere.COMPILED`, ...)."""
+    return (*physics.air.compiled, *physics.wind.compiled, *physics.drag.compiled)
+
+
+#: The arguments of :func:`evaluate` after its outputs' inputs: the models
+#: (:func:`environment`), then the line's constants.
+LINE = (*atmosphere.COMPILED, *wind.COMPILED, *drag_coefficient.COMPILED, F, F, V, V, V, M, V, F, F, B)
 #: :func:`evaluate`'s outputs: residual, tau, |D r|, r_mid, f_t, V_n, |V_n|, Re, C_d,c, band.
 OUTPUTS = (V, M, V, M, M, M, V, V, V, BF)
 
 
 @jit(M, M, M, V, F, V, F, F, F, F, F, F, B, *LINE, *OUTPUTS, returns=I)
 def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-             with_jacobian, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
+             with_jacobian, air_function, air_parameters, ceiling_m, wind_function, wind_rows, drag_function,
+             drag_parameters, drag_factor, diameter_m, skin_friction_cf, weight, mass, interior, w, h,
              compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn, vn_mps,
              re, cd, band):
     """One evaluation of the equations (:meth:`.system.TetherSystem.evaluate`) in one call:
-    :func:`midpoints`, the air, wind and C_d,c there
-    (:mod:`fem_tether.physics.environment_kernel`), :func:`normal_flow`, :func:`residual`
+    :func:`midpoints`, the air, wind and C_d,c there (:func:`environment`) and
+    the normal flow (:func:`~fem_tether.physics.loads.normal_flow`), :func:`residual`
     and, ``with_jacobian``, :func:`jacobian`.  Returns -1, or the index of a
-    midpoint above the ISA troposphere (the outputs then incomplete)."""
+    midpoint above the air model's ceiling, the ISA troposphere (the outputs then incomplete)."""
     n_el = tau.shape[0]
     v_mid, dv, v_rel = np.empty((n_el, 3)), np.empty((n_el, 3)), np.empty((n_el, 3))
     speed, shear, along, dcd_dre = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
     rho, mu, drho_dz, dmu_dz = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
     midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv)
     z = r_mid[:, 2]
-    above = air_state(air, z, rho, mu, drho_dz, dmu_dz)
+    above = air_state(air_function, air_parameters, ceiling_m, z, rho, mu, drho_dz, dmu_dz)
     if above >= 0:
         return above
-    wind_state(wind, z, speed, shear)
-    normal_flow(v_mid, speed, tau, rho, mu, diameter_m, v_rel, along, vn, vn_mps, re)
-    drag_coefficient_state(drag, re, cd, dcd_dre)
+    wind_state(wind_function, wind_rows, z, speed, shear)
+    relative_velocity(speed, v_mid, v_rel)
+    normal_flow(v_rel, tau, rho, mu, diameter_m, along, vn, vn_mps, re)
+    drag_coefficient_state(drag_function, drag_parameters, drag_factor, re, cd, dcd_dre)
     residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
              skin_friction_cf, weight, mass, interior, w, h, k_s, compliance_per_N, damping_time_s,
              tension_mode, ground_tension_N, radius_m, force, res)
@@ -375,7 +390,8 @@ def _predict(r, T, q_n, v_n, a_n, T_n, dt_s):
      BF, "i8[:]", V, B, returns=I)
 def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
                ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, reel_mps, newton_tol, max_newton,
-               air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
+               air_function, air_parameters, ceiling_m, wind_function, wind_rows, drag_function, drag_parameters,
+               drag_factor, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
                damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
                series, info, band, ipiv, z, factored):
     """One generalised-alpha time step of size ``dt_s`` from the state
@@ -448,9 +464,10 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
         info[1] = worst
         info[2] = R
         above = evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_v, reel_mps,
-                         not chord, air, wind, drag, diameter_m, skin_friction_cf, weight, mass, interior, w,
-                         h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid, force, vn,
-                         vn_mps, re, cd, band) >= 0
+                         not chord, air_function, air_parameters, ceiling_m, wind_function, wind_rows,
+                         drag_function, drag_parameters, drag_factor, diameter_m, skin_friction_cf, weight, mass,
+                         interior, w, h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid,
+                         force, vn, vn_mps, re, cd, band) >= 0
         if above and not checking:
             return LEFT_ATMOSPHERE
         info[0] += 1.0

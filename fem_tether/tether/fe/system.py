@@ -95,7 +95,7 @@ class TetherSystem:
     """the free end's point mass (a kite) added to node N's; None: the end is kinematic"""
     _idx: dict = field(init=False, repr=False)
     _kernel: Any = field(init=False, repr=False)      # the module fem_tether.tether.fe.kernel
-    _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag tables
+    _kernel_env: tuple = field(init=False, repr=False)  # its air, wind and drag models (kernel.environment)
     kept: "KeptFactors" = field(init=False, repr=False)  # a step's factors for the next (KeptFactors)
 
     def __post_init__(self):
@@ -111,7 +111,7 @@ class TetherSystem:
         self.interior = interior
         self._idx = self._band_indices()
         self._kernel = importlib.import_module("fem_tether.tether.fe.kernel")
-        self._kernel_env = importlib.import_module("fem_tether.physics.environment_kernel").tables(self.physics)
+        self._kernel_env = self._kernel.environment(self.physics)
         self._set_lengths()
 
     def _set_lengths(self):
@@ -137,7 +137,7 @@ class TetherSystem:
         other.physics = physics
         other.weight = physics.weight_N_m
         other.kept = KeptFactors(self.n)
-        other._kernel_env = importlib.import_module("fem_tether.physics.environment_kernel").tables(physics)
+        other._kernel_env = self._kernel.environment(physics)
         return other
 
     def with_spaces(self, spaces: TetherSpaces) -> "TetherSystem":
