@@ -30,8 +30,9 @@ MOVED = {
     "fem_tether.systems.comparison": "fem_tether.performance.comparison",
     "fem_tether.systems.flexible": "fem_tether.jobs.flexible",
     **{f"fem_tether.{m}": f"fem_tether.tether.{m}"
-       for m in ("case", "free_kite", "continuation", "protocol", "protocol_kernel", "results", "laps",
+       for m in ("case", "free_kite", "continuation", "protocol", "results", "laps",
                  "energy", "crosscheck")},
+    "fem_tether.protocol_kernel": "fem_tether.tether.protocol",
     "fem_tether.fe.mesh": "fem_tether.core.mesh",
     "fem_tether.fe": "fem_tether.tether.fe",
     "fem_tether.fd": "fem_tether.tether.fd",

@@ -42,6 +42,7 @@ import time
 from dataclasses import dataclass, replace
 from typing import Protocol
 
+import numba
 import numpy as np
 
 from fem_tether.tether.case import TetherCase
@@ -66,6 +67,7 @@ def speed_jumped(before_mps: float, after_mps: float) -> bool:
     return abs(after_mps - before_mps) > RESTART_JUMP_MPS
 
 
+@numba.njit("b1(f8, f8, f8)", cache=True, error_model="numpy")
 def expect_converged(worst: float, before: float, tol: float) -> bool:
     """Whether the Newton iterate after residuals ``before`` and then ``worst``
     (max norms) is expected within ``tol``: quadratic convergence,
@@ -80,6 +82,7 @@ def expect_converged(worst: float, before: float, tol: float) -> bool:
 CHORD_CONTRACTION = 0.1
 
 
+@numba.njit("b1(f8, f8)", cache=True, error_model="numpy")
 def reuse_factors(worst: float, before: float) -> bool:
     """Whether the Newton iterate after residuals ``before`` and then ``worst``
     (max norms) may take its step with the factors of an earlier iterate's
@@ -89,6 +92,18 @@ def reuse_factors(worst: float, before: float) -> bool:
     contracting that fast they converge to the same tolerance (a slower one
     brings a fresh Jacobian at the next iterate)."""
     return math.isfinite(before) and worst <= CHORD_CONTRACTION * before
+
+
+@numba.njit("f8(f8[:])", cache=True, error_model="numpy")
+def max_abs(x) -> float:
+    """max |x_i|, the residual's norm in the convergence test; NaN if any x_i is
+    (as NumPy's ``max``)."""
+    worst = 0.0
+    for i in range(x.shape[0]):
+        if math.isnan(x[i]):
+            return x[i]
+        worst = max(worst, abs(x[i]))
+    return worst
 
 
 @dataclass

@@ -248,3 +248,26 @@ def test_expect_converged_is_quadratic_convergence_with_margin():
     assert not expect_converged(1e-4, 1e-3, 1e-10)
     assert not expect_converged(1e-6, math.inf, 1e-10)
     assert not expect_converged(1e-3, 1e-6, 1e-10)
+
+
+def test_the_newton_rules_at_their_edges():
+    """The compiled rules the kernels and the Python iterations share (one implementation):
+    expect convergence only after a contraction whose cube law lands below a tenth of the
+    tolerance; reuse factors after a tenfold contraction; never after a non-finite residual."""
+    from fem_tether.tether.protocol import CHORD_CONTRACTION, expect_converged, reuse_factors
+    assert not expect_converged(1e-4, 1e-1, 1e-10)      # 1e-4 (1e-3)^2 = 1e-10 > 1e-11: not yet
+    assert expect_converged(1e-5, 1e-1, 1e-10)
+    assert not expect_converged(1e-5, 1e-6, 1e-10)       # no contraction
+    assert not expect_converged(1e-5, math.inf, 1e-10) and not expect_converged(1e-5, math.nan, 1e-10)
+    assert reuse_factors(CHORD_CONTRACTION, 1.0) and not reuse_factors(0.11, 1.0)
+    assert not reuse_factors(1e-9, math.inf) and not reuse_factors(math.nan, 1.0)
+
+
+def test_max_abs_is_numpys_max_norm():
+    """The convergence test's norm: NumPy's max of |x|, NaN when any entry is."""
+    from fem_tether.tether.protocol import max_abs
+    x = np.random.default_rng(5).normal(size=50) * 1e3
+    assert max_abs(x) == np.abs(x).max()
+    assert max_abs(np.zeros(0)) == 0.0
+    x[7] = math.nan
+    assert math.isnan(max_abs(x))

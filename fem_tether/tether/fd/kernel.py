@@ -42,7 +42,7 @@ from fem_tether.physics.atmosphere import air_state
 from fem_tether.physics.drag_coefficient import drag_coefficient_state
 from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
 from fem_tether.physics.wind import wind_state
-from fem_tether.tether.protocol_kernel import expect_converged, max_abs
+from fem_tether.tether.protocol import expect_converged, max_abs
 
 __all__ = ["assemble", "directions", "evaluate", "jacobian", "physics_tables", "residual", "solve",
            "solve_step"]
@@ -406,7 +406,7 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
 
     From the predictor (:func:`_predictor`), each iteration evaluates the
     equations (:func:`evaluate`; the Jacobian skipped where the iterate is
-    expected to converge, :func:`fem_tether.tether.protocol_kernel.expect_converged`, and evaluated after all
+    expected to converge, :func:`fem_tether.tether.protocol.expect_converged`, and evaluated after all
     where it then does not) and subtracts the Newton update from the active
     unknowns (T_{1/2} known in tension mode, R otherwise), up to
     ``max_newton`` times; it stops at ``max |residual| <= newton_tol``, on a

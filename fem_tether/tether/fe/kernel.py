@@ -46,7 +46,7 @@ from fem_tether.physics.drag_coefficient import drag_coefficient_state
 from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
 from fem_tether.physics.wind import wind_state
 from fem_tether.tether.fe.system import BAND
-from fem_tether.tether.protocol_kernel import max_abs, reuse_factors
+from fem_tether.tether.protocol import max_abs, reuse_factors
 
 __all__ = ["band_solve", "bordered_step", "environment", "evaluate", "factorize", "jacobian", "line_series",
            "midpoints", "residual", "solve_step"]
@@ -410,7 +410,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     otherwise takes a Newton step (:func:`factorize`, :func:`bordered_step`):
     with the factors of an earlier iterate, and so without the Jacobian, when
     the last step contracted the residual fast enough
-    (:func:`~fem_tether.tether.protocol_kernel.reuse_factors`).  Returns :data:`CONVERGED` (the last evaluation's
+    (:func:`~fem_tether.tether.protocol.reuse_factors`).  Returns :data:`CONVERGED` (the last evaluation's
     outputs are the solution's), :data:`NOT_CONVERGED` (no convergence within
     ``max_newton`` iterations, a non-finite residual or a singular Jacobian) or
     :data:`LEFT_ATMOSPHERE` (a midpoint of ``r_mid`` above the ISA troposphere);
@@ -423,7 +423,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     row scale (the caller's bookkeeping).  Then the first iterate takes a chord
     step with them (``z`` solved again for this step's kite direction) and a
     fresh Jacobian comes as soon as a step contracts the residual less than
-    :func:`~fem_tether.tether.protocol_kernel.reuse_factors` asks; if that first
+    :func:`~fem_tether.tether.protocol.reuse_factors` asks; if that first
     chord step raises the residual, the iteration starts again from the
     predictor with a fresh Jacobian.  Measured on the benchmark case at 40
     elements: 1.6 instead of 2.5 factorisations per step at dt = 0.2 s, the
