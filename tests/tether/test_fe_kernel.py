@@ -17,6 +17,7 @@ from fem_tether.tether.fe.integrator import Kinematics
 from fem_tether.tether.fe.system import BAND, solve_band
 from fem_tether.tether.protocol import Statistics
 from fem_tether.physics.trajectory import Stationary
+from fem_tether.physics.moment import drag_moment_Nm, drag_power_W, equivalent_force
 
 CASES = {
     "bench: constant air and C_d, no wind": (
@@ -39,7 +40,7 @@ def test_the_whole_step_solves_the_step_equations(overrides, reel_mps):
     a = (q - q_known) / (beta h^2) multiplies the positions' round-off by ~1e3
     at h = 0.05 s), the equations evaluated anew there are within the Newton
     tolerance and equal the step's own evaluation, and the step's series values
-    (the kernel's ``line_series``) equal the formulas of ``line_state`` within 1e-12."""
+    (the kernel's ``line_series``) equal the NumPy formulas of :mod:`fem_tether.physics.moment` within 1e-12."""
     cfg = load_config(overrides={"tether": {"length_m": 1000.0}} | overrides)
     model = dataclasses.replace(fe.build_model(cfg), reel_mps=reel_mps)
     sys_ = model.system
@@ -62,11 +63,17 @@ def test_the_whole_step_solves_the_step_equations(overrides, reel_mps):
         np.testing.assert_array_equal(ev.residual, new.ev.residual)
         np.testing.assert_array_equal(ev.load.force, new.ev.load.force)
         assert new.ev.series is not None
-        kernel_series = fe.line_state(model, new, False)
-        numpy_series = fe.line_state(model, dataclasses.replace(new, ev=dataclasses.replace(new.ev, series=None)),
-                                     False)
-        for key in numpy_series:
-            assert kernel_series[key] == pytest.approx(numpy_series[key], rel=1e-12, abs=1e-14), key
+        series = fe.line_state(model, new, False)
+        h_m, r, v = sys_.spaces.h_m, new.kin.q, new.kin.v
+        drag, against = equivalent_force(drag_moment_Nm(ev.r_mid, ev.load.force, h_m), r[-1], v[-1])
+        v_mid = 0.5 * (v[1:] + v[:-1])
+        if reel_mps:
+            v_mid[0] = 0.5 * (v[1] + reel_mps * ev.tau[0])
+        expected = {"drag_N": drag, "drag_against_N": against, "kite_radius_m": np.linalg.norm(r[-1]),
+                    "drag_power_W": drag_power_W(v_mid, ev.load.force, h_m),
+                    "max_strain": np.max(np.abs(ev.length_m / h_m - 1.0))}
+        for key, value in expected.items():
+            assert series[key] == pytest.approx(value, rel=1e-12, abs=1e-14), key
         st = new
 
 

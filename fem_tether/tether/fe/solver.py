@@ -40,7 +40,6 @@ from fem_tether.tether.fe.system import Evaluation, TetherSystem
 from fem_tether.tether.free_kite import FreeKite, KiteLoad, Steer
 from fem_tether.tether import free_kite as free_kite_module
 from fem_tether.physics.kite_dynamics import PolarError
-from fem_tether.physics.moment import drag_moment_Nm, drag_power_W, equivalent_force
 from fem_tether.tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether.tether import protocol
 from fem_tether.tether.protocol import Statistics, reuse_factors, speed_jumped
@@ -448,16 +447,7 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
     ev = state.ev or sys_.evaluate(r, v, state.kin.qdd, state.T, state.R,
                                    model.end.state(state.t, 1.0)[0], model.ground_tension_N,
                                    model.radius_m, 1.0, jacobian=False)
-    if ev.series is not None:      # a whole step's (:func:`.kernel.line_series`, the same formulas)
-        drag, against, radius, strain, power = ev.series.tolist()
-    else:
-        moment = drag_moment_Nm(ev.r_mid, ev.load.force, sys_.spaces.h_m)
-        drag, against = equivalent_force(moment, r[-1], v[-1] if np.any(v[-1]) else None)
-        against = 0.0 if against is None else float(against)
-        radius = float(np.linalg.norm(r[-1]))
-        strain = float(np.max(np.abs(ev.length_m / sys_.spaces.h_m - 1.0)))
-        power = float(drag_power_W(_midpoint_velocity_mps(v, ev.tau, model.reel_mps), ev.load.force,
-                                   sys_.spaces.h_m))
+    drag, against, radius, strain, power = sys_.series(ev, r, v, model.reel_mps).tolist()
     series = {
         "ground_tension_N": state.T[0],
         "kite_tension_N": state.T[-1],
@@ -481,15 +471,6 @@ def line_state(model: FEModel, state: State, fields: bool = True) -> dict:
         "cd": ev.load.cd,
         "drag_N_m": ev.load.force,
     }
-
-
-def _midpoint_velocity_mps(v, tau, reel_mps: float) -> np.ndarray:
-    """The elements' midpoint velocities the drag is evaluated with
-    (:meth:`.system.TetherSystem.evaluate`): node 0 moves with V_L tau_0 while reeling."""
-    v_mid = 0.5 * (v[1:] + v[:-1])
-    if reel_mps:
-        v_mid[0] = 0.5 * (v[1] + reel_mps * tau[0])
-    return v_mid
 
 
 def reeled(model: FEModel, state: State, length_m: float, reel_mps: float,

@@ -188,6 +188,18 @@ class TetherSystem:
         }
 
     # --- equations --------------------------------------------------------
+    def series(self, ev: Evaluation, r, v, reel_mps: float) -> np.ndarray:
+        """``(F_t, F_against, |r_N|, max strain, P_t)`` of the solution ``(r, v)``
+        evaluated as ``ev``: a whole step's own, else :func:`.kernel.line_series`
+        of it (the drag moment of seed 000 eq. 4.1 and the drag power,
+        :mod:`fem_tether.physics.moment`)."""
+        if ev.series is not None:
+            return ev.series
+        out = np.empty(5)
+        self._kernel.line_series(np.ascontiguousarray(r), np.ascontiguousarray(v), ev.r_mid, ev.load.force,
+                                 self.spaces.h_m, ev.length_m, ev.tau, float(reel_mps), out)
+        return out
+
     def evaluate(self, r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m,
                  force_ref_N, c_a=0.0, c_v=0.0, jacobian=True, reel_mps=0.0) -> Evaluation:
         """Scaled residual (and banded Jacobian) at positions r, velocities v,
