@@ -49,6 +49,8 @@ class Progress:
         self.stream.flush()
 
     def close(self) -> None:
+        """End the bar's line (once)."""
         if self.enabled and self.tty and self._drawn:
             self.stream.write("\n")
             self.stream.flush()
+            self._drawn = False

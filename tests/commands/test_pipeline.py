@@ -113,7 +113,7 @@ def test_main_job_under_mpiexec(tmp_path):
                                            ("drag_vs_length.png", "not a PNG of ours")])
 def test_run_refuses_a_users_file_in_its_folder_before_any_task(tmp_path, capsys, monkeypatch, name, content):
     """(Was: replaced after the sweep.)  Exit 2 naming the file; nothing run, nothing written."""
-    monkeypatch.setattr("fem_tether.jobs.sweep.run_task", lambda *a: pytest.fail("a task ran"))
+    monkeypatch.setattr("fem_tether.jobs.sweep_tasks.run_task", lambda *a: pytest.fail("a task ran"))
     out = tmp_path / "r"
     out.mkdir()
     (out / name).write_text(content)
@@ -127,7 +127,7 @@ def test_run_refuses_a_users_file_in_its_folder_before_any_task(tmp_path, capsys
 def test_a_second_run_into_the_same_folder_is_refused_naming_the_first(tmp_path, capsys, monkeypatch):
     from fem_tether.core.atomic import exclusive
 
-    monkeypatch.setattr("fem_tether.jobs.sweep.run_task", lambda *a: pytest.fail("a task ran"))
+    monkeypatch.setattr("fem_tether.jobs.sweep_tasks.run_task", lambda *a: pytest.fail("a task ran"))
     out = tmp_path / "r"
     with exclusive(out, directory=True):
         assert main(["run", "--out", str(out)]) == 2
