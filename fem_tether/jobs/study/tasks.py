@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import time
 import traceback
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -216,7 +217,7 @@ class Study:
         """Whether the part of ``task`` is stored with its inputs' key."""
         return self.stored(task) is not None
 
-    def present(self, tasks: list[Task]) -> int:
+    def present(self, tasks: Sequence[Task]) -> int:
         """How many of ``tasks`` have a part, whatever its key (one listing of the directory)."""
         return self.parts.present([t.name for t in tasks])
 
