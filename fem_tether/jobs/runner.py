@@ -63,13 +63,14 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: 
             else:
                 work.run(tasks[i])
                 ran += 1
-            if rank == 0:
+            if bar.due():               # rank 0's: count the parts only when the bar draws
                 bar.update(work.present(tasks))
         request = comm.Ibarrier()
         while not request.Test():
             checkpoint()
             if rank == 0:
-                bar.update(work.present(tasks))
+                if bar.due():
+                    bar.update(work.present(tasks))
                 work.while_waiting()
             time.sleep(POLL_S)
     bar.update(len(tasks))
