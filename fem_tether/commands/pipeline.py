@@ -9,19 +9,18 @@ page ``index.html`` (:mod:`fem_tether.report.page`); the printed summary table i
 
 from __future__ import annotations
 
-import importlib
 import time
 from contextlib import ExitStack
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from fem_tether.performance.aep import SweepAep, check_resource, sweep_aep
-from fem_tether.core.atomic import check_writable, exclusive, write_json
+from fem_tether.performance.aep import SweepAep, sweep_aep
+from fem_tether.core.atomic import write_json
 from fem_tether.report.figures import PLOT_FILES, write_plots
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.report.page import PAGE_NAME, write_page
-from fem_tether.jobs.sweep import SweepOutcome, sweep
+from fem_tether.jobs.sweep import FollowUp, SweepOutcome, sweep
 from fem_tether.jobs.sweepfile import read_sweep
 
 
@@ -60,19 +59,13 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     job = load_job(job_file, system)
     out = Path(out)
     h5 = out / "sweep.h5"
-    with ExitStack() as output:
-        def check():
-            """Before any task, on rank 0: the resource (without scipy.stats), the
-            files after the sweep, and one run into ``out`` at a time."""
-            check_resource(job.config)
-            for name in FILES:
-                check_writable(out / name)
-            output.enter_context(exclusive(out, directory=True, outputs=[out / n for n in FILES]))
-
-        # rank 0 imports the plotting and scipy.stats while it waits for the other ranks' tasks
-        outcome = sweep(job, h5, check=check,
-                        idle=lambda: [importlib.import_module(m) for m in ("fem_tether.report.plots", "scipy.stats")],
-                        idle_cost_us=IDLE_COST_US)
+    with ExitStack() as folder_lock:
+        # before any task, on rank 0: the resource (without scipy.stats), the files after the
+        # sweep, and one run into ``out`` at a time (until they are written); rank 0 imports
+        # the plotting and scipy.stats while it waits for the other ranks' tasks
+        follow_up = FollowUp(out, tuple(out / name for name in FILES), folder_lock, aep=True,
+                             imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US)
+        outcome = sweep(job, h5, follow_up=follow_up)
         if outcome is None:
             return None
         return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0)

@@ -39,7 +39,8 @@ MOVED = {
     **{f"fem_tether.{m}": f"fem_tether.performance.{m}" for m in ("straight", "summary", "sizing", "aep")},
     **{f"fem_tether.{m}": f"fem_tether.io.{m}" for m in ("output", "reading")},
     **{f"fem_tether.{m}": f"fem_tether.jobs.{m}"
-       for m in ("schedule", "distribute", "store", "evaluate", "sweepfile", "sweep")},
+       for m in ("schedule", "store", "evaluate", "sweepfile", "sweep")},
+    "fem_tether.distribute": "fem_tether.jobs.runner",
     "fem_tether.study.report": "fem_tether.report.study",
     "fem_tether.study": "fem_tether.jobs.study",
     **{f"fem_tether.{m}": f"fem_tether.report.{m}" for m in ("plots", "figures", "page")},

@@ -28,6 +28,10 @@ class Progress:
         self._last = self.start if not self.tty else 0.0
         self._drawn = False
 
+    def due(self) -> bool:
+        """Whether an :meth:`update` now would draw (before the loop counts what is done)."""
+        return self.enabled and time.perf_counter() - self._last >= (REDRAW_S if self.tty else LINE_EVERY_S)
+
     def update(self, done: int) -> None:
         if not self.enabled:
             return
@@ -49,6 +53,8 @@ class Progress:
         self.stream.flush()
 
     def close(self) -> None:
+        """End the bar's line (once)."""
         if self.enabled and self.tty and self._drawn:
             self.stream.write("\n")
             self.stream.flush()
+            self._drawn = False

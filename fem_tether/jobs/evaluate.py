@@ -62,11 +62,9 @@ def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):
 
 
 def run_task(store: PartsStore, task: Task) -> str:
-    """Run one task unless a matching successful part exists; return
-    ``"reused"`` (a stored part matched), ``"ok"`` or ``"failed"``."""
+    """Run one task into its part (a failed solve too, as its error); return
+    ``"ok"`` or ``"failed"``."""
     key = store.inputs_key(task.length_m)
-    if store.status(task, key) == "ok":
-        return "reused"
     cfg = store.job.config_for(task.length_m)
     try:
         cfg = store.config_for(task.length_m)       # with [tether] sizing = "load": sized now or stored
@@ -100,8 +98,13 @@ def evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, d
     """Combine the stored parts of one length: cross-check, straight line, G_e.
 
     Returns the result and the part paths found (solver -> path); remembered
-    by the store while the parts on disk do not change."""
-    return store.combined(length_m, lambda: _evaluate_length(store, length_m))
+    in the store (:attr:`~fem_tether.jobs.store.PartsStore.evaluated`) while the
+    length's parts on disk do not change (:meth:`~fem_tether.jobs.store.PartsStore.stamps`),
+    so that assembling after every task does not read the unchanged lengths again."""
+    stamps = store.stamps(length_m)
+    if store.evaluated.get(length_m, (None,))[0] != stamps:
+        store.evaluated[length_m] = (stamps, _evaluate_length(store, length_m))
+    return store.evaluated[length_m][1]
 
 
 def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:

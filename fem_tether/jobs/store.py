@@ -57,16 +57,17 @@ def inputs_key(cfg: Config) -> str:
 class PartsStore:
     """The parts of one job's sweep into the result file ``out``.
 
-    Besides the files, it remembers for its lifetime (one sweep) what was
-    combined from each length's parts, so that assembling after every task
-    does not read and compare the unchanged lengths again.
+    Besides the files, it holds for its lifetime (one sweep) what was evaluated
+    from each length's parts (:attr:`evaluated`, length -> (its parts'
+    :meth:`stamps`, the evaluation), kept by
+    :func:`fem_tether.jobs.evaluate.evaluate_length`).
     """
 
     def __init__(self, job: Job, out: str | Path):
         self.job = job
         self.out = Path(out)
         self.directory = parts_dir(self.out)
-        self._combined: dict = {}
+        self.evaluated: dict = {}
 
     def path(self, task: Task) -> Path:
         return self.directory / f"{task.name}.h5"
@@ -168,10 +169,8 @@ class PartsStore:
             fcntl.flock(fh, fcntl.LOCK_EX)
             yield
 
-    def combined(self, length_m: float, combine):
-        """``combine()`` of one length, remembered while its parts on disk do not change."""
-        stamps = tuple(path.stat().st_mtime_ns if path.exists() else None
-                       for path in (self.path(Task(length_m, s)) for s in self.job.solvers))
-        if self._combined.get(length_m, (None,))[0] != stamps:
-            self._combined[length_m] = (stamps, combine())
-        return self._combined[length_m][1]
+    def stamps(self, length_m: float) -> tuple:
+        """The modification times of a length's parts (None: not present): what
+        was evaluated from them holds while they do not change."""
+        return tuple(path.stat().st_mtime_ns if path.exists() else None
+                     for path in (self.path(Task(length_m, s)) for s in self.job.solvers))

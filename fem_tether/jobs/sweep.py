@@ -1,34 +1,58 @@
 """Sweeps over cable length, spread over MPI ranks, results in one HDF5 file.
 
-The driver: a job's tasks (:mod:`fem_tether.jobs.job`) are assigned to the ranks
-(:mod:`fem_tether.jobs.schedule`); each rank runs its tasks
-(:func:`fem_tether.jobs.evaluate.run_task`) into the parts store
-(:mod:`fem_tether.jobs.store`) and, after each one it ran, assembles the result
-file from the parts present (:mod:`fem_tether.jobs.sweepfile`); rank 0 assembles it
-once more at the end.  The assignment decides only where a task runs, so
-every number is the same whatever the number of ranks.  Re-running the same
-job reuses the tasks whose inputs match and reports how many; Ctrl-C keeps
-the finished tasks and says how to resume.
+The sweep's main loop (:func:`sweep`), top to bottom: rank 0 prepares the
+output (checks and locks it and the files of what follows, removes a killed
+sweep's temporaries, assembles the result file from the parts present); the
+job's tasks (:mod:`fem_tether.jobs.job`) are assigned to the ranks and run,
+each one kept in its part and its length brought up to date in the result
+file (:func:`fem_tether.jobs.runner.distribute` over
+:class:`fem_tether.jobs.sweep_tasks.SweepTasks`); after the barrier rank 0
+assembles the result file once more (:mod:`fem_tether.jobs.sweepfile`).  The
+assignment decides only where a task runs, so every number is the same
+whatever the number of ranks.  Re-running the same job reuses the tasks
+whose inputs match and reports how many; Ctrl-C keeps the finished tasks and
+says how to resume.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from contextlib import ExitStack
 from dataclasses import dataclass
 from pathlib import Path
 
-from fem_tether.core.atomic import exclusive, remove_temporaries
-from fem_tether.jobs.distribute import distribute
+from fem_tether.core.atomic import check_writable, exclusive, remove_temporaries
 from fem_tether.core.errors import InputError
-from fem_tether.jobs.evaluate import LengthResult, evaluate_length, load_kernels, run_task
-from fem_tether.jobs.job import Job, Task
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.core.progress import Progress
-from fem_tether.jobs.schedule import task_cost
 from fem_tether.core.stop import guard, sync
+from fem_tether.jobs.evaluate import LengthResult
+from fem_tether.jobs.job import Job
+from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
 from fem_tether.jobs.store import PartsStore
-from fem_tether.jobs.sweepfile import assemble, check_out, update
+from fem_tether.jobs.sweep_tasks import SweepTasks
+from fem_tether.jobs.sweepfile import assemble, check_out
+from fem_tether.performance.aep import check_resource
+
+
+@dataclass(frozen=True)
+class FollowUp:
+    """What rank 0 does after the sweep, prepared before and during it: the
+    ``files`` it writes into ``folder`` (checked and, with the folder, locked
+    before any task; the lock is held in the caller's ``holder`` until it has
+    written them), whether it computes the AEP (``aep``: the wind resource
+    is checked before any task), the modules it ``imports`` (imported while
+    rank 0 waits for the other ranks' tasks; ``imports_cost_us``, their cost
+    in the unit of :func:`~fem_tether.jobs.schedule.task_cost`, is counted as
+    rank 0's load, so that with several ranks they are imported while the
+    others finish their tasks)."""
+
+    folder: Path
+    files: tuple[Path, ...]
+    holder: ExitStack
+    aep: bool = False
+    imports: tuple[str, ...] = ()
+    imports_cost_us: float = 0.0
+
 
 @dataclass(frozen=True)
 class SweepOutcome:
@@ -46,13 +70,6 @@ class SweepOutcome:
         return all(r.status == "ok" for r in self.lengths)
 
 
-def _combine_complete(store: PartsStore) -> None:
-    """Combine (and remember) the lengths whose parts are all present."""
-    for length_m in store.job.lengths_m:
-        if all(store.path(Task(length_m, s)).exists() for s in store.job.solvers):
-            evaluate_length(store, length_m)
-
-
 class SweepInterrupted(KeyboardInterrupt):
     """Ctrl-C during a sweep; the message says what is kept and how to resume,
     counted when it is read (under MPI once every rank has stopped: a task
@@ -68,94 +85,63 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
-          check: Callable[[], object] | None = None,
-          idle: Callable[[], object] | None = None, idle_cost_us: float = 0.0) -> SweepOutcome | None:
+          follow_up: FollowUp | None = None) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
     Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
-    ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are kept).
-    ``check``, if given, runs on rank 0 before any task (a check of what
-    follows the sweep); the :class:`InputError` it raises is raised on every rank.
-    While rank 0 waits for the other ranks' tasks it combines the lengths they
-    complete (so that its final assembly finds them combined) and calls
-    ``idle`` once (work that would otherwise follow the sweep); ``idle_cost_us``,
-    its estimated cost in the unit of :func:`~fem_tether.jobs.schedule.task_cost`,
-    is counted as rank 0's load when the tasks are assigned, so that with
-    several ranks it runs while the others finish their tasks.
+    ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are
+    kept).  ``follow_up``: what rank 0 does after the sweep (:class:`FollowUp`);
+    an :class:`InputError` its checks raise is raised on every rank, before any task.
     """
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
     with guard(comm), ExitStack() as output:
-        return _sweep(job, Path(out), comm, output, progress, check, idle, idle_cost_us)
+        return _sweep(job, Path(out), comm, output, progress, follow_up)
 
 
-def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool, check, idle,
-           idle_cost_us: float) -> SweepOutcome | None:
+def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
+           follow_up: FollowUp | None) -> SweepOutcome | None:
     rank, size = comm.Get_rank(), comm.Get_size()
     store = PartsStore(job, out)
     problem: InputError | None = None
     if rank == 0:
         try:
-            check_out(out)
-            output.enter_context(exclusive(out))   # one writer of out and its parts, until the end
-            remove_temporaries(store.directory)
-            if check is not None:
-                check()
-            assemble(store, size)               # current from the start: each task then updates its length
+            _prepare_output(store, size, output, follow_up)
         except InputError as exc:
             problem = exc
-    sync(comm)
-    problem = comm.bcast(problem, root=0)
-    if problem:
-        raise problem
-    tasks = job.tasks
-    bar = Progress(len(tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
+    raise_on_every_rank(comm, problem)
+    bar = Progress(len(job.tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
-    try:
-        return _run_tasks(store, comm, bar, idle, idle_cost_us)
-    except KeyboardInterrupt:       # from here on Ctrl-C says what is kept
+    try:                                # from here on Ctrl-C says what is kept
+        load_kernels_by_rank(comm, job.config, job.solvers)
+        tasks = SweepTasks(store, size, follow_up.imports if follow_up else ())
+        _, kept = distribute(comm, tasks, job.tasks, bar, follow_up.imports_cost_us if follow_up else 0.0)
+        sync(comm)
+        reused = comm.reduce(kept, root=0)
+        if rank != 0:
+            comm.gather(peak_rss_MiB(), root=0)
+            return None
+        results = assemble(store, size)
+        return SweepOutcome(results, len(job.tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))
+    except KeyboardInterrupt:
         bar.close()
         raise SweepInterrupted(store) from None
 
 
-def _run_tasks(store: PartsStore, comm, bar: Progress, idle, idle_cost_us: float) -> SweepOutcome | None:
-    job, tasks = store.job, store.job.tasks
-    rank, size = comm.Get_rank(), comm.Get_size()
-    # after an install the first import of a solver's kernels compiles them: each
-    # rank compiles one solver's (not all of them, all at once), then loads the others' cached
-    load_kernels(job.config, [job.solvers[rank % len(job.solvers)]])
-    sync(comm)
-    load_kernels(job.config, job.solvers)
-    reused = 0
-    seen = -1
-
-    def run(i):
-        nonlocal reused
-        if run_task(store, tasks[i]) == "reused":
-            reused += 1
-        else:
-            update(store, tasks[i].length_m, size)
-        if rank == 0:
-            bar.update(store.done())
-
-    def waiting():
-        nonlocal seen, idle
-        if store.done() != seen:
-            seen = store.done()
-            bar.update(seen)
-            _combine_complete(store)
-        if idle is not None:
-            idle()
-            idle = None
-
-    distribute(comm, [task_cost(job, t) for t in tasks], run, idle_cost_us if idle else 0.0, waiting)
-    sync(comm)
-    reused = comm.reduce(reused, root=0)
-    if rank != 0:
-        comm.gather(peak_rss_MiB(), root=0)
-        return None
-    results = assemble(store, size)
-    bar.update(len(tasks))
-    bar.close()
-    return SweepOutcome(results, len(tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))
+def _prepare_output(store: PartsStore, n_ranks: int, output: ExitStack, follow_up: FollowUp | None) -> None:
+    """On rank 0, before any task: the result file and its parts can be written and
+    are locked (until the end); a killed sweep's temporaries are removed; the
+    checks and the lock of what follows (:class:`FollowUp`); the result file is
+    current from the start (each task then updates its length)."""
+    check_out(store.out)
+    output.enter_context(exclusive(store.out))   # one writer of out and its parts, until the end
+    remove_temporaries(store.directory)
+    if follow_up is not None:
+        if follow_up.aep:
+            check_resource(store.job.config)
+        for path in follow_up.files:
+            check_writable(path)
+        follow_up.holder.enter_context(exclusive(follow_up.folder, directory=True,
+                                                 outputs=list(follow_up.files)))
+    assemble(store, n_ranks)

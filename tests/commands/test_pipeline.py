@@ -9,7 +9,9 @@ from pathlib import Path
 import h5py
 import pytest
 
+from conftest import TINY_JOB
 from pages import check_page
+from route import TOP_TO_BOTTOM, calls_between_modules
 
 from fem_tether.cli import main
 from fem_tether.physics.resource import from_config as resource_from_config
@@ -113,7 +115,7 @@ def test_main_job_under_mpiexec(tmp_path):
                                            ("drag_vs_length.png", "not a PNG of ours")])
 def test_run_refuses_a_users_file_in_its_folder_before_any_task(tmp_path, capsys, monkeypatch, name, content):
     """(Was: replaced after the sweep.)  Exit 2 naming the file; nothing run, nothing written."""
-    monkeypatch.setattr("fem_tether.jobs.sweep.run_task", lambda *a: pytest.fail("a task ran"))
+    monkeypatch.setattr("fem_tether.jobs.sweep_tasks.run_task", lambda *a: pytest.fail("a task ran"))
     out = tmp_path / "r"
     out.mkdir()
     (out / name).write_text(content)
@@ -127,9 +129,32 @@ def test_run_refuses_a_users_file_in_its_folder_before_any_task(tmp_path, capsys
 def test_a_second_run_into_the_same_folder_is_refused_naming_the_first(tmp_path, capsys, monkeypatch):
     from fem_tether.core.atomic import exclusive
 
-    monkeypatch.setattr("fem_tether.jobs.sweep.run_task", lambda *a: pytest.fail("a task ran"))
+    monkeypatch.setattr("fem_tether.jobs.sweep_tasks.run_task", lambda *a: pytest.fail("a task ran"))
     out = tmp_path / "r"
     with exclusive(out, directory=True):
         assert main(["run", "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"fem-tether: error: cannot write {out}: in use by fem-tether ") and err.count("\n") == 1
+
+
+
+def test_the_main_jobs_data_goes_only_down(tmp_path):
+    """The main job on the tiny job, traced: no module calls back into one that called it
+    (was: store -> evaluate -> store, distribute -> sweep, sweep -> pipeline), and the
+    sweep's modules call only those below them (tests/jobs/test_runner.py's order)."""
+    import importlib
+
+    from fem_tether.commands.pipeline import main_job
+    from fem_tether.jobs.evaluate import load_kernels
+    from fem_tether.jobs.job import load_job
+
+    (tmp_path / "tiny.toml").write_text(TINY_JOB)
+    job = load_job(tmp_path / "tiny.toml")
+    load_kernels(job.config, job.solvers)                  # compiled or loaded untraced
+    for module in ("fem_tether.report.plots", "scipy.stats"):
+        importlib.import_module(module)
+    calls = calls_between_modules(lambda: main_job(tmp_path / "tiny.toml", tmp_path / "out"))
+    assert {c[1] for c in calls} >= {"fem_tether.jobs.runner", "fem_tether.jobs.sweep_tasks", "fem_tether.io.output"}
+    assert sorted({f"{a} -> {b}" for a, b, back in calls if back}) == []
+    order = {m: i for i, m in enumerate(TOP_TO_BOTTOM)}
+    assert sorted({f"{a} -> {b}" for a, b, _ in calls if a in order and b in order and order[b] < order[a]}) == []

@@ -67,20 +67,15 @@ def test_a_stored_run_is_reused_only_with_the_same_inputs(store, tiny_cfg):
     assert (store.done(), store.kept()) == (1, 0)
 
 
-def test_combined_is_remembered_until_a_part_changes(store, tiny_cfg):
+def test_stamps_change_when_a_part_changes(store, tiny_cfg):
     store.directory.mkdir()
-    calls = []
-
-    def combine():
-        calls.append(1)
-        return len(calls)
-
-    assert store.combined(400.0, combine) == 1 and store.combined(400.0, combine) == 1
+    assert store.stamps(400.0) == (None, None)
     task = Task(400.0, "fd")
     store.write_failure(task, tiny_cfg, "key", "FD: failed")
-    assert store.combined(400.0, combine) == 2
+    first = store.stamps(400.0)
+    assert first[0] is None and first[1] is not None
     os.utime(store.path(task), ns=(0, 0))
-    assert store.combined(400.0, combine) == 3 and store.combined(800.0, combine) == 4
+    assert store.stamps(400.0) == (None, 0) and store.stamps(800.0) == (None, None)
 
 
 def test_done_counts_the_jobs_parts_in_one_listing(store, tiny_cfg, monkeypatch):

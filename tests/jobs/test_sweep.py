@@ -17,6 +17,7 @@ import pytest
 from conftest import TINY_JOB as TINY, default_sigint
 
 from fem_tether.jobs import sweep as sw
+from fem_tether.jobs import sweep_tasks
 from fem_tether.core.atomic import OutputError
 from fem_tether.cli import main
 from fem_tether.core.errors import SolverDivergedError
@@ -121,7 +122,7 @@ def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, mo
     """Each finished task is in the result file before the next one starts, the
     lengths still to run marked pending (not failed): a kill leaves it current."""
     out = tmp_path / "r.h5"
-    real, seen = sw.run_task, []
+    real, seen = sweep_tasks.run_task, []
 
     def observed(store, task):
         job = store.job
@@ -135,7 +136,7 @@ def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, mo
             seen.append(len(done))
         return real(store, task)
 
-    monkeypatch.setattr(sw, "run_task", observed)
+    monkeypatch.setattr(sweep_tasks, "run_task", observed)
     sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
     assert seen == [1, 2, 3]
 
@@ -290,18 +291,38 @@ def test_a_failed_solve_is_recorded_quietly(tmp_path):
     assert "not run; FE: time step did not converge" in table and "nan %" not in table
 
 
-def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_sweep(tiny_job, tmp_path):
-    """The outcome has the peak RSS of each rank (one here); a ``check`` that raises an
-    InputError stops the sweep before any task, with that error."""
+def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_sweep(tiny_job, tmp_path,
+                                                                                    monkeypatch):
+    """The outcome has the peak RSS of each rank (one here); a check of what follows the
+    sweep (:class:`~fem_tether.jobs.sweep.FollowUp`: a bad wind resource, a user's file
+    among its files) stops the sweep before any task, with its error; a good one holds
+    the folder's lock in the caller's holder after the sweep."""
+    from contextlib import ExitStack
+    from fem_tether.core.atomic import exclusive
     from fem_tether.core.errors import InputError
     outcome = sw.sweep(tiny_job, tmp_path / "r.h5", comm=_self_comm(), progress=False)
     assert len(outcome.peak_rss_MiB) == 1 and outcome.peak_rss_MiB[0] == pytest.approx(sw.peak_rss_MiB())
 
-    def bad():
-        raise InputError("bad resource")
-    with pytest.raises(InputError, match="bad resource"):
-        sw.sweep(tiny_job, tmp_path / "s.h5", comm=_self_comm(), progress=False, check=bad)
-    assert not (tmp_path / "s.h5").exists() and not list(parts_dir(tmp_path / "s.h5").glob("*.h5"))
+    monkeypatch.setattr(sweep_tasks, "run_task", lambda *a: pytest.fail("a task ran"))
+    folder = tmp_path / "f"
+    folder.mkdir()
+    (folder / "mine.txt").write_text("mine")
+    (tmp_path / "bad.csv").write_text("not a wind resource\n")
+    bad_resource = Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
+                       tiny_job.config.replace(resource={"csv": str(tmp_path / "bad.csv")}), tiny_job.toml)
+    for job, files, aep, problem in ((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
+                                     (bad_resource, (), True, "bad.csv")):
+        with ExitStack() as holder, pytest.raises(InputError, match=problem):
+            sw.sweep(job, tmp_path / "s.h5", comm=_self_comm(), progress=False,
+                     follow_up=sw.FollowUp(folder, files, holder, aep=aep))
+        assert not (tmp_path / "s.h5").exists() and not list(parts_dir(tmp_path / "s.h5").glob("*.h5"))
+    with ExitStack() as holder:
+        sw.sweep(tiny_job, tmp_path / "r.h5", comm=_self_comm(), progress=False,
+                 follow_up=sw.FollowUp(folder, (folder / "a.json",), holder, imports=("json",)))
+        with pytest.raises(OutputError, match="in use by fem-tether"), exclusive(folder, directory=True):
+            pass
+    with exclusive(folder, directory=True):
+        pass
 
 
 def test_a_sweep_flies_the_circle(tmp_path):
@@ -352,7 +373,7 @@ def test_a_second_sweep_into_the_same_file_is_refused_naming_the_first(tmp_path,
     job = tmp_path / "tiny.toml"
     job.write_text(TINY)
     out = tmp_path / "s.h5"
-    monkeypatch.setattr(sw, "run_task", lambda *a: pytest.fail("a task ran"))
+    monkeypatch.setattr(sweep_tasks, "run_task", lambda *a: pytest.fail("a task ran"))
     with exclusive(out):
         assert main(["sweep", str(job), "--out", str(out)]) == 2
     err = capsys.readouterr().err

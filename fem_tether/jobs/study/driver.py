@@ -1,7 +1,8 @@
 """A study over MPI ranks: its phases, the refinement, the result file.
 
-Each phase's tasks (:mod:`fem_tether.jobs.study.tasks`) are spread over the ranks
-by :func:`fem_tether.jobs.distribute.distribute` (longest estimated cost first);
+Each phase's tasks (:mod:`fem_tether.jobs.study.tasks`) run over the ranks
+through the sweep's runner, :func:`fem_tether.jobs.runner.distribute` (longest
+estimated cost first, a task whose part is kept skipped);
 every rank then reads the parts the phase wrote and plans the next phase the
 same way, so the plan and every number are the same whatever the number of
 ranks.  Phases: seed runs (each point's configured case) -> operating points ->
@@ -20,11 +21,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from fem_tether.core.atomic import exclusive, remove_temporaries
-from fem_tether.jobs.distribute import distribute
 from fem_tether.core.errors import InputError
-from fem_tether.jobs.evaluate import load_kernels
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
+from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
 from fem_tether.jobs.store import parts_dir
 
 from fem_tether.jobs.study import optimum as opt
@@ -48,10 +48,6 @@ class StudyOutcome:
     model_s: dict = field(default_factory=dict)
 
 
-#: How often rank 0 counts the parts present for its progress bar [s].
-PROGRESS_EVERY_S = 1.0
-
-
 class StudyInterrupted(KeyboardInterrupt):
     """Ctrl-C during a study; the message says what is kept and how to resume."""
 
@@ -64,25 +60,14 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutc
     t0 = time.perf_counter()
     bar = Progress(len(tasks), f"study {label} ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0 and bool(tasks))
-    ran = [0]
-    counted = [t0]
-
-    def run(i):
-        ran[0] += study.run(tasks[i])
-        if bar.enabled and time.perf_counter() - counted[0] > PROGRESS_EVERY_S:
-            counted[0] = time.perf_counter()
-            bar.update(sum(1 for t in tasks if study.parts.path(t.name).exists()))
-
     try:
-        distribute(comm, [study.cost_us(t) for t in tasks], run)
+        ran, _ = distribute(comm, study, tasks, bar)
     except KeyboardInterrupt:
         bar.close()
         raise StudyInterrupted(study.parts.directory) from None
-    bar.update(len(tasks))
-    bar.close()
     outcome.tasks += len(tasks)
     sync(comm)
-    outcome.ran += comm.allreduce(ran[0])
+    outcome.ran += comm.allreduce(ran)
     outcome.phase_s[label] = outcome.phase_s.get(label, 0.0) + time.perf_counter() - t0
 
 
@@ -204,14 +189,8 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
             remove_temporaries(parts_dir(out))
         except InputError as exc:
             problem = exc
-    sync(comm)
-    problem = comm.bcast(problem, root=0)
-    if problem:
-        raise problem
-    solvers = ("fe", "fd") if job.crosscheck else ("fe",)
-    load_kernels(job.configs[0], [solvers[rank % len(solvers)]])
-    sync(comm)
-    load_kernels(job.configs[0], solvers)
+    raise_on_every_rank(comm, problem)
+    load_kernels_by_rank(comm, job.configs[0], ("fe", "fd") if job.crosscheck else ("fe",))
     study = Study(job, out)
     outcome = StudyOutcome([], n_ranks=comm.Get_size())
     try:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 from pathlib import Path
 
 from fem_tether import __version__
@@ -42,6 +43,14 @@ class StudyParts:
         except (OSError, ValueError):
             return None
         return data["values"] if data.get("inputs_key") == key else None
+
+    def present(self, names: list[str]) -> int:
+        """How many of the parts ``names`` exist, whatever their keys (one listing of the directory)."""
+        try:
+            files = set(os.listdir(self.directory))
+        except FileNotFoundError:
+            return 0
+        return sum(self.path(name).name in files for name in names)
 
     def write(self, name: str, key: str, values: dict) -> None:
         self.directory.mkdir(parents=True, exist_ok=True)

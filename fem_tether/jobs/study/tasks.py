@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import time
 import traceback
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -211,12 +212,22 @@ class Study:
     def stored(self, task: Task) -> dict | None:
         return self.parts.read(task.name, self.task_key(task))
 
-    def run(self, task: Task) -> bool:
-        """Run ``task`` unless its part is stored; True if it ran.  The part records
-        the task's wall time (``wall_s``, for the scaling model; not in the result file)."""
+    # -- as fem_tether.jobs.runner.distribute runs the tasks of a phase -----------------
+    def kept(self, task: Task) -> bool:
+        """Whether the part of ``task`` is stored with its inputs' key."""
+        return self.stored(task) is not None
+
+    def present(self, tasks: Sequence[Task]) -> int:
+        """How many of ``tasks`` have a part, whatever its key (one listing of the directory)."""
+        return self.parts.present([t.name for t in tasks])
+
+    def while_waiting(self) -> None:
+        """Rank 0 has nothing to do while the other ranks finish a phase."""
+
+    def run(self, task: Task) -> None:
+        """Run ``task`` into its part, which records the task's wall time (``wall_s``,
+        for the scaling model; not in the result file)."""
         key = self.task_key(task)
-        if self.parts.read(task.name, key) is not None:
-            return False
         t0 = time.perf_counter()
         if task.kind == "ops":
             cfg, seed_cd = self.config(task.point), self.seed_cd(task.point)
@@ -227,7 +238,6 @@ class Study:
         else:
             values = self._tether_run(task)
         self.parts.write(task.name, key, values | {"wall_s": time.perf_counter() - t0})
-        return True
 
     def _tether_run(self, task: Task) -> dict:
         try:

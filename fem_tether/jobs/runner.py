@@ -1,0 +1,95 @@
+"""The tasks of a job run over MPI ranks, each kept in its part: the loop the sweep and the study share.
+
+:func:`distribute` plans nothing and computes nothing itself: it asks the job's
+work (:class:`Work`: a sweep's :class:`~fem_tether.jobs.sweep_tasks.SweepTasks`,
+a study's :class:`~fem_tether.jobs.study.tasks.Study`) what each task costs,
+assigns the tasks to the ranks by longest processing time first
+(:func:`fem_tether.jobs.schedule.assign`), and on each rank, for each of its
+tasks, skips it if its part is kept and otherwise runs it (the work keeps its
+part); then it waits for the other ranks at a non-blocking barrier, during
+which rank 0 may do other work.  The assignment decides only where a task
+runs, never what it computes, so every number is the same whatever the
+number of ranks.  An interrupt or an exception on one rank (a full disk, a
+defect) propagates; :func:`fem_tether.core.stop.guard` stops the other ranks
+with it, so none waits forever for it.  Called from above only: the work is an
+object of a lower module, never a function of the caller's.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from typing import Protocol
+
+from fem_tether.config import Config
+from fem_tether.core.errors import InputError
+from fem_tether.core.progress import Progress
+from fem_tether.core.stop import POLL_S, checkpoint, guard, sync
+from fem_tether.jobs.evaluate import load_kernels
+from fem_tether.jobs.schedule import assign
+
+
+class Work(Protocol):
+    """What :func:`distribute` asks of a job's tasks and their parts."""
+
+    def cost_us(self, task) -> float:
+        """The task's estimated cost (only the ratios matter: they order and balance the tasks)."""
+
+    def kept(self, task) -> bool:
+        """Whether the task's part is stored and matches its inputs (a rerun skips it)."""
+
+    def run(self, task) -> None:
+        """Run the task and keep its part."""
+
+    def present(self, tasks: Sequence) -> int:
+        """How many of ``tasks`` have a part (rank 0's progress)."""
+
+    def while_waiting(self) -> None:
+        """Rank 0's work while it waits for the other ranks' tasks."""
+
+
+def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: float = 0.0) -> tuple[int, int]:
+    """Run this rank's share of ``tasks`` (rank 0 starts loaded with ``rank0_load_us``,
+    in the unit of ``work.cost_us``), then wait until every rank has run its share;
+    ``(ran, kept)``: how many of this rank's tasks ran and how many were kept
+    already.  Ctrl-C and errors propagate (the caller says what is kept)."""
+    rank, size = comm.Get_rank(), comm.Get_size()
+    ran = kept = 0
+    with guard(comm):
+        for i in assign([work.cost_us(t) for t in tasks], size, rank0_load_us)[rank]:
+            checkpoint()
+            if work.kept(tasks[i]):
+                kept += 1
+            else:
+                work.run(tasks[i])
+                ran += 1
+            if bar.due():               # rank 0's: count the parts only when the bar draws
+                bar.update(work.present(tasks))
+        request = comm.Ibarrier()
+        while not request.Test():
+            checkpoint()
+            if rank == 0:
+                if bar.due():
+                    bar.update(work.present(tasks))
+                work.while_waiting()
+            time.sleep(POLL_S)
+    bar.update(len(tasks))
+    bar.close()
+    return ran, kept
+
+
+def raise_on_every_rank(comm, problem: InputError | None) -> None:
+    """Raise rank 0's ``problem`` (found preparing the output, before any task) on every rank."""
+    sync(comm)
+    problem = comm.bcast(problem, root=0)
+    if problem:
+        raise problem
+
+
+def load_kernels_by_rank(comm, cfg: Config, solvers: Sequence[str]) -> None:
+    """Load the compiled kernels of ``solvers``: after an install the first import
+    of a solver's kernels compiles them, so each rank compiles one solver's (not
+    every rank all of them, all at once), then loads the others' from the cache."""
+    load_kernels(cfg, [solvers[comm.Get_rank() % len(solvers)]])
+    sync(comm)
+    load_kernels(cfg, solvers)
