@@ -142,7 +142,7 @@ def _run(solver, resolution, dt_s, repeats) -> dict:
     its peak RSS is its own); ``resolution`` is the FE element count or the FD
     segment count.  The compiled kernels are loaded here first, so the child
     inherits them and no setting's time or memory counts their one-time loading."""
-    load_kernels(load_config(overrides=BENCH_CASE), ("fe", "fd"))
+    load_kernels(("fe", "fd"))
     ctx = multiprocessing.get_context("fork")
     parent, child = ctx.Pipe(duplex=False)
     base = peak_rss_MiB()             # this process runs no solver: its peak is its imports

@@ -40,7 +40,7 @@ def simulator(solver: str):
 KERNEL_MODULES = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.fd.kernel"}
 
 
-def load_kernels(cfg: Config, solvers) -> None:
+def load_kernels(solvers) -> None:
     """Import the compiled kernels of ``solvers`` (their equations are only the
     kernels): compiled now, or loaded from numba's cache."""
     for solver in solvers:

@@ -21,7 +21,6 @@ import time
 from collections.abc import Sequence
 from typing import Protocol
 
-from fem_tether.config import Config
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import POLL_S, checkpoint, guard, sync
@@ -86,10 +85,10 @@ def raise_on_every_rank(comm, problem: InputError | None) -> None:
         raise problem
 
 
-def load_kernels_by_rank(comm, cfg: Config, solvers: Sequence[str]) -> None:
+def load_kernels_by_rank(comm, solvers: Sequence[str]) -> None:
     """Load the compiled kernels of ``solvers``: after an install the first import
     of a solver's kernels compiles them, so each rank compiles one solver's (not
     every rank all of them, all at once), then loads the others' from the cache."""
-    load_kernels(cfg, [solvers[comm.Get_rank() % len(solvers)]])
+    load_kernels([solvers[comm.Get_rank() % len(solvers)]])
     sync(comm)
-    load_kernels(cfg, solvers)
+    load_kernels(solvers)

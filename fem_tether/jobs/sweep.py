@@ -114,7 +114,7 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
     bar = Progress(len(job.tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0)
     try:                                # from here on Ctrl-C says what is kept
-        load_kernels_by_rank(comm, job.config, job.solvers)
+        load_kernels_by_rank(comm, job.solvers)
         tasks = SweepTasks(store, size, follow_up.imports if follow_up else ())
         _, kept = distribute(comm, tasks, job.tasks, bar, follow_up.imports_cost_us if follow_up else 0.0)
         sync(comm)

@@ -24,11 +24,10 @@ def test_load_kernels_imports_only_the_asked_solvers_kernels():
     """``load_kernels`` imports the kernels of the solvers asked for and no other
     (a fresh interpreter checks which modules it loaded)."""
     code = ("import sys\n"
-            "from fem_tether.config import load_config\n"
             "from fem_tether.jobs.evaluate import load_kernels\n"
-            "load_kernels(load_config(), ['fd'])\n"
+            "load_kernels(['fd'])\n"
             "assert 'fem_tether.tether.fd.kernel' in sys.modules and 'fem_tether.tether.fe.kernel' not in sys.modules\n"
-            "load_kernels(load_config(), ['fe', 'fd'])\n"
+            "load_kernels(['fe', 'fd'])\n"
             "assert 'fem_tether.tether.fe.kernel' in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)
 

@@ -190,7 +190,7 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
         except InputError as exc:
             problem = exc
     raise_on_every_rank(comm, problem)
-    load_kernels_by_rank(comm, job.configs[0], ("fe", "fd") if job.crosscheck else ("fe",))
+    load_kernels_by_rank(comm, ("fe", "fd") if job.crosscheck else ("fe",))
     study = Study(job, out)
     outcome = StudyOutcome([], n_ranks=comm.Get_size())
     try:
