@@ -102,12 +102,21 @@ def constant_air(parameters, z_m, rho, mu, drho_dz, dmu_dz):
         rho[i], mu[i], drho_dz[i], dmu_dz[i] = parameters[0], parameters[1], 0.0, 0.0
 
 
+def exponential_density_kg_m3(z_m, rho0_kg_m3, scale_height_m):
+    """rho = rho_0 exp(-z/H_p) (seed 004 eq. 3.90), for NumPy callers (real or
+    complex) and, compiled, for :func:`exponential_air`."""
+    return rho0_kg_m3 * np.exp(-z_m / scale_height_m)
+
+
+_exponential_density = jit(exponential_density_kg_m3)
+
+
 @jit
 def exponential_air(parameters, z_m, rho, mu, drho_dz, dmu_dz):
     """rho = rho_0 exp(-z/H_p) (seed 004 eq. 3.90), d rho/dz = -rho / H_p, and a
     uniform mu; parameters (rho_0, mu, H_p)."""
     for i in range(z_m.shape[0]):
-        rho[i] = parameters[0] * np.exp(-z_m[i] / parameters[2])
+        rho[i] = _exponential_density(z_m[i], parameters[0], parameters[2])
         mu[i] = parameters[1]
         drho_dz[i] = -rho[i] / parameters[2]
         dmu_dz[i] = 0.0

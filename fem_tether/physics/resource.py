@@ -137,6 +137,19 @@ def _band_list(bands) -> str:
     return ", ".join(f"{b.low_m:g}–{b.high_m:g} m" for b in bands)
 
 
+def weibull_density_per_mps(speed_mps, scale_mps, shape_k):
+    """f(V) = (k/A) (V/A)^(k−1) exp(−(V/A)^k), the Weibull density (seed 004 eq. 3.92).
+
+    Plain NumPy, so it takes complex arguments too (the design optimiser's
+    complex-step derivatives).
+
+    >>> round(float(weibull_density_per_mps(9.5, 9.5, 2.0)), 6)
+    0.077448
+    """
+    ratio = speed_mps / scale_mps
+    return shape_k / scale_mps * ratio ** (shape_k - 1.0) * np.exp(-ratio**shape_k)
+
+
 def weibull_probabilities(edges_mps, mean_mps, shape_k):
     """p_i = F(e_{i+1}) − F(e_i), F(V) = 1 − exp(−(V/A)^k), A = mean / Γ(1 + 1/k).
 

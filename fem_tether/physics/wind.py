@@ -55,6 +55,15 @@ def log_wind(parameters, z_m, speed_mps, shear_per_s):
             shear_per_s[i] += v0 / (z * log_z0_zr)
 
 
+def power_law_speed_mps(z_m, reference_speed_mps, reference_height_m, alpha):
+    """V = V_ref (z/z_ref)^alpha (seed 000 eq. 3.1, seed 004 eq. 3.91), for NumPy
+    callers (real or complex) and, compiled, for :func:`power_wind`."""
+    return reference_speed_mps * (z_m / reference_height_m) ** alpha
+
+
+_power_law = jit(power_law_speed_mps)
+
+
 @jit
 def power_wind(parameters, z_m, speed_mps, shear_per_s):
     """Power law (seed 000 eq. 3.1, seed 004 eq. 3.91), parameters (V_ref, z_ref, alpha, z_top):
@@ -64,9 +73,9 @@ def power_wind(parameters, z_m, speed_mps, shear_per_s):
     for i in range(z_m.shape[0]):
         z = z_m[i]
         if z > top:
-            speed_mps[i] += speed_ref * (top / z_ref) ** alpha
+            speed_mps[i] += _power_law(top, speed_ref, z_ref, alpha)
         elif z > 0.0:
-            speed = speed_ref * (z / z_ref) ** alpha
+            speed = _power_law(z, speed_ref, z_ref, alpha)
             speed_mps[i] += speed
             shear_per_s[i] += alpha * speed / z
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from fem_tether.core.arrays import as_array
 from fem_tether.physics.loads import G_MPS2
 
 #: Oswald efficiency of the wing (seed 004 §3.1.2, after its ref. [26])
@@ -26,7 +27,7 @@ OSWALD_EFFICIENCY = 0.9
 
 def wind_power_density_W_m2(rho_kg_m3, wind_mps):
     """P_w = ½ ρ V_w³, the wind's power per unit area (seed 004 eq. 3.8)."""
-    return 0.5 * rho_kg_m3 * np.asarray(wind_mps, dtype=float) ** 3
+    return 0.5 * rho_kg_m3 * as_array(wind_mps) ** 3
 
 
 def induced_drag_coefficient(cl, aspect_ratio, oswald=OSWALD_EFFICIENCY):
@@ -34,7 +35,7 @@ def induced_drag_coefficient(cl, aspect_ratio, oswald=OSWALD_EFFICIENCY):
 
     ``aspect_ratio = inf`` is the infinite wing without induced drag.
     """
-    return np.asarray(cl, dtype=float) ** 2 / (np.pi * aspect_ratio * oswald)
+    return as_array(cl) ** 2 / (np.pi * aspect_ratio * oswald)
 
 
 def drag_coefficient(cd0, cl, aspect_ratio, tether_cd, oswald=OSWALD_EFFICIENCY):
@@ -57,14 +58,13 @@ def conductor_area_m2(power_W, voltage_V, loss_W, length_m, resistivity_ohm_m):
     >>> round(float(conductor_area_m2(1e6, 10e3, 5e4, 500.0, 2.65e-8)), 9)
     5.3e-06
     """
-    current_A = np.asarray(power_W, dtype=float) / voltage_V
-    resistance_ohm = loss_W / current_A**2
-    return 2.0 * length_m * resistivity_ohm_m / resistance_ohm
+    current_A = as_array(power_W) / voltage_V
+    return 2.0 * length_m * resistivity_ohm_m * current_A**2 / loss_W     # 2 r ρ_el / R
 
 
 def sag_coefficient_per_m(mass_per_length_kg_m, tension_N, g_mps2=G_MPS2):
     """a = m_r g / (2T), the curvature of the parabolic sag (seed 004 eq. 3.17)."""
-    return mass_per_length_kg_m * g_mps2 / (2.0 * np.asarray(tension_N, dtype=float))
+    return mass_per_length_kg_m * g_mps2 / (2.0 * as_array(tension_N))
 
 
 def kite_inclination_rad(elevation_rad, length_m, sag_coefficient):

@@ -30,6 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
+from fem_tether.core.arrays import as_array
 from fem_tether.physics.loads import G_MPS2
 
 #: readings of the force balance 3.74 (see the module docstring)
@@ -38,7 +39,7 @@ BALANCES = ("seed", "exact")
 
 def weight_term_N(mass_kg, theta_rad, g_mps2=G_MPS2):
     """M* = m g / (cosθ (tan²θ + 1)) = m g cosθ  (seed 004 eq. 3.78)."""
-    return np.asarray(mass_kg, dtype=float) * g_mps2 * np.cos(theta_rad)
+    return as_array(mass_kg) * g_mps2 * np.cos(theta_rad)
 
 
 def force_scale_N(rho_kg_m3, area_m2, cd, ge, wind_mps, gamma_t):
@@ -46,8 +47,8 @@ def force_scale_N(rho_kg_m3, area_m2, cd, ge, wind_mps, gamma_t):
 
     R_a = Q* (cos(θ + Δ) − γ_out)² (eq. 3.83).
     """
-    k = 1.0 + np.asarray(gamma_t, dtype=float)
-    return 0.5 * rho_kg_m3 * area_m2 * cd * np.asarray(wind_mps, dtype=float) ** 2 \
+    k = 1.0 + as_array(gamma_t)
+    return 0.5 * rho_kg_m3 * area_m2 * cd * as_array(wind_mps) ** 2 \
         * (k**2 + ge**2) ** 1.5 / k**2
 
 

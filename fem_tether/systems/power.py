@@ -29,6 +29,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from fem_tether.core.arrays import as_array
 from fem_tether.physics.kite import (CharacteristicCurves, KiteGenDesign, characteristic_curves,
                                      characteristic_speeds)
 
@@ -45,7 +46,7 @@ SEED_GE = {
 
 def operating_altitude_m(length_m, theta_rad):
     """z = L cosϑ: the mean kite altitude of a line of length L at polar angle ϑ (seed 000 §5)."""
-    return np.asarray(length_m, dtype=float) * np.cos(theta_rad)
+    return as_array(length_m) * np.cos(theta_rad)
 
 
 def operating_design(design: KiteGenDesign, air, length_m, global_efficiency, mean_phi_deg) -> KiteGenDesign:
@@ -108,7 +109,7 @@ def reel_in_force_N(rho_kg_m3, area_m2, cd0, wind_mps, reel_in_mps, elevation_ra
     V_a² = V_w² + V_in² + 2 V_w V_in cosβ (eq. 3.21); written in that form it
     also holds at V_w = 0.
     """
-    w = np.asarray(wind_mps, dtype=float)
+    w = as_array(wind_mps)
     apparent_sq = w**2 + reel_in_mps**2 + 2.0 * w * reel_in_mps * np.cos(elevation_rad)
     return 0.5 * rho_kg_m3 * area_m2 * cd0 * apparent_sq
 

@@ -36,13 +36,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from fem_tether.core.arrays import as_array, real_part
 from fem_tether.systems.power import reel_in_force_N
 from fem_tether.systems.crosswind import wind_power_density_W_m2
 
 
 def relative_wind_ratio(kite_angle_rad, gamma_out, gamma_t):
     """u = (cosθ − γ_out)/(1 + γ_t), the factor common to eqs. 3.42–3.47 of seed 004."""
-    return (np.cos(kite_angle_rad) - gamma_out) / (1.0 + np.asarray(gamma_t, dtype=float))
+    return (np.cos(kite_angle_rad) - gamma_out) / (1.0 + as_array(gamma_t))
 
 
 def apparent_speed_mps(wind_mps, ge, kite_angle_rad, gamma_out, gamma_t):
@@ -51,7 +52,7 @@ def apparent_speed_mps(wind_mps, ge, kite_angle_rad, gamma_out, gamma_t):
     γ_t = 0: eq. 3.4; γ_out = 0: eq. 3.34; θ → θ + Δ: eq. 3.82.
     """
     u = relative_wind_ratio(kite_angle_rad, gamma_out, gamma_t)
-    return np.asarray(wind_mps, dtype=float) * u * np.sqrt((1.0 + gamma_t) ** 2 + ge**2)
+    return as_array(wind_mps) * u * np.sqrt((1.0 + gamma_t) ** 2 + ge**2)
 
 
 def aerodynamic_force_N(rho_kg_m3, area_m2, cd, ge, wind_mps, kite_angle_rad, gamma_out, gamma_t):
@@ -61,7 +62,7 @@ def aerodynamic_force_N(rho_kg_m3, area_m2, cd, ge, wind_mps, kite_angle_rad, ga
     eq. 3.37; θ → θ + Δ: eq. 3.83.
     """
     u = relative_wind_ratio(kite_angle_rad, gamma_out, gamma_t)
-    w = np.asarray(wind_mps, dtype=float)
+    w = as_array(wind_mps)
     return 0.5 * rho_kg_m3 * area_m2 * cd * w**2 * u**2 * ((1.0 + gamma_t) ** 2 + ge**2) ** 1.5
 
 
@@ -80,7 +81,7 @@ def ground_power_W(rho_kg_m3, area_m2, cd, ge, wind_mps, kite_angle_rad, gamma_o
     """
     force = aerodynamic_force_N(rho_kg_m3, area_m2, cd, ge, wind_mps, kite_angle_rad, gamma_out,
                                 gamma_t)
-    return mass_efficiency * force * gamma_out * np.asarray(wind_mps, dtype=float)
+    return mass_efficiency * force * gamma_out * as_array(wind_mps)
 
 
 def onboard_power_W(rho_kg_m3, area_m2, cd, ge, wind_mps, kite_angle_rad, gamma_out, gamma_t):
@@ -112,7 +113,7 @@ def reel_in_force_exact_N(rho_kg_m3, area_m2, cd0, wind_mps, reel_in_mps, elevat
     (eq. 3.24) for small β and γ_in above 1.
     """
     drag = reel_in_force_N(rho_kg_m3, area_m2, cd0, wind_mps, reel_in_mps, elevation_rad)
-    w = np.asarray(wind_mps, dtype=float)
+    w = as_array(wind_mps)
     gamma_in = np.divide(reel_in_mps, w, out=np.full(np.broadcast(w, reel_in_mps).shape, np.inf),
                          where=w > 0)
     return drag * np.sqrt(1.0 + reel_in_lift_to_drag(elevation_rad, gamma_in) ** 2)
@@ -124,7 +125,7 @@ def reel_in_power_W(reel_in_force, wind_mps, gamma_in):
     >>> float(reel_in_power_W(100.0, 10.0, 2.0))
     2000.0
     """
-    return reel_in_force * gamma_in * np.asarray(wind_mps, dtype=float)
+    return reel_in_force * gamma_in * as_array(wind_mps)
 
 
 def time_shares(gamma_out, gamma_in):
@@ -139,11 +140,9 @@ def time_shares(gamma_out, gamma_in):
     >>> [float(t) for t in time_shares(0.0, 0.0)]
     [1.0, 0.0]
     """
-    g_out = np.asarray(gamma_out, dtype=float)
-    g_in = np.asarray(gamma_in, dtype=float)
-    total = g_out + g_in
-    reeling = g_out > 0
-    tau_in = np.divide(g_out, total, out=np.zeros(np.broadcast(g_out, g_in).shape), where=reeling)
+    g_out, g_in = as_array(gamma_out), as_array(gamma_in)
+    reeling = real_part(g_out) > 0
+    tau_in = np.where(reeling, g_out / np.where(reeling, g_out + g_in, 1.0), 0.0)
     return 1.0 - tau_in, tau_in
 
 
@@ -168,7 +167,7 @@ def disc_induction_factor(thrust_coefficient):
     >>> float(disc_induction_factor(0.75))
     0.25
     """
-    return 0.5 * (1.0 - np.sqrt(1.0 - np.asarray(thrust_coefficient, dtype=float)))
+    return 0.5 * (1.0 - np.sqrt(1.0 - as_array(thrust_coefficient)))
 
 
 def loyd_power_bound_W(rho_kg_m3, area_m2, cd, ge, wind_mps, elevation_rad, max_gamma_t=0.0):

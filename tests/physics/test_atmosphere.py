@@ -144,3 +144,15 @@ def test_state_with_and_without_gradients():
     np.testing.assert_array_equal(full.density_gradient_kg_m4, air.density_gradient_kg_m4(z))
     np.testing.assert_array_equal(full.viscosity_gradient_Pa_s_m, air.viscosity_gradient_Pa_s_m(z))
     assert full.density_kg_m3.shape == z.shape
+
+
+def test_exponential_density_is_the_compiled_models_and_takes_complex_steps():
+    """exponential_density_kg_m3 is what ExponentialAir's kernel computes (to 1e-15), rho_0/e at
+    z = H_p, and its complex step is -rho/H_p (to 1e-14)."""
+    from fem_tether.physics.atmosphere import ExponentialAir, exponential_density_kg_m3
+    z = np.array([0.0, 500.0, 8550.0])
+    assert ExponentialAir().density_kg_m3(z) == pytest.approx(exponential_density_kg_m3(z, 1.225, 8550.0),
+                                                              rel=1e-15)
+    assert exponential_density_kg_m3(8550.0, 1.225, 8550.0) == pytest.approx(1.225 / np.e, rel=1e-15)
+    step = np.imag(exponential_density_kg_m3(500.0 + 1e-30j, 1.225, 8550.0)) / 1e-30
+    assert step == pytest.approx(-1.225 * np.exp(-500.0 / 8550.0) / 8550.0, rel=1e-14)

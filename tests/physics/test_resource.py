@@ -267,3 +267,16 @@ def test_a_csv_not_in_utf8_is_one_error_naming_the_file(tmp_path):
     path.write_bytes("band_low_m,band_high_m,bin_low_mps,bin_high_mps,probability\n# Zürich\n".encode("latin-1"))
     with pytest.raises(ResourceError, match=r"latin1.csv: not UTF-8 text \(byte \d+ is 0xfc\)"):
         read_resource_csv(path)
+
+
+def test_weibull_density_integrates_to_the_cdf_and_takes_complex_steps():
+    """∫_0^V f = 1 − exp(−(V/A)^k) (quad, 1e-10) for Trevisi's A 9.5 m/s, k 2.12; a complex step
+    in V equals the central difference (1e-7)."""
+    from scipy.integrate import quad
+    from fem_tether.physics.resource import weibull_density_per_mps
+    for v in (3.0, 9.5, 20.0):
+        integral = quad(lambda x: weibull_density_per_mps(x, 9.5, 2.12), 0.0, v)[0]
+        assert integral == pytest.approx(1.0 - np.exp(-(v / 9.5) ** 2.12), abs=1e-10)
+    step = np.imag(weibull_density_per_mps(7.0 + 1e-30j, 9.5, 2.12)) / 1e-30
+    central = (weibull_density_per_mps(7.0 + 1e-6, 9.5, 2.12) - weibull_density_per_mps(7.0 - 1e-6, 9.5, 2.12)) / 2e-6
+    assert step == pytest.approx(central, rel=1e-7)

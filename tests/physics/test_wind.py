@@ -232,3 +232,16 @@ def test_the_table_profile_of_the_configuration(tmp_path):
     path.write_text("height_m,speed_mps\n0,0\n-5,8\n")
     with pytest.raises(ConfigError, match=r"^\[wind\] table_csv: .*wind.csv line 3: height -5 m is not above 0 m$"):
         wind.from_config(cfg.wind, 2.0)
+
+
+def test_power_law_speed_is_the_compiled_profiles_and_takes_complex_steps():
+    """power_law_speed_mps is the law PowerWind's kernel runs (to 1e-15) below and, capped, above
+    z_top; a complex step gives its z-derivative alpha V/z to 1e-13."""
+    from fem_tether.physics.wind import PowerWind, power_law_speed_mps
+    profile = PowerWind(9.5, 20.0, 0.2, top_m=500.0)
+    z = np.array([50.0, 200.0, 499.0, 800.0])
+    expected = power_law_speed_mps(np.minimum(z, 500.0), 9.5, 20.0, 0.2)
+    assert profile.speed_mps(z) == pytest.approx(expected, rel=1e-15)
+    assert power_law_speed_mps(200.0, 9.5, 20.0, 0.2) == pytest.approx(9.5 * 10**0.2, rel=1e-15)
+    step = np.imag(power_law_speed_mps(200.0 + 1e-30j, 9.5, 20.0, 0.2)) / 1e-30
+    assert step == pytest.approx(0.2 * 9.5 * 10**0.2 / 200.0, rel=1e-13)

@@ -148,3 +148,25 @@ def test_loyd_bound_holds_over_factors():
     assert np.all(p <= bound * (1 + 1e-12))
     assert loyd_power_bound_W(RHO, A, CD, GE, V, THETA) == pytest.approx(
         production_power_W(RHO, A, CD, GE, V, THETA, math.cos(THETA) / 3, 0.0), rel=1e-13)
+
+
+def test_the_equations_take_complex_steps():
+    """Every function the design optimiser differentiates keeps the imaginary part: the complex
+    step of the cycle power in γ_out, γ_in, γ_t, C_d and V equals the central difference (1e-6)."""
+    from fem_tether.systems.crosswind import conductor_area_m2, drag_coefficient
+
+    def cycle(x):
+        g_out, g_in, g_t, cl, v = x
+        cd = drag_coefficient(0.05, cl, 10.0, 0.01)
+        ge = cl / cd
+        out = production_power_W(RHO, A, cd, ge, v, THETA, g_out, g_t) \
+            * (1 - disc_induction_factor(0.3 * g_t))
+        back = reel_in_power_W(reel_in_force_N(RHO, A, 0.05, v, g_in * v, THETA), v, g_in)
+        return cycle_power_W(out, back, g_out, g_in) + conductor_area_m2(g_t * 1e6, 1e4, 5e4, 500.0, 2.65e-8)
+
+    x = np.array([0.3, 1.5, 0.2, 1.2, 10.0])
+    for k in range(x.size):
+        e = np.eye(x.size)[k]
+        step = np.imag(cycle(x + 1e-30j * e)) / 1e-30
+        central = (cycle(x + 1e-6 * e) - cycle(x - 1e-6 * e)) / 2e-6
+        assert step == pytest.approx(central, rel=1e-6)
