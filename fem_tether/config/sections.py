@@ -408,9 +408,11 @@ class Cycle(Section):
     reel_in_mps: float = setting(17.5, "m/s", "reel-in speed of the side-slip recovery", up_to(MAX_WIND_MPS))
     reel_in_cd0: float = setting(0.1, "-", "drag coefficient of the side-slipping wing (seed 004 eq. 3.24)",
                                  zero_to(3.0))
-    eta_e: float = setting(1.0, "-", "efficiency of the generated energy (seed 001: 0.8)",
+    eta_e: float = setting(1.0, "-", "efficiency of the generated energy (seed 001: 0.8; unified: eta_out, "
+                           "Trevisi Tab. 5.4: 0.75-0.9)",
                            between(0.0, 1.0, (False, True)))
-    eta_c: float = setting(1.0, "-", "efficiency of the recovery, divides its energy (seed 004 eta_in)",
+    eta_c: float = setting(1.0, "-", "efficiency of the recovery, divides its energy (seed 004 eta_in, "
+                           "Tab. 5.4: 0.3-0.85)",
                            between(0.0, 1.0, (False, True)))
 
 

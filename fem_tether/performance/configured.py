@@ -160,10 +160,12 @@ def _loyd(cfg: Config) -> ConfiguredSystem:
 
 def _unified(cfg: Config) -> ConfiguredSystem:
     """Seed 004's unified ground-gen/fly-gen model: ``[unified]`` (its own keys);
-    ``[kite]`` area, C_L,max, elevation β = 90° − theta0_deg; ``[tether]`` d, r = L,
-    lines; ``[drag] cd`` as C_⊥; ``[system]`` kite_mass_kg, rated_power_W
-    (0: none), cut_out_mps; ``[cycle]`` eta_e as η_out, eta_c as η_in; ρ at the
-    operating altitude.  Straight line: eq. 3.14."""
+    ``[kite]`` area, C_L,max, the kite's elevation above the winch β = 90° − theta0_deg
+    (the FE path's centre; the tether's θ at the kite follows from its sag, eq. 3.19);
+    ``[tether]`` d, r = L, lines; ``[drag] cd`` as C_⊥; ``[system]`` kite_mass_kg,
+    rated_power_W (0: none), cut_out_mps; ``[cycle]`` eta_e as η_out, eta_c as η_in
+    (both default to 1, no losses: Table 5.4's midpoints 0.825 and 0.575 must be
+    stated); ρ at the operating altitude.  Straight line: eq. 3.14."""
     u, t, k = cfg.unified, cfg.tether, cfg.kite
     params = unified_system.UnifiedSystem(
         area_m2=k.area_m2, cl=k.cl, aspect_ratio=u.aspect_ratio or math.inf, mass_kg=cfg.system.kite_mass_kg,

@@ -7,8 +7,8 @@ import pytest
 from fem_tether.performance import straight
 from fem_tether.config import load_config
 from fem_tether.core.errors import InputError
-from fem_tether.systems.power import Cycle, cycle_curves, rated_power_W
-from fem_tether.performance.summary import operating_ge, operating_tether_cd
+from fem_tether.systems.power import Cycle, cycle_curves, rated_power_W, reel_in_force_N
+from fem_tether.performance.summary import operating_density_kg_m3, operating_ge, operating_tether_cd
 from fem_tether.systems import ke_yoyo, kitegen, loyd
 from fem_tether.performance.configured import from_config
 
@@ -57,6 +57,45 @@ def test_less_tether_drag_never_costs_power(name):
     half_W = system.electrical_power_W(winds, 0.5 * system.straight_cd)
     assert np.all(half_W >= straight_W - 1e-6 * np.max(straight_W))
     assert np.max(half_W - straight_W) > 0
+
+
+def test_trevisi_gg_electrical_power_is_the_mechanical_less_table_5_4s_losses():
+    """[cycle] eta_e and eta_c reach the unified model as η_out and η_in (the preset's: Table 5.4's
+    midpoints 0.825 and 0.575).  At 10 m/s (ground generation only, below rated) the cycle means
+    rebuilt from the point's force T, reel-out V_out = γ_out V_w and the reel-in force T_r of eq. 3.24
+    at V_in = γ_in V_w, with the shares τ_out, τ_in = (γ_in, γ_out)/(γ_in + γ_out) of eq. 3.26, are
+    the model's to 1e-9: mechanical τ_out T V_out − τ_in T_r V_in, electrical (eq. 3.30)
+    τ_out η_out T V_out − τ_in T_r V_in/η_in.  Before the preset stated them, both were 1 and the
+    electrical power was the mechanical (0.508 MW)."""
+    cfg = load_config(system="trevisi-gg")
+    system = from_config(cfg)
+    params = system.parameters
+    assert (params.eta_out, params.eta_in) == (cfg.cycle.eta_e, cfg.cycle.eta_c) == (0.825, 0.575)
+    wind_mps = 10.0
+    point = system.operating_point(wind_mps)
+    assert point.mode == "ground-gen" and point.gamma_t == 0
+    assert point.electrical_power_W < 0.99 * system.rated_power_W()
+    tau_out, tau_in = np.array([point.gamma_in, point.gamma_out]) / (point.gamma_in + point.gamma_out)
+    production_W = point.tether_force_N * point.reel_out_mps
+    reel_in_W = point.gamma_in * wind_mps * float(reel_in_force_N(
+        operating_density_kg_m3(cfg), params.area_m2, params.cd0, wind_mps, point.gamma_in * wind_mps,
+        params.elevation_rad))
+    assert point.mechanical_power_W == pytest.approx(tau_out * production_W - tau_in * reel_in_W, rel=1e-9)
+    assert point.electrical_power_W == pytest.approx(
+        tau_out * 0.825 * production_W - tau_in * reel_in_W / 0.575, rel=1e-9)
+    assert point.electrical_power_W < 0.825 * point.mechanical_power_W
+
+
+def test_trevisi_fg_electrical_power_is_eta_t_of_the_mechanical():
+    """Pure fly generation has no recovery (τ_out = 1): the electrical power is η_t = 0.775 (Table
+    5.4's midpoint, [unified] eta_t of the preset) times the mechanical (1 − a) P_ob, at every wind
+    speed that generates (1e-12); before, the preset's η_t = 1 made them equal."""
+    system = from_config(load_config(system="trevisi-fg"))
+    assert system.parameters.eta_t == 0.775
+    points = [p for p in system.power_curve(WINDS[::5]) if p.mode != "off"]
+    assert len(points) > 3 and all(p.mode == "fly-gen" for p in points)
+    for point in points:
+        assert point.electrical_power_W == pytest.approx(0.775 * point.mechanical_power_W, rel=1e-12)
 
 
 def test_a_model_refusing_its_parameters_names_the_model():

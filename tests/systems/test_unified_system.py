@@ -148,7 +148,7 @@ def test_below_rated_the_lift_is_the_largest():
 def test_trevisi_presets_power_never_falls_with_wind(name):
     """The presets' electrical power is non-decreasing in wind speed up to the 25 m/s cut-out
     (to 1e-9 of rated), non-zero from cut-in to cut-out and ≤ P_rated; the fly-gen wing holds
-    its rated power above ~15 m/s by lowering C_L (C_L < C_L,max at 25 m/s)."""
+    its rated power from ~17 m/s by lowering C_L (C_L < C_L,max at 25 m/s)."""
     system = from_config(load_config(system=name))
     params = system.parameters
     winds = np.arange(0.0, 25.5, 1.0)
