@@ -1,4 +1,4 @@
-"""``fem-tether bench``: cost and accuracy of the FE and FD solvers on one case.
+"""``fem-tether bench``: cost and accuracy of the FE and FD solvers on one case; the design model's cost.
 
 Case: L = 3000 m, quiet air, rho = 1.2 kg/m3, C_d = 1.2, tension mode
 (150 kN), the default eight; one period of spin-up and three averaged periods
@@ -28,6 +28,14 @@ plus that increase.  (The child's own ``ru_maxrss`` would undercount: the
 library pages it shares with the parent count only once touched.)
 Newton iterations per step and the real-time factor (simulated s / wall s)
 come from the same runs.
+
+The design section (:func:`design`) times seed 004's unified model, whose
+optimum per wind speed the power curves of the ``trevisi-*`` systems need:
+one operating point at 10 and 20 m/s and one power curve of
+:data:`DESIGN_WINDS_MPS` for each of ``trevisi-gg``, ``trevisi-fg`` and
+Table 3.1's system, best of ``repeats``, each solved afresh (the optima
+remembered by :func:`~fem_tether.systems.unified_system.optimal_cycle`
+dropped first), in this process.
 """
 
 from __future__ import annotations
@@ -41,6 +49,8 @@ import numpy as np
 
 from fem_tether.tether import fd
 from fem_tether.config import load_config
+from fem_tether.performance.configured import from_config, operating_density_kg_m3
+from fem_tether.systems import unified_system
 from fem_tether.jobs.evaluate import load_kernels
 from fem_tether.tether.fe import solver as fe
 from fem_tether.core.memory import peak_rss_MiB
@@ -65,6 +75,11 @@ SCALING_REPEATS = 3
 RUNS_PER_CHILD = 2
 """Runs of a setting in each round's child (the faster counts)."""
 TOLERANCE = 0.005
+DESIGN_SYSTEMS = ("trevisi-gg", "trevisi-fg")
+"""Presets of the design section, with ``UnifiedSystem.table_3_1()``."""
+DESIGN_POINTS_MPS = (10.0, 20.0)
+DESIGN_WINDS_MPS = tuple(float(w) for w in range(31))
+"""The design section's power curve: 0-30 m/s by 1 m/s (31 operating points)."""
 
 
 @dataclass(frozen=True)
@@ -190,6 +205,35 @@ def memory(elements: int, dt_s: float = SCALING_DT_S) -> dict:
         "case": "L = 3000 m, quiet air, rho = 1.2, C_d = 1.2, tension mode, 1 + 3 periods"}
 
 
+def _best_time_s(task, repeats) -> float:
+    """Least wall time of ``task()`` over ``repeats`` runs, each with no optimum remembered."""
+    best = np.inf
+    for _ in range(repeats):
+        unified_system.forget_optima()
+        t0 = time.perf_counter()
+        task()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def design(repeats=3, points_mps=DESIGN_POINTS_MPS, winds_mps=DESIGN_WINDS_MPS) -> dict:
+    """The design section: wall time of one unified-model operating point and of one power curve."""
+    systems = {name: (from_config(cfg).parameters, operating_density_kg_m3(cfg))
+               for name, cfg in ((n, load_config(None, None, n)) for n in DESIGN_SYSTEMS)}
+    systems["table-3.1"] = (unified_system.UnifiedSystem.table_3_1(), 1.225)
+    rows = []
+    for name, (system, rho) in systems.items():
+        point_ms = {f"{w:g}": 1e3 * _best_time_s(lambda: unified_system.operating_point(system, w, rho), repeats)
+                    for w in points_mps}
+        curve_s = _best_time_s(lambda: unified_system.power_curve(system, winds_mps, rho), repeats)
+        rows.append({"system": name, "point_ms": point_ms, "curve_s": curve_s,
+                     "curve_ms_per_point": 1e3 * curve_s / len(winds_mps)})
+    return {"case": (f"optimal cycle per wind speed (unified model); points at "
+                     f"{', '.join(f'{w:g}' for w in points_mps)} m/s, curve {winds_mps[0]:g}-{winds_mps[-1]:g} m/s "
+                     f"({len(winds_mps)} points); best of {repeats}, each solved afresh"),
+            "rows": rows}
+
+
 def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
           fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=5) -> dict:
     """Run both grids and the references; return the tables and the summary."""
@@ -232,5 +276,6 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
         "scaling": {"dt_s": SCALING_DT_S, "runs": scaling, "fit_intercept_s": float(intercept),
                     "fit_s_per_element": float(slope),
                     "fit_max_rel_dev": float(np.max(np.abs(intercept + slope * n_el - wall) / wall))},
+        "design": design(repeats),
     }
 

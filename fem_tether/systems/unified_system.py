@@ -17,6 +17,7 @@ the rated-power and tether-force limits (seed 004 §5.1, Table 5.1) with
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -42,6 +43,10 @@ SYSTEM_MODES = ("ground-gen", "fly-gen", "both")
 VARIABLES = ("gamma_out", "gamma_in", "rotor_load", "cl")
 #: C_L,min/C_L,max when ``min_cl`` is not given (ours; the thesis prints no lower bound)
 MIN_CL_SHARE = 0.1
+#: optima :func:`optimal_cycle` remembers (a power curve is 31–51 of them)
+OPTIMA_CACHED = 4096
+#: step of the optimiser's forward differences (SLSQP's default, √ε)
+_FORWARD_STEP = float(np.sqrt(np.finfo(float).eps))
 
 
 @dataclass(frozen=True)
@@ -310,14 +315,37 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
     lift = system.cl if cl is None else float(cl)
     if not 0 < lift <= system.cl:
         raise ValueError(f"cl = {cl!r}: must be in (0, system.cl = {system.cl!r}]")
+    return _cycle(system, _reel_out(system, wind_mps, gamma_out, gamma_t, lift, rho_kg_m3, c_t, mass_losses),
+                  gamma_in, recovery)
+
+
+@dataclass(frozen=True)
+class _ReelOut:
+    """The reel-out phase of :func:`power_at_factors` (γ_in and the recovery do not enter it)."""
+
+    wind_mps: float
+    rho_kg_m3: float
+    gamma_out: float
+    gamma_t: float
+    cl: float
+    cd: float
+    ge: float
+    tether_cd: float
+    theta_rad: float
+    delta_rad: float
+    eta_delta: float
+    tether_force_N: float
+
+
+def _reel_out(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_t: float, lift: float,
+              rho_kg_m3: float, c_t: float, mass_losses: bool) -> _ReelOut:
+    """θ, Δ, η_Δ and T of the reel-out at γ_out, γ_t, C_L (arguments checked by the caller)."""
     cd = system.cd(lift, c_t)
     ge = lift / cd
-    beta = system.elevation_rad
     thrust_coefficient = system.area_m2 * gamma_t * cd / system.turbine_area_m2 if gamma_t > 0 else 0.0
     if thrust_coefficient > 1 + 1e-12:
         raise ValueError(f"gamma_t = {gamma_t!r}: the rotors' thrust coefficient "
                          f"{thrust_coefficient:.3g} exceeds the actuator disc's 1 (eq. 3.70)")
-    thrust_coefficient = min(thrust_coefficient, 1.0)
     aero = (rho_kg_m3, system.area_m2, cd, ge, wind_mps)
 
     def balance(theta):
@@ -333,58 +361,85 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
             return delta, eta, 0.0
         return delta, eta, eta * float(aerodynamic_force_N(*aero, theta + delta, gamma_out, gamma_t))
 
-    theta = _kite_inclination(system, beta, balance)
-    delta, eta, force = balance(theta) if theta is not None else (math.nan, math.nan, 0.0)
-    factors = (gamma_out, gamma_in, gamma_t, lift)
-    if not force > 0:
-        return CyclePower(*factors, False, math.nan if theta is None else theta, delta, eta, cd, ge, c_t,
-                          0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    assert theta is not None
-    phi = theta + delta
-    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=eta))
+    equilibrium = _kite_inclination(system, system.elevation_rad, balance)
+    theta, (delta, eta, force) = equilibrium if equilibrium is not None else (math.nan, (math.nan, math.nan, 0.0))
+    return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, theta, delta, eta, force)
+
+
+def _cycle(system: UnifiedSystem, out: _ReelOut, gamma_in: float, recovery: bool) -> CyclePower:
+    """The cycle of :func:`power_at_factors` from its reel-out phase ``out`` and γ_in."""
+    wind_mps, gamma_out, gamma_t = out.wind_mps, out.gamma_out, out.gamma_t
+    factors = (gamma_out, gamma_in, gamma_t, out.cl)
+    if not out.tether_force_N > 0:
+        return CyclePower(*factors, False, out.theta_rad, out.delta_rad, out.eta_delta, out.cd, out.ge,
+                          out.tether_cd, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    aero = (out.rho_kg_m3, system.area_m2, out.cd, out.ge, wind_mps)
+    phi = out.theta_rad + out.delta_rad
+    thrust_coefficient = min(system.area_m2 * gamma_t * out.cd / system.turbine_area_m2, 1.0) \
+        if gamma_t > 0 else 0.0
+    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=out.eta_delta))
     p_ob = float(onboard_power_W(*aero, phi, gamma_out, gamma_t))
     a = float(disc_induction_factor(thrust_coefficient))
     reeling = recovery and gamma_out > 0
     reel_in = reel_in_force_exact_N if system.exact_reel_in else reel_in_force_N
-    t_r = float(reel_in(rho_kg_m3, system.area_m2, system.cd0, wind_mps, gamma_in * wind_mps, beta)) \
-        if reeling else 0.0
+    t_r = float(reel_in(out.rho_kg_m3, system.area_m2, system.cd0, wind_mps, gamma_in * wind_mps,
+                        system.elevation_rad)) if reeling else 0.0
     p_r = float(reel_in_power_W(t_r, wind_mps, gamma_in))
     g_in = gamma_in if reeling else 0.0
     mechanical = float(cycle_power_W(p_gr + (1.0 - a) * p_ob, p_r, gamma_out if reeling else 0.0, g_in))
     electrical = float(cycle_power_W(system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob,
                                      p_r / system.eta_in, gamma_out if reeling else 0.0, g_in))
-    return CyclePower(*factors, True, theta, delta, eta, cd, ge, c_t, force,
-                      float(apparent_speed_mps(wind_mps, ge, phi, gamma_out, gamma_t)), p_gr, p_ob, a,
+    return CyclePower(*factors, True, out.theta_rad, out.delta_rad, out.eta_delta, out.cd, out.ge,
+                      out.tether_cd, out.tether_force_N,
+                      float(apparent_speed_mps(wind_mps, out.ge, phi, gamma_out, gamma_t)), p_gr, p_ob, a,
                       t_r, p_r, mechanical, electrical)
 
 
-def _kite_inclination(system: UnifiedSystem, beta: float, balance) -> float | None:
-    """θ with θ = θ_sag(T(θ)) (eqs. 3.17–3.19), the root of largest T; None: no equilibrium.
+def _kite_inclination(system: UnifiedSystem, beta: float, balance):
+    """(θ, balance(θ)) with θ = θ_sag(T(θ)) (eqs. 3.17–3.19), the root of largest T; None: no equilibrium.
 
     With the unknown T: h(T) = T_aero(θ_sag(T)) − T is negative for
     T ≥ T_aero(β) (sag only tilts the line up and lowers the force) and
     positive below the stable equilibrium; halving T from T_aero(β) brackets
-    the largest root.
+    the largest root.  In the bracket the secant from T_aero(β) and its image
+    T_aero(θ_sag(T_aero(β))) (a fixed-point step) finds it, bisecting where a
+    step would leave the bracket: h is nearly linear (the sag changes the
+    force by a few per cent), so it takes three or four evaluations where
+    Brent's method took six.
     """
     m_r = system.tether_mass_per_length_kg_m
-    top = balance(beta)[2]
-    if m_r == 0 or not top > 0:
-        return beta if top > 0 else None
-
-    def sag_theta(force):
-        return float(kite_inclination_rad(beta, system.tether_length_m, sag_coefficient_per_m(m_r, force)))
+    at_beta = balance(beta)
+    top = at_beta[2]
+    if not top > 0:
+        return None
+    if m_r == 0:
+        return beta, at_beta
 
     def excess(force):
-        return balance(sag_theta(force))[2] - force
+        theta = float(kite_inclination_rad(beta, system.tether_length_m, sag_coefficient_per_m(m_r, force)))
+        state = balance(theta)
+        return state[2] - force, theta, state
 
     upper = top
     for _ in range(60):
         lower = 0.5 * upper
-        if excess(lower) > 0:
-            force = brentq(excess, lower, upper, xtol=1e-12 * top, rtol=1e-13)
-            return sag_theta(force) if abs(excess(force)) <= 1e-8 * top else None
+        if excess(lower)[0] > 0:
+            break
         upper = lower
-    return None
+    else:
+        return None
+    x0, (h0, *_) = upper, excess(upper)
+    x1 = min(max(x0 + h0, lower), upper)
+    for _ in range(100):
+        h1, theta, state = excess(x1)
+        if h1 == 0:
+            break
+        lower, upper = (x1, upper) if h1 > 0 else (lower, x1)
+        step = -h1 * (x1 - x0) / (h1 - h0) if h1 != h0 else math.inf
+        if abs(step) <= 1e-13 * top:
+            break
+        x0, h0, x1 = x1, h1, (x1 + step if lower < x1 + step < upper else 0.5 * (lower + upper))
+    return (theta, state) if abs(h1) <= 1e-8 * top else None
 
 
 def _free_variables(system: UnifiedSystem, recovery: bool) -> list[tuple[str, ...]]:
@@ -418,10 +473,23 @@ def optimal_cycle(system: UnifiedSystem, wind_mps: float, rho_kg_m3: float = 1.2
     C_L held at C_L,max), or, if none given or none ends feasible, from the
     best points of a grid; a "both" system optimises pure GG, pure FG, then
     all variables from their optima.  None: no positive power within the
-    limits.
+    limits.  The optimum is remembered per arguments (the last
+    ``OPTIMA_CACHED``): a power curve asked again costs nothing.
     """
     if not wind_mps >= 0:
         raise ValueError(f"wind_mps = {wind_mps!r}: must be >= 0")
+    return _optimal_cycle(system, float(wind_mps), float(rho_kg_m3), tether_cd, mass_losses, recovery,
+                          None if starts is None else tuple(tuple(map(float, s)) for s in starts))
+
+
+def forget_optima() -> None:
+    """Drop the optima :func:`optimal_cycle` remembers (to time its solve afresh)."""
+    _optimal_cycle.cache_clear()
+
+
+@functools.lru_cache(maxsize=OPTIMA_CACHED)
+def _optimal_cycle(system, wind_mps, rho_kg_m3, tether_cd, mass_losses, recovery, starts):
+    """:func:`optimal_cycle` on checked, hashable arguments."""
     c_t = _tether_cd(system, tether_cd)
     cd = system.cd(system.cl, c_t)
     bounds = {"gamma_out": (0.0, math.cos(system.elevation_rad)), "gamma_in": (0.0, system.max_gamma_in),
@@ -533,6 +601,7 @@ class _Problem:
         self.force_scale = scale / max(wind_mps, 1e-300)
         self.zero = dict(gamma_out=0.0, gamma_in=0.0, rotor_load=0.0, cl=system.cl)
         self.cache: dict[tuple[float, ...], CyclePower] = {}
+        self.reel_outs: dict[tuple[float, ...], _ReelOut] = {}
 
     def max_gamma_t(self, cl: float) -> float:
         return self.system.max_gamma_t(self.system.cd(cl, self.tether_cd))
@@ -548,9 +617,13 @@ class _Problem:
     def state(self, point: dict[str, float]) -> CyclePower:
         key = tuple(point[n] for n in VARIABLES)
         if key not in self.cache:
-            self.cache[key] = power_at_factors(self.system, gamma_out=key[0], gamma_in=key[1],
-                                               gamma_t=key[2] * self.max_gamma_t(key[3]), cl=key[3],
-                                               **self.arguments)
+            phase = key[0], key[2], key[3]
+            if phase not in self.reel_outs:
+                a = self.arguments
+                self.reel_outs[phase] = _reel_out(self.system, a["wind_mps"], key[0],
+                                                  key[2] * self.max_gamma_t(key[3]), key[3], a["rho_kg_m3"],
+                                                  self.tether_cd, a["mass_losses"])
+            self.cache[key] = _cycle(self.system, self.reel_outs[phase], key[1], self.arguments["recovery"])
         return self.cache[key]
 
     def power(self, point: dict[str, float]) -> float:
@@ -572,21 +645,40 @@ class _Problem:
         return all(x >= -1e-9 for x in self.limits(point))
 
     def _solve(self, free, bounds, start, objective, constraints):
-        def point(x):
-            return dict(start, **{n: float(min(max(v, bounds[n][0]), bounds[n][1])) for n, v in zip(free, x)})
+        """SLSQP from ``start`` over ``free``: least ``objective(point)`` with ``constraints(point)``
+        (a list) ≥ 0; gradients by forward differences (SLSQP's own step √ε, backward at an upper
+        bound), the objective's and the constraints' from the same points."""
+        low, high = np.array([bounds[n][0] for n in free]), np.array([bounds[n][1] for n in free])
 
-        cons = [{"type": "ineq", "fun": (lambda x, f=f: f(point(x)))} for f in constraints]
+        def point(x):
+            return dict(start, **{n: float(v) for n, v in zip(free, np.clip(x, low, high))})
+
+        def gradients(x):
+            x = np.asarray(x, dtype=float)
+            base = point(x)
+            f0, c0 = objective(base), np.array(constraints(base))
+            step = np.where(x + _FORWARD_STEP > high, -_FORWARD_STEP, _FORWARD_STEP)
+            grad, jac = np.empty(x.size), np.empty((c0.size, x.size))
+            for i in range(x.size):
+                shifted = x.copy()
+                shifted[i] += step[i]
+                h = shifted[i] - x[i]
+                moved = point(shifted)
+                grad[i] = (objective(moved) - f0) / h
+                jac[:, i] = (np.array(constraints(moved)) - c0) / h
+            return grad, jac
+
+        cons = [{"type": "ineq", "fun": lambda x: np.array(constraints(point(x))),
+                 "jac": lambda x: gradients(x)[1]}] if constraints(start) else []
         result = minimize(lambda x: objective(point(x)), [start[n] for n in free], method="SLSQP",
-                          bounds=[bounds[n] for n in free], constraints=cons,
+                          jac=lambda x: gradients(x)[0], bounds=list(zip(low, high)), constraints=cons,
                           options={"ftol": 1e-14, "maxiter": 300})
         found = point(result.x)
         return found if self.state(found).flies and self.feasible(found) else None
 
     def maximise(self, free, bounds, start):
         """Most electrical power from ``start`` within the limits; None if it ends infeasible."""
-        n = len(self.limits(start))
-        checks = [lambda p, i=i: self.limits(p)[i] for i in range(n)]
-        return self._solve(free, bounds, start, lambda p: -self.power(p) / self.scale, checks)
+        return self._solve(free, bounds, start, lambda p: -self.power(p) / self.scale, self.limits)
 
     def hold_rated(self, free, bounds, start):
         """Least tether force with P = P_rated, from a point above it; None if none is reachable.
@@ -613,11 +705,8 @@ class _Problem:
         if not crossings:
             return None
         crossing = min(crossings, key=lambda p: self.state(p).tether_force_N)
-        n = len(self.limits(start))
-        checks = [lambda p, i=i: self.limits(p)[i] for i in range(n)]
-        checks.append(lambda p: (self.power(p) - rated) / rated)
-        found = self._solve(free, bounds, crossing,
-                            lambda p: self.state(p).tether_force_N / self.force_scale, checks)
+        found = self._solve(free, bounds, crossing, lambda p: self.state(p).tether_force_N / self.force_scale,
+                            lambda p: self.limits(p) + [(self.power(p) - rated) / rated])
         if found is None or self.power(found) < rated * (1 - 1e-9) \
                 or self.state(found).tether_force_N > self.state(crossing).tether_force_N:
             return crossing

@@ -1,6 +1,8 @@
 """fem_tether.commands.bench: one setting measured in a forked child (the whole benchmark
 takes minutes; tests/test_cli.py checks its printed form)."""
 
+import pytest
+
 from fem_tether.commands import bench
 
 
@@ -41,3 +43,12 @@ def test_rounds_keep_the_fastest_run_and_the_largest_memory(monkeypatch):
     assert calls == [10, 20, 10, 20, 10, 20]        # interleaved, not back to back
     assert [b["wall_s"] for b in best] == [1.0, 4.0]
     assert [b["peak_rss_MiB"] for b in best] == [30.0, 60.0]
+
+
+def test_the_design_section_times_points_and_curves():
+    """One operating point per system and a three-speed curve: positive wall times, per point too."""
+    d = bench.design(repeats=1, points_mps=(10.0,), winds_mps=(5.0, 10.0, 20.0))
+    assert [r["system"] for r in d["rows"]] == ["trevisi-gg", "trevisi-fg", "table-3.1"]
+    for row in d["rows"]:
+        assert row["point_ms"]["10"] > 0 and row["curve_s"] > 0
+        assert row["curve_ms_per_point"] == pytest.approx(1e3 * row["curve_s"] / 3)
