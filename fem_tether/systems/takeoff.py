@@ -55,7 +55,8 @@ PROPELLER_EFFICIENCY = 0.8
 GROUND_AIR_DENSITY_KG_M3 = 1.225
 
 
-def climb_speed_mps(mass_kg, area_m2, cl, climb_angle_rad, rho_kg_m3=GROUND_AIR_DENSITY_KG_M3, g_mps2=G_MPS2):
+def climb_speed_mps(mass_kg, area_m2, cl, climb_angle_rad, rho_kg_m3=GROUND_AIR_DENSITY_KG_M3,
+                    g_mps2=G_MPS2):
     """V_ξ = √(2 m g cos α_TO / (ρ A C_L)): lift carries the weight's normal part (eq. 3.63)."""
     return np.sqrt(2.0 * mass_kg * g_mps2 * np.cos(climb_angle_rad) / (rho_kg_m3 * area_m2 * cl))
 
@@ -79,7 +80,7 @@ def takeoff_thrust_N(mass_kg, area_m2, cl, cd, climb_angle_rad, rho_kg_m3=GROUND
 
 
 def turbine_area_m2(area_m2, gamma_t, cd, min_disc_efficiency):
-    """A γ_t C_d / (4 a⁽¹⁾(1 − a⁽¹⁾)), a⁽¹⁾ = 1 − η_d^min, at one wind speed (eqs. 3.66, 3.68, 3.69).
+#: E_motors, the motors' power per mass (ours: seed 004 Table 5.4 footnote d, after its ref. [18])
 
     A_turb of eq. 3.68 is the largest over the wind speeds (the caller's max);
     at the others the induction is eq. 3.70,
@@ -115,7 +116,7 @@ def takeoff_mass_kg(propeller_power_W, altitude_m, climb_rate, battery_J_kg=BATT
 
 
 def propeller_area_m2(area_m2, span_m, turbine_share, area_per_chord_m=PROPELLER_AREA_PER_CHORD_M):
-    """A_prop = (1 − q) k_prop c̄ with c̄ = A/s (ours, after seed 004 §3.5: "proportional to the average chord")."""
+    """A_prop = (1 − q) k_prop c̄, c̄ = A/s (ours, after seed 004 §3.5: "proportional to the average chord")."""
     return (1.0 - turbine_share) * area_per_chord_m * area_m2 / span_m
 
 
@@ -174,8 +175,8 @@ def takeoff(mass_kg, area_m2, cl, cd0, aspect_ratio, climb_angle_rad, altitude_m
         prop_area = np.asarray(propeller_area)
         if np.any((np.real(prop_area) <= 0.0) & (np.real(q) != 1.0)):
             raise ValueError(f"propeller_area must be positive where turbine_share != 1, got {propeller_area}")
-        prop_disc = propeller_disc_efficiency(q_prop, rho_kg_m3, np.where(np.real(prop_area) > 0.0, prop_area, 1.0),
-                                              speed)
+        safe_area = np.where(np.real(prop_area) > 0.0, prop_area, 1.0)
+        prop_disc = propeller_disc_efficiency(q_prop, rho_kg_m3, safe_area, speed)
     prop_power = propulsion_power_W(q_prop, speed, propeller_efficiency, prop_disc)
     return TakeOff(climb_speed_mps=speed, climb_rate_mps=rate, thrust_N=thrust, turbine_thrust_N=q_turb,
                    propeller_thrust_N=q_prop, turbine_power_W=turbine_power, propeller_power_W=prop_power,
