@@ -80,7 +80,7 @@ def takeoff_thrust_N(mass_kg, area_m2, cl, cd, climb_angle_rad, rho_kg_m3=GROUND
 
 
 def turbine_area_m2(area_m2, gamma_t, cd, min_disc_efficiency):
-#: E_motors, the motors' power per mass (ours: seed 004 Table 5.4 footnote d, after its ref. [18])
+    """A γ_t C_d / (4 a⁽¹⁾(1 − a⁽¹⁾)), a⁽¹⁾ = 1 − η_d^min, at one wind speed (eqs. 3.66, 3.68–3.69).
 
     A_turb of eq. 3.68 is the largest over the wind speeds (the caller's max);
     at the others the induction is eq. 3.70,
