@@ -1,0 +1,248 @@
+"""One kite-system design evaluated: Trevisi's model from the design variables to AEP and constraints.
+
+Trevisi, *Configuration optimisation of kite-based wind turbines* §5.2 (his
+Fig. 5.2): the operating altitude h = r sinβ (+ a tower) gives the air density
+(eq. 3.90) and the Weibull resource there (eqs. 3.91–3.92); the conductor
+(eq. 5.1) and the tether's mass and strength (eqs. 3.16, 5.2) follow from d, r
+and the on-board rating; the wing's structure (§3.4), the take-off system
+(§3.5) and the generators give the flying mass; per wind speed the drag polar
+(eq. 3.15 with the tether's C_d,t, eq. 3.14), the sag (eqs. 3.16–3.19), the
+weight's balance (eq. 3.74, solved exactly: R_a sinΔ = m g cosθ, see
+:mod:`fem_tether.systems.mass_losses`) and the cycle power (eq. 3.89 with the
+reel-in term's sign a minus) give the power curve; AEP = 8760 h ∫ P f dV over
+[V_in, V_out], less the energy of one take-off a day (§5.1.3).
+
+Everything here is explicit and smooth in the variables of
+:mod:`.variables` (the implicit sag and balance are equality constraints on
+the auxiliary θ and Δ), and complex-step safe: :func:`evaluate` takes a batch
+of normalised vectors, real or complex, and returns the objective and the
+constraints of each, so one call with the perturbed copies of a point gives
+their exact derivatives (:mod:`.optimiser`).
+
+The tether's weight acts through the sag; the kite's weight m in the balance is
+the glider, its generators and its take-off system (the thesis' "total flying
+mass" adds the tether: ``kite_carries_tether = True`` is that reading).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_tether.core.arrays import real_part
+from fem_tether.design.parameters import DesignParameters
+from fem_tether.design.variables import Layout, force_scale_N
+from fem_tether.physics.atmosphere import exponential_density_kg_m3
+from fem_tether.physics.loads import G_MPS2
+from fem_tether.physics.material import tether_mass_per_length_kg_m
+from fem_tether.physics.resource import weibull_density_per_mps
+from fem_tether.physics.wind import power_law_speed_mps
+from fem_tether.systems import takeoff
+from fem_tether.systems.crosswind import (conductor_area_m2, drag_coefficient, kite_inclination_rad,
+                                          sag_coefficient_per_m)
+from fem_tether.systems.mass_losses import mass_efficiency, weight_term_N
+from fem_tether.systems.power import reel_in_force_N
+from fem_tether.systems.tether_drag import straight_tether_cd
+from fem_tether.systems.unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W,
+                                        disc_induction_factor, ground_power_W, onboard_power_W,
+                                        reel_in_power_W)
+from fem_tether.systems.wing_structure import wing_structure
+
+HOURS_PER_YEAR = 8760.0
+#: least cosφ − γ_out the optimiser may use (the relative wind along the tether stays positive)
+MIN_ALONG_WIND = 1e-3
+#: nodes per wing section in the design (the structure converges at second order: mass and
+#: deflections within 5e-4 of the converged values at 17 nodes, tests/design/test_model.py)
+STRUCTURE_NODES = 17
+#: k of :func:`soft_max`
+SOFT_MAX_SHARPNESS = 3000.0
+#: smallest tension the sag is evaluated at [N] (only infeasible iterates come near it)
+MIN_SAG_TENSION_N = 1.0
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """A batch of designs: every array has the batch first; ``per_wind`` ones (B, n).
+
+    ``objective`` is −(AEP − E_TO per year)/(8760 h · P_rated), what the optimiser
+    minimises; ``equalities`` and ``inequalities`` (≥ 0) are scaled to O(1),
+    one name per column (``[j]``: the j-th wind speed or node).  The rest are the design's outputs (SI).
+    """
+
+    objective: np.ndarray
+    equalities: np.ndarray
+    equality_names: tuple
+    inequalities: np.ndarray
+    inequality_names: tuple
+    quantities: dict
+
+
+def wind_grid(cut_in_mps, cut_out_mps, n: int):
+    """V_j = V_in + (V_out − V_in) j/(n − 1): the n wind speeds the design is flown at."""
+    share = np.linspace(0.0, 1.0, n)
+    return cut_in_mps + (cut_out_mps - cut_in_mps) * share
+
+
+def trapezoid(y, x):
+    """∫ y dx over the last axis by the trapezoidal rule (complex-safe)."""
+    return 0.5 * ((y[..., 1:] + y[..., :-1]) * (x[..., 1:] - x[..., :-1])).sum(axis=-1)
+
+
+def soft_max(x, sharpness=SOFT_MAX_SHARPNESS):
+    """max_j x_j (last axis) smoothed: m (1 + ln Σ exp(k (x_j/m − 1))/k), m the largest real part.
+
+    Above the max by at most ln(n)/k of it (0.1 % for n = 20 at k = 3000) and
+    smooth, so eq. 3.68's A_turb = max_j A γ_t C_d/(4a⁽¹⁾(1 − a⁽¹⁾)) keeps exact
+    derivatives; the shift m cancels analytically, so a complex step passes.
+    """
+    top = np.max(real_part(x), axis=-1, keepdims=True)
+    some = top > 0
+    scale = np.where(some, top, 1.0)
+    ratio = np.where(some, x / scale, 1.0)
+    smooth = scale * (1.0 + np.log(np.exp(sharpness * (ratio - 1.0)).sum(axis=-1, keepdims=True)) / sharpness)
+    return np.where(some, smooth, 0.0)
+
+
+def site(parameters: DesignParameters, altitude_m):
+    """(ρ, Weibull scale) at the operating altitude: eq. 3.90 and the power law 3.91 (constant above
+    ``wind_top_m``) applied to the reference scale A, so every speed of the distribution is scaled."""
+    p = parameters
+    capped = np.where(real_part(altitude_m) < p.wind_top_m, altitude_m, p.wind_top_m)
+    rho = exponential_density_kg_m3(altitude_m, p.rho0_kg_m3, p.scale_height_m)
+    return rho, power_law_speed_mps(capped, p.weibull_scale_mps, p.reference_height_m, p.shear_alpha)
+
+
+def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor=None,
+             kite_carries_tether: bool = False) -> Evaluation:
+    """The designs of the normalised vectors ``z`` (B, dimension), real or complex.
+
+    ``tether_drag_factor`` (n,) multiplies the straight tether's C_d,t (eq. 3.14)
+    at each wind speed of the grid: the flexible tether's measured C_d,t over
+    the straight one's (``None``: 1, the thesis' straight lumping).
+    """
+    p, n = parameters, layout.n
+    v = layout.unpack(z)
+    batch = np.atleast_2d(z).shape[0]
+    ones = np.ones((batch, 1))
+
+    def scalar(name):
+        return v[name] * ones if np.ndim(v[name]) == 0 else v[name]
+
+    def per_wind(name):
+        return v[name] * np.ones((batch, n)) if np.ndim(v[name]) == 0 else v[name]
+
+    span, ar = scalar("span_m"), scalar("aspect_ratio")
+    area = span**2 / ar
+    d, r, beta = scalar("tether_diameter_m"), scalar("tether_length_m"), scalar("elevation_rad")
+    rating = scalar("onboard_rating_W")
+    f_ref = force_scale_N(p)
+
+    altitude = r * np.sin(beta) + p.tower_height_m
+    rho, scale = site(p, altitude)
+    wind = wind_grid(scalar("cut_in_mps"), scalar("cut_out_mps"), n)
+
+    conductor = conductor_area_m2(rating, p.line_voltage_V, p.transmission_loss * p.rated_power_W, r,
+                                  p.conductor_resistivity_ohm_m)
+    structural = np.pi * d**2 / 4.0 - conductor
+    m_r = tether_mass_per_length_kg_m(structural, p.tether_density_kg_m3, conductor, p.conductor_density_kg_m3)
+    force_limit = p.tether_strength_Pa * structural / p.tether_safety_factor
+
+    factor = np.ones(n) if tether_drag_factor is None else np.asarray(tether_drag_factor, dtype=float)
+    tether_cd = straight_tether_cd(1, p.cd_perp, d, r, area) * factor
+    ge = per_wind("cl") / drag_coefficient(p.cd0, per_wind("cl"), ar, tether_cd, p.oswald)
+
+    support = scalar("support_share") * span / 2.0
+    caps = np.concatenate([scalar("cap_a_m"), scalar("cap_b_m"), scalar("cap_c_m")], axis=-1)
+    wing = wing_structure(span[:, 0], area[:, 0], support[:, 0], caps, scalar("design_force_N")[:, 0],
+                          p.spar_density_kg_m3, nodes=STRUCTURE_NODES)
+    glider = wing.glider_mass_kg[:, None]
+    tether_mass = m_r * r
+    generators = rating / p.generator_power_density_W_kg
+    cl = per_wind("cl")
+    cd = drag_coefficient(p.cd0, cl, ar, tether_cd, p.oswald)
+    loading = area * per_wind("gamma_t") * cd
+    turbine_area = soft_max(takeoff.turbine_area_m2(area, per_wind("gamma_t"), cd, p.min_disc_efficiency))
+    lifted = glider + generators + tether_mass
+    mass_to = scalar("takeoff_mass_kg")
+    climb = takeoff.takeoff(lifted + mass_to, area, p.cl_max, p.cd0, ar, scalar("climb_angle_rad"), altitude,
+                            turbine_share=np.where(real_part(turbine_area) > 0, scalar("turbine_thrust_share"), 0.0),
+                            turbine_area=turbine_area,
+                            rho_kg_m3=p.rho0_kg_m3, turbine_efficiency=p.eta_turbine_propeller,
+                            propeller_efficiency=p.eta_propeller, oswald=p.oswald)
+    total_mass = lifted + mass_to
+    kite_mass = total_mass if kite_carries_tether else total_mass - tether_mass
+
+    theta, delta = per_wind("theta_rad"), per_wind("delta_rad")
+    g_out, g_in, g_t = per_wind("gamma_out"), per_wind("gamma_in"), per_wind("gamma_t")
+    phi = theta + delta
+    aero = (rho, area, cd, ge, wind)
+    force_aero = aerodynamic_force_N(*aero, phi, g_out, g_t)
+    eta_delta = mass_efficiency(delta, theta, "exact")
+    tension = eta_delta * force_aero
+    safe_tension = np.where(real_part(tension) > MIN_SAG_TENSION_N, tension, MIN_SAG_TENSION_N)
+    sag_theta = kite_inclination_rad(beta, r, sag_coefficient_per_m(m_r, safe_tension))
+    balance = (force_aero * np.sin(delta) - weight_term_N(kite_mass, theta)) / f_ref
+
+    has_rotors = real_part(turbine_area) > 0
+    thrust_coefficient = np.where(has_rotors, loading / np.where(has_rotors, turbine_area, 1.0), 0.0)
+    thrust_coefficient = np.where(real_part(thrust_coefficient) < 1.0, thrust_coefficient, 1.0)
+    induction = disc_induction_factor(thrust_coefficient)
+    p_gr = ground_power_W(*aero, phi, g_out, g_t, mass_efficiency=eta_delta)
+    p_ob = onboard_power_W(*aero, phi, g_out, g_t)
+    onboard_electric = p.eta_t * (1.0 - induction) * p_ob
+    reel_force = reel_in_force_N(rho, area, p.cd0, wind, g_in * wind, beta)
+    p_r = reel_in_power_W(reel_force, wind, g_in)
+    power = cycle_power_W(p.eta_out * p_gr + onboard_electric, p_r / p.eta_in, g_out, g_in)
+    mechanical = cycle_power_W(p_gr + (1.0 - induction) * p_ob, p_r, g_out, g_in)
+
+    density = weibull_density_per_mps(wind, scale, p.weibull_shape)
+    aep_Wh = HOURS_PER_YEAR * trapezoid(power * density, wind)
+    takeoff_Wh = p.takeoffs_per_year * climb.energy_J[:, 0] / 3600.0
+    objective = -(aep_Wh - takeoff_Wh) / (HOURS_PER_YEAR * p.rated_power_W)
+
+    equalities = [("weight balance (eq. 3.74)", balance), ("sag inclination (eqs. 3.17-3.19)", theta - sag_theta),
+                  ("take-off mass (eq. 3.73)", (mass_to - climb.mass_kg) * G_MPS2 / f_ref)]
+    if p.wing_area_m2 is not None:
+        equalities.append(("wing area", (area - p.wing_area_m2) / p.wing_area_m2))
+    reeling = p.mode != "fly-gen"
+    rotors = p.mode != "ground-gen"
+    limit = p.max_deflection_share * span
+    tip, centre = wing.tip_deflection_m[:, None], wing.centre_deflection_m[:, None]
+    inequalities = [("tether strength, reel-out (eq. 5.2)", (force_limit - tension) / f_ref),
+                    ("rated power", (p.rated_power_W - power) / p.rated_power_W),
+                    ("along-tether wind", np.cos(phi) - g_out - MIN_ALONG_WIND),
+                    ("wing design load", (scalar("design_force_N") - force_aero) / f_ref),
+                    ("minimum altitude", (altitude - p.min_altitude_m) / p.min_altitude_m),
+                    ("cut-out above cut-in", (scalar("cut_out_mps") - scalar("cut_in_mps") - 1.0) / 10.0),
+                    ("spar stress (eq. 3.57)", wing.stress_margin.reshape(batch, -1)),
+                    ("tip deflection", np.concatenate([limit - tip, limit + tip], axis=1) / span),
+                    ("centre deflection", np.concatenate([limit - centre, limit + centre], axis=1) / span)]
+    if reeling:
+        inequalities += [("tether strength, reel-in (eq. 5.2)", (force_limit - reel_force) / f_ref),
+                         ("reel-in power", (p.rated_power_W - p_r / p.eta_in) / p.rated_power_W)]
+    if rotors:
+        inequalities += [("generator rating", (rating - onboard_electric) / p.rated_power_W)]
+    quantities = dict(
+        wind_mps=wind, power_W=power, sag_theta_rad=sag_theta, kite_mass_kg=kite_mass[:, 0], mechanical_power_W=mechanical, ground_power_W=p_gr,
+        onboard_power_W=onboard_electric, tether_force_N=tension, reel_in_force_N=reel_force,
+        reel_in_power_W=p_r, aerodynamic_force_N=force_aero, force_limit_N=force_limit,
+        apparent_speed_mps=apparent_speed_mps(wind, ge, phi, g_out, g_t), cd=cd, tether_cd=tether_cd,
+        glide_ratio=ge, induction=induction, eta_delta=eta_delta, probability_density_per_mps=density,
+        aep_Wh=aep_Wh, takeoff_energy_Wh=takeoff_Wh / p.takeoffs_per_year, altitude_m=altitude[:, 0],
+        air_density_kg_m3=rho[:, 0], weibull_scale_mps=scale[:, 0], area_m2=area[:, 0], turbine_area_m2=turbine_area[:, 0],
+        conductor_area_m2=conductor[:, 0], total_mass_kg=total_mass[:, 0], glider_mass_kg=glider[:, 0],
+        wing_mass_kg=wing.wing_mass_kg, generator_mass_kg=generators[:, 0], tether_mass_kg=tether_mass[:, 0],
+        takeoff_mass_kg=mass_to[:, 0], takeoff_mass_needed_kg=climb.mass_kg[:, 0], support_m=support[:, 0], tip_deflection_m=wing.tip_deflection_m,
+        centre_deflection_m=wing.centre_deflection_m, takeoff_thrust_N=climb.thrust_N[:, 0],
+        climb_speed_mps=climb.climb_speed_mps[:, 0], propeller_area_m2=climb.propeller_area_m2[:, 0],
+        capacity_factor=aep_Wh / (HOURS_PER_YEAR * p.rated_power_W))
+    return Evaluation(objective, *_columns(equalities, batch), *_columns(inequalities, batch), quantities)
+
+
+def _columns(blocks, batch):
+    """The named constraint blocks side by side: ((B, m) array, the m names)."""
+    arrays = [np.broadcast_to(b, (batch, np.shape(b)[-1])) for _, b in blocks]
+    names = tuple(f"{name}[{i}]" if a.shape[1] > 1 else name for (name, _), a in zip(blocks, arrays)
+                  for i in range(a.shape[1]))
+    return np.concatenate(arrays, axis=1), names
