@@ -156,7 +156,7 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     caps = np.concatenate([scalar("cap_a_m"), scalar("cap_b_m"), scalar("cap_c_m")], axis=-1)
     wing = wing_structure(span[:, 0], area[:, 0], support[:, 0], caps, scalar("design_force_N")[:, 0],
                           p.spar_density_kg_m3, nodes=STRUCTURE_NODES)
-    glider = wing.glider_mass_kg[:, None]
+    glider = wing.glider_mass_kg[:, None] if p.glider_mass_kg is None else p.glider_mass_kg * ones
     tether_mass = m_r * r
     generators = rating / p.generator_power_density_W_kg
     cl = per_wind("cl")
@@ -195,9 +195,11 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     p_r = reel_in_power_W(reel_force, wind, g_in)
     power = cycle_power_W(p.eta_out * p_gr + onboard_electric, p_r / p.eta_in, g_out, g_in)
     mechanical = cycle_power_W(p_gr + (1.0 - induction) * p_ob, p_r, g_out, g_in)
+    onboard_cycle = cycle_power_W(onboard_electric, 0.0, g_out, g_in)
 
     density = weibull_density_per_mps(wind, scale, p.weibull_shape)
     aep_Wh = HOURS_PER_YEAR * trapezoid(power * density, wind)
+    aep_onboard_Wh = HOURS_PER_YEAR * trapezoid(onboard_cycle * density, wind)
     takeoff_Wh = p.takeoffs_per_year * climb.energy_J[:, 0] / 3600.0
     objective = -(aep_Wh - takeoff_Wh) / (HOURS_PER_YEAR * p.rated_power_W)
 
@@ -212,31 +214,37 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     inequalities = [("tether strength, reel-out (eq. 5.2)", (force_limit - tension) / f_ref),
                     ("rated power", (p.rated_power_W - power) / p.rated_power_W),
                     ("along-tether wind", np.cos(phi) - g_out - MIN_ALONG_WIND),
-                    ("wing design load", (scalar("design_force_N") - force_aero) / f_ref),
                     ("minimum altitude", (altitude - p.min_altitude_m) / p.min_altitude_m),
-                    ("cut-out above cut-in", (scalar("cut_out_mps") - scalar("cut_in_mps") - 1.0) / 10.0),
-                    ("spar stress (eq. 3.57)", wing.stress_margin.reshape(batch, -1)),
-                    ("tip deflection", np.concatenate([limit - tip, limit + tip], axis=1) / span),
-                    ("centre deflection", np.concatenate([limit - centre, limit + centre], axis=1) / span)]
+                    ("cut-out above cut-in", (scalar("cut_out_mps") - scalar("cut_in_mps") - 1.0) / 10.0)]
+    if p.glider_mass_kg is None:
+        inequalities += [("wing design load", (scalar("design_force_N") - force_aero) / f_ref),
+                         ("spar stress (eq. 3.57)", wing.stress_margin.reshape(batch, -1)),
+                         ("tip deflection", np.concatenate([limit - tip, limit + tip], axis=1) / span),
+                         ("centre deflection", np.concatenate([limit - centre, limit + centre], axis=1) / span)]
     if reeling:
         inequalities += [("tether strength, reel-in (eq. 5.2)", (force_limit - reel_force) / f_ref),
                          ("reel-in power", (p.rated_power_W - p_r / p.eta_in) / p.rated_power_W)]
     if rotors:
         inequalities += [("generator rating", (rating - onboard_electric) / p.rated_power_W)]
-    quantities = dict(
-        wind_mps=wind, power_W=power, sag_theta_rad=sag_theta, kite_mass_kg=kite_mass[:, 0], mechanical_power_W=mechanical, ground_power_W=p_gr,
-        onboard_power_W=onboard_electric, tether_force_N=tension, reel_in_force_N=reel_force,
-        reel_in_power_W=p_r, aerodynamic_force_N=force_aero, force_limit_N=force_limit,
-        apparent_speed_mps=apparent_speed_mps(wind, ge, phi, g_out, g_t), cd=cd, tether_cd=tether_cd,
-        glide_ratio=ge, induction=induction, eta_delta=eta_delta, probability_density_per_mps=density,
-        aep_Wh=aep_Wh, takeoff_energy_Wh=takeoff_Wh / p.takeoffs_per_year, altitude_m=altitude[:, 0],
-        air_density_kg_m3=rho[:, 0], weibull_scale_mps=scale[:, 0], area_m2=area[:, 0], turbine_area_m2=turbine_area[:, 0],
-        conductor_area_m2=conductor[:, 0], total_mass_kg=total_mass[:, 0], glider_mass_kg=glider[:, 0],
+    quantities = dict(      # per wind speed (B, n)
+        wind_mps=wind, power_W=power, mechanical_power_W=mechanical, ground_power_W=p_gr,
+        onboard_power_W=onboard_electric, ground_cycle_power_W=power - onboard_cycle,
+        onboard_cycle_power_W=onboard_cycle, tether_force_N=tension, reel_in_force_N=reel_force,
+        reel_in_power_W=p_r, aerodynamic_force_N=force_aero, apparent_speed_mps=apparent_speed_mps(
+            wind, ge, phi, g_out, g_t), cd=cd, tether_cd=tether_cd, glide_ratio=ge, induction=induction,
+        eta_delta=eta_delta, sag_theta_rad=sag_theta, probability_density_per_mps=density)
+    quantities.update(      # per design (B,)
+        aep_Wh=aep_Wh, aep_ground_Wh=aep_Wh - aep_onboard_Wh, aep_onboard_Wh=aep_onboard_Wh,
+        capacity_factor=aep_Wh / (HOURS_PER_YEAR * p.rated_power_W),
+        takeoff_energy_Wh=takeoff_Wh / p.takeoffs_per_year, force_limit_N=force_limit[:, 0],
+        altitude_m=altitude[:, 0], air_density_kg_m3=rho[:, 0], weibull_scale_mps=scale[:, 0],
+        area_m2=area[:, 0], turbine_area_m2=turbine_area[:, 0], conductor_area_m2=conductor[:, 0],
+        total_mass_kg=total_mass[:, 0], kite_mass_kg=kite_mass[:, 0], glider_mass_kg=glider[:, 0],
         wing_mass_kg=wing.wing_mass_kg, generator_mass_kg=generators[:, 0], tether_mass_kg=tether_mass[:, 0],
-        takeoff_mass_kg=mass_to[:, 0], takeoff_mass_needed_kg=climb.mass_kg[:, 0], support_m=support[:, 0], tip_deflection_m=wing.tip_deflection_m,
-        centre_deflection_m=wing.centre_deflection_m, takeoff_thrust_N=climb.thrust_N[:, 0],
-        climb_speed_mps=climb.climb_speed_mps[:, 0], propeller_area_m2=climb.propeller_area_m2[:, 0],
-        capacity_factor=aep_Wh / (HOURS_PER_YEAR * p.rated_power_W))
+        takeoff_mass_kg=mass_to[:, 0], takeoff_mass_needed_kg=climb.mass_kg[:, 0], support_m=support[:, 0],
+        tip_deflection_m=wing.tip_deflection_m, centre_deflection_m=wing.centre_deflection_m,
+        takeoff_thrust_N=climb.thrust_N[:, 0], climb_speed_mps=climb.climb_speed_mps[:, 0],
+        propeller_area_m2=climb.propeller_area_m2[:, 0])
     return Evaluation(objective, *_columns(equalities, batch), *_columns(inequalities, batch), quantities)
 
 

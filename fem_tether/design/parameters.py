@@ -79,6 +79,9 @@ class DesignParameters:
     as :class:`fem_tether.systems.unified_system.UnifiedSystem`),
     ``wind_speeds`` n = 20 between cut-in and cut-out (Table 5.1 leaves n
     open), ``tower_height_m`` 0 (ch. 5 has no tower), ``mode`` "both".
+
+    ``glider_mass_kg``: a given glider mass instead of the structural model
+    (§3.4): the validation kites of §5.3.2 state their masses (``None``: the model).
     """
 
     rated_power_W: float = 3e6
@@ -115,6 +118,7 @@ class DesignParameters:
     conductor_density_kg_m3: float = 2700.0
     wind_speeds: int = 20
     tower_height_m: float = 0.0
+    glider_mass_kg: float | None = None
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -124,7 +128,7 @@ class DesignParameters:
             raise ValueError(f"wind_speeds = {self.wind_speeds!r}: must be an integer >= 3")
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in ("mode", "wind_speeds") or (f.name == "wing_area_m2" and value is None):
+            if f.name in ("mode", "wind_speeds") or (f.name in ("wing_area_m2", "glider_mass_kg") and value is None):
                 continue
             if not (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)):
                 raise ValueError(f"{f.name} = {value!r}: must be a finite number")

@@ -88,13 +88,19 @@ def force_scale_N(parameters: DesignParameters) -> float:
     return parameters.rated_power_W / 3.0
 
 
-def held_by_mode(mode: str) -> dict[str, float]:
-    """Variables a generation type holds: ground-gen has no turbines, fly-gen no reeling."""
-    if mode == "ground-gen":
-        return {"gamma_t": 0.0, "onboard_rating_W": 0.0, "turbine_thrust_share": 0.0}
-    if mode == "fly-gen":
-        return {"gamma_out": 0.0, "gamma_in": 1.0}
-    return {}
+#: the structure's variables, held where the glider's mass is given
+STRUCTURE = {"cap_a_m": 0.01, "cap_b_m": 0.01, "cap_c_m": 0.01, "support_share": 0.5, "design_force_N": 1e5}
+
+
+def held_by_model(parameters: DesignParameters) -> dict[str, float]:
+    """Variables the model holds: ground-gen has no turbines, fly-gen no reeling, a given glider
+    mass no structure."""
+    held = dict(STRUCTURE) if parameters.glider_mass_kg is not None else {}
+    if parameters.mode == "ground-gen":
+        held.update(gamma_t=0.0, onboard_rating_W=0.0, turbine_thrust_share=0.0)
+    if parameters.mode == "fly-gen":
+        held.update(gamma_out=0.0, gamma_in=1.0)
+    return held
 
 
 @dataclass(frozen=True)
@@ -128,7 +134,7 @@ class Layout:
             if not (math.isfinite(low) and math.isfinite(high) and low <= high):
                 raise ValueError(f"bounds.{name} = {list(pair)!r}: must be two finite numbers, low <= high")
             full[name] = (low, high)
-        fixed = dict(held_by_mode(parameters.mode))
+        fixed = held_by_model(parameters)
         for name, value in (held or {}).items():
             if name not in full:
                 raise ValueError(f"held: unknown variable {name!r}")

@@ -1,0 +1,133 @@
+"""What a design optimisation found: the design, its power curve, masses, constraints and starts.
+
+:func:`design_result` turns the starts of one problem into a
+:class:`DesignResult`: the best feasible, converged start (least objective;
+the first of equals, so the choice does not depend on which rank ran what),
+its Table 5.1 variables, its per-wind curves, its outputs (AEP, split ground /
+on-board, capacity factor, the rated wind speed, the mass breakdown, the
+take-off), the active constraints with their multipliers and the envelope
+sensitivities of :mod:`.sensitivity`, and one record per start.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from fem_tether.design.optimiser import Problem, Solution, best
+from fem_tether.design.parameters import DesignParameters
+from fem_tether.design.sensitivity import sensitivities_Wh
+from fem_tether.design.variables import PER_WIND, SCALARS
+
+#: per-wind curves a result keeps (the model's names)
+CURVES = ("wind_mps", "power_W", "mechanical_power_W", "ground_cycle_power_W", "onboard_cycle_power_W",
+          "ground_power_W", "onboard_power_W", "tether_force_N", "reel_in_force_N", "reel_in_power_W",
+          "aerodynamic_force_N", "apparent_speed_mps", "cd", "tether_cd", "glide_ratio", "induction",
+          "eta_delta", "probability_density_per_mps")
+#: outputs a result keeps (the model's names)
+OUTPUTS = ("aep_Wh", "aep_ground_Wh", "aep_onboard_Wh", "capacity_factor", "takeoff_energy_Wh",
+           "force_limit_N", "altitude_m", "air_density_kg_m3", "weibull_scale_mps", "area_m2",
+           "turbine_area_m2", "conductor_area_m2", "total_mass_kg", "kite_mass_kg", "glider_mass_kg",
+           "wing_mass_kg", "generator_mass_kg", "tether_mass_kg", "takeoff_mass_kg", "support_m",
+           "tip_deflection_m", "centre_deflection_m", "takeoff_thrust_N", "climb_speed_mps", "propeller_area_m2")
+#: a constraint counts as active within this slack (scaled) and above this multiplier
+ACTIVE_SLACK, ACTIVE_MULTIPLIER = 1e-6, 1e-9
+#: the power counts as rated from this share of P_rated up
+RATED_SHARE = 0.999
+
+
+@dataclass(frozen=True)
+class StartRecord:
+    """One start: its index, how SLSQP ended, the net AEP it reached and how long it took."""
+
+    index: int
+    success: bool
+    feasible: bool
+    message: str
+    iterations: int
+    evaluations: int
+    net_aep_Wh: float
+    violation: float
+    seconds: float
+
+
+def record(index: int, solution: Solution, parameters: DesignParameters, seconds: float) -> StartRecord:
+    net = -solution.objective * 8760.0 * parameters.rated_power_W
+    return StartRecord(index, solution.success, solution.feasible, solution.message, solution.iterations,
+                       solution.evaluations, float(net), solution.violation, float(seconds))
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    """A design problem's answer (SI units; ``best`` None: no start converged feasible)."""
+
+    parameters: DesignParameters
+    bounds: dict
+    held: dict
+    seed: int
+    starts: list
+    best: int | None
+    design: dict = field(default_factory=dict)
+    curves: dict = field(default_factory=dict)
+    outputs: dict = field(default_factory=dict)
+    active: dict = field(default_factory=dict)
+    sensitivities_Wh: dict = field(default_factory=dict)
+
+    @property
+    def found(self) -> bool:
+        return self.best is not None
+
+    def as_dict(self) -> dict:
+        """JSON-ready: numbers and lists."""
+        return {"parameters": asdict(self.parameters), "bounds": {k: list(v) for k, v in self.bounds.items()},
+                "held": dict(self.held), "seed": self.seed, "best_start": self.best,
+                "starts": [asdict(s) for s in self.starts], "design": _plain(self.design),
+                "curves": _plain(self.curves), "outputs": _plain(self.outputs), "active_constraints": self.active,
+                "sensitivities_Wh": self.sensitivities_Wh}
+
+
+def _plain(values: dict) -> dict:
+    return {k: (np.asarray(v).tolist() if np.ndim(v) else float(v)) for k, v in values.items()}
+
+
+def active_constraints(solution: Solution) -> dict:
+    """Families of active constraints (name without ``[j]``) -> (count, largest multiplier)."""
+    e = solution.evaluation
+    slack = np.concatenate([np.abs(e.equalities[0]), e.inequalities[0]])
+    out: dict = {}
+    for (name, lam), c in zip(solution.multipliers.items(), slack):
+        if c <= ACTIVE_SLACK and abs(lam) > ACTIVE_MULTIPLIER:
+            family = name.split("[")[0]
+            count, top = out.get(family, (0, 0.0))
+            out[family] = (count + 1, max(top, float(abs(lam))))
+    return {k: {"count": v[0], "largest_multiplier": v[1]} for k, v in out.items()}
+
+
+def rated_wind_mps(curves: dict, rated_power_W: float) -> float:
+    """The lowest wind speed of the grid with P ≥ 0.999 P_rated (NaN: never rated)."""
+    rated = np.nonzero(curves["power_W"] >= RATED_SHARE * rated_power_W)[0]
+    return float(curves["wind_mps"][rated[0]]) if rated.size else float("nan")
+
+
+def design_result(problem: Problem, solutions: list[Solution], records: list[StartRecord],
+                  seed: int) -> DesignResult:
+    """The result of ``problem``'s starts (``solutions[k]`` is start ``records[k].index``)."""
+    k = best(solutions)
+    base = dict(parameters=problem.parameters, bounds=problem.layout.bounds, held=problem.held, seed=seed,
+                starts=records)
+    if k is None:
+        return DesignResult(best=None, **base)
+    solution = solutions[k]
+    q = solution.evaluation.quantities
+    values = problem.layout.unpack(solution.z[None, :])
+    design = {name: float(np.ravel(values[name])[0]) for name in SCALARS}
+    curves = {name: np.asarray(q[name][0], dtype=float) for name in CURVES}
+    curves.update({name: np.broadcast_to(np.ravel(values[name]), (problem.layout.n,)).astype(float)
+                   for name in PER_WIND})
+    outputs = {name: float(q[name][0]) for name in OUTPUTS}
+    outputs["rated_wind_mps"] = rated_wind_mps(curves, problem.parameters.rated_power_W)
+    outputs["net_aep_Wh"] = records[k].net_aep_Wh
+    return DesignResult(best=records[k].index, design=design, curves=curves, outputs=outputs,
+                        active=active_constraints(solution), sensitivities_Wh=sensitivities_Wh(problem, solution),
+                        **base)
