@@ -220,6 +220,20 @@ def cmd_study(args):
     return 0 if all(s["failed"] == 0 for s in summary["surfaces"]) else EXIT_FAILED
 
 
+def cmd_design(args):
+    from fem_tether.jobs.design.job import load_design_job
+    from fem_tether.jobs.design.run import run_design
+    from fem_tether.report.design_text import design_text
+
+    job = load_design_job(args.job, args.preset)
+    result = run_design(job, args.out, progress=not args.json)
+    if result is None:
+        return 0
+    content = result.as_dict()
+    print(report.json_text(content) if args.json else design_text(content, args.out))
+    return 0 if result.found else EXIT_FAILED
+
+
 def cmd_aep(args):
     from fem_tether.performance.aep import sweep_aep
     from fem_tether.jobs.sweepfile import read_sweep
@@ -354,6 +368,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="let points whose FE <-> FD gate failed count for the flexible optimum")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
+    c = command("design", cmd_design, "the AEP-optimal kite system (Trevisi ch. 5: wing, tether, angles, control "
+                "per wind speed), multistart over MPI ranks", config=False, system=False)
+    c.add_argument("job", nargs="?", help="design job (TOML with a [design] table, docs/design.md)")
+    c.add_argument("--preset", metavar="NAME", help="a shipped design job instead (e.g. trevisi-3mw)")
+    c.add_argument("--out", required=True, metavar="FILE.h5", help="result file")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)
     c.add_argument("file", metavar="FILE.h5", help="sweep result")
     c.add_argument("--wind", metavar="CSV", help="wind histograms per altitude band (CSV)")
@@ -397,7 +418,7 @@ def build_parser() -> argparse.ArgumentParser:
 #: Environment variables set by MPI launchers (MPICH/Intel MPI hydra, Open MPI, PMIx).
 _LAUNCHER_VARIABLES = ("PMI_RANK", "PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "PMIX_RANK")
 #: Commands that share their work among the ranks; every other one runs on rank 0 alone.
-_PARALLEL_COMMANDS = ("sweep", "run", "study")
+_PARALLEL_COMMANDS = ("sweep", "run", "study", "design")
 
 
 def _world():

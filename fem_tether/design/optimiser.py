@@ -35,6 +35,8 @@ STEP = 1e-30
 FEASIBILITY_TOLERANCE = 1e-6
 #: the starts' turbine area over the wing area, for the per-wind optimum that starts a design (ours)
 START_TURBINE_AREA_SHARE = 0.3
+#: objectives this close (relative) are one optimum (:func:`best`)
+EQUAL_OBJECTIVE = 1e-7
 #: SLSQP's settings (ours): its tolerance on the objective (a capacity factor) and its iteration cap
 FTOL = 1e-10
 MAX_ITERATIONS = 500
@@ -208,6 +210,11 @@ class Problem:
 
 
 def best(solutions: list[Solution]) -> int | None:
-    """Index of the best feasible, converged solution (least objective; the first of equals); None: none."""
-    ranked = [(s.objective, k) for k, s in enumerate(solutions) if s.success and s.feasible]
-    return min(ranked)[1] if ranked else None
+    """Index of the best feasible, converged solution: the first whose objective is within
+    :data:`EQUAL_OBJECTIVE` (relative) of the least, so that starts reaching one optimum to rounding
+    do not compete on their last digits; None: none converged feasible."""
+    good = [k for k, s in enumerate(solutions) if s.success and s.feasible]
+    if not good:
+        return None
+    least = min(solutions[k].objective for k in good)
+    return next(k for k in good if solutions[k].objective <= least + EQUAL_OBJECTIVE * abs(least))

@@ -39,7 +39,7 @@ RATED_SHARE = 0.999
 
 @dataclass(frozen=True)
 class StartRecord:
-    """One start: its index, how SLSQP ended, the net AEP it reached and how long it took."""
+    """One start: its index, how SLSQP ended and the net AEP it reached."""
 
     index: int
     success: bool
@@ -49,13 +49,12 @@ class StartRecord:
     evaluations: int
     net_aep_Wh: float
     violation: float
-    seconds: float
 
 
-def record(index: int, solution: Solution, parameters: DesignParameters, seconds: float) -> StartRecord:
+def record(index: int, solution: Solution, parameters: DesignParameters) -> StartRecord:
     net = -solution.objective * 8760.0 * parameters.rated_power_W
     return StartRecord(index, solution.success, solution.feasible, solution.message, solution.iterations,
-                       solution.evaluations, float(net), solution.violation, float(seconds))
+                       solution.evaluations, float(net), solution.violation)
 
 
 @dataclass(frozen=True)

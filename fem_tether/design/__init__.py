@@ -1,0 +1,1 @@
+"""Kite-system design: Trevisi's AEP-optimal design problem — parameters, variables, model, optimiser, result."""

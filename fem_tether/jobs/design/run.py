@@ -1,0 +1,148 @@
+"""A design job over MPI ranks: each start is one task, kept in its part; rank 0 writes the result.
+
+Start k is drawn from NumPy's generator seeded (seed, k)
+(:func:`fem_tether.design.optimiser.start_points`) and optimised alone, so its
+result is the same on whichever rank runs it; :func:`fem_tether.jobs.runner.distribute`
+spreads the starts over the ranks and each finished start is written at once to
+``<out>.parts/start_<k>.json`` with the key of its inputs (the job's text,
+the package version).  A rerun of the same job reuses the parts whose key
+matches: a killed job resumes where it stopped, and the result file is the
+same for any number of ranks.  Rank 0 rebuilds the starts from their parts
+(the point and SLSQP's multipliers; the model is re-evaluated there), picks the
+best feasible, converged start (the first of equals) and writes the HDF5 file.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from contextlib import ExitStack
+from pathlib import Path
+
+import numpy as np
+
+from fem_tether import __version__
+from fem_tether.core.atomic import (OutputError, check_folder, check_writable, exclusive, remove_temporaries,
+                                    write_json)
+from fem_tether.core.errors import InputError
+from fem_tether.core.progress import Progress
+from fem_tether.core.stop import guard, sync
+from fem_tether.design.optimiser import Problem, Solution, consistent, start_points
+from fem_tether.design.result import DesignResult, StartRecord, design_result, record
+from fem_tether.io.design_file import is_design_result, write_design_hdf5
+from fem_tether.jobs.design.job import DesignJob
+from fem_tether.jobs.runner import distribute, raise_on_every_rank
+
+
+class DesignInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a design job; the message says what is kept and how to resume."""
+
+    def __init__(self, directory: Path):
+        super().__init__(f"finished starts kept in {directory}; run the same command to resume")
+
+
+def parts_dir(out: Path) -> Path:
+    return out.with_name(out.name + ".parts")
+
+
+def inputs_key(job: DesignJob) -> str:
+    """What a start's result depends on: the job's text and the package version."""
+    return hashlib.sha256((job.text + "\n" + repr(job.parameters) + repr(sorted(job.bounds.items()))
+                           + repr(sorted(job.held.items())) + f"{job.seed}" + __version__).encode()).hexdigest()
+
+
+class DesignStarts:
+    """The starts of a design job as :class:`fem_tether.jobs.runner.Work`."""
+
+    def __init__(self, job: DesignJob, out: Path):
+        self.job, self.key, self.directory = job, inputs_key(job), parts_dir(out)
+        self.problem = Problem(job.parameters, job.bounds, job.held)
+
+    def path(self, index: int) -> Path:
+        return self.directory / f"start_{index:04d}.json"
+
+    def cost_us(self, index: int) -> float:
+        return 1.0
+
+    def read(self, index: int) -> dict | None:
+        try:
+            part = json.loads(self.path(index).read_text())
+        except (OSError, ValueError):
+            return None
+        return part if part.get("key") == self.key else None
+
+    def kept(self, index: int) -> bool:
+        return self.read(index) is not None
+
+    def run(self, index: int) -> None:
+        start = start_points(self.problem.layout, 1, self.job.seed, first=index)[0]
+        solution = self.problem.solve(consistent(self.problem, start))
+        rec = record(index, solution, self.job.parameters)
+        write_json(self.path(index), {"key": self.key, "record": rec.__dict__, "z": solution.z.tolist(),
+                                      "multipliers": [float(v) for v in solution.multipliers.values()]},
+                   allow_nan=True)
+
+    def present(self, indices) -> int:
+        return sum(self.path(i).exists() for i in indices)
+
+    def while_waiting(self) -> None:
+        pass
+
+    def solutions(self) -> tuple[list[Solution], list[StartRecord]]:
+        """Every start rebuilt from its part (rank 0, after all ranks finished)."""
+        solutions, records = [], []
+        for index in range(self.job.starts):
+            part = self.read(index)
+            z = np.asarray(part["z"], dtype=float)
+            e = self.problem.evaluate(z)
+            rec = StartRecord(**part["record"])
+            names = e.equality_names + e.inequality_names
+            solutions.append(Solution(z, rec.success, rec.feasible, rec.message, rec.iterations, rec.evaluations,
+                                      float(e.objective[0]), rec.violation, dict(zip(names, part["multipliers"])),
+                                      e))
+            records.append(rec)
+        return solutions, records
+
+
+def check_out(out: Path) -> None:
+    """Before a design job: ``out`` and its parts can be written and ``out`` is not someone else's file."""
+    if out.exists() and not is_design_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether design result "
+                          "(move it away or choose another file)")
+    check_writable(out)
+    check_folder(parts_dir(out))
+
+
+def run_design(job: DesignJob, out: str | Path, comm=None, progress: bool = True) -> DesignResult | None:
+    """Run ``job``'s starts over the ranks of ``comm`` (MPI.COMM_WORLD by default) and write ``out``;
+    the result on rank 0, None on the others."""
+    if comm is None:
+        from mpi4py import MPI
+        comm = MPI.COMM_WORLD
+    out = Path(out)
+    with guard(comm), ExitStack() as output:
+        problem: InputError | None = None
+        if comm.Get_rank() == 0:
+            try:
+                check_out(out)
+                output.enter_context(exclusive(out))
+                remove_temporaries(parts_dir(out))
+            except InputError as exc:
+                problem = exc
+        raise_on_every_rank(comm, problem)
+        starts = DesignStarts(job, out)
+        size = comm.Get_size()
+        bar = Progress(job.starts, f"design starts ({size} rank{'s' if size > 1 else ''})",
+                       enabled=progress and comm.Get_rank() == 0)
+        try:
+            distribute(comm, starts, list(range(job.starts)), bar)
+        except KeyboardInterrupt:
+            bar.close()
+            raise DesignInterrupted(starts.directory) from None
+        sync(comm)
+        if comm.Get_rank() != 0:
+            return None
+        solutions, records = starts.solutions()
+        result = design_result(starts.problem, solutions, records, job.seed)
+        write_design_hdf5(out, result.as_dict(), job.text)
+        return result
