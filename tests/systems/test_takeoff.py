@@ -142,9 +142,8 @@ def test_derivative_at_all_turbine_thrust_is_finite_and_right():
 
 
 @pytest.mark.filterwarnings("ignore::numpy.exceptions.ComplexWarning")
-@pytest.mark.xfail(strict=True, reason="crosswind.induced_drag_coefficient casts C_L with np.asarray(dtype=float)")
 def test_complex_step_in_cl():
-    """C_L through crosswind.drag_coefficient: its cast to float drops the imaginary part (not ours to change)."""
+    """C_L through crosswind.drag_coefficient keeps its imaginary part: the complex step is the derivative."""
     r = takeoff(**dict(BASE, cl=np.asarray(2.0 + 1e-30j)))
     fd = (takeoff(**dict(BASE, cl=2.0 + 1e-6)).thrust_N - takeoff(**dict(BASE, cl=2.0 - 1e-6)).thrust_N) / 2e-6
     assert np.imag(r.thrust_N) / 1e-30 == pytest.approx(fd, rel=1e-6)
