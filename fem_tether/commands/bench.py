@@ -40,6 +40,8 @@ dropped first), in this process.
 
 from __future__ import annotations
 
+from typing import Any
+
 import multiprocessing
 import os
 import time
@@ -218,7 +220,7 @@ def _best_time_s(task, repeats) -> float:
 
 def design(repeats=3, points_mps=DESIGN_POINTS_MPS, winds_mps=DESIGN_WINDS_MPS) -> dict:
     """The design section: wall time of one unified-model operating point and of one power curve."""
-    systems = {name: (from_config(cfg).parameters, operating_density_kg_m3(cfg))
+    systems: dict[str, tuple[Any, float]] = {name: (from_config(cfg).parameters, operating_density_kg_m3(cfg))
                for name, cfg in ((n, load_config(None, None, n)) for n in DESIGN_SYSTEMS)}
     systems["table-3.1"] = (unified_system.UnifiedSystem.table_3_1(), 1.225)
     rows = []

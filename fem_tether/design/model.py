@@ -245,7 +245,9 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
         tip_deflection_m=wing.tip_deflection_m, centre_deflection_m=wing.centre_deflection_m,
         takeoff_thrust_N=climb.thrust_N[:, 0], climb_speed_mps=climb.climb_speed_mps[:, 0],
         propeller_area_m2=climb.propeller_area_m2[:, 0])
-    return Evaluation(objective, *_columns(equalities, batch), *_columns(inequalities, batch), quantities)
+    equality_values, equality_names = _columns(equalities, batch)
+    inequality_values, inequality_names = _columns(inequalities, batch)
+    return Evaluation(objective, equality_values, equality_names, inequality_values, inequality_names, quantities)
 
 
 def _columns(blocks, batch):

@@ -10,7 +10,7 @@ considered as reference"), the site of §3.8 and the constants his model
 needs but does not print (marked *ours*, with the value and the reason).
 
 >>> p = DesignParameters()
->>> p.eta_out, p.eta_in, p.eta_t, p.tether_safety_factor
+>>> round(p.eta_out, 6), round(p.eta_in, 6), round(p.eta_t, 6), round(p.tether_safety_factor, 6)
 (0.825, 0.575, 0.775, 1.55)
 >>> TABLE_5_4["cd_perp"]
 (0.6, 1.2)

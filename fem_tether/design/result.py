@@ -12,6 +12,7 @@ sensitivities of :mod:`.sensitivity`, and one record per start.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -113,8 +114,8 @@ def design_result(problem: Problem, solutions: list[Solution], records: list[Sta
                   seed: int) -> DesignResult:
     """The result of ``problem``'s starts (``solutions[k]`` is start ``records[k].index``)."""
     k = best(solutions)
-    base = dict(parameters=problem.parameters, bounds=problem.layout.bounds, held=problem.held, seed=seed,
-                starts=records)
+    base: dict[str, Any] = dict(parameters=problem.parameters, bounds=problem.layout.bounds, held=problem.held,
+                                seed=seed, starts=records)
     if k is None:
         return DesignResult(best=None, **base)
     solution = solutions[k]

@@ -32,6 +32,7 @@ import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 from fem_tether.config.tomlio import toml_and_text
 from fem_tether.core.errors import ConfigError
@@ -85,7 +86,7 @@ def load_design_job(path: str | Path | None = None, preset: str | None = None) -
         tables, text = toml_and_text(path)
         name = str(path)
     else:
-        tables, text, name = _preset(preset), PRESETS.get(preset, ""), f"preset {preset}"
+        tables, text, name = _preset(preset), PRESETS.get(str(preset), ""), f"preset {preset}"
     design = tables.get("design")
     unknown = sorted(set(tables) - {"design"})
     if unknown:
@@ -159,7 +160,7 @@ def _parameters(table) -> DesignParameters:
     if not isinstance(table, dict):
         raise ConfigError("[design] parameters: must be a table")
     names = {f.name: f for f in dataclasses.fields(DesignParameters)}
-    values = {}
+    values: dict[str, Any] = {}
     for key, value in table.items():
         if key not in names:
             raise ConfigError(f"[design.parameters] {key}: unknown parameter")

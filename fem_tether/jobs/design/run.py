@@ -93,7 +93,9 @@ class DesignStarts:
         solutions, records = [], []
         for index in range(self.job.starts):
             part = self.read(index)
-            z = np.asarray(part["z"], dtype=float)
+            if part is None:
+                raise InputError(f"{self.path(index)}: missing or from other inputs after the run")
+            z = np.array(part["z"], dtype=np.float64)
             e = self.problem.evaluate(z)
             rec = StartRecord(**part["record"])
             names = e.equality_names + e.inequality_names
