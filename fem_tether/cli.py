@@ -230,7 +230,15 @@ def cmd_design(args):
     if result is None:
         return 0
     content = result.as_dict()
-    print(report.json_text(content) if args.json else design_text(content, args.out))
+    page = None
+    if result.found:
+        from fem_tether.report.design import write_design_report
+
+        page = write_design_report(args.out)
+    if args.json:
+        print(report.json_text(content | {"report": None if page is None else str(page)}))
+    else:
+        print(design_text(content, args.out) + (f"\nreport: {page}" if page is not None else ""))
     return 0 if result.found else EXIT_FAILED
 
 
@@ -372,7 +380,8 @@ def build_parser() -> argparse.ArgumentParser:
                 "per wind speed), multistart over MPI ranks", config=False, system=False)
     c.add_argument("job", nargs="?", help="design job (TOML with a [design] table, docs/design.md)")
     c.add_argument("--preset", metavar="NAME", help="a shipped design job instead (e.g. trevisi-3mw)")
-    c.add_argument("--out", required=True, metavar="FILE.h5", help="result file")
+    c.add_argument("--out", required=True, metavar="FILE.h5",
+                   help="result file; the figures and the report page go to FILE_report/")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)

@@ -1,0 +1,124 @@
+"""A design result's figures and report page (fem_tether.report.design): six PNGs beside
+index.html in ``<out stem>_report/``, marked as fem-tether's, the page's tables holding the
+design file's numbers; from one ground-gen start of the trevisi-3mw preset."""
+
+import html
+import json
+import shutil
+import time
+
+import numpy as np
+import pytest
+
+from conftest import is_png
+from pages import Page
+
+from fem_tether.cli import main
+from fem_tether.core.atomic import OutputError, written_by_fem_tether
+from fem_tether.io.design_file import read_design_hdf5
+from fem_tether.jobs.design.job import load_design_job
+from fem_tether.jobs.design.run import run_design
+from fem_tether.physics.resource import weibull_density_per_mps
+from fem_tether.report.design import FIGURE_FILES, report_dir, report_paths, write_design_report
+
+JOB = """[design]
+preset = "trevisi-3mw"
+starts = 1
+[design.parameters]
+mode = "ground-gen"
+"""
+
+
+@pytest.fixture(scope="module")
+def design(tmp_path_factory):
+    """The job's file, its design file and its report page."""
+    directory = tmp_path_factory.mktemp("design")
+    job_path = directory / "job.toml"
+    job_path.write_text(JOB)
+    out = directory / "design.h5"
+    start = time.perf_counter()
+    result = run_design(load_design_job(job_path), out, progress=False)
+    assert result.found and time.perf_counter() - start < 15.0
+    return job_path, out, write_design_report(out)
+
+
+def _table(page: Page, first_header: str) -> dict[str, list[str]]:
+    """The page's table whose first header is ``first_header``: first cell -> the other cells."""
+    rows = next(t for t in page.tables if t[0][0] == first_header)
+    return {row[0].strip("\u2003 "): row[1:] for row in rows[1:]}
+
+
+def test_the_page_and_every_figure_are_written_and_marked_ours(design):
+    _, out, page_path = design
+    assert page_path == out.parent / "design_report" / "index.html" == report_dir(out) / "index.html"
+    assert report_paths(out)[-1] == page_path
+    page = Page(page_path.read_text(encoding="utf-8"))
+    assert page.images == list(FIGURE_FILES.values())      # linked by name: the folder stands alone
+    for path in report_paths(out):
+        assert written_by_fem_tether(path), path
+    for name in FIGURE_FILES.values():
+        assert is_png(page_path.parent / name)
+
+
+def test_the_page_holds_the_aep_the_starts_and_the_job(design):
+    job_path, out, page_path = design
+    r = read_design_hdf5(out)
+    text = page_path.read_text(encoding="utf-8")
+    page = Page(text)
+    outputs = _table(page, "output")
+    assert outputs["AEP"] == [f"{r['outputs']['aep_Wh'] * 1e-9:.3f}", "GWh"]
+    assert float(outputs["AEP"][0]) == pytest.approx(r["outputs"]["aep_Wh"] * 1e-9, abs=5e-4)
+    assert float(outputs["on-board"][0]) == 0.0                                    # ground-gen: no rotors
+    assert _table(page, "variable")["tether length r"] == [f"{r['design']['tether_length_m']:.1f}", "m"]
+    starts = _table(page, "start")
+    assert list(starts) == ["0"] and starts["0"][:2] == ["yes", "yes"]
+    assert float(starts["0"][2]) == pytest.approx(r["starts"][0]["net_aep_Wh"] * 1e-9, abs=5e-5)
+    assert set(_table(page, "constraint family")) == set(r["active_constraints"])
+    assert set(_table(page, "parameter")) >= set(r["sensitivities_Wh"])
+    assert html.escape(r["job_toml"]) in text and html.escape(job_path.read_text()) in text
+
+
+def test_the_density_drawn_is_the_one_the_aep_integrates(design):
+    """The power figure draws the Weibull density at the operating altitude from the scale and
+    shape (seed 004 eq. 3.92); at the design's wind speeds it is the stored density."""
+    r = read_design_hdf5(design[1])
+    c = r["curves"]
+    drawn = weibull_density_per_mps(np.asarray(c["wind_mps"]), r["outputs"]["weibull_scale_mps"],
+                                    r["parameters"]["weibull_shape"])
+    np.testing.assert_allclose(drawn, c["probability_density_per_mps"], rtol=1e-12)
+
+
+def test_a_second_write_replaces_the_report(design):
+    _, out, page_path = design
+    page_path.write_text(page_path.read_text(encoding="utf-8") + "<!-- stale -->", encoding="utf-8")
+    figure = page_path.parent / FIGURE_FILES["power"]
+    before = figure.stat().st_mtime_ns
+    time.sleep(0.01)
+    assert write_design_report(out) == page_path
+    assert "stale" not in page_path.read_text(encoding="utf-8")
+    assert figure.stat().st_mtime_ns > before and written_by_fem_tether(figure)
+
+
+def test_a_foreign_page_is_refused_before_any_figure_is_drawn(design, tmp_path):
+    out = tmp_path / "copy.h5"
+    shutil.copy(design[1], out)
+    foreign = report_dir(out) / "index.html"
+    foreign.parent.mkdir()
+    foreign.write_text("<html><body>my notes</body></html>")
+    with pytest.raises(OutputError) as error:
+        write_design_report(out)
+    message = str(error.value)
+    assert "\n" not in message and str(foreign) in message and "did not write" in message
+    assert foreign.read_text() == "<html><body>my notes</body></html>"
+    assert sorted(p.name for p in foreign.parent.iterdir()) == ["index.html"]
+
+
+def test_the_cli_writes_the_report_and_names_it(design, capsys):
+    """Reruns of the fixture's job reuse its finished start (its part), so they take no optimisation."""
+    job_path, out, page_path = design
+    assert main(["design", str(job_path), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert f"report: {page_path}" in printed.splitlines()
+    assert main(["design", str(job_path), "--out", str(out), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["report"] == str(page_path)
+    assert written_by_fem_tether(page_path)
