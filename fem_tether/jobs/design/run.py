@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.core.atomic import (OutputError, check_folder, check_writable, exclusive, remove_temporaries,
+from fem_tether.core.atomic import (PAGE_NAME, OutputError, check_folder, check_writable, exclusive, remove_temporaries,
                                     write_json)
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
@@ -32,6 +32,7 @@ from fem_tether.design.result import DesignResult, StartRecord, design_result, r
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.runner import distribute, raise_on_every_rank
+from fem_tether.jobs.study.result import report_dir
 
 
 class DesignInterrupted(KeyboardInterrupt):
@@ -113,6 +114,7 @@ def check_out(out: Path) -> None:
                           "(move it away or choose another file)")
     check_writable(out)
     check_folder(parts_dir(out))
+    check_writable(check_folder(report_dir(out)) / PAGE_NAME)
 
 
 def run_design(job: DesignJob, out: str | Path, comm=None, progress: bool = True) -> DesignResult | None:
