@@ -1,0 +1,74 @@
+"""What a design optimisation found (fem_tether.design.result): the best start, curves, outputs,
+active constraints, JSON."""
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from fem_tether.design.result import CURVES, OUTPUTS, design_result, rated_wind_mps, record
+from fem_tether.design.variables import PER_WIND, SCALARS
+
+
+@pytest.fixture(scope="module")
+def result(ground_gen):
+    """design_result of the ground-gen fixture's three starts (seed 0), each timed 1 s."""
+    p = ground_gen.problem.parameters
+    records = [record(k, s, p, 1.0) for k, s in enumerate(ground_gen.solutions)]
+    return design_result(ground_gen.problem, ground_gen.solutions, records, seed=0)
+
+
+def test_result_is_json(result):
+    """as_dict() passes json.dumps(allow_nan=False) (no NaN or inf) and reads back with the same
+    design (exact)."""
+    text = json.dumps(result.as_dict(), allow_nan=False)
+    back = json.loads(text)
+    assert back["design"] == result.design and back["best_start"] == result.best
+    assert len(back["starts"]) == 3
+
+
+def test_result_contents(result, ground_gen):
+    """The best start is the least objective (the starts agree to 1e-10, so any of them); the design
+    holds every Table 5.1 scalar; every curve (the model's and the per-wind variables) has n = 20
+    entries; every output is there; the net AEP is −f · 8760 h · P_rated (1e-15)."""
+    assert result.found
+    objectives = [s.objective for s in ground_gen.solutions]
+    assert result.best == int(np.argmin(objectives))
+    assert set(result.design) == set(SCALARS)
+    assert set(result.curves) == set(CURVES) | set(PER_WIND)
+    assert all(np.shape(v) == (ground_gen.problem.layout.n,) for v in result.curves.values())
+    assert set(OUTPUTS) | {"rated_wind_mps", "net_aep_Wh"} == set(result.outputs)
+    p = ground_gen.problem.parameters
+    net = -min(objectives) * 8760.0 * p.rated_power_W
+    assert result.outputs["net_aep_Wh"] == pytest.approx(net, rel=1e-15)
+
+
+def test_rated_wind(result, ground_gen):
+    """rated_wind_mps is the first wind speed of the grid with P ≥ 0.999 P_rated (exact), here inside
+    the grid with the power below it less than 0.999 P_rated; NaN for a curve never rated."""
+    p = ground_gen.problem.parameters
+    power, wind = result.curves["power_W"], result.curves["wind_mps"]
+    first = next(j for j, value in enumerate(power) if value >= 0.999 * p.rated_power_W)
+    assert 0 < first < len(wind) - 1
+    assert result.outputs["rated_wind_mps"] == wind[first]
+    assert np.isnan(rated_wind_mps({"power_W": 0.5 * power, "wind_mps": wind}, p.rated_power_W))
+
+
+def test_active_constraints(result):
+    """The rated power and the weight balance (eq. 3.74) are active at the optimum (slack ≤ 1e-6,
+    multiplier > 1e-9), with a count of wind speeds between 1 and n."""
+    for family in ("rated power", "weight balance (eq. 3.74)"):
+        assert family in result.active
+        assert 1 <= result.active[family]["count"] <= 20
+        assert result.active[family]["largest_multiplier"] > 1e-9
+
+
+def test_no_feasible_start(ground_gen):
+    """Where no start converged feasible: best None, found False, no design, and still JSON."""
+    p = ground_gen.problem.parameters
+    failed = [dataclasses.replace(s, feasible=False) for s in ground_gen.solutions]
+    records = [record(k, s, p, 1.0) for k, s in enumerate(failed)]
+    out = design_result(ground_gen.problem, failed, records, seed=0)
+    assert out.best is None and not out.found and out.design == {} and out.sensitivities_Wh == {}
+    json.dumps(out.as_dict(), allow_nan=False)
