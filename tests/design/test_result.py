@@ -15,7 +15,7 @@ from fem_tether.design.variables import PER_WIND, SCALARS
 def result(ground_gen):
     """design_result of the ground-gen fixture's three starts (seed 0), each timed 1 s."""
     p = ground_gen.problem.parameters
-    records = [record(k, s, p, 1.0) for k, s in enumerate(ground_gen.solutions)]
+    records = [record(k, s, p) for k, s in enumerate(ground_gen.solutions)]
     return design_result(ground_gen.problem, ground_gen.solutions, records, seed=0)
 
 
@@ -68,7 +68,7 @@ def test_no_feasible_start(ground_gen):
     """Where no start converged feasible: best None, found False, no design, and still JSON."""
     p = ground_gen.problem.parameters
     failed = [dataclasses.replace(s, feasible=False) for s in ground_gen.solutions]
-    records = [record(k, s, p, 1.0) for k, s in enumerate(failed)]
+    records = [record(k, s, p) for k, s in enumerate(failed)]
     out = design_result(ground_gen.problem, failed, records, seed=0)
     assert out.best is None and not out.found and out.design == {} and out.sensitivities_Wh == {}
     json.dumps(out.as_dict(), allow_nan=False)
