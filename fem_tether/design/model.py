@@ -150,7 +150,9 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
 
     factor = np.ones(n) if tether_drag_factor is None else np.asarray(tether_drag_factor, dtype=float)
     tether_cd = straight_tether_cd(1, p.cd_perp, d, r, area) * factor
-    ge = per_wind("cl") / drag_coefficient(p.cd0, per_wind("cl"), ar, tether_cd, p.oswald)
+    cl = per_wind("cl")
+    cd = drag_coefficient(p.cd0, cl, ar, tether_cd, p.oswald)
+    ge = cl / cd
 
     support = scalar("support_share") * span / 2.0
     caps = np.concatenate([scalar("cap_a_m"), scalar("cap_b_m"), scalar("cap_c_m")], axis=-1)
@@ -159,8 +161,6 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     glider = wing.glider_mass_kg[:, None] if p.glider_mass_kg is None else p.glider_mass_kg * ones
     tether_mass = m_r * r
     generators = rating / p.generator_power_density_W_kg
-    cl = per_wind("cl")
-    cd = drag_coefficient(p.cd0, cl, ar, tether_cd, p.oswald)
     loading = area * per_wind("gamma_t") * cd
     turbine_area = soft_max(takeoff.turbine_area_m2(area, per_wind("gamma_t"), cd, p.min_disc_efficiency))
     lifted = glider + generators + tether_mass

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from fem_tether.design.model import HOURS_PER_YEAR
 from fem_tether.design.optimiser import Problem, Solution, best
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.sensitivity import sensitivities_Wh
@@ -53,7 +54,7 @@ class StartRecord:
 
 
 def record(index: int, solution: Solution, parameters: DesignParameters) -> StartRecord:
-    net = -solution.objective * 8760.0 * parameters.rated_power_W
+    net = -solution.objective * HOURS_PER_YEAR * parameters.rated_power_W
     return StartRecord(index, solution.success, solution.feasible, solution.message, solution.iterations,
                        solution.evaluations, float(net), solution.violation)
 
