@@ -3,14 +3,15 @@
 The quick set (``quick=True``) is what ``fem-tether validate --quick`` and the
 test suite run: the analytic solutions, Roselli 2016's numbers, the kite-system
 models and the FE <-> FD cross-check at the shipped settings.  The full run adds
-the convergence tables of both solvers and their agreement at the finest settings.
+the convergence tables of both solvers, their agreement at the finest settings
+and the design optimisations of Trevisi 2019 §5.3-5.4 (a few minutes).
 """
 
 from __future__ import annotations
 
 from functools import partial
 
-from fem_tether.validation import analytic, free_kite, numerics, seed000, systems
+from fem_tether.validation import analytic, design, free_kite, numerics, seed000, systems
 from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -51,4 +52,8 @@ CASES: tuple[Case, ...] = (
     *(Case(f"numerics/{name.lower().replace(' ', '-')}", f"convergence: {name}, 3000 m, quiet air", False,
            partial(numerics.convergence, name)) for name in numerics.REFINEMENTS),
     Case("numerics/fe-fd-finest", "FE <-> FD cross-check, finest settings", False, numerics.agreement_finest),
+    Case("trevisi/design-smoothness", "Trevisi 2019 §5.3.1, Fig. 5.3", False, design.fig_5_3),
+    Case("trevisi/wing-7-regions", "Trevisi 2019 §5.3.2, Table 5.2 (Makani Wing 7)", False, design.wing7_regions),
+    Case("trevisi/ap2-length-elevation", "Trevisi 2019 §5.3.2, Table 5.3 (Ampyx AP2)", False, design.ap2),
+    Case("trevisi/3mw-design", "Trevisi 2019 §5.4", False, design.section_5_4),
 )
