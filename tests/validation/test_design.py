@@ -2,8 +2,8 @@
 curves, Fig. 5.3's test on the nominal problem, the regions of the Wing 7 design, AP2 against the
 thesis' statements, the cases and their documentation links.
 
-Fig. 5.3's sweeps cost 40 SLSQP runs (about 30 s on one free core); the Wing 7 design 10 starts
-(3 s), the AP2 design 3 starts (15 s)."""
+Fig. 5.3's sweeps cost 40 SLSQP runs (41-55 s measured on 2 shared cores); the Wing 7 design 10
+starts (3-7 s), the AP2 design 3 starts (14-21 s)."""
 
 import re
 from pathlib import Path
