@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.core.arrays import real_part
+from fem_tether.core.arrays import as_array, real_part
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import Layout, force_scale_N
 from fem_tether.physics.atmosphere import exponential_density_kg_m3
@@ -90,14 +90,21 @@ def trapezoid(y, x):
 
 
 def soft_max(x, sharpness=SOFT_MAX_SHARPNESS):
-    """max_j x_j (last axis) smoothed: m (1 + ln Σ exp(k (x_j/m − 1))/k), m the largest real part.
+    """max_j x_j (last axis) smoothed: m (1 + ln Σ exp(k (x_j/m − 1))/k) = (m/k) ln Σ exp(k x_j/m),
+    m the largest element (by real part; 0 where it is not positive).
 
     Above the max by at most ln(n)/k of it (0.1 % for n = 20 at k = 3000) and
     smooth, so eq. 3.68's A_turb = max_j A γ_t C_d/(4a⁽¹⁾(1 − a⁽¹⁾)) keeps exact
-    derivatives; the shift m cancels analytically, so a complex step passes.
+    derivatives.  The shift m is also the temperature m/k, so it does not
+    cancel: ∂/∂m of (m/k) ln Σ exp(k x_j/m) is (soft max − Σ_j w_j x_j)/m (w the
+    softmax weights, up to ln(n)/k), part of the derivative by the largest
+    element.  So m is that element itself, complex where ``x`` is, and a complex
+    step passes; the derivatives are exact wherever the largest element is
+    unique (where two tie, the one by either jumps by that term).
     """
-    top = np.max(real_part(x), axis=-1, keepdims=True)
-    some = top > 0
+    x = as_array(x)
+    top = np.take_along_axis(x, np.argmax(real_part(x), axis=-1)[..., None], axis=-1)
+    some = real_part(top) > 0
     scale = np.where(some, top, 1.0)
     ratio = np.where(some, x / scale, 1.0)
     smooth = scale * (1.0 + np.log(np.exp(sharpness * (ratio - 1.0)).sum(axis=-1, keepdims=True)) / sharpness)

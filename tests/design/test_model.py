@@ -218,14 +218,12 @@ def test_soft_max_derivative_by_the_other_elements():
     assert exact[1:] == pytest.approx(central[1:], rel=1e-6, abs=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason="soft_max's scale m = max real(x) is also its temperature m/k: "
-                   "m(1 + ln Σ exp(k(x/m − 1))/k) = (m/k) ln Σ exp(k x/m) depends on m, which a complex "
-                   "step holds fixed")
 def test_soft_max_derivative_by_the_largest_element():
     """d soft_max/dx by the largest element, by complex step, equals the central difference (step
-    1e-7, which keeps it the largest) to 1e-6 relative.  Measured: 0.785597 against 0.785804
-    (2.6e-4 relative); the missing term is ∂/∂m of (m/k) ln Σ exp(k x_j/m) = (soft_max − Σ w_j x_j)/m
-    = 2.07e-4, w the softmax weights."""
+    1e-7, which keeps it the largest) to 1e-6 relative (measured 1.4e-9).  It did not while the shift
+    m, also the temperature m/k, was max real(x), which a complex step holds fixed: 0.785597 against
+    0.785804 (2.6e-4), the missing term ∂/∂m of (m/k) ln Σ exp(k x_j/m) = (soft_max − Σ w_j x_j)/m =
+    2.07e-4, w the softmax weights."""
     exact, central = soft_max_derivatives(NEAR_MAX)
     assert exact[0] == pytest.approx(central[0], rel=1e-6)
 
