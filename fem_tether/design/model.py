@@ -32,7 +32,7 @@ import numpy as np
 
 from fem_tether.core.arrays import as_array, real_part
 from fem_tether.design.parameters import DesignParameters
-from fem_tether.design.variables import Layout, force_scale_N
+from fem_tether.design.variables import MIN_OPERATING_RANGE_MPS, Layout, force_scale_N
 from fem_tether.physics.atmosphere import exponential_density_kg_m3
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.material import tether_mass_per_length_kg_m
@@ -223,7 +223,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
                     ("rated power", (p.rated_power_W - power) / p.rated_power_W),
                     ("along-tether wind", np.cos(phi) - g_out - MIN_ALONG_WIND),
                     ("minimum altitude", (altitude - p.min_altitude_m) / p.min_altitude_m),
-                    ("cut-out above cut-in", (scalar("cut_out_mps") - scalar("cut_in_mps") - 1.0) / 10.0)]
+                    ("cut-out above cut-in",
+                     (scalar("cut_out_mps") - scalar("cut_in_mps") - MIN_OPERATING_RANGE_MPS) / 10.0)]
     if p.glider_mass_kg is None:
         inequalities += [("wing design load", (scalar("design_force_N") - force_aero) / f_ref),
                          ("spar stress (eq. 3.57)", wing.stress_margin.reshape(batch, -1)),

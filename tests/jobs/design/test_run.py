@@ -24,6 +24,16 @@ JOB = '[design]\npreset = "trevisi-3mw"\nstarts = 2\n[design.parameters]\nmode =
     ('[design]\ntether = "flexible"\n', "tether = 'flexible'"),
     ('[design]\npreset = "nope"\n', "preset = 'nope': unknown"),
     ('[kite]\narea_m2 = 3\n', "unknown table [kite]"),
+    ('[design.bounds]\ntether_length_m = [50, 60]\n', "[design] bounds.tether_length_m = [50, 60] m and "
+     "bounds.elevation_rad = [0.0872665, 1.22173] rad reach an operating altitude r sin(beta) + tower_height_m "
+     "of at most 56.38 m, below min_altitude_m = 200 m"),
+    ('[design.bounds]\nelevation_rad = [0.05, 0.06]\n', "at most 179.9 m, below min_altitude_m = 200 m"),
+    ('[design.held]\ntether_length_m = 100\n', "[design] held.tether_length_m = 100 m and"),
+    ('[design.bounds]\ncut_in_mps = [10, 15]\ncut_out_mps = [8, 10.5]\n',
+     "[design] bounds.cut_out_mps = [8, 10.5] m/s and bounds.cut_in_mps = [10, 15] m/s put the cut-out at most "
+     "0.5 m/s above the cut-in"),
+    ('[design.bounds]\nspan_m = [2, 10]\n', "[design] wing_area_m2 = 70: outside the 0.1-33.33 m2 that "
+     "bounds.span_m = [2, 10] m and bounds.aspect_ratio = [3, 40] allow"),
 ])
 def test_bad_keys_are_one_line_errors(tmp_path, text, message):
     path = tmp_path / "job.toml"
