@@ -30,9 +30,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.core.arrays import real_part
+from fem_tether.core.arrays import as_array, real_part
 from fem_tether.design.parameters import DesignParameters
-from fem_tether.design.variables import Layout, force_scale_N
+from fem_tether.design.variables import MIN_OPERATING_RANGE_MPS, Layout, force_scale_N
 from fem_tether.physics.atmosphere import exponential_density_kg_m3
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.material import tether_mass_per_length_kg_m
@@ -52,9 +52,10 @@ from fem_tether.systems.wing_structure import wing_structure
 HOURS_PER_YEAR = 8760.0
 #: least cosφ − γ_out the optimiser may use (the relative wind along the tether stays positive)
 MIN_ALONG_WIND = 1e-3
-#: nodes per wing section in the design (the structure converges at second order: mass and
-#: deflections within 5e-4 of the converged values at 17 nodes, tests/design/test_model.py)
-STRUCTURE_NODES = 17
+#: nodes per wing section in the design (the structure converges at second order: at the ground-gen
+#: optimum mass and deflections within 5e-4 of 97 nodes' at 33, tests/design/test_model.py; 17 put
+#: the deflections, active constraints there, 6e-4 and 1.3e-3 off, for 2/3 of a start's time)
+STRUCTURE_NODES = 33
 #: k of :func:`soft_max`
 SOFT_MAX_SHARPNESS = 3000.0
 #: smallest tension the sag is evaluated at [N] (only infeasible iterates come near it)
@@ -90,14 +91,21 @@ def trapezoid(y, x):
 
 
 def soft_max(x, sharpness=SOFT_MAX_SHARPNESS):
-    """max_j x_j (last axis) smoothed: m (1 + ln Σ exp(k (x_j/m − 1))/k), m the largest real part.
+    """max_j x_j (last axis) smoothed: m (1 + ln Σ exp(k (x_j/m − 1))/k) = (m/k) ln Σ exp(k x_j/m),
+    m the largest element (by real part; 0 where it is not positive).
 
     Above the max by at most ln(n)/k of it (0.1 % for n = 20 at k = 3000) and
     smooth, so eq. 3.68's A_turb = max_j A γ_t C_d/(4a⁽¹⁾(1 − a⁽¹⁾)) keeps exact
-    derivatives; the shift m cancels analytically, so a complex step passes.
+    derivatives.  The shift m is also the temperature m/k, so it does not
+    cancel: ∂/∂m of (m/k) ln Σ exp(k x_j/m) is (soft max − Σ_j w_j x_j)/m (w the
+    softmax weights, up to ln(n)/k), part of the derivative by the largest
+    element.  So m is that element itself, complex where ``x`` is, and a complex
+    step passes; the derivatives are exact wherever the largest element is
+    unique (where two tie, the one by either jumps by that term).
     """
-    top = np.max(real_part(x), axis=-1, keepdims=True)
-    some = top > 0
+    x = as_array(x)
+    top = np.take_along_axis(x, np.argmax(real_part(x), axis=-1)[..., None], axis=-1)
+    some = real_part(top) > 0
     scale = np.where(some, top, 1.0)
     ratio = np.where(some, x / scale, 1.0)
     smooth = scale * (1.0 + np.log(np.exp(sharpness * (ratio - 1.0)).sum(axis=-1, keepdims=True)) / sharpness)
@@ -215,7 +223,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
                     ("rated power", (p.rated_power_W - power) / p.rated_power_W),
                     ("along-tether wind", np.cos(phi) - g_out - MIN_ALONG_WIND),
                     ("minimum altitude", (altitude - p.min_altitude_m) / p.min_altitude_m),
-                    ("cut-out above cut-in", (scalar("cut_out_mps") - scalar("cut_in_mps") - 1.0) / 10.0)]
+                    ("cut-out above cut-in",
+                     (scalar("cut_out_mps") - scalar("cut_in_mps") - MIN_OPERATING_RANGE_MPS) / 10.0)]
     if p.glider_mass_kg is None:
         inequalities += [("wing design load", (scalar("design_force_N") - force_aero) / f_ref),
                          ("spar stress (eq. 3.57)", wing.stress_margin.reshape(batch, -1)),

@@ -142,7 +142,8 @@ class Solution:
 
     ``feasible``: every constraint within :data:`FEASIBILITY_TOLERANCE`;
     ``multipliers``: SLSQP's Lagrange multipliers of the scaled constraints,
-    by name (equalities, then inequalities; ≥ 0 for an active inequality).
+    by name (equalities, then inequalities; ≥ 0 for an active inequality);
+    ``most_violated``: the constraint farthest from being met, and by how much.
     """
 
     z: np.ndarray
@@ -155,6 +156,24 @@ class Solution:
     violation: float
     multipliers: dict
     evaluation: Evaluation
+
+    @property
+    def most_violated(self) -> tuple[str, float]:
+        """The constraint farthest from being met at ``z`` and by how much (:func:`most_violated`)."""
+        return most_violated(self.evaluation)
+
+
+def most_violated(evaluation: Evaluation) -> tuple[str, float]:
+    """(name, amount) of the constraint of the first design of ``evaluation`` farthest from being
+    met: the largest |equality| or −inequality (scaled, as the optimiser sees them), inf where one
+    is not finite (the first such); ("", 0.0) where every one is met exactly."""
+    e = evaluation
+    residual = np.concatenate([np.abs(e.equalities[0]), np.maximum(-e.inequalities[0], 0.0)])
+    residual = np.where(np.isnan(residual), np.inf, residual)
+    if not np.max(residual, initial=0.0) > 0:
+        return "", 0.0
+    k = int(np.argmax(residual))
+    return (e.equality_names + e.inequality_names)[k], float(residual[k])
 
 
 class Problem:

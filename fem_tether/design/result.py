@@ -41,7 +41,8 @@ RATED_SHARE = 0.999
 
 @dataclass(frozen=True)
 class StartRecord:
-    """One start: its index, how SLSQP ended and the net AEP it reached."""
+    """One start: its index, how SLSQP ended, the net AEP it reached, its largest constraint violation
+    (scaled) and the constraint that has it (``most_violated``, the model's name; "" if none)."""
 
     index: int
     success: bool
@@ -51,12 +52,13 @@ class StartRecord:
     evaluations: int
     net_aep_Wh: float
     violation: float
+    most_violated: str
 
 
 def record(index: int, solution: Solution, parameters: DesignParameters) -> StartRecord:
     net = -solution.objective * HOURS_PER_YEAR * parameters.rated_power_W
     return StartRecord(index, solution.success, solution.feasible, solution.message, solution.iterations,
-                       solution.evaluations, float(net), solution.violation)
+                       solution.evaluations, float(net), solution.violation, solution.most_violated[0])
 
 
 @dataclass(frozen=True)
@@ -80,16 +82,24 @@ class DesignResult:
         return self.best is not None
 
     def as_dict(self) -> dict:
-        """JSON-ready: numbers and lists."""
+        """JSON-ready: numbers, lists and None (a quantity that does not exist, such as the rated
+        wind of a design never rated, or a start's number that is not finite)."""
         return {"parameters": asdict(self.parameters), "bounds": {k: list(v) for k, v in self.bounds.items()},
                 "held": dict(self.held), "seed": self.seed, "best_start": self.best,
-                "starts": [asdict(s) for s in self.starts], "design": _plain(self.design),
+                "starts": [_plain(asdict(s)) for s in self.starts], "design": _plain(self.design),
                 "curves": _plain(self.curves), "outputs": _plain(self.outputs), "active_constraints": self.active,
                 "sensitivities_Wh": self.sensitivities_Wh}
 
 
 def _plain(values: dict) -> dict:
-    return {k: (np.asarray(v).tolist() if np.ndim(v) else float(v)) for k, v in values.items()}
+    """Arrays as lists, numbers as floats (None where not finite); others as they are."""
+    def plain(v):
+        if isinstance(v, (bool, int, str)) or v is None:
+            return v
+        if np.ndim(v):
+            return np.asarray(v).tolist()
+        return float(v) if np.isfinite(v) else None
+    return {k: plain(v) for k, v in values.items()}
 
 
 def active_constraints(solution: Solution) -> dict:
@@ -105,10 +115,25 @@ def active_constraints(solution: Solution) -> dict:
     return {k: {"count": v[0], "largest_multiplier": v[1]} for k, v in out.items()}
 
 
-def rated_wind_mps(curves: dict, rated_power_W: float) -> float:
-    """The lowest wind speed of the grid with P ≥ 0.999 P_rated (NaN: never rated)."""
+def rated_wind_mps(curves: dict, rated_power_W: float) -> float | None:
+    """The lowest wind speed of the grid with P ≥ 0.999 P_rated (None: never rated)."""
     rated = np.nonzero(curves["power_W"] >= RATED_SHARE * rated_power_W)[0]
-    return float(curves["wind_mps"][rated[0]]) if rated.size else float("nan")
+    return float(curves["wind_mps"][rated[0]]) if rated.size else None
+
+
+def never_rated(result: DesignResult) -> str:
+    """Why a found design cannot stand for its rated power ("" if it can): its power never reaches
+    0.999 P_rated on its grid, up to its cut-out, so the wing within its bounds cannot reach the
+    rated power the job asks (the capacity factor and the generators' rating are then P_rated's, not
+    the design's)."""
+    if not result.found or result.outputs["rated_wind_mps"] is not None:
+        return ""
+    power, wind = result.curves["power_W"], result.curves["wind_mps"]
+    j = int(np.argmax(power))
+    top = result.bounds["cut_out_mps"][1]
+    return (f"rated_power_W = {result.parameters.rated_power_W:g}: the best design (start {result.best}) "
+            f"reaches at most {power[j]:.4g} W (at {wind[j]:.4g} m/s; cut-out bound {top:g} m/s): the wing "
+            "cannot reach its rated power within the bounds")
 
 
 def design_result(problem: Problem, solutions: list[Solution], records: list[StartRecord],
@@ -126,7 +151,7 @@ def design_result(problem: Problem, solutions: list[Solution], records: list[Sta
     curves = {name: np.asarray(q[name][0], dtype=float) for name in CURVES}
     curves.update({name: np.broadcast_to(np.ravel(values[name]), (problem.layout.n,)).astype(float)
                    for name in PER_WIND})
-    outputs = {name: float(q[name][0]) for name in OUTPUTS}
+    outputs: dict[str, float | None] = {name: float(q[name][0]) for name in OUTPUTS}
     outputs["rated_wind_mps"] = rated_wind_mps(curves, problem.parameters.rated_power_W)
     outputs["net_aep_Wh"] = records[k].net_aep_Wh
     return DesignResult(best=records[k].index, design=design, curves=curves, outputs=outputs,

@@ -83,6 +83,10 @@ START_RANGES = {
 }
 
 
+#: least cut-out − cut-in [m/s] (ours: the wind speeds of the grid must differ)
+MIN_OPERATING_RANGE_MPS = 1.0
+
+
 def force_scale_N(parameters: DesignParameters) -> float:
     """F_ref = P_rated / (3 m/s): the order of a rated kite's tether force (constraints' scale)."""
     return parameters.rated_power_W / 3.0
@@ -181,3 +185,43 @@ class Layout:
             z[where] = (np.broadcast_to(np.asarray(values[name], dtype=float), (self.size(name),)) - low) \
                 / (high - low) if high > low else 0.0
         return z
+
+
+def _given(layout: Layout, name: str) -> tuple[float, float, str]:
+    """(low, high) of a variable as the layout gives it (a held one: its value twice) and its key."""
+    if name in layout.held:
+        value = layout.held[name]
+        return value, value, f"held.{name} = {value:g}"
+    low, high = layout.bounds[name]
+    return low, high, f"bounds.{name} = [{low:g}, {high:g}]"
+
+
+def _largest_sine(low: float, high: float) -> float:
+    """max sinβ over β ∈ [low, high] (sin rises up to π/2)."""
+    return 1.0 if low <= math.pi / 2 <= high else max(math.sin(low), math.sin(high))
+
+
+def unreachable(parameters: DesignParameters, layout: Layout) -> str:
+    """Why no design within the layout's bounds meets a constraint the bounds alone decide ("" if
+    every one can be met), naming the keys: the operating altitude r sinβ + tower ≥ h_min, the
+    cut-out at least :data:`MIN_OPERATING_RANGE_MPS` above the cut-in, a fixed wing area s²/AR."""
+    p = parameters
+    r_low, r_high, r_key = _given(layout, "tether_length_m")
+    b_low, b_high, b_key = _given(layout, "elevation_rad")
+    altitude = r_high * _largest_sine(b_low, b_high) + p.tower_height_m
+    if altitude < p.min_altitude_m:
+        return (f"{r_key} m and {b_key} rad reach an operating altitude r sin(beta) + tower_height_m of at "
+                f"most {altitude:.4g} m, below min_altitude_m = {p.min_altitude_m:g} m")
+    in_low, _, in_key = _given(layout, "cut_in_mps")
+    _, out_high, out_key = _given(layout, "cut_out_mps")
+    if out_high - in_low < MIN_OPERATING_RANGE_MPS:
+        return (f"{out_key} m/s and {in_key} m/s put the cut-out at most {out_high - in_low:.4g} m/s above "
+                f"the cut-in, less than the {MIN_OPERATING_RANGE_MPS:g} m/s a design needs")
+    if p.wing_area_m2 is not None:
+        s_low, s_high, s_key = _given(layout, "span_m")
+        ar_low, ar_high, ar_key = _given(layout, "aspect_ratio")
+        least, most = s_low**2 / ar_high, s_high**2 / ar_low
+        if not least <= p.wing_area_m2 <= most:
+            return (f"wing_area_m2 = {p.wing_area_m2:g}: outside the {least:.4g}-{most:.4g} m2 that {s_key} m "
+                    f"and {ar_key} allow (the area s^2/AR)")
+    return ""

@@ -8,10 +8,13 @@ and the unit also as the attribute ``unit``)::
     /design           attrs: the Table 5.1 variables and the auxiliaries at the optimum
     /outputs          attrs: AEP (Wh), capacity factor, masses (kg), take-off, rated wind speed ...
     /curves/<name>    per wind speed of the design's grid (wind_mps, power_W, cl, gamma_out ...)
-    /starts/<field>   one entry per start: index, success, feasible, net_aep_Wh, iterations ...
+    /starts/<field>   one entry per start: index, success, feasible, net_aep_Wh, iterations, violation,
+                      most_violated ... (NaN: a number that was not finite)
     /active/<family>  attrs: count, largest_multiplier of each active constraint family
     /sensitivities    attrs: p · d(net AEP)/dp in Wh per unit relative change
 
+A quantity that does not exist (the rated wind of a design never rated, a
+free wing area) is the attribute "none" and reads back as None.
 :func:`read_design_hdf5` returns the same as
 :meth:`fem_tether.design.result.DesignResult.as_dict`, so a file and a
 ``--json`` print hold one content.
@@ -77,7 +80,10 @@ def write_design_hdf5(path, result: dict, job_toml: str) -> Path:
         starts = f.create_group("starts")
         for field in (result["starts"][0] if result["starts"] else {}):
             column = [s[field] for s in result["starts"]]
-            data = np.asarray(column, dtype=h5py.string_dtype()) if field == "message" else np.asarray(column)
+            if all(isinstance(v, str) for v in column):
+                data = np.asarray(column, dtype=h5py.string_dtype())
+            else:
+                data = np.asarray([np.nan if v is None else v for v in column])
             starts.create_dataset(field, data=data).attrs["unit"] = unit_of(field)
         active = f.create_group("active")
         for family, entry in result["active_constraints"].items():
@@ -95,14 +101,21 @@ def _read_attrs(group) -> dict:
     return out
 
 
+def _start_value(column, i: int):
+    """Entry ``i`` of a start's column: a string, or a number (None where NaN: not finite)."""
+    if h5py.check_string_dtype(column.dtype) is not None:
+        return column.asstr()[i]
+    value = column[i].item()
+    return None if isinstance(value, float) and np.isnan(value) else value
+
+
 def read_design_hdf5(path) -> dict:
     """The content of a design result file, as :meth:`DesignResult.as_dict` gives it."""
     with h5py.File(path, "r") as f:
         starts_group = f["starts"]
         fields = list(starts_group)
         count = len(starts_group[fields[0]]) if fields else 0
-        starts = [{k: (starts_group[k].asstr()[i] if k == "message" else starts_group[k][i].item())
-                   for k in fields} for i in range(count)]
+        starts = [{k: _start_value(starts_group[k], i) for k in fields} for i in range(count)]
         best = int(f.attrs["best_start"])
         return {"parameters": _read_attrs(f["parameters"]), "design": _read_attrs(f["design"]),
                 "outputs": _read_attrs(f["outputs"]), "sensitivities_Wh": _read_attrs(f["sensitivities"]),

@@ -40,6 +40,31 @@ def _rows(values: dict, rows) -> list[str]:
             if key in values and values[key] is not None]
 
 
+def no_design(starts: list[dict]) -> str:
+    """Why no start gave a design, in one line: the most violated constraint of each start (the
+    model's name; by how much, scaled as the optimiser sees it, the least of the starts sharing it),
+    the least violated first; the starts that ended feasible but not converged; SLSQP's messages."""
+    groups: dict[str, list] = {}
+    for s in sorted(starts, key=lambda s: math.inf if s["violation"] is None else s["violation"]):
+        if not s["feasible"]:
+            groups.setdefault(s["most_violated"], []).append(s)
+    parts = [f"{name} {_amount(members[0]['violation'])} ({_starts(members)})" for name, members in groups.items()]
+    unconverged = [s for s in starts if s["feasible"]]
+    if unconverged:
+        parts.append(f"feasible but not converged ({_starts(unconverged)})")
+    messages = "; ".join(sorted({s["message"] for s in starts}))
+    return (f"no start converged to a feasible design; the most violated constraint of each (scaled): "
+            f"{'; '.join(parts)} [SLSQP: {messages}]")
+
+
+def _amount(violation) -> str:
+    return "not finite" if violation is None else f"by {violation:.3g}"
+
+
+def _starts(members: list[dict]) -> str:
+    return f"start{'s' if len(members) > 1 else ''} {', '.join(str(s['index']) for s in members)}"
+
+
 def design_text(result: dict, path=None) -> str:
     """The printed summary of a design result."""
     p = result["parameters"]
@@ -49,8 +74,7 @@ def design_text(result: dict, path=None) -> str:
             + ("free" if p["wing_area_m2"] is None else f"{p['wing_area_m2']:g} m2")
             + f"; {good} of {len(starts)} starts converged feasible"]
     if result["best_start"] is None:
-        reasons = sorted({s["message"] for s in starts})
-        return "\n".join(head + ["no start converged to a feasible design: " + "; ".join(reasons)])
+        return "\n".join(head + [no_design(starts)])
     net = [s["net_aep_Wh"] for s in starts if s["success"] and s["feasible"]]
     head.append(f"best: start {result['best_start']} (net AEP {max(net) / 1e9:.4f} GWh; the converged starts span "
                 f"{min(net) / 1e9:.4f}-{max(net) / 1e9:.4f} GWh)")

@@ -131,18 +131,27 @@ def reel_in_power_W(reel_in_force, wind_mps, gamma_in):
 def time_shares(gamma_out, gamma_in):
     """(τ_out, τ_in) = (γ_in, γ_out)/(γ_in + γ_out)  (seed 004 eq. 3.26).
 
-    Equal strokes out and in take times in the inverse ratio of the speeds.
-    No reel-out (γ_out = 0, pure fly generation) means no recovery:
-    τ_out = 1, τ_in = 0.
+    Equal strokes out and in take times in the inverse ratio of the speeds
+    (γ_out, γ_in ≥ 0).  No reel-out (γ_out = 0, pure fly generation) means no
+    recovery: τ_out = 1, τ_in = 0, which the ratio gives wherever γ_in > 0;
+    only γ_out = γ_in = 0 is set apart.  So the branch is on γ_out + γ_in, not
+    on γ_out: at γ_out = 0 a complex step then sees ∂τ_in/∂γ_out = 1/γ_in, the
+    derivative of the side γ_out ≥ 0 (on γ_out it would see 0, the side
+    γ_out < 0 that no kite flies).
 
     >>> [float(t) for t in time_shares(0.5, 1.5)]
     [0.75, 0.25]
+    >>> [float(t) for t in time_shares(0.0, 1.5)]
+    [1.0, 0.0]
     >>> [float(t) for t in time_shares(0.0, 0.0)]
     [1.0, 0.0]
+    >>> float(np.imag(time_shares(1e-30j, 2.0)[1]) / 1e-30)
+    0.5
     """
     g_out, g_in = as_array(gamma_out), as_array(gamma_in)
-    reeling = real_part(g_out) > 0
-    tau_in = np.where(reeling, g_out / np.where(reeling, g_out + g_in, 1.0), 0.0)
+    total = g_out + g_in
+    reeling = real_part(total) > 0
+    tau_in = np.where(reeling, g_out / np.where(reeling, total, 1.0), 0.0)
     return 1.0 - tau_in, tau_in
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fem_tether.design.optimiser import EQUAL_OBJECTIVE
-from fem_tether.design.result import CURVES, OUTPUTS, design_result, rated_wind_mps, record
+from fem_tether.design.result import CURVES, OUTPUTS, design_result, never_rated, rated_wind_mps, record
 from fem_tether.design.variables import PER_WIND, SCALARS
 
 
@@ -49,13 +49,47 @@ def test_result_contents(result, ground_gen):
 
 def test_rated_wind(result, ground_gen):
     """rated_wind_mps is the first wind speed of the grid with P ≥ 0.999 P_rated (exact), here inside
-    the grid with the power below it less than 0.999 P_rated; NaN for a curve never rated."""
+    the grid with the power below it less than 0.999 P_rated; None for a curve never rated."""
     p = ground_gen.problem.parameters
     power, wind = result.curves["power_W"], result.curves["wind_mps"]
     first = next(j for j, value in enumerate(power) if value >= 0.999 * p.rated_power_W)
     assert 0 < first < len(wind) - 1
     assert result.outputs["rated_wind_mps"] == wind[first]
-    assert np.isnan(rated_wind_mps({"power_W": 0.5 * power, "wind_mps": wind}, p.rated_power_W))
+    assert rated_wind_mps({"power_W": 0.5 * power, "wind_mps": wind}, p.rated_power_W) is None
+
+
+def never_rated_result(result):
+    """``result`` with its power halved, as a design never rated would be (rated_wind_mps None)."""
+    curves = dict(result.curves, power_W=0.5 * result.curves["power_W"])
+    outputs = dict(result.outputs, rated_wind_mps=None)
+    return dataclasses.replace(result, curves=curves, outputs=outputs)
+
+
+def test_a_design_never_rated(result):
+    """A design never rated: as_dict() holds rated_wind_mps None and passes json.dumps(allow_nan=False)
+    (null); never_rated names rated_power_W, the best start, the most power and where (the halved
+    curve's top, at the cut-out) and the cut-out's bound; a rated design: ""."""
+    assert never_rated(result) == ""
+    unrated = never_rated_result(result)
+    back = json.loads(json.dumps(unrated.as_dict(), allow_nan=False))
+    assert "rated_wind_mps" in back["outputs"] and back["outputs"]["rated_wind_mps"] is None
+    top = float(np.max(unrated.curves["power_W"]))
+    wind = float(unrated.curves["wind_mps"][np.argmax(unrated.curves["power_W"])])
+    assert never_rated(unrated) == (f"rated_power_W = 3e+06: the best design (start {result.best}) reaches at most "
+                                    f"{top:.4g} W (at {wind:.4g} m/s; cut-out bound 40 m/s): the wing cannot reach "
+                                    "its rated power within the bounds")
+
+
+def test_start_records(result, ground_gen):
+    """Each start's record carries its solution's largest violation and the constraint that has it;
+    a start whose numbers are not finite (net AEP, violation) is null in as_dict(), still JSON."""
+    for record_, solution in zip(result.starts, ground_gen.solutions):
+        assert (record_.most_violated, record_.violation) == solution.most_violated
+    diverged = dataclasses.replace(result.starts[1], net_aep_Wh=float("nan"), violation=float("inf"))
+    starts = json.loads(json.dumps(dataclasses.replace(result, starts=[result.starts[0], diverged]).as_dict(),
+                                   allow_nan=False))["starts"]
+    assert starts[1]["net_aep_Wh"] is None and starts[1]["violation"] is None
+    assert starts[0]["violation"] == result.starts[0].violation
 
 
 def test_active_constraints(result):

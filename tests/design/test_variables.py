@@ -1,12 +1,14 @@
-"""The design variables and their layout (fem_tether.design.variables): packing, bounds, held values."""
+"""The design variables and their layout (fem_tether.design.variables): packing, bounds, held values,
+bounds no design can meet."""
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from fem_tether.design.parameters import DesignParameters
-from fem_tether.design.variables import PER_WIND, SCALARS, STRUCTURE, Layout, force_scale_N
+from fem_tether.design.variables import PER_WIND, SCALARS, STRUCTURE, Layout, force_scale_N, unreachable
 
 
 def test_pack_unpack_round_trip():
@@ -118,3 +120,39 @@ def test_given_glider_mass_holds_the_structure():
     assert STRUCTURE.items() <= layout.held.items()
     assert layout.held["gamma_t"] == 0.0
     assert not set(STRUCTURE) & set(layout.free)
+
+
+@pytest.mark.parametrize("parameters, bounds, held, message", [
+    ({}, {"tether_length_m": (50, 60)}, {},
+     r"^bounds\.tether_length_m = \[50, 60\] m and bounds\.elevation_rad = \[0\.0872665, 1\.22173\] rad reach "
+     r"an operating altitude .* of at most 56\.38 m, below min_altitude_m = 200 m$"),
+    ({}, {"elevation_rad": (0.05, 0.06)}, {}, r"^bounds\.tether_length_m = \[50, 3000\] m and "
+     r"bounds\.elevation_rad = \[0\.05, 0\.06\] rad reach .* at most 179\.9 m, below min_altitude_m = 200 m$"),
+    ({"tower_height_m": 10.0}, {}, {"tether_length_m": 100.0}, r"^held\.tether_length_m = 100 m and .* at most "
+     r"104 m, below"),
+    ({}, {"cut_in_mps": (10, 15), "cut_out_mps": (8, 10.5)}, {}, r"^bounds\.cut_out_mps = \[8, 10\.5\] m/s and "
+     r"bounds\.cut_in_mps = \[10, 15\] m/s put the cut-out at most 0\.5 m/s above the cut-in, less than the 1 m/s"),
+    ({}, {"span_m": (2, 10)}, {}, r"^wing_area_m2 = 70: outside the 0\.1-33\.33 m2 that bounds\.span_m = \[2, 10\] m "
+     r"and bounds\.aspect_ratio = \[3, 40\] allow"),
+    ({"wing_area_m2": 3.0}, {"span_m": (20, 120)}, {"aspect_ratio": 30.0}, r"^wing_area_m2 = 3: outside the "
+     r"13\.33-480 m2 that bounds\.span_m = \[20, 120\] m and held\.aspect_ratio = 30 allow")])
+def test_unreachable_bounds_are_named(parameters, bounds, held, message):
+    """Bounds (or held values) no design can meet, named with their values: the operating altitude
+    r sinβ + tower (at most 60 sin 70° = 56.38 m; 3000 sin 0.06 = 179.9 m; 100 sin 70° + 10 = 104 m)
+    below h_min, a cut-out at most 0.5 m/s above the cut-in, a fixed wing area outside s²/AR's range
+    (2²/40 = 0.1 to 10²/3 = 33.33 m²; 20²/30 = 13.33 to 120²/30 = 480 m²)."""
+    p = DesignParameters(**parameters)
+    assert re.match(message, unreachable(p, Layout.build(p, bounds=bounds, held=held)))
+
+
+def test_reachable_bounds_pass():
+    """The default bounds pass; so do bounds that meet each limit exactly: the altitude 200 m · sin 90° =
+    200 m = h_min (β's sine peaks at 90°, inside [1, 2] rad), a cut-out exactly 1 m/s above the cut-in
+    and a wing area at the edge of s²/AR (70 = 35²/17.5); a free wing area has no area to reach."""
+    p = DesignParameters()
+    assert unreachable(p, Layout.build(p)) == ""
+    exact = {"tether_length_m": (50, 200), "elevation_rad": (1.0, 2.0), "cut_in_mps": (5, 6),
+             "cut_out_mps": (6, 6), "span_m": (2, 35), "aspect_ratio": (17.5, 20)}
+    assert unreachable(p, Layout.build(p, bounds=exact)) == ""
+    free = DesignParameters(wing_area_m2=None)
+    assert unreachable(free, Layout.build(free, bounds={"span_m": (2, 3)})) == ""

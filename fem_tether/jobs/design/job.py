@@ -20,8 +20,10 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     elevation_rad = 0.4
 
 Every key is checked: an unknown table, key or variable, a value of the
-wrong type or out of range is one :class:`~fem_tether.core.errors.ConfigError`
-line naming it (exit 2 from the command line).
+wrong type or out of range, bounds no design can meet (an altitude, a wind
+range or a wing area they cannot reach: :func:`fem_tether.design.variables.unreachable`)
+is one :class:`~fem_tether.core.errors.ConfigError` line naming it (exit 2
+from the command line), before any optimisation.
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ from fem_tether.config.tomlio import toml_and_text
 from fem_tether.core.errors import ConfigError
 from fem_tether.design.optimiser import starts_for
 from fem_tether.design.parameters import DesignParameters
-from fem_tether.design.variables import PER_WIND, SCALARS, Layout
+from fem_tether.design.variables import PER_WIND, SCALARS, Layout, unreachable
 
 KEYS = ("preset", "starts", "seed", "tether", "parameters", "bounds", "held")
 #: tether models of a design; "lumped" is the thesis' straight tether
@@ -134,6 +136,8 @@ def _job(design: dict, text: str, name: str) -> DesignJob:
         low, high = layout.bounds[variable]
         if not low <= float(held[variable]) <= high:
             raise ConfigError(f"[design.held] {variable} = {held[variable]!r}: outside its bounds [{low:g}, {high:g}]")
+    if why := unreachable(parameters, layout):
+        raise ConfigError(f"[design] {why}")
     return DesignJob(parameters, bounds, held, starts, seed, tether, text, name)
 
 

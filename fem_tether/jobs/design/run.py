@@ -9,7 +9,10 @@ the package version).  A rerun of the same job reuses the parts whose key
 matches: a killed job resumes where it stopped, and the result file is the
 same for any number of ranks.  Rank 0 rebuilds the starts from their parts
 (the point and SLSQP's multipliers; the model is re-evaluated there), picks the
-best feasible, converged start (the first of equals) and writes the HDF5 file.
+best feasible, converged start (the first of equals) and writes the HDF5 file:
+none where no start converged feasible (the parts keep what each start did),
+nor where the design never reaches its rated power (a
+:class:`~fem_tether.core.errors.ConfigError` naming ``rated_power_W``).
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from __future__ import annotations
 import hashlib
 import json
 from contextlib import ExitStack
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
@@ -24,15 +28,19 @@ import numpy as np
 from fem_tether import __version__
 from fem_tether.core.atomic import (PAGE_NAME, OutputError, check_folder, check_writable, exclusive, remove_temporaries,
                                     write_json)
-from fem_tether.core.errors import InputError
+from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
 from fem_tether.design.optimiser import Problem, Solution, consistent, start_points
-from fem_tether.design.result import DesignResult, StartRecord, design_result, record
+from fem_tether.design.result import DesignResult, StartRecord, design_result, never_rated, record
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.runner import distribute, raise_on_every_rank
 from fem_tether.jobs.study.result import report_dir
+
+
+#: what a part's record holds (a part of another layout is from other inputs)
+RECORD_FIELDS = {f.name for f in fields(StartRecord)}
 
 
 class DesignInterrupted(KeyboardInterrupt):
@@ -70,7 +78,8 @@ class DesignStarts:
             part = json.loads(self.path(index).read_text())
         except (OSError, ValueError):
             return None
-        return part if part.get("key") == self.key else None
+        same = part.get("key") == self.key and set(part.get("record", ())) == RECORD_FIELDS
+        return part if same else None
 
     def kept(self, index: int) -> bool:
         return self.read(index) is not None
@@ -118,8 +127,8 @@ def check_out(out: Path) -> None:
 
 
 def run_design(job: DesignJob, out: str | Path, comm=None, progress: bool = True) -> DesignResult | None:
-    """Run ``job``'s starts over the ranks of ``comm`` (MPI.COMM_WORLD by default) and write ``out``;
-    the result on rank 0, None on the others."""
+    """Run ``job``'s starts over the ranks of ``comm`` (MPI.COMM_WORLD by default) and write ``out``
+    if a design was found; the result on rank 0, None on the others."""
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
@@ -148,5 +157,8 @@ def run_design(job: DesignJob, out: str | Path, comm=None, progress: bool = True
             return None
         solutions, records = starts.solutions()
         result = design_result(starts.problem, solutions, records, job.seed)
-        write_design_hdf5(out, result.as_dict(), job.text)
+        if why := never_rated(result):
+            raise ConfigError(f"[design.parameters] {why}")
+        if result.found:
+            write_design_hdf5(out, result.as_dict(), job.text)
         return result

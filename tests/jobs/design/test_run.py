@@ -1,12 +1,14 @@
 """Design jobs: keys checked with one-line errors, starts kept in parts and reused, the result file
 with its units and job, a foreign output refused."""
 
+import functools
 import json
 
 import pytest
 
 from fem_tether.cli import main
 from fem_tether.core.errors import ConfigError
+from fem_tether.design.optimiser import Problem
 from fem_tether.io.design_file import read_design_hdf5
 from fem_tether.jobs.design.job import load_design_job
 from fem_tether.jobs.design.run import parts_dir, run_design
@@ -24,6 +26,16 @@ JOB = '[design]\npreset = "trevisi-3mw"\nstarts = 2\n[design.parameters]\nmode =
     ('[design]\ntether = "flexible"\n', "tether = 'flexible'"),
     ('[design]\npreset = "nope"\n', "preset = 'nope': unknown"),
     ('[kite]\narea_m2 = 3\n', "unknown table [kite]"),
+    ('[design.bounds]\ntether_length_m = [50, 60]\n', "[design] bounds.tether_length_m = [50, 60] m and "
+     "bounds.elevation_rad = [0.0872665, 1.22173] rad reach an operating altitude r sin(beta) + tower_height_m "
+     "of at most 56.38 m, below min_altitude_m = 200 m"),
+    ('[design.bounds]\nelevation_rad = [0.05, 0.06]\n', "at most 179.9 m, below min_altitude_m = 200 m"),
+    ('[design.held]\ntether_length_m = 100\n', "[design] held.tether_length_m = 100 m and"),
+    ('[design.bounds]\ncut_in_mps = [10, 15]\ncut_out_mps = [8, 10.5]\n',
+     "[design] bounds.cut_out_mps = [8, 10.5] m/s and bounds.cut_in_mps = [10, 15] m/s put the cut-out at most "
+     "0.5 m/s above the cut-in"),
+    ('[design.bounds]\nspan_m = [2, 10]\n', "[design] wing_area_m2 = 70: outside the 0.1-33.33 m2 that "
+     "bounds.span_m = [2, 10] m and bounds.aspect_ratio = [3, 40] allow"),
 ])
 def test_bad_keys_are_one_line_errors(tmp_path, text, message):
     path = tmp_path / "job.toml"
@@ -61,3 +73,57 @@ def test_the_command_refuses_a_foreign_file_and_prints_json(tmp_path, capsys):
     assert main(["design", str(path), "--out", str(tmp_path / "d.h5"), "--json"]) == 0
     document = json.loads(capsys.readouterr().out)
     assert document["best_start"] in (0, 1) and document["outputs"]["capacity_factor"] > 0
+
+
+def written(tmp_path) -> list[str]:
+    """What a design job left in ``tmp_path`` beside its job file."""
+    return sorted(p.name for p in tmp_path.iterdir() if p.name != "job.toml")
+
+
+def test_bounds_no_design_meets_are_refused_before_any_optimisation(tmp_path, capsys):
+    """Bounds that cannot reach h_min: exit 2, one line naming the bounds and min_altitude_m on
+    stderr, nothing written (no result, no parts, no report folder)."""
+    path = tmp_path / "job.toml"
+    path.write_text(JOB + "[design.bounds]\ntether_length_m = [50, 60]\n")
+    assert main(["design", str(path), "--out", str(tmp_path / "d.h5")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("fem-tether: error: [design] bounds.tether_length_m = [50, 60] m and ")
+    assert "min_altitude_m = 200 m" in err and err.count("\n") == 1
+    assert written(tmp_path) == []
+
+
+def test_no_feasible_start_is_a_solve_failure_naming_the_constraint(tmp_path, capsys, monkeypatch):
+    """Where no start converges feasible (here SLSQP stopped after one iteration): exit 1, the summary
+    names each start's most violated constraint and by how much, the JSON carries it per start, and
+    no result file is written (the parts are kept)."""
+    monkeypatch.setattr(Problem, "solve", functools.partialmethod(Problem.solve, max_iterations=1))
+    path = tmp_path / "job.toml"
+    path.write_text(JOB)
+    out = tmp_path / "d.h5"
+    assert main(["design", str(path), "--out", str(out)]) == 1
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].endswith("0 of 2 starts converged feasible") and len(lines) == 2
+    assert lines[1].startswith("no start converged to a feasible design; the most violated constraint of each")
+    assert not out.exists() and len(list(parts_dir(out).glob("start_*.json"))) == 2
+    assert main(["design", str(path), "--out", str(out), "--json"]) == 1
+    document = json.loads(capsys.readouterr().out)
+    assert document["best_start"] is None and not out.exists()
+    for start in document["starts"]:
+        assert not (start["success"] and start["feasible"])
+        assert f"{start['most_violated']} by {start['violation']:.3g}" in lines[1] or start["feasible"]
+
+
+def test_a_rated_power_the_design_never_reaches_is_named(tmp_path, capsys):
+    """A cut-out bounded to 9 m/s, where §5.4's 70 m² ground-gen wing gives 1 MW of its 3 MW (one
+    start): exit 2, one line naming rated_power_W and what the design reaches, no result file."""
+    path = tmp_path / "job.toml"
+    path.write_text(JOB.replace("starts = 2", "starts = 1") + "[design.bounds]\ncut_out_mps = [8, 9]\n")
+    out = tmp_path / "d.h5"
+    assert main(["design", str(path), "--out", str(out), "--json"]) == 2
+    printed = capsys.readouterr()
+    err = printed.err
+    assert printed.out == ""
+    assert err.startswith("fem-tether: error: [design.parameters] rated_power_W = 3e+06: the best design (start 0) "
+                          "reaches at most ")
+    assert "cut-out bound 9 m/s): the wing cannot reach its rated power" in err and err.count("\n") == 1
+    assert not out.exists()
