@@ -15,7 +15,8 @@ replaced::
     [kite]   area_m2 = A, theta0_deg = 90° − β    (the eight's centre at the operating altitude r sinβ)
     [air]    model = "exponential", density_kg_m3 = ρ0, scale_height_m = H_p
     [wind]   profile = "power", reference_scale_mps = A_W, reference_height_m, alpha,
-             boundary_layer_top_m = the design's
+             boundary_layer_top_m = the design's      (and [resource] weibull_k = k: the profile is
+             the mean of the design's Weibull at every height)
     [drag]   model = "constant", cd = C_⊥      (Trevisi's cross-flow law, eq. 3.12)
 
 (``[system]`` and ``[unified]`` stay the preset's: a tether run reads neither.)
@@ -57,7 +58,7 @@ DESIGN_KEYS = {"tether": ("length_m", "diameter_m", "linear_density_kg_m", "line
                "air": ("model", "density_kg_m3", "scale_height_m"),
                "wind": ("profile", "reference_scale_mps", "reference_height_m", "alpha", "boundary_layer_top_m",
                         "scale"),
-               "drag": ("model", "cd")}
+               "drag": ("model", "cd"), "resource": ("weibull_k",)}
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,7 @@ def line_config(parameters: DesignParameters, design: dict, outputs: dict,
         wind={"profile": "power", "reference_scale_mps": p.weibull_scale_mps,
               "reference_height_m": p.reference_height_m, "alpha": p.shear_alpha,
               "boundary_layer_top_m": p.wind_top_m},
-        drag={"model": "constant", "cd": p.cd_perp})
+        resource={"weibull_k": p.weibull_shape}, drag={"model": "constant", "cd": p.cd_perp})
 
 
 def bin_points(parameters: DesignParameters, curves: dict) -> list[OperatingPoint]:

@@ -244,13 +244,16 @@ def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, fl
     design flown with eq. 3.14's drag; ``flexible_measured_sag``: the flexible design flown with its
     drag and the FE line's inclination at the kite in place of the sag's (eqs. 3.17–3.19);
     ``flexible_measured_tension``: with its drag and the winch's share T(0)/T(r) of the kite's tension
-    the FE line shows; ``flexible_measured_line``: with both."""
+    the FE line shows; ``flexible_measured_line``: with both; ``flexible_measured_cd``: with the FE
+    line's C_D,t over eq. 3.14's as the factor in place of F_FE / F_straight (the difference: the
+    wind across the straight line and its air's density along it, which the factor leaves out)."""
     lumped_problem = Problem(job.parameters, job.bounds, job.held)
     z_lumped, z_flexible = normalised(lumped_problem, lumped), normalised(flexible_problem, flexible)
     known = np.asarray(bins["status"]) == "ok"
     wind = np.asarray(bins["wind_mps"])
     extra = filled(wind, np.asarray(bins["sag_fe_rad"]) - np.asarray(bins["sag_model_rad"]), known)
     share = filled(wind, bins["ground_tension_share"], known)
+    measured_cd = filled(wind, np.asarray(bins["cd_fe"]) / np.asarray(bins["cd_model"]), known)
     ones, zeros = np.ones(wind.size), np.zeros(wind.size)
 
     def aep(solution: Solution) -> float:
@@ -262,7 +265,8 @@ def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, fl
             "flexible_straight_drag": aep(flown(flexible_problem, z_flexible, None)),
             "flexible_measured_sag": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(extra, ones))),
             "flexible_measured_tension": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(zeros, share))),
-            "flexible_measured_line": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(extra, share)))}
+            "flexible_measured_line": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(extra, share))),
+            "flexible_measured_cd": aep(flown(flexible_problem, z_flexible, measured_cd))}
 
 
 @dataclass
@@ -301,8 +305,10 @@ class FlexibleDesign:
         return head | (self.design.as_dict() if self.design is not None else {})
 
 
-#: what the result keeps of each round
-ROUND_FIELDS = ("round", "fe_runs", "failed_runs", "aep_Wh", "change", "factor_min", "factor_max", "iterations",
+#: what the result keeps of each round: the design its runs flew (its line), the runs, the AEP of the
+#: design it re-optimised to and its change, the factors' range, SLSQP's iterations and message
+ROUND_FIELDS = ("round", "flown_tether_length_m", "flown_tether_diameter_m", "flown_elevation_rad",
+                "flown_linear_density_kg_m", "fe_runs", "failed_runs", "aep_Wh", "change", "factor_min", "factor_max", "iterations",
                 "message")
 
 
@@ -425,7 +431,11 @@ def _round(job: DesignJob, current: DesignResult, runs: BinRuns, k: int, state: 
     before, after = current.outputs["aep_Wh"], result.outputs["aep_Wh"]
     change = (after - before) / before
     converged = bool(abs(change) < job.flexible.tolerance)
-    state.rounds.append({"round": k, "fe_runs": int(np.count_nonzero(m.flies)),
+    flew = current.design
+    state.rounds.append({"round": k, "flown_tether_length_m": flew["tether_length_m"],
+                         "flown_tether_diameter_m": flew["tether_diameter_m"], "flown_elevation_rad": flew["elevation_rad"],
+                         "flown_linear_density_kg_m": current.outputs["tether_mass_kg"] / flew["tether_length_m"],
+                         "fe_runs": int(np.count_nonzero(m.flies)),
                          "failed_runs": int(np.count_nonzero(m.flies & ~m.ok)), "aep_Wh": after, "change": change,
                          "converged": converged, "factor_min": float(np.min(factor)),
                          "factor_max": float(np.max(factor)), "iterations": solution.iterations,

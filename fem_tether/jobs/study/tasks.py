@@ -241,6 +241,7 @@ class Study:
         self.parts.write(task.name, key, values | {"wall_s": time.perf_counter() - t0})
 
     def _tether_run(self, task: Task) -> dict:
+        values: dict
         try:
             if task.kind == "seed":
                 case = self.config(task.point)
