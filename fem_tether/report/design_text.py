@@ -113,9 +113,10 @@ def side_by_side_rows(result: dict) -> list[tuple[str, str, str, str, str]]:
     for label, group, key, factor, unit, fmt in SIDE_BY_SIDE:
         a = result[group][key]
         b = flexible[group][key] if group in flexible else math.nan
-        change = f"{100 * (b / a - 1):+.2f} %" if a and math.isfinite(b) else ""
-        rows.append((label, format(a * factor, fmt), format(b * factor, fmt) if math.isfinite(b) else "-",
-                     change, unit))
+        shown = (format(a * factor, fmt), format(b * factor, fmt) if math.isfinite(b) else "-")
+        # a change only from a number that shows (none from a 0.0)
+        change = f"{100 * (b / a - 1):+.2f} %" if math.isfinite(b) and float(shown[0]) != 0.0 else ""
+        rows.append((label, *shown, change, unit))
     return rows
 
 

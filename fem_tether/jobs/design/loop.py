@@ -372,7 +372,7 @@ def run_flexible(comm, job: DesignJob, out: Path, lumped: DesignResult | None,
         cases = bin_cases(job, current)
         runs = BinRuns(out, {BinTask(k, j): case for j, case in cases.items()})
         timing["fe_s"] += _phase(comm, runs, f"flexible tether, round {k}: FE runs", progress)
-        state.fe_runs += sum(isinstance(c, Config) for c in cases.values())
+        state.fe_runs += len(cases)
         decision = None
         if rank == 0:
             t1 = time.perf_counter()
