@@ -42,6 +42,7 @@ import numpy as np
 
 from fem_tether.config import Config, catalog
 from fem_tether.core.errors import ConfigError
+from fem_tether.core.quantities import lumped_name
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.performance import straight
 from fem_tether.systems.operating_point import OperatingPoint
@@ -153,9 +154,7 @@ def measure(run, case: Config) -> dict:
 def drag_factor(values: dict, lumping: str) -> float:
     """The flexible line's drag over the straight line's, both lumped as ``lumping`` (``[drag]
     tether_drag_lumping``): the factor on eq. 3.14's C_d,t that isolates the line's shape and motion."""
-    if lumping == "power":
-        return values["drag_power_fe_N"] / values["drag_power_straight_N"]
-    return values["drag_fe_N"] / values["drag_straight_N"]
+    return values[lumped_name("drag_fe_N", lumping)] / values[lumped_name("drag_straight_N", lumping)]
 
 
 def filled(wind_mps, values, known) -> np.ndarray:

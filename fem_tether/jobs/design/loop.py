@@ -46,6 +46,7 @@ import numpy as np
 from fem_tether.config import Config
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
+from fem_tether.core.quantities import lumped_name
 from fem_tether.core.stop import sync
 from fem_tether.design.flown import flown
 from fem_tether.design.model import LineAtKite
@@ -136,19 +137,13 @@ class BinRuns:
 def bin_cases(job: DesignJob, design: DesignResult) -> dict[int, Config | InputError]:
     """The FE case of each bin of ``design`` where the kite pulls (the error where the configuration
     rules refuse it)."""
+    points = {j: op for j, op in enumerate(bin_points(job.parameters, design.curves)) if plan.flies(op)}
     try:
         cfg = line_config(job.parameters, design.design, design.outputs, job.flexible)
     except InputError as exc:
-        cfg_error: InputError | None = exc
-    else:
-        cfg_error = None
+        return dict.fromkeys(points, exc)
     cases: dict[int, Config | InputError] = {}
-    for j, op in enumerate(bin_points(job.parameters, design.curves)):
-        if not plan.flies(op):
-            continue
-        if cfg_error is not None:
-            cases[j] = cfg_error
-            continue
+    for j, op in points.items():
         try:
             cases[j] = plan.run_config(cfg, op)
         except InputError as exc:
@@ -179,20 +174,18 @@ class Measured:
 
 #: per-bin values of a run's part the result keeps
 BIN_VALUES = ("drag_fe_N", "drag_power_fe_N", "drag_straight_N", "drag_power_straight_N", "sag_fe_rad",
-              "kite_tension_fe_N", "ground_tension_fe_N", "wall_s")
+              "kite_tension_fe_N", "ground_tension_fe_N")
 
 
-def measured(design: DesignResult, runs: BinRuns, round_: int) -> Measured:
-    """The parts of one round read back beside the flown design's operating points."""
+def measured(design: DesignResult, runs: BinRuns) -> Measured:
+    """The parts of one round's runs read back on the flown design's grid ("off": no run there)."""
     wind = np.asarray(design.curves["wind_mps"], dtype=float)
     n = wind.size
     status, error = ["off"] * n, [""] * n
     values = {name: np.full(n, np.nan) for name in BIN_VALUES}
     flies = np.zeros(n, dtype=bool)
     for task in runs.cases:
-        part = runs.values(task)
-        if task.round != round_ or part is None:
-            continue
+        part = runs.values(task) or {"status": "failed", "error": f"{task.name}: its part is missing after the run"}
         flies[task.node] = True
         status[task.node], error[task.node] = part["status"], part.get("error", "")
         for name in BIN_VALUES:
@@ -215,8 +208,7 @@ def bin_record(job: DesignJob, design: DesignResult, m: Measured, factor: np.nda
     θ − β the FE line shows and the model's, and the winch's share of the kite's tension."""
     c, p = design.curves, job.parameters
     cfg = line_config(p, design.design, design.outputs, job.flexible)
-    fe_key, rod_key = ("drag_power_fe_N", "drag_power_straight_N") if cfg.drag.tether_drag_lumping == "power" \
-        else ("drag_fe_N", "drag_straight_N")
+    fe_key, rod_key = (lumped_name(name, cfg.drag.tether_drag_lumping) for name in ("drag_fe_N", "drag_straight_N"))
     n = m.wind_mps.size
     cd_fe, cd_straight = np.full(n, np.nan), np.full(n, np.nan)
     points = bin_points(p, c)
@@ -228,7 +220,7 @@ def bin_record(job: DesignJob, design: DesignResult, m: Measured, factor: np.nda
                                   design.design["tether_length_m"], design.outputs["area_m2"])
     return {"wind_mps": m.wind_mps, "flies": m.flies.astype(int), "status": m.status, "error": m.error,
             "apparent_speed_mps": np.asarray(c["apparent_speed_mps"]), "tether_force_N": np.asarray(c["tether_force_N"]),
-            **{k: v for k, v in m.values.items() if k != "wall_s"}, "factor": factor, "cd_fe": cd_fe,
+            **m.values, "factor": factor, "cd_fe": cd_fe,
             "cd_straight": cd_straight, "cd_model": np.full(n, cd_model),
             "sag_model_rad": np.asarray(c["theta_rad"]) - design.design["elevation_rad"],
             "ground_tension_share": m.values["ground_tension_fe_N"] / m.values["kite_tension_fe_N"]}
@@ -413,7 +405,7 @@ def run_flexible(comm, job: DesignJob, out: Path, lumped: DesignResult | None,
 def _round(job: DesignJob, current: DesignResult, runs: BinRuns, k: int, state: FlexibleDesign):
     """Rank 0's part of round ``k``: the factors, the re-optimisation, the decision (broadcast:
     the next design, whether to stop, whether the loop failed, a line to say)."""
-    m = measured(current, runs, k)
+    m = measured(current, runs)
     if not m.ok.any():
         first = next((e for e in m.error if e), "no bin where the kite pulls")
         state.status, state.error = "failed", f"round {k}: no bin's FE run succeeded ({first})"

@@ -15,7 +15,8 @@ import time
 import numpy as np
 import pytest
 
-from conftest import default_sigint
+from conftest import default_sigint, is_png
+from pages import Page
 
 from fem_tether.cli import main
 from fem_tether.core.errors import ConfigError
@@ -29,6 +30,7 @@ from fem_tether.jobs.design.flexible import line_config
 from fem_tether.jobs.design.job import load_design_job
 from fem_tether.jobs.design.loop import normalised
 from fem_tether.jobs.design.run import parts_dir
+from fem_tether.report.design import FIGURE_FILES, FLEXIBLE_FIGURE, report_dir
 from fem_tether.jobs.study import plan
 from fem_tether.performance import straight
 from fem_tether.performance.summary import operating_tether_cd
@@ -133,6 +135,19 @@ def test_the_loop_converges_and_is_gated(small):
     assert summary["flexible"]["outputs"]["aep_Wh"] == f["outputs"]["aep_Wh"]
     assert summary["flexible"]["bins"]["factor"] == f["bins"]["factor"]
     assert set(summary["flexible"]["timing_s"]) == {"wall_s", "fe_s", "optimiser_s", "gate_s", "attribution_s"}
+
+
+def test_the_report_page_shows_both_designs_and_the_figure(small):
+    """The page's side-by-side table holds both AEPs as the file has them; the flexible figure is a
+    PNG beside the six of a lumped design, shown once."""
+    _, out, _ = small
+    r = read_design_hdf5(out)
+    page = Page((report_dir(out) / "index.html").read_text(encoding="utf-8"))
+    table = next(t for t in page.tables if t[0][:3] == ["", "lumped", "flexible"])
+    aep = next(row for row in table if row[0] == "AEP")
+    assert aep[1:3] == [f"{r['outputs']['aep_Wh'] * 1e-9:.4f}", f"{r['flexible']['outputs']['aep_Wh'] * 1e-9:.4f}"]
+    assert page.images == [*FIGURE_FILES.values(), FLEXIBLE_FIGURE]
+    assert is_png(report_dir(out) / FLEXIBLE_FIGURE)
 
 
 def _result(content: dict) -> DesignResult:
