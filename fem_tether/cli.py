@@ -222,8 +222,9 @@ def cmd_study(args):
 
 def cmd_design(args):
     from fem_tether.jobs.design.job import load_design_job
+    from fem_tether.jobs.design.loop import FlexibleOutcome
     from fem_tether.jobs.design.run import run_design
-    from fem_tether.report.design_text import design_text
+    from fem_tether.report.design_text import design_text, flexible_text
 
     job = load_design_job(args.job, args.preset)
     result = run_design(job, args.out, progress=not args.json)
@@ -235,11 +236,20 @@ def cmd_design(args):
         from fem_tether.report.design import write_design_report
 
         page = write_design_report(args.out)
+    flexible = result.flexible if isinstance(result, FlexibleOutcome) else None
     if args.json:
+        if flexible is not None:
+            content["flexible"]["timing_s"] = flexible.timing_s
         print(report.json_text(content | {"report": None if page is None else str(page)}))
     else:
-        print(design_text(content, args.out) + (f"\nreport: {page}" if page is not None else ""))
-    return 0 if result.found else EXIT_FAILED
+        text = design_text(content, args.out if flexible is None else None)
+        if flexible is not None:
+            text += "\n\n" + flexible_text(content, flexible.timing_s, args.out)
+        print(text + (f"\nreport: {page}" if page is not None else ""))
+    if flexible is None:
+        return 0 if result.found else EXIT_FAILED
+    return 0 if result.found and flexible.status == "converged" and (flexible.checked or args.allow_unchecked) \
+        else EXIT_FAILED
 
 
 def cmd_aep(args):
@@ -382,6 +392,9 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--preset", metavar="NAME", help="a shipped design job instead (e.g. trevisi-3mw)")
     c.add_argument("--out", required=True, metavar="FILE.h5",
                    help="result file; the figures and the report page go to FILE_report/")
+    c.add_argument("--allow-unchecked", action="store_true",
+                   help="[design] tether = \"flexible\": exit 0 although the FE <-> FD gate failed "
+                        "(the file says so)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)

@@ -63,6 +63,16 @@ MIN_SAG_TENSION_N = 1.0
 
 
 @dataclass(frozen=True)
+class LineAtKite:
+    """What a flown line shows per wind speed of the grid that the model's straight, sagging line does
+    not: ``extra_inclination_rad`` added to the sag's θ (eqs. 3.17–3.19) and ``ground_tension_share``,
+    the winch's tension over the kite's T(0)/T(r) (the model's line: 1), which scales the ground power."""
+
+    extra_inclination_rad: np.ndarray
+    ground_tension_share: np.ndarray
+
+
+@dataclass(frozen=True)
 class Evaluation:
     """A batch of designs: every array has the batch first; ``per_wind`` ones (B, n).
 
@@ -122,12 +132,13 @@ def site(parameters: DesignParameters, altitude_m):
 
 
 def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor=None,
-             kite_carries_tether: bool = False) -> Evaluation:
+             kite_carries_tether: bool = False, line_at_kite: LineAtKite | None = None) -> Evaluation:
     """The designs of the normalised vectors ``z`` (B, dimension), real or complex.
 
     ``tether_drag_factor`` (n,) multiplies the straight tether's C_d,t (eq. 3.14)
     at each wind speed of the grid: the flexible tether's measured C_d,t over
-    the straight one's (``None``: 1, the thesis' straight lumping).
+    the straight one's (``None``: 1, the thesis' straight lumping).  ``line_at_kite``
+    (``None``: the model's line) adds a flown line's inclination and tension share.
     """
     p, n = parameters, layout.n
     v = layout.unpack(z)
@@ -190,6 +201,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     tension = eta_delta * force_aero
     safe_tension = np.where(real_part(tension) > MIN_SAG_TENSION_N, tension, MIN_SAG_TENSION_N)
     sag_theta = kite_inclination_rad(beta, r, sag_coefficient_per_m(m_r, safe_tension))
+    if line_at_kite is not None:
+        sag_theta = sag_theta + np.asarray(line_at_kite.extra_inclination_rad, dtype=float)
     balance = (force_aero * np.sin(delta) - weight_term_N(kite_mass, theta)) / f_ref
 
     has_rotors = real_part(turbine_area) > 0
@@ -197,6 +210,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     thrust_coefficient = np.where(real_part(thrust_coefficient) < 1.0, thrust_coefficient, 1.0)
     induction = disc_induction_factor(thrust_coefficient)
     p_gr = ground_power_W(*aero, phi, g_out, g_t, mass_efficiency=eta_delta)
+    if line_at_kite is not None:
+        p_gr = p_gr * np.asarray(line_at_kite.ground_tension_share, dtype=float)
     p_ob = onboard_power_W(*aero, phi, g_out, g_t)
     onboard_electric = p.eta_t * (1.0 - induction) * p_ob
     reel_force = reel_in_force_N(rho, area, p.cd0, wind, g_in * wind, beta)

@@ -12,9 +12,18 @@ and the unit also as the attribute ``unit``)::
                       most_violated ... (NaN: a number that was not finite)
     /active/<family>  attrs: count, largest_multiplier of each active constraint family
     /sensitivities    attrs: p · d(net AEP)/dp in Wh per unit relative change
+    /flexible         with [design] tether = "flexible" (fem_tether.jobs.design.loop): attrs status,
+                      error, checked (the FE <-> FD gate), tolerance, iterations (the cap), fe_runs,
+                      fd_runs; the flexible design in the layout above (parameters ... active), and
+      rounds/<field>  one entry per round: AEP, its change, the FE runs, the factors' range ...
+      bins/<name>     per wind speed of the last round's design: its operating point, the FE and
+                      straight drags, the factor, C_D,t, the sag, the tensions (NaN: no run)
+      gate            attrs: the FE <-> FD gate at the final design's most bent bin
+      attribution     attrs: the AEPs of the attribution (lumped, flexible, flown with ...)
 
 A quantity that does not exist (the rated wind of a design never rated, a
 free wing area) is the attribute "none" and reads back as None.
+
 :func:`read_design_hdf5` returns the same as
 :meth:`fem_tether.design.result.DesignResult.as_dict`, so a file and a
 ``--json`` print hold one content.
@@ -32,6 +41,8 @@ from fem_tether import __version__
 from fem_tether.core.atomic import atomic_path, check_writable
 
 KIND = "design"
+#: the flexible tether's scalars, attributes of ``/flexible``
+FLEXIBLE_ATTRS = ("status", "error", "checked", "tolerance", "iterations", "fe_runs", "fd_runs")
 #: units by the ending of a name (the first that matches)
 UNITS = (("_Wh", "Wh"), ("_W_kg", "W/kg"), ("_W", "W"), ("_N", "N"), ("_m2", "m2"), ("_m", "m"),
          ("_mps", "m/s"), ("_per_mps", "s/m"), ("_rad", "rad"), ("_kg_m3", "kg/m3"), ("_kg", "kg"),
@@ -61,34 +72,54 @@ def _attrs(group, values: dict) -> None:
 
 
 def write_design_hdf5(path, result: dict, job_toml: str) -> Path:
-    """``result`` (:meth:`DesignResult.as_dict`) into ``path``, atomically."""
+    """``result`` (:meth:`DesignResult.as_dict`, or a flexible outcome's with its ``flexible``
+    content) into ``path``, atomically."""
     target = check_writable(path)
     with atomic_path(target) as tmp, h5py.File(tmp, "w") as f:
-        f.attrs.update(fem_tether_version=__version__, kind=KIND, job_toml=job_toml, seed=result["seed"],
-                       best_start=-1 if result["best_start"] is None else result["best_start"])
-        _attrs(f.create_group("parameters"), result["parameters"])
-        _attrs(f.create_group("design"), result["design"])
-        _attrs(f.create_group("outputs"), result["outputs"])
-        _attrs(f.create_group("sensitivities"), result["sensitivities_Wh"])
-        bounds = f.create_group("bounds")
-        for name, pair in result["bounds"].items():
-            bounds.attrs[name] = np.asarray(pair, dtype=float)
-        _attrs(f.create_group("held"), result["held"])
-        curves = f.create_group("curves")
-        for name, values in result["curves"].items():
-            curves.create_dataset(name, data=np.asarray(values, dtype=float)).attrs["unit"] = unit_of(name)
-        starts = f.create_group("starts")
-        for field in (result["starts"][0] if result["starts"] else {}):
-            column = [s[field] for s in result["starts"]]
-            if all(isinstance(v, str) for v in column):
-                data = np.asarray(column, dtype=h5py.string_dtype())
-            else:
-                data = np.asarray([np.nan if v is None else v for v in column])
-            starts.create_dataset(field, data=data).attrs["unit"] = unit_of(field)
-        active = f.create_group("active")
-        for family, entry in result["active_constraints"].items():
-            active.create_group(family).attrs.update(entry)
+        f.attrs.update(fem_tether_version=__version__, kind=KIND, job_toml=job_toml)
+        _write_design(f, result)
+        if "flexible" in result:
+            _write_flexible(f.create_group("flexible"), result["flexible"])
     return target
+
+
+def _write_design(group, result: dict) -> None:
+    group.attrs.update(seed=result["seed"], best_start=-1 if result["best_start"] is None else result["best_start"])
+    _attrs(group.create_group("parameters"), result["parameters"])
+    _attrs(group.create_group("design"), result["design"])
+    _attrs(group.create_group("outputs"), result["outputs"])
+    _attrs(group.create_group("sensitivities"), result["sensitivities_Wh"])
+    bounds = group.create_group("bounds")
+    for name, pair in result["bounds"].items():
+        bounds.attrs[name] = np.asarray(pair, dtype=float)
+    _attrs(group.create_group("held"), result["held"])
+    _columns(group.create_group("curves"), result["curves"])
+    _columns(group.create_group("starts"), {field: [s[field] for s in result["starts"]]
+                                             for field in (result["starts"][0] if result["starts"] else {})})
+    active = group.create_group("active")
+    for family, entry in result["active_constraints"].items():
+        active.create_group(family).attrs.update(entry)
+
+
+def _columns(group, columns: dict) -> None:
+    """One dataset per column (text columns as strings), each with its unit."""
+    for name, column in columns.items():
+        text = any(isinstance(v, str) for v in column)
+        data = np.asarray(column, dtype=h5py.string_dtype()) if text else \
+            np.asarray([np.nan if v is None else v for v in column])
+        group.create_dataset(name, data=data).attrs["unit"] = unit_of(name)
+
+
+def _write_flexible(group, flexible: dict) -> None:
+    """The loop of the flexible tether (:class:`fem_tether.jobs.design.loop.FlexibleDesign`): its
+    status, rounds, bins, gate and attribution, and, if it found one, the flexible design."""
+    _attrs(group, {k: flexible[k] for k in FLEXIBLE_ATTRS})
+    _columns(group.create_group("rounds"), flexible["rounds"])
+    _columns(group.create_group("bins"), flexible["bins"])
+    _attrs(group.create_group("gate"), flexible["gate"])
+    _attrs(group.create_group("attribution"), {f"{k}_aep_Wh": v for k, v in flexible["attribution_Wh"].items()})
+    if "design" in flexible:
+        _write_design(group, flexible)
 
 
 def _read_attrs(group) -> dict:
@@ -101,26 +132,43 @@ def _read_attrs(group) -> dict:
     return out
 
 
-def _start_value(column, i: int):
-    """Entry ``i`` of a start's column: a string, or a number (None where NaN: not finite)."""
-    if h5py.check_string_dtype(column.dtype) is not None:
-        return column.asstr()[i]
-    value = column[i].item()
+def read_design_hdf5(path) -> dict:
+    """The content of a design result file, as :meth:`DesignResult.as_dict` gives it (with the
+    flexible tether's content as ``flexible``, :meth:`fem_tether.jobs.design.loop.FlexibleDesign.as_dict`)."""
+    with h5py.File(path, "r") as f:
+        content = _read_design(f) | {"job_toml": str(f.attrs["job_toml"])}
+        if "flexible" in f:
+            content["flexible"] = _read_flexible(f["flexible"])
+        return content
+
+
+def _read_columns(group) -> dict:
+    return {k: (group[k].asstr()[()].tolist() if group[k].dtype.kind in "OS" else group[k][()].tolist())
+            for k in group}
+
+
+def _read_design(group) -> dict:
+    columns = _read_columns(group["starts"])
+    count = len(next(iter(columns.values()))) if columns else 0
+    starts = [{k: _finite_or_none(v[i]) for k, v in columns.items()} for i in range(count)]
+    best = int(group.attrs["best_start"])
+    return {"parameters": _read_attrs(group["parameters"]), "design": _read_attrs(group["design"]),
+            "outputs": _read_attrs(group["outputs"]), "sensitivities_Wh": _read_attrs(group["sensitivities"]),
+            "bounds": {k: v.tolist() for k, v in group["bounds"].attrs.items()}, "held": _read_attrs(group["held"]),
+            "curves": _read_columns(group["curves"]), "starts": starts,
+            "active_constraints": {k: _read_attrs(group["active"][k]) for k in group["active"]},
+            "seed": int(group.attrs["seed"]), "best_start": None if best < 0 else best}
+
+
+def _finite_or_none(value):
+    """A start's entry as written: NaN (a number that was not finite) reads back as None."""
     return None if isinstance(value, float) and np.isnan(value) else value
 
 
-def read_design_hdf5(path) -> dict:
-    """The content of a design result file, as :meth:`DesignResult.as_dict` gives it."""
-    with h5py.File(path, "r") as f:
-        starts_group = f["starts"]
-        fields = list(starts_group)
-        count = len(starts_group[fields[0]]) if fields else 0
-        starts = [{k: _start_value(starts_group[k], i) for k in fields} for i in range(count)]
-        best = int(f.attrs["best_start"])
-        return {"parameters": _read_attrs(f["parameters"]), "design": _read_attrs(f["design"]),
-                "outputs": _read_attrs(f["outputs"]), "sensitivities_Wh": _read_attrs(f["sensitivities"]),
-                "bounds": {k: v.tolist() for k, v in f["bounds"].attrs.items()}, "held": _read_attrs(f["held"]),
-                "curves": {k: f["curves"][k][()].tolist() for k in f["curves"]}, "starts": starts,
-                "active_constraints": {k: _read_attrs(f["active"][k]) for k in f["active"]},
-                "seed": int(f.attrs["seed"]), "best_start": None if best < 0 else best,
-                "job_toml": str(f.attrs["job_toml"])}
+def _read_flexible(group) -> dict:
+    attribution = _read_attrs(group["attribution"])
+    content = {k: _read_attrs(group)[k] for k in FLEXIBLE_ATTRS} | {
+        "rounds": _read_columns(group["rounds"]), "bins": _read_columns(group["bins"]),
+        "gate": _read_attrs(group["gate"]),
+        "attribution_Wh": {k.removesuffix("_aep_Wh"): v for k, v in attribution.items()}}
+    return content | (_read_design(group) if "design" in group else {})

@@ -14,11 +14,15 @@ turbines*, ch. 5) against the wind speed at the operating altitude:
 * ``masses.png``: glider, generators, tether and take-off system;
 * ``constraints.png``: the active constraint families' largest multipliers and
   the largest sensitivities p·dAEP/dp;
+* with the flexible tether in the loop (``[design] tether = "flexible"``),
+  ``flexible.png``: the power curves of the lumped and the flexible design and
+  the factor on eq. 3.14's tether drag coefficient per wind speed (1 for the lumped);
 
 and ``index.html``: the summary's head (:mod:`fem_tether.report.design_text`), the
 design and output tables (its rows), the starts, the figures (linked by name: the
 directory stands alone), the active constraints, the sensitivities, the parameters
-and the job's text.  Every file is written whole or not at all, never over a file
+and the job's text; with the flexible tether, its section: the loop's rounds and
+gate, the two designs side by side, where their AEPs differ, and its figure.  Every file is written whole or not at all, never over a file
 fem-tether did not write (:mod:`fem_tether.core.atomic`).
 """
 
@@ -34,12 +38,15 @@ from fem_tether.core.atomic import PAGE_NAME, atomic_path, check_folder, check_w
 from fem_tether.io.design_file import read_design_hdf5, unit_of
 from fem_tether.jobs.study.result import report_dir
 from fem_tether.physics.resource import weibull_density_per_mps
-from fem_tether.report.design_text import DESIGN_ROWS, OUTPUT_ROWS, design_text
+from fem_tether.report.design_text import (DESIGN_ROWS, OUTPUT_ROWS, attribution_rows, design_text, flexible_text,
+                                           side_by_side_rows)
 from fem_tether.report.page import STYLE, image, number, table
 from fem_tether.report.plots import _label_axes, plt, save_atomically   # plt: with the Agg backend
 
 #: The figures' files, by name.
 FIGURE_FILES = {name: f"{name}.png" for name in ("power", "control", "weight", "forces", "masses", "constraints")}
+#: The flexible tether's figure's file.
+FLEXIBLE_FIGURE = "flexible.png"
 #: Sensitivities drawn (the largest by magnitude); the page's table holds all.
 SENSITIVITIES_DRAWN = 10
 #: The mass breakdown: (label, key of the outputs).
@@ -168,13 +175,47 @@ def plot_constraints(r: dict, path) -> Path:
     return save_atomically(fig, path)
 
 
+def plot_flexible(r: dict, path) -> Path:
+    """The lumped and the flexible design's power curves (each on its own grid) and the factor on
+    eq. 3.14's C_d,t per wind speed: the flexible line's measured drag over the straight line's (the
+    last round's, the flexible design's; 1 for the lumped)."""
+    f = r["flexible"]
+    lumped, flexible, bins = _curves(r), _curves(f), {k: np.asarray(v, dtype=float) for k, v in f["bins"].items()
+                                                       if k not in ("status", "error")}
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7.0, 6.5), constrained_layout=True)
+    for c, o, label, style in ((lumped, r["outputs"], "lumped (eqs. 3.14-3.19)", "o-"),
+                               (flexible, f["outputs"], "flexible (FE line in the loop)", "s-")):
+        top.plot(c["wind_mps"], 1e-6 * c["power_W"], style, ms=3.5,
+                 label=f"{label}: AEP {1e-9 * o['aep_Wh']:.3f} GWh, CF {o['capacity_factor']:.3f}")
+    top.axhline(1e-6 * r["parameters"]["rated_power_W"], color="0.3", ls="--", lw=1.0, label="$P_{rated}$")
+    _label_axes(top, "", "electrical power [MW]", f"lumped and flexible tether ({f['status']}, "
+                f"{len(f['rounds']['round'])} rounds, {f['fe_runs']} FE runs)", "lower right")
+    bottom.axhline(1.0, color="tab:blue", lw=1.2, label="lumped: 1")
+    bottom.plot(bins["wind_mps"], bins["factor"], "s-", ms=3.5, color="tab:orange",
+                label="flexible: $F_{FE}/F_{straight}$ of the last round")
+    bottom.plot(bins["wind_mps"], bins["cd_fe"] / bins["cd_model"], "^:", ms=3.5, color="tab:red",
+                label="$C_{D,t}$ of the FE line over eq. 3.14's")
+    _label_axes(bottom, WIND_LABEL, "factor on $C_{d,t}$ (eq. 3.14) [-]", "the tether's drag per wind speed",
+                "center right")
+    return save_atomically(fig, path)
+
+
 FIGURES = {"power": plot_power, "control": plot_control, "weight": plot_weight, "forces": plot_forces,
            "masses": plot_masses, "constraints": plot_constraints}
 
 
+def has_flexible(r: dict) -> bool:
+    """Whether the design result ``r`` has a flexible design (the loop found one)."""
+    return "design" in r.get("flexible", {})
+
+
 def write_figures(r: dict, directory: Path) -> dict[str, Path]:
-    """Every figure of :data:`FIGURES` of the design result ``r`` in ``directory``."""
-    return {name: draw(r, directory / FIGURE_FILES[name]) for name, draw in FIGURES.items()}
+    """Every figure of :data:`FIGURES` of the design result ``r`` in ``directory`` (and the flexible
+    tether's, :func:`plot_flexible`, if it has one)."""
+    figures = {name: draw(r, directory / FIGURE_FILES[name]) for name, draw in FIGURES.items()}
+    if has_flexible(r):
+        figures["flexible"] = plot_flexible(r, directory / FLEXIBLE_FIGURE)
+    return figures
 
 
 def quantity_rows(values: dict, rows) -> list[list[str]]:
@@ -214,7 +255,7 @@ def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
         "<h2>Outputs</h2>", table(["output", "value", "unit"], quantity_rows(r["outputs"], OUTPUT_ROWS)),
         "<h2>Starts</h2>",
         table(["start", "success", "feasible", "net AEP [GWh]", "iterations", "message"], start_rows(r["starts"])),
-        "<h2>Figures</h2>", *(image(p, embed=False) for p in figures.values()),
+        "<h2>Figures</h2>", *(image(figures[name], embed=False) for name in FIGURE_FILES),
         "<h2>Active constraints</h2>",
         table(["constraint family", "active", "largest multiplier"], constraint_rows(r["active_constraints"])),
         "<h2>Sensitivities</h2><p>net AEP per relative change of a parameter, p·dAEP/dp</p>",
@@ -222,14 +263,40 @@ def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
               [[name, f"{1e-9 * value:+.4f}"] for name, value in sensitivities_by_size(r)]),
         "<details><summary>parameters</summary>",
         table(["parameter", "value", "unit"], parameter_rows(r["parameters"])), "</details>",
+        *flexible_section(r, figures),
         f"<h2>Job</h2><pre>{html.escape(r['job_toml'])}</pre>",
         "</body></html>"])
 
 
-def report_paths(out) -> list[Path]:
-    """The files of the report of the design file ``out``: the figures, then the page."""
+def flexible_section(r: dict, figures: dict[str, Path]) -> list[str]:
+    """The flexible tether's section of the page ([] without one): the loop's summary, the two
+    designs side by side, the rounds, where the AEPs differ and the figure."""
+    if "flexible" not in r:
+        return []
+    f = r["flexible"]
+    head = flexible_text(r).split("\n\n")[0].splitlines()
+    out = ["<h2>Flexible tether in the loop</h2>", *(f"<p>{html.escape(line.strip())}</p>" for line in head)]
+    if not has_flexible(r):
+        return out
+    rounds = f["rounds"]
+    return out + [
+        table(["", "lumped", "flexible", "change", "unit"], [list(row) for row in side_by_side_rows(r)]),
+        table(["round", "FE runs", "drag factor", "AEP [GWh]", "change"],
+              [[str(k), str(n), f"{low:.4f}-{high:.4f}", f"{1e-9 * a:.4f}", f"{100 * c:+.3f} %"]
+               for k, n, low, high, a, c in zip(rounds["round"], rounds["fe_runs"], rounds["factor_min"],
+                                                rounds["factor_max"], rounds["aep_Wh"], rounds["change"])]),
+        "<p>where the AEPs differ (a design flown with another tether: its hardware held, its operation "
+        "re-optimised)</p>",
+        table(["", "AEP [GWh]", "change"], [[label.strip(), aep, change] for label, aep, change in attribution_rows(r)]),
+        image(figures["flexible"], embed=False)]
+
+
+def report_paths(out, flexible: bool = False) -> list[Path]:
+    """The files of the report of the design file ``out`` (``flexible``: with a flexible design):
+    the figures, then the page."""
     directory = report_dir(out)
-    return [directory / name for name in FIGURE_FILES.values()] + [directory / PAGE_NAME]
+    names = [*FIGURE_FILES.values(), *([FLEXIBLE_FIGURE] if flexible else [])]
+    return [directory / name for name in names] + [directory / PAGE_NAME]
 
 
 def write_design_report(out) -> Path:
@@ -241,10 +308,11 @@ def write_design_report(out) -> Path:
     if r["best_start"] is None:
         raise ValueError(f"{out}: no start converged to a feasible design, so there is no design to report")
     check_folder(report_dir(out))
-    for path in report_paths(out):
+    paths = report_paths(out, has_flexible(r))
+    for path in paths:
         check_writable(path)
     figures = write_figures(r, report_dir(out))
-    page = report_paths(out)[-1]
+    page = paths[-1]
     with atomic_path(page) as tmp:
         tmp.write_text(render(out, r, figures), encoding="utf-8")
     return page

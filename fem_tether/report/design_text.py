@@ -100,3 +100,97 @@ def design_text(result: dict, path=None) -> str:
     if path is not None:
         lines += ["", f"wrote {path}"]
     return "\n".join(lines)
+
+
+#: the side-by-side table of the lumped and the flexible design: (label, group, key, factor, unit, format)
+SIDE_BY_SIDE = (("AEP", "outputs", "aep_Wh", 1e-9, "GWh", ".4f"),
+                ("capacity factor", "outputs", "capacity_factor", 100.0, "%", ".2f"),
+                ("rated from", "outputs", "rated_wind_mps", 1.0, "m/s", ".2f"),
+                ("tether length r", "design", "tether_length_m", 1.0, "m", ".1f"),
+                ("tether diameter d", "design", "tether_diameter_m", 1e3, "mm", ".2f"),
+                ("elevation beta", "design", "elevation_rad", 180 / math.pi, "deg", ".2f"),
+                ("operating altitude h", "outputs", "altitude_m", 1.0, "m", ".1f"),
+                ("span s", "design", "span_m", 1.0, "m", ".2f"), ("aspect ratio AR", "design", "aspect_ratio", 1.0, "", ".2f"),
+                ("cut-in", "design", "cut_in_mps", 1.0, "m/s", ".2f"), ("cut-out", "design", "cut_out_mps", 1.0, "m/s", ".2f"),
+                ("total mass", "outputs", "total_mass_kg", 1.0, "kg", ".1f"),
+                ("  glider", "outputs", "glider_mass_kg", 1.0, "kg", ".1f"),
+                ("  generators", "outputs", "generator_mass_kg", 1.0, "kg", ".1f"),
+                ("  tether", "outputs", "tether_mass_kg", 1.0, "kg", ".1f"),
+                ("  take-off", "outputs", "takeoff_mass_kg", 1.0, "kg", ".1f"))
+#: the attribution's lines: (label, AEP, against which AEP)
+ATTRIBUTION = (
+    ("flexible design against lumped (total)", "flexible", "lumped"),
+    ("  the FE line's drag on the lumped design", "lumped_flexible_drag", "lumped"),
+    ("  redesign for it", "flexible", "lumped_flexible_drag"),
+    ("flexible design flown with eq. 3.14's drag", "flexible_straight_drag", "flexible"),
+    ("  with the FE line's C_D,t over eq. 3.14's", "flexible_measured_cd", "flexible"),
+    ("  with the FE line's inclination at the kite", "flexible_measured_sag", "flexible"),
+    ("  with the FE line's tension at the winch", "flexible_measured_tension", "flexible"),
+    ("  with both", "flexible_measured_line", "flexible"))
+
+
+def side_by_side_rows(result: dict) -> list[tuple[str, str, str, str, str]]:
+    """(label, lumped, flexible, change, unit) of :data:`SIDE_BY_SIDE` (the flexible column empty
+    without a flexible design)."""
+    flexible = result["flexible"]
+    rows = []
+    for label, group, key, factor, unit, fmt in SIDE_BY_SIDE:
+        a = result[group][key]
+        b = flexible[group][key] if group in flexible else math.nan
+        shown = (format(a * factor, fmt), format(b * factor, fmt) if math.isfinite(b) else "-")
+        # a change only from a number that shows (none from a 0.0)
+        change = f"{100 * (b / a - 1):+.2f} %" if math.isfinite(b) and float(shown[0]) != 0.0 else ""
+        rows.append((label, *shown, change, unit))
+    return rows
+
+
+def attribution_rows(result: dict) -> list[tuple[str, str, str]]:
+    """(label, AEP [GWh], change against its reference) of :data:`ATTRIBUTION`."""
+    aep = result["flexible"]["attribution_Wh"]
+    return [(label, f"{aep[key] / 1e9:.4f}", f"{100 * (aep[key] / aep[base] - 1):+.3f} %")
+            for label, key, base in ATTRIBUTION if key in aep]
+
+
+def flexible_text(result: dict, timing_s: dict | None = None, path=None) -> str:
+    """The printed summary of the flexible tether in the loop beside the lumped design (``result``:
+    a design result's content with its ``flexible`` part; ``timing_s``: the loop's wall times)."""
+    f = result["flexible"]
+    rounds = f["rounds"]
+    lines = [f"flexible tether in the loop: {f['status']}"
+             + (f" ({f['error']})" if f["error"] else "")
+             + f"; {len(rounds.get('round', []))} rounds of at most {f['iterations']}, tolerance "
+               f"{100 * f['tolerance']:g} % on the AEP; {f['fe_runs']} FE runs, {f['fd_runs']} FD run"]
+    for k, runs, aep, change, low, high in zip(rounds.get("round", []), rounds.get("fe_runs", []),
+                                               rounds.get("aep_Wh", []), rounds.get("change", []),
+                                               rounds.get("factor_min", []), rounds.get("factor_max", [])):
+        lines.append(f"  round {k}: {runs} FE runs, drag factor {low:.3f}-{high:.3f}, AEP {aep / 1e9:.4f} GWh "
+                     f"({100 * change:+.3f} %)")
+    gate = f["gate"]
+    if gate:
+        lines.append(f"  FE <-> FD gate at {gate['wind_mps']:.2f} m/s (the most bent bin): "
+                     + ("passed" if gate["crosscheck_ok"] else "FAILED")
+                     + (f", drag {100 * gate['rel_diff_drag']:.2f} %, shape {100 * gate['rel_diff_shape']:.3f} % of r"
+                        f"; factor there {gate['factor_measured']:.4f} (optimised with {gate['factor_used']:.4f})"
+                        if gate["status"] == "ok" else f": {gate['error']}"))
+    if timing_s:
+        lines.append(f"  wall time {timing_s['wall_s']:.1f} s: FE runs {timing_s['fe_s']:.1f} s, "
+                     f"re-optimisations {timing_s['optimiser_s']:.1f} s, gate {timing_s['gate_s']:.1f} s, "
+                     f"attribution {timing_s['attribution_s']:.1f} s")
+    if "design" in f:
+        lines += ["", f"  {'':<30} {'lumped':>12} {'flexible':>12} {'change':>10}"]
+        lines += [f"  {label:<30} {a:>12} {b:>12} {change:>10}  {unit}"
+                  for label, a, b, change, unit in side_by_side_rows(result)]
+        lc, fc, bins = result["curves"], f["curves"], f["bins"]
+        lines += ["", "  per wind speed (lumped | flexible, each on its own grid; factor and sag of the last round):",
+                  f"  {'V [m/s]':>8} {'C_L':>6} {'P [MW]':>7} | {'V [m/s]':>8} {'C_L':>6} {'P [MW]':>7} "
+                  f"{'factor':>7} {'C_D,t FE':>9} {'sag FE':>7} {'model':>7} [deg]"]
+        for j in range(len(lc["wind_mps"])):
+            lines.append(f"  {lc['wind_mps'][j]:8.2f} {lc['cl'][j]:6.3f} {lc['power_W'][j] / 1e6:7.3f} | "
+                         f"{fc['wind_mps'][j]:8.2f} {fc['cl'][j]:6.3f} {fc['power_W'][j] / 1e6:7.3f} "
+                         f"{bins['factor'][j]:7.4f} {bins['cd_fe'][j]:9.5f} {math.degrees(bins['sag_fe_rad'][j]):7.3f} "
+                         f"{math.degrees(bins['sag_model_rad'][j]):7.3f}")
+        lines += ["", "  where the AEP differs:"] + [f"  {label:<48} {aep:>9} GWh {change:>10}"
+                                                      for label, aep, change in attribution_rows(result)]
+    if path is not None:
+        lines += ["", f"wrote {path}"]
+    return "\n".join(lines)

@@ -6,7 +6,8 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     preset = "trevisi-3mw"      # optional: start from a shipped job, then apply this file's keys
     starts = 10                 # default: N_max of Trevisi §5.3.1 (10; 15 where cl_max > 3)
     seed = 0                    # start k is drawn from NumPy's generator seeded (seed, k)
-    tether = "lumped"           # the straight tether of eqs. 3.14-3.19
+    tether = "lumped"           # the straight tether of eqs. 3.14-3.19, or "flexible": the FE line in
+                                # the loop (fem_tether.jobs.design.loop, docs/design-flexible.md)
 
     [design.parameters]         # any field of fem_tether.design.parameters.DesignParameters
     rated_power_W = 3e6
@@ -18,6 +19,12 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
 
     [design.held]               # a variable held at a value
     elevation_rad = 0.4
+
+    [design.flexible]           # tether = "flexible": the loop's cap of rounds, its tolerance on the
+    iterations = 5              # AEP's change, and configuration sections of the line's runs
+    tolerance = 1e-3
+    [design.flexible.fe]
+    elements = 40
 
 Every key is checked: an unknown table, key or variable, a value of the
 wrong type or out of range, bounds no design can meet (an altitude, a wind
@@ -41,10 +48,11 @@ from fem_tether.core.errors import ConfigError
 from fem_tether.design.optimiser import starts_for
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import PER_WIND, SCALARS, Layout, unreachable
+from fem_tether.jobs.design.flexible import FlexibleSettings, flexible_settings
 
-KEYS = ("preset", "starts", "seed", "tether", "parameters", "bounds", "held")
-#: tether models of a design; "lumped" is the thesis' straight tether
-TETHERS = ("lumped",)
+KEYS = ("preset", "starts", "seed", "tether", "parameters", "bounds", "held", "flexible")
+#: tether models of a design; "lumped" is the thesis' straight tether, "flexible" the FE line in the loop
+TETHERS = ("lumped", "flexible")
 #: the largest number of starts a job may ask for (ours: a typing error, not a design, beyond it)
 MAX_STARTS = 1000
 
@@ -71,6 +79,7 @@ class DesignJob:
     tether: str
     text: str
     name: str
+    flexible: FlexibleSettings = FlexibleSettings()
 
     def layout(self) -> Layout:
         return Layout.build(self.parameters, self.bounds, self.held)
@@ -124,8 +133,7 @@ def _job(design: dict, text: str, name: str) -> DesignJob:
         raise ConfigError(f"[design] seed = {seed!r}: must be an integer >= 0")
     tether = design.get("tether", "lumped")
     if tether not in TETHERS:
-        raise ConfigError(f"[design] tether = {tether!r}: must be one of {', '.join(TETHERS)} "
-                          "(the flexible tether in the loop is not built yet)")
+        raise ConfigError(f"[design] tether = {tether!r}: must be one of {', '.join(TETHERS)}")
     bounds = _table(design, "bounds")
     held = _table(design, "held")
     try:
@@ -138,7 +146,10 @@ def _job(design: dict, text: str, name: str) -> DesignJob:
             raise ConfigError(f"[design.held] {variable} = {held[variable]!r}: outside its bounds [{low:g}, {high:g}]")
     if why := unreachable(parameters, layout):
         raise ConfigError(f"[design] {why}")
-    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name)
+    if "flexible" in design and tether != "flexible":
+        raise ConfigError(f"[design.flexible]: only with [design] tether = \"flexible\" (this job's is {tether!r})")
+    flexible = flexible_settings(design.get("flexible", {}), parameters)
+    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible)
 
 
 def _table(design: dict, key: str) -> dict:

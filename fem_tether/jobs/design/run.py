@@ -35,6 +35,7 @@ from fem_tether.design.optimiser import Problem, Solution, consistent, start_poi
 from fem_tether.design.result import DesignResult, StartRecord, design_result, never_rated, record
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
+from fem_tether.jobs.design.loop import FlexibleOutcome, run_flexible
 from fem_tether.jobs.runner import distribute, raise_on_every_rank
 from fem_tether.jobs.study.result import report_dir
 
@@ -126,9 +127,12 @@ def check_out(out: Path) -> None:
     check_writable(check_folder(report_dir(out)) / PAGE_NAME)
 
 
-def run_design(job: DesignJob, out: str | Path, comm=None, progress: bool = True) -> DesignResult | None:
-    """Run ``job``'s starts over the ranks of ``comm`` (MPI.COMM_WORLD by default) and write ``out``
-    if a design was found; the result on rank 0, None on the others."""
+def run_design(job: DesignJob, out: str | Path, comm=None,
+               progress: bool = True) -> DesignResult | FlexibleOutcome | None:
+    """Run ``job``'s starts over the ranks of ``comm`` (MPI.COMM_WORLD by default), with ``[design]
+    tether = "flexible"`` then the loop of :mod:`.loop`, and write ``out`` if the starts found a
+    design; the result on rank 0 (a :class:`~.loop.FlexibleOutcome` for the flexible tether), None
+    on the others.  ConfigError on every rank if the design never reaches its rated power."""
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
@@ -153,12 +157,17 @@ def run_design(job: DesignJob, out: str | Path, comm=None, progress: bool = True
             bar.close()
             raise DesignInterrupted(starts.directory) from None
         sync(comm)
-        if comm.Get_rank() != 0:
+        result = design_result(starts.problem, *starts.solutions(), job.seed) if comm.Get_rank() == 0 else None
+        why = never_rated(result) if result is not None else ""
+        raise_on_every_rank(comm, ConfigError(f"[design.parameters] {why}") if why else None)
+        outcome: DesignResult | FlexibleOutcome | None = result
+        if job.tether == "flexible":
+            try:
+                outcome = run_flexible(comm, job, out, result, progress)
+            except KeyboardInterrupt:
+                raise DesignInterrupted(starts.directory) from None
+        if outcome is None:
             return None
-        solutions, records = starts.solutions()
-        result = design_result(starts.problem, solutions, records, job.seed)
-        if why := never_rated(result):
-            raise ConfigError(f"[design.parameters] {why}")
-        if result.found:
-            write_design_hdf5(out, result.as_dict(), job.text)
-        return result
+        if result is not None and result.found:
+            write_design_hdf5(out, outcome.as_dict(), job.text)
+        return outcome

@@ -37,6 +37,7 @@ from fem_tether.jobs.store import inputs_key
 from fem_tether.performance.summary import operating_tether_cd
 from fem_tether.tether.lumping import lumped_drags_N
 from fem_tether.systems.operating_point import OperatingPoint
+from fem_tether.tether.results import TetherRun
 
 from fem_tether.jobs.study import energy, plan
 from fem_tether.jobs.study.job import Point, StudyJob
@@ -240,27 +241,41 @@ class Study:
         self.parts.write(task.name, key, values | {"wall_s": time.perf_counter() - t0})
 
     def _tether_run(self, task: Task) -> dict:
+        values: dict
         try:
             if task.kind == "seed":
                 case = self.config(task.point)
                 fe_run, values = simulator("fe")(case), {}
             elif task.kind == "check":
-                case = checkable(self.case(task.point, task.node))
-                fe_run = simulator("fe")(case)
-                fd_run = simulator("fd")(case)
-                check = compare(fe_run, fd_run, case.crosscheck)
-                values = {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
-                          "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
+                fe_run, case, values = gate_run(self.case(task.point, task.node))
             else:
                 case = self.case(task.point, task.node)
                 fe_run, values = simulator("fe")(case), {}
-        except (InputError, SolverDivergedError) as exc:
-            return {"status": "failed", "error": f"{task.name}: {exc}"}
-        except Exception as exc:  # a defect must not cost the other runs their results
-            last = traceback.extract_tb(exc.__traceback__)[-1]
-            return {"status": "failed", "error": f"{task.name}: {type(exc).__name__}: {exc} "
-                                                 f"({Path(last.filename).name}:{last.lineno})"}
+        except Exception as exc:
+            return failure(task.name, exc)
         drags = lumped_drags_N(fe_run, case)
         return {"status": "ok", "drag_fe_N": drags["moment"], "drag_power_fe_N": drags["power"],
                 "kite_tension_fe_N": fe_run.mean("kite_tension_N"), "peak_tension_N": peak_tension_N(fe_run),
                 **values}
+
+
+def gate_run(case: Config) -> tuple[TetherRun, Config, dict]:
+    """The FE <-> FD gate on ``case``: both solvers on its checkable variant
+    (:func:`fem_tether.tether.crosscheck.checkable`), compared; the FE run, the case
+    it ran and the comparison's values (the FD drag, ok, the drag and shape differences)."""
+    case = checkable(case)
+    fe_run = simulator("fe")(case)
+    fd_run = simulator("fd")(case)
+    check = compare(fe_run, fd_run, case.crosscheck)
+    return fe_run, case, {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
+                          "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
+
+
+def failure(name: str, exc: Exception) -> dict:
+    """A failed run's part: a rejected case or a diverged solve says why; any other exception is a
+    defect, named with where it was raised (it must not cost the other runs their results)."""
+    if isinstance(exc, (InputError, SolverDivergedError)):
+        return {"status": "failed", "error": f"{name}: {exc}"}
+    last = traceback.extract_tb(exc.__traceback__)[-1]
+    return {"status": "failed", "error": f"{name}: {type(exc).__name__}: {exc} "
+                                         f"({Path(last.filename).name}:{last.lineno})"}

@@ -23,7 +23,8 @@ JOB = '[design]\npreset = "trevisi-3mw"\nstarts = 2\n[design.parameters]\nmode =
     ('[design.parameters]\nrotor = 1\n', "[design.parameters] rotor: unknown parameter"),
     ('[design.bounds]\nspan_m = [10, 5]\n', "span_m"),
     ('[design.held]\nwingspan = 3\n', "[design.held] wingspan: unknown variable"),
-    ('[design]\ntether = "flexible"\n', "tether = 'flexible'"),
+    ('[design]\ntether = "catenary"\n', "tether = 'catenary': must be one of lumped, flexible"),
+    ('[design.flexible]\niterations = 3\n', "[design.flexible]: only with [design] tether"),
     ('[design]\npreset = "nope"\n', "preset = 'nope': unknown"),
     ('[kite]\narea_m2 = 3\n', "unknown table [kite]"),
     ('[design.bounds]\ntether_length_m = [50, 60]\n', "[design] bounds.tether_length_m = [50, 60] m and "
