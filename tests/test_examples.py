@@ -145,7 +145,7 @@ def test_tab51_gap_eight_drag_level_and_reel_out():
 
 def test_design_section_5_4_readings_on_the_ground_gen_design():
     """docs/design.md §5.4 on the ground-gen design (start 0 of seed 0, then one SLSQP per
-    reading warm-started from it: ~20 s): AEP 16.72 GWh, CF 0.636, rated from 14.66 m/s at h
+    reading warm-started from it: ~5 s): AEP 16.72 GWh, CF 0.636, rated from 14.66 m/s at h
     (9.25 m/s at 20 m); the cut-out at Table 5.6's mean on the 20 m axis −1.35 %, the tether in
     the flying mass −0.34 %, the printed balance −2.53 %, the three together −4.54 %; none
     within 3 % of 14.7 GWh, every rated wind below 10 m/s at 20 m.  SLSQP ends at ftol 1e-10 on
