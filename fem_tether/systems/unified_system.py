@@ -644,10 +644,27 @@ class _Problem:
     def feasible(self, point: dict[str, float]) -> bool:
         return all(x >= -1e-9 for x in self.limits(point))
 
+    def acceptable(self, point: dict[str, float]) -> bool:
+        return self.state(point).flies and self.feasible(point)
+
+    @staticmethod
+    def pulled_back(inside, outside, holds):
+        """The point of the segment from ``inside`` (where ``holds``) to ``outside`` nearest ``outside``
+        at which ``holds`` still does, by halving the segment's parameter to 1e-15."""
+        def at(t):
+            return {n: inside[n] + t * (outside[n] - inside[n]) for n in VARIABLES}
+
+        low, high = 0.0, 1.0
+        while high - low > 1e-15:
+            low, high = (0.5 * (low + high), high) if holds(at(0.5 * (low + high))) else (low, 0.5 * (low + high))
+        return at(low)
+
     def _solve(self, free, bounds, start, objective, constraints):
         """SLSQP from ``start`` over ``free``: least ``objective(point)`` with ``constraints(point)``
         (a list) ≥ 0; gradients by forward differences (SLSQP's own step √ε, backward at an upper
-        bound), the objective's and the constraints' from the same points."""
+        bound), the objective's and the constraints' from the same points.  An end that does not
+        fly or breaks a limit (SLSQP stopped on its line search a hair outside) is pulled back
+        towards an acceptable ``start`` (:meth:`pulled_back`); None if it stays unacceptable."""
         low, high = np.array([bounds[n][0] for n in free]), np.array([bounds[n][1] for n in free])
 
         def point(x):
@@ -674,7 +691,9 @@ class _Problem:
                           jac=lambda x: gradients(x)[0], bounds=list(zip(low, high)), constraints=cons,
                           options={"ftol": 1e-14, "maxiter": 300})
         found = point(result.x)
-        return found if self.state(found).flies and self.feasible(found) else None
+        if not self.acceptable(found) and self.acceptable(start):
+            found = self.pulled_back(start, found, self.acceptable)
+        return found if self.acceptable(found) else None
 
     def maximise(self, free, bounds, start):
         """Most electrical power from ``start`` within the limits; None if it ends infeasible."""
@@ -688,6 +707,8 @@ class _Problem:
         (brentq); the crossing of least force starts SLSQP, whose result is
         kept if it is feasible and no worse (at ``start`` P's gradient
         vanishes, so SLSQP's linearised power limit would not hold it there).
+        An SLSQP end a hair below P_rated (its linearisation of P) is first
+        pulled back towards ``start`` until P ≥ P_rated (:meth:`pulled_back`).
         """
         rated = self.system.rated_power_W
         crossings = []
@@ -707,6 +728,8 @@ class _Problem:
         crossing = min(crossings, key=lambda p: self.state(p).tether_force_N)
         found = self._solve(free, bounds, crossing, lambda p: self.state(p).tether_force_N / self.force_scale,
                             lambda p: self.limits(p) + [(self.power(p) - rated) / rated])
+        if found is not None and self.power(found) < rated:
+            found = self.pulled_back(start, found, lambda p: self.power(p) >= rated and self.acceptable(p))
         if found is None or self.power(found) < rated * (1 - 1e-9) \
                 or self.state(found).tether_force_N > self.state(crossing).tether_force_N:
             return crossing
