@@ -325,7 +325,8 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
 
 @dataclass(frozen=True)
 class _ReelOut:
-    """The reel-out phase of :func:`power_at_factors` (γ_in and the recovery do not enter it)."""
+    """The reel-out phase of :func:`power_at_factors` (γ_in and the recovery do not enter it): the
+    equilibrium and, where it flies, P_gr, P_ob, the rotors' induction a and V_a (else zeros)."""
 
     wind_mps: float
     rho_kg_m3: float
@@ -339,6 +340,10 @@ class _ReelOut:
     delta_rad: float
     eta_delta: float
     tether_force_N: float
+    ground_power_W: float
+    onboard_power_W: float
+    disc_induction: float
+    apparent_speed_mps: float
 
 
 def _reel_out(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_t: float, lift: float,
@@ -356,8 +361,18 @@ def _reel_out(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_t:
     branch = _seed_branch if mass_losses and system.mass_balance == "seed" else _exact_branch
     sag_N = 0.5 * system.tether_mass_per_length_kg_m * G_MPS2 * system.tether_length_m * math.cos(beta)
     equilibrium = _kite_inclination(branch(q_star, mass_kg, gamma_out, beta), beta, sag_N)
-    theta, delta, eta, force = equilibrium if equilibrium is not None else (math.nan, math.nan, math.nan, 0.0)
-    return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, theta, delta, eta, force)
+    if equilibrium is None:
+        return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, math.nan, math.nan, math.nan,
+                        0.0, 0.0, 0.0, 0.0, 0.0)
+    theta, delta, eta, force = equilibrium
+    aero = (rho_kg_m3, system.area_m2, cd, ge, wind_mps)
+    phi = theta + delta
+    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=eta))
+    onboard = gamma_t > 0                           # without rotors P_ob = 0 and a = 0 exactly
+    p_ob = float(onboard_power_W(*aero, phi, gamma_out, gamma_t)) if onboard else 0.0
+    a = float(disc_induction_factor(min(thrust_coefficient, 1.0))) if onboard else 0.0
+    return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, theta, delta, eta, force,
+                    p_gr, p_ob, a, float(apparent_speed_mps(wind_mps, ge, phi, gamma_out, gamma_t)))
 
 
 def _cycle(system: UnifiedSystem, out: _ReelOut, gamma_in: float, recovery: bool) -> CyclePower:
@@ -367,25 +382,17 @@ def _cycle(system: UnifiedSystem, out: _ReelOut, gamma_in: float, recovery: bool
     if not out.tether_force_N > 0:
         return CyclePower(*factors, False, out.theta_rad, out.delta_rad, out.eta_delta, out.cd, out.ge,
                           out.tether_cd, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    aero = (out.rho_kg_m3, system.area_m2, out.cd, out.ge, wind_mps)
-    phi = out.theta_rad + out.delta_rad
-    thrust_coefficient = min(system.area_m2 * gamma_t * out.cd / system.turbine_area_m2, 1.0) \
-        if gamma_t > 0 else 0.0
-    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=out.eta_delta))
-    p_ob = float(onboard_power_W(*aero, phi, gamma_out, gamma_t))
-    a = float(disc_induction_factor(thrust_coefficient))
+    p_gr, p_ob, a = out.ground_power_W, out.onboard_power_W, out.disc_induction
     reeling = recovery and gamma_out > 0
     reel_in = reel_in_force_exact_N if system.exact_reel_in else reel_in_force_N
     t_r = float(reel_in(out.rho_kg_m3, system.area_m2, system.cd0, wind_mps, gamma_in * wind_mps,
                         system.elevation_rad)) if reeling else 0.0
-    p_r = float(reel_in_power_W(t_r, wind_mps, gamma_in))
-    g_in = gamma_in if reeling else 0.0
-    mechanical = float(cycle_power_W(p_gr + (1.0 - a) * p_ob, p_r, gamma_out if reeling else 0.0, g_in))
-    electrical = float(cycle_power_W(system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob,
-                                     p_r / system.eta_in, gamma_out if reeling else 0.0, g_in))
+    p_r = float(reel_in_power_W(t_r, wind_mps, gamma_in)) if reeling else 0.0
+    mechanical, electrical = map(float, cycle_power_W(
+        np.array([p_gr + (1.0 - a) * p_ob, system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob]),
+        np.array([p_r, p_r / system.eta_in]), gamma_out if reeling else 0.0, gamma_in if reeling else 0.0))
     return CyclePower(*factors, True, out.theta_rad, out.delta_rad, out.eta_delta, out.cd, out.ge,
-                      out.tether_cd, out.tether_force_N,
-                      float(apparent_speed_mps(wind_mps, out.ge, phi, gamma_out, gamma_t)), p_gr, p_ob, a,
+                      out.tether_cd, out.tether_force_N, out.apparent_speed_mps, p_gr, p_ob, a,
                       t_r, p_r, mechanical, electrical)
 
 
@@ -397,19 +404,22 @@ Balance = tuple[float, float, float, float]
 class _Branch:
     """The rising branch of a reading of the weight's balance, parametrised by x ∈ [``lo``, ``end``].
 
-    ``state(x)``: (θ, Δ, η_Δ, T); ``margin(x)``: > 0 before the branch's fold (where θ
+    ``state(x)``: (θ, Δ, η_Δ, T); ``margin(x, state(x))``: > 0 before the branch's fold (where θ
     still rises with x), < 0 beyond it; at x = ``lo`` (β) θ ≤ β and the margin is > 0.
     """
 
     state: Callable[[float], Balance]
-    margin: Callable[[float], float]
+    margin: Callable[[float, Balance], float]
     lo: float
     end: float
 
+    def margin_at(self, x: float) -> float:
+        return self.margin(x, self.state(x))
+
     def fold(self, rising: float, beyond: float) -> float:
         """The fold between a rising x and one beyond it (Brent's method), on its rising side."""
-        x = brentq(self.margin, rising, beyond, xtol=1e-15)
-        while self.margin(x) < 0:
+        x = brentq(self.margin_at, rising, beyond, xtol=1e-15)
+        while self.margin_at(x) < 0:
             x = math.nextafter(x, rising)
         return x
 
@@ -432,10 +442,11 @@ def _exact_branch(q_star: float, mass_kg: float, gamma_out: float, beta: float) 
         theta = tether_angle_rad(r_a, phi, weight_N)
         return theta, phi - theta, math.cos(phi) / math.cos(theta), tether_force_N(r_a, phi, weight_N)
 
-    def margin(phi: float) -> float:
-        return fold_slope(phi - state(phi)[0], phi, gamma_out)
+    def margin(phi: float, balance: Balance) -> float:
+        return fold_slope(balance[1], phi, gamma_out)
 
-    return _Branch(state, margin, beta, math.acos(gamma_out)) if margin(beta) > 0 else None
+    branch = _Branch(state, margin, beta, math.acos(gamma_out))
+    return branch if branch.margin_at(beta) > 0 else None
 
 
 def _seed_branch(q_star: float, mass_kg: float, gamma_out: float, beta: float) -> _Branch | None:
@@ -453,10 +464,11 @@ def _seed_branch(q_star: float, mass_kg: float, gamma_out: float, beta: float) -
         eta = float(mass_efficiency(delta, theta))
         return theta, delta, eta, eta * q_star * (math.cos(theta + delta) - gamma_out) ** 2
 
-    def margin(theta: float) -> float:
+    def margin(theta: float, _: Balance) -> float:
         return float(seed_fold_margin(ratio(theta), theta, gamma_out))
 
-    return _Branch(state, margin, beta, math.acos(gamma_out)) if margin(beta) >= 0 else None
+    branch = _Branch(state, margin, beta, math.acos(gamma_out))
+    return branch if branch.margin_at(beta) >= 0 else None
 
 
 #: first step of the search along a branch, as a share of its range (then doubled)
@@ -480,9 +492,12 @@ def _kite_inclination(branch: _Branch | None, beta: float, sag_N: float) -> Bala
         return None
     tan_beta = math.tan(beta)
 
-    def excess(x: float) -> float:
-        theta, _, _, force = branch.state(x)
+    def excess_of(balance: Balance) -> float:
+        theta, _, _, force = balance
         return math.tan(theta) - tan_beta - sag_N / force if force > 0 else -math.inf
+
+    def excess(x: float) -> float:
+        return excess_of(branch.state(x))
 
     low = branch.lo
     if not excess(low) < 0:
@@ -490,7 +505,8 @@ def _kite_inclination(branch: _Branch | None, beta: float, sag_N: float) -> Bala
     step = FIRST_STEP_SHARE * (branch.end - low)
     while True:
         x = min(low + step, branch.end)
-        margin = branch.margin(x)
+        balance = branch.state(x)
+        margin = branch.margin(x, balance)
         if margin <= 0 or x == branch.end:
             fold = branch.fold(low, x) if margin < 0 else x
             if excess(fold) > 0:
@@ -503,7 +519,7 @@ def _kite_inclination(branch: _Branch | None, beta: float, sag_N: float) -> Bala
                     high = found
                     break
             return None
-        if excess(x) > 0:
+        if excess_of(balance) > 0:
             high = x
             break
         low, step = x, 2.0 * step
