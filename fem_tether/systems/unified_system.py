@@ -753,19 +753,25 @@ class _Problem:
         return all(x >= -1e-9 for x in self.limits(point))
 
     def acceptable(self, point: dict[str, float]) -> bool:
-        return self.state(point).flies and self.feasible(point)
+        return self.slack(point) >= 0
+
+    def slack(self, point: dict[str, float]) -> float:
+        """The least scaled slack of the limits within :meth:`feasible`'s tolerance (≥ 0: acceptable);
+        −1 where the kite does not fly."""
+        return min(self.limits(point), default=math.inf) + 1e-9 if self.state(point).flies else -1.0
 
     @staticmethod
-    def pulled_back(inside, outside, holds):
-        """The point of the segment from ``inside`` (where ``holds``) to ``outside`` nearest ``outside``
-        at which ``holds`` still does, by halving the segment's parameter to 1e-15."""
+    def pulled_back(inside, outside, margin):
+        """The point of the segment from ``inside`` (``margin`` ≥ 0) to ``outside`` (< 0) nearest
+        ``outside`` where ``margin`` ≥ 0: its crossing by Brent's method on the segment's parameter,
+        taken on the inside."""
         def at(t):
             return {n: inside[n] + t * (outside[n] - inside[n]) for n in VARIABLES}
 
-        low, high = 0.0, 1.0
-        while high - low > 1e-15:
-            low, high = (0.5 * (low + high), high) if holds(at(0.5 * (low + high))) else (low, 0.5 * (low + high))
-        return at(low)
+        t = brentq(lambda t: margin(at(t)), 0.0, 1.0, xtol=1e-15)
+        while margin(at(t)) < 0:
+            t = math.nextafter(t, 0.0)
+        return at(t)
 
     def _solve(self, free, bounds, start, objective, constraints):
         """SLSQP from ``start`` over ``free``: least ``objective(point)`` with ``constraints(point)``
@@ -800,7 +806,7 @@ class _Problem:
                           options={"ftol": 1e-14, "maxiter": 300})
         found = point(result.x)
         if not self.acceptable(found) and self.acceptable(start):
-            found = self.pulled_back(start, found, self.acceptable)
+            found = self.pulled_back(start, found, self.slack)
         return found if self.acceptable(found) else None
 
     def maximise(self, free, bounds, start):
@@ -837,7 +843,7 @@ class _Problem:
         found = self._solve(free, bounds, crossing, lambda p: self.state(p).tether_force_N / self.force_scale,
                             lambda p: self.limits(p) + [(self.power(p) - rated) / rated])
         if found is not None and self.power(found) < rated:
-            found = self.pulled_back(start, found, lambda p: self.power(p) >= rated and self.acceptable(p))
+            found = self.pulled_back(start, found, lambda p: min((self.power(p) - rated) / rated, self.slack(p)))
         if found is None or self.power(found) < rated * (1 - 1e-9) \
                 or self.state(found).tether_force_N > self.state(crossing).tether_force_N:
             return crossing
