@@ -784,8 +784,18 @@ class _Problem:
         def point(x):
             return dict(start, **{n: float(v) for n, v in zip(free, np.clip(x, low, high))})
 
+        last: dict[bytes, tuple[np.ndarray, np.ndarray]] = {}
+
         def gradients(x):
+            """(∇objective, ∇constraints) at x, kept for the last x (SLSQP asks for each apart)."""
             x = np.asarray(x, dtype=float)
+            key = x.tobytes()
+            if key not in last:
+                last.clear()
+                last[key] = differences(x)
+            return last[key]
+
+        def differences(x):
             base = point(x)
             f0, c0 = objective(base), np.array(constraints(base))
             step = np.where(x + _FORWARD_STEP > high, -_FORWARD_STEP, _FORWARD_STEP)
