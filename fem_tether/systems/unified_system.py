@@ -464,11 +464,12 @@ def _seed_branch(q_star: float, mass_kg: float, gamma_out: float, beta: float) -
         eta = float(mass_efficiency(delta, theta))
         return theta, delta, eta, eta * q_star * (math.cos(theta + delta) - gamma_out) ** 2
 
-    def margin(theta: float, _: Balance) -> float:
+    def fold_margin(theta: float) -> float:
         return float(seed_fold_margin(ratio(theta), theta, gamma_out))
 
-    branch = _Branch(state, margin, beta, math.acos(gamma_out))
-    return branch if branch.margin_at(beta) >= 0 else None
+    if not fold_margin(beta) >= 0:
+        return None
+    return _Branch(state, lambda theta, _: fold_margin(theta), beta, math.acos(gamma_out))
 
 
 #: first step of the search along a branch, as a share of its range (then doubled)
@@ -500,8 +501,9 @@ def _kite_inclination(branch: _Branch | None, beta: float, sag_N: float) -> Bala
         return excess_of(branch.state(x))
 
     low = branch.lo
-    if not excess(low) < 0:
-        return branch.state(low)
+    start = branch.state(low)
+    if not excess_of(start) < 0:
+        return start
     step = FIRST_STEP_SHARE * (branch.end - low)
     while True:
         x = min(low + step, branch.end)
