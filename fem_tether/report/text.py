@@ -305,7 +305,8 @@ def bench_design_lines(design: dict) -> list[str]:
                      f"{verdict(r['met'])}")
     lines.append(f"design start: {design['start_case']}")
     for st in design["starts"]:
-        lines.append(f" {st['mode']:10s}  {st['wall_s']:.2f} s, {st['iterations']} iterations, "
+        lines.append(f" {st['mode']:10s}  {st['wall_s']:.2f} s (consistent start {st['consistent_s']:.2f} s, "
+                     f"SLSQP {st['slsqp_s']:.2f} s), {st['iterations']} iterations, "
                      f"{'converged' if st['converged'] else 'not converged'}, objective {st['objective']:.6f}; "
                      f"target <= {st['target_s']:g} s: {verdict(st['met'])}")
     return lines

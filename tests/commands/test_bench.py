@@ -57,3 +57,4 @@ def test_the_design_section_times_points_curves_and_a_design_start():
     [start] = d["starts"]
     assert start["mode"] == "ground-gen" and start["wall_s"] > 0 and start["iterations"] > 0
     assert start["converged"] and start["met"] == (start["wall_s"] <= bench.START_TARGET_S)
+    assert start["consistent_s"] + start["slsqp_s"] == pytest.approx(start["wall_s"], rel=1e-6)

@@ -150,11 +150,13 @@ def test_bench_design_lines_report_each_time_against_its_target():
               "rows": [{"system": "trevisi-gg", "point_ms": {"10": 6.25, "20": 12.5}, "curve_s": 0.25,
                         "curve_ms_per_point": 8.06, "met": False}],
               "start_case": "trevisi-3mw, seed 0 start 0",
-              "starts": [{"mode": "both", "wall_s": 2.345, "iterations": 105, "converged": True,
+              "starts": [{"mode": "both", "wall_s": 2.345, "consistent_s": 0.5, "slsqp_s": 1.845,
+                          "iterations": 105, "converged": True,
                           "objective": -0.64426, "target_s": 5.0, "met": True}]}
     assert bench_design_lines(design) == [
         "design: unified model",
         " trevisi-gg  point: 10 m/s 6.2 ms, 20 m/s 12.5 ms; curve 0.250 s (8.1 ms per point); "
         "target <= 10 ms per point: NOT met",
         "design start: trevisi-3mw, seed 0 start 0",
-        " both        2.35 s, 105 iterations, converged, objective -0.644260; target <= 5 s: met"]
+        " both        2.35 s (consistent start 0.50 s, SLSQP 1.84 s), 105 iterations, converged, "
+        "objective -0.644260; target <= 5 s: met"]
