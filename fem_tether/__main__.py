@@ -2,7 +2,9 @@
 
 Ctrl-C while the libraries load is held back until the command starts
 (:func:`fem_tether.core.stop.defer_interrupts`), where it stops every MPI rank
-and prints one line, exit 130, like any other interrupt.  A command that
+and prints one line, exit 130, like any other interrupt.  Under ``mpiexec``
+the node's cores are shared among its ranks' linear-algebra threads before
+NumPy loads (:func:`fem_tether.core.threads.share_cores_among_ranks`).  A command that
 failed or was stopped leaves at once, without the libraries' exit handlers:
 a stopped MPI rank's pending requests can never complete (MPI_Finalize would
 complain), and HDF5 after a failed write (a full disk) can crash its own.
@@ -12,9 +14,11 @@ import os
 import sys
 
 from fem_tether.core.stop import defer_interrupts
+from fem_tether.core.threads import share_cores_among_ranks
 
 
 def main() -> int:
+    share_cores_among_ranks()
     defer_interrupts()
     from fem_tether.cli import main as command_line
 

@@ -285,7 +285,31 @@ def bench_text(result: dict) -> str:
                  f"x elements (largest deviation {100 * s['fit_max_rel_dev']:.1f} %)")
     lines.append("peak RSS vs elements: " + ", ".join(
         f"{r['elements']} el {r['peak_rss_MiB']:.0f} MiB" for r in s["runs"]))
+    if "design" in result:
+        lines += ["", *bench_design_lines(result["design"])]
     return "\n".join(lines)
+
+
+def bench_design_lines(design: dict) -> list[str]:
+    """The design section of ``fem-tether bench``: per system the wall time of operating points and
+    of a power curve, and of one design start per mode, each against its target."""
+    def verdict(met: bool) -> str:
+        return "met" if met else "NOT met"
+
+    target = design["point_target_ms"]
+    lines = [f"design: {design['case']}"]
+    for r in design["rows"]:
+        points = ", ".join(f"{w} m/s {ms:.1f} ms" for w, ms in r["point_ms"].items())
+        lines.append(f" {r['system']:10s}  point: {points}; curve {r['curve_s']:.3f} s "
+                     f"({r['curve_ms_per_point']:.1f} ms per point); target <= {target:g} ms per point: "
+                     f"{verdict(r['met'])}")
+    lines.append(f"design start: {design['start_case']}")
+    for st in design["starts"]:
+        lines.append(f" {st['mode']:10s}  {st['wall_s']:.2f} s (consistent start {st['consistent_s']:.2f} s, "
+                     f"SLSQP {st['slsqp_s']:.2f} s), {st['iterations']} iterations, "
+                     f"{'converged' if st['converged'] else 'not converged'}, objective {st['objective']:.6f}; "
+                     f"target <= {st['target_s']:g} s: {verdict(st['met'])}")
+    return lines
 
 
 def bench_memory_text(result: dict) -> str:

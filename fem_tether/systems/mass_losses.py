@@ -20,12 +20,22 @@ Two readings are offered (``balance``):
       sinΔ (cos(θ + Δ) − γ_out)² = M*/Q*,     η_Δ = cos(θ + Δ)/cosθ,
 
   whose small-Δ form is eq. 3.77 (M* = m g cosθ, eq. 3.78) unchanged.
+  Read the other way, at a given inclination φ = θ + Δ of R_a the balance
+  is explicit (:func:`tether_angle_rad`, :func:`tether_force_N`):
+
+      tanθ = tanφ − m g/(R_a cosφ),     T = √((R_a cosφ)² + (R_a sinφ − m g)²),
+
+  and the root on the rising branch of the first reading is where θ(φ) still
+  rises with φ: on the curve ∂θ/∂φ = Q* (cosφ − γ_out) sinΔ · :func:`fold_slope`/(m g cosφ),
+  so θ(φ) is largest at the fold.
 
 >>> round(float(np.degrees(mass_angle_rad(0.019770, np.radians(20), 0.33))), 2)
 4.29
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from scipy.optimize import brentq
@@ -75,30 +85,62 @@ def mass_angle_rad(weight_ratio, theta_rad, gamma_out, balance="seed"):
         return np.vectorize(_exact_mass_angle_rad, otypes=[float])(ratio, theta, gamma)
     w = np.cos(theta) - gamma
     k = np.sin(theta) + np.cos(theta)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        q = np.where(w > 0, ratio * k / w**3, np.inf)
-        y = 2.0 / 3.0 + 2.0 / 3.0 * np.cos(np.arccos(np.where(q <= 4.0 / 27.0, 13.5 * q - 1.0, np.nan))
-                                           / 3.0 - 4.0 * np.pi / 3.0)
+    q = _seed_cubic_q(ratio, theta, gamma)
+    with np.errstate(invalid="ignore"):
+        y = 2.0 / 3.0 + 2.0 / 3.0 * np.cos(np.arccos(np.where(q <= 4.0 / 27.0, np.minimum(13.5 * q - 1.0, 1.0),
+                                                              np.nan)) / 3.0 - 4.0 * np.pi / 3.0)
     return y * w / k
+
+
+def seed_fold_margin(weight_ratio, theta_rad, gamma_out):
+    """4/27 − q of :func:`mass_angle_rad`'s ``"seed"`` reading: ≥ 0 exactly where its Δ exists."""
+    return 4.0 / 27.0 - _seed_cubic_q(weight_ratio, theta_rad, gamma_out)
+
+
+def _seed_cubic_q(ratio, theta, gamma):
+    """q = (M*/Q*) k/w³ of eq. 3.81 as y(1 − y)² = q (w = cosθ − γ_out, k = sinθ + cosθ); inf where w ≤ 0."""
+    w = np.cos(theta) - gamma
+    k = np.sin(theta) + np.cos(theta)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(w > 0, as_array(ratio) * k / w**3, np.inf)
 
 
 def _exact_mass_angle_rad(ratio, theta, gamma):
     """Δ with sinΔ (cos(θ+Δ) − γ)² = ratio on [0, Δ_fold], Δ_fold the left side's maximum."""
-    if not np.cos(theta) > gamma:
-        return np.nan
-    end = np.arccos(gamma) - theta
+    if not math.cos(theta) > gamma:
+        return math.nan
+    end = math.acos(gamma) - theta
 
-    def slope(d):               # d/dΔ [sinΔ (cos(θ+Δ) − γ)²] / (cos(θ+Δ) − γ)
-        return np.cos(d) * (np.cos(theta + d) - gamma) - 2.0 * np.sin(d) * np.sin(theta + d)
+    def slope(d):
+        return fold_slope(d, theta + d, gamma)
 
     fold = brentq(slope, 0.0, end, xtol=1e-14) if slope(end) < 0 else end
 
     def residual(d):
-        return np.sin(d) * (np.cos(theta + d) - gamma) ** 2 - ratio
+        return math.sin(d) * (math.cos(theta + d) - gamma) ** 2 - ratio
 
     if residual(fold) < 0:
-        return np.nan
+        return math.nan
     return brentq(residual, 0.0, fold, xtol=1e-15)
+
+
+def fold_slope(delta_rad: float, force_angle_rad: float, gamma_out: float) -> float:
+    """cosΔ (cosφ − γ_out) − 2 sinΔ sinφ at φ = θ + Δ (scalars): ∂/∂Δ [sinΔ (cos(θ+Δ) − γ_out)²] at
+    fixed θ over (cosφ − γ_out); > 0 on the rising branch of the exact balance, 0 at its fold."""
+    return math.cos(delta_rad) * (math.cos(force_angle_rad) - gamma_out) \
+        - 2.0 * math.sin(delta_rad) * math.sin(force_angle_rad)
+
+
+def tether_angle_rad(aero_force_N: float, force_angle_rad: float, weight_N: float) -> float:
+    """θ of the exact balance 3.74 at R_a's inclination φ (scalars): tanθ = tanφ − m g/(R_a cosφ)."""
+    return math.atan2(aero_force_N * math.sin(force_angle_rad) - weight_N,
+                      aero_force_N * math.cos(force_angle_rad))
+
+
+def tether_force_N(aero_force_N: float, force_angle_rad: float, weight_N: float) -> float:
+    """T of the exact balance 3.74 at R_a's inclination φ (scalars): √((R_a cosφ)² + (R_a sinφ − m g)²)."""
+    return math.hypot(aero_force_N * math.cos(force_angle_rad),
+                      aero_force_N * math.sin(force_angle_rad) - weight_N)
 
 
 def mass_efficiency(delta_rad, theta_rad, balance="seed"):

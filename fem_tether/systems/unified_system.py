@@ -19,20 +19,22 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq, minimize
 
 from fem_tether.systems.power import reel_in_force_N
-from fem_tether.systems.crosswind import (OSWALD_EFFICIENCY, conductor_area_m2, drag_coefficient,
-                                          kite_inclination_rad, sag_coefficient_per_m)
+from fem_tether.systems.crosswind import OSWALD_EFFICIENCY, conductor_area_m2, drag_coefficient
+from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.material import tether_mass_per_length_kg_m
-from fem_tether.systems.mass_losses import (BALANCES, force_scale_N, mass_angle_rad, mass_efficiency,
+from fem_tether.systems.mass_losses import (BALANCES, fold_slope, force_scale_N, mass_angle_rad, mass_efficiency,
+                                            seed_fold_margin, tether_angle_rad, tether_force_N,
                                             weight_term_N)
 from fem_tether.systems.operating_point import OperatingPoint
 from fem_tether.systems.tether_drag import straight_tether_cd
-from fem_tether.systems.unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W,
+from fem_tether.systems.unified import (apparent_speed_mps, cycle_power_W,
                                         disc_induction_factor, ground_power_W, loyd_power_bound_W,
                                         onboard_power_W, reel_in_force_exact_N, reel_in_power_W)
 
@@ -195,7 +197,7 @@ class UnifiedSystem:
                    tether_density_kg_m3=0.0, min_disc_efficiency=eta_d,
                    turbine_area_m2=100.0 * 0.5 * 0.15 / (4.0 * a * (1.0 - a)))
 
-    @property
+    @functools.cached_property
     def cl_bounds(self) -> tuple[float, float]:
         """(C_L,min, C_L,max): the range of the optimised lift coefficient."""
         return (MIN_CL_SHARE * self.cl if self.min_cl is None else self.min_cl), self.cl
@@ -204,7 +206,7 @@ class UnifiedSystem:
         """C_d = C_d0 + C_L²/(π AR e) + C_d,t at lift coefficient C_L (seed 004 eq. 3.15)."""
         return float(drag_coefficient(self.cd0, cl, self.aspect_ratio, tether_cd, self.oswald))
 
-    @property
+    @functools.cached_property
     def conductor_area_m2(self) -> float:
         """A_el of eq. 5.1 at the rated on-board power; 0 for ground generation."""
         if self.modes == "ground-gen":
@@ -213,12 +215,12 @@ class UnifiedSystem:
                                        self.transmission_loss * self.rated_power_W,
                                        self.tether_length_m, self.conductor_resistivity_ohm_m))
 
-    @property
+    @functools.cached_property
     def structural_area_m2(self) -> float:
         """A_σ = π d²/4 − A_el per line, the load-bearing section (seed 004 eq. 5.2)."""
         return math.pi * self.tether_diameter_m**2 / 4.0 - self.conductor_area_m2 / self.tether_lines
 
-    @property
+    @functools.cached_property
     def tether_mass_per_length_kg_m(self) -> float:
         """m_r of all lines (eq. 3.16; the conductor split over the lines)."""
         return self.tether_lines * float(tether_mass_per_length_kg_m(
@@ -226,14 +228,14 @@ class UnifiedSystem:
             self.conductor_area_m2 / self.tether_lines, self.conductor_density_kg_m3,
             self.insulation_factor))
 
-    @property
+    @functools.cached_property
     def force_limit_N(self) -> float:
         """min(cap, lines σ_lim A_σ / SF): the tether force allowed (seed 004 eq. 5.2)."""
         strength = self.tether_lines * self.tether_strength_Pa * self.structural_area_m2 \
             / self.tether_safety_factor
         return min(self.max_tether_force_N, strength)
 
-    @property
+    @functools.cached_property
     def straight_tether_cd(self) -> float:
         """C_⊥ d r lines/(4A): the straight tether's drag coefficient (seed 004 eq. 3.14)."""
         return float(straight_tether_cd(self.tether_lines, self.tether_cd_perp, self.tether_diameter_m,
@@ -297,8 +299,10 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
     - The inclination θ at the kite and the tether force T solve each
       other: θ = arctan(tanβ + a r cosβ), a = m_r g/(2T) (eqs. 3.16–3.19),
       T = η_Δ R_a(θ + Δ) (eqs. 3.77–3.84; Δ = 0, η_Δ = 1 without
-      ``mass_losses``).  Of the equilibria the one of largest T (least sag)
-      is taken.
+      ``mass_losses``), Δ on the rising branch of the balance (below its
+      fold, :mod:`.mass_losses`); solved along that branch
+      (:func:`_kite_inclination`), the equilibrium where θ − θ_sag(T) turns
+      from negative (too little sag for the force) to positive.
     - Reel-out P_gr (3.86), on-board P_ob (3.87), reel-in T_r at β (3.24,
       or 3.23 with ``system.exact_reel_in``) and P_r = T_r γ_in V_w (3.25).
     - Cycle means with the shares 3.26: mechanical τ_out (P_gr + (1 − a) P_ob)
@@ -321,7 +325,8 @@ def power_at_factors(system: UnifiedSystem, wind_mps: float, gamma_out: float, g
 
 @dataclass(frozen=True)
 class _ReelOut:
-    """The reel-out phase of :func:`power_at_factors` (γ_in and the recovery do not enter it)."""
+    """The reel-out phase of :func:`power_at_factors` (γ_in and the recovery do not enter it): the
+    equilibrium and, where it flies, P_gr, P_ob, the rotors' induction a and V_a (else zeros)."""
 
     wind_mps: float
     rho_kg_m3: float
@@ -335,6 +340,10 @@ class _ReelOut:
     delta_rad: float
     eta_delta: float
     tether_force_N: float
+    ground_power_W: float
+    onboard_power_W: float
+    disc_induction: float
+    apparent_speed_mps: float
 
 
 def _reel_out(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_t: float, lift: float,
@@ -346,24 +355,24 @@ def _reel_out(system: UnifiedSystem, wind_mps: float, gamma_out: float, gamma_t:
     if thrust_coefficient > 1 + 1e-12:
         raise ValueError(f"gamma_t = {gamma_t!r}: the rotors' thrust coefficient "
                          f"{thrust_coefficient:.3g} exceeds the actuator disc's 1 (eq. 3.70)")
+    q_star = float(force_scale_N(rho_kg_m3, system.area_m2, cd, ge, wind_mps, gamma_t))
+    mass_kg = system.mass_kg if mass_losses else 0.0
+    beta = system.elevation_rad
+    branch = _seed_branch if mass_losses and system.mass_balance == "seed" else _exact_branch
+    sag_N = 0.5 * system.tether_mass_per_length_kg_m * G_MPS2 * system.tether_length_m * math.cos(beta)
+    equilibrium = _kite_inclination(branch(q_star, mass_kg, gamma_out, beta), beta, sag_N)
+    if equilibrium is None:
+        return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, math.nan, math.nan, math.nan,
+                        0.0, 0.0, 0.0, 0.0, 0.0)
+    theta, delta, eta, force = equilibrium
     aero = (rho_kg_m3, system.area_m2, cd, ge, wind_mps)
-
-    def balance(theta):
-        """(Δ, η_Δ, T) at inclination θ: eqs. 3.77–3.84."""
-        if mass_losses:
-            ratio = weight_term_N(system.mass_kg, theta) / force_scale_N(*aero, gamma_t) \
-                if wind_mps > 0 else math.inf
-            delta = float(mass_angle_rad(ratio, theta, gamma_out, system.mass_balance))
-            eta = float(mass_efficiency(delta, theta, system.mass_balance))
-        else:
-            delta, eta = 0.0, 1.0
-        if not (math.cos(theta + delta) > gamma_out and eta > 0):
-            return delta, eta, 0.0
-        return delta, eta, eta * float(aerodynamic_force_N(*aero, theta + delta, gamma_out, gamma_t))
-
-    equilibrium = _kite_inclination(system, system.elevation_rad, balance)
-    theta, (delta, eta, force) = equilibrium if equilibrium is not None else (math.nan, (math.nan, math.nan, 0.0))
-    return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, theta, delta, eta, force)
+    phi = theta + delta
+    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=eta))
+    onboard = gamma_t > 0                           # without rotors P_ob = 0 and a = 0 exactly
+    p_ob = float(onboard_power_W(*aero, phi, gamma_out, gamma_t)) if onboard else 0.0
+    a = float(disc_induction_factor(min(thrust_coefficient, 1.0))) if onboard else 0.0
+    return _ReelOut(wind_mps, rho_kg_m3, gamma_out, gamma_t, lift, cd, ge, c_t, theta, delta, eta, force,
+                    p_gr, p_ob, a, float(apparent_speed_mps(wind_mps, ge, phi, gamma_out, gamma_t)))
 
 
 def _cycle(system: UnifiedSystem, out: _ReelOut, gamma_in: float, recovery: bool) -> CyclePower:
@@ -373,73 +382,174 @@ def _cycle(system: UnifiedSystem, out: _ReelOut, gamma_in: float, recovery: bool
     if not out.tether_force_N > 0:
         return CyclePower(*factors, False, out.theta_rad, out.delta_rad, out.eta_delta, out.cd, out.ge,
                           out.tether_cd, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    aero = (out.rho_kg_m3, system.area_m2, out.cd, out.ge, wind_mps)
-    phi = out.theta_rad + out.delta_rad
-    thrust_coefficient = min(system.area_m2 * gamma_t * out.cd / system.turbine_area_m2, 1.0) \
-        if gamma_t > 0 else 0.0
-    p_gr = float(ground_power_W(*aero, phi, gamma_out, gamma_t, mass_efficiency=out.eta_delta))
-    p_ob = float(onboard_power_W(*aero, phi, gamma_out, gamma_t))
-    a = float(disc_induction_factor(thrust_coefficient))
+    p_gr, p_ob, a = out.ground_power_W, out.onboard_power_W, out.disc_induction
     reeling = recovery and gamma_out > 0
     reel_in = reel_in_force_exact_N if system.exact_reel_in else reel_in_force_N
     t_r = float(reel_in(out.rho_kg_m3, system.area_m2, system.cd0, wind_mps, gamma_in * wind_mps,
                         system.elevation_rad)) if reeling else 0.0
-    p_r = float(reel_in_power_W(t_r, wind_mps, gamma_in))
-    g_in = gamma_in if reeling else 0.0
-    mechanical = float(cycle_power_W(p_gr + (1.0 - a) * p_ob, p_r, gamma_out if reeling else 0.0, g_in))
-    electrical = float(cycle_power_W(system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob,
-                                     p_r / system.eta_in, gamma_out if reeling else 0.0, g_in))
+    p_r = float(reel_in_power_W(t_r, wind_mps, gamma_in)) if reeling else 0.0
+    mechanical, electrical = map(float, cycle_power_W(
+        np.array([p_gr + (1.0 - a) * p_ob, system.eta_out * p_gr + system.eta_t * (1.0 - a) * p_ob]),
+        np.array([p_r, p_r / system.eta_in]), gamma_out if reeling else 0.0, gamma_in if reeling else 0.0))
     return CyclePower(*factors, True, out.theta_rad, out.delta_rad, out.eta_delta, out.cd, out.ge,
-                      out.tether_cd, out.tether_force_N,
-                      float(apparent_speed_mps(wind_mps, out.ge, phi, gamma_out, gamma_t)), p_gr, p_ob, a,
+                      out.tether_cd, out.tether_force_N, out.apparent_speed_mps, p_gr, p_ob, a,
                       t_r, p_r, mechanical, electrical)
 
 
-def _kite_inclination(system: UnifiedSystem, beta: float, balance):
-    """(θ, balance(θ)) with θ = θ_sag(T(θ)) (eqs. 3.17–3.19), the root of largest T; None: no equilibrium.
+#: (θ, Δ, η_Δ, T) of the weight's balance at a point of a branch (:func:`_exact_branch`, :func:`_seed_branch`)
+Balance = tuple[float, float, float, float]
 
-    With the unknown T: h(T) = T_aero(θ_sag(T)) − T is negative for
-    T ≥ T_aero(β) (sag only tilts the line up and lowers the force) and
-    positive below the stable equilibrium; halving T from T_aero(β) brackets
-    the largest root.  In the bracket the secant from T_aero(β) and its image
-    T_aero(θ_sag(T_aero(β))) (a fixed-point step) finds it, bisecting where a
-    step would leave the bracket: h is nearly linear (the sag changes the
-    force by a few per cent), so it takes three or four evaluations where
-    Brent's method took six.
+
+@dataclass(frozen=True)
+class _Branch:
+    """The rising branch of a reading of the weight's balance, parametrised by x ∈ [``lo``, ``end``].
+
+    ``state(x)``: (θ, Δ, η_Δ, T); ``margin(x, state(x))``: > 0 before the branch's fold (where θ
+    still rises with x), < 0 beyond it; at x = ``lo`` (β) θ ≤ β and the margin is > 0.
     """
-    m_r = system.tether_mass_per_length_kg_m
-    at_beta = balance(beta)
-    top = at_beta[2]
-    if not top > 0:
-        return None
-    if m_r == 0:
-        return beta, at_beta
 
-    def excess(force):
-        theta = float(kite_inclination_rad(beta, system.tether_length_m, sag_coefficient_per_m(m_r, force)))
-        state = balance(theta)
-        return state[2] - force, theta, state
+    state: Callable[[float], Balance]
+    margin: Callable[[float, Balance], float]
+    lo: float
+    end: float
 
-    upper = top
-    for _ in range(60):
-        lower = 0.5 * upper
-        if excess(lower)[0] > 0:
-            break
-        upper = lower
-    else:
+    def margin_at(self, x: float) -> float:
+        return self.margin(x, self.state(x))
+
+    def fold(self, rising: float, beyond: float) -> float:
+        """The fold between a rising x and one beyond it (Brent's method), on its rising side."""
+        x = brentq(self.margin_at, rising, beyond, xtol=1e-15)
+        while self.margin_at(x) < 0:
+            x = math.nextafter(x, rising)
+        return x
+
+
+def _exact_branch(q_star: float, mass_kg: float, gamma_out: float, beta: float) -> _Branch | None:
+    """The exact balance 3.74 over R_a's inclination φ ∈ [β, arccos γ_out]; None: no rising branch above β.
+
+    At φ it is explicit (:mod:`.mass_losses`): R_a = Q* (cosφ − γ_out)² (eq. 3.83),
+    tanθ = tanφ − m g/(R_a cosφ), T = √((R_a cosφ)² + (R_a sinφ − m g)²), η_Δ = cosφ/cosθ.  θ
+    rises with φ while :func:`.mass_losses.fold_slope` > 0 (its fold: the largest θ at which the
+    wing carries the kite, the end of the rising branch the mass angle is taken from) and falls
+    beyond; at φ = β, θ ≤ β.  Without weight θ = φ up to φ = arccos γ_out, where R_a = 0.
+    """
+    if not (q_star > 0 and math.cos(beta) > gamma_out):
         return None
-    x0, (h0, *_) = upper, excess(upper)
-    x1 = min(max(x0 + h0, lower), upper)
-    for _ in range(100):
-        h1, theta, state = excess(x1)
-        if h1 == 0:
+    weight_N = mass_kg * G_MPS2
+
+    def state(phi: float) -> Balance:
+        r_a = q_star * (math.cos(phi) - gamma_out) ** 2
+        theta = tether_angle_rad(r_a, phi, weight_N)
+        return theta, phi - theta, math.cos(phi) / math.cos(theta), tether_force_N(r_a, phi, weight_N)
+
+    def margin(phi: float, balance: Balance) -> float:
+        return fold_slope(balance[1], phi, gamma_out)
+
+    branch = _Branch(state, margin, beta, math.acos(gamma_out))
+    return branch if branch.margin_at(beta) > 0 else None
+
+
+def _seed_branch(q_star: float, mass_kg: float, gamma_out: float, beta: float) -> _Branch | None:
+    """The seed's balance (Δ of eq. 3.81, η_Δ of 3.84, T = η_Δ R_a(θ + Δ)) over θ ∈ [β, arccos γ_out];
+    None: it carries no weight at β.  Its fold: q = (M*/Q*) k/w³ = 4/27
+    (:func:`.mass_losses.seed_fold_margin`), q rising with θ."""
+    if not (q_star > 0 and math.cos(beta) > gamma_out):
+        return None
+
+    def ratio(theta: float) -> float:
+        return float(weight_term_N(mass_kg, theta)) / q_star
+
+    def state(theta: float) -> Balance:
+        delta = float(mass_angle_rad(ratio(theta), theta, gamma_out))
+        eta = float(mass_efficiency(delta, theta))
+        return theta, delta, eta, eta * q_star * (math.cos(theta + delta) - gamma_out) ** 2
+
+    def fold_margin(theta: float) -> float:
+        return float(seed_fold_margin(ratio(theta), theta, gamma_out))
+
+    if not fold_margin(beta) >= 0:
+        return None
+    return _Branch(state, lambda theta, _: fold_margin(theta), beta, math.acos(gamma_out))
+
+
+#: first step of the search along a branch, as a share of its range (then doubled)
+FIRST_STEP_SHARE = 1.0 / 16.0
+
+
+def _kite_inclination(branch: _Branch | None, beta: float, sag_N: float) -> Balance | None:
+    """The balance on ``branch`` where its θ is the sagging tether's; None: nowhere.
+
+    The sag gives tanθ = tanβ + a r cosβ, a = m_r g/(2T) (eqs. 3.17–3.19), i.e.
+    tanθ = tanβ + ``sag_N``/T.  Along the branch θ rises from ≤ β, so the excess
+    tanθ − tanβ − sag_N/T is < 0 at its start (0 only without weight and sag: θ = β),
+    and the equilibrium is where it first turns positive (least θ, largest T).  Steps
+    doubling from 1/16 of the range bracket it, then Brent's method solves it.  A step
+    past the fold ends the branch there; if the excess is not positive at the fold, its
+    largest value on the branch is sought (golden sections, stopped at the first
+    positive one): near the fold sag_N/T grows faster than θ, so the window of positive
+    excess just below it can be narrow, and none means no equilibrium.
+    """
+    if branch is None:
+        return None
+    tan_beta = math.tan(beta)
+
+    def excess_of(balance: Balance) -> float:
+        theta, _, _, force = balance
+        return math.tan(theta) - tan_beta - sag_N / force if force > 0 else -math.inf
+
+    def excess(x: float) -> float:
+        return excess_of(branch.state(x))
+
+    low = branch.lo
+    start = branch.state(low)
+    if not excess_of(start) < 0:
+        return start
+    step = FIRST_STEP_SHARE * (branch.end - low)
+    while True:
+        x = min(low + step, branch.end)
+        balance = branch.state(x)
+        margin = branch.margin(x, balance)
+        if margin <= 0 or x == branch.end:
+            fold = branch.fold(low, x) if margin < 0 else x
+            if excess(fold) > 0:
+                high = fold
+                break
+            # θ is largest at the fold: if it is ≤ β there, no θ of the branch is the sag's
+            if fold == branch.end or branch.state(fold)[0] > beta:
+                found = _first_positive(excess, low, fold)
+                if found is not None:
+                    high = found
+                    break
+            return None
+        if excess_of(balance) > 0:
+            high = x
             break
-        lower, upper = (x1, upper) if h1 > 0 else (lower, x1)
-        step = -h1 * (x1 - x0) / (h1 - h0) if h1 != h0 else math.inf
-        if abs(step) <= 1e-13 * top:
-            break
-        x0, h0, x1 = x1, h1, (x1 + step if lower < x1 + step < upper else 0.5 * (lower + upper))
-    return (theta, state) if abs(h1) <= 1e-8 * top else None
+        low, step = x, 2.0 * step
+    return branch.state(brentq(excess, low, high, xtol=1e-15))
+
+
+#: golden section ratio (√5 − 1)/2
+_GOLDEN = 0.5 * (math.sqrt(5.0) - 1.0)
+
+
+def _first_positive(f: Callable[[float], float], lo: float, hi: float) -> float | None:
+    """A point of [lo, hi] where ``f`` (unimodal) is > 0, searched by golden sections towards its
+    maximum until the interval is a few floats wide; None: f ≤ 0 there."""
+    a, b = lo, hi
+    x1, x2 = b - _GOLDEN * (b - a), a + _GOLDEN * (b - a)
+    f1, f2 = f(x1), f(x2)
+    while max(f1, f2) <= 0 and b - a > 4e-16 * max(abs(a), abs(b)):
+        if f1 < f2:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + _GOLDEN * (b - a)
+            f2 = f(x2)
+        else:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - _GOLDEN * (b - a)
+            f1 = f(x1)
+    if max(f1, f2) > 0:
+        return x1 if f1 > 0 else x2
+    return None
 
 
 def _free_variables(system: UnifiedSystem, recovery: bool) -> list[tuple[str, ...]]:
@@ -644,17 +754,50 @@ class _Problem:
     def feasible(self, point: dict[str, float]) -> bool:
         return all(x >= -1e-9 for x in self.limits(point))
 
+    def acceptable(self, point: dict[str, float]) -> bool:
+        return self.slack(point) >= 0
+
+    def slack(self, point: dict[str, float]) -> float:
+        """The least scaled slack of the limits within :meth:`feasible`'s tolerance (≥ 0: acceptable);
+        −1 where the kite does not fly."""
+        return min(self.limits(point), default=math.inf) + 1e-9 if self.state(point).flies else -1.0
+
+    @staticmethod
+    def pulled_back(inside, outside, margin):
+        """The point of the segment from ``inside`` (``margin`` ≥ 0) to ``outside`` (< 0) nearest
+        ``outside`` where ``margin`` ≥ 0: its crossing by Brent's method on the segment's parameter,
+        taken on the inside."""
+        def at(t):
+            return {n: inside[n] + t * (outside[n] - inside[n]) for n in VARIABLES}
+
+        t = brentq(lambda t: margin(at(t)), 0.0, 1.0, xtol=1e-15)
+        while margin(at(t)) < 0:
+            t = math.nextafter(t, 0.0)
+        return at(t)
+
     def _solve(self, free, bounds, start, objective, constraints):
         """SLSQP from ``start`` over ``free``: least ``objective(point)`` with ``constraints(point)``
         (a list) ≥ 0; gradients by forward differences (SLSQP's own step √ε, backward at an upper
-        bound), the objective's and the constraints' from the same points."""
+        bound), the objective's and the constraints' from the same points.  An end that does not
+        fly or breaks a limit (SLSQP stopped on its line search a hair outside) is pulled back
+        towards an acceptable ``start`` (:meth:`pulled_back`); None if it stays unacceptable."""
         low, high = np.array([bounds[n][0] for n in free]), np.array([bounds[n][1] for n in free])
 
         def point(x):
             return dict(start, **{n: float(v) for n, v in zip(free, np.clip(x, low, high))})
 
+        last: dict[bytes, tuple[np.ndarray, np.ndarray]] = {}
+
         def gradients(x):
+            """(∇objective, ∇constraints) at x, kept for the last x (SLSQP asks for each apart)."""
             x = np.asarray(x, dtype=float)
+            key = x.tobytes()
+            if key not in last:
+                last.clear()
+                last[key] = differences(x)
+            return last[key]
+
+        def differences(x):
             base = point(x)
             f0, c0 = objective(base), np.array(constraints(base))
             step = np.where(x + _FORWARD_STEP > high, -_FORWARD_STEP, _FORWARD_STEP)
@@ -674,7 +817,9 @@ class _Problem:
                           jac=lambda x: gradients(x)[0], bounds=list(zip(low, high)), constraints=cons,
                           options={"ftol": 1e-14, "maxiter": 300})
         found = point(result.x)
-        return found if self.state(found).flies and self.feasible(found) else None
+        if not self.acceptable(found) and self.acceptable(start):
+            found = self.pulled_back(start, found, self.slack)
+        return found if self.acceptable(found) else None
 
     def maximise(self, free, bounds, start):
         """Most electrical power from ``start`` within the limits; None if it ends infeasible."""
@@ -688,6 +833,8 @@ class _Problem:
         (brentq); the crossing of least force starts SLSQP, whose result is
         kept if it is feasible and no worse (at ``start`` P's gradient
         vanishes, so SLSQP's linearised power limit would not hold it there).
+        An SLSQP end a hair below P_rated (its linearisation of P) is first
+        pulled back towards ``start`` until P ≥ P_rated (:meth:`pulled_back`).
         """
         rated = self.system.rated_power_W
         crossings = []
@@ -707,6 +854,8 @@ class _Problem:
         crossing = min(crossings, key=lambda p: self.state(p).tether_force_N)
         found = self._solve(free, bounds, crossing, lambda p: self.state(p).tether_force_N / self.force_scale,
                             lambda p: self.limits(p) + [(self.power(p) - rated) / rated])
+        if found is not None and self.power(found) < rated:
+            found = self.pulled_back(start, found, lambda p: min((self.power(p) - rated) / rated, self.slack(p)))
         if found is None or self.power(found) < rated * (1 - 1e-9) \
                 or self.state(found).tether_force_N > self.state(crossing).tether_force_N:
             return crossing

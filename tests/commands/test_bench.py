@@ -45,10 +45,16 @@ def test_rounds_keep_the_fastest_run_and_the_largest_memory(monkeypatch):
     assert [b["peak_rss_MiB"] for b in best] == [30.0, 60.0]
 
 
-def test_the_design_section_times_points_and_curves():
-    """One operating point per system and a three-speed curve: positive wall times, per point too."""
-    d = bench.design(repeats=1, points_mps=(10.0,), winds_mps=(5.0, 10.0, 20.0))
+def test_the_design_section_times_points_curves_and_a_design_start():
+    """One operating point per system, a three-speed curve and the ground-gen design start: positive
+    wall times, per point too, each judged against its target; the start converges feasibly."""
+    d = bench.design(repeats=1, points_mps=(10.0,), winds_mps=(5.0, 10.0, 20.0), start_modes=("ground-gen",))
     assert [r["system"] for r in d["rows"]] == ["trevisi-gg", "trevisi-fg", "table-3.1"]
     for row in d["rows"]:
         assert row["point_ms"]["10"] > 0 and row["curve_s"] > 0
         assert row["curve_ms_per_point"] == pytest.approx(1e3 * row["curve_s"] / 3)
+        assert row["met"] == (max(row["point_ms"]["10"], row["curve_ms_per_point"]) <= bench.POINT_TARGET_MS)
+    [start] = d["starts"]
+    assert start["mode"] == "ground-gen" and start["wall_s"] > 0 and start["iterations"] > 0
+    assert start["converged"] and start["met"] == (start["wall_s"] <= bench.START_TARGET_S)
+    assert start["consistent_s"] + start["slsqp_s"] == pytest.approx(start["wall_s"], rel=1e-6)

@@ -16,7 +16,8 @@ def test_ground_gen_starts_converge_to_one_design(ground_gen):
     and the same Table 5.1 scalars within 1e-3 relative (measured ≤ 1.1e-5).  Per-wind controls agree
     within 1e-3 (measured ≤ 6.6e-5) where they matter: below the rated wind and above the cut-in (above
     rated any control giving P_rated is optimal, and the starts' controls differ there by up to 60 %;
-    at the cut-in γ_out = 0 and γ_in does not enter)."""
+    at the cut-in γ_out = 0 and γ_in does not enter: SLSQP ends there at γ_out's bound or within
+    1e-15 of it, P ≤ 1e-10 W, measured; "above the cut-in" is P > 1e-9 P_rated)."""
     problem, solutions = ground_gen.problem, ground_gen.solutions
     zs = [consistent(problem, s) for s in ground_gen.starts]
     assert max(np.max(np.abs(z - zs[0])) for z in zs) > 0.1
@@ -28,7 +29,7 @@ def test_ground_gen_starts_converge_to_one_design(ground_gen):
         assert np.array([float(np.ravel(v[name])[0]) for v in values]) == pytest.approx(
             float(np.ravel(values[0][name])[0]), rel=1e-3), name
     power = solutions[0].evaluation.quantities["power_W"][0]
-    matters = (power > 0) & (power < 0.999 * problem.parameters.rated_power_W)
+    matters = (power > 1e-9 * problem.parameters.rated_power_W) & (power < 0.999 * problem.parameters.rated_power_W)
     assert matters.sum() >= 5
     for name in PER_WIND:
         reference = np.broadcast_to(np.ravel(values[0][name]), (problem.layout.n,))[matters]

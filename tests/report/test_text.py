@@ -9,7 +9,7 @@ import pytest
 from fem_tether.performance.aep import sweep_aep
 from fem_tether.tether.crosscheck import CrossCheck
 from fem_tether.jobs.evaluate import LengthResult
-from fem_tether.report.text import (aep_text, crosscheck_text, json_text, reused, summary_table,
+from fem_tether.report.text import (aep_text, bench_design_lines, crosscheck_text, json_text, reused, summary_table,
                                     sweep_summary, sweep_text)
 from fem_tether.jobs.sweepfile import read_sweep
 
@@ -141,3 +141,22 @@ def test_peak_memory_per_rank_in_the_sweep_texts():
     assert sweep_text(outcome, "r.h5", 1.2).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
     summary = sweep_summary(outcome, "r.h5")
     assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6
+
+
+def test_bench_design_lines_report_each_time_against_its_target():
+    """The design section of ``fem-tether bench``: one line per system (points, curve, target met or
+    not) and one per design start."""
+    design = {"case": "unified model", "point_target_ms": 10.0,
+              "rows": [{"system": "trevisi-gg", "point_ms": {"10": 6.25, "20": 12.5}, "curve_s": 0.25,
+                        "curve_ms_per_point": 8.06, "met": False}],
+              "start_case": "trevisi-3mw, seed 0 start 0",
+              "starts": [{"mode": "both", "wall_s": 2.345, "consistent_s": 0.5, "slsqp_s": 1.845,
+                          "iterations": 105, "converged": True,
+                          "objective": -0.64426, "target_s": 5.0, "met": True}]}
+    assert bench_design_lines(design) == [
+        "design: unified model",
+        " trevisi-gg  point: 10 m/s 6.2 ms, 20 m/s 12.5 ms; curve 0.250 s (8.1 ms per point); "
+        "target <= 10 ms per point: NOT met",
+        "design start: trevisi-3mw, seed 0 start 0",
+        " both        2.35 s (consistent start 0.50 s, SLSQP 1.84 s), 105 iterations, converged, "
+        "objective -0.644260; target <= 5 s: met"]

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from fem_tether.systems.mass_losses import force_scale_N, mass_angle_rad, mass_efficiency, weight_term_N
+from fem_tether.systems.mass_losses import (fold_slope, force_scale_N, mass_angle_rad, mass_efficiency,
+                                            seed_fold_margin, tether_angle_rad, tether_force_N, weight_term_N)
 from fem_tether.systems.unified import cycle_power_W, production_power_W
 from fem_tether.systems.unified_system import UnifiedSystem, power_at_factors
 
@@ -121,3 +122,52 @@ def test_unknown_balance_is_named():
         mass_angle_rad(0.01, THETA, 0.3, "taylor")
     with pytest.raises(ValueError, match="balance = 'taylor'"):
         mass_efficiency(0.01, THETA, "taylor")
+
+
+def test_exact_balance_at_a_force_angle_is_the_exact_mass_angle():
+    """At R_a's inclination φ, tether_angle_rad and tether_force_N meet eq. 3.74 (T cosθ = R_a cosφ,
+    T sinθ + m g = R_a sinφ; 1e-12 of the larger of R_a and m g) and, on the rising branch (fold_slope > 0), Δ = φ − θ is
+    mass_angle_rad's "exact" root at M*/Q* = m g cosθ/Q* with T = η_Δ R_a (1e-12), for random R_a,
+    φ, m g and γ_out."""
+    rng = np.random.default_rng(5)
+    checked = 0
+    for _ in range(300):
+        q_star, weight, gamma = rng.uniform(1e4, 1e6), rng.uniform(0.0, 5e4), rng.uniform(0.0, 0.8)
+        phi = rng.uniform(0.1, math.acos(gamma) - 1e-3)
+        r_a = q_star * (math.cos(phi) - gamma) ** 2
+        theta, force = tether_angle_rad(r_a, phi, weight), tether_force_N(r_a, phi, weight)
+        scale = max(r_a, weight)
+        assert abs(force * math.cos(theta) - r_a * math.cos(phi)) < 1e-12 * scale
+        assert abs(force * math.sin(theta) + weight - r_a * math.sin(phi)) < 1e-12 * scale
+        if fold_slope(phi - theta, phi, gamma) > 0 and math.cos(theta) > gamma:
+            delta = float(mass_angle_rad(weight * math.cos(theta) / q_star, theta, gamma, "exact"))
+            assert delta == pytest.approx(phi - theta, rel=1e-12, abs=1e-14)
+            assert float(mass_efficiency(delta, theta, "exact")) * r_a == pytest.approx(force, rel=1e-12)
+            checked += 1
+    assert checked > 100
+
+
+def test_fold_slope_is_the_balance_derivative():
+    """fold_slope(Δ, θ + Δ, γ) (cos(θ + Δ) − γ) = d/dΔ [sinΔ (cos(θ + Δ) − γ)²] at fixed θ (central
+    differences, step 1e-6: 1e-8 absolute)."""
+    for theta, delta, gamma in ((0.3, 0.05, 0.2), (0.4, 0.3, 0.6), (0.9, 0.1, 0.0)):
+        def f(d):
+            return math.sin(d) * (math.cos(theta + d) - gamma) ** 2
+        h = 1e-6
+        derivative = (f(delta + h) - f(delta - h)) / (2 * h)
+        assert fold_slope(delta, theta + delta, gamma) * (math.cos(theta + delta) - gamma) \
+            == pytest.approx(derivative, abs=1e-8)
+
+
+def test_seed_angle_exists_exactly_where_its_fold_margin_is_not_negative():
+    """seed_fold_margin ≥ 0 ⇔ the seed's Δ is a number, also at the fold itself (q = 4/27 to the
+    last float: ratio scanned over ±1e-12 around it), where y = ⅓, Δ = w/(3k)."""
+    theta, gamma = THETA, 0.33
+    w, k = math.cos(theta) - gamma, math.sin(theta) + math.cos(theta)
+    fold_ratio = 4.0 / 27.0 * w**3 / k
+    ratios = fold_ratio * (1.0 + np.linspace(-1e-12, 1e-12, 201))
+    margins = seed_fold_margin(ratios, theta, gamma)
+    deltas = mass_angle_rad(ratios, theta, gamma)
+    assert np.array_equal(margins >= 0, np.isfinite(deltas))
+    assert 0 < np.sum(margins >= 0) < ratios.size
+    assert deltas[margins >= 0][-1] == pytest.approx(w / (3 * k), rel=1e-5)

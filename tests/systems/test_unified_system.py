@@ -9,6 +9,11 @@ import pytest
 from fem_tether.config import load_config
 from fem_tether.physics.kite import loyd_optimum
 from fem_tether.performance.configured import from_config
+from fem_tether.physics.loads import G_MPS2
+from fem_tether.systems import unified_system
+from fem_tether.systems.crosswind import kite_inclination_rad, sag_coefficient_per_m
+from fem_tether.systems.mass_losses import (fold_slope, force_scale_N, mass_angle_rad, mass_efficiency,
+                                            tether_angle_rad, tether_force_N, weight_term_N)
 from fem_tether.systems.unified import loyd_power_bound_W
 from fem_tether.systems.unified_system import (UnifiedSystem, operating_point, optimal_cycle,
                                                power_at_factors, power_curve)
@@ -299,3 +304,108 @@ def test_the_optimum_is_remembered():
     """optimal_cycle returns the optimum it found for the same arguments again (not re-solved)."""
     assert optimal_cycle(SYSTEM, 11.0) is optimal_cycle(SYSTEM, 11.0)
     assert optimal_cycle(SYSTEM, 11.0, starts=[(0.2, 2.0, 0.1)]) is not optimal_cycle(SYSTEM, 11.0)
+
+
+def _sag_excess(system, phi, gamma_out, gamma_t, wind, rho, cl):
+    """tanθ − tanθ_sag(T) at R_a's inclination φ on the exact balance (3.74 explicit at φ, sag 3.17–3.19)."""
+    cd = system.cd(cl, system.straight_tether_cd)
+    k = 1.0 + gamma_t
+    q_star = 0.5 * rho * system.area_m2 * cd * wind**2 * (k**2 + (cl / cd) ** 2) ** 1.5 / k**2
+    r_a = q_star * (math.cos(phi) - gamma_out) ** 2
+    weight = system.mass_kg * G_MPS2
+    theta, force = tether_angle_rad(r_a, phi, weight), tether_force_N(r_a, phi, weight)
+    sag = float(kite_inclination_rad(system.elevation_rad, system.tether_length_m,
+                                     sag_coefficient_per_m(system.tether_mass_per_length_kg_m, force)))
+    return math.tan(theta) - math.tan(sag), fold_slope(phi - theta, phi, gamma_out)
+
+
+#: the ground-gen design optimum of tests/design (DesignParameters(mode="ground-gen"), start 0 of
+#: seed 0) at its last wind speed, 34.6 m/s: its system and factors as optimiser.unified_system gives
+FOLD_SYSTEM = UnifiedSystem(area_m2=70.00000000000003, cl=2.0, aspect_ratio=34.41628026131002,
+                            mass_kg=3128.128556979813, elevation_rad=0.391024213412762,
+                            tether_diameter_m=0.027836849275843192, tether_length_m=524.7477330352456,
+                            rated_power_W=3e6, modes="ground-gen")
+FOLD_POINT = dict(wind_mps=34.588492171925004, gamma_out=0.7573675095756834, gamma_in=1.9689838278991374,
+                  gamma_t=0.0, rho_kg_m3=1.1966775770843456, cl=1.9439586980547778)
+
+
+def test_equilibrium_just_below_the_balance_fold():
+    """FOLD_POINT puts the equilibrium just below the fold of the exact balance: Δ = 0.1112
+    (fold_slope 0.008 there, 1 at Δ = 0); the sag's excess tanθ − tanθ_sag(T) is positive only in a
+    window of φ = θ + Δ from the equilibrium to 4.0e-3 rad above it and negative again at the fold,
+    5.0e-3 rad above it (measured).  power_at_factors finds it: θ and Δ the design's
+    (0.3959819830332859, 0.11121282527014441; 1e-9 relative, measured 1e-12 and 8e-11), the sag and
+    the balance met (1e-12)."""
+    cycle = power_at_factors(FOLD_SYSTEM, **FOLD_POINT)
+    assert cycle.flies
+    assert cycle.theta_rad == pytest.approx(0.3959819830332859, rel=1e-9)
+    assert cycle.delta_rad == pytest.approx(0.11121282527014441, rel=1e-9)
+    args = (FOLD_POINT["gamma_out"], 0.0, FOLD_POINT["wind_mps"], FOLD_POINT["rho_kg_m3"], FOLD_POINT["cl"])
+    phi = cycle.theta_rad + cycle.delta_rad
+    excess, slope = _sag_excess(FOLD_SYSTEM, phi, *args)
+    assert abs(excess) < 1e-12 and 0 < slope < 0.01
+    assert _sag_excess(FOLD_SYSTEM, phi - 0.002, *args)[0] < 0
+    assert _sag_excess(FOLD_SYSTEM, phi + 0.002, *args)[0] > 0
+    excess, slope = _sag_excess(FOLD_SYSTEM, phi + 0.0045, *args)
+    assert excess < 0 < slope
+
+
+@pytest.mark.parametrize("share", [1.0 / 3.0, 1.0 / 100.0])
+def test_equilibrium_is_the_first_root_over_the_input_range(monkeypatch, share):
+    """Random ground-gen systems and points over the accepted ranges (A 10–300 m², C_L,max 0.5–4 with
+    C_L down to 0.1 C_L,max, m 0–6000 kg (every tenth 0), β 0.05–1.3 rad, d 1–6 cm, r 100–2000 m, ρ_σ 0–3000, V_w
+    0.5–50 m/s, γ_out to cosβ): where power_at_factors flies, θ and Δ meet the exact balance and the
+    sag (the excess tanθ − tanθ_sag(T) within 1e-10), Δ is on the rising branch (fold_slope > 0) and
+    the excess is < 0 on a grid of 400 φ below the equilibrium's (it is the first root: least θ,
+    largest T); where it does not fly the excess is ≤ 0 on a grid of 400 φ over the rising branch.
+    The search's first step (FIRST_STEP_SHARE of the branch, 1/16) perturbed to ``share``: the same
+    equilibria (θ to 1e-12 relative) and the same flying points."""
+    rng = np.random.default_rng(11)
+    cases = []
+    for _ in range(150):
+        beta = rng.uniform(0.05, 1.3)
+        system = UnifiedSystem(area_m2=rng.uniform(10, 300), cl=rng.uniform(0.5, 4.0), aspect_ratio=rng.uniform(4, 40),
+                               mass_kg=rng.uniform(0, 6000) if len(cases) % 10 else 0.0, elevation_rad=beta,
+                               tether_diameter_m=rng.uniform(0.01, 0.06), tether_length_m=rng.uniform(100, 2000),
+                               tether_density_kg_m3=rng.uniform(0, 3000), rated_power_W=3e6, modes="ground-gen")
+        point = dict(wind_mps=rng.uniform(0.5, 50.0), gamma_out=rng.uniform(0, math.cos(beta)), gamma_in=1.0,
+                     gamma_t=0.0, cl=system.cl * rng.uniform(0.1, 1.0))
+        cases.append((system, point, power_at_factors(system, **point)))
+    monkeypatch.setattr(unified_system, "FIRST_STEP_SHARE", share)
+    flying = 0
+    for system, point, cycle in cases:
+        args = (point["gamma_out"], 0.0, point["wind_mps"], 1.225, point["cl"])
+        again = power_at_factors(system, **point)
+        assert again.flies == cycle.flies
+        top = math.acos(point["gamma_out"])
+        if cycle.flies:
+            flying += 1
+            assert again.theta_rad == pytest.approx(cycle.theta_rad, rel=1e-12)
+            phi = cycle.theta_rad + cycle.delta_rad
+            excess, slope = _sag_excess(system, phi, *args)
+            assert abs(excess) < 1e-10 and slope > 0
+            below = np.linspace(system.elevation_rad, phi, 402)[1:-1]
+            assert all(_sag_excess(system, x, *args)[0] < 0 for x in below)
+        else:
+            grid = [_sag_excess(system, x, *args) for x in np.linspace(system.elevation_rad, top, 402)[1:-1]]
+            assert all(e <= 0 for e, s in grid if s > 0)
+    assert 30 < flying < 140
+
+
+def test_seed_balance_with_a_sagging_tether():
+    """The seed's reading (eq. 3.81) with a heavy tether: θ meets the sag (tanθ = tanβ + m_r g r cosβ/(2T),
+    1e-12), Δ is mass_angle_rad's seed root at θ and T = η_Δ R_a(θ + Δ) (1e-12), at 8 and 15 m/s
+    (γ_out = 0.1, γ_t = 0.1)."""
+    system = replace(SYSTEM, mass_balance="seed", tether_density_kg_m3=3000.0)
+    for wind in (8.0, 15.0):
+        c = power_at_factors(system, wind, 0.1, 2.0, 0.1)
+        assert c.flies
+        beta = system.elevation_rad
+        sag = math.tan(beta) + system.tether_mass_per_length_kg_m * G_MPS2 * system.tether_length_m \
+            * math.cos(beta) / (2 * c.tether_force_N)
+        assert math.tan(c.theta_rad) == pytest.approx(sag, rel=1e-12)
+        q_star = float(force_scale_N(1.225, system.area_m2, c.cd, c.ge, wind, 0.1))
+        delta = float(mass_angle_rad(float(weight_term_N(system.mass_kg, c.theta_rad)) / q_star, c.theta_rad, 0.1))
+        assert c.delta_rad == pytest.approx(delta, rel=1e-12)
+        r_a = q_star * (math.cos(c.theta_rad + delta) - 0.1) ** 2
+        assert c.tether_force_N == pytest.approx(float(mass_efficiency(delta, c.theta_rad)) * r_a, rel=1e-12)
