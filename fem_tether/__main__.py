@@ -2,9 +2,10 @@
 
 Ctrl-C while the libraries load is held back until the command starts
 (:func:`fem_tether.core.stop.defer_interrupts`), where it stops every MPI rank
-and prints one line, exit 130, like any other interrupt.  Under ``mpiexec``
-the node's cores are shared among its ranks' linear-algebra threads before
-NumPy loads (:func:`fem_tether.core.threads.share_cores_among_ranks`).  A command that
+and prints one line, exit 130, like any other interrupt.  Every process runs
+one linear-algebra thread unless the user set the count, before NumPy loads
+(:func:`fem_tether.core.threads.one_thread_per_process`: no oversubscribed
+cores under ``mpiexec``, and the same rounding for any number of ranks).  A command that
 failed or was stopped leaves at once, without the libraries' exit handlers:
 a stopped MPI rank's pending requests can never complete (MPI_Finalize would
 complain), and HDF5 after a failed write (a full disk) can crash its own.
@@ -14,11 +15,11 @@ import os
 import sys
 
 from fem_tether.core.stop import defer_interrupts
-from fem_tether.core.threads import share_cores_among_ranks
+from fem_tether.core.threads import one_thread_per_process
 
 
 def main() -> int:
-    share_cores_among_ranks()
+    one_thread_per_process()
     defer_interrupts()
     from fem_tether.cli import main as command_line
 

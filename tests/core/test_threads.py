@@ -1,26 +1,32 @@
-"""fem_tether.core.threads: the cores of a node shared among its MPI ranks' linear-algebra threads."""
+"""fem_tether.core.threads: one linear-algebra thread per process unless the user set the count."""
 
-from fem_tether.core.threads import THREAD_VARIABLES, share_cores_among_ranks
+import os
+import subprocess
+import sys
+
+from fem_tether.core.threads import THREAD_VARIABLES, one_thread_per_process
 
 
-def test_two_ranks_on_two_cores_run_one_thread_each():
-    environ = {"MPI_LOCALNRANKS": "2"}
-    assert share_cores_among_ranks(environ, cores=2) == 1
+def test_every_unset_count_becomes_one():
+    environ = {}
+    assert one_thread_per_process(environ) == list(THREAD_VARIABLES)
     assert all(environ[name] == "1" for name in THREAD_VARIABLES)
 
 
-def test_cores_are_divided_among_the_ranks_and_a_set_count_is_kept():
-    environ = {"OMPI_COMM_WORLD_LOCAL_SIZE": "3", "OMP_NUM_THREADS": "4"}
-    assert share_cores_among_ranks(environ, cores=8) == 2
-    assert environ["OPENBLAS_NUM_THREADS"] == "2" and environ["OMP_NUM_THREADS"] == "4"
+def test_a_count_the_user_set_is_kept():
+    environ = {"OMP_NUM_THREADS": "4"}
+    assert "OMP_NUM_THREADS" not in one_thread_per_process(environ)
+    assert environ["OMP_NUM_THREADS"] == "4" and environ["OPENBLAS_NUM_THREADS"] == "1"
 
 
-def test_one_rank_or_no_launcher_sets_nothing():
-    for environ in ({}, {"MPI_LOCALNRANKS": "1"}, {"MPI_LOCALNRANKS": "x"}):
-        before = dict(environ)
-        assert share_cores_among_ranks(environ, cores=2) is None and environ == before
-
-
-def test_more_ranks_than_cores_still_run_one_thread():
-    environ = {"MPI_LOCALNRANKS": "4"}
-    assert share_cores_among_ranks(environ, cores=2) == 1
+def test_the_command_line_sets_it_before_the_command_runs():
+    """``fem-tether``'s entry sets the counts in its own process before the command (and NumPy's
+    first use in a fresh interpreter) runs."""
+    environ = {k: v for k, v in os.environ.items() if k not in THREAD_VARIABLES}
+    code = ("import os, sys, types\n"
+            "sys.modules['fem_tether.cli'] = types.SimpleNamespace(\n"
+            "    main=lambda: print(os.environ['OPENBLAS_NUM_THREADS'], 'numpy' in sys.modules) or 0)\n"
+            "from fem_tether.__main__ import main\n"
+            "main()\n")
+    out = subprocess.run([sys.executable, "-c", code], env=environ, capture_output=True, text=True, timeout=120)
+    assert out.stdout.split() == ["1", "False"], out.stderr
