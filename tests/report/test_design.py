@@ -36,9 +36,8 @@ def design(tmp_path_factory):
     job_path = directory / "job.toml"
     job_path.write_text(JOB)
     out = directory / "design.h5"
-    start = time.perf_counter()
     result = run_design(load_design_job(job_path), out, progress=False)
-    assert result.found and time.perf_counter() - start < 15.0
+    assert result.found
     return job_path, out, write_design_report(out)
 
 
