@@ -146,8 +146,10 @@ def weight_balance_N(balance: str, aero, theta_rad, delta_rad, gamma_out, gamma_
     weight = mass_losses.weight_term_N(kite_mass_kg, theta_rad)
     if balance == "exact":
         return aerodynamic_force_N * np.sin(delta_rad) - weight
+    rho, area, cd, ge, wind = aero
     along, spread = np.cos(theta_rad) - gamma_out, np.sin(theta_rad) + np.cos(theta_rad)
-    return mass_losses.force_scale_N(*aero, gamma_t) * delta_rad * (along - spread * delta_rad) ** 2 - weight
+    q_star = mass_losses.force_scale_N(rho, area, cd, ge, wind, gamma_t)
+    return q_star * delta_rad * (along - spread * delta_rad) ** 2 - weight
 
 
 def smallest_root_margin_rad(theta_rad, delta_rad, gamma_out):
