@@ -15,12 +15,13 @@ from V_r (z_ref/h)^α at 20 m.
 
 A reading is measured by re-optimising the design with it (SLSQP from our
 optimum, the SI values re-packed, and from start 0 of seed 0; the better kept):
-its effect is AEP(reading)/AEP(ours) − 1.  Two readings the design model has
-no option for are applied to its evaluation here (:class:`Reread`): the
+its effect is AEP(reading)/AEP(ours) − 1.  Two readings are parameters of
+the design model (``DesignParameters``): ``mass_balance = "seed"``, the
 printed weight balance, Δ from eq. 3.81 and η_Δ = 1 − Δ − Δ tanθ (eq. 3.84),
 in place of the exact R_a sinΔ = m g cosθ (the smallest root kept:
-Δ ≤ (cosθ − γ_out)/(3(sinθ + cosθ))), and the rated power as a limit of the
-reel-out power η_out P_gr + η_t (1 − a) P_ob rather than of the cycle mean.
+Δ ≤ (cosθ − γ_out)/(3(sinθ + cosθ))), and ``rated_power_limits =
+"reel-out"``, the rated power as a limit of the reel-out power
+η_out P_gr + η_t (1 − a) P_ob rather than of the cycle mean.
 The shape check scales our power curve's wind axis so that it is rated from
 11 m/s and integrates it on either axis.  The parts (``python
 examples/design_section_5_4.py PART``; docs/design.md):
@@ -38,22 +39,16 @@ Run: ``python examples/design_section_5_4.py``.
 import json
 import sys
 from dataclasses import dataclass, field, replace
-from unittest import mock
 
 import numpy as np
 
 from fem_tether.design import optimiser
-from fem_tether.design.model import HOURS_PER_YEAR, MIN_SAG_TENSION_N, Evaluation, evaluate, trapezoid
+from fem_tether.design.model import Evaluation, trapezoid
 from fem_tether.design.optimiser import Problem, best, consistent, start_points
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.result import rated_wind_mps
 from fem_tether.design.sensitivity import sensitivities_Wh
-from fem_tether.design.variables import force_scale_N
 from fem_tether.physics.resource import weibull_density_per_mps
-from fem_tether.systems.crosswind import kite_inclination_rad, sag_coefficient_per_m
-from fem_tether.systems.mass_losses import force_scale_N as weight_force_scale_N
-from fem_tether.systems.mass_losses import mass_efficiency, weight_term_N
-from fem_tether.systems.unified import time_shares
 from fem_tether.systems.unified_system import optimal_cycle
 
 #: Trevisi §5.4: the 3 MW design's AEP [GWh], capacity factor and rated wind [m/s]
@@ -72,102 +67,19 @@ TABLE_5_5_REFERENCE = {"wing_area_m2": 57.5, "cl_max": 2.5}
 GENERATING_W = 1e3
 
 
-def columns(evaluation: Evaluation, family: str, inequality: bool) -> np.ndarray:
-    """Indices of the constraint columns of ``family`` (the name without ``[j]``)."""
-    names = evaluation.inequality_names if inequality else evaluation.equality_names
-    return np.array([k for k, name in enumerate(names) if name.split("[")[0] == family])
-
-
-def printed_balance(problem: Problem, z, e: Evaluation) -> Evaluation:
-    """The evaluation with Trevisi's printed weight balance: eq. 3.81 for Δ,
-    η_Δ = 1 − Δ − Δ tanθ (eq. 3.84) in the tether force, the sag and P_gr."""
-    p, v = problem.parameters, problem.layout.unpack(z)
-    q = dict(e.quantities)
-    n = problem.layout.n
-    theta, delta, g_out, g_in, g_t = (np.broadcast_to(v[k], (len(z), n))
-                                      for k in ("theta_rad", "delta_rad", "gamma_out", "gamma_in", "gamma_t"))
-    beta, r = v["elevation_rad"], v["tether_length_m"]
-    aero = (q["air_density_kg_m3"][:, None], q["area_m2"][:, None], q["cd"], q["glide_ratio"], q["wind_mps"])
-    w, k = np.cos(theta) - g_out, np.sin(theta) + np.cos(theta)
-    eta = mass_efficiency(delta, theta, "seed")
-    balance = weight_force_scale_N(*aero, g_t) * delta * (w - k * delta) ** 2 \
-        - weight_term_N(q["kite_mass_kg"][:, None], theta)
-    tension = eta * q["aerodynamic_force_N"]
-    safe = np.where(np.real(tension) > MIN_SAG_TENSION_N, tension, MIN_SAG_TENSION_N)
-    sag = theta - kite_inclination_rad(beta, r, sag_coefficient_per_m(q["tether_mass_kg"][:, None] / r, safe))
-    ground = q["ground_power_W"] * eta / q["eta_delta"]
-    q["power_W"] = q["power_W"] + time_shares(g_out, g_in)[0] * p.eta_out * (ground - q["ground_power_W"])
-    q.update(ground_power_W=ground, eta_delta=eta, tether_force_N=tension)
-    f_ref = force_scale_N(p)
-    eq, ineq = e.equalities.copy(), e.inequalities.copy()
-    eq[:, columns(e, "weight balance (eq. 3.74)", False)] = balance / f_ref
-    eq[:, columns(e, "sag inclination (eqs. 3.17-3.19)", False)] = sag
-    ineq[:, columns(e, "tether strength, reel-out (eq. 5.2)", True)] = (q["force_limit_N"][:, None] - tension) / f_ref
-    ineq = np.concatenate([ineq, w / (3.0 * k) - delta], axis=1)
-    names = e.inequality_names + tuple(f"smallest root of eq. 3.81[{j}]" for j in range(n))
-    return _with_power(problem, Evaluation(e.objective, eq, e.equality_names, ineq, names, q))
-
-
-def reel_out_rating(problem: Problem, z, e: Evaluation) -> Evaluation:
-    """The evaluation with the rated power limiting the reel-out power η_out P_gr + η_t (1 − a) P_ob."""
-    p = problem.parameters
-    ineq = e.inequalities.copy()
-    reel_out = p.eta_out * e.quantities["ground_power_W"] + e.quantities["onboard_power_W"]
-    ineq[:, columns(e, "rated power", True)] = (p.rated_power_W - reel_out) / p.rated_power_W
-    return replace(e, inequalities=ineq)
-
-
-def _with_power(problem: Problem, e: Evaluation) -> Evaluation:
-    """The objective, AEP and capacity factor of ``e``'s power curve, and its rated-power limit."""
-    p, q = problem.parameters, e.quantities
-    aep_Wh = HOURS_PER_YEAR * trapezoid(q["power_W"] * q["probability_density_per_mps"], q["wind_mps"])
-    objective = -(aep_Wh - p.takeoffs_per_year * q["takeoff_energy_Wh"]) / (HOURS_PER_YEAR * p.rated_power_W)
-    ineq = e.inequalities.copy()
-    ineq[:, columns(e, "rated power", True)] = (p.rated_power_W - q["power_W"]) / p.rated_power_W
-    q = dict(q, aep_Wh=aep_Wh, capacity_factor=aep_Wh / (HOURS_PER_YEAR * p.rated_power_W))
-    return replace(e, objective=objective, inequalities=ineq, quantities=q)
-
-
-class Reread(Problem):
-    """The design problem with the model's evaluation passed through ``rereads`` (in order).
-
-    ``fem_tether.design.model`` has no option for these readings; the
-    optimiser's derivatives (a complex-step batch through the model's
-    ``evaluate``) are taken through the re-read evaluation instead."""
-
-    def __init__(self, parameters, rereads, **options):
-        super().__init__(parameters, **options)
-        self.rereads = rereads
-
-    def _reread(self, layout, parameters, z, **options):
-        e = evaluate(layout, parameters, z, **options)
-        for reread in self.rereads:
-            e = reread(self, np.atleast_2d(z), e)
-        return e
-
-    def evaluate(self, z) -> Evaluation:
-        return self._reread(self.layout, self.parameters, np.atleast_2d(z), **self.options)
-
-    def derivatives(self, z):
-        with mock.patch.object(optimiser, "evaluate", self._reread):
-            return super().derivatives(z)
-
-
 @dataclass(frozen=True)
 class Reading:
-    """A reading of the thesis: parameters changed, bounds, the tether in the flying mass, re-reads."""
+    """A reading of the thesis: parameters changed, bounds, the tether in the flying mass."""
 
     label: str
     changes: dict = field(default_factory=dict)
     bounds: dict = field(default_factory=dict)
     kite_carries_tether: bool = False
-    rereads: tuple = ()
     what: str = ""
 
     def problem(self, mode: str) -> Problem:
         parameters = replace(DesignParameters(mode=mode), **self.changes)
-        options = dict(bounds=self.bounds, kite_carries_tether=self.kite_carries_tether)
-        return Reread(parameters, self.rereads, **options) if self.rereads else Problem(parameters, **options)
+        return Problem(parameters, bounds=self.bounds, kite_carries_tether=self.kite_carries_tether)
 
 
 def reference_factor(parameters: DesignParameters, altitude_m: float) -> float:
@@ -176,17 +88,19 @@ def reference_factor(parameters: DesignParameters, altitude_m: float) -> float:
     return (capped / parameters.reference_height_m) ** parameters.shear_alpha
 
 
+#: the thesis' printed weight balance (eqs. 3.81, 3.84) in place of the exact eq. 3.74
+PRINTED_BALANCE = {"mass_balance": "seed"}
 #: the cut-out bound of Table 5.6's mean read at 20 m, as a speed at h_min = 200 m (every design here flies at or
 #: near h_min)
 CUT_OUT_AT_20M = {"cut_out_mps": (8.0, TABLE_5_6_CUT_OUT_MPS * reference_factor(DesignParameters(), 200.0))}
 TETHER = Reading("flying mass includes the tether (§3.4)", kite_carries_tether=True,
                  what="m in eq. 3.74 adds the tether's mass (its weight also sags the line)")
-BALANCE = Reading("printed weight balance (eqs. 3.81, 3.84)", rereads=(printed_balance,),
+BALANCE = Reading("printed weight balance (eqs. 3.81, 3.84)", PRINTED_BALANCE,
                   what="Δ from the expanded cubic, η_Δ = 1 − Δ − Δ tanθ")
 CUT_OUT = Reading("cut-out <= 19.32 m/s at 20 m (Table 5.6)", bounds=CUT_OUT_AT_20M,
                   what="V_out at most Table 5.6's mean on the 20 m axis (30.6 m/s at h)")
-TOGETHER = Reading("thesis' readings together", bounds=CUT_OUT_AT_20M, kite_carries_tether=True,
-                   rereads=(printed_balance,), what="tether in the flying mass + printed balance + cut-out at 20 m")
+TOGETHER = Reading("thesis' readings together", PRINTED_BALANCE, CUT_OUT_AT_20M, kite_carries_tether=True,
+                   what="tether in the flying mass + printed balance + cut-out at 20 m")
 
 #: the readings measured, one at a time, then together
 READINGS = (
@@ -198,7 +112,7 @@ READINGS = (
             what="V_out at most Table 5.6's mean read at h"),
     TETHER,
     BALANCE,
-    Reading("rated power on the reel-out power (§5.1.2)", rereads=(reel_out_rating,),
+    Reading("rated power on the reel-out power (§5.1.2)", {"rated_power_limits": "reel-out"},
             what="η_out P_gr + η_t (1 − a) P_ob <= P_rated instead of the cycle mean"),
     Reading("E_gen 2.5 kW/kg (Table 5.4 note d)", {"generator_power_density_W_kg": 2.5e3},
             what="the on-board generators at the reference literature value"),
@@ -211,11 +125,11 @@ READINGS = (
     Reading("AR <= 22.5 (Table 5.6)", bounds={"aspect_ratio": (3.0, TABLE_5_6_ASPECT_RATIO)},
             what="a check of the structure: the aspect ratio at most Table 5.6's mean"),
     TOGETHER,
-    Reading("thesis' readings + AR <= 22.5", bounds={**CUT_OUT_AT_20M, "aspect_ratio": (3.0, TABLE_5_6_ASPECT_RATIO)},
-            kite_carries_tether=True, rereads=(printed_balance,), what="the row above with Table 5.6's aspect ratio"),
-    Reading("thesis' readings, cut-out at h", bounds={"cut_out_mps": (8.0, TABLE_5_6_CUT_OUT_MPS)},
-            kite_carries_tether=True, rereads=(printed_balance,),
-            what="tether in the flying mass + printed balance + cut-out 19.32 m/s at h"),
+    Reading("thesis' readings + AR <= 22.5", PRINTED_BALANCE,
+            {**CUT_OUT_AT_20M, "aspect_ratio": (3.0, TABLE_5_6_ASPECT_RATIO)}, kite_carries_tether=True,
+            what="the row above with Table 5.6's aspect ratio"),
+    Reading("thesis' readings, cut-out at h", PRINTED_BALANCE, {"cut_out_mps": (8.0, TABLE_5_6_CUT_OUT_MPS)},
+            kite_carries_tether=True, what="tether in the flying mass + printed balance + cut-out 19.32 m/s at h"),
 )
 
 

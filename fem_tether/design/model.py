@@ -7,10 +7,22 @@ Fig. 5.2): the operating altitude h = r sinβ (+ a tower) gives the air density
 and the on-board rating; the wing's structure (§3.4), the take-off system
 (§3.5) and the generators give the flying mass; per wind speed the drag polar
 (eq. 3.15 with the tether's C_d,t, eq. 3.14), the sag (eqs. 3.16–3.19), the
-weight's balance (eq. 3.74, solved exactly: R_a sinΔ = m g cosθ, see
-:mod:`fem_tether.systems.mass_losses`) and the cycle power (eq. 3.89 with the
-reel-in term's sign a minus) give the power curve; AEP = 8760 h ∫ P f dV over
-[V_in, V_out], less the energy of one take-off a day (§5.1.3).
+weight's balance (eq. 3.74, :func:`weight_balance_N`) and the cycle power
+(eq. 3.89 with the reel-in term's sign a minus) give the power curve; AEP =
+8760 h ∫ P f dV over [V_in, V_out], less the energy of one take-off a day
+(§5.1.3).  The rated power bounds the cycle's power at each wind speed.
+
+Two readings are parameters (:class:`~fem_tether.design.parameters.DesignParameters`):
+
+- ``mass_balance``: "exact" (default) solves eq. 3.74 without expansion,
+  R_a sinΔ = m g cosθ with η_Δ = cos(θ + Δ)/cosθ; "seed" is the thesis as
+  printed, eq. 3.81 for Δ with η_Δ = 1 − Δ − Δ tanθ (eq. 3.84), on the
+  smallest of the cubic's roots (Δ ≤ (cosθ − γ_out)/(3(sinθ + cosθ)), an
+  inequality).  η_Δ enters the tether force, the sag and P_gr (eq. 3.86).
+  Both are :mod:`fem_tether.systems.mass_losses`' readings.
+- ``rated_power_limits``: "cycle" (default) bounds the cycle's mean
+  electrical power; "reel-out" bounds the reel-out phase's
+  η_out P_gr + η_t (1 − a) P_ob instead.
 
 Everything here is explicit and smooth in the variables of
 :mod:`.variables` (the implicit sag and balance are equality constraints on
@@ -38,10 +50,9 @@ from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.material import tether_mass_per_length_kg_m
 from fem_tether.physics.resource import weibull_density_per_mps
 from fem_tether.physics.wind import power_law_speed_mps
-from fem_tether.systems import takeoff
+from fem_tether.systems import mass_losses, takeoff
 from fem_tether.systems.crosswind import (conductor_area_m2, drag_coefficient, kite_inclination_rad,
                                           sag_coefficient_per_m)
-from fem_tether.systems.mass_losses import mass_efficiency, weight_term_N
 from fem_tether.systems.power import reel_in_force_N
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.systems.unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W,
@@ -122,6 +133,31 @@ def soft_max(x, sharpness=SOFT_MAX_SHARPNESS):
     return np.where(some, smooth, 0.0)
 
 
+def weight_balance_N(balance: str, aero, theta_rad, delta_rad, gamma_out, gamma_t, aerodynamic_force_N,
+                     kite_mass_kg):
+    """The residual of the weight's balance (eq. 3.74 with T eliminated), zero at the kite's Δ:
+
+    "exact":  R_a sinΔ − M*,
+    "seed":   Q* Δ (w − kΔ)² − M*,   w = cosθ − γ_out, k = sinθ + cosθ   (eq. 3.81 times Q*),
+
+    with M* = m g cosθ (eq. 3.78), Q* (eq. 3.79) of ``aero`` = (ρ, A, C_d, G_e, V_w) and R_a
+    (eq. 3.83) given: :func:`fem_tether.systems.mass_losses.mass_angle_rad`'s equations.
+    """
+    weight = mass_losses.weight_term_N(kite_mass_kg, theta_rad)
+    if balance == "exact":
+        return aerodynamic_force_N * np.sin(delta_rad) - weight
+    rho, area, cd, ge, wind = aero
+    along, spread = np.cos(theta_rad) - gamma_out, np.sin(theta_rad) + np.cos(theta_rad)
+    q_star = mass_losses.force_scale_N(rho, area, cd, ge, wind, gamma_t)
+    return q_star * delta_rad * (along - spread * delta_rad) ** 2 - weight
+
+
+def smallest_root_margin_rad(theta_rad, delta_rad, gamma_out):
+    """(cosθ − γ_out)/(3(sinθ + cosθ)) − Δ: ≥ 0 on the smallest root of eq. 3.81, the one
+    :func:`fem_tether.systems.mass_losses.mass_angle_rad` takes (y = kΔ/w ≤ ⅓ there)."""
+    return (np.cos(theta_rad) - gamma_out) / (3.0 * (np.sin(theta_rad) + np.cos(theta_rad))) - delta_rad
+
+
 def site(parameters: DesignParameters, altitude_m):
     """(ρ, Weibull scale) at the operating altitude: eq. 3.90 and the power law 3.91 (constant above
     ``wind_top_m``) applied to the reference scale A, so every speed of the distribution is scaled."""
@@ -197,13 +233,13 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     phi = theta + delta
     aero = (rho, area, cd, ge, wind)
     force_aero = aerodynamic_force_N(*aero, phi, g_out, g_t)
-    eta_delta = mass_efficiency(delta, theta, "exact")
+    eta_delta = mass_losses.mass_efficiency(delta, theta, p.mass_balance)
     tension = eta_delta * force_aero
     safe_tension = np.where(real_part(tension) > MIN_SAG_TENSION_N, tension, MIN_SAG_TENSION_N)
     sag_theta = kite_inclination_rad(beta, r, sag_coefficient_per_m(m_r, safe_tension))
     if line_at_kite is not None:
         sag_theta = sag_theta + np.asarray(line_at_kite.extra_inclination_rad, dtype=float)
-    balance = (force_aero * np.sin(delta) - weight_term_N(kite_mass, theta)) / f_ref
+    balance = weight_balance_N(p.mass_balance, aero, theta, delta, g_out, g_t, force_aero, kite_mass) / f_ref
 
     has_rotors = real_part(turbine_area) > 0
     thrust_coefficient = np.where(has_rotors, loading / np.where(has_rotors, turbine_area, 1.0), 0.0)
@@ -216,7 +252,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     onboard_electric = p.eta_t * (1.0 - induction) * p_ob
     reel_force = reel_in_force_N(rho, area, p.cd0, wind, g_in * wind, beta)
     p_r = reel_in_power_W(reel_force, wind, g_in)
-    power = cycle_power_W(p.eta_out * p_gr + onboard_electric, p_r / p.eta_in, g_out, g_in)
+    reel_out = p.eta_out * p_gr + onboard_electric
+    power = cycle_power_W(reel_out, p_r / p.eta_in, g_out, g_in)
     mechanical = cycle_power_W(p_gr + (1.0 - induction) * p_ob, p_r, g_out, g_in)
     onboard_cycle = cycle_power_W(onboard_electric, 0.0, g_out, g_in)
 
@@ -235,7 +272,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     limit = p.max_deflection_share * span
     tip, centre = wing.tip_deflection_m[:, None], wing.centre_deflection_m[:, None]
     inequalities = [("tether strength, reel-out (eq. 5.2)", (force_limit - tension) / f_ref),
-                    ("rated power", (p.rated_power_W - power) / p.rated_power_W),
+                    ("rated power", (p.rated_power_W - (power if p.rated_power_limits == "cycle" else reel_out))
+                     / p.rated_power_W),
                     ("along-tether wind", np.cos(phi) - g_out - MIN_ALONG_WIND),
                     ("minimum altitude", (altitude - p.min_altitude_m) / p.min_altitude_m),
                     ("cut-out above cut-in",
@@ -250,6 +288,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
                          ("reel-in power", (p.rated_power_W - p_r / p.eta_in) / p.rated_power_W)]
     if rotors:
         inequalities += [("generator rating", (rating - onboard_electric) / p.rated_power_W)]
+    if p.mass_balance == "seed":
+        inequalities += [("smallest root of eq. 3.81", smallest_root_margin_rad(theta, delta, g_out))]
     quantities = dict(      # per wind speed (B, n)
         wind_mps=wind, power_W=power, mechanical_power_W=mechanical, ground_power_W=p_gr,
         onboard_power_W=onboard_electric, ground_cycle_power_W=power - onboard_cycle,

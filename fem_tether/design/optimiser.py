@@ -81,7 +81,7 @@ def unified_system(problem: Problem, values: dict, kite_mass_kg: float) -> Unifi
         conductor_density_kg_m3=p.conductor_density_kg_m3,
         turbine_area_m2=START_TURBINE_AREA_SHARE * area if rotors else 0.0,
         min_disc_efficiency=p.min_disc_efficiency, eta_out=p.eta_out, eta_in=p.eta_in, eta_t=p.eta_t,
-        mass_balance="exact")
+        mass_balance=p.mass_balance)
 
 
 def consistent(problem: Problem, start: dict, passes: int = 10) -> np.ndarray:

@@ -21,6 +21,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 
+from fem_tether.systems.mass_losses import BALANCES
+
 #: Trevisi's Table 5.4: the uncertain parameters' ranges (field name: (min, max), SI units)
 TABLE_5_4 = {
     "tether_safety_factor": (1.1, 2.0),
@@ -43,6 +45,10 @@ TABLE_5_4 = {
 
 #: generation types a design may use (Trevisi §3.3: ground-gen, fly-gen or both)
 MODES = ("ground-gen", "fly-gen", "both")
+#: what the rated power limits: the cycle's mean electrical power, or the reel-out phase's
+RATED_POWER_LIMITS = ("cycle", "reel-out")
+#: the parameters that are a choice among names: field -> its choices
+CHOICES = {"mode": MODES, "mass_balance": BALANCES, "rated_power_limits": RATED_POWER_LIMITS}
 
 
 def _mid(name: str) -> float:
@@ -82,6 +88,14 @@ class DesignParameters:
 
     ``glider_mass_kg``: a given glider mass instead of the structural model
     (§3.4): the validation kites of §5.3.2 state their masses (``None``: the model).
+
+    Readings of the thesis (:mod:`fem_tether.design.model`): ``mass_balance``
+    the weight's balance, "exact" (eq. 3.74 solved without expansion:
+    R_a sinΔ = m g cosθ, η_Δ = cos(θ + Δ)/cosθ) or "seed" (as printed: Δ from
+    eq. 3.81 on its smallest root, η_Δ = 1 − Δ − Δ tanθ, eq. 3.84), as
+    :mod:`fem_tether.systems.mass_losses`; ``rated_power_limits`` what the
+    rated power bounds at each wind speed, "cycle" (the cycle's mean, eq. 3.89)
+    or "reel-out" (the reel-out phase's η_out P_gr + η_t (1 − a) P_ob).
     """
 
     rated_power_W: float = 3e6
@@ -119,16 +133,19 @@ class DesignParameters:
     wind_speeds: int = 20
     tower_height_m: float = 0.0
     glider_mass_kg: float | None = None
+    mass_balance: str = "exact"
+    rated_power_limits: str = "cycle"
 
     def __post_init__(self):
-        if self.mode not in MODES:
-            raise ValueError(f"mode = {self.mode!r}: must be one of {', '.join(MODES)}")
+        for name, choices in CHOICES.items():
+            if getattr(self, name) not in choices:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: must be one of {', '.join(choices)}")
         if isinstance(self.wind_speeds, bool) or not isinstance(self.wind_speeds, int) \
                 or self.wind_speeds < 3:
             raise ValueError(f"wind_speeds = {self.wind_speeds!r}: must be an integer >= 3")
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in ("mode", "wind_speeds") or (f.name in ("wing_area_m2", "glider_mass_kg") and value is None):
+            if f.name in (*CHOICES, "wind_speeds") or (f.name in ("wing_area_m2", "glider_mass_kg") and value is None):
                 continue
             if not (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)):
                 raise ValueError(f"{f.name} = {value!r}: must be a finite number")

@@ -1,5 +1,6 @@
-"""The design model (fem_tether.design.model): exact derivatives, the per-wind model, soft max,
-structure nodes, AEP quadrature and the site."""
+"""The design model (fem_tether.design.model): exact derivatives, the per-wind model, the thesis'
+readings (printed weight balance, reel-out rating), soft max, structure nodes, AEP quadrature and the
+site."""
 
 import dataclasses
 import functools
@@ -9,10 +10,12 @@ import numpy as np
 import pytest
 
 from fem_tether.design.model import (HOURS_PER_YEAR, SOFT_MAX_SHARPNESS, STRUCTURE_NODES, site, soft_max,
-                                     trapezoid)
+                                     trapezoid, weight_balance_N)
 from fem_tether.design.optimiser import STEP, Problem, consistent, start_points, unified_system
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import PER_WIND
+from fem_tether.systems.mass_losses import force_scale_N as mass_force_scale_N
+from fem_tether.systems.mass_losses import mass_angle_rad, weight_term_N
 from fem_tether.systems.unified_system import power_at_factors
 from fem_tether.systems.wing_structure import DEFAULT_NODES, wing_structure
 
@@ -26,10 +29,15 @@ JACOBIAN_STEP = 1e-5
 JACOBIAN_RTOL, JACOBIAN_ATOL = 1e-5, 1e-9
 
 
+#: the thesis' readings that are parameters: the printed weight balance and the reel-out rating
+READINGS = (("mass_balance", "seed"), ("rated_power_limits", "reel-out"))
+
+
 @functools.lru_cache(maxsize=None)
-def started(mode: str):
-    """The nominal problem of ``mode`` and its consistent start 0 (seed 0): (problem, z0)."""
-    problem = Problem(DesignParameters(mode=mode))
+def started(mode: str, readings: tuple = ()):
+    """The nominal problem of ``mode`` (with the parameters ``readings``, (name, value) pairs) and its
+    consistent start 0 (seed 0): (problem, z0)."""
+    problem = Problem(DesignParameters(mode=mode, **dict(readings)))
     return problem, consistent(problem, start_points(problem.layout, 1, seed=0)[0])
 
 
@@ -72,16 +80,23 @@ def at_gamma_out_zero(problem, z) -> np.ndarray:
     return columns[z[columns] == 0.0]
 
 
-@pytest.mark.parametrize("mode", ["ground-gen", "both"])
-def test_complex_step_jacobian_equals_finite_differences(mode):
+@pytest.mark.parametrize("mode, readings", [("ground-gen", ()), ("both", ()), ("ground-gen", READINGS),
+                                            ("both", READINGS[1:])])
+def test_complex_step_jacobian_equals_finite_differences(mode, readings):
     """Problem.derivatives (complex step, h = 1e-30) equals differences of step 1e-5 in z (fourth-order
     central; second-order one-sided into the box within two steps of a bound) for the objective, the
     equalities and the inequalities at the consistent start 0: |cs − fd| ≤ 1e-5 |cs| + 1e-9 at every
     entry (measured: within 1e-5 |cs| + 2e-11), the columns of γ_out on its bound 0 included (the
     "both" start has four, the ground-gen start none).  Central differences of step 1e-7 miss by
     1.2e-9 at one entry of the ground-gen start (rated power[18] by γ_in[18], 4.07e-8), their
-    rounding ε (P/P_rated)/h ≈ 2e-9: that constraint is 0 there, its terms are not."""
-    problem, z = started(mode)
+    rounding ε (P/P_rated)/h ≈ 2e-9: that constraint is 0 there, its terms are not.  The same for
+    the thesis' readings: the printed weight balance (mass_balance "seed": eq. 3.81, η_Δ of eq. 3.84
+    and the smallest-root inequality) with the reel-out rating (rated_power_limits "reel-out") in
+    ground-gen, the reel-out rating in "both".  (Not the "both" start with the printed balance: there
+    γ_t and C_L of the last two wind speeds are equal (z to 1.5e-14, C_L on its bound), so eq. 3.68's
+    soft max has two equal largest elements, which steps of 1e-5 cross (the objective and the rated
+    power by γ_t[17-19], C_L[17-19] differ by up to 1e-3 relative, measured); soft_max's docstring.)"""
+    problem, z = started(mode, readings)
     _, grad, _, jac_eq, _, jac_in = problem.derivatives(z)
     assert (mode == "both") == (at_gamma_out_zero(problem, z).size > 0)
     for exact, differences in zip((grad[None, :], jac_eq, jac_in), finite_differences(problem, z)):
@@ -186,6 +201,78 @@ def test_per_wind_model_flies_wherever_the_design_does(ground_gen):
     problem, solution = ground_gen.problem, ground_gen.solutions[0]
     cycles = per_wind_model(problem, si_values(problem.layout, solution.z))
     assert all(c.flies for c in cycles[1:])
+
+
+def test_seed_balance_is_the_per_wind_models_at_the_both_start():
+    """With mass_balance "seed" (eqs. 3.81, 3.84), mode "both", its consistent start 0 with
+    P_ob,max = P_rated: power_at_factors (mass_balance "seed": Δ from mass_losses.mass_angle_rad's
+    smallest root of eq. 3.81, η_Δ = mass_efficiency(Δ, θ, "seed")) flies at every wind speed but the
+    cut-in (measured), and there, with its θ, Δ, the design model's equalities vanish (1e-10) and its
+    power, mechanical power, tether force, P_gr, V_a, induction and η_Δ are power_at_factors' (1e-8);
+    η_Δ is 1 − Δ − Δ tanθ (1e-15) and Δ is on the smallest root (the inequality
+    (cosθ − γ_out)/(3(sinθ + cosθ)) − Δ is > 0)."""
+    problem, z = started("both", READINGS[:1])
+    values = dict(si_values(problem.layout, z), onboard_rating_W=problem.parameters.rated_power_W)
+    cycles = per_wind_model(problem, values)
+    winds = np.nonzero([c.flies for c in cycles])[0]
+    assert list(winds) == list(range(1, problem.layout.n))
+    assert_design_model_is_the_per_wind_model(problem, values, cycles, winds)
+    theta, delta = values["theta_rad"].copy(), values["delta_rad"].copy()
+    theta[winds], delta[winds] = ([getattr(cycles[j], k) for j in winds] for k in ("theta_rad", "delta_rad"))
+    e = problem.evaluate(problem.layout.pack(dict(values, theta_rad=theta, delta_rad=delta)))
+    assert e.quantities["eta_delta"][0] == pytest.approx(1 - delta - delta * np.tan(theta), rel=1e-15)
+    margins = dict(zip(e.inequality_names, e.inequalities[0]))
+    assert all(margins[f"smallest root of eq. 3.81[{j}]"] > 0 for j in winds)
+
+
+#: Trevisi's Table 3.1: θ 20°, G_e 10, C_d 0.15, A 100 m², m 2000 kg, ρ 1.225 kg/m³, V_w 10 m/s
+TABLE_3_1 = dict(theta_rad=math.radians(20.0), aero=(1.225, 100.0, 0.15, 10.0, 10.0), mass_kg=2000.0)
+
+
+@pytest.mark.parametrize("gamma_out, gamma_t, printed_deg, low_deg, high_deg", [
+    (0.33, 0.0, 4.29, 4.285, 4.295), (0.0, 0.5, 3.34, 3.34, 3.35)])
+def test_seed_balance_gives_table_3_1s_angles(gamma_out, gamma_t, printed_deg, low_deg, high_deg):
+    """weight_balance_N "seed" (eq. 3.81 times Q*) on Table 3.1's example changes sign between
+    ``low_deg`` and ``high_deg``: the printed Δ_GG 4.29° to its last digit (± 0.005°); Δ_FG, printed
+    3.34°, is 3.345° (mass_losses' root; the bracket [3.34°, 3.35°]).  At mass_losses.mass_angle_rad's
+    root the residual is 0 to 1e-12 M*."""
+    theta, aero, mass = TABLE_3_1["theta_rad"], TABLE_3_1["aero"], TABLE_3_1["mass_kg"]
+
+    def residual_N(delta_deg):
+        return weight_balance_N("seed", aero, theta, math.radians(delta_deg), gamma_out, gamma_t, None, mass)
+
+    assert residual_N(low_deg) < 0 < residual_N(high_deg)
+    weight = float(weight_term_N(mass, theta))
+    root = float(mass_angle_rad(weight / float(mass_force_scale_N(*aero, gamma_t)), theta, gamma_out, "seed"))
+    assert abs(residual_N(math.degrees(root))) < 1e-12 * weight
+    assert math.degrees(root) == pytest.approx(printed_deg, abs=0.006)
+
+
+def test_reel_out_rating_bounds_the_reel_out_power():
+    """rated_power_limits "reel-out": the "rated power[j]" inequalities are (P_rated − (η_out P_gr +
+    η_t (1 − a) P_ob))/P_rated of the design's quantities (1e-15), the cycle's (P_rated − P)/P_rated
+    with "cycle"; every other column, the objective and the equalities are the same (exactly).  The
+    reel-out power is the cycle's mean where the "both" start does not reel (γ_out = 0, fly-gen) and
+    above it where it does (the reel-in costs time and energy), so the reading binds more."""
+    problem, z = started("both")
+    p = problem.parameters
+    cycle = problem.evaluate(z)
+    reel_out = Problem(dataclasses.replace(p, rated_power_limits="reel-out")).evaluate(z)
+    q = cycle.quantities
+    rated = np.array([name.startswith("rated power[") for name in cycle.inequality_names])
+    power = p.eta_out * q["ground_power_W"][0] + q["onboard_power_W"][0]
+    assert reel_out.inequalities[0][rated] == pytest.approx((p.rated_power_W - power) / p.rated_power_W,
+                                                            rel=1e-15, abs=1e-15)
+    assert cycle.inequalities[0][rated] == pytest.approx((p.rated_power_W - q["power_W"][0]) / p.rated_power_W,
+                                                         rel=1e-15, abs=1e-15)
+    reeling = si_values(problem.layout, z)["gamma_out"] > 0
+    assert 0 < reeling.sum() < problem.layout.n
+    assert np.all(power[reeling] > q["power_W"][0][reeling])
+    assert power[~reeling] == pytest.approx(q["power_W"][0][~reeling], rel=1e-15)
+    assert reel_out.inequality_names == cycle.inequality_names
+    assert np.array_equal(reel_out.inequalities[0][~rated], cycle.inequalities[0][~rated])
+    assert np.array_equal(reel_out.objective, cycle.objective)
+    assert np.array_equal(reel_out.equalities, cycle.equalities)
 
 
 def test_soft_max_bounds():

@@ -1,10 +1,11 @@
-"""The fixed parameters of a design (fem_tether.design.parameters): Table 5.4, §5.4, bad input."""
+"""The fixed parameters of a design (fem_tether.design.parameters): Table 5.4, §5.4, the readings, bad input."""
 
 import math
 
 import pytest
 
-from fem_tether.design.parameters import TABLE_5_4, DesignParameters
+from fem_tether.design.parameters import CHOICES, TABLE_5_4, DesignParameters
+from fem_tether.systems.mass_losses import BALANCES
 
 #: Table 5.4's rows, with their (min, max) as printed in Trevisi, *Configuration optimisation of
 #: kite-based wind turbines*, Table 5.4 (SI units; kV → V)
@@ -52,6 +53,17 @@ def test_fixed_values_of_the_thesis():
             p.oswald, p.mode) == (3e6, 1.5e9, 9.5, 2.12, 20.0, 0.2, 500.0, 1.225, 365.0, 0.9, "both")
 
 
+def test_readings_default_to_the_exact_balance_and_the_cycle_rating():
+    """The weight's balance is eq. 3.74 solved exactly and the rated power limits the cycle's mean by
+    default; the thesis' printed balance (mass_losses' "seed") and the reel-out rating are accepted;
+    the balances are mass_losses' (one list of names)."""
+    p = DesignParameters()
+    assert (p.mass_balance, p.rated_power_limits) == ("exact", "cycle")
+    q = DesignParameters(mass_balance="seed", rated_power_limits="reel-out")
+    assert (q.mass_balance, q.rated_power_limits) == ("seed", "reel-out")
+    assert CHOICES["mass_balance"] is BALANCES and CHOICES["rated_power_limits"] == ("cycle", "reel-out")
+
+
 def test_free_wing_area_and_given_glider_mass():
     """``wing_area_m2=None`` (free area) and ``glider_mass_kg`` a number are accepted."""
     assert DesignParameters(wing_area_m2=None).wing_area_m2 is None
@@ -64,9 +76,10 @@ def test_free_wing_area_and_given_glider_mass():
     ("eta_out", 1.1), ("eta_in", 1.5), ("eta_t", 2.0), ("transmission_loss", 1.01),
     ("max_deflection_share", 1.2), ("min_disc_efficiency", 1.0), ("min_disc_efficiency", 0.4),
     ("tether_safety_factor", 0.9), ("cl_max", True), ("cd0", "0.05"), ("mode", "kite-gen"),
-    ("wind_speeds", 2), ("wind_speeds", True), ("wind_speeds", 20.0)])
+    ("wind_speeds", 2), ("wind_speeds", True), ("wind_speeds", 20.0), ("mass_balance", "taylor"),
+    ("mass_balance", None), ("rated_power_limits", "reel-in"), ("rated_power_limits", 1.0)])
 def test_bad_values_raise_naming_the_field(name, value):
-    """Negative, zero, NaN, infinite, η > 1, an unknown mode, fewer than 3 wind speeds, a bool or a
-    string: ValueError whose message starts with the field's name."""
+    """Negative, zero, NaN, infinite, η > 1, an unknown mode, weight balance or rated-power limit,
+    fewer than 3 wind speeds, a bool or a string: ValueError whose message starts with the field's name."""
     with pytest.raises(ValueError, match=f"^{name} = "):
         DesignParameters(**{name: value})

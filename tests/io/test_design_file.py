@@ -10,8 +10,10 @@ from fem_tether.io.design_file import is_design_result, read_design_hdf5, write_
 
 def content() -> dict:
     """A result as DesignResult.as_dict() gives it, with a design never rated (rated_wind_mps None),
-    a free wing area, and a start whose net AEP and violation were not finite (None)."""
-    parameters = dataclasses.asdict(DesignParameters(wing_area_m2=None))
+    a free wing area, string parameters (the thesis' readings), and a start whose net AEP and violation
+    were not finite (None)."""
+    parameters = dataclasses.asdict(DesignParameters(wing_area_m2=None, mass_balance="seed",
+                                                     rated_power_limits="reel-out"))
     starts = [dict(index=0, success=True, feasible=True, message="Optimization terminated successfully",
                    iterations=70, evaluations=71, net_aep_Wh=1.6e10, violation=2e-12,
                    most_violated="weight balance (eq. 3.74)[3]"),
@@ -27,8 +29,8 @@ def content() -> dict:
 
 def test_a_result_reads_back_as_written(tmp_path):
     """write then read: the same content (exact), None where a quantity does not exist (the rated
-    wind, the free wing area, a start's numbers that were not finite), the starts' strings as
-    strings; the file is a design result and holds the job's text; the content is JSON
+    wind, the free wing area, a start's numbers that were not finite), the starts' strings and the
+    string parameters as strings; the file is a design result and holds the job's text; the content is JSON
     (allow_nan=False)."""
     written = content()
     path = write_design_hdf5(tmp_path / "d.h5", written, "[design]\nseed = 3\n")
@@ -37,5 +39,6 @@ def test_a_result_reads_back_as_written(tmp_path):
     assert back.pop("job_toml") == "[design]\nseed = 3\n"
     assert back == written
     assert back["outputs"]["rated_wind_mps"] is None and back["parameters"]["wing_area_m2"] is None
+    assert (back["parameters"]["mass_balance"], back["parameters"]["rated_power_limits"]) == ("seed", "reel-out")
     assert back["starts"][1]["violation"] is None and back["starts"][1]["most_violated"] == "rated power[19]"
     json.dumps(back, allow_nan=False)

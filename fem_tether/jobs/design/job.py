@@ -13,6 +13,8 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     rated_power_W = 3e6
     wing_area_m2 = 70.0         # or "free" (Trevisi ch. 7: no wing-area constraint)
     mode = "both"               # "ground-gen", "fly-gen" or "both"
+    mass_balance = "exact"      # the weight's balance: "exact" (eq. 3.74) or "seed" (eqs. 3.81, 3.84)
+    rated_power_limits = "cycle"    # the rated power bounds the "cycle" mean or the "reel-out" power
 
     [design.bounds]             # a variable's (low, high), SI units (fem_tether.design.variables)
     tether_length_m = [100.0, 1500.0]
@@ -46,7 +48,7 @@ from typing import Any
 from fem_tether.config.tomlio import toml_and_text
 from fem_tether.core.errors import ConfigError
 from fem_tether.design.optimiser import starts_for
-from fem_tether.design.parameters import DesignParameters
+from fem_tether.design.parameters import CHOICES, DesignParameters
 from fem_tether.design.variables import PER_WIND, SCALARS, Layout, unreachable
 from fem_tether.jobs.design.flexible import FlexibleSettings, flexible_settings
 
@@ -181,9 +183,9 @@ def _parameters(table) -> DesignParameters:
             raise ConfigError(f"[design.parameters] {key}: unknown parameter")
         if key in ("wing_area_m2", "glider_mass_kg") and value == "free":
             value = None
-        elif key == "mode":
+        elif key in CHOICES:
             if not isinstance(value, str):
-                raise ConfigError(f"[design.parameters] mode = {value!r}: must be a string")
+                raise ConfigError(f"[design.parameters] {key} = {value!r}: must be a string")
         elif key == "wind_speeds":
             if isinstance(value, bool) or not isinstance(value, int):
                 raise ConfigError(f"[design.parameters] wind_speeds = {value!r}: must be an integer")

@@ -21,6 +21,9 @@ JOB = '[design]\npreset = "trevisi-3mw"\nstarts = 2\n[design.parameters]\nmode =
     ('[design]\nstarts = 0\n', "[design] starts = 0"),
     ('[design.parameters]\ncd0 = -1\n', "cd0 = -1.0: must be > 0"),
     ('[design.parameters]\nrotor = 1\n', "[design.parameters] rotor: unknown parameter"),
+    ('[design.parameters]\nmass_balance = "taylor"\n',
+     "[design.parameters] mass_balance = 'taylor': must be one of seed, exact"),
+    ('[design.parameters]\nrated_power_limits = 1\n', "[design.parameters] rated_power_limits = 1: must be a string"),
     ('[design.bounds]\nspan_m = [10, 5]\n', "span_m"),
     ('[design.held]\nwingspan = 3\n', "[design.held] wingspan: unknown variable"),
     ('[design]\ntether = "catenary"\n', "tether = 'catenary': must be one of lumped, flexible"),
@@ -44,6 +47,18 @@ def test_bad_keys_are_one_line_errors(tmp_path, text, message):
     with pytest.raises(ConfigError) as info:
         load_design_job(path)
     assert message in str(info.value) and "\n" not in str(info.value)
+
+
+def test_a_job_sets_the_thesis_readings(tmp_path):
+    """[design.parameters] mass_balance and rated_power_limits reach the parameters (default: "exact",
+    "cycle")."""
+    path = tmp_path / "job.toml"
+    path.write_text(JOB + 'mass_balance = "seed"\nrated_power_limits = "reel-out"\n')
+    p = load_design_job(path).parameters
+    assert (p.mass_balance, p.rated_power_limits) == ("seed", "reel-out")
+    path.write_text(JOB)
+    p = load_design_job(path).parameters
+    assert (p.mass_balance, p.rated_power_limits) == ("exact", "cycle")
 
 
 def test_a_design_is_kept_resumed_and_written_with_units(tmp_path):
