@@ -165,7 +165,7 @@ def outcome(problem: Problem, solution) -> dict:
                            problem.parameters.rated_power_W)
     factor = reference_factor(problem.parameters, float(q["altitude_m"][0]))
     return {"aep_GWh": float(np.real(q["aep_Wh"][0])) / 1e9, "capacity_factor": float(np.real(q["capacity_factor"][0])),
-            "rated_wind_mps": rated, "rated_wind_20m_mps": rated / factor, "cut_in_generation": cut_in_generation(
+            "rated_wind_mps": rated, "rated_wind_20m_mps": None if rated is None else rated / factor, "cut_in_generation": cut_in_generation(
                 solution.evaluation), "cut_in_mps": v["cut_in_mps"], "cut_out_mps": v["cut_out_mps"],
             "cut_out_20m_mps": v["cut_out_mps"] / factor, "altitude_m": float(q["altitude_m"][0]),
             "total_mass_kg": float(q["total_mass_kg"][0]), "aspect_ratio": v["aspect_ratio"],
@@ -264,6 +264,11 @@ def main(part="both"):
     return PARTS[part]()
 
 
+def _speed(value, width: int) -> str:
+    """A rated wind speed in a column: "never" for a design that never reaches its rated power."""
+    return f"{'never':>{width}s}" if value is None else f"{value:{width}.2f}"
+
+
 def table(result: dict) -> str:
     """The decomposition as a text table."""
     lines = [f"{'reading':46s} {'AEP':>7s} {'effect':>8s} {'CF':>6s} {'rated h':>8s} {'rated 20m':>9s}  cut-in gen",
@@ -271,7 +276,7 @@ def table(result: dict) -> str:
              f"{'':8s} {THESIS['rated_wind_mps']:9.1f}  {THESIS['cut_in_generation']}"]
     for label, r in result["rows"].items():
         lines.append(f"{label:46s} {r['aep_GWh']:7.2f} {r['effect']:+8.2%} {r['capacity_factor']:6.3f} "
-                     f"{r['rated_wind_mps']:8.2f} {r['rated_wind_20m_mps']:9.2f}  {r['cut_in_generation']}")
+                     f"{_speed(r['rated_wind_mps'], 8)} {_speed(r['rated_wind_20m_mps'], 9)}  {r['cut_in_generation']}")
     return "\n".join(lines)
 
 
