@@ -46,14 +46,8 @@ def hardware(parameters: DesignParameters) -> tuple[str, ...]:
 
 
 class HeldProblem(Problem):
-    """A design problem with its hardware held (module docstring), its line meeting the kite as
-    ``line_at_kite`` says (``None``: the model's line)."""
-
-    def __init__(self, parameters: DesignParameters, bounds: dict | None = None, held: dict | None = None,
-                 tether_drag_factor=None, line_at_kite: LineAtKite | None = None,
-                 kite_carries_tether: bool = False):
-        super().__init__(parameters, bounds, held, tether_drag_factor, kite_carries_tether)
-        self.options["line_at_kite"] = line_at_kite
+    """A design problem with its hardware held (module docstring): its inequalities loosened by
+    :data:`SLACK` for SLSQP."""
 
     def derivatives(self, z):
         f, grad, c_eq, j_eq, c_in, j_in = super().derivatives(z)
@@ -65,6 +59,6 @@ def flown(problem: Problem, z, tether_drag_factor=None, line_at_kite: LineAtKite
     ``tether_drag_factor`` and ``line_at_kite``; the solution of its held problem."""
     values = problem.layout.unpack(np.asarray(z, dtype=float)[None, :])
     held = dict(problem.held) | {name: float(np.ravel(values[name])[0]) for name in hardware(problem.parameters)}
-    fly = HeldProblem(problem.parameters, problem.bounds, held, tether_drag_factor, line_at_kite,
-                      problem.options["kite_carries_tether"])
+    fly = HeldProblem(problem.parameters, problem.bounds, held, tether_drag_factor,
+                      problem.options["kite_carries_tether"], line_at_kite)
     return fly.solve(fly.layout.pack({name: np.ravel(values[name]) for name in fly.layout.free}))

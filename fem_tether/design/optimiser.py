@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize
 
-from fem_tether.design.model import Evaluation, evaluate
+from fem_tether.design.model import Evaluation, LineAtKite, evaluate
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import START_RANGES, Layout
 from fem_tether.systems.unified_system import UnifiedSystem, optimal_cycle
@@ -181,10 +181,11 @@ class Problem:
     them), with cached exact derivatives."""
 
     def __init__(self, parameters: DesignParameters, bounds: dict | None = None, held: dict | None = None,
-                 tether_drag_factor=None, kite_carries_tether: bool = False):
+                 tether_drag_factor=None, kite_carries_tether: bool = False, line_at_kite: LineAtKite | None = None):
         self.parameters, self.bounds, self.held = parameters, dict(bounds or {}), dict(held or {})
         self.layout = Layout.build(parameters, self.bounds, self.held)
-        self.options = dict(tether_drag_factor=tether_drag_factor, kite_carries_tether=kite_carries_tether)
+        self.options = dict(tether_drag_factor=tether_drag_factor, kite_carries_tether=kite_carries_tether,
+                            line_at_kite=line_at_kite)
         self._key = None
         self.evaluations = 0
 
