@@ -120,13 +120,14 @@ SIDE_BY_SIDE = (("AEP", "outputs", "aep_Wh", 1e-9, "GWh", ".4f"),
 #: the attribution's lines: (label, AEP, against which AEP)
 ATTRIBUTION = (
     ("flexible design against lumped (total)", "flexible", "lumped"),
-    ("  the FE line's drag on the lumped design", "lumped_flexible_drag", "lumped"),
-    ("  redesign for it", "flexible", "lumped_flexible_drag"),
-    ("flexible design flown with eq. 3.14's drag", "flexible_straight_drag", "flexible"),
-    ("  with the FE line's C_D,t over eq. 3.14's", "flexible_measured_cd", "flexible"),
-    ("  with the FE line's inclination at the kite", "flexible_measured_sag", "flexible"),
-    ("  with the FE line's tension at the winch", "flexible_measured_tension", "flexible"),
-    ("  with both", "flexible_measured_line", "flexible"))
+    ("  the FE line (drag, sag, tension) on the lumped design", "lumped_flexible_line", "lumped"),
+    ("    its drag alone", "lumped_flexible_drag", "lumped"),
+    ("  redesign for it", "flexible", "lumped_flexible_line"),
+    ("flexible design flown with eq. 3.14's drag, the model's line", "flexible_straight_drag", "flexible"),
+    ("  with the FE drag, the model's sag and tension", "flexible_model_line", "flexible"),
+    ("  with the FE drag and tension, the model's sag", "flexible_model_sag", "flexible"),
+    ("  with the FE drag and sag, the model's tension", "flexible_model_tension", "flexible"),
+    ("  with the FE line's C_D,t over eq. 3.14's", "flexible_measured_cd", "flexible"))
 
 
 def side_by_side_rows(result: dict) -> list[tuple[str, str, str, str, str]]:

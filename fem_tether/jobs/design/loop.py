@@ -14,8 +14,12 @@ first of a loop of rounds k = 1, 2, …:
    line's of the same case with the same drag law (C_⊥, ``[drag]
    tether_drag_lumping``), multiplies eq. 3.14's C_d,t = C_⊥ d r / (4A) there
    (bins without a run: interpolated between their neighbours', held beyond);
-3. the design is re-optimised with those factors, warm from the round's design
-   (:class:`fem_tether.design.optimiser.Problem` with ``tether_drag_factor``);
+   and the line meets the kite as the FE line does (:func:`measured_line`): its
+   inclination above the sag model's (eqs. 3.17–3.19) is added to the sag, and
+   the winch's share of the kite's tension scales the ground power;
+3. the design is re-optimised with those factors and that line, warm from the
+   round's design (:class:`fem_tether.design.optimiser.Problem` with
+   ``tether_drag_factor`` and ``line_at_kite``);
 
 until the AEP changes by less than the tolerance (0.1 %) from one round's
 design to the next, or the cap of rounds is reached (then the result says it did
@@ -201,11 +205,14 @@ def factors(job: DesignJob, m: Measured) -> np.ndarray:
     return filled(m.wind_mps, raw, m.ok)
 
 
-def bin_record(job: DesignJob, design: DesignResult, m: Measured, factor: np.ndarray) -> dict:
+def bin_record(job: DesignJob, design: DesignResult, m: Measured, factor: np.ndarray,
+               line: LineAtKite | None) -> dict:
     """The per-bin record of a round: the flown design's operating point, the runs' values, the
     factor used next, the C_D,t of the FE line, of the straight line (both referred to the kite at
     its bin, :func:`fem_tether.performance.summary.operating_tether_cd`) and of eq. 3.14, the sag
-    θ − β the FE line shows and the model's, and the winch's share of the kite's tension."""
+    θ − β the FE line shows and the model's (eqs. 3.17–3.19: the flown design's θ less the
+    inclination ``line`` added to its sag, the line it was optimised with; None: none), and the
+    winch's share of the kite's tension."""
     c, p = design.curves, job.parameters
     cfg = line_config(p, design.design, design.outputs, job.flexible)
     fe_key, rod_key = (lumped_name(name, cfg.drag.tether_drag_lumping) for name in ("drag_fe_N", "drag_straight_N"))
@@ -222,8 +229,19 @@ def bin_record(job: DesignJob, design: DesignResult, m: Measured, factor: np.nda
             "apparent_speed_mps": np.asarray(c["apparent_speed_mps"]), "tether_force_N": np.asarray(c["tether_force_N"]),
             **m.values, "factor": factor, "cd_fe": cd_fe,
             "cd_straight": cd_straight, "cd_model": np.full(n, cd_model),
-            "sag_model_rad": np.asarray(c["theta_rad"]) - design.design["elevation_rad"],
+            "sag_model_rad": np.asarray(c["theta_rad"]) - design.design["elevation_rad"]
+            - (0.0 if line is None else line.extra_inclination_rad),
             "ground_tension_share": m.values["ground_tension_fe_N"] / m.values["kite_tension_fe_N"]}
+
+
+def measured_line(bins: dict) -> LineAtKite:
+    """How the FE line meets the kite, per node of a round's bins: its inclination above the
+    model's sag θ − β (eqs. 3.17–3.19) and the winch's share T(0)/T(r) of the kite's tension,
+    filled between the nodes whose run succeeded (:func:`.flexible.filled`)."""
+    known = np.asarray(bins["status"]) == "ok"
+    wind = np.asarray(bins["wind_mps"])
+    extra = filled(wind, np.asarray(bins["sag_fe_rad"]) - np.asarray(bins["sag_model_rad"]), known)
+    return LineAtKite(extra, filled(wind, bins["ground_tension_share"], known))
 
 
 def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, flexible_problem: Problem,
@@ -231,20 +249,22 @@ def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, fl
     """Where the flexible design's AEP differs from the lumped one's, in AEPs [Wh] (NaN: the flight's
     re-optimisation did not converge feasible; :func:`fem_tether.design.flown.flown`):
 
-    ``lumped`` and ``flexible``: the two designs; ``lumped_flexible_drag``: the lumped design flown
-    with the FE drag factors (the drag's cost before redesign); ``flexible_straight_drag``: the flexible
-    design flown with eq. 3.14's drag; ``flexible_measured_sag``: the flexible design flown with its
-    drag and the FE line's inclination at the kite in place of the sag's (eqs. 3.17–3.19);
-    ``flexible_measured_tension``: with its drag and the winch's share T(0)/T(r) of the kite's tension
-    the FE line shows; ``flexible_measured_line``: with both; ``flexible_measured_cd``: with the FE
-    line's C_D,t over eq. 3.14's as the factor in place of F_FE / F_straight (the difference: the
-    wind across the straight line and its air's density along it, which the factor leaves out)."""
+    ``lumped`` and ``flexible``: the two designs (the flexible one optimised with the FE line's drag
+    factors and its :func:`measured_line`); ``lumped_flexible_line``: the lumped design flown with all that
+    (the FE line's cost before redesign), ``lumped_flexible_drag``: with the drag factors alone;
+    ``flexible_straight_drag``: the flexible design flown with eq. 3.14's drag and the model's line
+    (sag 3.17–3.19, the winch pulling the kite's tension); ``flexible_model_line``: with its drag
+    factors and the model's line (what the sag and the tension cost together);
+    ``flexible_model_sag``: with its factors, the FE line's tension share and the model's sag;
+    ``flexible_model_tension``: with its factors, the FE line's inclination and the model's tension;
+    ``flexible_measured_cd``: with the FE line's C_D,t over eq. 3.14's as the factor in place of
+    F_FE / F_straight (the difference: the wind across the straight line and its air's density along
+    it, which the factor leaves out) and the FE line."""
     lumped_problem = Problem(job.parameters, job.bounds, job.held)
     z_lumped, z_flexible = normalised(lumped_problem, lumped), normalised(flexible_problem, flexible)
     known = np.asarray(bins["status"]) == "ok"
     wind = np.asarray(bins["wind_mps"])
-    extra = filled(wind, np.asarray(bins["sag_fe_rad"]) - np.asarray(bins["sag_model_rad"]), known)
-    share = filled(wind, bins["ground_tension_share"], known)
+    line = measured_line(bins)
     measured_cd = filled(wind, np.asarray(bins["cd_fe"]) / np.asarray(bins["cd_model"]), known)
     ones, zeros = np.ones(wind.size), np.zeros(wind.size)
 
@@ -253,12 +273,15 @@ def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, fl
             else math.nan
 
     return {"lumped": lumped.outputs["aep_Wh"], "flexible": flexible.outputs["aep_Wh"],
+            "lumped_flexible_line": aep(flown(lumped_problem, z_lumped, factor, line)),
             "lumped_flexible_drag": aep(flown(lumped_problem, z_lumped, factor)),
             "flexible_straight_drag": aep(flown(flexible_problem, z_flexible, None)),
-            "flexible_measured_sag": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(extra, ones))),
-            "flexible_measured_tension": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(zeros, share))),
-            "flexible_measured_line": aep(flown(flexible_problem, z_flexible, factor, LineAtKite(extra, share))),
-            "flexible_measured_cd": aep(flown(flexible_problem, z_flexible, measured_cd))}
+            "flexible_model_line": aep(flown(flexible_problem, z_flexible, factor)),
+            "flexible_model_sag": aep(flown(flexible_problem, z_flexible, factor,
+                                            LineAtKite(zeros, line.ground_tension_share))),
+            "flexible_model_tension": aep(flown(flexible_problem, z_flexible, factor,
+                                                LineAtKite(line.extra_inclination_rad, ones))),
+            "flexible_measured_cd": aep(flown(flexible_problem, z_flexible, measured_cd, line))}
 
 
 @dataclass
@@ -277,6 +300,7 @@ class FlexibleDesign:
     attribution_Wh: dict = field(default_factory=dict)
     fe_runs: int = 0
     fd_runs: int = 0
+    line: LineAtKite | None = None      # the FE line at the kite the last round optimised with
     timing_s: dict = field(default_factory=dict)
 
     @property
@@ -412,10 +436,11 @@ def _round(job: DesignJob, current: DesignResult, runs: BinRuns, k: int, state: 
         return ({"next": None, "stop": True, "failed": True, "say": state.error}, None,
                 np.ones(m.wind_mps.size), {})
     factor = factors(job, m)
-    problem = Problem(job.parameters, job.bounds, job.held, tether_drag_factor=factor)
+    bins = bin_record(job, current, m, factor, state.line)
+    line = state.line = measured_line(bins)
+    problem = Problem(job.parameters, job.bounds, job.held, tether_drag_factor=factor, line_at_kite=line)
     solution = problem.solve(normalised(problem, current))
     result = design_result(problem, [solution], [record(current.best or 0, solution, job.parameters)], job.seed)
-    bins = bin_record(job, current, m, factor)
     if not result.found:
         state.status = "failed"
         state.error = f"round {k}: the re-optimisation with the FE drag did not converge ({solution.message})"
