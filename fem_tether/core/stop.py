@@ -213,14 +213,27 @@ class _Interrupts:
     def __init__(self):
         self.seen = False
         self.raising = False
+        self.ever = False
 
     def __call__(self, signum, frame) -> None:
-        again, self.seen = self.seen, True
+        again, self.seen, self.ever = self.seen, True, True
         if self.raising and (again or not _importing(frame)):    # a second Ctrl-C insists
             raise KeyboardInterrupt
 
 
 _interrupts = _Interrupts()
+
+
+def _quiet_after_interrupts(hook):
+    """``hook`` for the finalisers' errors (``sys.unraisablehook``), except
+    a ``KeyboardInterrupt`` one dropped (it is asked for again) and, once
+    Ctrl-C has come, every one: an interrupt inside a library's constructor
+    leaves a half-built object whose finaliser then fails (measured: llvmlite's
+    ``PassBuilder`` without ``_as_parameter_``, a traceback after the one line)."""
+    def on_unraisable(unraisable) -> None:
+        if not (issubclass(unraisable.exc_type, KeyboardInterrupt) or _interrupts.ever):
+            hook(unraisable)
+    return on_unraisable
 
 
 def defer_interrupts() -> None:
@@ -230,6 +243,7 @@ def defer_interrupts() -> None:
     job) keeps ignoring it."""
     if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
         signal.signal(signal.SIGINT, _interrupts)
+        sys.unraisablehook = _quiet_after_interrupts(sys.unraisablehook)   # for the command's whole life
 
 
 def checkpoint() -> None:
@@ -261,8 +275,7 @@ def interruptible() -> Iterator[None]:
         return
     previous = signal.signal(signal.SIGINT, _interrupts)
     hook = sys.unraisablehook
-    sys.unraisablehook = lambda unraisable: (None if issubclass(unraisable.exc_type, KeyboardInterrupt)
-                                             else hook(unraisable))   # dropped, and asked for again
+    sys.unraisablehook = _quiet_after_interrupts(hook)
     _interrupts.raising = True
     try:
         checkpoint()
