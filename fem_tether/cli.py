@@ -265,10 +265,11 @@ def cmd_aep(args):
 def cmd_run(args):
     from fem_tether.commands.pipeline import main_job
 
-    result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete, args.system)
+    result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete, args.system,
+                      progress=not args.json)
     if result is None:
         return 0
-    print(report.main_job_text(result))
+    print(report.json_text(result.summary) if args.json else report.main_job_text(result))
     return 0 if result.outcome.ok else EXIT_FAILED
 
 
@@ -356,7 +357,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("simulate", cmd_simulate, "FE tether dynamics on the figure-eight")
     c.add_argument("--length", type=_length_m, help="cable length [m]")
-    c.add_argument("--out", metavar="DIR", help="write HDF5 and a ParaView time series here")
+    c.add_argument("--out", metavar="DIR", help="write HDF5, a ParaView time series with the kite's track and a "
+                   "reel-out run's F_t(L) plot here (docs/outputs.md)")
     c.add_argument("--sweep", metavar="FILE.h5",
                    help="reel-out: overlay a sweep's fixed-length F_t on the F_t(L) plot")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
@@ -409,11 +411,14 @@ def build_parser() -> argparse.ArgumentParser:
     c = command("run", cmd_run, "the main job: sweep, cross-check gate, AEP, plots, summary",
                 config=False)
     c.add_argument("job", nargs="?", help="sweep job (default: the embedded default job)")
-    c.add_argument("--out", default="results", metavar="DIR", help="output directory (results)")
+    c.add_argument("--out", default="results", metavar="DIR",
+                   help="output directory (results; docs/outputs.md lists its files)")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="keep lengths whose cross-check failed, marked")
     c.add_argument("--allow-incomplete", action="store_true",
                    help="compute the AEP even if lengths are pending (else exit 2 naming them)")
+    c.add_argument("--json", action="store_true", help="print the summary (summary.json) on stdout (no table, "
+                   "no progress)")
 
     c = command("validate", cmd_validate, "run the validation cases (analytic solutions, the source documents' "
                 "numbers, FE <-> FD) and print one table of verdicts", config=False, system=False)

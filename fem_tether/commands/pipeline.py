@@ -1,10 +1,13 @@
-"""The main job: sweep -> cross-check gate -> AEP -> plots and JSON.
+"""The main job: sweep -> cross-check gate -> AEP -> plots, summary and JSON.
 
 Rank 0 of the sweep does everything after the sweep.  Files written into the
-output directory: ``sweep.h5`` (the sweep result, see :mod:`fem_tether.jobs.sweepfile`),
-``aep.json``, four PNG plots (F_t, G_e, power curves, AEP vs L) and the report
-page ``index.html`` (:mod:`fem_tether.report.page`); the printed summary table is
-:func:`fem_tether.report.text.summary_table`.
+output directory (docs/outputs.md): ``sweep.h5`` (the sweep result, see
+:mod:`fem_tether.jobs.sweepfile`) and its parts ``sweep.h5.parts/``, four PNG
+plots (F_t, G_e, power curves, AEP vs L), ``aep.json``, the summary table as
+``summary.csv`` and ``summary.json`` (:mod:`fem_tether.report.job_summary`) and
+the report page ``index.html`` (:mod:`fem_tether.report.page`); the printed
+summary table is :func:`fem_tether.report.text.summary_table`, ``run --json``
+prints ``summary.json``.
 """
 
 from __future__ import annotations
@@ -12,11 +15,13 @@ from __future__ import annotations
 import time
 from contextlib import ExitStack
 from dataclasses import dataclass, replace
+from datetime import datetime, timezone
 from pathlib import Path
 
 from fem_tether.performance.aep import SweepAep, sweep_aep
 from fem_tether.core.atomic import write_json
 from fem_tether.report.figures import PLOT_FILES, write_plots
+from fem_tether.report.job_summary import CSV_NAME, JSON_NAME, aep_document, summary_document, write_summary
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.report.page import PAGE_NAME, write_page
@@ -35,12 +40,13 @@ from fem_tether.jobs.sweepfile import read_sweep
 IDLE_COST_US = 0.75e6
 
 #: The files the main job writes into its folder beside ``sweep.h5``.
-FILES = (*PLOT_FILES, "aep.json", PAGE_NAME)
+FILES = (*PLOT_FILES, "aep.json", CSV_NAME, JSON_NAME, PAGE_NAME)
 
 
 @dataclass(frozen=True)
 class MainJob:
-    """What the main job did and wrote: the sweep, its AEP, the files, the time taken."""
+    """What the main job did and wrote: the sweep, its AEP, the files, the time taken
+    (to the summary, which states it) and the summary (``summary.json``'s document)."""
 
     outcome: SweepOutcome
     data: dict
@@ -48,14 +54,16 @@ class MainJob:
     h5: Path
     files: dict
     seconds: float
+    summary: dict
 
 
 def main_job(job_file=None, out="results", allow_unchecked=False,
-             allow_incomplete=False, system=None) -> MainJob | None:
+             allow_incomplete=False, system=None, progress=True) -> MainJob | None:
     """Run the job in ``job_file`` (over the preset of ``system``; default: the
     preset job of ``system``, else the embedded default job) into the
     directory ``out``; ``None`` on the MPI ranks other than 0."""
     t0 = time.perf_counter()
+    started = datetime.now(timezone.utc).isoformat(timespec="seconds")
     job = load_job(job_file, system)
     out = Path(out)
     h5 = out / "sweep.h5"
@@ -65,18 +73,25 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
         # the plotting and scipy.stats while it waits for the other ranks' tasks
         follow_up = FollowUp(out, tuple(out / name for name in FILES), folder_lock, aep=True,
                              imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US)
-        outcome = sweep(job, h5, follow_up=follow_up)
+        outcome = sweep(job, h5, progress=progress, follow_up=follow_up)
         if outcome is None:
             return None
-        return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0)
+        return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0, started)
 
 
 def _after_sweep(outcome: SweepOutcome, h5: Path, out: Path, allow_unchecked: bool, allow_incomplete: bool,
-                 t0: float) -> MainJob:
+                 t0: float, started: str) -> MainJob:
     data = read_sweep(h5)
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
-    files = write_plots(data, energy, out)
-    files["aep_json"] = write_json(out / "aep.json", energy.as_dict())
-    files["index"] = write_page(out, data, energy, {k: v for k, v in files.items() if v.suffix == ".png"})
+    plots = write_plots(data, energy, out)
     outcome = replace(outcome, peak_rss_MiB=(peak_rss_MiB(),) + outcome.peak_rss_MiB[1:])  # with the plots
-    return MainJob(outcome, data, energy, h5, files, time.perf_counter() - t0)
+    seconds = time.perf_counter() - t0          # the files below take milliseconds
+    run = {"started_utc": started, "wall_s": seconds, "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
+           "reused_tasks": outcome.reused, "peak_rss_MiB_per_rank": list(outcome.peak_rss_MiB)}
+    files = plots | {"aep_json": out / "aep.json", "summary_csv": out / CSV_NAME, "summary_json": out / JSON_NAME,
+                     "index": out / PAGE_NAME}
+    summary = summary_document(data, energy, run, {"sweep": h5} | files)
+    write_json(files["aep_json"], aep_document(data, energy))
+    write_summary(out, summary)
+    write_page(out, data, energy, plots, run)
+    return MainJob(outcome, data, energy, h5, files, seconds, summary)

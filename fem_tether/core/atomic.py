@@ -7,7 +7,8 @@ Four rules, each one function here, which every writer of the package uses:
   checks every path it will write: the folder can be created and written, and
   the target is absent or a regular file (or, for a ParaView folder, a folder)
   that fem-tether wrote (:func:`written_by_fem_tether`: an HDF5 attribute, a
-  PNG text chunk, an HTML ``generator`` tag, a Markdown comment, a JSON key).
+  PNG text chunk, an HTML ``generator`` tag, a Markdown comment, a JSON key,
+  a CSV file's first line ``# fem-tether VERSION``).
   A symbolic link, a FIFO, a device or a user's file is refused, naming it.
 - **Commit** (:func:`atomic_path`, :func:`atomic_outputs`): every target is
   written under a hidden temporary name beside it and renamed into place only
@@ -109,6 +110,12 @@ def _text_ours(path: Path) -> bool:
             or f"<!-- {GENERATOR}" in head)
 
 
+def _csv_ours(path: Path) -> bool:
+    """A CSV table whose first line is our comment (:func:`write_csv`)."""
+    with open(path, "rb") as fh:
+        return fh.readline().startswith(f"# {GENERATOR} ".encode())
+
+
 def _vtk_ours(path: Path) -> bool:
     """A legacy VTK file whose title line (its second) is our marker."""
     with open(path, "rb") as fh:
@@ -139,7 +146,7 @@ def _json_ours(path: Path) -> bool:
 
 _RECOGNISERS = {".h5": _hdf5_ours, ".hdf5": _hdf5_ours, ".png": _png_ours, ".html": _text_ours,
                 ".md": _text_ours, ".pvd": _text_ours, ".vtu": _text_ours, ".vtk": _vtk_ours,
-                ".json": _json_ours}
+                ".json": _json_ours, ".csv": _csv_ours}
 
 
 def written_by_fem_tether(path) -> bool:
@@ -387,6 +394,21 @@ def write_json(path, payload: dict, allow_nan: bool = False) -> Path:
     text = json.dumps(document, indent=2, sort_keys=True, allow_nan=allow_nan)
     with atomic_path(path) as tmp:
         tmp.write_text(text)
+    return Path(path)
+
+
+def write_csv(path, header: Sequence[str], rows: Sequence[Sequence]) -> Path:
+    """A CSV table (:mod:`csv`, comma-separated, one ``header`` line) written
+    atomically, its first line the comment ``# fem-tether VERSION`` that marks
+    it as ours (read it with ``pandas.read_csv(path, comment="#")``).  An
+    undefined value (None) is an empty cell."""
+    import csv
+
+    with atomic_path(path) as tmp, open(tmp, "w", encoding="utf-8", newline="") as fh:
+        fh.write(f"# {generator_tag()}\n")
+        writer = csv.writer(fh, lineterminator="\n")
+        writer.writerow(header)
+        writer.writerows([["" if v is None else v for v in row] for row in rows])
     return Path(path)
 
 

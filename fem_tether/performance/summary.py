@@ -4,13 +4,18 @@ G_e = L / (D_k + lines F) (seed 000 eq. 5.1) with the air density at the
 operating altitude L cos(theta0) and F the line's drag lumped at the kite as
 ``[drag] tether_drag_lumping`` says (:mod:`fem_tether.physics.moment`: the moment's F_t
 of eq. 4.1 or the power's F_P), and the straight line of the same case (seed
-000 §4.1, with the wind's normal component as the flexible line has it) lumped
-the same way for comparison; the sweep uses the same two.
+000 §4.1, with the wind's normal component as the flexible line has it:
+:data:`STRAIGHT_LINE`) lumped the same way for comparison; the sweep uses the
+same two.  A run that reels out has no one length: its F_t, G_e and straight
+line are given over its first and its last period of the path
+(:func:`reel_summary`), where the whole run's means would mix lengths.
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+from dataclasses import replace
 
 from fem_tether.physics import atmosphere, kite
 from fem_tether.performance import sizing, straight
@@ -20,6 +25,13 @@ from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
 from fem_tether.systems.power import operating_altitude_m
 from fem_tether.physics.reel import Reel
 from fem_tether.systems.tether_drag import flexible_tether_cd
+
+
+#: Which straight line the straight-line numbers of a run, a sweep and the main
+#: job are: the one in the same wind as the flexible line (``fem-tether straight``
+#: is the quiet-air one unless ``--wind``; docs/physics.md §10).
+STRAIGHT_LINE = ("a rigid straight line in the same wind as the flexible line (seed 000 §4.1 with the "
+                 "wind's normal component); 'fem-tether straight' gives it in quiet air unless --wind")
 
 
 def operating_density_kg_m3(cfg: Config) -> float:
@@ -48,22 +60,23 @@ def operating_tether_cd(cfg: Config, drag_N, speed_mps: float | None = None) -> 
 
 
 def run_summary(run, cfg: Config) -> dict:
-    """Period means, straight-line comparison, G_e, and the line's peak tension,
-    breaking load and margin (:mod:`fem_tether.performance.sizing`) of one tether run."""
+    """Period means, straight-line comparison, G_e, and the line's peak tension
+    (with the length it was reached at), breaking load and margin
+    (:mod:`fem_tether.performance.sizing`) of one tether run.  A reel-out run's G_e and
+    straight line are undefined (None) over the whole run: :func:`reel_summary` gives
+    them at its first and its last period."""
     means = run.means()
-    lumping = cfg.drag.tether_drag_lumping
-    drags = lumped_drags_N(run, cfg)
-    ge = operating_ge(cfg, drags[lumping], run_speed_mps(run, cfg))
     peak = sizing.peak_tension_N(run)
-    line = straight.from_config(cfg, with_wind=True)
+    reel = reel_summary(run, cfg)
+    one_length = {} if reel else length_summary(run, cfg)
     return {
         "solver": run.solver,
         "length_m": run.length_m,
         "mean_drag_N": means["mean_drag_N"],
         "mean_drag_against_N": means["mean_drag_against_N"],
         "mean_drag_power_W": means["mean_drag_power_W"],
-        "power_drag_N": drags["power"],
-        "tether_drag_lumping": lumping,
+        "power_drag_N": one_length.get("power_drag_N"),
+        "tether_drag_lumping": cfg.drag.tether_drag_lumping,
         "mean_ground_tension_N": means["mean_ground_tension_N"],
         "mean_kite_tension_N": means["mean_kite_tension_N"],
         "mean_kite_radius_m": means["mean_kite_radius_m"],
@@ -72,18 +85,68 @@ def run_summary(run, cfg: Config) -> dict:
         "material": cfg.tether.material,
         "safety_factor": cfg.tether.safety_factor,
         "peak_tension_N": peak,
+        "peak_length_m": peak_length_m(run),
         "breaking_load_N": sizing.breaking_load_N(cfg),
         "margin": sizing.margin(cfg, peak),
-        "straight_drag_N": line.drag_N,
-        "straight_power_drag_N": line.power_drag_N,
-        "ge": float(ge),
+        "straight_line": STRAIGHT_LINE,
+        "straight_drag_N": one_length.get("straight_drag_N"),
+        "straight_power_drag_N": one_length.get("straight_power_drag_N"),
+        "ge": one_length.get("ge"),
+        "ge_straight": one_length.get("ge_straight"),
         "length_end_m": float(run.series["length_m"][-1]),
         "winch_energy_J": float(run.series["winch_energy_J"][-1]),
         "periods": run.periods,
         "period_s": run.period_s,
         "wall_s": run.wall_s,
         **run.extra,
-    } | free_kite_summary(run) | cycle_summary(run, cfg)
+    } | reel | free_kite_summary(run) | cycle_summary(run, cfg)
+
+
+def length_summary(run, cfg: Config) -> dict:
+    """The run's drag lumped at the kite as ``[drag] tether_drag_lumping`` says, its
+    G_e (rho at ``cfg``'s operating altitude) and the straight line of ``cfg``'s
+    length in the same wind (:data:`STRAIGHT_LINE`), its G_e lumped the same way."""
+    lumping = cfg.drag.tether_drag_lumping
+    speed = run_speed_mps(run, cfg)
+    drags = lumped_drags_N(run, cfg)
+    line = straight.from_config(cfg, with_wind=True)
+    return {"length_m": cfg.tether.length_m, "mean_drag_N": drags["moment"], "power_drag_N": drags["power"],
+            "ge": operating_ge(cfg, drags[lumping], speed),
+            "straight_drag_N": line.drag_N, "straight_power_drag_N": line.power_drag_N,
+            "ge_straight": operating_ge(cfg, line.lumped_N(lumping), speed)}
+
+
+def peak_length_m(run) -> float:
+    """The line's length when its peak tension (:func:`fem_tether.performance.sizing.peak_tension_N`)
+    was reached."""
+    window = np.flatnonzero(run.average_window)
+    tension = np.maximum(run.series["kite_tension_N"][window], run.series["ground_tension_N"][window])
+    return float(run.series["length_m"][window[np.argmax(tension)]])
+
+
+def reel_summary(run, cfg: Config) -> dict:
+    """A run that pays its line out (or in) one way, ``[winch] reel_out`` neither "none"
+    nor "cycle" ({} for any other): over its first and its last whole period of the
+    path after the spin-up, ``"reel_start"`` and ``"reel_end"``, each the
+    :func:`length_summary` of that period at its mean length (the one-period means of
+    the F_t(L) plot, :func:`fem_tether.tether.results.period_average`), with the
+    lengths it ran from and to."""
+    lengths = run.series["length_m"]
+    if cfg.winch.reel_out in ("none", "cycle") or np.ptp(lengths) == 0.0:
+        return {}
+    first, last = run.average_start_s, run.average_end_s
+    if last - first < run.period_s:
+        return {}
+    return {"reel_start": _window_summary(run, cfg, first, first + run.period_s),
+            "reel_end": _window_summary(run, cfg, last - run.period_s, last)}
+
+
+def _window_summary(run, cfg: Config, start_s: float, end_s: float) -> dict:
+    window = replace(run, average_start_s=start_s, extra=run.extra | {"average_end_s": end_s})
+    length = window.mean("length_m")
+    at_length = cfg.replace(tether={"length_m": length}, winch={"reel_out": "none", "reel_out_stop_m": 0.0})
+    lengths = run.series["length_m"][window.average_window]
+    return {"from_m": float(lengths[0]), "to_m": float(lengths[-1])} | length_summary(window, at_length)
 
 
 def free_kite_summary(run) -> dict:

@@ -1,9 +1,12 @@
 """The figures of results: a sweep's four and a reel-out run's F_t(L).
 
 What to draw from a sweep result or a run (the curves and the points beside
-them); the drawing itself is :mod:`fem_tether.report.plots`, imported where a figure
+them), and the caption that says what each shows (:func:`caption`); the
+drawing itself is :mod:`fem_tether.report.plots`, imported where a figure
 is drawn: importing matplotlib takes about half a second, which the ranks of
-a sweep that only run tasks need not spend.
+a sweep that only run tasks need not spend.  "Straight" is everywhere the
+rigid straight line in the same wind as the flexible line
+(:data:`~fem_tether.performance.summary.STRAIGHT_LINE`).
 """
 
 from __future__ import annotations
@@ -26,6 +29,15 @@ PLOT_FILES = ("drag_vs_length.png", "ge_vs_length.png", "power_curves.png", "aep
 
 #: Wind-speed step of the main job's power curves, calm air to the cut-out [m/s].
 POWER_CURVE_STEP_MPS = 0.5
+
+#: The power models by ``[system] model``, with their source, as the captions name them.
+MODEL_SOURCES = {"kitegen": "KiteGen model (Roselli 2016 §2.4 and §5)",
+                 "ke-yoyo": "KE-yoyo model (Fagiano et al. 2010)",
+                 "unified": "unified ground-gen/fly-gen model (Trevisi 2019 ch. 3)",
+                 "loyd": "Loyd model (Lourenço 2014)"}
+
+#: The straight line of every figure, in the captions' words.
+STRAIGHT = "the rigid straight line in the same wind"
 
 
 def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
@@ -61,6 +73,31 @@ def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path
                "flexible, sized d": energy.flexible}
     files["aep"] = plots.plot_aep(aep, directory / PLOT_FILES[3])
     return files
+
+
+def caption(name: str, cfg: Config, lengths_m) -> str:
+    """One sentence saying what the figure ``name`` of :func:`write_plots` ("drag", "ge",
+    "power", "aep") shows for the sweep of ``cfg`` over ``lengths_m``, with the figure of
+    Roselli 2016 it compares with where that is the KiteGen model's."""
+    kitegen = cfg.system.model == "kitegen"
+    lumped = {"power": "F_P, the power-equivalent force", "moment": "F_t"}[cfg.drag.tether_drag_lumping]
+    shortest, longest = f"{min(lengths_m):g} m", f"{max(lengths_m):g} m"
+    captions = {
+        "drag": "Mean drag of one line lumped at the kite, F_t (Roselli 2016 eq. 4.1), against cable length: "
+                f"the flexible line (FE solver) and {STRAIGHT} (as in Roselli 2016 Fig. 4.43).",
+        "ge": f"Global efficiency G_e = L/(D_k + {cfg.tether.lines}F) (Roselli 2016 eq. 5.1, F = {lumped}) against "
+              f"cable length, flexible and {STRAIGHT}"
+              + (" (as in Roselli 2016 Fig. 5.1; hollow markers: its Tab. 5.1)." if kitegen else "."),
+        "power": f"Electrical power against the wind speed at the kite of the {MODEL_SOURCES[cfg.system.model]} "
+                 f"on the shortest ({shortest}) and the longest ({longest}) line, flexible and {STRAIGHT}: "
+                 + ("the cycle mean and, dotted, the active phase" if from_config(cfg).active is not None
+                    else "the cycle mean")
+                 + (" (as in Roselli 2016 Figs. 5.4 and 5.5)." if kitegen else "."),
+        "aep": f"Annual energy production (Roselli 2016 eq. 5.2) against cable length, flexible and {STRAIGHT}, "
+               f"with the {MODEL_SOURCES[cfg.system.model]}; the best length of each starred"
+               + (" (as in Roselli 2016 Fig. 5.6)." if kitegen else "."),
+    }
+    return captions[name]
 
 
 def air_note(cfg: Config) -> str:

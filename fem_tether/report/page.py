@@ -1,33 +1,53 @@
 """The main job's report page: ``index.html``, one self-contained file.
 
-It holds the summary table (F_t, G_e, AEP and capacity factor per length, the
-numbers of ``aep.json``), every plot of the run embedded as a base64 PNG data URI,
-the FE <-> FD cross-check of each length against its tolerance, the configuration
-as TOML, the package version and the validation status: the verdict counts of a
-``validation.json`` beside the page (``fem-tether validate --quick --out DIR``),
-else "not run".  Written with the standard library only (:mod:`html`,
-:mod:`base64`), atomically.
+It holds the run (date, wall time, ranks, tasks reused, version, system), the
+job (its lengths and ``[sweep]`` table, the job file), the summary table
+(:mod:`fem_tether.report.job_summary`: F_t, G_e, AEP and capacity factor per
+length, the numbers of ``aep.json`` and ``summary.csv``), every plot of the
+run embedded as a base64 PNG data URI with a caption saying what it shows,
+the FE <-> FD cross-check of each length against its tolerance, the
+configuration keys that matter for the system's power model (:func:`configuration_toml`)
+and the validation status: the verdict counts of a ``validation.json`` beside
+the page (``fem-tether validate --quick --out DIR``), else "not run".  Long
+lines wrap (no block is clipped).  Written with the standard library only
+(:mod:`html`, :mod:`base64`), atomically.
 """
 
 from __future__ import annotations
 
 import base64
+import dataclasses
 import html
+import re
+from collections.abc import Mapping
+from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
 
 from fem_tether import __version__
+from fem_tether.config import Config
+from fem_tether.config.sections import SYSTEM_MODELS
+from fem_tether.config.settings import toml_value
 from fem_tether.report import text as report
+from fem_tether.report.figures import caption
+from fem_tether.report.job_summary import COLUMNS, summary_rows
 from fem_tether.performance.aep import SweepAep
+from fem_tether.performance.summary import STRAIGHT_LINE
 from fem_tether.core.atomic import PAGE_NAME, atomic_path, generator_tag
 
 VALIDATION_NAME = "validation.json"
 
-STYLE = ("body{font-family:sans-serif;max-width:62em;margin:2em auto;padding:0 1em}"
-         "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:.2em .5em;text-align:right}"
-         "th{background:#eee}td.text{text-align:left}img{max-width:100%}"
-         "pre{background:#f6f6f6;padding:1em;overflow-x:auto}")
+STYLE = ("body{font-family:sans-serif;max-width:68em;margin:2em auto;padding:0 1em}"
+         "table{border-collapse:collapse;font-size:.92em}td,th{border:1px solid #bbb;padding:.2em .5em;"
+         "text-align:right}th{background:#eee}td.text{text-align:left}img{max-width:100%}"
+         "pre{background:#f6f6f6;padding:1em;white-space:pre-wrap;overflow-wrap:anywhere}"
+         "dl{display:grid;grid-template-columns:max-content auto;gap:.2em 1em}dt{font-weight:bold}dd{margin:0}"
+         "figure{margin:1.5em 0}figcaption{max-width:48em}")
+
+#: Decimals of each summary column on the page (None: the shortest form, ``g``).
+DIGITS = {"length_m": None, "drag_straight_N": 1, "drag_fe_N": 1, "ge_straight": 3, "ge_fe": 3,
+          "aep_straight_MWh": 1, "cf_straight": 4, "aep_fe_MWh": 1, "cf_fe": 4, "d_m": 4, "margin": 3}
 
 
 def number(value, digits: int) -> str:
@@ -43,17 +63,20 @@ def table(header: list[str], rows: list[list[str]]) -> str:
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
-def summary_rows(data: dict, energy: SweepAep) -> list[list[str]]:
-    """Per length: L, F_t and G_e straight and flexible, AEP [MWh] and CF of both (``aep.json``)."""
-    rows = {r["length_m"]: r for r in energy.as_dict()["lengths"]}
-    out = []
-    for i, length in enumerate(data["length_m"]):
-        r = rows.get(float(length), {})
-        out.append([f"{length:g}", number(data["drag_straight_N"][i], 1), number(data["drag_fe_N"][i], 1),
-                    number(data["ge_straight"][i], 3), number(data["ge_fe"][i], 3),
-                    number(r.get("aep_straight_MWh"), 1), number(r.get("cf_straight"), 4),
-                    number(r.get("aep_fe_MWh"), 1), number(r.get("cf_fe"), 4)])
-    return out
+def _cell(key: str, value) -> str:
+    """A summary value on the page: text as it is, a number with the decimals of :data:`DIGITS`."""
+    if key not in DIGITS:
+        return value
+    digits = DIGITS[key]
+    return f"{value:g}" if digits is None else number(value, digits)
+
+
+def summary_table(data: dict, energy: SweepAep) -> str:
+    """The summary (:func:`fem_tether.report.job_summary.summary_rows`): the columns of
+    :data:`DIGITS` and the cross-check, headed with their units."""
+    columns = [c for c in COLUMNS if c.key in DIGITS or not c.unit]
+    return table([c.labelled for c in columns],
+                 [[_cell(c.key, r[c.key]) for c in columns] for r in summary_rows(data, energy)])
 
 
 def crosscheck_rows(data: dict) -> list[list[str]]:
@@ -84,44 +107,112 @@ def validation_status(directory: Path) -> str:
     return html.escape(f"{counts} ({chosen}, fem-tether {found['version']}; {VALIDATION_NAME})")
 
 
-def image(path: Path, embed: bool = True) -> str:
-    """A PNG captioned with its name: embedded as a base64 data URI, or (``embed``
-    false) linked by its name, for a page in the PNG's directory."""
+def image(path: Path, text: str | None = None, embed: bool = True) -> str:
+    """A PNG captioned with ``text`` (default: its name): embedded as a base64 data URI,
+    or (``embed`` false) linked by its name, for a page in the PNG's directory."""
     name = html.escape(Path(path).name)
     source = f"data:image/png;base64,{base64.b64encode(Path(path).read_bytes()).decode('ascii')}" if embed else name
-    return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{name}</figcaption></figure>"
+    label = name if text is None else f"{html.escape(text)} <span class=\"file\">({name})</span>"
+    return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{label}</figcaption></figure>"
 
 
-def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str) -> str:
-    """The page's HTML (``validation``: the status, already HTML)."""
+def facts(pairs: Mapping[str, str]) -> str:
+    """A list of ``name: value`` pairs (escaped)."""
+    return "<dl>" + "".join(f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in pairs.items()) + "</dl>"
+
+
+def run_facts(data: dict, run: Mapping) -> dict[str, str]:
+    """When, how long, on how many ranks, which version and system, which file."""
+    system = data["config"].system
+    started = datetime.fromisoformat(run["started_utc"]).astimezone(timezone.utc)
+    return {"run": started.strftime("%Y-%m-%d %H:%M:%S UTC"), "wall time": f"{run['wall_s']:.1f} s",
+            "MPI ranks": f"{run['n_ranks']}",
+            "tasks": f"{run['tasks']} ({run['reused_tasks']} reused from the stored parts)",
+            "fem-tether": __version__,
+            "system": f"{system.name} ({system.model} model): {system.description}",
+            "result file": Path(data["file"]).name}
+
+
+def job_facts(data: dict) -> dict[str, str]:
+    """The job's lengths (its file, as the result file stores it, follows on the page)."""
+    lengths = data["length_m"]
+    return {"lengths": f"{len(lengths)}: " + ", ".join(f"{v:g}" for v in lengths) + " m"}
+
+
+#: A key's meaning that opens with the choice it is for: "model = 'point-mass': ..."
+#: (the convention of :mod:`fem_tether.config.sections`).
+_FOR_CHOICE = re.compile(r"^(\w+) = '([^']*)':")
+
+
+def matters(section, meaning: str, model: str) -> bool:
+    """Whether a key of ``section`` whose meaning is ``meaning`` matters for the power
+    model ``model``, by the conventions of :mod:`fem_tether.config.sections`: not if
+    its meaning opens with another model's name ("loyd: ...") or with a choice of
+    its section that is not the one made ("model = 'point-mass': ..." beside
+    ``model = "prescribed"``)."""
+    if any(meaning.startswith(f"{other}:") for other in SYSTEM_MODELS if other != model):
+        return False
+    choice = _FOR_CHOICE.match(meaning)
+    return choice is None or str(getattr(section, choice[1], choice[2])) == choice[2]
+
+
+def configuration_toml(cfg: Config, lengths_m) -> str:
+    """The configuration as TOML, each key with its meaning, without what the system's
+    power model and the choices made do not use (:func:`matters`; a section named
+    after another power model, ``[unified]``, whole); ``[tether] length_m`` is the
+    job's ``lengths_m``, as a comment (each length is its own case)."""
+    model = cfg.system.model
+    tables = []
+    for field in dataclasses.fields(cfg):
+        section = getattr(cfg, field.name)
+        if section.NAME in SYSTEM_MODELS and section.NAME != model:
+            continue
+        lines = [f"[{section.NAME}]"]
+        for key, _, unit, meaning in section.describe():
+            comment = meaning if unit == "-" else f"{meaning} [{unit}]"
+            if (section.NAME, key) == ("tether", "length_m"):
+                lines.append(f"# {key}: the job's lengths, {', '.join(f'{v:g}' for v in lengths_m)} m "
+                             "([sweep] lengths_m)")
+            elif matters(section, meaning, model):
+                lines.append(f"{key} = {toml_value(getattr(section, key))}  # {comment}")
+        tables.append("\n".join(lines))
+    return "\n\n".join(tables) + "\n"
+
+
+def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str, run: Mapping) -> str:
+    """The page's HTML (``validation``: the status, already HTML; ``run``: as
+    :func:`fem_tether.report.job_summary.summary_document` takes it)."""
     d = energy.as_dict()
-    notes = [report.best_length_text(d)] + [f"{what}: {', '.join(f'{v:g} m' for v in d[key])}" for key, what in (
-        ("excluded_m", "left out of the flexible AEP (cross-check failed or not run)"),
-        ("pending_m", "pending"), ("unchecked_m", "kept without a passed cross-check")) if d[key]]
-    summary = table(["L [m]", "F_t straight [N]", "F_t flexible [N]", "G_e straight", "G_e flexible",
-                     "AEP straight [MWh]", "CF straight", "AEP flexible [MWh]", "CF flexible"],
-                    summary_rows(data, energy))
+    cfg = data["config"]
+    notes = [f"straight: {STRAIGHT_LINE}.", report.best_length_text(d)] + [
+        f"{what}: {', '.join(f'{v:g} m' for v in d[key])}" for key, what in (
+            ("excluded_m", "left out of the flexible AEP (cross-check failed or not run)"),
+            ("pending_m", "pending"), ("unchecked_m", "kept without a passed cross-check")) if d[key]]
     checks = table(["L [m]", "F_t FE [N]", "F_t FD [N]", "F_t difference", "shape difference / L", "cross-check"],
                    crosscheck_rows(data))
     return "\n".join([
         "<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
         f"<meta name=\"generator\" content=\"{generator_tag()}\">",
-        f"<title>fem-tether run: {html.escape(data['config'].system.name)}</title><style>{STYLE}</style></head><body>",
-        f"<h1>fem-tether run</h1><p>fem-tether {html.escape(__version__)}; result file "
-        f"{html.escape(Path(data['file']).name)}; system {html.escape(data['config'].system.name)}</p>",
+        f"<title>fem-tether run: {html.escape(cfg.system.name)}</title><style>{STYLE}</style></head><body>",
+        f"<h1>fem-tether run: {html.escape(cfg.system.name)}</h1>", facts(run_facts(data, run)),
+        "<h2>Job</h2>", facts(job_facts(data)),
+        f"<pre id=\"job\">{html.escape(data['attrs']['job_toml'].strip())}</pre>",
         f"<h2>Validation</h2><p id=\"validation\">{validation}</p>",
-        f"<h2>Summary</h2>{summary}", "".join(f"<p>{html.escape(n)}</p>" for n in notes),
+        f"<h2>Summary</h2>{summary_table(data, energy)}", "".join(f"<p>{html.escape(n)}</p>" for n in notes),
         f"<h2>FE &lt;-&gt; FD cross-check</h2>{checks}",
-        "<h2>Plots</h2>", *(image(p) for p in plots.values()),
-        f"<h2>Configuration</h2><pre>{html.escape(data['config'].to_toml())}</pre>",
+        "<h2>Plots</h2>", *(image(p, caption(name, cfg, data["length_m"])) for name, p in plots.items()),
+        "<h2>Configuration</h2><p>The keys of the "
+        f"{html.escape(cfg.system.model)} model's case, each with its meaning; the lengths are the job's.</p>",
+        f"<pre id=\"configuration\">{html.escape(configuration_toml(cfg, data['length_m']))}</pre>",
         "</body></html>"])
 
 
-def write_page(directory, data: dict, energy: SweepAep, plots: dict[str, Path]) -> Path:
+def write_page(directory, data: dict, energy: SweepAep, plots: dict[str, Path], run: Mapping) -> Path:
     """``directory/index.html`` of a sweep's ``data`` (:func:`fem_tether.jobs.sweepfile.read_sweep`),
-    its AEP and its PNG ``plots``, written whole or not at all."""
+    its AEP, its PNG ``plots`` (by their names in :func:`fem_tether.report.figures.write_plots`)
+    and the ``run``'s date, wall time, ranks and tasks, written whole or not at all."""
     directory = Path(directory)
-    text = render(data, energy, plots, validation_status(directory))
+    text = render(data, energy, plots, validation_status(directory), run)
     with atomic_path(directory / PAGE_NAME) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return directory / PAGE_NAME

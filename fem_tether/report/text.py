@@ -15,6 +15,11 @@ import numpy as np
 from fem_tether.config import Config
 from fem_tether.tether.crosscheck import QUANTITIES, CrossCheck, limits_of
 from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, short_of_margin, sized_case
+from fem_tether.performance.summary import STRAIGHT_LINE
+from fem_tether.report.job_summary import summary_rows
+
+#: The line under a table of straight-line numbers (in full: :data:`~fem_tether.performance.summary.STRAIGHT_LINE`).
+STRAIGHT_NOTE = "straight: the rigid straight line in the same wind ('fem-tether straight' is in quiet air unless --wind)"
 
 
 def json_safe(data):
@@ -185,23 +190,34 @@ def size_text(s: dict) -> str:
 
 def simulate_text(s: dict, cfg: Config, written: bool) -> str:
     """``fem-tether simulate``: the run's summary (:func:`fem_tether.performance.summary.run_summary`)
-    and, if ``written``, its files."""
+    and, if ``written``, every file written.  A reel-out run's F_t, G_e and straight
+    line are given at its first and its last period (its whole-run means would mix
+    lengths); the straight line is the one in the same wind, as the heading says."""
     averaged = (f"{s['laps']} whole laps averaged after {s['spinup_laps']} of spin-up" if "laps" in s else
                 f"{s['periods']} periods averaged (period {s['period_s']:.2f} s)")
-    lines = [f"FE tether, L = {s['length_m']:g} m, {s['elements']} elements (at the end), "
-             f"dt = {s['dt_s']:.4f} s, {averaged}, wall {s['wall_s']:.2f} s",
-             f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   "
-             f"(straight line {s['straight_drag_N']:.1f} N)",
-             f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N",
-             f"  F_P (drag power lumped)   {s['power_drag_N']:10.1f} N   "
-             f"(straight line {s['straight_power_drag_N']:.1f} N; mean P_t {s['mean_drag_power_W'] / 1e3:.1f} kW)",
-             f"  mean ground tension       {s['mean_ground_tension_N']:10.1f} N",
-             f"  mean kite-end tension     {s['mean_kite_tension_N']:10.1f} N",
-             f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m",
-             f"  G_e                       {s['ge']:10.2f}   (tether drag lumped: {s['tether_drag_lumping']})",
-             f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}",
-             f"  peak tension              {s['peak_tension_N']:10.1f} N   (d = {1e3 * s['diameter_m']:.3f} mm "
-             f"{s['material']}, breaking load {s['breaking_load_N']:.1f} N, margin {s['margin']:.3f})"]
+    reel = "reel_start" in s
+    where = (f"reel-out L = {s['length_m']:g} -> {s['length_end_m']:.0f} m" if reel else
+             f"L = {s['length_m']:g} m")
+    lines = [f"FE tether, {where}, {s['elements']} elements (at the end), "
+             f"dt = {s['dt_s']:.4f} s, {averaged}, wall {s['wall_s']:.2f} s"]
+    lines += _reel_lines(s) if reel else [
+        f"  mean F_t (eq. 4.1)        {s['mean_drag_N']:10.1f} N   "
+        f"(straight line in the same wind {s['straight_drag_N']:.1f} N)",
+        f"  mean F_t against motion   {s['mean_drag_against_N']:10.1f} N",
+        f"  F_P (drag power lumped)   {s['power_drag_N']:10.1f} N   "
+        f"(straight line in the same wind {s['straight_power_drag_N']:.1f} N; "
+        f"mean P_t {s['mean_drag_power_W'] / 1e3:.1f} kW)"]
+    lines += ["  over the whole run:"] if reel else []
+    lines += [f"  mean ground tension       {s['mean_ground_tension_N']:10.1f} N",
+              f"  mean kite-end tension     {s['mean_kite_tension_N']:10.1f} N"]
+    if not reel:
+        lines += [f"  mean kite radius          {s['mean_kite_radius_m']:10.2f} m",
+                  f"  G_e                       {s['ge']:10.2f}   (straight line in the same wind "
+                  f"{s['ge_straight']:.2f}; tether drag lumped: {s['tether_drag_lumping']})"]
+    lines += [f"  max | |r_s| - 1 |         {s['max_strain']:10.2e}",
+              f"  peak tension              {s['peak_tension_N']:10.1f} N   (d = {1e3 * s['diameter_m']:.3f} mm "
+              f"{s['material']}, breaking load {s['breaking_load_N']:.1f} N, margin {s['margin']:.3f}"
+              + (f"; at L = {s['peak_length_m']:.0f} m)" if reel else ")")]
     if "mean_kite_speed_mps" in s:
         lines += [f"  point-mass kite: mean speed {s['mean_kite_speed_mps']:.2f} m/s, apparent wind "
                   f"{s['mean_apparent_speed_mps']:.2f} m/s, mean power {s['mean_power_W'] / 1e3:.1f} kW per line",
@@ -219,14 +235,35 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
     if "sizing_diameters_m" in s:
         lines.append(f"  sized to the peak tension: d = "
                      f"{' -> '.join(f'{1e3 * d:.3f}' for d in s['sizing_diameters_m'])} mm")
-    lines += margin_warnings([(s["length_m"], s["margin"])], s["safety_factor"])
+    lines += margin_warnings([(s["peak_length_m"], s["margin"])], s["safety_factor"])
     if cfg.winch.reel_out != "none":
         lines.append(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
-                     f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line (the means above mix lengths; "
-                     "F_t(L) is in the HDF5 series and the plot)")
+                     f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line"
+                     + ("; F_t(L) all along the run: the HDF5 series and the reel-out plot" if written else
+                        "; F_t(L) all along the run: the HDF5 series and the plot of --out"))
     if written:
-        lines.append(f"results: {s['hdf5']}\nParaView: {s['paraview']}")
+        lines += [f"results: {s['hdf5']}", f"ParaView: {s['paraview']} (the line), {s['kite_track']} (the kite's track)"]
+        if "reel_plot" in s:
+            lines.append(f"reel-out plot: {s['reel_plot']}")
     return "\n".join(lines)
+
+
+def _reel_lines(s: dict) -> list[str]:
+    """A reel-out run's F_t, F_P and G_e over its first and its last period of the path,
+    beside the straight line of the same length in the same wind."""
+    a, b = s["reel_start"], s["reel_end"]
+
+    def row(name: str, key: str, spec: str, unit: str) -> str:
+        return f"  {name:30s}{a[key]:{spec}} {unit:3s}{b[key]:{spec}} {unit}".rstrip()
+
+    return [f"  one-period means at the start (L {a['from_m']:.0f}-{a['to_m']:.0f} m) and at the end "
+            f"(L {b['from_m']:.0f}-{b['to_m']:.0f} m):",
+            row("mean F_t (eq. 4.1)", "mean_drag_N", "12.1f", "N"),
+            row("  straight line, same wind", "straight_drag_N", "12.1f", "N"),
+            row("F_P (drag power lumped)", "power_drag_N", "12.1f", "N"),
+            row("  straight line, same wind", "straight_power_drag_N", "12.1f", "N"),
+            row(f"G_e (lumped: {s['tether_drag_lumping']})", "ge", "12.2f", ""),
+            row("  straight line, same wind", "ge_straight", "12.2f", "")]
 
 
 def crosscheck_text(check: CrossCheck, fe_run) -> str:
@@ -336,10 +373,11 @@ def peak_memory(outcome) -> str:
 
 
 def sweep_summary(outcome, out) -> dict:
-    """``fem-tether sweep --json``: the outcome, non-finite values as null."""
+    """``fem-tether sweep --json``: the outcome, non-finite values as null, and which
+    straight line ``drag_straight_N`` is (``straight_line``)."""
     peaks = getattr(outcome, "peak_rss_MiB", ())
     return {"file": str(out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
-            "reused_tasks": outcome.reused,
+            "reused_tasks": outcome.reused, "straight_line": STRAIGHT_LINE,
             **({"peak_rss_MiB_per_rank": list(peaks), "peak_rss_MiB": max(peaks)} if peaks else {}),
             "lengths": [
                 {"length_m": r.length_m, "status": r.status, "error": r.error,
@@ -384,24 +422,19 @@ def aep_text(result: dict) -> str:
 
 def summary_table(data: dict, energy) -> str:
     """The main job's table: F_t, G_e and AEP per length, straight and flexible, with the
-    cross-check and the best lengths (``data``: :func:`fem_tether.jobs.sweepfile.read_sweep`)."""
-    rows = {r["length_m"]: r for r in energy.as_dict()["lengths"]}
+    cross-check and the best lengths (``data``: :func:`fem_tether.jobs.sweepfile.read_sweep`;
+    the rows: :func:`fem_tether.report.job_summary.summary_rows`)."""
+    def value(row: dict, key: str, scale: float = 1.0) -> float:
+        return np.nan if row[key] is None else row[key] * scale
+
     lines = ["    L [m]  F_t straight  F_t flexible  G_e str.  G_e flex.  AEP str.  AEP flex.  cross-check",
              "                   [kN]          [kN]                          [GWh]      [GWh]"]
-    for i, length in enumerate(data["length_m"]):
-        r = rows.get(float(length), {})
-        aep_fe = r.get("aep_fe_MWh")
-        check = ("ok" if data["crosscheck_ok"][i] else
-                 ("not run" if not np.isfinite(data["rel_diff_drag"][i]) else
-                  f"FAILED ({100 * data['rel_diff_drag'][i]:.1f} % on F_t)"))
-        if data["status"][i] == "pending":
-            check = f"{check}; pending"
-        elif data["status"][i] != "ok":
-            check = f"{check}; {data['error'][i]}"
-        lines.append(f" {length:8.0f}  {data['drag_straight_N'][i] / 1e3:12.2f}  "
-                     f"{data['drag_fe_N'][i] / 1e3:12.2f}  {data['ge_straight'][i]:8.2f}  "
-                     f"{data['ge_fe'][i]:9.2f}  {r.get('aep_straight_MWh', np.nan) / 1e3:8.2f}  "
-                     f"{(aep_fe if aep_fe is not None else np.nan) / 1e3:9.2f}  {check}")
+    for r in summary_rows(data, energy):
+        lines.append(f" {r['length_m']:8.0f}  {value(r, 'drag_straight_N', 1e-3):12.2f}  "
+                     f"{value(r, 'drag_fe_N', 1e-3):12.2f}  {value(r, 'ge_straight'):8.2f}  "
+                     f"{value(r, 'ge_fe'):9.2f}  {value(r, 'aep_straight_MWh', 1e-3):8.2f}  "
+                     f"{value(r, 'aep_fe_MWh', 1e-3):9.2f}  {r['crosscheck']}")
+    lines.append(STRAIGHT_NOTE)
     d = energy.as_dict()
     lines.append(best_length_text(d))
     if energy.excluded_m:

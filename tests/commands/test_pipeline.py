@@ -54,6 +54,51 @@ def test_run_writes_results_plots_and_table(quick_run, capsys):
     assert len(page.images) == 4
 
 
+def test_run_writes_its_summary_table_as_csv_and_json(quick_run):
+    """(Was: README's "summary table in results/" did not exist; aep.json had no F_t, G_e or
+    margin.)  summary.csv and summary.json hold every column of the printed table and the
+    line's margin, each the sweep file's number; aep.json carries them too; the run's date,
+    ranks, tasks and wall time are in summary.json."""
+    code, out = quick_run
+    summary = json.loads((out / "summary.json").read_text())
+    aep = json.loads((out / "aep.json").read_text())
+    marker, header, *lines = (out / "summary.csv").read_text(encoding="utf-8").splitlines()
+    assert marker.startswith("# fem-tether ") and header.startswith("L [m],F_t straight (with wind) [N],")
+    assert len(lines) == 3 == len(summary["lengths"]) == len(aep["lengths"])
+    with h5py.File(out / "sweep.h5") as f:
+        for i, (row, aep_row) in enumerate(zip(summary["lengths"], aep["lengths"])):
+            for key in ("length_m", "drag_straight_N", "drag_fe_N", "ge_straight", "ge_fe", "margin",
+                        "peak_tension_N", "d_m"):
+                assert row[key] == aep_row[key] == f[key][i], key
+            assert row["aep_fe_MWh"] == aep_row["aep_fe_MWh"] and row["crosscheck"] == "ok"
+    assert summary["n_ranks"] == 1 and summary["tasks"] == 6 and summary["wall_s"] > 0
+    assert summary["job"]["lengths_m"] == [500.0, 1500.0, 3000.0] and summary["started_utc"].endswith("+00:00")
+    assert set(summary["files"]) == {"sweep", "drag", "ge", "power", "aep", "aep_json", "summary_csv",
+                                     "summary_json", "index"}
+
+
+def test_run_json_prints_the_summary(quick_run, capsys):
+    """``run --json`` (README's Benchmark names its keys): the summary document on stdout,
+    nothing else; a second run into the same folder reuses every task."""
+    _, out = quick_run
+    capsys.readouterr()
+    assert main(["run", str(QUICK), "--out", str(out), "--json"]) == 0
+    captured = capsys.readouterr()
+    printed = json.loads(captured.out)
+    assert printed["reused_tasks"] == printed["tasks"] == 6
+    assert printed["peak_rss_MiB"] == max(printed["peak_rss_MiB_per_rank"]) > 0
+    assert printed == json.loads((out / "summary.json").read_text())       # the file this run wrote
+    assert captured.err == ""
+
+
+def test_every_file_the_main_job_writes_is_documented(quick_run):
+    """docs/outputs.md names every file and folder the main job leaves in its folder."""
+    _, out = quick_run
+    docs = (Path(__file__).parents[2] / "docs" / "outputs.md").read_text(encoding="utf-8")
+    for path in out.iterdir():
+        assert f"`DIR/{path.name}{'/' if path.is_dir() else ''}`" in docs, path.name
+
+
 def test_aep_gate_leaves_out_failed_crosschecks(quick_run, tmp_path, capsys):
     _, out = quick_run
     h5 = tmp_path / "sweep.h5"
@@ -112,7 +157,8 @@ def test_main_job_under_mpiexec(tmp_path):
 
 
 @pytest.mark.parametrize("name, content", [("index.html", "<html>my page</html>"), ("aep.json", '{"mine": 1}'),
-                                           ("drag_vs_length.png", "not a PNG of ours")])
+                                           ("drag_vs_length.png", "not a PNG of ours"),
+                                           ("summary.csv", "L,AEP\n500,6\n"), ("summary.json", '{"mine": 1}')])
 def test_run_refuses_a_users_file_in_its_folder_before_any_task(tmp_path, capsys, monkeypatch, name, content):
     """(Was: replaced after the sweep.)  Exit 2 naming the file; nothing run, nothing written."""
     monkeypatch.setattr("fem_tether.jobs.sweep_tasks.run_task", lambda *a: pytest.fail("a task ran"))

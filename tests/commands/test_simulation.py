@@ -44,6 +44,65 @@ def test_a_reel_out_run_adds_its_drag_plot(tiny_cfg, tmp_path):
     assert is_png(tmp_path / "fe_L400_reel_drag.png")
 
 
+DOCS = Path(__file__).parents[2] / "docs" / "outputs.md"
+
+
+def _written(folder: Path) -> list[str]:
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+def test_a_reel_out_runs_text_fits_the_run_and_names_every_file(tiny_cfg, tmp_path):
+    """(Was: "FE tether, L = 400 m", a G_e and a straight line "at 400 m" for a line paid out to
+    ~500 m, "margin ... at 400 m", and neither the reel-out plot nor the kite's track named.)
+    The text says the lengths run, gives F_t, G_e and the straight line at the start and at
+    the end, the margin at the length of the peak tension, and every file written; the
+    straight line is the one in the same wind."""
+    from fem_tether.report.text import simulate_text
+
+    cfg = tiny_cfg.replace(winch={"reel_out": "constant", "reel_out_speed_mps": 5.0},
+                           tether={"safety_factor": 1.5})           # a margin warning
+    s = simulation.simulate_case(cfg, tmp_path, progress=False)
+    text = simulate_text(s, cfg, written=True)
+    start, end = s["reel_start"], s["reel_end"]
+    lines = text.splitlines()
+    assert lines[0].startswith(f"FE tether, reel-out L = 400 -> {s['length_end_m']:.0f} m, ")
+    assert lines[1] == (f"  one-period means at the start (L {start['from_m']:.0f}-{start['to_m']:.0f} m) and at "
+                        f"the end (L {end['from_m']:.0f}-{end['to_m']:.0f} m):")
+    assert f"{start['ge']:.2f}" in lines[6] and f"{end['ge']:.2f}" in lines[6] and "G_e" in lines[6]
+    assert lines[3].strip().startswith("straight line, same wind") and f"{end['straight_drag_N']:.1f}" in lines[3]
+    assert "at 400 m" not in text and f"at {s['peak_length_m']:g} m" in text
+    written = [f"results: {tmp_path / 'fe_L400.h5'}",
+               f"ParaView: {tmp_path / 'fe_L400' / 'tether.pvd'} (the line), "
+               f"{tmp_path / 'fe_L400' / 'tether_kite_track.vtu'} (the kite's track)",
+               f"reel-out plot: {tmp_path / 'fe_L400_reel_drag.png'}"]
+    assert lines[-3:] == written
+    assert s["kite_track"] == str(tmp_path / "fe_L400" / "tether_kite_track.vtu")
+
+
+def test_a_runs_text_says_which_straight_line(tiny_cfg):
+    """(Was: "straight line 12451.6 N" beside 'fem-tether straight''s quiet-air 12243 N.)"""
+    from fem_tether.report.text import simulate_text
+
+    s = simulation.simulate_case(tiny_cfg, progress=False)
+    text = simulate_text(s, tiny_cfg, written=False)
+    assert f"(straight line in the same wind {s['straight_drag_N']:.1f} N)" in text
+    assert f"G_e                       {s['ge']:10.2f}   (straight line in the same wind {s['ge_straight']:.2f}" in text
+    assert "same wind" in s["straight_line"] and "quiet air" in s["straight_line"]
+
+
+def test_every_file_simulate_writes_is_documented(tiny_cfg, tmp_path):
+    """(Was: ``tether_kite_track.vtu`` documented nowhere.)  docs/outputs.md names every file
+    of a reel-out run's output (L as ``<L>``, snapshots as ``NNNN``)."""
+    cfg = tiny_cfg.replace(winch={"reel_out": "constant", "reel_out_speed_mps": 5.0})
+    simulation.simulate_case(cfg, tmp_path / "out", progress=False)
+    docs = DOCS.read_text(encoding="utf-8")
+    names = {re.sub(r"_\d{4}\.vtu$", "_NNNN.vtu", name.replace("400", "<L>")) for name in _written(tmp_path / "out")}
+    assert names == {"fe_L<L>", "fe_L<L>.h5", "fe_L<L>_reel_drag.png", "fe_L<L>/tether.pvd",
+                     "fe_L<L>/tether_NNNN.vtu", "fe_L<L>/tether_kite_track.vtu"}
+    for name in names:
+        assert f"`DIR/{name}" in docs, name
+
+
 def test_a_bad_out_fails_before_the_run(tiny_cfg, tmp_path, monkeypatch):
     def no_run(*args, **kwargs):
         raise AssertionError("ran before checking the output path")

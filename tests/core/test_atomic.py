@@ -18,8 +18,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from fem_tether import __version__  # noqa: E402
 from fem_tether.core.atomic import (OutputError, atomic_outputs, atomic_path, check_folder, check_writable,  # noqa: E402
-                                    exclusive, generator_tag, remove_stale, remove_temporaries, write_json,
-                                    written_by_fem_tether)
+                                    exclusive, generator_tag, remove_stale, remove_temporaries, write_csv,
+                                    write_json, written_by_fem_tether)
 from fem_tether.report.plots import save_atomically  # noqa: E402
 
 
@@ -102,6 +102,30 @@ def test_our_files_are_recognised_by_their_markers(tmp_path):
     with h5py.File(tmp_path / "other" / "theirs.h5", "w") as f:
         f["data"] = [1.0]
     assert not written_by_fem_tether(tmp_path / "other" / "theirs.h5")
+
+
+def test_write_csv_marks_the_table_and_replaces_only_its_own(tmp_path):
+    """(Was: no CSV writer, and a CSV was never "ours".)  The first line is the marker
+    comment, then the headings and one line per row, None an empty cell; the file is
+    recognised as ours and replaced, a user's CSV of the same name is refused."""
+    import csv
+
+    path = write_csv(tmp_path / "t.csv", ["L [m]", "F_t (with wind) [N]", "note"],
+                     [[500.0, 6371.475544952904, "ok"], [1000.0, None, "FAILED (5.1 % on F_t)"]])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    assert lines[0] == f"# {generator_tag()}" and lines[1] == "L [m],F_t (with wind) [N],note"
+    rows = list(csv.reader(lines[2:]))
+    assert rows == [["500.0", "6371.475544952904", "ok"], ["1000.0", "", "FAILED (5.1 % on F_t)"]]
+    assert float(rows[0][1]) == 6371.475544952904            # every digit kept
+    assert written_by_fem_tether(path)
+    write_csv(path, ["a"], [[1]])
+    assert path.read_text().splitlines()[1:] == ["a", "1"]
+    mine = tmp_path / "mine.csv"
+    mine.write_text("a,b\n1,2\n")
+    assert not written_by_fem_tether(mine)
+    with pytest.raises(OutputError, match="fem-tether did not write it"):
+        write_csv(mine, ["a"], [[1]])
+    assert mine.read_text() == "a,b\n1,2\n"
 
 
 def test_a_users_file_a_symlink_a_fifo_and_a_folder_are_never_replaced(tmp_path):

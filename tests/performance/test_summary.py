@@ -36,3 +36,45 @@ def test_summary_of_a_short_run():
     assert s["straight_drag_N"] == pytest.approx(line.drag_N, rel=1e-12)
     assert s["straight_power_drag_N"] == pytest.approx(line.power_drag_N, rel=1e-12)
     assert s["mean_ground_tension_N"] == pytest.approx(150e3, rel=1e-9)
+    assert s["ge_straight"] == pytest.approx(lift / (lift / 28.0 + 2.0 * line.power_drag_N), rel=1e-12)
+    assert "same wind" in s["straight_line"] and "reel_start" not in s
+
+
+def test_a_reel_out_runs_summary_is_given_at_its_first_and_its_last_period(tiny_cfg):
+    """(Was: the whole run's mean F_t, mixing every length paid out, and a G_e and straight line "at
+    400 m".)  Over the first and the last period after the spin-up: the lengths spanned, the
+    means of F_t and of F_P = <P_t>/V_k, G_e (eq. 5.1) with rho at the period's mean length
+    L cos(theta0) and the straight line in the same wind at that length, each computed here
+    from the series; no whole-run G_e or straight line; the peak tension's length."""
+    cfg = tiny_cfg.replace(winch={"reel_out": "constant", "reel_out_speed_mps": 5.0}, time={"average_periods": 3})
+    run = simulate(cfg)
+    s = run_summary(run, cfg)
+    assert s["ge"] is None and s["straight_drag_N"] is None and s["ge_straight"] is None
+    t, L = run.time_s, run.series["length_m"]
+    windows = {"reel_start": (run.average_start_s, run.average_start_s + run.period_s),
+               "reel_end": (t[-1] - run.period_s, t[-1])}
+    line = straight.line_of_config(cfg, with_wind=True)
+    for key, (start, end) in windows.items():
+        inside = (t >= start - 1e-9) & (t <= end + 1e-9)
+        assert t[inside][-1] - t[inside][0] == pytest.approx(run.period_s, rel=1e-9)
+
+        def mean(name):
+            return trapezoid(run.series[name][inside], t[inside]) / run.period_s
+
+        r = s[key]
+        assert (r["from_m"], r["to_m"]) == (L[inside][0], L[inside][-1])
+        assert r["to_m"] - r["from_m"] == pytest.approx(5.0 * run.period_s, rel=1e-6)
+        assert r["length_m"] == pytest.approx(mean("length_m"), rel=1e-12)
+        assert r["mean_drag_N"] == pytest.approx(mean("drag_N"), rel=1e-12)
+        assert r["power_drag_N"] == pytest.approx(mean("drag_power_W") / 80.0, rel=1e-12)
+        rho = ISA().density_kg_m3(r["length_m"] * np.cos(np.radians(45.0)))
+        lift = 0.5 * rho * 120.0 * 1.0 * 80.0**2
+        assert r["ge"] == pytest.approx(lift / (lift / 28.0 + 2.0 * r["power_drag_N"]), rel=1e-12)
+        assert r["straight_drag_N"] == pytest.approx(line(r["length_m"]).drag_N, rel=1e-12)
+        assert r["ge_straight"] == pytest.approx(lift / (lift / 28.0 + 2.0 * line(r["length_m"]).power_drag_N),
+                                                 rel=1e-12)
+    assert s["reel_start"]["from_m"] == 400.0 and s["reel_end"]["to_m"] == s["length_end_m"]
+    window = run.average_window
+    tension = np.maximum(run.series["kite_tension_N"], run.series["ground_tension_N"])
+    assert s["peak_length_m"] == L[window][np.argmax(tension[window])]
+    assert s["peak_tension_N"] == tension[window].max()

@@ -1,13 +1,15 @@
 """What is plotted from results (fem_tether.report.figures): a sweep's four figures and
 a reel-out run's F_t(L), from hand-made results (no solver runs)."""
 
+import re
+
 import numpy as np
 
 from conftest import is_png, series_run
 
 from fem_tether.performance.aep import sweep_aep
 from fem_tether.config import load_config
-from fem_tether.report.figures import reel_drag_plot, write_plots
+from fem_tether.report.figures import caption, reel_drag_plot, write_plots
 from fem_tether.jobs.sweepfile import read_sweep
 
 FOUR = ["aep_vs_length.png", "drag_vs_length.png", "ge_vs_length.png", "power_curves.png"]
@@ -22,6 +24,25 @@ def test_write_plots_of_a_sweep(unrun_sweep, tmp_path):
     assert set(files) == {"drag", "ge", "power", "aep"}
     assert sorted(p.name for p in files.values()) == FOUR
     assert all(p.parent == tmp_path and is_png(p) for p in files.values())
+
+
+def test_each_figure_has_a_caption_saying_what_it_shows():
+    """(Was: the page captioned each figure with its file name.)  One sentence per figure,
+    naming the straight line's wind, the lengths of the power curves and the power model;
+    Roselli 2016's figure numbers only for the KiteGen model, whose figures they are."""
+    kitegen, ke_yoyo = load_config(), load_config(system="ke-yoyo")
+    for name, figure in (("drag", "Fig. 4.43"), ("ge", "Fig. 5.1"), ("power", "Figs. 5.4 and 5.5"),
+                         ("aep", "Fig. 5.6")):
+        text = caption(name, kitegen, [500.0, 919.0, 3000.0])
+        assert text.endswith(".") and not re.search(r"\.\s+[A-Z]", text)          # one sentence
+        assert "the rigid straight line in the same wind" in text
+        assert figure in text
+        if name != "drag":
+            assert figure not in caption(name, ke_yoyo, [200.0, 400.0])
+    assert "shortest (500 m) and the longest (3000 m) line" in caption("power", kitegen, [500.0, 919.0, 3000.0])
+    assert "dotted, the active phase" in caption("power", kitegen, [500.0])
+    assert "KE-yoyo model (Fagiano et al. 2010)" in caption("power", ke_yoyo, [400.0])
+    assert "2F" in caption("ge", kitegen, [500.0]) and "power-equivalent" in caption("ge", kitegen, [500.0])
 
 
 def test_reel_drag_plot_of_a_reel_out_run(unrun_sweep, tmp_path):

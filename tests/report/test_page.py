@@ -1,18 +1,25 @@
 """The main job's report page (fem_tether.report.page): self-contained, its numbers those of
-aep.json, every plot embedded, the validation status; from hand-made results (no solver runs)."""
+aep.json, every plot embedded and captioned, the run and the job, the configuration that
+matters, the validation status; valid and unclipped; from hand-made results (no solver runs)."""
 
 import json
 
 import numpy as np
 import pytest
-from pages import check_page
+from pages import check_html, check_page
 
+from fem_tether.config import load_config
 from fem_tether.performance.aep import sweep_aep
 from fem_tether.report.figures import write_plots
-from fem_tether.report.page import write_page
+from fem_tether.report.page import configuration_toml, write_page
 from fem_tether.jobs.sweepfile import read_sweep
 from fem_tether.validation import validate
 from fem_tether.validation.table import write
+
+
+#: The run as the main job gives it to the page.
+RUN = {"started_utc": "2026-12-02T16:32:07+00:00", "wall_s": 13.24, "n_ranks": 2, "tasks": 4, "reused_tasks": 1,
+       "peak_rss_MiB_per_rank": [315.3, 249.6]}
 
 
 @pytest.fixture
@@ -31,7 +38,7 @@ def results(unrun_sweep, tmp_path):
 
 def test_page_is_self_contained_and_holds_the_aep_numbers(results):
     data, energy, plots, out = results
-    path = write_page(out, data, energy, plots)
+    path = write_page(out, data, energy, plots, RUN)
     assert path == out / "index.html"
     page = check_page(path, json.loads(json.dumps(energy.as_dict())))
     assert len(page.images) == len(plots) == 4
@@ -47,5 +54,64 @@ def test_page_is_self_contained_and_holds_the_aep_numbers(results):
 def test_page_shows_the_verdict_counts_of_a_validation_beside_it(results):
     data, energy, plots, out = results
     write(validate(pattern="fagiano/*"), out)
-    page = check_page(write_page(out, data, energy, plots), energy.as_dict())
+    page = check_page(write_page(out, data, energy, plots, RUN), energy.as_dict())
     assert page.ids["validation"].startswith("1 pass, 0 explained, 0 fail (full run, fem-tether ")
+
+
+def test_page_is_valid_html_and_clips_nothing(results):
+    """(Was: the configuration block scrolled sideways, ``overflow-x: auto``, its lines cut at
+    the page's edge.)  The page parses as a browser parses it (:func:`pages.check_html`:
+    every element closed and nested, alt texts, captions, a charset), and its
+    preformatted blocks wrap: they hold lines far longer than the page is wide."""
+    data, energy, plots, out = results
+    text = write_page(out, data, energy, plots, RUN).read_text(encoding="utf-8")
+    page = check_html(text)
+    assert max(len(line) for line in page.ids["configuration"].splitlines()) > 200
+
+
+def test_page_shows_the_run_the_job_and_what_each_figure_shows(results):
+    """(Was: no date, no lengths, no wall time; "length_m = 1000.0" for a sweep of 400 and
+    800 m; captions the file names.)"""
+    data, energy, plots, out = results
+    page = check_page(write_page(out, data, energy, plots, RUN), energy.as_dict())
+    facts = page.facts
+    assert facts["run"] == "2026-12-02 16:32:07 UTC" and facts["wall time"] == "13.2 s"
+    assert facts["MPI ranks"] == "2" and facts["tasks"] == "4 (1 reused from the stored parts)"
+    assert facts["fem-tether"].startswith("0.") and facts["system"].startswith("kitegen (kitegen model): KiteGen")
+    assert facts["lengths"] == "2: 400, 800 m"
+    assert "lengths_m = [400, 800]" in page.ids["job"]
+    configuration = page.ids["configuration"]
+    assert "# length_m: the job's lengths, 400, 800 m ([sweep] lengths_m)" in configuration
+    assert "\nlength_m =" not in configuration
+    names = {p.name for p in plots.values()}
+    assert len(page.captions) == 4
+    for text in page.captions:
+        sentence = text.rsplit(" (", 1)[0]          # the file's name follows in brackets
+        assert sentence.endswith(".") and len(sentence.split()) > 12 and not any(n in sentence for n in names)
+    drag, ge, power, aep = page.captions
+    assert "Fig. 4.43" in drag and "Fig. 5.1" in ge and "Tab. 5.1" in ge and "Figs. 5.4 and 5.5" in power
+    assert "Fig. 5.6" in aep and "(400 m)" in power and "(800 m)" in power
+    assert all("straight line in the same wind" in text for text in page.captions)
+    summary = page.tables[0]
+    assert summary[0][1] == "F_t straight (with wind) [N]" and summary[0][-1] == "cross-check"
+
+
+@pytest.mark.parametrize("system, present, absent", [
+    ("kitegen", ["[kite]", "nominal_force_N", "[cycle]"],
+     ["[unified]", "working_stress_Pa", "design_wind_mps", "cycle_efficiency", "polar =", "circle_radius_deg",
+      "reel_out_table =", "table_csv =", "\nlength_m ="]),
+    ("trevisi-gg", ["[unified]", "tether_strength_Pa"], ["working_stress_Pa", "cycle_efficiency"]),
+    ("loyd-1", ["working_stress_Pa", "design_wind_mps"], ["[unified]", "cycle_efficiency"]),
+    ("ke-yoyo", ["cycle_efficiency"], ["[unified]", "working_stress_Pa"])])
+def test_the_configuration_shows_the_keys_that_matter_for_the_system(system, present, absent):
+    """(Was: all 20 [unified] keys on the KiteGen page, the other models' keys, every choice's
+    keys.)  A section named after another power model, a key whose meaning opens with
+    another model's name or with a choice not made (config/sections.py's conventions)
+    are left out."""
+    text = configuration_toml(load_config(system=system), [500.0, 1000.0])
+    for key in present:
+        assert key in text, key
+    for key in absent:
+        assert key not in text, key
+    chosen = configuration_toml(load_config(overrides={"kite": {"path": "circle"}}), [500.0])
+    assert "circle_radius_deg" in chosen

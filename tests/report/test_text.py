@@ -119,7 +119,9 @@ def test_summary_table_of_a_sweep_with_nothing_run(data):
     assert lines[2].endswith("nan  not run; pending")
     assert f"{data['drag_straight_N'][1] / 1e3:.2f}" in lines[3]
     assert lines[3].endswith("not run; FE: time step did not converge; FD: time step did not converge")
-    assert lines[4:] == ["best length: straight 400 m, flexible none (no length passed the cross-check)",
+    assert lines[4] == ("straight: the rigid straight line in the same wind ('fem-tether straight' is in quiet air "
+                        "unless --wind)")
+    assert lines[5:] == ["best length: straight 400 m, flexible none (no length passed the cross-check)",
                          "left out of the flexible AEP (cross-check failed or not run): 800 m",
                          "pending (not run yet, --allow-incomplete): 400 m"]
 
@@ -141,6 +143,12 @@ def test_peak_memory_per_rank_in_the_sweep_texts():
     assert sweep_text(outcome, "r.h5", 1.2).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
     summary = sweep_summary(outcome, "r.h5")
     assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6
+
+
+def test_sweep_json_says_which_straight_line_drag_straight_is(data):
+    """(Was: drag_straight_N with no word of the wind, while 'fem-tether straight --json' gives
+    the quiet-air line's drag_N.)"""
+    assert "same wind" in sweep_summary(_outcome(), "r.h5")["straight_line"]
 
 
 def test_bench_design_lines_report_each_time_against_its_target():
