@@ -2,9 +2,12 @@
 
 Rank 0 of the sweep does everything after the sweep.  Files written into the
 output directory: ``sweep.h5`` (the sweep result, see :mod:`fem_tether.jobs.sweepfile`),
-``aep.json``, four PNG plots (F_t, G_e, power curves, AEP vs L) and the report
-page ``index.html`` (:mod:`fem_tether.report.page`); the printed summary table is
-:func:`fem_tether.report.text.summary_table`.
+``aep.json`` (:meth:`~fem_tether.performance.aep.SweepAep.as_dict`: the AEP per length,
+the best lengths and the ``warnings`` on them and on the lines' margins), four PNG
+plots (F_t, G_e, power curves, AEP vs L) and the report page ``index.html``
+(:mod:`fem_tether.report.page`); the printed summary table is
+:func:`fem_tether.report.text.summary_table`.  The warnings are made once
+(:mod:`fem_tether.performance.caveats`) and rendered by all three.
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from fem_tether.physics import atmosphere, kite
-from fem_tether.performance import sizing, straight
+from fem_tether.performance import caveats, sizing, straight
 from fem_tether.config import Config
 from fem_tether.tether.laps import LAP_KEYS
 from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
@@ -49,12 +49,14 @@ def operating_tether_cd(cfg: Config, drag_N, speed_mps: float | None = None) -> 
 
 def run_summary(run, cfg: Config) -> dict:
     """Period means, straight-line comparison, G_e, and the line's peak tension,
-    breaking load and margin (:mod:`fem_tether.performance.sizing`) of one tether run."""
+    breaking load and margin (:mod:`fem_tether.performance.sizing`) of one tether run,
+    with the warning on a margin short of the safety factor (``warnings``)."""
     means = run.means()
     lumping = cfg.drag.tether_drag_lumping
     drags = lumped_drags_N(run, cfg)
     ge = operating_ge(cfg, drags[lumping], run_speed_mps(run, cfg))
     peak = sizing.peak_tension_N(run)
+    short = sizing.margin_caveat([run.length_m], [sizing.margin(cfg, peak)], cfg.tether.safety_factor)
     line = straight.from_config(cfg, with_wind=True)
     return {
         "solver": run.solver,
@@ -82,6 +84,7 @@ def run_summary(run, cfg: Config) -> dict:
         "periods": run.periods,
         "period_s": run.period_s,
         "wall_s": run.wall_s,
+        "warnings": caveats.as_json(short),
         **run.extra,
     } | free_kite_summary(run) | cycle_summary(run, cfg)
 

@@ -92,6 +92,16 @@ def image(path: Path, embed: bool = True) -> str:
     return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{name}</figcaption></figure>"
 
 
+def warnings_html(energy: dict) -> str:
+    """The warnings of ``SweepAep.as_dict()`` (:mod:`fem_tether.performance.caveats`), for
+    below the summary table and its best lengths: one marked paragraph each, its code and
+    the quantity it qualifies as data attributes."""
+    return "".join(f"<p class=\"warning\" data-code=\"{html.escape(c['code'])}\" "
+                   f"data-quantity=\"{html.escape(c['quantity'])}\" style=\"color:#8a3b00\">"
+                   f"<strong>warning:</strong> {html.escape(c['message'])}</p>"
+                   for c in energy.get("warnings", ()))
+
+
 def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str) -> str:
     """The page's HTML (``validation``: the status, already HTML)."""
     d = energy.as_dict()
@@ -110,7 +120,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
         f"<h1>fem-tether run</h1><p>fem-tether {html.escape(__version__)}; result file "
         f"{html.escape(Path(data['file']).name)}; system {html.escape(data['config'].system.name)}</p>",
         f"<h2>Validation</h2><p id=\"validation\">{validation}</p>",
-        f"<h2>Summary</h2>{summary}", "".join(f"<p>{html.escape(n)}</p>" for n in notes),
+        f"<h2>Summary</h2>{summary}", "".join(f"<p>{html.escape(n)}</p>" for n in notes), warnings_html(d),
         f"<h2>FE &lt;-&gt; FD cross-check</h2>{checks}",
         "<h2>Plots</h2>", *(image(p) for p in plots.values()),
         f"<h2>Configuration</h2><pre>{html.escape(data['config'].to_toml())}</pre>",
