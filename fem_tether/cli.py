@@ -199,8 +199,9 @@ def cmd_sweep(args):
     outcome = sweep(job, args.out, progress=not args.json)
     if outcome is None:
         return 0
-    print(report.json_text(report.sweep_summary(outcome, args.out)) if args.json
-          else report.sweep_text(outcome, args.out, job.config.tether.safety_factor))
+    safety_factor = job.config.tether.safety_factor
+    print(report.json_text(report.sweep_summary(outcome, args.out, safety_factor)) if args.json
+          else report.sweep_text(outcome, args.out, safety_factor))
     return 0 if outcome.ok else EXIT_FAILED
 
 

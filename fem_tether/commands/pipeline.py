@@ -3,11 +3,15 @@
 Rank 0 of the sweep does everything after the sweep.  Files written into the
 output directory (docs/outputs.md): ``sweep.h5`` (the sweep result, see
 :mod:`fem_tether.jobs.sweepfile`) and its parts ``sweep.h5.parts/``, four PNG
-plots (F_t, G_e, power curves, AEP vs L), ``aep.json``, the summary table as
-``summary.csv`` and ``summary.json`` (:mod:`fem_tether.report.job_summary`) and
-the report page ``index.html`` (:mod:`fem_tether.report.page`); the printed
-summary table is :func:`fem_tether.report.text.summary_table`, ``run --json``
-prints ``summary.json``.
+plots (F_t, G_e, power curves, AEP vs L), ``aep.json``
+(:meth:`~fem_tether.performance.aep.SweepAep.as_dict`: the AEP per length, the
+best lengths and the ``warnings`` on them and on the lines' margins), the
+summary table as ``summary.csv`` and ``summary.json``
+(:mod:`fem_tether.report.job_summary`) and the report page ``index.html``
+(:mod:`fem_tether.report.page`); the printed summary table is
+:func:`fem_tether.report.text.summary_table`, ``run --json`` prints
+``summary.json``.  The warnings are made once
+(:mod:`fem_tether.performance.caveats`) and rendered by all of them.
 """
 
 from __future__ import annotations

@@ -228,8 +228,11 @@ class Tether(Section):
                             "2016 Tab. 2.1), 'steel' (345 MPa working stress) or 'carbon' (2137 MPa; both "
                             "Lourenco 2014) or 'trevisi' (Dyneema, 1.5 GPa strength, fly-gen conductor; "
                             "Trevisi 2019)", one_of("sk99", "steel", "carbon", "trevisi"))
-    safety_factor: float = setting(1.2, "-", "breaking load over the peak tension a line is sized to (Fagiano "
-                                   "et al. 2010: 1.2)", from_to(1.0, MAX_SAFETY_FACTOR))
+    safety_factor: float = setting(1.0, "-", "breaking load over the peak tension a line is sized to and "
+                                   "checked against; 1: Roselli 2016's 11 mm SK99 line, whose 164.95 kN breaking "
+                                   "load carries its peak (1.10 x the 150 kN nominal tension, 1.09-1.10 x the FE "
+                                   "peak; §4.2.3, docs/physics.md §5); the ke-yoyo preset: 1.2 (Fagiano et al. 2010 "
+                                   "§III-C)", from_to(1.0, MAX_SAFETY_FACTOR))
 
 
 @dataclass(frozen=True)

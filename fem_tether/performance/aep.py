@@ -26,6 +26,8 @@ from fem_tether.core.errors import InputError
 from fem_tether.physics.kite import KiteGenDesign
 from fem_tether.systems.power import Cycle, cycle_curves, operating_design, rated_power_W
 from fem_tether.core.quantities import lumped_name
+from fem_tether.performance.caveats import Caveat, as_json
+from fem_tether.performance.sizing import margin_caveat
 from fem_tether.physics.resource import Band, Resource, ResourceError
 from fem_tether.physics.resource import check_config as check_resource_config
 from fem_tether.physics.resource import from_config as resource_from_config
@@ -94,6 +96,29 @@ class AepByLength:
         (no lengths, every AEP zero or undefined): no length is best then."""
         aep = np.where(np.isfinite(self.aep_MWh), self.aep_MWh, -np.inf)
         return float(self.length_m[np.argmax(aep)]) if aep.size and np.max(aep) > 0.0 else None
+
+    @property
+    def best_at_edge(self) -> bool:
+        """Whether the best length is the shortest or the longest evaluated: a maximum not
+        bracketed, the true optimum may lie beyond it."""
+        best = self.best_length_m
+        return best is not None and best in (np.min(self.length_m), np.max(self.length_m))
+
+
+def edge_caveat(result: AepByLength, case: str, quantity: str) -> Caveat | None:
+    """The warning on ``case``'s best length (``quantity``: its JSON key) if it is the
+    shortest or the longest length of ``result`` (:attr:`AepByLength.best_at_edge`), else None."""
+    best = result.best_length_m
+    if best is None or not result.best_at_edge:
+        return None
+    low, high = float(np.min(result.length_m)), float(np.max(result.length_m))
+    if low == high:
+        where = f"the only length with a {case} AEP; no optimum over the length is bracketed"
+    else:
+        where = (f"the {'shortest' if best == low else 'longest'} of the lengths with a {case} AEP "
+                 f"({low:g}-{high:g} m); the optimum is not bracketed and may lie "
+                 f"{'below' if best == low else 'above'} it")
+    return Caveat("best-length-at-edge", f"best length {case} {best:g} m: {where}", quantity, (best,))
 
 
 def _by_length(lengths, theta_rad, resource: Resource, curve_at) -> AepByLength:
@@ -168,12 +193,14 @@ class SweepAep:
     unchecked_m: tuple[float, ...]     # flexible lengths kept with --allow-unchecked
     pending_m: tuple[float, ...] = ()  # lengths not finished (kept only with allow_incomplete)
     fixed: AepByLength | None = None   # [tether] sizing = "load": the configured (unsized) line's
+    #: the warnings on these numbers and on the sweep's lines (:mod:`fem_tether.performance.caveats`)
+    caveats: tuple[Caveat, ...] = ()
 
     def as_dict(self) -> dict:
-        """Per length its AEP and CF, straight and flexible, and the best lengths;
-        a value is None (JSON null) where it is undefined: a length left out, an
-        AEP or CF that is not finite, no best length without a finite, positive
-        maximum (:attr:`AepByLength.best_length_m`)."""
+        """Per length its AEP and CF, straight and flexible, the best lengths and the
+        warnings (``warnings``: :meth:`Caveat.as_dict` of each); a value is None (JSON
+        null) where it is undefined: a length left out, an AEP or CF that is not finite,
+        no best length without a finite, positive maximum (:attr:`AepByLength.best_length_m`)."""
         def at(result: AepByLength, length, name):
             j = np.flatnonzero(result.length_m == length)
             value = float(getattr(result, name)[j[0]]) if j.size else np.nan
@@ -191,7 +218,7 @@ class SweepAep:
                 "best_length_straight_m": self.straight.best_length_m,
                 "best_length_fe_m": self.flexible.best_length_m,
                 "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m),
-                "pending_m": list(self.pending_m)}
+                "pending_m": list(self.pending_m), "warnings": as_json(*self.caveats)}
 
 
 def aep_of_sweep(sweep_data: Mapping, resource: Resource,
@@ -206,7 +233,10 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     the AEP of the configured line (``fixed``: the sizing loop's first FE run,
     not cross-checked).  A sweep with ``pending`` lengths raises
     :class:`IncompleteSweepError` naming them, unless ``allow_incomplete``
-    (then they are listed in ``pending_m`` and gated like the others).
+    (then they are listed in ``pending_m`` and gated like the others).  Its
+    caveats: a best length at the edge of its lengths (:func:`edge_caveat`) and
+    the lines whose margin is short of ``[tether] safety_factor``
+    (:func:`fem_tether.performance.sizing.margin_caveat`).
     """
     cfg = sweep_data["config"]
     lengths = np.asarray(sweep_data["length_m"], dtype=float)
@@ -229,14 +259,19 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     drag_fixed = np.asarray(sweep_data.get(lumped_name("drag_fixed_N", lumping), np.full(lengths.shape, np.nan)),
                             dtype=float)
     has_fixed = np.isfinite(drag_fixed)
+    straight = aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource,
+                             None if case is None else case[has_straight])
+    flexible = aep_of_system(cfg, lengths[keep], drag_fe[keep], resource, None if case is None else case[keep])
+    caveats = (edge_caveat(straight, "straight", "best_length_straight_m"),
+               edge_caveat(flexible, "flexible", "best_length_fe_m"),
+               margin_caveat(lengths, sweep_data["margin"], cfg.tether.safety_factor))
     return SweepAep(
-        straight=aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource,
-                               None if case is None else case[has_straight]),
-        flexible=aep_of_system(cfg, lengths[keep], drag_fe[keep], resource, None if case is None else case[keep]),
+        straight=straight, flexible=flexible,
         fixed=aep_of_system(cfg, lengths[has_fixed], drag_fixed[has_fixed], resource) if has_fixed.any() else None,
         excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),
+        caveats=tuple(c for c in caveats if c is not None),
     )
 
 

@@ -3,20 +3,24 @@
 With ``[tether] sizing = "load"`` a line is sized in ``[tether] material``
 (:data:`fem_tether.physics.material.MATERIALS`) to the tension it carries, closed
 loop: the configured line flies (an FE run, :func:`fem_tether.tether.fe.solver.simulate`),
-its peak tension T gives d = d(T, c_s) (:func:`fem_tether.physics.material.sized_diameter_m`),
-d gives μ(d) and EA(d), and the line of d flies again, until d changes by
-less than :data:`TOLERANCE`.  The sized line is the last one flown: the
-loop's d_j whose run's peak gives back d_j to the tolerance.  The peak T
-is the largest tension at either end of the line over the averaged periods
-(the spin-up is left out): on a line with weight and drag the kite end
-carries the most, but a line whose winch holds more (a descending path) is
-sized by that.
+its peak tension T gives the thinnest line that carries c_s T,
+d_req = d(T, c_s) (:func:`fem_tether.physics.material.sized_diameter_m`), and
+a line of d_req (1 + TOLERANCE/2), with μ(d) and EA(d), flies again, until
+a run's line meets its safety factor and is at most :data:`TOLERANCE`
+thicker than its own peak needs: d_req <= d < d_req (1 + TOLERANCE), i.e.
+margin >= c_s (:func:`meets_margin`).  The sized line is the last one
+flown: the printed diameter, peak tension and margin are those of one
+run.  The peak T is the largest tension at either end of the line over the
+averaged periods (the spin-up is left out): on a line with weight and drag
+the kite end carries the most, but a line whose winch holds more (a
+descending path) is sized by that.
 
-The loop is a fixed-point iteration d_{j+1} = d(T(d_j)); it converges when
-the peak tension grows with d less than in proportion to the breaking
-load, the case of every system here (T grows with the line's weight and
-drag, a few per cent of it).  :class:`SizingError` names the length, the
-diameters and the iterations of a loop that does not settle.
+The loop is the fixed-point iteration d_{j+1} = (1 + TOLERANCE/2) d_req(d_j),
+aimed at the middle of the accepted band; it converges when the peak tension
+grows with d less than in proportion to the breaking load, the case of every
+system here (T grows with the line's weight and drag, a few per cent of it).
+:class:`SizingError` names the length, the diameters and the iterations of a
+loop that does not settle.
 """
 
 from __future__ import annotations
@@ -29,21 +33,19 @@ import numpy as np
 from fem_tether.physics import material as materials
 from fem_tether.config import Config, ConfigError, toml_value
 from fem_tether.core.errors import SolverDivergedError
+from fem_tether.performance.caveats import Caveat
 from fem_tether.tether.fe import solver as fe_solver
 from fem_tether.systems.crosswind import conductor_area_m2
 from fem_tether.tether.lumping import lumped_drags_N
 
-#: Relative change of d below which the loop has converged.
+#: How much thicker than its own peak tension needs a sized line may be
+#: (relative to d): the loop stops at d_req <= d < d_req (1 + TOLERANCE), so a
+#: sized line's margin lies in [c_s, c_s (1 + 2.5 TOLERANCE)) (F_b ∝ d^2 to
+#: d^2.5 along Tab. 2.1).
 TOLERANCE = 1e-3
 
 #: FE runs before the loop gives up.
 MAX_ITERATIONS = 12
-
-#: A sized line meets its safety factor to the loop's tolerance only: its
-#: margin may fall short of c_s by the breaking load's change over 0.1 % of d
-#: (F_b ∝ d^2 to d^2.5 along Tab. 2.1) and the peak's.  Margins within this
-#: share of c_s are not reported short.
-MARGIN_TOLERANCE = 5 * TOLERANCE
 
 
 class SizingError(SolverDivergedError):
@@ -56,7 +58,7 @@ class Sizing:
 
     material: str
     safety_factor: float
-    #: d_0 (the configured line), d_1, ...: the diameter each run flew, then the next estimate
+    #: d_0 (the configured line), d_1, ...: the diameter each run flew; the last is the sized line
     diameters_m: tuple[float, ...]
     #: the peak tension of each run
     peak_tensions_N: tuple[float, ...]
@@ -64,6 +66,8 @@ class Sizing:
     fixed_drag_N: float
     #: that run's power-equivalent drag F_P per line (:func:`fem_tether.tether.lumping.lumped_drags_N`)
     fixed_power_drag_N: float
+    #: d_req of each run: the thinnest line that carries c_s times its peak tension
+    required_diameters_m: tuple[float, ...]
 
     @property
     def iterations(self) -> int:
@@ -73,24 +77,29 @@ class Sizing:
     @property
     def diameter_m(self) -> float:
         """The sized d: that of the last run."""
-        return self.diameters_m[-2]
+        return self.diameters_m[-1]
 
     @property
     def peak_tension_N(self) -> float:
         return self.peak_tensions_N[-1]
 
     @property
-    def change(self) -> float:
-        """|d_{j+1} − d_j| / d_j of the last run."""
-        return abs(self.diameters_m[-1] - self.diameters_m[-2]) / self.diameters_m[-2]
+    def excess(self) -> float:
+        """d / d_req − 1 of the last run: how much thicker the sized line is than its peak needs."""
+        return self.diameters_m[-1] / self.required_diameters_m[-1] - 1.0
 
     def to_dict(self) -> dict:
         return asdict(self)
 
     @classmethod
-    def from_dict(cls, data: dict) -> Sizing:
+    def from_dict(cls, data: dict) -> Sizing | None:
+        """The record of :meth:`to_dict`; None for one without ``required_diameters_m`` (written
+        before the loop checked the sized line's margin: to be sized again)."""
+        if "required_diameters_m" not in data:
+            return None
         return cls(data["material"], data["safety_factor"], tuple(data["diameters_m"]),
-                   tuple(data["peak_tensions_N"]), data["fixed_drag_N"], data["fixed_power_drag_N"])
+                   tuple(data["peak_tensions_N"]), data["fixed_drag_N"], data["fixed_power_drag_N"],
+                   tuple(data["required_diameters_m"]))
 
 
 def material_of(cfg: Config) -> materials.Material:
@@ -156,8 +165,8 @@ def margin(cfg: Config, peak_tension_N: float) -> float:
 
 
 def short_of_margin(margin_: float, safety_factor: float) -> bool:
-    """Whether a margin falls short of the safety factor (beyond :data:`MARGIN_TOLERANCE`)."""
-    return bool(margin_ < safety_factor * (1.0 - MARGIN_TOLERANCE))
+    """Whether a margin falls short of the safety factor (NaN, no margin, does not)."""
+    return bool(margin_ < safety_factor)
 
 
 def next_diameter_m(cfg: Config, peak_tension_N: float) -> float:
@@ -168,12 +177,20 @@ def next_diameter_m(cfg: Config, peak_tension_N: float) -> float:
         raise ConfigError(f"[tether] material = {toml_value(cfg.tether.material)}: {exc}") from None
 
 
+def meets_margin(cfg: Config, peak_tension_N: float, required_m: float) -> bool:
+    """Whether the line of ``cfg`` is a sized line for ``peak_tension_N``: its margin is at
+    least c_s and it is less than :data:`TOLERANCE` thicker than ``required_m`` (the
+    thinnest line meeting c_s, :func:`next_diameter_m`)."""
+    return bool(not short_of_margin(margin(cfg, peak_tension_N), cfg.tether.safety_factor)
+                and cfg.tether.diameter_m < required_m * (1.0 + TOLERANCE))
+
+
 def size_tether(cfg: Config, simulate: Callable | None = None) -> Sizing:
     """Size the line of ``cfg`` to its peak tension, closed loop (module docstring).
 
     ``simulate(cfg)`` runs one case (default: the FE solver, looked up at the
-    call).  Raises :class:`SizingError` if d has not settled to
-    :data:`TOLERANCE` after :data:`MAX_ITERATIONS` runs, a solver's
+    call).  Raises :class:`SizingError` if no run's line is a sized line
+    (:func:`meets_margin`) after :data:`MAX_ITERATIONS` runs, a solver's
     :class:`~fem_tether.core.errors.SolverDivergedError` with the iteration and d
     prefixed, a :class:`~fem_tether.core.errors.ConfigError` if the material cannot
     carry the load.
@@ -181,8 +198,12 @@ def size_tether(cfg: Config, simulate: Callable | None = None) -> Sizing:
     run_case = simulate or (lambda case: fe_solver.simulate(case))
     length = cfg.tether.length_m
     case = cfg
-    diameters, peaks, fixed = [cfg.tether.diameter_m], [], {"moment": float("nan"), "power": float("nan")}
+    diameters: list[float] = []
+    peaks: list[float] = []
+    required: list[float] = []
+    fixed = {"moment": float("nan"), "power": float("nan")}
     for j in range(MAX_ITERATIONS):
+        diameters.append(case.tether.diameter_m)
         try:
             run = run_case(case)
         except SolverDivergedError as exc:
@@ -191,12 +212,28 @@ def size_tether(cfg: Config, simulate: Callable | None = None) -> Sizing:
         if j == 0:
             fixed = lumped_drags_N(run, cfg)
         peaks.append(peak_tension_N(run))
-        diameters.append(next_diameter_m(cfg, peaks[-1]))
-        if abs(diameters[-1] - diameters[-2]) < TOLERANCE * diameters[-2]:
+        required.append(next_diameter_m(cfg, peaks[-1]))
+        if meets_margin(case, peaks[-1], required[-1]):
             return Sizing(cfg.tether.material, cfg.tether.safety_factor, tuple(diameters), tuple(peaks),
-                          fixed["moment"], fixed["power"])
-        case = sized_config(cfg, diameters[-1])
-    raise SizingError(f"tether sizing, L = {length:g} m: d did not settle to {100 * TOLERANCE:g} % in "
-                      f"{MAX_ITERATIONS} FE runs (d = {', '.join(f'{1e3 * d:.4g}' for d in diameters)} mm); "
+                          fixed["moment"], fixed["power"], tuple(required))
+        case = sized_config(cfg, required[-1] * (1.0 + TOLERANCE / 2))
+    raise SizingError(f"tether sizing, L = {length:g} m: no line met its safety factor within "
+                      f"{100 * TOLERANCE:g} % of d in {MAX_ITERATIONS} FE runs "
+                      f"(d = {', '.join(f'{1e3 * d:.4g}' for d in diameters)} mm; needed "
+                      f"{', '.join(f'{1e3 * d:.4g}' for d in required)} mm); "
                       "the peak tension grows with d as fast as the breaking load: the line cannot carry "
                       "its own weight and drag in this material ([tether] material)")
+
+
+def margin_caveat(lengths_m, margins, safety_factor: float) -> Caveat | None:
+    """The warning on the lines whose margin (breaking load over peak tension) is short of
+    the safety factor (:func:`short_of_margin`), one record for all of them; None if every
+    margin holds."""
+    short = [(float(length), float(m)) for length, m in zip(lengths_m, margins) if short_of_margin(m, safety_factor)]
+    if not short:
+        return None
+    where = ", ".join(f"{m:.3f} at {length:g} m" for length, m in short)
+    return Caveat("margin-below-safety-factor",
+                  f"margin below the safety factor {safety_factor:g}: {where} (the line's breaking load over "
+                  "its peak tension; [tether] sizing = \"load\" sizes it)",
+                  "margin", tuple(length for length, _ in short))

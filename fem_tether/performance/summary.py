@@ -18,7 +18,7 @@ import numpy as np
 from dataclasses import replace
 
 from fem_tether.physics import atmosphere, kite
-from fem_tether.performance import sizing, straight
+from fem_tether.performance import caveats, sizing, straight
 from fem_tether.config import Config
 from fem_tether.tether.laps import LAP_KEYS
 from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
@@ -62,13 +62,15 @@ def operating_tether_cd(cfg: Config, drag_N, speed_mps: float | None = None) -> 
 def run_summary(run, cfg: Config) -> dict:
     """Period means, straight-line comparison, G_e, and the line's peak tension
     (with the length it was reached at), breaking load and margin
-    (:mod:`fem_tether.performance.sizing`) of one tether run.  A reel-out run's G_e and
+    (:mod:`fem_tether.performance.sizing`) of one tether run, with the warning on a
+    margin short of the safety factor (``warnings``).  A reel-out run's G_e and
     straight line are undefined (None) over the whole run: :func:`reel_summary` gives
     them at its first and its last period."""
     means = run.means()
     peak = sizing.peak_tension_N(run)
     reel = reel_summary(run, cfg)
     one_length = {} if reel else length_summary(run, cfg)
+    short = sizing.margin_caveat([peak_length_m(run)], [sizing.margin(cfg, peak)], cfg.tether.safety_factor)
     return {
         "solver": run.solver,
         "length_m": run.length_m,
@@ -98,6 +100,7 @@ def run_summary(run, cfg: Config) -> dict:
         "periods": run.periods,
         "period_s": run.period_s,
         "wall_s": run.wall_s,
+        "warnings": caveats.as_json(short),
         **run.extra,
     } | reel | free_kite_summary(run) | cycle_summary(run, cfg)
 

@@ -116,6 +116,16 @@ def image(path: Path, text: str | None = None, embed: bool = True) -> str:
     return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{label}</figcaption></figure>"
 
 
+def warnings_html(energy: dict) -> str:
+    """The warnings of ``SweepAep.as_dict()`` (:mod:`fem_tether.performance.caveats`), for
+    below the summary table and its best lengths: one marked paragraph each, its code and
+    the quantity it qualifies as data attributes."""
+    return "".join(f"<p class=\"warning\" data-code=\"{html.escape(c['code'])}\" "
+                   f"data-quantity=\"{html.escape(c['quantity'])}\" style=\"color:#8a3b00\">"
+                   f"<strong>warning:</strong> {html.escape(c['message'])}</p>"
+                   for c in energy.get("warnings", ()))
+
+
 def facts(pairs: Mapping[str, str]) -> str:
     """A list of ``name: value`` pairs (escaped)."""
     return "<dl>" + "".join(f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in pairs.items()) + "</dl>"
@@ -199,6 +209,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
         f"<pre id=\"job\">{html.escape(data['attrs']['job_toml'].strip())}</pre>",
         f"<h2>Validation</h2><p id=\"validation\">{validation}</p>",
         f"<h2>Summary</h2>{summary_table(data, energy)}", "".join(f"<p>{html.escape(n)}</p>" for n in notes),
+        warnings_html(d),
         f"<h2>FE &lt;-&gt; FD cross-check</h2>{checks}",
         "<h2>Plots</h2>", *(image(p, caption(name, cfg, data["length_m"])) for name, p in plots.items()),
         "<h2>Configuration</h2><p>The keys of the "

@@ -123,12 +123,6 @@ def plot_ge(lengths_m, ge_by_case: Mapping[str, np.ndarray], path,
 EDGE_NOTE = "optimum at the edge of the swept lengths: not bracketed"
 
 
-def at_the_edge(result: AepByLength) -> bool:
-    """Whether the best length is the shortest or the longest swept (a maximum not bracketed)."""
-    best = int(np.argmax(result.aep_MWh))
-    return result.length_m.size > 0 and best in (0, result.length_m.size - 1)
-
-
 def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
     """AEP (eq. 5.2) against L per case, each case's best length starred (seed 000 Fig. 5.6);
     a case without lengths (none passed the cross-check) is named in the legend only.  A best
@@ -149,7 +143,7 @@ def plot_aep(results: Mapping[str, AepByLength], path) -> Path:
         best = np.flatnonzero(r.length_m == r.best_length_m)[0]
         ax.plot(r.length_m[best], r.aep_MWh[best] * 1e-3, "*", ms=16, color=style["color"],
                 mec="k", mew=0.6, zorder=5)
-        if at_the_edge(r):
+        if r.best_at_edge:
             edge.append(case)
     if edge:
         ax.text(0.5, 0.03, f"{EDGE_NOTE} ({', '.join(edge)})", transform=ax.transAxes, ha="center",

@@ -14,7 +14,8 @@ import numpy as np
 
 from fem_tether.config import Config
 from fem_tether.tether.crosscheck import QUANTITIES, CrossCheck, limits_of
-from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, short_of_margin, sized_case
+from fem_tether.performance.caveats import as_json
+from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, margin_caveat, sized_case
 from fem_tether.performance.summary import STRAIGHT_LINE
 from fem_tether.report.job_summary import summary_rows
 
@@ -57,6 +58,20 @@ def _best(best_m, kept: bool, none_kept: str) -> str:
 def _left_out(energy: dict) -> set:
     """The lengths ``SweepAep.as_dict()`` has no flexible AEP of: excluded or pending."""
     return set(energy["excluded_m"]) | set(energy["pending_m"])
+
+
+def caveat_text(caveat: dict) -> str:
+    """One warning (:meth:`fem_tether.performance.caveats.Caveat.as_dict`) as the terminal prints it."""
+    return f"warning: {caveat['message']}"
+
+
+def caveat_lines(caveats, quantities: tuple[str, ...] | None = None) -> list[str]:
+    """The lines of the warnings ``caveats`` (dicts) on ``quantities`` (all if None)."""
+    return [caveat_text(c) for c in caveats if quantities is None or c["quantity"] in quantities]
+
+
+#: The keys of the best lengths in ``SweepAep.as_dict()``.
+BEST_LENGTHS = ("best_length_straight_m", "best_length_fe_m")
 
 
 def best_length_text(energy: dict) -> str:
@@ -142,30 +157,31 @@ def curves_text(data: dict) -> str:
 
 
 def margin_warnings(margins, safety_factor: float) -> list[str]:
-    """One warning line naming the (length, margin) pairs short of the safety factor
-    (:func:`fem_tether.performance.sizing.short_of_margin`); none if every margin holds."""
-    short = [(length, m) for length, m in margins if short_of_margin(m, safety_factor)]
-    if not short:
-        return []
-    where = ", ".join(f"{m:.3f} at {length:g} m" for length, m in short)
-    return [f"warning: margin below the safety factor {safety_factor:g}: {where} (the line's breaking load "
-            "over its peak tension; [tether] sizing = \"load\" sizes it)"]
+    """The warning line (:func:`fem_tether.performance.sizing.margin_caveat`) on the
+    (length, margin) pairs short of the safety factor; none if every margin holds."""
+    pairs = list(margins)
+    return caveat_lines(as_json(margin_caveat([length for length, _ in pairs], [m for _, m in pairs],
+                                              safety_factor)))
 
 
 def size_summary(cfg: Config, sizing: Sizing) -> dict:
-    """``fem-tether size --json``: the sized line, its peak tension and margin, the loop,
-    and the configured line's peak and margin (the loop's first run)."""
+    """``fem-tether size --json``: the sized line (the loop's last run), its peak tension and
+    margin, the loop, the configured line's peak and margin (the loop's first run), and the
+    warnings (a sized line short of its safety factor: none, the loop's promise)."""
     sized = sized_case(cfg, sizing)
     line = sized.tether
+    sized_margin = margin(sized, sizing.peak_tension_N)
+    caveat = margin_caveat([cfg.tether.length_m], [sized_margin], sizing.safety_factor)
     return {"length_m": cfg.tether.length_m, "material": sizing.material,
             "safety_factor": sizing.safety_factor, "diameter_m": line.diameter_m,
             "linear_density_kg_m": line.linear_density_kg_m, "axial_stiffness_N": line.axial_stiffness_N,
             "peak_tension_N": sizing.peak_tension_N, "breaking_load_N": breaking_load_N(sized),
-            "margin": margin(sized, sizing.peak_tension_N),
-            "iterations": sizing.iterations, "change": sizing.change,
+            "margin": sized_margin, "iterations": sizing.iterations,
+            "required_diameter_m": sizing.required_diameters_m[-1], "excess": sizing.excess,
             "diameters_m": list(sizing.diameters_m), "peak_tensions_N": list(sizing.peak_tensions_N),
             "fixed": {"diameter_m": cfg.tether.diameter_m, "peak_tension_N": sizing.peak_tensions_N[0],
-                      "margin": margin(cfg, sizing.peak_tensions_N[0]), "mean_drag_N": sizing.fixed_drag_N}}
+                      "margin": margin(cfg, sizing.peak_tensions_N[0]), "mean_drag_N": sizing.fixed_drag_N},
+            "warnings": as_json(caveat)}
 
 
 def size_text(s: dict) -> str:
@@ -182,10 +198,11 @@ def size_text(s: dict) -> str:
         f"  margin                    {s['margin']:10.3f}",
         f"  iterations (FE runs)      {s['iterations']:10d}   d: "
         + " -> ".join(f"{1e3 * d:.4f}" for d in s["diameters_m"])
-        + f" mm (last change {100 * s['change']:.3f} %)",
+        + f" mm (the last run's peak needs {1e3 * s['required_diameter_m']:.4f} mm: "
+        f"{100 * s['excess']:.3f} % to spare)",
         f"  configured line: d = {1e3 * fixed['diameter_m']:.3f} mm, peak tension "
         f"{fixed['peak_tension_N']:.1f} N, margin {fixed['margin']:.3f}, mean F_t {fixed['mean_drag_N']:.1f} N",
-        *margin_warnings([(s["length_m"], s["margin"])], s["safety_factor"])])
+        *(caveat_text(c) for c in s["warnings"])])
 
 
 def simulate_text(s: dict, cfg: Config, written: bool) -> str:
@@ -235,7 +252,7 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
     if "sizing_diameters_m" in s:
         lines.append(f"  sized to the peak tension: d = "
                      f"{' -> '.join(f'{1e3 * d:.3f}' for d in s['sizing_diameters_m'])} mm")
-    lines += margin_warnings([(s["peak_length_m"], s["margin"])], s["safety_factor"])
+    lines += caveat_lines(s["warnings"])
     if cfg.winch.reel_out != "none":
         lines.append(f"  reel-out: L {s['length_m']:g} -> {s['length_end_m']:.1f} m, winch energy "
                      f"{s['winch_energy_J'] / 3.6e9:.3f} MWh per line"
@@ -372,10 +389,13 @@ def peak_memory(outcome) -> str:
             f"(max {max(peaks):.0f} MiB)") if peaks else ""
 
 
-def sweep_summary(outcome, out) -> dict:
-    """``fem-tether sweep --json``: the outcome, non-finite values as null, and which
-    straight line ``drag_straight_N`` is (``straight_line``)."""
+def sweep_summary(outcome, out, safety_factor: float) -> dict:
+    """``fem-tether sweep --json``: the outcome, non-finite values as null, which
+    straight line ``drag_straight_N`` is (``straight_line``), and the warnings (lines
+    whose margin is short of ``safety_factor``)."""
     peaks = getattr(outcome, "peak_rss_MiB", ())
+    caveat = margin_caveat([r.length_m for r in outcome.lengths], [r.values["margin"] for r in outcome.lengths],
+                           safety_factor)
     return {"file": str(out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
             "reused_tasks": outcome.reused, "straight_line": STRAIGHT_LINE,
             **({"peak_rss_MiB_per_rank": list(peaks), "peak_rss_MiB": max(peaks)} if peaks else {}),
@@ -383,7 +403,8 @@ def sweep_summary(outcome, out) -> dict:
                 {"length_m": r.length_m, "status": r.status, "error": r.error,
                  **{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
                     for k, v in r.values.items()}}
-                for r in outcome.lengths]}
+                for r in outcome.lengths],
+            "warnings": as_json(caveat)}
 
 
 def sweep_text(outcome, out, safety_factor: float) -> str:
@@ -413,6 +434,7 @@ def aep_text(result: dict) -> str:
                      + ("  (unchecked)" if r["unchecked"] else "")
                      + ("  (pending)" if r["length_m"] in result["pending_m"] else ""))
     lines.append(best_length_text(result))
+    lines += caveat_lines(result.get("warnings", ()))
     if result["excluded_m"]:
         lines.append("left out (cross-check failed or not run): " + _lengths(result["excluded_m"]))
     if result["pending_m"]:
@@ -437,6 +459,7 @@ def summary_table(data: dict, energy) -> str:
     lines.append(STRAIGHT_NOTE)
     d = energy.as_dict()
     lines.append(best_length_text(d))
+    lines += caveat_lines(d["warnings"], BEST_LENGTHS)
     if energy.excluded_m:
         lines.append("left out of the flexible AEP (cross-check failed or not run): "
                      + _lengths(energy.excluded_m))

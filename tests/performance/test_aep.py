@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_tether.performance.aep import (HOURS_PER_YEAR, AepByLength, SweepAep, aep_by_length,
-                                        annual_energy_Wh, capacity_factor)
+                                        annual_energy_Wh, capacity_factor, edge_caveat, sweep_aep)
 from fem_tether.physics import atmosphere
 from fem_tether.physics.atmosphere import ISA
 from fem_tether.config import load_config
@@ -135,6 +135,48 @@ def test_sweep_aep_as_dict_has_null_for_undefined_values():
                  unchecked_m=()).as_dict()
     assert d["lengths"][0]["aep_straight_MWh"] is None and d["lengths"][0]["cf_straight"] is None
     assert d["best_length_straight_m"] == 200.0 and d["best_length_fe_m"] is None
+
+
+@pytest.mark.parametrize("aep_MWh, edge", [([5.0, 4.0, 3.0], "shortest"), ([3.0, 4.0, 5.0], "longest"),
+                                            ([3.0, 5.0, 4.0], None), ([np.nan, 5.0, 4.0], None),
+                                            ([0.0, 0.0, 0.0], None), ([5.0], "only")])
+def test_a_best_length_at_the_edge_of_the_lengths_has_a_caveat(aep_MWh, edge):
+    """A maximum at the first or last length is not bracketed: a warning on that best length,
+    saying on which side the optimum may lie; an interior maximum, or none, has none.  A NaN
+    at the edge is no maximum there (the plot's old argmax picked it)."""
+    result = _by_length(aep_MWh)
+    caveat = edge_caveat(result, "flexible", "best_length_fe_m")
+    assert result.best_at_edge == (edge is not None)
+    if edge is None:
+        assert caveat is None
+        return
+    assert (caveat.code, caveat.quantity, caveat.lengths_m) == ("best-length-at-edge", "best_length_fe_m",
+                                                                (result.best_length_m,))
+    expected = {"shortest": "best length flexible 100 m: the shortest of the lengths with a flexible AEP "
+                            "(100-300 m); the optimum is not bracketed and may lie below it",
+                "longest": "best length flexible 300 m: the longest of the lengths with a flexible AEP "
+                           "(100-300 m); the optimum is not bracketed and may lie above it",
+                "only": "best length flexible 100 m: the only length with a flexible AEP; no optimum over "
+                        "the length is bracketed"}
+    assert caveat.message == expected[edge]
+
+
+def test_sweep_aep_gives_its_caveats_in_the_json(unrun_sweep):
+    """(Was: the margin warning on the terminal only, the edge of a best length on the AEP
+    plot only.)  The tiny job's straight best length, 400 m of 400-800 m, and its lines against
+    a safety factor they do not meet: both in ``warnings`` of aep.json's dict."""
+    from fem_tether.jobs.sweepfile import read_sweep
+
+    data = read_sweep(unrun_sweep)
+    data |= {"margin": np.array([1.25, 1.1])}
+    d = sweep_aep(data, allow_incomplete=True).as_dict()
+    assert [c["code"] for c in d["warnings"]] == ["best-length-at-edge"]
+    data["config"] = data["config"].replace(tether={"safety_factor": 1.2})
+    (edge, margin) = sweep_aep(data, allow_incomplete=True).as_dict()["warnings"]
+    assert edge["quantity"] == "best_length_straight_m" and edge["lengths_m"] == [400.0]
+    assert margin == {"code": "margin-below-safety-factor", "quantity": "margin", "lengths_m": [800.0],
+                      "message": "margin below the safety factor 1.2: 1.100 at 800 m (the line's breaking load "
+                                 "over its peak tension; [tether] sizing = \"load\" sizes it)"}
 
 
 def test_a_band_with_undefined_probabilities_gives_no_aep(system):

@@ -2,6 +2,7 @@
 aep.json, every plot embedded and captioned, the run and the job, the configuration that
 matters, the validation status; valid and unclipped; from hand-made results (no solver runs)."""
 
+import html
 import json
 
 import numpy as np
@@ -49,6 +50,23 @@ def test_page_is_self_contained_and_holds_the_aep_numbers(results):
     assert checks[1][-1] == "ok" and checks[1][3].startswith("0.025 %")
     assert checks[2][-1].startswith("not run (failed: ")
     assert sorted(p.name for p in out.iterdir()) == sorted([*(p.name for p in plots.values()), "index.html"])
+
+
+def test_page_shows_the_warnings_of_aep_json_below_the_summary(results):
+    """(Was: the margin warning on the terminal only, a best length at the edge noted on the
+    AEP plot only.)  Each record of aep.json's ``warnings`` as a marked paragraph after the
+    summary table and its best lengths, before the cross-check."""
+    data, energy, plots, out = results
+    data["config"] = data["config"].replace(tether={"safety_factor": 1.2})
+    data["margin"] = np.array([1.1, np.nan])
+    energy = sweep_aep(data)
+    warnings = energy.as_dict()["warnings"]
+    assert [w["code"] for w in warnings] == ["best-length-at-edge", "margin-below-safety-factor"]
+    text = write_page(out, data, energy, plots, RUN).read_text(encoding="utf-8")
+    shown = [text.index(f"<strong>warning:</strong> {html.escape(w['message'])}</p>") for w in warnings]
+    assert text.index("best length: straight 400 m") < min(shown) and max(shown) < text.index("cross-check</h2>")
+    for w in warnings:
+        assert f"data-code=\"{w['code']}\" data-quantity=\"{w['quantity']}\"" in text
 
 
 def test_page_shows_the_verdict_counts_of_a_validation_beside_it(results):

@@ -9,8 +9,8 @@ import pytest
 from fem_tether.performance.aep import sweep_aep
 from fem_tether.tether.crosscheck import CrossCheck
 from fem_tether.jobs.evaluate import LengthResult
-from fem_tether.report.text import (aep_text, bench_design_lines, crosscheck_text, json_text, reused, summary_table,
-                                    sweep_summary, sweep_text)
+from fem_tether.report.text import (aep_text, bench_design_lines, crosscheck_text, json_text, reused, size_text,
+                                    summary_table, sweep_summary, sweep_text)
 from fem_tether.jobs.sweepfile import read_sweep
 
 TOLERANCES = {"drag_rel": 0.02, "tension_rel": 0.01, "shape_rel": 0.005}
@@ -71,9 +71,14 @@ def test_sweep_text_and_summary():
         "  L =    800 m: F_t FE       nan N, FD    4010.0 N, straight    5100.0 N, cross-check "
         "FAILED/not run, d 11.000 mm, margin 1.250  [FE: diverged]"]
     short = sweep_text(outcome, "r.h5", 1.3).splitlines()
-    assert short[-1] == ("warning: margin below the safety factor 1.3: 1.250 at 400 m, 1.250 at 800 m (the "
-                         "line's breaking load over its peak tension; [tether] sizing = \"load\" sizes it)")
-    summary = sweep_summary(outcome, "r.h5")
+    message = ("margin below the safety factor 1.3: 1.250 at 400 m, 1.250 at 800 m (the line's breaking load "
+               "over its peak tension; [tether] sizing = \"load\" sizes it)")
+    assert short[-1] == f"warning: {message}"
+    # the same record in the JSON (was: the terminal only)
+    assert sweep_summary(outcome, "r.h5", 1.3)["warnings"] == [
+        {"code": "margin-below-safety-factor", "message": message, "quantity": "margin", "lengths_m": [400.0, 800.0]}]
+    summary = sweep_summary(outcome, "r.h5", 1.2)
+    assert summary["warnings"] == []
     assert json.loads(json_text(summary)) == summary         # NaN written as null: valid JSON
     assert summary["lengths"][1]["drag_fe_N"] is None and summary["lengths"][1]["error"] == "FE: diverged"
     assert (summary["file"], summary["n_ranks"], summary["tasks"], summary["reused_tasks"]) == ("r.h5", 2, 4, 1)
@@ -93,6 +98,35 @@ def test_aep_text():
     assert lines[3:] == ["best length: straight 400 m, flexible 400 m",
                          "left out (cross-check failed or not run): 800 m",
                          "pending, not run yet (--allow-incomplete): 800 m"]
+
+
+def test_aep_text_prints_the_warnings_of_its_json_below_the_best_lengths():
+    """The records of ``warnings`` (aep.json), each one line, under the best lengths they qualify."""
+    edge = {"code": "best-length-at-edge", "quantity": "best_length_straight_m", "lengths_m": [400.0],
+            "message": "best length straight 400 m: the shortest of the lengths with a straight AEP (400-800 m); "
+                       "the optimum is not bracketed and may lie below it"}
+    short = {"code": "margin-below-safety-factor", "quantity": "margin", "lengths_m": [800.0],
+             "message": "margin below the safety factor 1.2: 1.100 at 800 m (...)"}
+    result = {"lengths": [{"length_m": 400.0, "aep_straight_MWh": 6642.0, "cf_straight": 0.344, "aep_fe_MWh": 7000.4,
+                           "cf_fe": 0.36, "unchecked": False}],
+              "best_length_straight_m": 400.0, "best_length_fe_m": 400.0, "excluded_m": [], "pending_m": [],
+              "warnings": [edge, short]}
+    assert aep_text(result).splitlines()[2:] == ["best length: straight 400 m, flexible 400 m",
+                                                 f"warning: {edge['message']}", f"warning: {short['message']}"]
+
+
+def test_size_text_prints_the_last_iterate_and_the_warnings():
+    s = {"length_m": 400.0, "material": "sk99", "safety_factor": 1.2, "diameter_m": 0.0119067,
+         "linear_density_kg_m": 0.0756, "axial_stiffness_N": 1.726e7, "peak_tension_N": 150407.7,
+         "breaking_load_N": 180591.2, "margin": 1.2007, "iterations": 3, "required_diameter_m": 0.0119008,
+         "excess": 0.000496, "diameters_m": [0.011, 0.0119007, 0.0119067], "peak_tensions_N": [1.5e5] * 3,
+         "fixed": {"diameter_m": 0.011, "peak_tension_N": 150320.3, "margin": 1.097, "mean_drag_N": 12554.4},
+         "warnings": [{"code": "x", "quantity": "margin", "lengths_m": [400.0], "message": "m"}]}
+    lines = size_text(s).splitlines()
+    assert lines[1] == "  diameter                      11.907 mm" and lines[6] == "  margin                         1.201"
+    assert lines[7] == ("  iterations (FE runs)               3   d: 11.0000 -> 11.9007 -> 11.9067 mm (the last "
+                        "run's peak needs 11.9008 mm: 0.050 % to spare)")
+    assert lines[-1] == "warning: m"
 
 
 def test_aep_text_of_undefined_and_zero_aep_names_no_best_length():
@@ -122,6 +156,8 @@ def test_summary_table_of_a_sweep_with_nothing_run(data):
     assert lines[4] == ("straight: the rigid straight line in the same wind ('fem-tether straight' is in quiet air "
                         "unless --wind)")
     assert lines[5:] == ["best length: straight 400 m, flexible none (no length passed the cross-check)",
+                         "warning: best length straight 400 m: the shortest of the lengths with a straight AEP "
+                         "(400-800 m); the optimum is not bracketed and may lie below it",
                          "left out of the flexible AEP (cross-check failed or not run): 800 m",
                          "pending (not run yet, --allow-incomplete): 400 m"]
 
@@ -141,14 +177,14 @@ def test_peak_memory_per_rank_in_the_sweep_texts():
     outcome = _outcome()
     outcome.peak_rss_MiB = (180.4, 201.6)
     assert sweep_text(outcome, "r.h5", 1.2).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
-    summary = sweep_summary(outcome, "r.h5")
+    summary = sweep_summary(outcome, "r.h5", 1.2)
     assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6
 
 
 def test_sweep_json_says_which_straight_line_drag_straight_is(data):
     """(Was: drag_straight_N with no word of the wind, while 'fem-tether straight --json' gives
     the quiet-air line's drag_N.)"""
-    assert "same wind" in sweep_summary(_outcome(), "r.h5")["straight_line"]
+    assert "same wind" in sweep_summary(_outcome(), "r.h5", 1.0)["straight_line"]
 
 
 def test_bench_design_lines_report_each_time_against_its_target():
