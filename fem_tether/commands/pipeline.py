@@ -9,6 +9,8 @@ page ``index.html`` (:mod:`fem_tether.report.page`); the printed summary table i
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import time
 from contextlib import ExitStack
 from dataclasses import dataclass, replace
@@ -43,7 +45,7 @@ class MainJob:
     """What the main job did and wrote: the sweep, its AEP, the files, the time taken."""
 
     outcome: SweepOutcome
-    data: dict
+    data: Mapping
     energy: SweepAep
     h5: Path
     files: dict

@@ -7,7 +7,8 @@ Four rules, each one function here, which every writer of the package uses:
   checks every path it will write: the folder can be created and written, and
   the target is absent or a regular file (or, for a ParaView folder, a folder)
   that fem-tether wrote (:func:`written_by_fem_tether`: an HDF5 attribute, a
-  PNG text chunk, an HTML ``generator`` tag, a Markdown comment, a JSON key).
+  PNG text chunk, an HTML ``generator`` tag, a Markdown comment, a JSON key,
+  a CSV table's first line ``# fem-tether ...``).
   A symbolic link, a FIFO, a device or a user's file is refused, naming it.
 - **Commit** (:func:`atomic_path`, :func:`atomic_outputs`): every target is
   written under a hidden temporary name beside it and renamed into place only
@@ -129,6 +130,12 @@ def mark_mesh(path: Path) -> None:
     Path(path).write_bytes(data)
 
 
+def _csv_ours(path: Path) -> bool:
+    """A CSV table whose first line is our comment ``# fem-tether ...``."""
+    with open(path, "rb") as fh:
+        return fh.readline(_HEAD_BYTES).startswith(f"# {GENERATOR} ".encode())
+
+
 def _json_ours(path: Path) -> bool:
     try:
         data = json.loads(Path(path).read_bytes()[: 1 << 26])
@@ -139,7 +146,7 @@ def _json_ours(path: Path) -> bool:
 
 _RECOGNISERS = {".h5": _hdf5_ours, ".hdf5": _hdf5_ours, ".png": _png_ours, ".html": _text_ours,
                 ".md": _text_ours, ".pvd": _text_ours, ".vtu": _text_ours, ".vtk": _vtk_ours,
-                ".json": _json_ours}
+                ".json": _json_ours, ".csv": _csv_ours}
 
 
 def written_by_fem_tether(path) -> bool:

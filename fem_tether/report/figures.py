@@ -8,6 +8,8 @@ a sweep that only run tasks need not spend.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +30,7 @@ PLOT_FILES = ("drag_vs_length.png", "ge_vs_length.png", "power_curves.png", "aep
 POWER_CURVE_STEP_MPS = 0.5
 
 
-def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
+def write_plots(data: Mapping, energy: SweepAep, directory: Path) -> dict[str, Path]:
     """F_t, G_e, power curves (shortest and longest line) and AEP against L."""
     from fem_tether.report import plots
 

@@ -11,6 +11,8 @@ else "not run".  Written with the standard library only (:mod:`html`,
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import base64
 import html
 from pathlib import Path
@@ -43,7 +45,7 @@ def table(header: list[str], rows: list[list[str]]) -> str:
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
-def summary_rows(data: dict, energy: SweepAep) -> list[list[str]]:
+def summary_rows(data: Mapping, energy: SweepAep) -> list[list[str]]:
     """Per length: L, F_t and G_e straight and flexible, AEP [MWh] and CF of both (``aep.json``)."""
     rows = {r["length_m"]: r for r in energy.as_dict()["lengths"]}
     out = []
@@ -56,7 +58,7 @@ def summary_rows(data: dict, energy: SweepAep) -> list[list[str]]:
     return out
 
 
-def crosscheck_rows(data: dict) -> list[list[str]]:
+def crosscheck_rows(data: Mapping) -> list[list[str]]:
     """Per length: F_t of both solvers, their relative difference, the shape's, and the verdict."""
     cfg = data["config"].crosscheck
     out = []
@@ -92,7 +94,7 @@ def image(path: Path, embed: bool = True) -> str:
     return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{name}</figcaption></figure>"
 
 
-def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str) -> str:
+def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: str) -> str:
     """The page's HTML (``validation``: the status, already HTML)."""
     d = energy.as_dict()
     notes = [report.best_length_text(d)] + [f"{what}: {', '.join(f'{v:g} m' for v in d[key])}" for key, what in (
@@ -117,7 +119,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
         "</body></html>"])
 
 
-def write_page(directory, data: dict, energy: SweepAep, plots: dict[str, Path]) -> Path:
+def write_page(directory, data: Mapping, energy: SweepAep, plots: dict[str, Path]) -> Path:
     """``directory/index.html`` of a sweep's ``data`` (:func:`fem_tether.jobs.sweepfile.read_sweep`),
     its AEP and its PNG ``plots``, written whole or not at all."""
     directory = Path(directory)
