@@ -7,6 +7,12 @@ The public API, loaded on first use (``import fem_tether`` itself is cheap)::
     run = ft.simulate(cfg)                 # the FE line (fem_tether.tether.fe)
     fd_run = ft.simulate_fd(cfg)           # the FD reference (fem_tether.tether.fd)
     check = ft.compare(run, fd_run, cfg.crosscheck)
+    ft.run_study(ft.load_study("study.toml"), "study.h5")    # under mpiexec: every rank
+    page = ft.write_study_report("study.h5")                  # study_report/index.html
+    result = ft.read_result("study.h5")    # typed: StudyResult, SweepResult, SimulateResult, DesignFile
+    result.table().units                   # every quantity's unit
+
+docs/api.md describes each call and the typed results.
 
 The package's folders are its layers, bottom to top (docs/architecture.md):
 ``core``, ``physics``, ``systems``, ``config``, ``tether``, ``performance``,
@@ -34,7 +40,18 @@ API = {
     "compare": ("fem_tether.tether.crosscheck", "compare"),
     "TetherRun": ("fem_tether.tether.results", "TetherRun"),
     "sweep_aep": ("fem_tether.performance.aep", "sweep_aep"),
+    "load_job": ("fem_tether.jobs.job", "load_job"),
+    "sweep": ("fem_tether.jobs.sweep", "sweep"),
+    "load_study": ("fem_tether.jobs.study.job", "load_study"),
     "run_study": ("fem_tether.jobs.study.driver", "run_study"),
+    "write_study_report": ("fem_tether.report.study", "write_report"),
+    "read_result": ("fem_tether.jobs.result_files", "read_result"),
+    "read_simulate": ("fem_tether.io.results", "read_simulate"),
+    "read_sweep": ("fem_tether.jobs.sweepfile", "read_sweep"),
+    "read_study": ("fem_tether.jobs.study.result", "read_study"),
+    "read_design": ("fem_tether.io.design_file", "read_design_hdf5"),
+    "plot_result": ("fem_tether.report.stored_figure", "plot_stored"),
+    "export_csv": ("fem_tether.report.stored", "write_csv"),
     "validate": ("fem_tether.validation", "validate"),
 }
 

@@ -263,6 +263,32 @@ def cmd_aep(args):
     return 0
 
 
+# --- stored results: show, plot, export (fem_tether.jobs.result_files, fem_tether.report.stored)
+def cmd_show(args):
+    from fem_tether.jobs.result_files import read_result
+    from fem_tether.report.stored import show, show_text
+
+    shown = show(read_result(args.file))
+    print(report.json_text(shown) if args.json else show_text(shown))
+    return 0
+
+
+def cmd_plot(args):
+    from fem_tether.jobs.result_files import read_result
+    from fem_tether.report.stored_figure import plot_stored
+
+    print(f"wrote {plot_stored(read_result(args.file), args.quantities, args.out)}")
+    return 0
+
+
+def cmd_export(args):
+    from fem_tether.jobs.result_files import read_result
+    from fem_tether.report.stored import write_csv
+
+    print(f"wrote {write_csv(read_result(args.file), args.csv)}")
+    return 0
+
+
 def cmd_run(args):
     from fem_tether.commands.pipeline import main_job
 
@@ -408,6 +434,27 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--allow-incomplete", action="store_true",
                    help="compute the AEP of an unfinished sweep (else exit 2 naming the pending lengths)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
+
+    stored = "a result file: simulate --out's fe_L<L>.h5, a sweep's, a study's or a design's"
+    c = command("show", cmd_show, "what a result file is (kind, system, case, version, date, units) and a "
+                "table of its main quantities", config=False, system=False)
+    c.add_argument("file", metavar="FILE.h5", help=stored)
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
+    c = command("plot", cmd_plot, "draw quantities of a result file: a run's series against time, a sweep's "
+                "against length, a study's against length per diameter, a design's against wind speed",
+                config=False, system=False)
+    c.add_argument("file", metavar="FILE.h5", help=stored)
+    c.add_argument("quantities", nargs="*", metavar="QUANTITY",
+                   help="stored quantities to draw (default: the main ones; an unknown one lists them all)")
+    c.add_argument("--out", required=True, metavar="FILE.png", help="the figure")
+
+    c = command("export", cmd_export, "write the main table of a result file as CSV, units in the header",
+                config=False, system=False)
+    c.add_argument("file", metavar="FILE.h5", help=stored)
+    c.add_argument("--csv", required=True, metavar="OUT.csv",
+                   help="the table: a run's series per time step, a sweep's datasets per length, a study's "
+                        "per point, a design's curves per wind speed")
 
     c = command("run", cmd_run, "the main job: sweep, cross-check gate, AEP, plots, summary",
                 config=False)

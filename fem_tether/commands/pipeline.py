@@ -16,6 +16,8 @@ summary table as ``summary.csv`` and ``summary.json``
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import time
 from contextlib import ExitStack
 from dataclasses import dataclass, replace
@@ -53,7 +55,7 @@ class MainJob:
     (to the summary, which states it) and the summary (``summary.json``'s document)."""
 
     outcome: SweepOutcome
-    data: dict
+    data: Mapping
     energy: SweepAep
     h5: Path
     files: dict

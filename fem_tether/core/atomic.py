@@ -8,7 +8,7 @@ Four rules, each one function here, which every writer of the package uses:
   the target is absent or a regular file (or, for a ParaView folder, a folder)
   that fem-tether wrote (:func:`written_by_fem_tether`: an HDF5 attribute, a
   PNG text chunk, an HTML ``generator`` tag, a Markdown comment, a JSON key,
-  a CSV file's first line ``# fem-tether VERSION``).
+  a CSV table's first line ``# fem-tether VERSION``).
   A symbolic link, a FIFO, a device or a user's file is refused, naming it.
 - **Commit** (:func:`atomic_path`, :func:`atomic_outputs`): every target is
   written under a hidden temporary name beside it and renamed into place only
@@ -113,7 +113,7 @@ def _text_ours(path: Path) -> bool:
 def _csv_ours(path: Path) -> bool:
     """A CSV table whose first line is our comment (:func:`write_csv`)."""
     with open(path, "rb") as fh:
-        return fh.readline().startswith(f"# {GENERATOR} ".encode())
+        return fh.readline(_HEAD_BYTES).startswith(f"# {GENERATOR} ".encode())
 
 
 def _vtk_ours(path: Path) -> bool:
@@ -397,15 +397,15 @@ def write_json(path, payload: dict, allow_nan: bool = False) -> Path:
     return Path(path)
 
 
-def write_csv(path, header: Sequence[str], rows: Sequence[Sequence]) -> Path:
+def write_csv(path, header: Sequence[str], rows: Sequence[Sequence], title: str = "") -> Path:
     """A CSV table (:mod:`csv`, comma-separated, one ``header`` line) written
-    atomically, its first line the comment ``# fem-tether VERSION`` that marks
-    it as ours (read it with ``pandas.read_csv(path, comment="#")``).  An
-    undefined value (None) is an empty cell."""
+    atomically, its first line the comment ``# fem-tether VERSION`` (then
+    ``: title``) that marks it as ours (read it with ``pandas.read_csv(path,
+    comment="#")``).  An undefined value (None) is an empty cell."""
     import csv
 
     with atomic_path(path) as tmp, open(tmp, "w", encoding="utf-8", newline="") as fh:
-        fh.write(f"# {generator_tag()}\n")
+        fh.write(f"# {generator_tag()}{f': {title}' if title else ''}\n")
         writer = csv.writer(fh, lineterminator="\n")
         writer.writerow(header)
         writer.writerows([["" if v is None else v for v in row] for row in rows])

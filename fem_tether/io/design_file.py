@@ -24,7 +24,8 @@ and the unit also as the attribute ``unit``)::
 A quantity that does not exist (the rated wind of a design never rated, a
 free wing area) is the attribute "none" and reads back as None.
 
-:func:`read_design_hdf5` returns the same as
+:func:`read_design_hdf5` returns a :class:`DesignFile` whose
+:meth:`~DesignFile.as_dict` is the same as
 :meth:`fem_tether.design.result.DesignResult.as_dict`, so a file and a
 ``--json`` print hold one content.
 """
@@ -32,6 +33,8 @@ free wing area) is the attribute "none" and reads back as None.
 from __future__ import annotations
 
 import json
+import re
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import h5py
@@ -39,6 +42,8 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.core.atomic import atomic_path, check_writable
+from fem_tether.io.reading import Reader
+from fem_tether.io.results import Column, Record, Table
 
 KIND = "design"
 #: the flexible tether's scalars, attributes of ``/flexible``
@@ -132,14 +137,89 @@ def _read_attrs(group) -> dict:
     return out
 
 
-def read_design_hdf5(path) -> dict:
-    """The content of a design result file, as :meth:`DesignResult.as_dict` gives it (with the
-    flexible tether's content as ``flexible``, :meth:`fem_tether.jobs.design.loop.FlexibleDesign.as_dict`)."""
-    with h5py.File(path, "r") as f:
-        content = _read_design(f) | {"job_toml": str(f.attrs["job_toml"])}
-        if "flexible" in f:
-            content["flexible"] = _read_flexible(f["flexible"])
-        return content
+#: The sections of a design (attributes of one group each) and its file's fields.
+SECTIONS = ("parameters", "design", "outputs", "sensitivities_Wh", "bounds", "held", "curves", "starts",
+            "active_constraints", "seed", "best_start")
+
+
+@dataclass(frozen=True, eq=False)
+class DesignFile(Record):
+    """A design result file: the design's sections as :meth:`DesignResult.as_dict` gives
+    them (``curves`` as arrays, one entry per wind speed of the design's grid), the job
+    that made it and, with ``[design] tether = "flexible"``, the flexible loop's content
+    (``flexible``, else empty).  The file holds no time of writing."""
+
+    file: str
+    version: str
+    job_toml: str
+    parameters: dict
+    design: dict
+    outputs: dict
+    sensitivities_Wh: dict
+    bounds: dict
+    held: dict
+    curves: dict[str, np.ndarray]
+    starts: list
+    active_constraints: dict
+    seed: int
+    best_start: int | None
+    flexible: dict = field(default_factory=dict)
+    kind: str = "design"
+    created_utc: None = None
+
+    @property
+    def system(self) -> str:
+        """The preset the job names (its text is the preset's job, then the user's), else custom."""
+        presets = re.findall(r'^preset\s*=\s*"([^"]*)"', self.job_toml, flags=re.M)
+        return presets[-1] if presets else "custom (the job's [design.parameters])"
+
+    @property
+    def case(self) -> str:
+        rated = self.parameters.get("rated_power_W")
+        rating = f"rated {rated / 1e6:g} MW" if rated else "no rated power"
+        return (f"kite-system design, {self.parameters.get('mode')}, {rating}; seed {self.seed}, "
+                f"{len(self.starts)} start(s), best start {self.best_start}"
+                + ("; flexible tether loop" if self.flexible else ""))
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The unit of every number of the design, its outputs, parameters and curves
+        (``"1"`` for a ratio)."""
+        named = {**self.parameters, **self.design, **self.outputs, **self.curves}
+        return {name: "" if isinstance(value, str) else _udunits(unit_of(name)) for name, value in named.items()}
+
+    def table(self) -> Table:
+        """The design's curves, one row per wind speed."""
+        order = ["wind_mps"] + [name for name in self.curves if name != "wind_mps"]
+        return Table(tuple(Column(name, _udunits(unit_of(name)), self.curves[name]) for name in order),
+                     x="wind_mps")
+
+    def as_dict(self) -> dict:
+        """The content as :meth:`DesignResult.as_dict` gives it, with ``job_toml`` (and ``flexible``)."""
+        content = {name: getattr(self, name) for name in SECTIONS} | {"job_toml": self.job_toml}
+        content["curves"] = {k: v.tolist() for k, v in self.curves.items()}
+        return content | ({"flexible": self.flexible} if self.flexible else {})
+
+
+def _udunits(unit: str) -> str:
+    """A unit of :func:`unit_of` as the other result files write it (``"1"``: a ratio)."""
+    return "1" if unit == "-" else unit
+
+
+def read_design_hdf5(path) -> DesignFile:
+    """The design result file ``path`` (:class:`DesignFile`); one
+    :class:`~fem_tether.io.reading.ResultFileError` line if it is missing, not a
+    design result or damaged."""
+    reader = Reader(path, "design")
+    with reader.open() as f:
+        try:
+            content = _read_design(f)
+            flexible = _read_flexible(f["flexible"]) if "flexible" in f else {}
+            job_toml, version = reader.attr(f, "job_toml", "str"), reader.attr(f, "fem_tether_version", "str")
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise reader.error(f"{type(exc).__name__}: {' '.join(str(exc).split())}") from None
+    content["curves"] = {k: np.asarray(v) for k, v in content["curves"].items()}
+    return DesignFile(str(path), version, job_toml, flexible=flexible, **content)
 
 
 def _read_columns(group) -> dict:

@@ -6,8 +6,8 @@ attribute that does not parse) is one :class:`ResultFileError` line naming the
 file and what is wrong (the CLI's exit code 2), never a traceback or a
 number read from the wrong place.  :class:`Reader` opens a file as one kind of
 result (:data:`KINDS`) and reads its parts through checks that raise that
-error; the readers of :mod:`fem_tether.io.output`, :mod:`fem_tether.jobs.sweepfile` and
-:mod:`fem_tether.jobs.study.result` use it.
+error; the readers of :mod:`fem_tether.io.output`, :mod:`fem_tether.io.design_file`,
+:mod:`fem_tether.jobs.sweepfile` and :mod:`fem_tether.jobs.study.result` use it.
 """
 
 from __future__ import annotations
@@ -24,7 +24,8 @@ from fem_tether.core.errors import InputError
 from fem_tether.core.quantities import ADDED
 
 #: What each kind of result file is called in messages.
-KINDS = {"run": "fem-tether run", "sweep": "fem-tether sweep result", "study": "fem-tether study result"}
+KINDS = {"run": "fem-tether run", "sweep": "fem-tether sweep result", "study": "fem-tether study result",
+         "design": "fem-tether design result"}
 
 #: The signature an HDF5 file starts with (at 0, or at 512, 1024, ... after a user block).
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
@@ -40,6 +41,8 @@ class ResultFileError(InputError):
 def kind_of(f: h5py.File) -> str | None:
     """The kind of result (a key of :data:`KINDS`) an open HDF5 file holds by its
     marks, whether or not it is whole; None for another program's file."""
+    if f.attrs.get("kind") == "design":
+        return "design"
     if "surfaces" in f.attrs:
         return "study"
     if "job_toml" in f.attrs or "length_m" in f:
@@ -87,7 +90,11 @@ class Reader:
     @property
     def what(self) -> str:
         """What the file is (or should be) called in messages."""
-        return KINDS[self.kind] if self.kind else " or ".join(KINDS[k] for k in self.kinds)
+        if self.kind:
+            return KINDS[self.kind]
+        if set(self.kinds) == set(KINDS):
+            return "fem-tether result file (run, sweep, study or design)"
+        return " or ".join(KINDS[k] for k in self.kinds)
 
     def error(self, problem: str) -> ResultFileError:
         """The error of a file that is ours but damaged."""

@@ -35,6 +35,7 @@ import datetime as _dt
 import json
 import os
 import shutil
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -42,11 +43,13 @@ import h5py
 import numpy as np
 
 from fem_tether import __version__
+from fem_tether.config import Config
 from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check_writable, write_json
 from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs.job import length_tag
-from fem_tether.core.quantities import attributes
+from fem_tether.core.quantities import attributes, names
 from fem_tether.io.reading import Reader
+from fem_tether.io.results import Record, Table, stored_column
 from fem_tether.jobs.store import PartsStore, parts_dir
 
 #: A length's status: its tasks have all run and succeeded, some task has not run, some failed.
@@ -230,10 +233,69 @@ ROOT_ATTRS = {"config_toml": "str", "job_toml": "str", "fem_tether_version": "st
               "created_utc": "str"}
 
 
-def read_sweep(path: str | Path) -> dict:
-    """Root datasets and attributes of a result file, as NumPy arrays and strings
-    (``"file"``: the path as given; ``"case_configs"``: each length's configuration,
-    its sized line with ``[tether] sizing = "load"``).
+@dataclass(frozen=True, eq=False)
+class SweepResult(Record):
+    """A sweep result file: its job, configuration and one entry per length of every
+    root dataset (NaN where not run; units :attr:`units`, meanings
+    :mod:`fem_tether.core.quantities`, ``where = "sweep"``)."""
+
+    file: str
+    config: Config
+    case_configs: tuple[Config, ...]      #: each length's configuration (its sized line with sizing = "load")
+    job_toml: str
+    version: str
+    n_ranks: int
+    created_utc: str
+    length_m: np.ndarray
+    drag_fe_N: np.ndarray
+    drag_power_fe_N: np.ndarray
+    drag_fd_N: np.ndarray
+    drag_straight_N: np.ndarray
+    drag_power_straight_N: np.ndarray
+    ge_fe: np.ndarray
+    ge_straight: np.ndarray
+    crosscheck_ok: np.ndarray
+    mean_phi_deg: np.ndarray
+    kite_tension_fe_N: np.ndarray
+    kite_tension_fd_N: np.ndarray
+    rel_diff_drag: np.ndarray
+    rel_diff_shape: np.ndarray
+    d_m: np.ndarray
+    peak_tension_N: np.ndarray
+    margin: np.ndarray
+    drag_fixed_N: np.ndarray
+    drag_power_fixed_N: np.ndarray
+    ge_fixed: np.ndarray
+    status: np.ndarray
+    error: np.ndarray
+    kind: str = "sweep"
+
+    @property
+    def system(self) -> str:
+        return self.config.system.name
+
+    @property
+    def case(self) -> str:
+        counts = ", ".join(f"{np.count_nonzero(self.status == s)} {s}" for s in STATUSES)
+        diameters = ", ".join(f"{1e3 * d:g}" for d in dict.fromkeys(self.d_m[np.isfinite(self.d_m)]))
+        return (f"sweep over {self.length_m.size} length(s), {self.length_m[0]:g} to {self.length_m[-1]:g} m "
+                f"({counts}); d = {diameters or '?'} mm; tether drag lumped as "
+                f"{self.config.drag.tether_drag_lumping}")
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The unit of every root dataset."""
+        return self.table().units
+
+    def table(self) -> Table:
+        """Every root dataset, one row per length."""
+        return Table(tuple(stored_column("sweep", name, getattr(self, name)) for name in names("sweep")),
+                     x="length_m")
+
+
+def read_sweep(path: str | Path) -> SweepResult:
+    """The sweep result file ``path``: its root datasets and attributes, and each
+    length's configuration.
 
     The file is checked as it is read (:class:`~fem_tether.io.reading.Reader`): one
     :class:`~fem_tether.io.reading.ResultFileError` line names it if it is missing,
@@ -241,18 +303,19 @@ def read_sweep(path: str | Path) -> dict:
     dataset missing, of another length or type, a length's group missing)."""
     reader = Reader(path, "sweep")
     with reader.open() as f:
-        data: dict[str, Any] = {"attrs": {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}}
-        data["config"] = reader.config(f)
+        attrs = {name: reader.attr(f, name, kind) for name, kind in ROOT_ATTRS.items()}
+        config = reader.config(f)
         lengths = reader.dataset(f, "length_m", shape=(None,))
         if not (np.all(lengths > 0) and np.all(np.diff(lengths) > 0)):
             raise reader.error("dataset /length_m is not increasing positive lengths")
-        data["length_m"] = lengths
+        data: dict[str, Any] = {"length_m": lengths}
         for name in ROOT_DATASETS + ("status", "error"):
             dtype = "int" if name == "crosscheck_ok" else "str" if name in ("status", "error") else "float"
             data[name] = reader.dataset(f, name, dtype, shape=lengths.shape)
         unknown = set(data["status"]) - set(STATUSES)
         if unknown:
             raise reader.error(f"dataset /status holds {str(sorted(unknown)[0])!r} (known: {', '.join(STATUSES)})")
-        data["case_configs"] = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
-    data["file"] = str(path)
-    return data
+        case_configs = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
+    return SweepResult(file=str(path), config=config, case_configs=case_configs, job_toml=attrs["job_toml"],
+                       version=attrs["fem_tether_version"], n_ranks=attrs["n_ranks"],
+                       created_utc=attrs["created_utc"], **data)

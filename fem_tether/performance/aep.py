@@ -285,7 +285,7 @@ def check_resource(cfg: Config, wind_csv=None) -> None:
     check_resource_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 
-def sweep_aep(data: dict, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
+def sweep_aep(data: Mapping, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
     """AEP of a sweep result with the configured (or given) wind resource."""
     cfg = data["config"]
     return aep_of_sweep(data, sweep_resource(cfg, wind_csv),

@@ -304,7 +304,7 @@ def write_design_report(out) -> Path:
     returns the page's path.  Every target is checked before any is written: a file
     there that fem-tether did not write is refused (:class:`~fem_tether.core.atomic.OutputError`)."""
     out = Path(out)
-    r = read_design_hdf5(out)
+    r = read_design_hdf5(out).as_dict()
     if r["best_start"] is None:
         raise ValueError(f"{out}: no start converged to a feasible design, so there is no design to report")
     check_folder(report_dir(out))

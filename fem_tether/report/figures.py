@@ -11,6 +11,8 @@ rigid straight line in the same wind as the flexible line
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +42,7 @@ MODEL_SOURCES = {"kitegen": "KiteGen model (Roselli 2016 §2.4 and §5)",
 STRAIGHT = "the rigid straight line in the same wind"
 
 
-def write_plots(data: dict, energy: SweepAep, directory: Path) -> dict[str, Path]:
+def write_plots(data: Mapping, energy: SweepAep, directory: Path) -> dict[str, Path]:
     """F_t, G_e, power curves (shortest and longest line) and AEP against L."""
     from fem_tether.report import plots
 

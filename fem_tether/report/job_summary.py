@@ -68,7 +68,7 @@ COLUMNS = (
 )
 
 
-def crosscheck_text(data: dict, i: int) -> str:
+def crosscheck_text(data: Mapping, i: int) -> str:
     """The cross-check of length ``i`` of a sweep in words, with its status if not ok."""
     check = ("ok" if data["crosscheck_ok"][i] else
              ("not run" if not np.isfinite(data["rel_diff_drag"][i]) else
@@ -85,7 +85,7 @@ def _finite(value) -> float | None:
     return value if value is not None and np.isfinite(value) else None
 
 
-def summary_rows(data: dict, energy: SweepAep) -> list[dict]:
+def summary_rows(data: Mapping, energy: SweepAep) -> list[dict]:
     """One dict per length of the sweep ``data`` (:func:`fem_tether.jobs.sweepfile.read_sweep`)
     and its AEP, keyed by :data:`COLUMNS`; an undefined number is None."""
     aep = {r["length_m"]: r for r in energy.as_dict()["lengths"]}
@@ -98,7 +98,7 @@ def summary_rows(data: dict, energy: SweepAep) -> list[dict]:
     return rows
 
 
-def aep_document(data: dict, energy: SweepAep) -> dict:
+def aep_document(data: Mapping, energy: SweepAep) -> dict:
     """``aep.json``: the AEP (:meth:`~fem_tether.performance.aep.SweepAep.as_dict`) with each
     length's row carrying the summary's columns (F_t, G_e, d, peak tension, margin,
     cross-check) beside its AEP and capacity factors."""
@@ -108,13 +108,13 @@ def aep_document(data: dict, energy: SweepAep) -> dict:
     return document | {"straight_line": STRAIGHT_LINE}
 
 
-def job_table(data: dict) -> dict:
+def job_table(data: Mapping) -> dict:
     """The ``[sweep]`` table of the job that made the sweep ``data`` (its lengths,
     cross-check and straight line)."""
-    return tomllib.loads(data["attrs"]["job_toml"]).get("sweep", {})
+    return tomllib.loads(data["job_toml"]).get("sweep", {})
 
 
-def summary_document(data: dict, energy: SweepAep, run: Mapping, files: Mapping[str, Path]) -> dict:
+def summary_document(data: Mapping, energy: SweepAep, run: Mapping, files: Mapping[str, Path]) -> dict:
     """``summary.json`` (and ``run --json``): the system, the job, the run (``run``:
     ``started_utc``, ``wall_s``, ``n_ranks``, ``tasks``, ``reused_tasks`` and, if
     measured, ``peak_rss_MiB_per_rank``), the columns, one row per length, the best

@@ -71,7 +71,7 @@ def _cell(key: str, value) -> str:
     return f"{value:g}" if digits is None else number(value, digits)
 
 
-def summary_table(data: dict, energy: SweepAep) -> str:
+def summary_table(data: Mapping, energy: SweepAep) -> str:
     """The summary (:func:`fem_tether.report.job_summary.summary_rows`): the columns of
     :data:`DIGITS` and the cross-check, headed with their units."""
     columns = [c for c in COLUMNS if c.key in DIGITS or not c.unit]
@@ -79,7 +79,7 @@ def summary_table(data: dict, energy: SweepAep) -> str:
                  [[_cell(c.key, r[c.key]) for c in columns] for r in summary_rows(data, energy)])
 
 
-def crosscheck_rows(data: dict) -> list[list[str]]:
+def crosscheck_rows(data: Mapping) -> list[list[str]]:
     """Per length: F_t of both solvers, their relative difference, the shape's, and the verdict."""
     cfg = data["config"].crosscheck
     out = []
@@ -131,7 +131,7 @@ def facts(pairs: Mapping[str, str]) -> str:
     return "<dl>" + "".join(f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in pairs.items()) + "</dl>"
 
 
-def run_facts(data: dict, run: Mapping) -> dict[str, str]:
+def run_facts(data: Mapping, run: Mapping) -> dict[str, str]:
     """When, how long, on how many ranks, which version and system, which file."""
     system = data["config"].system
     started = datetime.fromisoformat(run["started_utc"]).astimezone(timezone.utc)
@@ -143,7 +143,7 @@ def run_facts(data: dict, run: Mapping) -> dict[str, str]:
             "result file": Path(data["file"]).name}
 
 
-def job_facts(data: dict) -> dict[str, str]:
+def job_facts(data: Mapping) -> dict[str, str]:
     """The job's lengths (its file, as the result file stores it, follows on the page)."""
     lengths = data["length_m"]
     return {"lengths": f"{len(lengths)}: " + ", ".join(f"{v:g}" for v in lengths) + " m"}
@@ -189,7 +189,7 @@ def configuration_toml(cfg: Config, lengths_m) -> str:
     return "\n\n".join(tables) + "\n"
 
 
-def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str, run: Mapping) -> str:
+def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: str, run: Mapping) -> str:
     """The page's HTML (``validation``: the status, already HTML; ``run``: as
     :func:`fem_tether.report.job_summary.summary_document` takes it)."""
     d = energy.as_dict()
@@ -206,7 +206,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
         f"<title>fem-tether run: {html.escape(cfg.system.name)}</title><style>{STYLE}</style></head><body>",
         f"<h1>fem-tether run: {html.escape(cfg.system.name)}</h1>", facts(run_facts(data, run)),
         "<h2>Job</h2>", facts(job_facts(data)),
-        f"<pre id=\"job\">{html.escape(data['attrs']['job_toml'].strip())}</pre>",
+        f"<pre id=\"job\">{html.escape(data['job_toml'].strip())}</pre>",
         f"<h2>Validation</h2><p id=\"validation\">{validation}</p>",
         f"<h2>Summary</h2>{summary_table(data, energy)}", "".join(f"<p>{html.escape(n)}</p>" for n in notes),
         warnings_html(d),
@@ -218,7 +218,7 @@ def render(data: dict, energy: SweepAep, plots: dict[str, Path], validation: str
         "</body></html>"])
 
 
-def write_page(directory, data: dict, energy: SweepAep, plots: dict[str, Path], run: Mapping) -> Path:
+def write_page(directory, data: Mapping, energy: SweepAep, plots: dict[str, Path], run: Mapping) -> Path:
     """``directory/index.html`` of a sweep's ``data`` (:func:`fem_tether.jobs.sweepfile.read_sweep`),
     its AEP, its PNG ``plots`` (by their names in :func:`fem_tether.report.figures.write_plots`)
     and the ``run``'s date, wall time, ranks and tasks, written whole or not at all."""

@@ -19,6 +19,8 @@ Every file is written whole or not at all (:mod:`fem_tether.core.atomic`).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import html
 from pathlib import Path
 
@@ -173,7 +175,7 @@ def surface_html(name: str, s: dict, figures: dict[str, Path]) -> str:
         f"<pre>{html.escape(s['config_toml'])}</pre></details>"])
 
 
-def render(out: Path, study: dict, figures: dict[str, dict[str, Path]]) -> str:
+def render(out: Path, study: Mapping, figures: dict[str, dict[str, Path]]) -> str:
     """The page's HTML (``figures``: per surface name, its PNGs)."""
     names = list(study["surfaces"])
     contents = "".join(f"<li><a href=\"#{html.escape(n.replace('/', '_'))}\">{html.escape(n.replace('/', ' at '))}"

@@ -7,6 +7,8 @@ printed number is formatted in one place.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import json
 import math
 
@@ -442,7 +444,7 @@ def aep_text(result: dict) -> str:
     return "\n".join(lines)
 
 
-def summary_table(data: dict, energy) -> str:
+def summary_table(data: Mapping, energy) -> str:
     """The main job's table: F_t, G_e and AEP per length, straight and flexible, with the
     cross-check and the best lengths (``data``: :func:`fem_tether.jobs.sweepfile.read_sweep`;
     the rows: :func:`fem_tether.report.job_summary.summary_rows`)."""

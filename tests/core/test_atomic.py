@@ -90,11 +90,13 @@ def test_our_files_are_recognised_by_their_markers(tmp_path):
     page.write_text(f'<!DOCTYPE html><html><head><meta name="generator" content="{generator_tag()}">')
     md = tmp_path / "v.md"
     md.write_text(f"<!-- {generator_tag()} -->\n# x\n")
-    for path in (png, page, md, _ours_h5(tmp_path / "r.h5")):
+    table = tmp_path / "t.csv"
+    table.write_text(f"# {generator_tag()}: sweep r.h5\nlength_m [m]\n400.0\n")
+    for path in (png, page, md, table, _ours_h5(tmp_path / "r.h5")):
         assert written_by_fem_tether(path), path
     strangers = {"p.png": plt.imread(png).tobytes()[:64], "index.html": b"<html>mine</html>",
                  "v.md": b"# my notes", "r.h5": b"\x89HDF\r\n\x1a\n", "r.json": b'{"a": 1}',
-                 "notes.txt": b"fem-tether"}
+                 "notes.txt": b"fem-tether", "t.csv": b"length_m\n# fem-tether 0.2.0\n"}
     for name, content in strangers.items():
         (tmp_path / "other").mkdir(exist_ok=True)
         (tmp_path / "other" / name).write_bytes(content)

@@ -21,7 +21,9 @@ from fem_tether.tether.fe.solver import simulate
 from fem_tether.jobs.job import Task, load_job
 from fem_tether.jobs.store import PartsStore, parts_dir
 from fem_tether.jobs.sweep import sweep
-from fem_tether.jobs.sweepfile import assemble, check_out, is_sweep_result, read_sweep, update
+from fem_tether.jobs.sweepfile import SweepResult, assemble, check_out, is_sweep_result, read_sweep, update
+from fem_tether import __version__
+from fem_tether.core.quantities import names, quantity
 
 
 def test_assemble_and_read_sweep_round_trip(unrun_sweep, tiny_job):
@@ -35,11 +37,34 @@ def test_assemble_and_read_sweep_round_trip(unrun_sweep, tiny_job):
     assert np.isnan(data["drag_fe_N"]).all() and np.isnan(data["rel_diff_drag"]).all()
     assert list(data["crosscheck_ok"]) == [0, 0]
     assert np.all(np.isfinite(data["drag_straight_N"])) and np.all(np.isfinite(data["mean_phi_deg"]))
-    assert data["attrs"]["n_ranks"] == 3 and data["attrs"]["job_toml"] == tiny_job.toml
+    assert data.n_ranks == 3 and data.job_toml == tiny_job.toml
     with h5py.File(unrun_sweep) as f:
         assert set(f["L800"]) == {"fe", "fd"} and "L400" in f and len(f["L400"]) == 0
         assert f["L800/fd"].attrs["status"] == "failed" and f["L800"].attrs["status"] == "failed"
         assert f["drag_fe_N"].attrs["units"] == "N"
+
+
+def test_read_sweep_returns_a_typed_result_with_every_dataset_and_its_unit(unrun_sweep, tiny_job):
+    """A frozen SweepResult (0.2: a plain dict): a field per stored dataset, each unit from the
+    quantities table, who wrote it when, its system and case, its table against the length;
+    still read by name as 0.2's dict was."""
+    data = read_sweep(unrun_sweep)
+    assert isinstance(data, SweepResult)
+    stored = names("sweep")
+    fields = [f.name for f in dataclasses.fields(data)]
+    assert [name for name in fields if name in stored] == list(stored)
+    assert data.units == {name: quantity("sweep", name).unit for name in stored}
+    assert (data.units["drag_fe_N"], data.units["ge_fe"], data.units["status"]) == ("N", "1", "")
+    assert (data.kind, data.system, data.version, data.config) == ("sweep", "kitegen", __version__, tiny_job.config)
+    assert data.created_utc.endswith("+00:00") and data.n_ranks == 3
+    assert data.case == ("sweep over 2 length(s), 400 to 800 m (0 ok, 1 pending, 1 failed); d = 11 mm; "
+                         "tether drag lumped as power")
+    table = data.table()
+    assert table.x == "length_m" and table.names == stored
+    np.testing.assert_array_equal(table.column("length_m").values, [400.0, 800.0])
+    assert data["drag_fe_N"] is data.drag_fe_N and data.get("case_configs") is data.case_configs
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        data.status = data.status                                # type: ignore[misc]
 
 
 def test_is_sweep_result(unrun_sweep, tmp_path):
@@ -157,7 +182,7 @@ def test_update_without_a_result_file_assembles_it(tiny_job, tmp_path):
     store = PartsStore(tiny_job, tmp_path / "r.h5")
     update(store, 400.0, n_ranks=2)
     data = read_sweep(store.out)
-    assert list(data["status"]) == ["pending", "pending"] and data["attrs"]["n_ranks"] == 2
+    assert list(data["status"]) == ["pending", "pending"] and data.n_ranks == 2
 
 
 def test_update_while_another_process_reads_the_file_writes_it_whole(tiny_job, tmp_path, fake_solvers):

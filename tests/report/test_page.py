@@ -57,8 +57,7 @@ def test_page_shows_the_warnings_of_aep_json_below_the_summary(results):
     AEP plot only.)  Each record of aep.json's ``warnings`` as a marked paragraph after the
     summary table and its best lengths, before the cross-check."""
     data, energy, plots, out = results
-    data["config"] = data["config"].replace(tether={"safety_factor": 1.2})
-    data["margin"] = np.array([1.1, np.nan])
+    data = data | {"config": data["config"].replace(tether={"safety_factor": 1.2}), "margin": np.array([1.1, np.nan])}
     energy = sweep_aep(data)
     warnings = energy.as_dict()["warnings"]
     assert [w["code"] for w in warnings] == ["best-length-at-edge", "margin-below-safety-factor"]

@@ -122,7 +122,7 @@ def test_surface_section_states_failures_and_the_gate(study):
     """Counts, the gate's worst drag difference and the failed runs' errors (values set by hand)."""
     out, _ = study
     s = read_study(out)["surfaces"]["kitegen/configured"]
-    s["status"], s["error"] = s["status"].astype(object), s["error"].astype(object)
+    s = s | {"status": s["status"].astype(object), "error": s["error"].astype(object)}
     s["status"][0], s["error"][0] = "failed", "kitegen_configured_L1000_v0_fe: diverged"
     s["rel_diff_drag"][:] = np.linspace(0.001, 0.012, s["rel_diff_drag"].size)
     s["crosscheck_ok"][1:] = 1

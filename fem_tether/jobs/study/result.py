@@ -20,6 +20,7 @@ without HDF5's object timestamps).
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -28,14 +29,18 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.core.atomic import PAGE_NAME, OutputError, atomic_path, check_folder, check_writable
-from fem_tether.core.quantities import attributes, names
+from fem_tether.core.quantities import attributes, names, quantity
 from fem_tether.io.reading import Reader
+from fem_tether.io.results import Column, Record, Table, stored_column
+from fem_tether.jobs.study.optimum import Optimum
 from fem_tether.jobs.store import parts_dir
 
 #: Per-point datasets, per point and bin, per point and edge (the quantities table's order).
 POINT = tuple(n for n in names("study") if n not in ("wind_mps", "edges_mps"))
 STRINGS = ("status", "error")
 INTEGERS = ("refined", "crosscheck_ok")
+#: The unit of every dataset of a surface.
+UNITS = {name: quantity("study", name).unit for name in names("study")}
 OPTIMUM_KEYS = ("length_m", "diameter_m", "aep_MWh", "capacity_factor", "bracketed_length", "bracketed_diameter",
                 "strength_limited")
 
@@ -95,9 +100,118 @@ def write_study(out: Path, job_toml: str, surfaces: list[dict]) -> None:
                     _dataset(group, name, [p[name] for p in s["points"]])
 
 
-def read_study(path: str | Path) -> dict:
-    """The surfaces of a study file: ``{"job_toml", "version", "surfaces": {"system/site":
-    {dataset: array, "config_toml": str, "optimum": {"fe": dict | None, "straight": ...}}}}``.
+@dataclass(frozen=True)
+class StoredOptimum(Optimum, Record):
+    """A surface's optimum as its study file stores it: an :class:`Optimum`, also read by
+    field name (``best["length_m"]``)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Surface(Record):
+    """One AEP surface of a study file (``system/site``): per point [P], per point and
+    bin [P, N] or per point and resource edge [P, E]; units :attr:`units`, meanings
+    :mod:`fem_tether.core.quantities` (``where = "study"``)."""
+
+    system: str
+    site: str
+    config_toml: str
+    optimum: dict[str, StoredOptimum | None]      #: "fe", "straight" -> the best point, None without one
+    wind_mps: np.ndarray
+    edges_mps: np.ndarray
+    length_m: np.ndarray
+    diameter_m: np.ndarray
+    refined: np.ndarray
+    status: np.ndarray
+    error: np.ndarray
+    aep_fe_MWh: np.ndarray
+    aep_straight_MWh: np.ndarray
+    cf_fe: np.ndarray
+    cf_straight: np.ndarray
+    rated_fe_W: np.ndarray
+    rated_straight_W: np.ndarray
+    crosscheck_ok: np.ndarray
+    gate_wind_mps: np.ndarray
+    rel_diff_drag: np.ndarray
+    rel_diff_shape: np.ndarray
+    interpolation_error: np.ndarray
+    peak_tension_N: np.ndarray
+    margin: np.ndarray
+    unbinned_probability: np.ndarray
+    apparent_speed_mps: np.ndarray
+    tether_force_N: np.ndarray
+    reel_out_mps: np.ndarray
+    drag_fe_N: np.ndarray
+    drag_power_fe_N: np.ndarray
+    drag_straight_N: np.ndarray
+    drag_power_straight_N: np.ndarray
+    cd_fe: np.ndarray
+    cd_straight: np.ndarray
+    ge_fe: np.ndarray
+    ge_straight: np.ndarray
+    power_fe_W: np.ndarray
+    power_straight_W: np.ndarray
+    power_edges_fe_W: np.ndarray
+    power_edges_straight_W: np.ndarray
+
+    @property
+    def name(self) -> str:
+        return f"{self.system}/{self.site}"
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The unit of every dataset."""
+        return dict(UNITS)
+
+    def point_columns(self) -> tuple[Column, ...]:
+        """The datasets of one value per point (per-bin and per-edge ones left out)."""
+        return tuple(stored_column("study", name, getattr(self, name)) for name in POINT
+                     if getattr(self, name).ndim == 1)
+
+
+@dataclass(frozen=True, eq=False)
+class StudyResult(Record):
+    """A study result file: its job and its surfaces by ``system/site``.  The file
+    holds no time of writing (the same job gives the same bytes)."""
+
+    file: str
+    job_toml: str
+    version: str
+    surfaces: dict[str, Surface]
+    kind: str = "study"
+    created_utc: None = None
+
+    @property
+    def system(self) -> str:
+        return ", ".join(dict.fromkeys(s.system for s in self.surfaces.values()))
+
+    @property
+    def case(self) -> str:
+        surfaces = list(self.surfaces.values())
+        points = sum(s.length_m.size for s in surfaces)
+        wind = surfaces[0].wind_mps
+        bins = (f"wind at the kite {', '.join(f'{v:g}' for v in wind)} m/s" if np.all(np.isfinite(wind))
+                else "the configured operating point")
+        return f"design study: {len(surfaces)} surface(s) ({', '.join(self.surfaces)}), {points} points; {bins}"
+
+    @property
+    def units(self) -> dict[str, str]:
+        """The unit of every dataset of a surface (and of the table's ``surface``)."""
+        return {"surface": ""} | UNITS
+
+    def table(self) -> Table:
+        """One row per point of every surface: its ``surface`` and the datasets of one
+        value per point."""
+        surfaces = list(self.surfaces.values())
+        columns = [Column("surface", "", np.concatenate([np.full(s.length_m.size, s.name) for s in surfaces]),
+                          "system/site of the point")]
+        for same in zip(*(s.point_columns() for s in surfaces)):
+            columns.append(Column(same[0].name, same[0].unit, np.concatenate([c.values for c in same]),
+                                  same[0].meaning))
+        return Table(tuple(columns), x="length_m", groups=("surface", "diameter_m"))
+
+
+def read_study(path: str | Path) -> StudyResult:
+    """The study file ``path``: its job and its surfaces.
 
     The file is checked as it is read (:class:`~fem_tether.io.reading.Reader`): one
     :class:`~fem_tether.io.reading.ResultFileError` line names it if it is missing,
@@ -105,17 +219,15 @@ def read_study(path: str | Path) -> dict:
     or dataset missing, of another shape or type)."""
     reader = Reader(path, "study")
     with reader.open() as f:
-        out: dict[str, Any] = {"job_toml": reader.toml(f, "job_toml"),
-                               "version": reader.attr(f, "fem_tether_version", "str"), "surfaces": {}}
-        surfaces = f.attrs["surfaces"]
-        if not all(isinstance(name, str) for name in np.ravel(surfaces)):
+        job_toml, version = reader.toml(f, "job_toml"), reader.attr(f, "fem_tether_version", "str")
+        names_ = f.attrs["surfaces"]
+        if not all(isinstance(name, str) for name in np.ravel(names_)) or not np.size(names_):
             raise reader.error("attribute surfaces of / is not a list of system/site names")
-        for name in np.ravel(surfaces):
-            out["surfaces"][name] = _read_surface(reader, reader.node(f, name))
-    return out
+        surfaces = {str(name): _read_surface(reader, reader.node(f, name)) for name in np.ravel(names_)}
+    return StudyResult(str(path), job_toml, version, surfaces)
 
 
-def _read_surface(reader: Reader, group) -> dict[str, Any]:
+def _read_surface(reader: Reader, group) -> Surface:
     """One surface: its datasets (per point [P], per point and bin [P, N] or edge
     [P, E]), its configuration's text and its optima."""
     bins = reader.dataset(group, "wind_mps", shape=(None,)).size
@@ -128,12 +240,19 @@ def _read_surface(reader: Reader, group) -> dict[str, Any]:
         node = reader.node(group, name, group=False)
         across = {1: (), 2: (edges if name.startswith("power_edges_") else bins,)}.get(node.ndim, (None,))
         data[name] = reader.dataset(group, name, dtype, shape=(points,) + across)
-    data["config_toml"] = reader.toml(group)
-    data["optimum"] = {}
-    for case in ("fe", "straight"):
-        best = {key: _optimum_value(reader, group, f"optimum_{case}_{key}") for key in OPTIMUM_KEYS}
-        data["optimum"][case] = None if np.isnan(best["aep_MWh"]) else best
-    return data
+    system, _, site = group.name.strip("/").partition("/")
+    return Surface(system=system, site=site, config_toml=reader.toml(group),
+                   optimum={case: _optimum(reader, group, case) for case in ("fe", "straight")}, **data)
+
+
+def _optimum(reader: Reader, group, case: str) -> StoredOptimum | None:
+    """A case's optimum as stored (None where its AEP is NaN: no optimum)."""
+    values = {key: _optimum_value(reader, group, f"optimum_{case}_{key}") for key in OPTIMUM_KEYS}
+    if np.isnan(values["aep_MWh"]):
+        return None
+    return StoredOptimum(float(values["length_m"]), float(values["diameter_m"]), float(values["aep_MWh"]),
+                         float(values["capacity_factor"]), bool(values["bracketed_length"]),
+                         bool(values["bracketed_diameter"]), bool(values["strength_limited"]))
 
 
 def _optimum_value(reader: Reader, group, name: str):
