@@ -22,7 +22,7 @@ from fem_tether import __version__
 from fem_tether.physics import kite
 from fem_tether.report import text as report
 from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config, preset_summaries
-from fem_tether.core.errors import FemTetherError
+from fem_tether.core.errors import ConfigError, FemTetherError
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
 from fem_tether.core import stop
 from fem_tether.core.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
@@ -117,14 +117,28 @@ def cmd_straight(args):
     return 0
 
 
+def _case_given(args) -> str:
+    """The configuration file and ``--system NAME`` as given on the command line."""
+    return " ".join(part for part in (args.config, f"--system {args.system}" if args.system else None) if part)
+
+
 def cmd_curves(args):
     from fem_tether.report.plots import plot_characteristic_curves
+    from fem_tether.systems.kitegen import check_zones
 
     cfg = _config(args)
+    if cfg.system.model != "kitegen":
+        raise ConfigError(f"curves: {_case_given(args)} is a {cfg.system.model!r} system; the KiteGen characteristic "
+                          f"curves are the 'kitegen' model's: 'fem-tether power {_case_given(args)}' gives its "
+                          "power curve")
     if args.ge is not None:
         kite.check_global_efficiency(args.ge, cfg.kite.efficiency, "--ge")
     design = kite.KiteGenDesign.from_config(cfg.kite, cfg.tether.lines, efficiency=args.ge,
                                             phi_deg=args.phi_deg)
+    try:
+        check_zones(design)
+    except ValueError as exc:
+        raise ConfigError(f"curves: {exc}") from None
     curves = kite.characteristic_view(design)
     data = report.curves_summary(design, curves)
     if args.plot:
@@ -136,13 +150,15 @@ def cmd_curves(args):
 
 def cmd_power(args):
     from fem_tether.performance import comparison
+    from fem_tether.performance.configured import from_config
     from fem_tether.jobs import flexible
 
     cfg = _config(args)
     flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg) if args.flexible else None
     speeds = [args.wind_speed] if args.wind_speed is not None else comparison.curve_speeds(cfg)
     rows = comparison.compare(cfg, speeds, flexible_cd)
-    data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m}
+    data = {"system": cfg.system.name, "model": cfg.system.model, "length_m": cfg.tether.length_m,
+            "limits": from_config(cfg).limits.as_dict()}
     data |= rows[0] if args.wind_speed is not None else {"points": rows}
     if args.flexible:
         data["flexible_file"] = args.flexible
@@ -151,7 +167,8 @@ def cmd_power(args):
 
         fine = comparison.curve_speeds(cfg, comparison.CURVE_STEP_MPS / 4)
         title = f"{cfg.system.name} ({cfg.system.model} model), tether {cfg.tether.length_m:g} m"
-        data["plot"] = str(plot_system_power(comparison.compare(cfg, fine, flexible_cd), title, args.plot))
+        data["plot"] = str(plot_system_power(comparison.compare(cfg, fine, flexible_cd), title, args.plot,
+                                             data["limits"]))
     print(report.json_text(data) if args.json else report.power_text(data))
     return 0
 
@@ -254,11 +271,20 @@ def cmd_design(args):
 
 
 def cmd_aep(args):
+    from fem_tether.config import catalog
     from fem_tether.performance.aep import sweep_aep
     from fem_tether.jobs.sweepfile import read_sweep
 
-    result = sweep_aep(read_sweep(args.file), args.wind, args.allow_unchecked,
-                       args.allow_incomplete).as_dict()
+    data = read_sweep(args.file)
+    system = data["config"].system
+    if args.system is not None:
+        catalog.path(args.system)                 # an unknown name is refused as by every --system
+    if args.system is not None and args.system != system.name:
+        raise ConfigError(f"aep: --system {args.system}: {args.file} is a sweep of {system.name!r} (its AEP is that "
+                          f"system's, with its own power model); 'fem-tether run --system {args.system}' sweeps "
+                          f"{args.system} and computes its AEP")
+    result = {"system": system.name, "model": system.model} | sweep_aep(
+        data, args.wind, args.allow_unchecked, args.allow_incomplete).as_dict()
     print(report.json_text(result) if args.json else report.aep_text(result))
     return 0
 
@@ -426,8 +452,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "(the file says so)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
-    c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False)
+    c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False, system=False)
     c.add_argument("file", metavar="FILE.h5", help="sweep result")
+    c.add_argument("--system", metavar="NAME", help="the sweep's system, checked against the file (its AEP is "
+                                                    "always the file's system's)")
     c.add_argument("--wind", metavar="CSV", help="wind histograms per altitude band (CSV)")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="keep lengths whose cross-check failed, marked")

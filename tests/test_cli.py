@@ -274,7 +274,7 @@ def test_bench_memory_runs_one_fe_setting(capsys, monkeypatch):
 
 def test_systems_lists_every_preset(capsys):
     code, out, _ = run_cli(capsys, "systems")
-    assert code == 0 and "ke-yoyo" in out and "2 x 30 mm, 875 m" in out
+    assert code == 0 and "ke-yoyo" in out and "2 x 30 mm sk99, 875 m" in out
     code, out, _ = run_cli(capsys, "systems", "--json")
     assert code == 0 and "makani-m600" in [r["name"] for r in json.loads(out)["systems"]]
 
@@ -321,3 +321,99 @@ def test_mesh_and_plots_never_replace_what_fem_tether_did_not_write(capsys, tmp_
         code, _, err = run_cli(capsys, "curves", "--plot", str(path))
         assert code == 2 and err.count("\n") == 1 and f"cannot write {path}: {problem}" in err
     assert mine.read_text() == "<my mesh/>" and link.is_symlink() and user.read_bytes().endswith(b"not ours")
+
+
+# --- issue 29 §1: presets that tell the truth (systems, power, curves, aep with --system) -----------
+
+def test_systems_says_which_presets_the_tether_solvers_fly_and_why_not(capsys):
+    """Before, `systems` did not say that Loyd II and III cannot fly on their lines (docs/systems.md
+    §5 did): the FE/FD column says it for every preset, with the check's reason below the table
+    and in the JSON; each tether is shown in its source's material."""
+    code, out, _ = run_cli(capsys, "systems")
+    rows = {line.split()[0]: line for line in out.splitlines()[1:9]}
+    assert code == 0 and out.splitlines()[0].split()[:5] == ["system", "model", "tether", "FE/FD", "description"]
+    assert [name for name, line in rows.items() if "  no  " in line] == ["loyd-2", "loyd-3"]
+    assert "1 x 15.887 mm carbon, 440 m  yes" in rows["makani-m600"] and "steel, 400 m  yes" in rows["loyd-1"]
+    assert re.search(r"^loyd-2 does not fly: the line's whirl .* exceed the winch tension 15.6 MN", out, re.M)
+    code, out, _ = run_cli(capsys, "systems", "--json")
+    systems = {r["name"]: r for r in json.loads(out)["systems"]}
+    assert {n for n, r in systems.items() if not r["flyable"]} == {"loyd-2", "loyd-3"}
+    assert "exceed the winch tension" in systems["loyd-3"]["flight_check"]
+    assert systems["makani-m600"]["material"] == "carbon"
+    assert "% of the winch tension" in systems["kitegen"]["flight_check"]
+
+
+def test_power_of_the_m600_is_held_to_its_rating_and_says_its_limits(capsys):
+    """Before: 3.86 MW at 10 m/s and 104 MW / 12 375 kN at 30 m/s for a 600 kW machine, a reel-out
+    column of zeros and no word on limits.  Now 600 kW and 423.6 kN (the line's strength) from the
+    rated wind on, the limits in the table and the JSON, and the missing reel-out explained."""
+    code, out, _ = run_cli(capsys, "power", "--system", "makani-m600", "--json")
+    data = json.loads(out)
+    points = {p["wind_mps"]: p["straight"] for p in data["points"]}
+    assert code == 0 and data["limits"]["rated_power_W"] == 600e3
+    assert data["limits"]["tether_force_N"] == pytest.approx(423.6e3, rel=1e-4)
+    for wind in (10.0, 30.0):
+        assert points[wind]["electrical_power_W"] == pytest.approx(600e3, rel=1e-12)
+        assert points[wind]["tether_force_N"] <= data["limits"]["tether_force_N"]
+    code, out, _ = run_cli(capsys, "power", "--system", "makani-m600", "--wind-speed", "30")
+    assert code == 0 and out.splitlines()[2].split()[3:6] == ["0.600", "0.600", "423.6"]
+    assert "  rated power:  0.600 MW ([system] rated_power_W)" in out.splitlines()
+    assert any(line.startswith("  tether force: 423.6 kN (the tether's strength") for line in out.splitlines())
+    assert "no reel-out (V_L = 0 at every point): a fly-gen's line keeps its length" in out
+
+
+def test_power_without_stated_limits_says_so(capsys, tmp_path):
+    """Loyd states no rating (held by its line's strength alone); a KE-yoyo without its rated power
+    holds nothing: the table and the JSON say which limit is missing and what grows."""
+    code, out, _ = run_cli(capsys, "power", "--system", "loyd-1", "--wind-speed", "20")
+    assert code == 0 and "  rated power:  none stated ([system] rated_power_W = 0)" in out.splitlines()
+    assert "no rated power stated: the power grows with the wind until the tether force is held" in out
+    path = tmp_path / "free.toml"
+    path.write_text("[system]\nrated_power_W = 0.0\n")
+    code, out, _ = run_cli(capsys, "power", str(path), "--system", "ke-yoyo", "--json")
+    limits = json.loads(out)["limits"]
+    assert code == 0 and (limits["rated_power_W"], limits["tether_force_N"]) == (None, None)
+    code, out, _ = run_cli(capsys, "power", str(path), "--system", "ke-yoyo", "--wind-speed", "30")
+    assert "no limit stated: power and tether force grow with the wind" in out
+
+
+@pytest.mark.parametrize("argv, system, model", [
+    (["--system", "makani-m600"], "--system makani-m600", "loyd"),
+    (["--system", "ke-yoyo"], "--system ke-yoyo", "ke-yoyo"),
+    (["--system", "trevisi-fg"], "--system trevisi-fg", "unified")])
+def test_curves_refuses_a_system_that_is_no_kitegen(capsys, argv, system, model):
+    """Before: `curves --system makani-m600` printed cut-in 4.47 m/s after full-force 2.75 m/s and
+    a KiteGen "4.05 MW active phase", `--system ke-yoyo` 11.44 MW for a 2 MW machine."""
+    code, out, err = run_cli(capsys, "curves", *argv)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert err == (f"fem-tether: error: curves: {system} is a '{model}' system; the KiteGen characteristic "
+                   f"curves are the 'kitegen' model's: 'fem-tether power {system}' gives its power curve\n")
+
+
+def test_curves_refuses_a_cut_in_above_the_full_force_wind(capsys, tmp_path):
+    """A KiteGen whose design speed V_k needs more than its nominal force at the cut-in wind V_k/E:
+    the seed's zones would reel out from the cut-in on.  One line naming the keys and the values
+    that would order the zones; `power` refuses the same case."""
+    path = tmp_path / "fast.toml"
+    path.write_text("[kite]\narea_m2 = 35.0\ncl = 2.0\nefficiency = 40.0\nspeed_mps = 179.0\n")
+    code, out, err = run_cli(capsys, "curves", str(path))
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith("fem-tether: error: curves: [kite] speed_mps = 179 m/s, efficiency = 40: the KiteGen "
+                          "cut-in wind V_k/E = 4.47 m/s is above the full-force wind 3.33 m/s")
+    assert "speed_mps <= 133.3 m/s or nominal_force_N >= 5.408e+05 N" in err
+    code, _, err = run_cli(capsys, "power", str(path))
+    assert code == 2 and "the KiteGen cut-in wind V_k/E = 4.47 m/s is above the full-force wind" in err
+
+
+def test_aep_checks_its_system_against_the_sweeps(capsys, unrun_sweep):
+    """Before, `aep FILE --system ke-yoyo` printed the KiteGen sweep's table: --system must name the
+    file's system (or be left out); the table names the system whose AEP it is."""
+    code, out, err = run_cli(capsys, "aep", str(unrun_sweep), "--system", "ke-yoyo")
+    assert code == 2 and out == "" and err == (
+        f"fem-tether: error: aep: --system ke-yoyo: {unrun_sweep} is a sweep of 'kitegen' (its AEP is that "
+        "system's, with its own power model); 'fem-tether run --system ke-yoyo' sweeps ke-yoyo and computes "
+        "its AEP\n")
+    code, _, err = run_cli(capsys, "aep", str(unrun_sweep), "--system", "nope")
+    assert code == 2 and "--system nope: unknown system" in err
+    code, out, _ = run_cli(capsys, "aep", str(unrun_sweep), "--system", "kitegen", "--allow-incomplete")
+    assert code == 0 and out.splitlines()[0] == "AEP of the kitegen sweep (kitegen model)"

@@ -153,11 +153,14 @@ def load_config(path: str | Path | None = None, overrides: dict | None = None,
 
 
 def preset_summaries() -> list[dict[str, Any]]:
-    """One row per preset: name, model, description, and the tether the solvers run."""
+    """One row per preset: name, model, description, the tether the solvers run, its
+    material, and whether they can fly it (:func:`.catalog.flight_check`)."""
     rows = []
     for name in catalog.names():
         cfg = load_config(system=name)
+        check = catalog.flight_check(cfg)
         rows.append({"name": name, "model": cfg.system.model, "description": cfg.system.description,
                      "length_m": cfg.tether.length_m, "lines": cfg.tether.lines,
-                     "diameter_m": cfg.tether.diameter_m, "area_m2": cfg.kite.area_m2})
+                     "diameter_m": cfg.tether.diameter_m, "material": cfg.tether.material,
+                     "area_m2": cfg.kite.area_m2, "flyable": check.flyable, "flight_check": check.reason})
     return rows

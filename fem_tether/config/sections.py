@@ -44,7 +44,7 @@ MAX_WIND_MPS = 100.0
 
 #: Kite speeds [m/s]: from walking pace to 250 m/s, below the speed of sound
 #: (340 m/s) the incompressible aerodynamics ignore; the fastest preset flies
-#: 179 m/s (makani-m600, sized).
+#: 171.5 m/s (loyd-3, sized).
 KITE_SPEED_MPS = from_to(1.0, 250.0)
 
 #: Path sizes [m]: an eight narrower or lower than 1 m is smaller than any

@@ -47,3 +47,10 @@ def compare(cfg: Config, wind_mps, flexible_cd: float | None = None) -> list[dic
 def point_dict(point: OperatingPoint) -> dict:
     """The operating point's fields, and ``power_W``: the electrical power, what the grid gets."""
     return dataclasses.asdict(point) | {"power_W": point.electrical_power_W}
+
+
+def fly_gen_only(rows: list[dict]) -> bool:
+    """Whether :func:`compare`'s rows are a fly-gen's: some point generates on board and none
+    reels out (a reel-out speed of 0 throughout)."""
+    points = [row[case] for row in rows for case in ("straight", "flexible") if case in row]
+    return any(p["mode"] == "fly-gen" for p in points) and all(p["reel_out_mps"] == 0.0 for p in points)

@@ -15,6 +15,7 @@ each model's source used is its C_D,t when none is given; a flexible one is
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -33,6 +34,26 @@ from fem_tether.systems.operating_point import OperatingPoint
 
 
 @dataclass(frozen=True)
+class Limits:
+    """The limits a configured model holds its operating points to: the rated
+    (electrical, cycle-mean) power and the tether force of all lines, each with
+    where it comes from; a value is None where the configuration states none
+    (the model then lets it grow with the wind)."""
+
+    rated_power_W: float | None
+    rated_power_from: str
+    tether_force_N: float | None
+    tether_force_from: str
+
+    def as_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+#: What a model without a stated rating says of it.
+NO_RATING = "none stated ([system] rated_power_W = 0)"
+
+
+@dataclass(frozen=True)
 class ConfiguredSystem:
     """The configured system's power model, whatever it is.
 
@@ -40,8 +61,9 @@ class ConfiguredSystem:
     speed (at the kite's altitude); ``straight_cd`` is the C_D,t of the
     straight-line lumping its source used; ``cl`` the wing's (largest) lift
     coefficient, which bounds every C_D,t; ``parameters`` the model's own;
-    ``top_mps`` the end of its power curve (the cut-out); ``rated`` and
-    ``active`` the model's own rated power and active-phase power, if it has them.
+    ``top_mps`` the end of its power curve (the cut-out); ``limits`` what it
+    holds its points to (:class:`Limits`); ``rated`` and ``active`` the model's
+    own rated power and active-phase power, if it has them.
     """
 
     model: str
@@ -50,6 +72,7 @@ class ConfiguredSystem:
     cl: float
     curve: Callable[..., list[OperatingPoint]]
     top_mps: float
+    limits: Limits
     rated: Callable[[float], float] | None = None
     active: Callable[[np.ndarray, float], np.ndarray] | None = None
 
@@ -97,6 +120,22 @@ def stated_rating(cfg: Config) -> Callable[[float], float] | None:
     return (lambda tether_cd: rated_W) if rated_W > 0 else None
 
 
+def stated_limits(cfg: Config, tether_force_N: float | None, tether_force_from: str) -> Limits:
+    """``[system] rated_power_W`` (None if 0) and the given tether force limit."""
+    rated_W = cfg.system.rated_power_W
+    return Limits(rated_W or None, "[system] rated_power_W" if rated_W else NO_RATING,
+                  tether_force_N, tether_force_from)
+
+
+def off_above(top: float, curve: Callable[..., list[OperatingPoint]]) -> Callable[..., list[OperatingPoint]]:
+    """``curve`` up to the cut-out speed ``top``, "off" above it."""
+    def held(wind_mps, tether_cd):
+        on = wind_mps <= top
+        points = iter(curve(wind_mps[on], tether_cd))
+        return [next(points) if o else OperatingPoint.off(w, tether_cd) for w, o in zip(wind_mps, on)]
+    return held
+
+
 def top_mps(cfg: Config) -> float:
     """The cut-out speed, or :data:`TOP_MPS`."""
     return cfg.system.cut_out_mps or TOP_MPS
@@ -113,8 +152,11 @@ def _kitegen(cfg: Config) -> ConfiguredSystem:
     params = kitegen.KiteGenSystem(design, operating_tether_cd(cfg, straight.from_config(cfg, True).lumped_N(
                                        cfg.drag.tether_drag_lumping)),
                                    Cycle(**cfg.cycle.to_dict()))
+    limits = Limits(kitegen.rated_power_W(params), "the cycle's largest at [kite] nominal_force_N and "
+                    "max_reel_out_mps, straight line; Roselli 2016 §2.4 zones C-D", cfg.kite.nominal_force_N,
+                    "[kite] nominal_force_N")
     return ConfiguredSystem("kitegen", params, params.straight_cd, cfg.kite.cl,
-                            lambda w, cd: kitegen.power_curve(params, w, cd), top_mps(cfg),
+                            lambda w, cd: kitegen.power_curve(params, w, cd), top_mps(cfg), limits,
                             lambda cd: kitegen.rated_power_W(params, cd),
                             lambda w, cd: characteristic_curves(w, kitegen.flown_design(params, cd)).power_W)
 
@@ -136,6 +178,8 @@ def _ke_yoyo(cfg: Config) -> ConfiguredSystem:
         theta_rad=math.radians(k.theta0_deg), phi_rad=math.radians(k.design_phi_deg))
     return ConfiguredSystem("ke-yoyo", params, float(ke_yoyo.line_drag_coefficient(params)), cfg.kite.cl,
                             lambda w, cd: ke_yoyo.power_curve(params, w, tether_cd=cd), top_mps(cfg),
+                            stated_limits(cfg, None, "none stated (the ke-yoyo model holds none; Fagiano "
+                                                     "et al. 2010 state none)"),
                             stated_rating(cfg))
 
 
@@ -144,18 +188,27 @@ def _loyd(cfg: Config) -> ConfiguredSystem:
     zenith angle = theta0_deg; ``[tether]`` length R, lines, ρ_T = μ/(π d²/4);
     C_DT = ``[drag] cd`` / (2√π), so that the FE line of diameter d drags as
     Loyd's faired one of width 4√A_T = 2√π d (eq. 2.17); ``[system]``
-    working_stress_Pa, design_wind_mps; ρ at the operating altitude.
+    working_stress_Pa, design_wind_mps, rated_power_W (0: none), cut_out_mps;
+    ρ at the operating altitude.  The largest tether force is the configured
+    line's strength, σ π d²/4 per line (seed 003 §4.3: "the product of the
+    tether's working stress (Table 4.1) and its section area").
     Straight line: eq. 2.17 of the tether sized at the design wind."""
     t, k = cfg.tether, cfg.kite
+    strength_N = t.lines * cfg.system.working_stress_Pa * math.pi * t.diameter_m**2 / 4.0
     params = loyd.LoydSystem(
         area_m2=k.area_m2, cl=k.cl, lift_to_drag=k.efficiency, tether_length_m=t.length_m,
         working_stress_Pa=cfg.system.working_stress_Pa,
         tether_density_kg_m3=t.linear_density_kg_m / (math.pi * t.diameter_m**2 / 4.0),
         tether_cd_ref=cfg.drag.cd / LOYD_WIDTH_RATIO, lines=t.lines, zenith_rad=math.radians(k.theta0_deg),
-        design_wind_mps=cfg.system.design_wind_mps)
+        design_wind_mps=cfg.system.design_wind_mps, rated_power_W=cfg.system.rated_power_W or math.inf,
+        max_tether_force_N=strength_N)
     rho = operating_density_kg_m3(cfg)
+    top = top_mps(cfg)
+    limits = stated_limits(cfg, strength_N, "the tether's strength: [system] working_stress_Pa x pi d^2/4 "
+                                            "per line (Lourenco 2014 §4.3)")
     return ConfiguredSystem("loyd", params, loyd.size_tether(params, rho).tether_cd, cfg.kite.cl,
-                            lambda w, cd: loyd.power_curve(params, w, rho, cd), top_mps(cfg))
+                            off_above(top, lambda w, cd: loyd.power_curve(params, w, rho, cd)), top, limits,
+                            stated_rating(cfg))
 
 
 def _unified(cfg: Config) -> ConfiguredSystem:
@@ -182,14 +235,11 @@ def _unified(cfg: Config) -> ConfiguredSystem:
         max_gamma_in=u.max_gamma_in, min_cl=u.min_cl or None)
     rho = operating_density_kg_m3(cfg)
     top = top_mps(cfg)
-
-    def curve(wind_mps, tether_cd):
-        """The optimised points up to the cut-out speed, "off" above it."""
-        on = wind_mps <= top
-        points = iter(unified_system.power_curve(params, wind_mps[on], rho, tether_cd))
-        return [next(points) if o else OperatingPoint.off(w, tether_cd) for w, o in zip(wind_mps, on)]
-
-    return ConfiguredSystem("unified", params, params.straight_tether_cd, cfg.kite.cl, curve, top, stated_rating(cfg))
+    limits = stated_limits(cfg, params.force_limit_N, "the tether's strength over its safety factor ([unified] "
+                           "tether_strength_Pa, tether_safety_factor) or [unified] max_tether_force_N, the least")
+    return ConfiguredSystem("unified", params, params.straight_tether_cd, cfg.kite.cl,
+                            off_above(top, lambda w, cd: unified_system.power_curve(params, w, rho, cd)), top,
+                            limits, stated_rating(cfg))
 
 
 #: Loyd's reference width of a tether over its diameter: 4√A_T / d = 2√π (seed 003 eq. 2.17).

@@ -271,16 +271,23 @@ def sized_diameter_m(material: Material, tension_N, safety_factor):
 TREVISI = Section("trevisi", stress_Pa=1.5e9, density_kg_m3=970.0, modulus_Pa=SK99_MODULUS_PA,
                   working_stress=False)
 
-#: The materials by the name ``[tether] material`` takes.  E: SK99 155 GPa (seed
-#: 000 §2.3, the fibre's); steel 200 GPa and carbon fibre 70 GPa are not in
-#: seed 003, which needs none (200 GPa: structural steel, a textbook value;
-#: 70 GPa: seed 004 §3.3's carbon fibre-epoxy composite); Trevisi's Dyneema the
-#: SK99 fibre's 155 GPa (seed 004 gives none for its tether).
+#: The materials by the name ``[tether] material`` takes.
+#:
+#: - steel (Loyd's): seed 003 (Lourenço) Table 3.1, "Working stress (MPa) 345",
+#:   "Density (Mg/m ³) 8"; Table 4.1, "Tether's Material" "Steel".
+#: - carbon (the Makani M600's): seed 003 §4.1, "M600 tether is made in
+#:   pultruded carbon fibre with a working stress of 2137 MPa and a density of
+#:   1760 kg/m^3".
+#:
+#: Both are working stresses (seed 003 §2.2.3: "Working stress is the maximum
+#: allowable stress that a material may carry").  E: SK99 155 GPa (seed 000
+#: §2.3, the fibre's); seed 003 gives none for steel or carbon (its model needs
+#: none): 200 GPa is structural steel's (a textbook value), 70 GPa seed 004
+#: §3.3's "typical value of carbon fibre-epoxy composite material"; Trevisi's
+#: Dyneema the SK99 fibre's 155 GPa (seed 004 gives none for its tether).
 MATERIALS: dict[str, Material] = {
     "sk99": Rope("sk99"),
-    "steel": Section("steel", stress_Pa=345e6, density_kg_m3=8000.0, modulus_Pa=200e9,
-                     working_stress=True),                    # seed 003 Tab. 3.1 and its listing
-    "carbon": Section("carbon", stress_Pa=2137e6, density_kg_m3=1760.0, modulus_Pa=70e9,
-                      working_stress=True),                   # seed 003 Tab. 4.1 (Makani M600)
+    "steel": Section("steel", stress_Pa=345e6, density_kg_m3=8000.0, modulus_Pa=200e9, working_stress=True),
+    "carbon": Section("carbon", stress_Pa=2137e6, density_kg_m3=1760.0, modulus_Pa=70e9, working_stress=True),
     "trevisi": TREVISI,
 }

@@ -13,6 +13,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 import numpy as np  # noqa: E402
 
 from fem_tether.performance.aep import AepByLength  # noqa: E402
+from fem_tether.performance.comparison import fly_gen_only  # noqa: E402
 from fem_tether.core.atomic import atomic_path, generator_tag  # noqa: E402
 from fem_tether.physics.kite import ZONES, CharacteristicCurves, PowerCurves  # noqa: E402
 from fem_tether.systems.power import SEED_GE, SEED_LENGTHS_M  # noqa: E402
@@ -209,23 +210,34 @@ def plot_reel_drag(run_curve, path, sweep_points=None, straight_curve=None,
     return save_atomically(fig, path)
 
 
-def plot_system_power(rows: list[dict], title: str, path) -> Path:
+def plot_system_power(rows: list[dict], title: str, path, limits: Mapping[str, Any]) -> Path:
     """A system's power curve, tether force and reel-out speed against wind speed,
-    straight line (dashed) and flexible tether (solid) where given."""
-    fig, axes = plt.subplots(3, 1, figsize=(7.0, 8.0), sharex=True, constrained_layout=True)
+    straight line (dashed) and flexible tether (solid) where given.  The limits the
+    model holds (``ConfiguredSystem.limits``) are drawn as dotted lines, or the panel
+    says that none is stated; a fly-gen's curve (no point reels out) has no reel-out
+    panel, and the force panel says so."""
+    fly_gen = fly_gen_only(rows)
+    quantities = [("electrical_power_W", 1e-6, "electrical power [MW]", limits["rated_power_W"], "rated power", "MW"),
+                  ("tether_force_N", 1e-3, "tether force, all lines [kN]", limits["tether_force_N"],
+                   "tether force limit", "kN")]
+    if not fly_gen:
+        quantities.append(("reel_out_mps", 1.0, "reel-out speed [m/s]", None, "", ""))
+    fig, axes = plt.subplots(len(quantities), 1, figsize=(7.0, 2.7 * len(quantities) + 0.6), sharex=True,
+                             constrained_layout=True)
     wind = np.array([r["wind_mps"] for r in rows])
-    quantities = (("electrical_power_W", 1e-6, "electrical power [MW]"),
-                  ("tether_force_N", 1e-3, "tether force, all lines [kN]"),
-                  ("reel_out_mps", 1.0, "reel-out speed [m/s]"))
-    for ax, (key, scale, label) in zip(axes, quantities):
+    for ax, (key, scale, label, limit, what, unit) in zip(axes, quantities):
         for case, style in (("straight", {"ls": "--", "color": "C0"}), ("flexible", {"ls": "-", "color": "C3"})):
             if case in rows[0]:
                 ax.plot(wind, np.array([r[case][key] for r in rows]) * scale, lw=1.8,
                         label=f"{case} tether", **style)
+        if limit is not None:
+            ax.axhline(limit * scale, color="0.3", ls=":", lw=1.2, label=f"{what} {limit * scale:.4g} {unit}")
+        elif what:
+            ax.plot([], [], " ", label=f"no {what} stated: not held")
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    axes[0].legend(loc="upper left")
-    axes[0].set_title(title)
+        ax.legend(loc="best", fontsize=8)
+    axes[0].set_title(title + ("\nfly-gen: no reel-out (the line keeps its length)" if fly_gen else ""))
     axes[-1].set_xlabel("wind speed at the kite $V_w$ [m/s]")
     axes[-1].set_xlim(left=0.0)
     return save_atomically(fig, path)

@@ -17,6 +17,7 @@ import numpy as np
 from fem_tether.config import Config
 from fem_tether.tether.crosscheck import QUANTITIES, CrossCheck, limits_of
 from fem_tether.performance.caveats import as_json
+from fem_tether.performance.comparison import fly_gen_only
 from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, margin_caveat, sized_case
 from fem_tether.performance.summary import STRAIGHT_LINE
 from fem_tether.report.job_summary import summary_rows
@@ -90,12 +91,18 @@ def _number(value, spec: str, width: int) -> str:
 
 
 def systems_text(rows: list[dict]) -> str:
-    """``fem-tether systems``: one line per preset."""
+    """``fem-tether systems``: one line per preset, whether the tether solvers fly its line,
+    and why not where they do not (``preset_summaries``)."""
     width = max(len(r["name"]) for r in rows)
-    lines = [f"{'system':{width}s}  {'model':8s}  {'tether':>22s}  description"]
+    lines = [f"{'system':{width}s}  {'model':8s}  {'tether':>30s}  {'FE/FD':5s}  description"]
     for r in rows:
-        tether = f"{r['lines']} x {1e3 * r['diameter_m']:g} mm, {r['length_m']:g} m"
-        lines.append(f"{r['name']:{width}s}  {r['model']:8s}  {tether:>22s}  {r['description']}")
+        tether = f"{r['lines']} x {1e3 * r['diameter_m']:g} mm {r['material']}, {r['length_m']:g} m"
+        lines.append(f"{r['name']:{width}s}  {r['model']:8s}  {tether:>30s}  {'yes' if r['flyable'] else 'no':5s}  "
+                     f"{r['description']}")
+    grounded = [r for r in rows if not r["flyable"]]
+    lines += ["", "FE/FD: whether simulate, sweep and run can fly the preset's line (the power models take "
+                  "every preset)."]
+    lines += [f"{r['name']} does not fly: {r['flight_check']}" for r in grounded]
     return "\n".join(lines) + "\n\nUse one with --system NAME; 'fem-tether config --system NAME' shows all its keys."
 
 
@@ -105,17 +112,39 @@ def _point_text(p: dict) -> str:
             f"{p['gamma_in']:6.3f} {p['gamma_t']:6.3f} {p['tether_cd']:8.4f}")
 
 
+def limits_text(limits: dict) -> list[str]:
+    """What the power model holds its points to (``ConfiguredSystem.limits``), and what grows
+    with the wind where no limit is stated."""
+    rated, force = limits["rated_power_W"], limits["tether_force_N"]
+    lines = ["limits the model holds its operating points to:",
+             f"  rated power:  {rated / 1e6:.3f} MW ({limits['rated_power_from']})" if rated is not None else
+             f"  rated power:  {limits['rated_power_from']}",
+             f"  tether force: {force / 1e3:.1f} kN ({limits['tether_force_from']})" if force is not None else
+             f"  tether force: {limits['tether_force_from']}"]
+    if rated is None and force is None:
+        lines.append("  no limit stated: power and tether force grow with the wind (P ~ V_w^3) to the curve's end")
+    elif rated is None:
+        lines.append("  no rated power stated: the power grows with the wind until the tether force is held")
+    return lines
+
+
 def power_text(data: dict) -> str:
-    """``fem-tether power``: operating points, straight and (if given) flexible tether."""
+    """``fem-tether power``: operating points, straight and (if given) flexible tether, and the limits
+    the model holds them to."""
     head = (f"{data['system']} ({data['model']} model), tether {data['length_m']:g} m: operating points "
             "at the kite's wind speed")
     columns = (f"{'V_w m/s':>8s} {'tether':9s} {'mode':10s} {'P_mech MW':>9s} {'P_el MW':>9s} "
                f"{'force kN':>9s} {'V_L m/s':>7s} {'g_out':>6s} {'g_in':>6s} {'g_t':>6s} {'C_D,t':>8s}")
+    rows = data.get("points", [data])
     lines = [head, columns]
-    for row in data.get("points", [data]):
+    for row in rows:
         for case in ("straight", "flexible"):
             if case in row:
                 lines.append(f"{row['wind_mps']:8.2f} {case:9s} {_point_text(row[case])}")
+    lines += limits_text(data["limits"])
+    if fly_gen_only(rows):
+        lines.append("no reel-out (V_L = 0 at every point): a fly-gen's line keeps its length, the power is "
+                     "made on board")
     if "flexible_file" in data:
         lines.append(f"flexible: C_D,t from the FE result {data['flexible_file']}")
     if "plot" in data:
@@ -426,8 +455,10 @@ def sweep_text(outcome, out, safety_factor: float) -> str:
 
 
 def aep_text(result: dict) -> str:
-    """``fem-tether aep``: AEP and capacity factor per length (``SweepAep.as_dict()``)."""
-    lines = ["    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible"]
+    """``fem-tether aep``: AEP and capacity factor per length (``SweepAep.as_dict()`` with the
+    sweep's ``system`` and ``model``)."""
+    lines = [f"AEP of the {result['system']} sweep ({result['model']} model)",
+             "    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible"]
     for r in result["lengths"]:
         fe = (f"{_number(r['aep_fe_MWh'], '18.0f', 18)}  {_number(r['cf_fe'], '11.3f', 11)}"
               if r["length_m"] not in _left_out(result) else f"{'left out':>18s}  {'':11s}")

@@ -10,7 +10,7 @@ this module feeds it a tether drag coefficient C_D,t
 which is seed 000 eq. 5.1, G_e = L / (D_k + lines·F_t), divided by ½ρAV_k²,
 and answers with :class:`~fem_tether.systems.operating_point.OperatingPoint`.
 
->>> from fem_tether.physics.kite import KiteGenDesign
+>>> from fem_tether.physics.kite import KiteGenDesign, characteristic_speeds
 >>> from fem_tether.config import load_config
 >>> cfg = load_config()
 >>> system = KiteGenSystem(KiteGenDesign.from_config(cfg.kite, 2, phi_deg=1.28, rho_kg_m3=0.91), straight_cd=0.13)
@@ -29,7 +29,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from fem_tether.physics.kite import KiteGenDesign
+from fem_tether.physics.kite import KiteGenDesign, characteristic_speeds
 from fem_tether.systems import power
 from fem_tether.systems.power import Cycle, cycle_curves
 
@@ -39,6 +39,32 @@ from fem_tether.systems.operating_point import OperatingPoint
 def global_efficiency(cl, wing_efficiency, tether_cd):
     """G_e = C_l / (C_l/E + C_D,t): the wing's E with the tether's drag (eq. 1; seed 000 eq. 5.1)."""
     return cl / (cl / wing_efficiency + tether_cd)
+
+
+def check_zones(design: KiteGenDesign) -> KiteGenDesign:
+    """``design`` if its zones come in their order, else ValueError naming the ``[kite]`` keys.
+
+    Zone B (lines held, V_L = 0) runs from the cut-in V_k/E to the full-force
+    wind V_ff = √(F_n/C)/(sinϑ cosφ) (seed 000 eqs. 2.55–2.56,
+    :func:`~fem_tether.physics.kite.characteristic_speeds`).  A cut-in above
+    V_ff means the kite flying its design speed V_k pulls more than F_n at the
+    cut-in wind, F = C (V_k sinϑ cosφ / E)² > F_n: the seed's zones then skip
+    B and jump to reel-out at the cut-in, which no machine does.  The order
+    holds for a lower G_e in the force law (V_ff only rises as G_e falls),
+    so the wing's E decides.
+    """
+    speeds = characteristic_speeds(design)
+    cut_in, full_force = float(np.max(speeds.cut_in_mps)), float(np.min(speeds.full_force_mps))
+    if cut_in <= full_force:
+        return design
+    wing_e = design.efficiency if design.kite_efficiency is None else design.kite_efficiency
+    pull_N = float(np.max(design.coefficient * (cut_in * design.projection) ** 2))
+    raise ValueError(
+        f"[kite] speed_mps = {design.speed_mps:g} m/s, efficiency = {wing_e:g}: the KiteGen cut-in wind "
+        f"V_k/E = {cut_in:.2f} m/s is above the full-force wind {full_force:.2f} m/s (Roselli 2016 eqs. "
+        f"2.55-2.56): at V_k the kite would pull {pull_N / 1e3:.4g} kN at cut-in, more than [kite] nominal_force_N "
+        f"= {float(np.min(design.nominal_force_N)) / 1e3:.4g} kN; the zones need speed_mps <= "
+        f"{float(np.min(wing_e * full_force)):.4g} m/s or nominal_force_N >= {pull_N:.4g} N")
 
 
 @dataclass(frozen=True)
@@ -54,6 +80,9 @@ class KiteGenSystem:
     design: KiteGenDesign
     straight_cd: float
     cycle: Cycle = field(default_factory=Cycle)
+
+    def __post_init__(self):
+        check_zones(self.design)
 
 
 def flown_design(system: KiteGenSystem, tether_cd=None) -> KiteGenDesign:

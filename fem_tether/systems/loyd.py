@@ -30,22 +30,45 @@ seed 003's.
       T = ½ ρ A √(C_L² + C²) V_A²,                                            (2)
 
   and the power is eq. 2.23, P = D_p V_A = ½ ρ A · ½ (C_D + C_D,t) · V_A³.
+- Limits (ours; seed 003 models none): a rated power P_r and a largest
+  tether force F_max.  Where the free flight (2) would exceed either, the
+  kite flies its orbit further out of the wind: its axis moves toward the
+  zenith until the wind along the tether is the share
+
+      s = min(1, (P_r/P)^{1/3}, (F_max/T)^{1/2})                             (3)
+
+  of the free flight's, sinθ_h = s sinθ.  Every speed in (2) scales with
+  the wind along the tether, so V_A, T and P of the held flight are s, s²
+  and s³ times the free flight's: P ≤ P_r and T ≤ F_max exactly, and above
+  the wind where a limit is first reached the kite flies at that point's V_A
+  and T (the KiteGen's zone D, seed 000 §2.4, likewise moves the kite out of
+  the power zone).  Seed 003 §4.3 suggests instead that "additional drag may
+  be induced by flaps or by the turbine rotors"; the rotors' drag alone
+  cannot hold the M600 at 600 kW above 21.0 m/s: P(γ_t) has a minimum, 1.4 %
+  of its optimum at γ_t ≈ 48 (rotor thrust 48 times the kite's and tether's
+  drag; tests/systems/test_loyd.py), while (3) holds at every wind.
 - Sizing: T depends on C_D,t, which depends on T by (1).  The tether is sized
-  once, at the design wind, by solving that fixed point
-  (:func:`size_tether`); one tether then serves every wind speed, so C_D,t
-  does not change with the wind.
+  once, at the design wind, by solving that fixed point with T of the held
+  flight (:func:`size_tether`); one tether then serves every wind speed, so
+  C_D,t does not change with the wind.  The held tension never falls as the
+  wind rises, so the design wind's is the largest up to it.
 
 The kite is weightless (Loyd's Fig. 2.2 and the assumptions of seed 003 §2.1);
 the mass a source quotes does not enter.  Turbines and conversion are lossless
 (seed 003 §2.1): electrical power = mechanical power.
 
->>> point = operating_point(MAKANI_M600, 10.0)
+>>> point = operating_point(MAKANI_M600, 10.0)          # free, as seed 003's model
 >>> round(point.mechanical_power_W / 1e6, 2), round(point.apparent_speed_mps, 1)
 (3.86, 179.0)
+>>> from dataclasses import replace
+>>> point = operating_point(replace(MAKANI_M600, rated_power_W=MAKANI_M600_RATED_W), 10.0)
+>>> round(point.mechanical_power_W / 1e6, 2), round(point.apparent_speed_mps, 1), round(point.tether_force_N)
+(0.6, 99.4, 423596)
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -76,7 +99,9 @@ class LoydSystem:
     §3.2.1 flies its circle about an axis one radian from the zenith, π/2 is
     Loyd's idealisation of Fig. 2.2 (wind along the tether).
     ``design_wind_mps``: the wind at which the tether is sized (Table 3.1's
-    10 m/s).
+    10 m/s).  ``rated_power_W`` P_r and ``max_tether_force_N`` F_max (all
+    lines): the limits the flight is held to (module docstring, eq. 3;
+    ``inf``: none, seed 003's free flight).
     """
 
     area_m2: float
@@ -89,10 +114,12 @@ class LoydSystem:
     lines: int = 1
     zenith_rad: float = 1.0
     design_wind_mps: float = 10.0
+    rated_power_W: float = math.inf
+    max_tether_force_N: float = math.inf
 
     def __post_init__(self):
         for name in ("area_m2", "cl", "lift_to_drag", "tether_length_m", "working_stress_Pa",
-                     "tether_density_kg_m3", "design_wind_mps"):
+                     "tether_density_kg_m3", "design_wind_mps", "rated_power_W", "max_tether_force_N"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} {getattr(self, name)} is not positive")
         if not self.tether_cd_ref >= 0:
@@ -124,10 +151,13 @@ LOYD_III = LoydSystem(area_m2=2000.0, cl=1.0, lift_to_drag=40.0, tether_length_m
                       working_stress_Pa=345e6, tether_density_kg_m3=8000.0, tether_cd_ref=0.04)
 #: the C-5A column of seed 003 Table 4.1: Loyd's example I
 C_5A = LOYD_I
-#: Makani M600 (seed 003 Table 4.1: C_D 0.05 = C_L/(L/D); carbon-fibre tether)
+#: Makani M600 (seed 003 Table 4.1: C_D 0.05 = C_L/(L/D); carbon-fibre tether), free: Table 4.1 states
+#: no rating; §4.1 gives Makani's, :data:`MAKANI_M600_RATED_W`
 MAKANI_M600 = LoydSystem(area_m2=35.0, cl=2.0, lift_to_drag=40.0, tether_length_m=440.0,
                          working_stress_Pa=2137e6, tether_density_kg_m3=1760.0,
                          tether_cd_ref=0.04)
+#: the M600's rated power: seed 003 §4.1, "a kite called “M600” with a rated power of 600 kW"
+MAKANI_M600_RATED_W = 600e3
 
 
 def loyd_tether_cd(system: LoydSystem, tension_N):
@@ -179,6 +209,25 @@ def flight(system: LoydSystem, wind_mps, rho_kg_m3, tether_cd, gamma_t=GAMMA_T) 
                   drag_power_W(rho_kg_m3, system.area_m2, system.kite_cd, tether_cd, apparent, gamma_t))
 
 
+def wind_share(system: LoydSystem, free: Flight):
+    """s = min(1, (P_r/P)^{1/3}, (F_max/T)^{1/2}): the share of the free flight's wind along the
+    tether that holds P ≤ P_r and T ≤ F_max (module docstring, eq. 3); 1 where the free flight
+    is within both (or makes no power)."""
+    with np.errstate(divide="ignore"):
+        power_share = np.cbrt(system.rated_power_W / free.power_W)
+        force_share = np.sqrt(system.max_tether_force_N / free.tension_N)
+    return np.minimum(1.0, np.minimum(power_share, force_share))
+
+
+def held_flight(system: LoydSystem, wind_mps, rho_kg_m3, tether_cd) -> Flight:
+    """The flight held to the system's limits: the free :func:`flight` with the wind along the
+    tether scaled by s of :func:`wind_share` (the orbit's axis at sinθ_h = s sinθ), so
+    V_A, T and P are s, s² and s³ times the free flight's (module docstring, eq. 3)."""
+    free = flight(system, wind_mps, rho_kg_m3, tether_cd)
+    share = wind_share(system, free)
+    return Flight(share * free.apparent_speed_mps, share**2 * free.tension_N, share**3 * free.power_W)
+
+
 @dataclass(frozen=True)
 class TetherSizing:
     """The tether sized at the design wind: its tension, eq. 3.7 diameter of each
@@ -191,19 +240,24 @@ class TetherSizing:
 
 
 def size_tether(system: LoydSystem, rho_kg_m3: float = 1.225) -> TetherSizing:
-    """Solve C_D,t = eq. 2.17 at T(C_D,t) of the flight at the design wind (module eq. 2).
+    """Solve C_D,t = eq. 2.17 at T(C_D,t) of the held flight at the design wind (module eqs. 2, 3).
 
-    T falls and eq. 2.17's C_D,t rises with the other, so x − C_D,t(T(x)) has one
-    root between 0 and C_D,t(T(0)); ``scipy.optimize.brentq`` finds it.
+    T falls and eq. 2.17's C_D,t rises with the other (the held T is the least of the
+    free flight's, the rated point's and F_max, none rising with C_D,t), so
+    x − C_D,t(T(x)) has one root between 0 and C_D,t(T(0)); ``scipy.optimize.brentq``
+    finds it.
     """
     _check_density(rho_kg_m3)
 
     def tension_N(tether_cd):
-        return flight(system, system.design_wind_mps, rho_kg_m3, tether_cd).tension_N
+        return held_flight(system, system.design_wind_mps, rho_kg_m3, tether_cd).tension_N
+
+    def excess(tether_cd):
+        return tether_cd - loyd_tether_cd(system, tension_N(tether_cd))
 
     upper = float(loyd_tether_cd(system, tension_N(0.0)))
-    cd = upper if upper == 0.0 else brentq(
-        lambda x: x - loyd_tether_cd(system, tension_N(x)), 0.0, upper, xtol=1e-15, rtol=1e-14)
+    # excess(upper) >= 0; it is 0, to round-off, where F_max holds T from 0 to upper
+    cd = upper if upper == 0.0 or excess(upper) <= 0.0 else brentq(excess, 0.0, upper, xtol=1e-15, rtol=1e-14)
     tension = float(tension_N(cd))
     return TetherSizing(tension_N=tension,
                         diameter_m=float(tether_diameter_m(tension / system.lines, system.working_stress_Pa)),
@@ -212,19 +266,20 @@ def size_tether(system: LoydSystem, rho_kg_m3: float = 1.225) -> TetherSizing:
 
 def power_curve(system: LoydSystem, wind_mps, rho_kg_m3: float = 1.225, tether_cd=None
                 ) -> list[OperatingPoint]:
-    """The drag-power operating point at each wind speed, unconstrained.
+    """The drag-power operating point at each wind speed, held to the system's limits.
 
-    Seed 003 defines no rated power or power limitation, so none is applied:
-    P grows like V_w³.  ``tether_cd``: ``None`` sizes the tether at the design
-    wind (:func:`size_tether`) and uses its eq. 2.17 coefficient at every wind;
-    a number (or one per wind speed, e.g. from the FE solver) replaces it.
+    Below them (and with none, seed 003's free flight) P grows like V_w³; at
+    P_r or F_max the orbit moves out of the wind (:func:`held_flight`).
+    ``tether_cd``: ``None`` sizes the tether at the design wind
+    (:func:`size_tether`) and uses its eq. 2.17 coefficient at every wind; a
+    number (or one per wind speed, e.g. from the FE solver) replaces it.
     """
     _check_density(rho_kg_m3)
     wind = np.asarray(wind_mps, dtype=float)
     if np.any(wind < 0):
         raise ValueError(f"wind_mps {np.min(wind)} m/s is negative")
     wind, cd = np.broadcast_arrays(wind, _tether_cd(system, rho_kg_m3, tether_cd))
-    state = flight(system, wind, rho_kg_m3, cd)
+    state = held_flight(system, wind, rho_kg_m3, cd)
     return [OperatingPoint(mode="fly-gen" if w > 0 else "off", wind_mps=float(w),
                            mechanical_power_W=float(p), electrical_power_W=float(p),
                            tether_force_N=float(t), reel_out_mps=0.0, apparent_speed_mps=float(v),

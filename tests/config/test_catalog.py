@@ -2,6 +2,7 @@
 with its own power model where a value was derived from it."""
 
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -11,6 +12,8 @@ from fem_tether.config import catalog
 from fem_tether.systems import ke_yoyo, loyd, unified_system
 from fem_tether.systems.crosswind import kite_inclination_rad, sag_coefficient_per_m
 from fem_tether.performance.configured import LOYD_WIDTH_RATIO, from_config
+from fem_tether.performance.sizing import breaking_load_N
+from fem_tether.physics.material import MATERIALS, Section
 
 PRESETS = catalog.names()
 
@@ -59,14 +62,22 @@ def test_ke_yoyo_preset_flies_its_model_at_10_mps():
     assert cfg.tether.linear_density_kg_m == pytest.approx(970.0 * math.pi * 0.03**2 / 4, rel=1e-4)
 
 
-@pytest.mark.parametrize("name, source", [("loyd-1", loyd.LOYD_I), ("loyd-2", loyd.LOYD_II),
-                                          ("loyd-3", loyd.LOYD_III), ("makani-m600", loyd.MAKANI_M600)])
+#: seed 003's systems as the presets fly them: Loyd's three free (he states no rating), the M600 at
+#: Makani's 600 kW (seed 003 §4.1)
+LOYD_SOURCES = {"loyd-1": loyd.LOYD_I, "loyd-2": loyd.LOYD_II, "loyd-3": loyd.LOYD_III,
+                "makani-m600": replace(loyd.MAKANI_M600, rated_power_W=loyd.MAKANI_M600_RATED_W)}
+
+
+@pytest.mark.parametrize("name, source", LOYD_SOURCES.items())
 def test_loyd_presets_are_the_seed_systems_with_their_sized_tether(name, source):
-    """Seed 003's Tables 3.1/4.1 systems; the tether of eq. 3.7 at the design wind (5 digits)."""
+    """Seed 003's Tables 3.1/4.1 systems (the M600 with its §4.1 rating); the tether of eq. 3.7 at the
+    design wind's held tension (5 digits)."""
     cfg = load_config(system=name)
     params = from_config(cfg).parameters
-    assert (params.area_m2, params.cl, params.lift_to_drag, params.tether_length_m, params.working_stress_Pa) \
-        == (source.area_m2, source.cl, source.lift_to_drag, source.tether_length_m, source.working_stress_Pa)
+    assert (params.area_m2, params.cl, params.lift_to_drag, params.tether_length_m, params.working_stress_Pa,
+            params.rated_power_W) \
+        == (source.area_m2, source.cl, source.lift_to_drag, source.tether_length_m, source.working_stress_Pa,
+            source.rated_power_W)
     assert params.tether_density_kg_m3 == pytest.approx(source.tether_density_kg_m3, rel=1e-4)
     assert params.tether_cd_ref == pytest.approx(source.tether_cd_ref, rel=1e-4)
     assert cfg.drag.cd == pytest.approx(0.04 * LOYD_WIDTH_RATIO, rel=1e-4)
@@ -75,6 +86,43 @@ def test_loyd_presets_are_the_seed_systems_with_their_sized_tether(name, source)
     assert cfg.tether.diameter_m == pytest.approx(sized.diameter_m, rel=1e-4)
     assert cfg.winch.ground_tension_N == pytest.approx(sized.tension_N, rel=1e-4)
     assert cfg.kite.speed_mps == pytest.approx(point.apparent_speed_mps, rel=1e-3)
+
+
+#: The tether material each source states (docs/systems.md §3): Roselli's Dyneema SK99 (the default),
+#: Fagiano et al.'s polyethylene fibre (no numbers: the SK99 table), Loyd's steel, the M600's carbon,
+#: Trevisi's 1.5 GPa Dyneema.
+SOURCE_MATERIALS = {"kitegen": ("sk99", 1.2), "ke-yoyo": ("sk99", 1.2), "loyd-1": ("steel", 1.0),
+                    "loyd-2": ("steel", 1.0), "loyd-3": ("steel", 1.0), "makani-m600": ("carbon", 1.0),
+                    "trevisi-gg": ("trevisi", 1.55), "trevisi-fg": ("trevisi", 1.55)}
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_every_preset_sizes_its_line_in_its_sources_material(name):
+    """[tether] material and safety_factor are the source's (before: every preset but the KiteGen sized
+    its line as SK99 at c_s = 1.2, and `simulate --system makani-m600` printed "d = 28.622 mm sk99,
+    breaking load 940 kN, margin 0.684" for a carbon tether).  The Trevisi presets' safety factor is
+    [unified] tether_safety_factor, the one their model holds."""
+    cfg = load_config(system=name)
+    assert (cfg.tether.material, cfg.tether.safety_factor) == SOURCE_MATERIALS[name]
+    if cfg.system.model == "unified":
+        assert cfg.tether.safety_factor == cfg.unified.tether_safety_factor
+
+
+@pytest.mark.parametrize("name", [n for n in PRESETS if load_config(system=n).system.model == "loyd"])
+def test_loyd_presets_material_is_the_models_tether(name):
+    """The material that gives the line its breaking load is the one the model sizes it in: its
+    working stress is [system] working_stress_Pa (eq. 3.7's σ) and its density the line's
+    μ/(π d²/4) (eq. 2.16's ρ_T), to the preset's 5 digits; its breaking load, σ π d²/4 (seed 003
+    §4.3's "maximum breaking tension"), carries the model's tension at the design wind."""
+    cfg = load_config(system=name)
+    chosen = MATERIALS[cfg.tether.material]
+    assert isinstance(chosen, Section) and chosen.working_stress
+    assert chosen.stress_Pa == cfg.system.working_stress_Pa
+    assert float(chosen.linear_density_kg_m(cfg.tether.diameter_m)) == pytest.approx(
+        cfg.tether.linear_density_kg_m, rel=1e-4)
+    assert breaking_load_N(cfg) == pytest.approx(
+        cfg.system.working_stress_Pa * math.pi * cfg.tether.diameter_m**2 / 4, rel=1e-12)
+    assert breaking_load_N(cfg) == pytest.approx(from_config(cfg).operating_point(10.0).tether_force_N, rel=1e-4)
 
 
 def test_summaries_list_every_preset_with_its_tether():

@@ -50,13 +50,21 @@ def test_loyd_from_the_preset_is_the_seed_system():
 
 @pytest.mark.parametrize("name", ["kitegen", "ke-yoyo", "loyd-1", "makani-m600", "trevisi-gg", "trevisi-fg"])
 def test_less_tether_drag_never_costs_power(name):
-    """Halving C_D,t raises (or keeps) the electrical power at every wind speed."""
+    """Halving C_D,t raises (or keeps) the electrical power at every wind speed where the loyd
+    model's force limit (its line's strength) does not hold the lighter-drag flight.  Where it
+    does, less drag costs power: at one tension a draggier drag-power kite flies deeper in the
+    wind, its turbines drawing half of all the drag (Lourenço eq. 2.18): Loyd I from 10 m/s on
+    (10.89 MW against 11.20 MW), the M600 from 5 m/s on (563 kW against 582-600 kW)."""
     system = from_config(load_config(system=name))
     winds = WINDS[::5]
     straight_W = system.electrical_power_W(winds)
-    half_W = system.electrical_power_W(winds, 0.5 * system.straight_cd)
-    assert np.all(half_W >= straight_W - 1e-6 * np.max(straight_W))
+    half = system.power_curve(winds, 0.5 * system.straight_cd)
+    half_W = np.array([p.electrical_power_W for p in half])
+    limit_N = system.limits.tether_force_N if system.model == "loyd" else None
+    held = np.array([limit_N is not None and p.tether_force_N >= limit_N * (1 - 1e-9) for p in half])
+    assert np.all(half_W[~held] >= straight_W[~held] - 1e-6 * np.max(straight_W))
     assert np.max(half_W - straight_W) > 0
+    assert np.all(half_W[held] < straight_W[held]) and held.any() == (system.model == "loyd")
 
 
 def test_trevisi_gg_electrical_power_is_the_mechanical_less_table_5_4s_losses():
@@ -121,3 +129,18 @@ def test_every_power_model_refuses_a_tether_cd_beyond_the_wings_lift(system):
     model = from_config(load_config(system=system))
     with pytest.raises(InputError, match=r"^C_D,t = 89: outside the physical range \[0, C_L = "):
         model.operating_point(10.0, 89.0)
+
+
+def test_the_loyd_model_honours_the_configured_rating_and_cut_out():
+    """[system] rated_power_W and cut_out_mps reach the loyd model (before, it ignored both: Loyd I
+    with a 5 MW rating made 89.6 MW at 20 m/s); its force limit is the configured line's strength,
+    working stress x π d²/4 per line (Lourenço §4.3), and the limits say where each comes from."""
+    cfg = load_config(system="loyd-1").replace(system={"rated_power_W": 5e6, "cut_out_mps": 25.0})
+    system = from_config(cfg)
+    points = system.power_curve([8.0, 20.0, 25.0, 26.0])
+    assert [p.mode for p in points] == ["fly-gen", "fly-gen", "fly-gen", "off"]
+    assert points[1].electrical_power_W == pytest.approx(5e6, rel=1e-12)
+    assert system.limits.rated_power_W == 5e6 and system.limits.rated_power_from == "[system] rated_power_W"
+    strength_N = 345e6 * np.pi * cfg.tether.diameter_m**2 / 4
+    assert system.limits.tether_force_N == pytest.approx(strength_N, rel=1e-12)
+    assert max(p.tether_force_N for p in points) <= strength_N

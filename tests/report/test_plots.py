@@ -91,3 +91,38 @@ def test_power_curves_keep_equal_straight_curves_visible_and_state_the_air(drawn
     assert legend == ["500 m, straight", "500 m, flexible", "3000 m, straight", "3000 m, flexible",
                       "active phase"]
     assert "= 1.170 kg/m$^3$" in ax.get_title() and "z = 354 m" in ax.get_title()
+
+
+def _system_power(name, drawn, tmp_path, overrides=None):
+    """The ``power --plot`` figure of preset ``name`` (with the CLI's rows and limits)."""
+    from fem_tether.config import load_config
+    from fem_tether.performance import comparison
+    from fem_tether.performance.configured import from_config
+    from fem_tether.report.plots import plot_system_power
+
+    cfg = load_config(system=name, overrides=overrides)
+    plot_system_power(comparison.compare(cfg, comparison.curve_speeds(cfg)), name, tmp_path / f"{name}.png",
+                      from_config(cfg).limits.as_dict())
+    return drawn[-1]
+
+
+def _legend(ax):
+    return [t.get_text() for t in ax.get_legend().get_texts()]
+
+
+def test_system_power_draws_the_limits_and_says_where_there_are_none(drawn, tmp_path):
+    """The rated power and the tether force limit are dotted lines in their panels, labelled with
+    their values; a limit not stated says so in its legend (before: neither, and the M600's
+    3.86 MW at 10 m/s and 104 MW at 30 m/s stood under no rating); a fly-gen's figure has no
+    reel-out panel (before: one, all zeros) and its title says why."""
+    m600 = _system_power("makani-m600", drawn, tmp_path)
+    assert len(m600.axes) == 2 and "fly-gen: no reel-out" in m600.axes[0].get_title()
+    power_ax, force_ax = m600.axes
+    assert _legend(power_ax) == ["straight tether", "rated power 0.6 MW"]
+    assert _legend(force_ax) == ["straight tether", "tether force limit 423.6 kN"]
+    assert power_ax.get_lines()[0].get_ydata().max() == pytest.approx(0.6, rel=1e-12)
+    free = _system_power("loyd-1", drawn, tmp_path)
+    assert _legend(free.axes[0]) == ["straight tether", "no rated power stated: not held"]
+    yoyo = _system_power("ke-yoyo", drawn, tmp_path)
+    assert len(yoyo.axes) == 3 and "no reel-out" not in yoyo.axes[0].get_title()
+    assert _legend(yoyo.axes[1]) == ["straight tether", "no tether force limit stated: not held"]

@@ -85,7 +85,7 @@ def test_sweep_text_and_summary():
 
 
 def test_aep_text():
-    result = {"lengths": [
+    result = {"system": "kitegen", "model": "kitegen", "lengths": [
         {"length_m": 400.0, "aep_straight_MWh": 6642.0, "cf_straight": 0.344, "aep_fe_MWh": 7000.4,
          "cf_fe": 0.36, "unchecked": True},
         {"length_m": 800.0, "aep_straight_MWh": 6051.0, "cf_straight": 0.314, "aep_fe_MWh": None,
@@ -93,9 +93,10 @@ def test_aep_text():
         "best_length_straight_m": 400.0, "best_length_fe_m": 400.0, "excluded_m": [800.0],
         "pending_m": [800.0]}
     lines = aep_text(result).splitlines()
-    assert lines[1] == "      400                6642        0.344                7000        0.360  (unchecked)"
-    assert lines[2].endswith("left out               (pending)")
-    assert lines[3:] == ["best length: straight 400 m, flexible 400 m",
+    assert lines[0] == "AEP of the kitegen sweep (kitegen model)"
+    assert lines[2] == "      400                6642        0.344                7000        0.360  (unchecked)"
+    assert lines[3].endswith("left out               (pending)")
+    assert lines[4:] == ["best length: straight 400 m, flexible 400 m",
                          "left out (cross-check failed or not run): 800 m",
                          "pending, not run yet (--allow-incomplete): 800 m"]
 
@@ -131,15 +132,15 @@ def test_size_text_prints_the_last_iterate_and_the_warnings():
 
 def test_aep_text_of_undefined_and_zero_aep_names_no_best_length():
     """AEP undefined at one length and zero at the other: no best length, said why."""
-    result = {"lengths": [
+    result = {"system": "kitegen", "model": "kitegen", "lengths": [
         {"length_m": 400.0, "aep_straight_MWh": None, "cf_straight": None, "aep_fe_MWh": None,
          "cf_fe": None, "unchecked": False},
         {"length_m": 800.0, "aep_straight_MWh": 0.0, "cf_straight": 0.0, "aep_fe_MWh": 0.0,
          "cf_fe": 0.0, "unchecked": False}],
         "best_length_straight_m": None, "best_length_fe_m": None, "excluded_m": [], "pending_m": []}
     lines = aep_text(result).splitlines()
-    assert lines[1] == "      400           undefined    undefined           undefined    undefined"
-    assert lines[3] == ("best length: straight none (no length has a finite, positive AEP), "
+    assert lines[2] == "      400           undefined    undefined           undefined    undefined"
+    assert lines[4] == ("best length: straight none (no length has a finite, positive AEP), "
                         "flexible none (no length has a finite, positive AEP)")
 
 

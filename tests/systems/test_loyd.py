@@ -11,9 +11,9 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from fem_tether.physics.material import tether_diameter_m
-from fem_tether.systems.loyd import (C_5A, LOYD_I, LOYD_II, LOYD_III, MAKANI_M600, LoydSystem, drag_power_W,
-                                     flight, loyd_modes, loyd_tether_cd, operating_point, power_curve,
-                                     size_tether, tether_weight_N)
+from fem_tether.systems.loyd import (C_5A, LOYD_I, LOYD_II, LOYD_III, MAKANI_M600, MAKANI_M600_RATED_W, LoydSystem,
+                                     drag_power_W, flight, held_flight, loyd_modes, loyd_tether_cd, operating_point,
+                                     power_curve, size_tether, tether_weight_N, wind_share)
 from fem_tether.systems.tether_drag import straight_tether_cd
 
 RHO = 1.225            # seed 003 §2.2.3
@@ -22,6 +22,8 @@ PRESETS = {"Loyd I": LOYD_I, "Loyd II": LOYD_II, "Loyd III": LOYD_III, "M600": M
 ORBIT_RADIUS_RAD = 0.4
 #: seed 003 §3.2.6 and §4.3: the imposed rotation rate of the chosen simulations [rpm]
 SEED_RPM = 5.5
+#: the M600 at Makani's rating (seed 003 §4.1: "a rated power of 600 kW")
+RATED_M600 = replace(MAKANI_M600, rated_power_W=MAKANI_M600_RATED_W)
 
 
 def imposed_kite_speed_mps(tether_length_m, rpm):
@@ -264,12 +266,103 @@ def test_power_within_a_betz_bound_on_the_tether_sphere(name):
             assert np.all(power[1:] / (bound[1:] * 27 / 16) < 0.11)
 
 
+# --- limits: the rated power and the tether's strength --------------------------------------------
+
+WINDS = np.linspace(0.0, 30.0, 121)
+
+
+@pytest.mark.parametrize("system", [RATED_M600, replace(LOYD_I, max_tether_force_N=3e6),
+                                    replace(MAKANI_M600, rated_power_W=1e6, max_tether_force_N=4e5)],
+                         ids=["M600 600 kW", "Loyd I 3 MN", "M600 1 MW, 0.4 MN"])
+def test_the_held_flight_keeps_power_and_force_within_the_limits(system):
+    """P ≤ P_r and T ≤ F_max at every wind (1e-12); where the free flight is within both the held
+    one is it; above, the binding limit is met exactly (1e-12) and V_A, T, P stay at their values
+    where it was first reached (before: the M600 made 104 MW and 12 375 kN at 30 m/s)."""
+    cd = size_tether(system).tether_cd
+    curve = power_curve(system, WINDS)
+    free = power_curve(replace(system, rated_power_W=np.inf, max_tether_force_N=np.inf), WINDS, tether_cd=cd)
+    power = np.array([p.mechanical_power_W for p in curve])
+    force = np.array([p.tether_force_N for p in curve])
+    assert np.all(power <= system.rated_power_W * (1 + 1e-12))
+    assert np.all(force <= system.max_tether_force_N * (1 + 1e-12))
+    within = np.array([p.mechanical_power_W <= system.rated_power_W and p.tether_force_N <= system.max_tether_force_N
+                       for p in free])
+    assert within[0] and not within[-1]
+    assert [p for p, w in zip(curve, within) if w] == [p for p, w in zip(free, within) if w]
+    held = [p for p, w in zip(curve, within) if not w]
+    binding = np.array([max(p.mechanical_power_W / system.rated_power_W, p.tether_force_N / system.max_tether_force_N)
+                        for p in held])
+    np.testing.assert_allclose(binding, 1.0, rtol=1e-12)
+    for key in ("apparent_speed_mps", "tether_force_N", "mechanical_power_W"):
+        np.testing.assert_allclose([getattr(p, key) for p in held], getattr(held[0], key), rtol=1e-12)
+
+
+@pytest.mark.parametrize("wind_mps", [6.0, 12.0, 30.0])
+def test_the_held_flight_is_the_free_flight_with_its_orbit_out_of_the_wind(wind_mps):
+    """The control law (module docstring, eq. 3): the held point is the free flight (eq. 2) of the
+    same kite whose orbit axis is at θ_h = arcsin(s sinθ) from the zenith (1e-12); θ_h moves toward
+    the zenith as the wind rises (the M600 at 600 kW, from θ = 57.3°: 45.1°, 20.7° and 8.1° at 6, 12
+    and 30 m/s, 0.05°)."""
+    cd = size_tether(RATED_M600).tether_cd
+    share = wind_share(RATED_M600, flight(RATED_M600, wind_mps, RHO, cd))
+    zenith = np.arcsin(share * RATED_M600.projection)
+    raised = flight(replace(MAKANI_M600, zenith_rad=float(zenith)), wind_mps, RHO, cd)
+    held = held_flight(RATED_M600, wind_mps, RHO, cd)
+    np.testing.assert_allclose(held, raised, rtol=1e-12)
+    assert np.degrees(zenith) == pytest.approx({6.0: 45.1, 12.0: 20.7, 30.0: 8.1}[wind_mps], abs=0.05)
+
+
+def test_m600_at_600_kW_flies_at_lourencos_orbit_speed():
+    """Held at 600 kW, the M600 at 10 m/s flies at V_A = 99.35 m/s, 0.15 % above the 99.20 m/s of
+    Lourenço's imposed 5.5 rpm orbit (Table 4.2), on a tether sized to its 423.6 kN (eq. 3.7:
+    15.89 mm; Table 4.2's peak is 0.486 MN).  Not a fit: eq. 2.23 at P = 600 kW gives V_A, the same
+    equation that reproduces Table 4.2's 0.5981 MW at the seed's V_A (test above); the rated wind is
+    5.05 m/s, where the free flight first makes 600 kW."""
+    point = operating_point(RATED_M600, 10.0)
+    sized = size_tether(RATED_M600)
+    assert point.mechanical_power_W == pytest.approx(600e3, rel=1e-12)
+    assert point.apparent_speed_mps == pytest.approx(99.20, rel=2e-3)
+    assert point.tether_force_N == pytest.approx(sized.tension_N, rel=1e-12)
+    assert sized.tension_N == pytest.approx(423.6e3, rel=1e-4)
+    assert sized.diameter_m == pytest.approx(0.01589, abs=5e-6)
+    free_W = operating_point(MAKANI_M600, 10.0, tether_cd=sized.tether_cd).mechanical_power_W
+    rated_wind = 10.0 * (600e3 / free_W) ** (1 / 3)
+    assert rated_wind == pytest.approx(5.05, abs=0.005)
+    assert operating_point(RATED_M600, 5.0).mechanical_power_W < 600e3
+
+
+def test_sizing_takes_the_held_tension_the_largest_up_to_the_design_wind():
+    """The rated M600's tether is sized to its held tension at 10 m/s, which no wind up to it exceeds
+    (the held T never falls as the wind rises), and the fixed point holds (1e-12)."""
+    sized = size_tether(RATED_M600)
+    assert held_flight(RATED_M600, 10.0, RHO, sized.tether_cd).tension_N == pytest.approx(sized.tension_N, rel=1e-12)
+    assert loyd_tether_cd(RATED_M600, sized.tension_N) == pytest.approx(sized.tether_cd, rel=1e-12)
+    tensions = held_flight(RATED_M600, WINDS, RHO, sized.tether_cd).tension_N
+    assert np.all(np.diff(tensions) >= -1e-9 * sized.tension_N)
+    assert tensions[WINDS <= 10.0].max() == pytest.approx(sized.tension_N, rel=1e-12)
+
+
+def test_the_rotors_drag_alone_cannot_hold_the_m600_above_21_mps():
+    """Seed 003 §4.3's alternative, more rotor drag (γ_t > ½): P(γ_t) of eq. 2.23 with the flight of
+    eq. 2 has a minimum, 1.4 % of its optimum at γ_t ≈ 48, so above 21.0 m/s no rotor drag brings
+    the M600 down to 600 kW; the held flight does at every wind (why eq. 3 moves the orbit instead)."""
+    cd = size_tether(RATED_M600).tether_cd
+    gammas = np.logspace(np.log10(0.5), 4, 200001)
+    power = flight(MAKANI_M600, 10.0, RHO, cd, gammas).power_W
+    least = power.min() / flight(MAKANI_M600, 10.0, RHO, cd).power_W
+    assert least == pytest.approx(0.014, abs=5e-4) and gammas[power.argmin()] == pytest.approx(48, abs=1)
+    for wind, above in ((20.9, False), (21.1, True)):
+        assert (flight(MAKANI_M600, wind, RHO, cd, gammas).power_W.min() > 600e3) == above
+    assert operating_point(RATED_M600, 30.0).mechanical_power_W == pytest.approx(600e3, rel=1e-12)
+
+
 # --- bad parameters ------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("field, value", [
     ("area_m2", -1.0), ("cl", 0.0), ("lift_to_drag", 0.0), ("tether_length_m", -5.0),
     ("working_stress_Pa", 0.0), ("tether_density_kg_m3", -1.0), ("design_wind_mps", 0.0),
-    ("tether_cd_ref", -0.01), ("lines", 0), ("lines", 1.5), ("zenith_rad", 0.0), ("zenith_rad", 2.0)])
+    ("tether_cd_ref", -0.01), ("lines", 0), ("lines", 1.5), ("zenith_rad", 0.0), ("zenith_rad", 2.0),
+    ("rated_power_W", 0.0), ("max_tether_force_N", -1.0)])
 def test_bad_system_names_the_field(field, value):
     with pytest.raises(ValueError, match=field):
         replace(LOYD_I, **{field: value})

@@ -54,9 +54,10 @@ def test_too_few_snapshots_for_the_shape_check_is_an_error():
 def test_fe_and_fd_agree_on_the_circle(system, length_m):
     """``[kite] path = "circle"``: the default case (1000 m, axis at 45°, 0.4 rad, 80 m/s; period
     30.6 s) and a Lourenço-like one, the M600 preset's 440 m carbon tether on §3.2.1's circle (axis
-    1 rad from the zenith, 0.4 rad, 179 m/s).  The shipped [crosscheck] tolerances, and, as for the
-    default eight (tests/jobs/test_evaluate.py), F_t within 0.5 % and the shapes within 0.1 % of L
-    (measured: 0.04 % and 0.002 % resp. 0.008 % and 0.009 %)."""
+    1 rad from the zenith, 0.4 rad, 99.4 m/s at its 600 kW rating).  The shipped [crosscheck]
+    tolerances, and, as for the default eight (tests/jobs/test_evaluate.py), F_t within 0.5 % and the
+    shapes within 0.1 % of L (measured: 0.04 % and 0.002 % resp. 0.04 % and 0.011 %; the unrated
+    M600 at 179 m/s, before issue 29: 0.008 % and 0.009 %)."""
     cfg = load_config(system=system, overrides={"kite": {"path": "circle"}, "time": {"average_periods": 1}})
     assert cfg.tether.length_m == length_m
     check, fe_run, fd_run = run_crosscheck(cfg)
