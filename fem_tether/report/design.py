@@ -41,7 +41,7 @@ from fem_tether.physics.resource import weibull_density_per_mps
 from fem_tether.report.design_text import (DESIGN_ROWS, OUTPUT_ROWS, attribution_rows, design_text, flexible_text,
                                            side_by_side_rows)
 from fem_tether.report.page import STYLE, image, number, table
-from fem_tether.report.plots import _label_axes, plt, save_atomically   # plt: with the Agg backend
+from fem_tether.report.plots import label_axes, plt, save_atomically   # plt: with the Agg backend
 
 #: The figures' files, by name.
 FIGURE_FILES = {name: f"{name}.png" for name in ("power", "control", "weight", "forces", "masses", "constraints")}
@@ -87,7 +87,7 @@ def plot_power(r: dict, path) -> Path:
     title = (f"power curve at {_altitude(r)}: AEP {1e-9 * o['aep_Wh']:.3f} GWh (ground "
              f"{1e-9 * o['aep_ground_Wh']:.3f}, on-board {1e-9 * o['aep_onboard_Wh']:.3f}), "
              f"CF {o['capacity_factor']:.3f}")
-    _label_axes(ax, WIND_LABEL, "electrical power [MW]", title, "upper left")
+    label_axes(ax, WIND_LABEL, "electrical power [MW]", title, "upper left")
     lines, labels = zip(*(pair for a in (ax, density) for pair in zip(*a.get_legend_handles_labels())))
     ax.legend(lines, labels, loc="center right", fontsize=8.5)
     return save_atomically(fig, path)
@@ -99,11 +99,12 @@ def plot_control(r: dict, path) -> Path:
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7.0, 6.0), constrained_layout=True)
     top.plot(c["wind_mps"], c["cl"], "o-", ms=3.5, color="tab:blue", label="$C_L$")
     top.axhline(r["parameters"]["cl_max"], color="0.3", ls="--", lw=1.0, label="$C_{L,max}$")
-    _label_axes(top, "", "lift coefficient $C_L$ [-]", f"control per wind speed at {_altitude(r)}", "lower left")
+    label_axes(top, "", "lift coefficient $C_L$ [-]", f"control per wind speed at {_altitude(r)}", "lower left")
+    top.set_ylim(top=1.1 * r["parameters"]["cl_max"])       # C_L at C_L,max drawn clear of the frame
     for key, label in (("gamma_out", r"$\gamma_{out} = V_{out}/V_w$"), ("gamma_in", r"$\gamma_{in} = V_{in}/V_w$"),
                        ("gamma_t", r"$\gamma_t = C_{D,turb}/C_D$")):
         bottom.plot(c["wind_mps"], c[key], "o-", ms=3.5, label=label)
-    _label_axes(bottom, WIND_LABEL, "factor [-]", "reel-out, reel-in and on-board thrust factors")
+    label_axes(bottom, WIND_LABEL, "factor [-]", "reel-out, reel-in and on-board thrust factors")
     return save_atomically(fig, path)
 
 
@@ -112,9 +113,10 @@ def plot_weight(r: dict, path) -> Path:
     c = _curves(r)
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7.0, 5.5), constrained_layout=True)
     top.plot(c["wind_mps"], np.degrees(c["delta_rad"]), "o-", ms=3.5, color="tab:purple", label=r"$\Delta$")
-    _label_axes(top, "", r"inclination $\Delta$ [deg]", "the weight's extra inclination (weight balance, eq. 3.74)")
+    label_axes(top, "", r"inclination $\Delta$ [deg]", "the weight's extra inclination",
+               source="weight balance: Trevisi 2019 eq. 3.74")
     bottom.plot(c["wind_mps"], c["eta_delta"], "o-", ms=3.5, color="tab:brown", label=r"$\eta_\Delta$")
-    _label_axes(bottom, WIND_LABEL, r"mass efficiency $\eta_\Delta$ [-]", "the efficiency the weight leaves",
+    label_axes(bottom, WIND_LABEL, r"mass efficiency $\eta_\Delta$ [-]", "the efficiency the weight leaves",
                 "lower right")
     return save_atomically(fig, path)
 
@@ -128,7 +130,8 @@ def plot_forces(r: dict, path) -> Path:
         ax.plot(c["wind_mps"], 1e-3 * c["reel_in_force_N"], "s-", ms=3.5, label="reel-in")
     ax.axhline(1e-3 * r["outputs"]["force_limit_N"], color="tab:red", ls="--", lw=1.2,
                label="limit: strength / safety factor")
-    _label_axes(ax, WIND_LABEL, "tether force [kN]", "tether force against its limit (eq. 5.2)", "upper right")
+    label_axes(ax, WIND_LABEL, "tether force [kN]", "tether force against its limit", "upper right",
+               source="the limit: Trevisi 2019 eq. 5.2")
     return save_atomically(fig, path)
 
 
@@ -188,15 +191,17 @@ def plot_flexible(r: dict, path) -> Path:
         top.plot(c["wind_mps"], 1e-6 * c["power_W"], style, ms=3.5,
                  label=f"{label}: AEP {1e-9 * o['aep_Wh']:.3f} GWh, CF {o['capacity_factor']:.3f}")
     top.axhline(1e-6 * r["parameters"]["rated_power_W"], color="0.3", ls="--", lw=1.0, label="$P_{rated}$")
-    _label_axes(top, "", "electrical power [MW]", f"lumped and flexible tether ({f['status']}, "
+    label_axes(top, "", "electrical power [MW]", f"lumped and flexible tether ({f['status']}, "
                 f"{len(f['rounds']['round'])} rounds, {f['fe_runs']} FE runs)", "lower right")
     bottom.axhline(1.0, color="tab:blue", lw=1.2, label="lumped: 1")
     bottom.plot(bins["wind_mps"], bins["factor"], "s-", ms=3.5, color="tab:orange",
                 label="flexible: $F_{FE}/F_{straight}$ of the last round")
     bottom.plot(bins["wind_mps"], bins["cd_fe"] / bins["cd_model"], "^:", ms=3.5, color="tab:red",
-                label="$C_{D,t}$ of the FE line over eq. 3.14's")
-    _label_axes(bottom, WIND_LABEL, "factor on $C_{d,t}$ (eq. 3.14) [-]", "the tether's drag per wind speed",
-                "center right")
+                label="$C_{D,t}$ of the FE line over the straight line's")
+    label_axes(bottom, WIND_LABEL, "factor on $C_{d,t}$ [-]", "the tether's drag per wind speed", "center right",
+               source="on the straight line's drag coefficient, Trevisi 2019 eq. 3.14")
+    drawn = np.concatenate([[1.0], bins["factor"], bins["cd_fe"] / bins["cd_model"]])
+    bottom.set_ylim(top=1.1 * np.nanmax(drawn))                # the factors drawn clear of the frame
     return save_atomically(fig, path)
 
 

@@ -22,6 +22,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import html
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -76,22 +77,55 @@ def _curve_label(s: dict, i: int) -> str:
     return f"L {s['length_m'][i]:g} m" + (f" ({', '.join(notes)})" if notes else "")
 
 
+#: The source document of each power model ([system] model), by its short name (docs/sources.md).
+POWER_MODEL_SOURCES = {"kitegen": "Roselli 2016", "ke-yoyo": "Fagiano et al. 2010", "unified": "Trevisi 2019",
+                       "loyd": "Lourenço"}
+#: The site a study names ``configured`` when its job gives none: the system's own [wind] and [resource].
+CONFIGURED_SITE = "configured"
+
+
+def surface_name(system: str, site: str) -> str:
+    """A surface in plain words: the system, and the site where the job names one."""
+    return system if site == CONFIGURED_SITE else f"{system} at {site}"
+
+
+def power_model(s: dict) -> str:
+    """The [system] model of surface ``s``'s configuration and its source, e.g. 'ke-yoyo power
+    model (Fagiano et al. 2010)'."""
+    model = tomllib.loads(s["config_toml"])["system"]["model"]
+    return f"{model} power model ({POWER_MODEL_SOURCES[model]})"
+
+
+def figure_sources(s: dict) -> dict[str, str]:
+    """Per figure of surface ``s``, where its numbers come from: the power model and how the
+    tether's drag enters it (per wind bin, or the configured point's at every wind speed)."""
+    binned = bool(np.isfinite(s["wind_mps"]).all())
+    drag = ("$C_{D,t}$ per wind bin" if binned else "one $C_{D,t}$, the configured operating point's,"
+            " at every wind speed")
+    return {"aep": f"Roselli 2016 eq. 5.2 with the {power_model(s)} and {drag}: flexible from FE runs, "
+                   "straight from Roselli 2016 eq. 4.1",
+            "power": f"the {power_model(s)} with {drag}: flexible from FE runs, straight from Roselli 2016 eq. 4.1",
+            "ge": plots.GE_SOURCE + (", at each wind bin's operating point" if binned else
+                                     ", at the configured operating point")}
+
+
 def write_figures(s: dict, system: str, site: str, directory: Path) -> dict[str, Path]:
-    """The three figures of surface ``s`` (of :func:`read_study`) in ``directory``."""
-    name = f"{system} at {site}"
+    """The three figures of surface ``s`` (of :func:`read_study`) in ``directory``: plain titles
+    (:func:`surface_name`), their sources beneath (:func:`figure_sources`)."""
+    name = surface_name(system, site)
     diameter, chosen = curve_points(s)
     curves = {_curve_label(s, i): {"wind_mps": s["wind_mps"], "edges_mps": s["edges_mps"],
                                    **{key: s[key][i] for key in BIN_KEYS}} for i in chosen}
-    at = f"{name}, d = {1e3 * diameter:.1f} mm"
-    bins = "per wind bin" if np.isfinite(s["wind_mps"]).all() else "at the configured operating point"
+    at = f"d = {1e3 * diameter:.1f} mm"
+    sources = figure_sources(s)
     stem = f"{system}_{site}"
     return {
         "aep": plots.plot_aep_map(s, aep_cases(s), directory / f"{stem}_aep.png",
-                                  f"{name}: annual energy production"),
+                                  f"{name}: annual energy production", sources["aep"]),
         "power": plots.plot_bin_power(curves, directory / f"{stem}_power.png",
-                                      f"{at}: power with the tether drag {bins}"),
+                                      f"{name}: power against wind speed, {at}", sources["power"]),
         "ge": plots.plot_ge_by_wind(curves, directory / f"{stem}_ge.png",
-                                    f"{at}: global efficiency $G_e$ (seed 000 eq. 5.1) {bins}"),
+                                    f"{name}: global efficiency against wind speed, {at}", sources["ge"]),
     }
 
 

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from conftest import is_png
+from figures_seen import saved, unclear, words  # noqa: F401  (saved: a fixture)
 from pages import Page
 
 from fem_tether.cli import main
@@ -19,7 +20,7 @@ from fem_tether.io.design_file import read_design_hdf5
 from fem_tether.jobs.design.job import load_design_job
 from fem_tether.jobs.design.run import run_design
 from fem_tether.physics.resource import weibull_density_per_mps
-from fem_tether.report.design import FIGURE_FILES, report_dir, report_paths, write_design_report
+from fem_tether.report.design import FIGURE_FILES, report_dir, report_paths, write_design_report, write_figures
 
 JOB = """[design]
 preset = "trevisi-3mw"
@@ -121,3 +122,29 @@ def test_the_cli_writes_the_report_and_names_it(design, capsys):
     assert main(["design", str(job_path), "--out", str(out), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["report"] == str(page_path)
     assert written_by_fem_tether(page_path)
+
+
+def _flexible(r: dict) -> dict:
+    """``r`` with a flexible design beside it as the loop writes one (its numbers made up): the
+    power 4 % lower, four bins whose drag the FE line raises by 8-14 %."""
+    wind = np.asarray(r["curves"]["wind_mps"], dtype=float)[::5]
+    factor = np.linspace(1.08, 1.14, wind.size)
+    flexible = {"design": r["design"], "status": "converged", "rounds": {"round": [1, 2, 3]}, "fe_runs": 13,
+                "outputs": {**r["outputs"], "aep_Wh": 0.96 * r["outputs"]["aep_Wh"]},
+                "curves": {**r["curves"], "power_W": 0.96 * np.asarray(r["curves"]["power_W"])},
+                "bins": {"wind_mps": wind, "factor": factor, "cd_fe": 0.011 * factor,
+                         "cd_model": np.full(wind.size, 0.011), "status": ["ok"] * wind.size,
+                         "error": [""] * wind.size}}
+    return {**r, "flexible": flexible}
+
+
+def test_every_figure_of_a_design_reads_clear(design, saved, tmp_path):
+    """The six figures of the design and the flexible tether's: no legend over a line, no text
+    over a text, nothing cut off; C_L at C_L,max drawn below the frame."""
+    r = _flexible(read_design_hdf5(design[1]))
+    figures = write_figures(r, tmp_path)
+    assert set(figures) == {*FIGURE_FILES, "flexible"} and len(saved) == 7
+    assert unclear(saved) == {}
+    control = saved[list(FIGURE_FILES).index("control")]
+    assert control.axes[0].get_ylim()[1] > 1.05 * r["parameters"]["cl_max"]
+    assert not [fig for fig in saved if "seed" in words(fig)]

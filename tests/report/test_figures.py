@@ -6,6 +6,7 @@ import re
 import numpy as np
 
 from conftest import is_png, series_run
+from figures_seen import saved, unclear, words  # noqa: F401  (saved: a fixture)
 
 from fem_tether.performance.aep import sweep_aep
 from fem_tether.config import load_config
@@ -64,3 +65,18 @@ def test_the_ranks_of_a_sweep_do_not_import_matplotlib():
     code = "import sys, fem_tether.cli, fem_tether.commands.pipeline; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_the_figures_of_a_sweep_and_a_run_read_clear(unrun_sweep, saved, tmp_path):
+    """The four figures of a sweep (its drags set by hand) and a run's F_t(L): no legend over a
+    line, no text over a text, nothing cut off (fem_tether.report.layout); no 'seed' shorthand."""
+    data = read_sweep(unrun_sweep)
+    data |= {"status": np.array(["ok", "ok"]), "crosscheck_ok": np.array([1, 1]),
+             "drag_fe_N": np.array([4000.0, 7000.0]), "ge_fe": np.array([18.0, 14.0])}
+    write_plots(data, sweep_aep(data), tmp_path)
+    t = np.arange(25) * 0.125
+    run = series_run(t, {"drag_N": 4000.0 + 100.0 * np.sin(2 * np.pi * t), "length_m": 400.0 + 10.0 * t},
+                     average_start_s=1.0)
+    reel_drag_plot(run, load_config(), tmp_path / "reel.png", sweep_file=unrun_sweep)
+    assert len(saved) == 5 and unclear(saved) == {}
+    assert not [fig for fig in saved if "seed" in words(fig)]

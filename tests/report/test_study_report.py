@@ -12,13 +12,14 @@ from matplotlib.collections import QuadMesh
 from mpi4py import MPI
 
 from conftest import is_png
+from figures_seen import saved, unclear, words  # noqa: F401  (saved: a fixture)
 from pages import Page
 
 from fem_tether.report import plots
 from fem_tether.cli import main
 from fem_tether.jobs.study.driver import run_study
 from fem_tether.jobs.study.job import study_from_dict
-from fem_tether.report.study import report_dir, surface_html, write_report
+from fem_tether.report.study import curve_points, report_dir, surface_html, write_report
 from fem_tether.jobs.study.result import read_study
 
 #: ke-yoyo's AEP peaks inside these lengths, so the study refines it (kitegen's at the shortest).
@@ -139,14 +140,20 @@ def test_a_single_diameter_draws_aep_against_length(tmp_path, drawn):
     page = write_report(out)
     aep = next(fig for fig in drawn if fig.axes[0].get_xlabel() == "cable length $L$ [m]"
                and fig.axes[0].get_ylabel() == "annual energy production [MWh]")
-    assert not _has_map(aep) and len(aep.axes) == 1
+    assert not _has_map(aep) and not _has_contours(aep) and len(aep.axes) == 1
     labels = [t.get_text() for t in aep.axes[0].get_legend().get_texts()]
-    assert labels[:2] == ["flexible: no optimum", "straight"]
+    best = read_study(out)["surfaces"]["kitegen/configured"]["optimum"]["straight"]
+    assert labels[:2] == ["flexible: no optimum", f"straight: {plots.optimum_text(best)}"]
     assert "none: no point counts" in page.read_text(encoding="utf-8")
     assert all(is_png(page.parent / f"kitegen_configured_{f}.png") for f in FIGURES)
 
 
+def _has_contours(fig) -> bool:
+    return any(hasattr(c, "levels") for ax in fig.axes for c in ax.collections)
+
+
 def test_aep_map_marks_failed_unchecked_and_refined_points(tmp_path, drawn):
+    """The failed point is no option (out of the colours, a cross); the optimum in the title."""
     points = {"length_m": [500.0, 500.0, 900.0, 900.0, 700.0], "diameter_m": [0.01, 0.02, 0.01, 0.02, 0.01],
               "refined": [0, 0, 0, 0, 1]}
     best = {"length_m": 700.0, "diameter_m": 0.01, "aep_MWh": 9.5e3}
@@ -155,12 +162,35 @@ def test_aep_map_marks_failed_unchecked_and_refined_points(tmp_path, drawn):
                                 "straight": ([9e3, 8e3, 8.5e3, 7e3, 9.4e3], ["ok"] * 5, None)},
                        tmp_path / "map.png", "a surface")
     fig, = drawn
-    assert _has_map(fig) and is_png(tmp_path / "map.png")
+    assert _has_contours(fig) and is_png(tmp_path / "map.png")
     legend = [t.get_text() for t in fig.legends[0].get_texts()]
-    assert legend == ["grid point", "refined point", "hollow: unchecked (gate failed or not run)",
-                      "failed: no AEP", "AEP optimum"]
-    assert [ax.get_title() for ax in fig.axes[:2]] == ["flexible", "straight: no optimum"]
-    assert "L 700 m, d 10.0 mm\nAEP 9500 MWh" in [t.get_text() for t in fig.axes[0].texts]
+    assert legend == ["grid point", "refined point", "white: unchecked (gate failed or not run)",
+                      "failed: no AEP", "no option", "AEP optimum"]
+    assert [ax.get_title() for ax in fig.axes[:2]] == ["flexible\noptimum L 700 m, d 10.0 mm: 9500 MWh",
+                                                       "straight\nno optimum"]
+    assert not list(fig.axes[0].texts)
+
+
+def test_every_figure_of_a_study_reads_clear_with_plain_titles(study, saved):
+    """The report's six figures (ke-yoyo and kitegen): no legend over a line, no text over a
+    text, nothing cut off; titles name the system plainly (no 'at configured', no 'seed'), the
+    source beneath names each system's own power model."""
+    out, _ = study
+    write_report(out)
+    assert len(saved) == 6 and unclear(saved) == {}
+    titles = [fig.get_suptitle() for fig in saved]
+    at = {system: f"d = {1e3 * curve_points(s)[0]:.1f} mm" for system, s in
+          (("ke-yoyo", read_study(out)["surfaces"]["ke-yoyo/configured"]),
+           ("kitegen", read_study(out)["surfaces"]["kitegen/configured"]))}
+    assert [t.splitlines()[0] for t in titles] == [
+        "ke-yoyo: annual energy production", f"ke-yoyo: power against wind speed, {at['ke-yoyo']}",
+        f"ke-yoyo: global efficiency against wind speed, {at['ke-yoyo']}",
+        "kitegen: annual energy production", f"kitegen: power against wind speed, {at['kitegen']}",
+        f"kitegen: global efficiency against wind speed, {at['kitegen']}"]
+    assert all("Fagiano et al. 2010" in t for t in titles[:2]) and not any("Fagiano" in t for t in titles[3:])
+    assert all("kitegen power model (Roselli 2016)" in t for t in titles[3:5])
+    assert all("Roselli 2016 eq. 5.1" in t for t in (titles[2], titles[5]))
+    assert not [fig for fig in saved if "seed" in words(fig) or "configured:" in words(fig)]
 
 
 def test_cli_study_prints_the_report_page(study, tmp_path, capsys):
@@ -173,3 +203,12 @@ def test_cli_study_prints_the_report_page(study, tmp_path, capsys):
     assert code == 0 and "(0 ran, " in text
     assert f"report page: {tmp_path / 'cli_report' / 'index.html'}" in text.splitlines()
     assert (tmp_path / "cli_report" / "index.html").is_file()
+
+
+def test_every_power_model_has_its_source_and_a_named_site_stays_in_the_title():
+    from fem_tether.config.sections import SYSTEM_MODELS
+    from fem_tether.report.study import POWER_MODEL_SOURCES, surface_name
+
+    assert set(POWER_MODEL_SOURCES) == set(SYSTEM_MODELS)
+    assert surface_name("kitegen", "configured") == "kitegen"
+    assert surface_name("kitegen", "debilt") == "kitegen at debilt"

@@ -111,8 +111,8 @@ def test_aep_text_prints_the_warnings_of_its_json_below_the_best_lengths():
     result = {"lengths": [{"length_m": 400.0, "aep_straight_MWh": 6642.0, "cf_straight": 0.344, "aep_fe_MWh": 7000.4,
                            "cf_fe": 0.36, "unchecked": False}],
               "best_length_straight_m": 400.0, "best_length_fe_m": 400.0, "excluded_m": [], "pending_m": [],
-              "warnings": [edge, short]}
-    assert aep_text(result).splitlines()[2:] == ["best length: straight 400 m, flexible 400 m",
+              "warnings": [edge, short], "system": "kitegen", "model": "kitegen"}
+    assert aep_text(result).splitlines()[3:] == ["best length: straight 400 m, flexible 400 m",
                                                  f"warning: {edge['message']}", f"warning: {short['message']}"]
 
 
