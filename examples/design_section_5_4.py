@@ -37,11 +37,11 @@ Run: ``python examples/design_section_5_4.py``.
 """
 
 import json
-import sys
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from fem_tether.cli import Parser
 from fem_tether.design import optimiser
 from fem_tether.design.model import Evaluation, trapezoid
 from fem_tether.design.optimiser import Problem, best, consistent, start_points
@@ -281,5 +281,8 @@ def table(result: dict) -> str:
 
 
 if __name__ == "__main__":
-    out = main(*sys.argv[1:2])
+    parser = Parser(description="Why our 3 MW design differs from Trevisi's §5.4, one part.")
+    parser.add_argument("part", nargs="?", default="both", choices=PARTS, metavar="PART",
+                        help=f"one of {', '.join(PARTS)} (default both)")
+    out = main(parser.parse_args().part)
     print(table(out) if "rows" in out else json.dumps(out, indent=1, default=float))

@@ -20,9 +20,9 @@ G_e, and writes the run as HDF5 and as a ParaView time series (open the
 Run: ``python examples/fe_run.py [OUT_DIR]``.
 """
 
-import sys
 from pathlib import Path
 
+from fem_tether.cli import Parser
 from fem_tether.config import load_config
 from fem_tether.tether.fe.solver import simulate
 from fem_tether.io.output import write_paraview, write_run_hdf5
@@ -41,7 +41,10 @@ def main(out_dir="out/fe_run") -> dict:
 
 
 if __name__ == "__main__":
-    s = main(*sys.argv[1:])
+    parser = Parser(description="One FE run of a 500 m line, written as HDF5 and a ParaView series.")
+    parser.add_argument("out_dir", nargs="?", default="out/fe_run", metavar="OUT_DIR",
+                        help="where to write run.h5 and paraview/ (default out/fe_run)")
+    s = main(parser.parse_args().out_dir)
     print(f"L = {s['length_m']:g} m: mean F_t {s['mean_drag_N']:.0f} N (straight line "
           f"{s['straight_drag_N']:.0f} N), ground tension {s['mean_ground_tension_N']:.0f} N, "
           f"kite-end tension {s['mean_kite_tension_N']:.0f} N, G_e {s['ge']:.2f}")

@@ -37,10 +37,10 @@ Run: ``python examples/short_line_drag.py``.
 """
 
 import json
-import sys
 
 import numpy as np
 
+from fem_tether.cli import Parser
 from fem_tether.physics import atmosphere, drag_coefficient
 from fem_tether.tether import fd
 from fem_tether.performance import straight
@@ -252,7 +252,8 @@ def main(part=None):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) > 1:
-        print(json.dumps(main(sys.argv[1]), indent=1, default=float))
-    else:
-        print(tables(main()))
+    parser = Parser(description="Why the flexible line below 1 km drags more than the straight rod.")
+    parser.add_argument("part", nargs="?", choices=PARTS, metavar="PART",
+                        help=f"one of {', '.join(PARTS)}, its JSON on stdout (default: every part's tables)")
+    part = parser.parse_args().part
+    print(json.dumps(main(part), indent=1, default=float) if part else tables(main()))

@@ -18,19 +18,19 @@ flexible AEP.
 
 This example sweeps 500, 1000 and 2000 m on coarse grids (10 FE elements at
 dt = 0.1 s, 20 FD segments at dt = 0.05 s, one averaged period), writes the
-result file ``sweep.h5`` (its parts in ``sweep.h5.parts``: a second run
-reuses them) and the plots of F_t, G_e, power curves and AEP against L into
+result file ``sweep.h5`` (a second run reuses its runs; ``sweep.h5.parts``
+holds them only while the sweep runs) and the plots of F_t, G_e, power curves and AEP against L into
 OUT_DIR, and prints F_t, G_e and AEP per length.  Under ``mpiexec`` every
 rank runs its share of the tasks and rank 0 prints.
 
 Run: ``python examples/sweep_aep.py [OUT_DIR]``.
 """
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
+from fem_tether.cli import Parser
 from fem_tether.performance.aep import sweep_aep
 from fem_tether.report.figures import write_plots
 from fem_tether.jobs.job import job_from_dict
@@ -72,7 +72,10 @@ def main(out_dir="out/sweep_aep") -> dict | None:
 
 
 if __name__ == "__main__":
-    r = main(*sys.argv[1:])
+    parser = Parser(description="A sweep over 500, 1000, 2000 m, its G_e, AEP and plots.")
+    parser.add_argument("out_dir", nargs="?", default="out/sweep_aep", metavar="OUT_DIR",
+                        help="where to write sweep.h5 and the plots (default out/sweep_aep)")
+    r = main(parser.parse_args().out_dir)
     if r is not None:
         print(r["text"])
         print("plots: " + ", ".join(str(path) for path in r["plots"].values()))

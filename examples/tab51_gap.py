@@ -30,11 +30,11 @@ Run: ``python examples/tab51_gap.py``.
 
 import json
 import math
-import sys
 import time
 
 import numpy as np
 
+from fem_tether.cli import Parser
 from fem_tether.tether import fd
 from fem_tether.performance import straight
 from fem_tether.config import load_config
@@ -183,4 +183,7 @@ def main(part="implied"):
 
 
 if __name__ == "__main__":
-    print(json.dumps(main(*sys.argv[1:2]), indent=1, default=float))
+    parser = Parser(description="Why our flexible G_e lies above Roselli's Tab. 5.1, one part (JSON on stdout).")
+    parser.add_argument("part", nargs="?", default="implied", choices=PARTS, metavar="PART",
+                        help=f"one of {', '.join(PARTS)} (default implied)")
+    print(json.dumps(main(parser.parse_args().part), indent=1, default=float))

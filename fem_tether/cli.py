@@ -32,8 +32,9 @@ DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of ai
 JSON_HELP = "print the result as JSON on stdout (no table, no progress)"
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse with the project's one-line errors (exit code 2)."""
+class Parser(argparse.ArgumentParser):
+    """argparse with the project's one-line errors (exit code 2); the example scripts
+    (examples/) parse their arguments with it too."""
 
     def error(self, message):
         self.exit(EXIT_USAGE, f"fem-tether: error: {self.prog.removeprefix('fem-tether ')}: {message}\n"
@@ -153,7 +154,7 @@ def cmd_power(args):
     from fem_tether.performance.configured import from_config
     from fem_tether.jobs import flexible
 
-    cfg = _config(args)
+    cfg = _config(args, args.length)
     flexible_cd = flexible.flexible_tether_cd(args.flexible, cfg) if args.flexible else None
     speeds = [args.wind_speed] if args.wind_speed is not None else comparison.curve_speeds(cfg)
     rows = comparison.compare(cfg, speeds, flexible_cd)
@@ -213,7 +214,7 @@ def cmd_sweep(args):
     from fem_tether.jobs.sweep import sweep
 
     job = load_job(args.job, args.system)
-    outcome = sweep(job, args.out, progress=not args.json)
+    outcome = sweep(job, args.out, progress=not args.json, keep_parts=args.keep_parts)
     if outcome is None:
         return 0
     safety_factor = job.config.tether.safety_factor
@@ -319,7 +320,7 @@ def cmd_run(args):
     from fem_tether.commands.pipeline import main_job
 
     result = main_job(args.job, args.out, args.allow_unchecked, args.allow_incomplete, args.system,
-                      progress=not args.json)
+                      args.keep_parts, progress=not args.json)
     if result is None:
         return 0
     print(report.json_text(result.summary) if args.json else report.main_job_text(result))
@@ -327,15 +328,18 @@ def cmd_run(args):
 
 
 def cmd_validate(args):
+    from fem_tether.core.columns import terminal_width
     from fem_tether.validation import table, validate
 
     progress = None if args.json else (lambda case: print(f"validate: {case.name}", file=sys.stderr, flush=True))
-    table.check_out(args.out)                  # before the first case
+    partial = bool(args.quick or args.only)
+    out = args.out or (table.PARTIAL_OUT if partial else table.FULL_OUT)
+    table.check_out(out, partial)              # before the first case
     result = validate(args.quick, args.only, progress=progress)
-    files = table.write(result, args.out)
+    files = table.write(result, out)
+    shown = table.markdown_table(result) if args.markdown else table.text_table(result, terminal_width())
     print(report.json_text(result.as_dict()) if args.json else
-          "\n".join([table.markdown_table(result), "", table.summary_line(result),
-                     *(f"wrote {path}" for path in files.values())]))
+          "\n".join([shown, "", table.summary_line(result), *(f"wrote {path}" for path in files.values())]))
     return 0 if result.ok else EXIT_FAILED
 
 
@@ -359,11 +363,11 @@ def cmd_mesh(args):
 
 # --- parser -------------------------------------------------------------------------
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="fem-tether", description=DESCRIPTION,
+    p = Parser(prog="fem-tether", description=DESCRIPTION,
                 epilog="Every command runs on the embedded default case without a file; "
                        "'fem-tether COMMAND --help' lists its options.")
     p.add_argument("--version", action="version", version=f"fem-tether {__version__}")
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=Parser)
 
     def command(name, func, help_text, config=True, system=True):
         c = sub.add_parser(name, help=help_text, description=help_text)
@@ -401,6 +405,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = command("power", cmd_power, "the system's operating points: power, tether force, reel-out, "
                 "optimised factors; straight against flexible tether")
+    c.add_argument("--length", type=_length_m,
+                   help="cable length [m] (default [tether] length_m); with --flexible, one of the file's")
     c.add_argument("--wind-speed", type=_wind_mps, metavar="V",
                    help="one wind speed at the kite [m/s] (default: the power curve)")
     c.add_argument("--flexible", metavar="FILE.h5",
@@ -430,6 +436,9 @@ def build_parser() -> argparse.ArgumentParser:
                 config=False)
     c.add_argument("job", help="sweep job (TOML), e.g. sweeps/default.toml")
     c.add_argument("--out", required=True, metavar="FILE.h5", help="result file")
+    c.add_argument("--keep-parts", action="store_true",
+                   help="keep FILE.h5.parts/ after the sweep (default: removed once the sweep is finished, "
+                        "its runs being in FILE.h5, from which a rerun takes what it reuses)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("study", cmd_study, "design study: AEP over tether length and diameter (systems, sites) from "
@@ -495,14 +504,20 @@ def build_parser() -> argparse.ArgumentParser:
                    help="compute the AEP even if lengths are pending (else exit 2 naming them)")
     c.add_argument("--json", action="store_true", help="print the summary (summary.json) on stdout (no table, "
                    "no progress)")
+    c.add_argument("--keep-parts", action="store_true",
+                   help="keep DIR/sweep.h5.parts/ after the sweep (default: removed once the sweep is finished, "
+                        "its runs being in DIR/sweep.h5, from which a rerun takes what it reuses)")
 
     c = command("validate", cmd_validate, "run the validation cases (analytic solutions, the source documents' "
                 "numbers, FE <-> FD) and print one table of verdicts", config=False, system=False)
     c.add_argument("--quick", action="store_true", help="only the quick set (under a minute)")
     c.add_argument("--only", metavar="PATTERN", help="only the cases whose name matches, e.g. 'roselli/*' or tab-5")
-    c.add_argument("--out", default="validation", metavar="DIR",
-                   help="write validation.md and validation.json here (validation)")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--out", metavar="DIR",
+                   help="write validation.md and validation.json here (default: validation; with --quick or "
+                        "--only: validation/partial, and never over a full run's)")
+    g = c.add_mutually_exclusive_group()
+    g.add_argument("--markdown", action="store_true", help="print the table as Markdown (as in validation.md)")
+    g.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False, system=False)
     c.add_argument("--repeats", type=_positive_int, default=5, help="rounds over every setting; the best per setting counts")
@@ -534,16 +549,23 @@ def _world():
 
 
 def main(argv=None) -> int:
-    """Run a command.  Under ``mpiexec -n N`` only ``sweep``, ``study`` and
-    ``run`` use the ranks, and a stop of any rank (Ctrl-C, an error) stops
-    them all (:mod:`fem_tether.core.stop`); any other command runs on rank 0 alone
-    and the other ranks wait for it.  Every rank exits with rank 0's code."""
+    """Run a command.  Without one, the usage and the list of commands on stderr and
+    exit code 2 (a command line that does nothing is a usage error).  Under
+    ``mpiexec -n N`` only the commands of :data:`_PARALLEL_COMMANDS` use the ranks,
+    and a stop of any rank (Ctrl-C, an error) stops them all
+    (:mod:`fem_tether.core.stop`); any other command runs on rank 0 alone and the
+    other ranks wait for it.  Every rank exits with rank 0's code."""
     world = _world()
     with contextlib.ExitStack() as quiet:
         if world is not None and world.Get_rank() != 0:     # usage errors and --help once
             quiet.enter_context(contextlib.redirect_stdout(io.StringIO()))
             quiet.enter_context(contextlib.redirect_stderr(io.StringIO()))
-        args = build_parser().parse_args(argv)
+        parser = build_parser()
+        if not (sys.argv[1:] if argv is None else argv):
+            parser.print_help(sys.stderr)
+            print("fem-tether: error: no COMMAND given", file=sys.stderr)
+            return EXIT_USAGE
+        args = parser.parse_args(argv)
     if world is None:
         return _report(*_run(args))
     if args.command in _PARALLEL_COMMANDS:   # the line once every rank has stopped (what is kept is final)

@@ -97,7 +97,7 @@ def test_bad_input_exits_2_with_one_line(capsys, argv, match):
 #: Every numeric option of every command, with the arguments its command needs besides it.
 NUMERIC_OPTIONS = [("straight", "--length"), ("straight", "--lengths"), ("straight --closed-form", "--rho"),
                    ("straight --closed-form", "--cd"), ("curves", "--ge"), ("curves", "--phi-deg"),
-                   ("power", "--wind-speed"), ("simulate", "--length"), ("size", "--length"),
+                   ("power", "--wind-speed"), ("power", "--length"), ("simulate", "--length"), ("size", "--length"),
                    ("crosscheck", "--length"), ("bench", "--repeats"), ("bench", "--memory"),
                    ("mesh {out}", "--elements"), ("mesh {out} --elements 10", "--grading")]
 
@@ -290,8 +290,25 @@ def test_power_at_one_wind_speed_and_the_curve(capsys, tmp_path):
 
 
 def test_power_with_a_flexible_file_that_lacks_the_length(capsys, unrun_sweep):
+    """Without --length the configured 1000 m, which the file lacks: one line listing its
+    lengths and naming --length; --length takes one of them (was: no such option)."""
     code, _, err = run_cli(capsys, "power", "--flexible", str(unrun_sweep))
-    assert code == 2 and "no length 1000 m in this sweep" in err and err.count("\n") == 1
+    assert code == 2 and err.count("\n") == 1
+    assert "no length 1000 m in this sweep (it has 400, 800 m; choose one with --length)" in err
+    code, _, err = run_cli(capsys, "power", "--flexible", str(unrun_sweep), "--length", "800")
+    assert code == 2 and err.endswith("the FE run at 800 m has no result (status failed)\n")
+    code, out, _ = run_cli(capsys, "power", "--length", "800", "--wind-speed", "10", "--json")
+    assert code == 0 and json.loads(out)["length_m"] == 800.0
+
+
+def test_bare_command_prints_the_commands_and_exits_2(capsys):
+    """(Was: one line "the following arguments are required: COMMAND", no list of commands.)"""
+    code, out, err = run_cli(capsys)
+    assert code == 2 and out == ""
+    assert err.startswith("usage: fem-tether [-h] [--version] COMMAND ...")
+    listed = re.findall(r"^    (\w+)", err, flags=re.M)
+    assert {"config", "run", "validate", "crosscheck", "mesh"} <= set(listed)
+    assert err.endswith("\nfem-tether: error: no COMMAND given\n")
 
 
 def test_unknown_system_is_a_one_line_error(capsys):

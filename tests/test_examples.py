@@ -243,3 +243,36 @@ def test_study_jobs_load(name):
 
     job = load_study(EXAMPLES / f"{name}.toml")
     assert len(job.points) >= 16 and job.wind_mps is not None
+
+
+#: The examples that take arguments on the command line, and a wrong command line of each.
+ARGUMENTS = {"tab51_gap": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'implied', "),
+             "short_line_drag": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'wind', "),
+             "design_section_5_4": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'both', "),
+             "fe_run": (["out", "extra"], "unrecognized arguments: extra"),
+             "sweep_aep": (["out", "extra"], "unrecognized arguments: extra")}
+
+
+def test_the_examples_taking_arguments_are_the_listed_ones():
+    """Every example that takes arguments parses them (none reads sys.argv itself) and is in
+    :data:`ARGUMENTS`."""
+    sources = {name: (EXAMPLES / f"{name}.py").read_text(encoding="utf-8") for name in NAMES}
+    assert {name for name, text in sources.items() if "parse_args" in text} == set(ARGUMENTS)
+    assert not any("sys.argv" in text for text in sources.values())
+
+
+@pytest.mark.parametrize("name", sorted(ARGUMENTS))
+def test_a_wrong_argument_is_one_line_and_exit_2(name, tmp_path):
+    """(Was: ``tab51_gap.py bogus`` a KeyError traceback, ``fe_run.py a b`` a TypeError one,
+    both exit 1.)  Nothing runs and nothing is written."""
+    import os
+    import subprocess
+    import sys
+
+    argv, message = ARGUMENTS[name]
+    env = os.environ | {"PYTHONPATH": str(EXAMPLES.parent)}
+    done = subprocess.run([sys.executable, str(EXAMPLES / f"{name}.py"), *argv], cwd=tmp_path, env=env,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2 and done.stdout == "" and done.stderr.count("\n") == 1, done.stderr
+    assert done.stderr.startswith(f"fem-tether: error: {name}.py: {message}")
+    assert list(tmp_path.iterdir()) == []

@@ -1,7 +1,11 @@
-"""README's code runs as written: its Python blocks execute verbatim from a
-copy of the repository's example files, and every ``fem-tether`` command line
-in its shell blocks is accepted by the command-line parser."""
+"""README's code runs as written and its claims hold: its Python blocks execute
+verbatim from a copy of the repository's example files, every ``fem-tether``
+command line in its shell blocks is accepted by the command-line parser, its
+command table shows every command and option the parser has (and no other),
+every option it names in its text exists, and the files it says a command
+writes are the ones the command writes."""
 
+import argparse
 import re
 import shlex
 import shutil
@@ -9,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from fem_tether.cli import build_parser
+from fem_tether.cli import build_parser, main
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
@@ -44,3 +48,95 @@ def test_readme_python_blocks_run_verbatim(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     for block in _blocks("python"):
         exec(compile(block, "README.md", "exec"), {})
+
+
+# --- every option README shows exists, every file it says a command writes is written ------------
+def _parser_options() -> dict[str, set[str]]:
+    """Each command's long options (without --help)."""
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return {name: {o for a in command._actions for o in a.option_strings if o.startswith("--")} - {"--help"}
+            for name, command in sub.choices.items()}
+
+
+def _table_rows() -> dict[str, set[str]]:
+    """The long options of each row of README's command table (``| `fem-tether CMD ...` |``)."""
+    return {m.group(1): set(re.findall(r"(?<![\w-])--[a-z][a-z-]*", m.group(2)))
+            for m in re.finditer(r"^\| `fem-tether (\w+)([^`]*)` \|", README, flags=re.M)}
+
+
+def test_the_command_table_shows_every_command_and_option_the_parser_has():
+    """README's table has a row per command, and each row every option of the command (but
+    --system, which one sentence gives for all) and no other.  (Was: `power` without
+    --length, `validate` without --markdown, `sweep`/`run` without --keep-parts.)"""
+    parser, rows = _parser_options(), _table_rows()
+    assert sorted(rows) == sorted(parser)
+    for name, shown in rows.items():
+        assert shown <= parser[name], f"{name}: README shows {sorted(shown - parser[name])}, the parser lacks them"
+        assert parser[name] - {"--system"} <= shown, f"{name}: README's table lacks {sorted(parser[name] - shown)}"
+
+
+def test_every_option_in_readmes_text_exists():
+    """Each inline `fem-tether CMD ... --option` (or `CMD --option`) names an option CMD has."""
+    parser = _parser_options()
+    for span in re.findall(r"`([^`\n]+)`", README):
+        words = span.split()
+        if "fem-tether" in words:
+            words = words[words.index("fem-tether") + 1:]
+        elif not (len(words) > 1 and words[1].startswith("--")):
+            continue
+        if words and words[0] in parser:
+            shown = set(re.findall(r"(?<![\w-])--[a-z][a-z-]*", " ".join(words[1:])))
+            assert shown <= parser[words[0]], f"`{span}`: {sorted(shown - parser[words[0]])} not options of {words[0]}"
+
+
+def test_readme_names_the_commands_that_use_the_mpi_ranks():
+    """Both of README's sentences on mpiexec name exactly the commands that share their work."""
+    from fem_tether.cli import _PARALLEL_COMMANDS
+
+    claims = re.findall(r"only ((?:`\w+`(?:, | and ))+`\w+`) use the\s+ranks", README)
+    assert len(claims) == 2
+    for claim in claims:
+        assert sorted(re.findall(r"`(\w+)`", claim)) == sorted(_PARALLEL_COMMANDS)
+
+
+def _bullets(opening: str) -> list[str]:
+    """The first code span of each item of the list that follows README's text ``opening``."""
+    lines = README.split(opening, 1)[1].splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("- "))
+    items = []
+    for line in lines[start:]:
+        if not line.strip():
+            break
+        if line.startswith("- "):
+            items.append(re.match(r"- `([^`]+)`", line).group(1))
+    return items
+
+
+def test_the_files_run_writes_are_those_readme_lists(tmp_path, capsys):
+    from conftest import TINY_JOB
+
+    job = tmp_path / "one.toml"
+    job.write_text(TINY_JOB.replace("[400, 800]", "[400]"))
+    out = tmp_path / "results"
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir()) == sorted(_bullets("`fem-tether run` prints the summary table"))
+
+
+def test_the_files_simulate_writes_are_those_readme_lists(tmp_path, capsys):
+    """A reel-out run (which adds the reel plot) of 400 m: the files README's list names, and one
+    `tether_NNNN.vtu` per snapshot (was: `tether_kite_track.vtu` documented nowhere)."""
+    cfg = tmp_path / "c.toml"
+    cfg.write_text('[fe]\nelements = 8\ndt_s = 0.2\n[time]\naverage_periods = 1\n'
+                   '[winch]\nreel_out = "constant"\nreel_out_speed_mps = 10.0\nreel_out_stop_m = 450.0\n')
+    out = tmp_path / "o"
+    assert main(["simulate", str(cfg), "--length", "400", "--out", str(out)]) == 0
+    claimed = [re.sub(r"<L0?>", "400", name.removeprefix("DIR/")) for name in _bullets("`simulate --out DIR` writes")]
+    written = {str(p.relative_to(out)) for p in out.rglob("*") if p.is_file()}
+    snapshots = {name for name in written if re.fullmatch(r"fe_L400/tether_\d{4}\.vtu", name)}
+    assert snapshots and sorted(written - snapshots) == sorted(claimed)
+
+
+def test_the_files_validate_writes_are_those_readme_names(tmp_path, capsys):
+    claimed = re.search(r"It\s+writes\s+`([^`]+)`\s+and\s+`([^`]+)`\s+into\s+`--out`", README).groups()
+    assert main(["validate", "--only", "trevisi/table-3.1", "--out", str(tmp_path)]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(claimed)

@@ -64,10 +64,11 @@ class MainJob:
 
 
 def main_job(job_file=None, out="results", allow_unchecked=False,
-             allow_incomplete=False, system=None, progress=True) -> MainJob | None:
+             allow_incomplete=False, system=None, keep_parts=False, progress=True) -> MainJob | None:
     """Run the job in ``job_file`` (over the preset of ``system``; default: the
     preset job of ``system``, else the embedded default job) into the
-    directory ``out``; ``None`` on the MPI ranks other than 0."""
+    directory ``out`` (the sweep's parts kept with ``keep_parts``); ``None`` on
+    the MPI ranks other than 0."""
     t0 = time.perf_counter()
     started = datetime.now(timezone.utc).isoformat(timespec="seconds")
     job = load_job(job_file, system)
@@ -79,7 +80,7 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
         # the plotting and scipy.stats while it waits for the other ranks' tasks
         follow_up = FollowUp(out, tuple(out / name for name in FILES), folder_lock, aep=True,
                              imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US)
-        outcome = sweep(job, h5, progress=progress, follow_up=follow_up)
+        outcome = sweep(job, h5, progress=progress, follow_up=follow_up, keep_parts=keep_parts)
         if outcome is None:
             return None
         return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0, started)

@@ -77,7 +77,7 @@ def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
         tags = [length_tag(v) for v in data["length_m"]]
         if length_tag(length_m) not in tags:
             raise ConfigError(f"--flexible {path}: no length {length_tag(length_m)} m in this sweep "
-                              f"(it has {', '.join(tags)} m; set [tether] length_m to one of them)")
+                              f"(it has {', '.join(tags)} m; choose one with --length)")
         i = tags.index(length_tag(length_m))
         drag_N = float(data[lumped_name("drag_fe_N", cfg.drag.tether_drag_lumping)][i])
         if not np.isfinite(drag_N):
@@ -90,6 +90,6 @@ def flexible_tether_cd(path: str | Path, cfg: Config) -> float:
         raise ConfigError(f"--flexible {path}: an FE run is needed (this is {run.solver!r})")
     if length_tag(run.length_m) != length_tag(length_m):
         raise ConfigError(f"--flexible {path}: its line is {length_tag(run.length_m)} m, the system's "
-                          f"{length_tag(length_m)} m (set [tether] length_m to match)")
+                          f"{length_tag(length_m)} m (give --length {length_tag(run.length_m)})")
     case = _same_case(path, run.config, cfg)
     return operating_tether_cd(case, lumped_drags_N(run, case)[cfg.drag.tether_drag_lumping])

@@ -11,7 +11,9 @@ assembles the result file once more (:mod:`fem_tether.jobs.sweepfile`).  The
 assignment decides only where a task runs, so every number is the same
 whatever the number of ranks.  Re-running the same job reuses the tasks
 whose inputs match and reports how many; Ctrl-C keeps the finished tasks and
-says how to resume.
+says how to resume.  A finished sweep removes its parts, which the result file
+then holds, unless told to keep them; a rerun takes the runs it reuses back
+from the result file (:func:`fem_tether.jobs.sweepfile.restore_parts`).
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from fem_tether.jobs.job import Job
 from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
 from fem_tether.jobs.store import PartsStore
 from fem_tether.jobs.sweep_tasks import SweepTasks
-from fem_tether.jobs.sweepfile import assemble, check_out
+from fem_tether.jobs.sweepfile import assemble, check_out, remove_parts, restore_parts
 from fem_tether.performance.aep import check_resource
 
 
@@ -85,23 +87,25 @@ class SweepInterrupted(KeyboardInterrupt):
 
 
 def sweep(job: Job, out: str | Path, comm=None, progress: bool = True,
-          follow_up: FollowUp | None = None) -> SweepOutcome | None:
+          follow_up: FollowUp | None = None, keep_parts: bool = False) -> SweepOutcome | None:
     """Run a job over the ranks of ``comm`` (MPI.COMM_WORLD by default).
 
     Returns the :class:`SweepOutcome` on rank 0 and ``None`` on the other
     ranks; raises :class:`SweepInterrupted` on Ctrl-C (the finished tasks are
     kept).  ``follow_up``: what rank 0 does after the sweep (:class:`FollowUp`);
     an :class:`InputError` its checks raise is raised on every rank, before any task.
+    Once finished, the parts are removed (the result file holds their runs) unless
+    ``keep_parts``.
     """
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
     with guard(comm), ExitStack() as output:
-        return _sweep(job, Path(out), comm, output, progress, follow_up)
+        return _sweep(job, Path(out), comm, output, progress, follow_up, keep_parts)
 
 
 def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
-           follow_up: FollowUp | None) -> SweepOutcome | None:
+           follow_up: FollowUp | None, keep_parts: bool) -> SweepOutcome | None:
     rank, size = comm.Get_rank(), comm.Get_size()
     store = PartsStore(job, out)
     problem: InputError | None = None
@@ -123,7 +127,10 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
             comm.gather(peak_rss_MiB(), root=0)
             return None
         results = assemble(store, size)
-        return SweepOutcome(results, len(job.tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))
+        outcome = SweepOutcome(results, len(job.tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))
+        if not keep_parts:
+            remove_parts(store)
+        return outcome
     except KeyboardInterrupt:
         bar.close()
         raise SweepInterrupted(store) from None
@@ -132,8 +139,9 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
 def _prepare_output(store: PartsStore, n_ranks: int, output: ExitStack, follow_up: FollowUp | None) -> None:
     """On rank 0, before any task: the result file and its parts can be written and
     are locked (until the end); a killed sweep's temporaries are removed; the
-    checks and the lock of what follows (:class:`FollowUp`); the result file is
-    current from the start (each task then updates its length)."""
+    checks and the lock of what follows (:class:`FollowUp`); the runs the result
+    file holds for the job are parts again; the result file is current from the
+    start (each task then updates its length)."""
     check_out(store.out)
     output.enter_context(exclusive(store.out))   # one writer of out and its parts, until the end
     remove_temporaries(store.directory)
@@ -144,4 +152,5 @@ def _prepare_output(store: PartsStore, n_ranks: int, output: ExitStack, follow_u
             check_writable(path)
         follow_up.holder.enter_context(exclusive(follow_up.folder, directory=True,
                                                  outputs=list(follow_up.files)))
+    restore_parts(store)
     assemble(store, n_ranks)

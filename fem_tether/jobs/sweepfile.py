@@ -12,6 +12,13 @@ after every finished task and an interrupted sweep leaves a readable file; a
 length whose tasks have not all run is ``pending``.  An existing ``<out>``
 that is not a sweep result is never overwritten.
 
+The result file holds every run of its parts (and the sizing of each sized
+line), each with the key of its inputs, so once a sweep has finished its parts
+are redundant: the sweep removes them (:func:`remove_parts`) unless told to keep
+them.  A rerun takes the runs it can reuse back from the result file into parts
+(:func:`restore_parts`) before it starts, so reuse and resuming need the parts
+only while a sweep runs.
+
 Result file (h5py), root datasets, one entry per length (NaN where not run),
 units and meanings in :mod:`fem_tether.core.quantities` (``where = "sweep"``) and in
 each dataset's ``units`` and ``description`` attributes::
@@ -24,7 +31,7 @@ each dataset's ``units`` and ``description`` attributes::
 root attributes ``config_toml`` (the job's configuration), ``job_toml``,
 ``fem_tether_version``, ``n_ranks``, ``created_utc``; one group ``L<length>``
 per length with its configuration (its sized line, with ``[tether] sizing =
-"load"``) and status as attributes and subgroups
+"load"``, and then its sizing record ``sizing_json``) and status as attributes and subgroups
 ``fe`` and ``fd`` holding the whole run as :mod:`fem_tether.io.output` writes it
 (series, means, snapshots).
 """
@@ -46,7 +53,7 @@ from fem_tether import __version__
 from fem_tether.config import Config
 from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check_writable, write_json
 from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
-from fem_tether.jobs.job import length_tag
+from fem_tether.jobs.job import Task, length_tag
 from fem_tether.core.quantities import attributes, names
 from fem_tether.io.reading import Reader
 from fem_tether.io.results import Record, Table, stored_column
@@ -210,6 +217,8 @@ def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict)
     group.attrs.update(length_m=r.length_m, status=r.status, error=r.error,
                        config_toml=store.stored_config(r.length_m).to_toml(),
                        description=GROUP_DESCRIPTIONS["length"])
+    if store.stored_sizing(r.length_m) is not None:
+        group.attrs["sizing_json"] = store.sizing_path(r.length_m).read_text()
     for solver, path in parts.items():
         with h5py.File(path, "r") as src:      # a failed task's part: attributes only
             sub = group.create_group(solver)
@@ -217,6 +226,41 @@ def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict)
             sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
             for name in src:
                 src.copy(src[name], sub, name)
+
+
+def restore_parts(store: PartsStore) -> int:
+    """Before a sweep (under its lock): the runs of the job that the result file holds
+    with the job's inputs key and that have no part of that key, written back as parts
+    (each part as the task wrote it, atomically), and the sizing records of its sized
+    lines likewise; return how many runs.  Nothing if there is no result file."""
+    if not is_sweep_result(store.out):
+        return 0
+    restored = 0
+    with h5py.File(store.out, "r") as f:
+        for length_m in store.job.lengths_m:
+            group, key = f.get(_group_name(length_m)), store.inputs_key(length_m)
+            if group is None:
+                continue
+            sizing = json.loads(group.attrs.get("sizing_json", "{}"))
+            if sizing.get("inputs_key") == key and store.stored_sizing(length_m) is None:
+                write_json(store.sizing_path(length_m), sizing, allow_nan=True)
+            for solver in store.job.solvers:
+                task, run = Task(length_m, solver), group.get(solver)
+                if run is None or run.attrs.get("inputs_key") != key or run.attrs.get("status") != "ok" \
+                        or store.status(task, key) is not None:
+                    continue
+                with atomic_path(store.path(task)) as tmp, h5py.File(tmp, "w") as part:
+                    part.attrs.update({name: value for name, value in run.attrs.items() if name != "description"})
+                    for name in run:
+                        run.copy(run[name], part, name)
+                restored += 1
+    return restored
+
+
+def remove_parts(store: PartsStore) -> None:
+    """After a finished sweep (under its lock): its parts directory, whose runs the
+    result file holds (:func:`restore_parts` takes them back for a rerun)."""
+    shutil.rmtree(store.directory, ignore_errors=True)
 
 
 def is_sweep_result(path: Path) -> bool:

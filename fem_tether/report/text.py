@@ -16,6 +16,7 @@ import numpy as np
 
 from fem_tether.config import Config
 from fem_tether.tether.crosscheck import QUANTITIES, CrossCheck, limits_of
+from fem_tether.core.columns import Columns
 from fem_tether.performance.caveats import as_json
 from fem_tether.performance.comparison import fly_gen_only
 from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, margin_caveat, sized_case
@@ -315,15 +316,16 @@ def _reel_lines(s: dict) -> list[str]:
 
 
 def crosscheck_text(check: CrossCheck, fe_run) -> str:
-    """``fem-tether crosscheck``: each quantity of both solvers, its difference and tolerance."""
+    """``fem-tether crosscheck``: each quantity of both solvers, its difference and tolerance,
+    every header over its column."""
     limits = limits_of(check.tolerances)
-    lines = [f"FE <-> FD cross-check, L = {check.length_m:g} m",
-             "  quantity              FE             FD        difference  tolerance"]
-    for name, key in QUANTITIES:
-        lines.append(f"  mean {name:15s} {check.fe[key]:12.1f} N {check.fd[key]:12.1f} N  "
-                     f"{100 * check.rel_diff[name]:8.3f} %  {100 * limits[name]:6.2f} %")
-    lines.append(f"  shape (max |r_FE - r_FD| / L)               {100 * check.rel_diff['shape']:8.3f} %  "
-                 f"{100 * limits['shape']:6.2f} %")
+    rows = [[f"mean {name.replace('_', ' ')}", f"{check.fe[key]:.1f}", f"{check.fd[key]:.1f}",
+             f"{100 * check.rel_diff[name]:.3f} %", f"{100 * limits[name]:.2f} %"] for name, key in QUANTITIES]
+    rows.append(["shape, max |r_FE - r_FD| / L", "", "", f"{100 * check.rel_diff['shape']:.3f} %",
+                 f"{100 * limits['shape']:.2f} %"])
+    table = Columns(["quantity", "FE [N]", "FD [N]", "difference", "tolerance"], rows,
+                    right=(False, True, True, True, True)).table(rows)
+    lines = [f"FE <-> FD cross-check, L = {check.length_m:g} m", *table]
     if np.ptp(fe_run.series["length_m"]) > 0:
         lines.append("  (reel-out: largest differences of the one-period means along the run's lengths)")
     lines.append("  cross-check " + ("PASSED" if check.ok else "FAILED"))
@@ -408,8 +410,9 @@ def bench_memory_text(result: dict) -> str:
 
 
 def reused(outcome) -> str:
-    """How many of a sweep's tasks were reused from stored parts and how many ran."""
-    return (f"{outcome.reused} of {outcome.tasks} tasks reused from the stored parts, "
+    """How many of a sweep's tasks were reused from an earlier run (its parts or its result
+    file) and how many ran."""
+    return (f"{outcome.reused} of {outcome.tasks} tasks reused from an earlier run, "
             f"{outcome.tasks - outcome.reused} run")
 
 

@@ -22,7 +22,7 @@ from fem_tether.core.atomic import OutputError
 from fem_tether.cli import main
 from fem_tether.core.errors import SolverDivergedError
 from fem_tether.jobs.evaluate import ROOT_DATASETS
-from fem_tether.jobs.job import Job, load_job
+from fem_tether.jobs.job import Job, Task, load_job
 from fem_tether.jobs.store import PartsStore, parts_dir
 from fem_tether.jobs.sweepfile import assemble, read_sweep
 
@@ -73,8 +73,11 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
     # nothing to do: every stored part matches the job, and the outcome says so
     assert sw.sweep(tiny_job, out, comm=_self_comm(), progress=False).reused == 4
     assert calls == []
-    # lose one part: only that task runs again, and its failure is recorded
-    (parts_dir(out) / "L800_fe.h5").unlink()
+    # lose one task's run (its part is gone, and so is its group in the result file): only
+    # that task runs again, and its failure is recorded
+    assert not parts_dir(out).exists()
+    with h5py.File(out, "r+") as f:
+        del f["L800/fe"]
     outcome = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
     assert calls == [800.0] and outcome.reused == 3
     assert [r.status for r in outcome.lengths] == ["ok", "failed"]
@@ -85,12 +88,36 @@ def test_rerun_resumes_and_failures_are_recorded(tiny_job, tmp_path, monkeypatch
 
 def test_changed_config_is_recomputed(tiny_job, tmp_path):
     out = tmp_path / "r.h5"
-    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False, keep_parts=True)
     before = (parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns
     changed = Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
                      tiny_job.config.replace(drag={"model": "constant"}), tiny_job.toml)
-    sw.sweep(changed, out, comm=_self_comm(), progress=False)
+    assert sw.sweep(changed, out, comm=_self_comm(), progress=False, keep_parts=True).reused == 0
     assert (parts_dir(out) / "L400_fe.h5").stat().st_mtime_ns != before
+
+
+def test_a_finished_sweep_removes_its_parts_and_a_rerun_reuses_the_result_file(tiny_job, tmp_path, monkeypatch):
+    """The parts held the runs a second time (results/: 15.0 MB sweep.h5 beside 15.1 MB
+    sweep.h5.parts).  Finished, the sweep removes them; a rerun takes its runs back from the
+    result file and solves nothing; --keep-parts keeps them, each as the task wrote it."""
+    out = tmp_path / "r.h5"
+    first = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    assert first.reused == 0 and not parts_dir(out).exists()
+    before = read_sweep(out)
+    monkeypatch.setattr(sweep_tasks, "run_task", lambda *a: pytest.fail("a task ran"))
+    rerun = sw.sweep(tiny_job, out, comm=_self_comm(), progress=False, keep_parts=True)
+    assert rerun.reused == 4 and sorted(p.name for p in parts_dir(out).glob("L*.h5")) == [
+        "L400_fd.h5", "L400_fe.h5", "L800_fd.h5", "L800_fe.h5"]
+    after = read_sweep(out)
+    for name in ROOT_DATASETS:
+        assert np.array_equal(before[name], after[name], equal_nan=True), name
+    store = PartsStore(tiny_job, out)
+    with h5py.File(out) as f, h5py.File(store.path(Task(800.0, "fd"))) as part:
+        group = f["L800/fd"]
+        assert {k: v for k, v in group.attrs.items() if k != "description"} == dict(part.attrs)
+        assert np.array_equal(group["series/drag_N"][()], part["series/drag_N"][()])
+    run = store.read(Task(800.0, "fd"))
+    assert run.mean("drag_N") == pytest.approx(before["drag_fd_N"][1], rel=1e-15)
 
 
 def test_cli_sweep_exit_code_and_json(tmp_path, capsys):
@@ -143,7 +170,7 @@ def test_result_file_is_current_after_every_finished_task(tiny_job, tmp_path, mo
 
 def test_aep_of_an_incomplete_sweep_needs_allow_incomplete(tiny_job, tmp_path, capsys):
     out = tmp_path / "r.h5"
-    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False, keep_parts=True)
     (parts_dir(out) / "L800_fd.h5").unlink()
     assemble(PartsStore(tiny_job, out), 1)          # as a sweep killed before that task leaves it
     data = read_sweep(out)
@@ -243,12 +270,14 @@ def test_cli_reports_reused_tasks(tmp_path, capsys):
     job.write_text(TINY.replace("[400, 800]", "[400]"))
     out = tmp_path / "r"
     assert main(["run", str(job), "--out", str(out)]) == 0
-    assert "(0 of 2 tasks reused from the stored parts, 2 run)" in capsys.readouterr().out
-    assert main(["run", str(job), "--out", str(out)]) == 0
-    assert "(2 of 2 tasks reused from the stored parts, 0 run)" in capsys.readouterr().out
+    assert "(0 of 2 tasks reused from an earlier run, 2 run)" in capsys.readouterr().out
+    assert not parts_dir(out / "sweep.h5").exists()                  # the runs are in sweep.h5
+    assert main(["run", str(job), "--out", str(out), "--keep-parts"]) == 0
+    assert "(2 of 2 tasks reused from an earlier run, 0 run)" in capsys.readouterr().out
+    assert sorted(p.name for p in parts_dir(out / "sweep.h5").glob("*.h5")) == ["L400_fd.h5", "L400_fe.h5"]
     assert main(["sweep", str(job), "--out", str(out / "sweep.h5"), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert (data["tasks"], data["reused_tasks"]) == (2, 2)
+    assert (data["tasks"], data["reused_tasks"]) == (2, 2) and not parts_dir(out / "sweep.h5").exists()
 
 
 @pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
@@ -387,6 +416,6 @@ def test_a_killed_sweeps_temporaries_are_removed_by_the_next(tiny_job, tmp_path)
     stale = [parts / ".L400_fe.h5.tmp-4242-abcdef.h5", tmp_path / ".s.h5.tmp-4242-abcdef.h5"]
     for path in stale:
         path.write_text("half a file")
-    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False)
+    sw.sweep(tiny_job, out, comm=_self_comm(), progress=False, keep_parts=True)
     assert not any(path.exists() for path in stale)
     assert not any(p.name.startswith(".") and ".tmp-" in p.name for p in [*tmp_path.iterdir(), *parts.iterdir()])

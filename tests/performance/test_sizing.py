@@ -19,7 +19,7 @@ from fem_tether.config import ConfigError, load_config
 from fem_tether.jobs.evaluate import run_task
 from fem_tether.jobs.job import load_job
 from fem_tether.physics.material import MATERIALS, breaking_load_N
-from fem_tether.jobs.store import PartsStore
+from fem_tether.jobs.store import PartsStore, parts_dir
 from fem_tether.jobs.sweep import sweep
 from fem_tether.jobs.sweepfile import assemble, read_sweep
 
@@ -228,9 +228,11 @@ def _sweep_by_hand(job, out, order):
     return read_sweep(out)
 
 
-def test_a_sized_sweep_records_d_per_length_whatever_runs_first(sized_job, tmp_path):
+def test_a_sized_sweep_records_d_per_length_whatever_runs_first(sized_job, tmp_path, monkeypatch):
     """The tiny job sized: d, peak and margin per length, the FE and FD runs on the sized
-    line; the same numbers bitwise whether a length's FE or FD task sizes it."""
+    line; the same numbers bitwise whether a length's FE or FD task sizes it.  The finished
+    sweep removes its parts: a rerun takes the runs and the sizings back from the result
+    file, sizing and solving nothing, to the same numbers."""
     from mpi4py import MPI
 
     outcome = sweep(sized_job, tmp_path / "a.h5", comm=MPI.COMM_SELF, progress=False)
@@ -252,6 +254,14 @@ def test_a_sized_sweep_records_d_per_length_whatever_runs_first(sized_job, tmp_p
     assert energy.fixed is not None and list(energy.fixed.length_m) == list(sized_job.lengths_m)
     assert [c.tether.diameter_m for c in data["case_configs"]] == list(data["d_m"])
     assert "aep_fixed_MWh" in energy.as_dict()["lengths"][0]
+    assert not parts_dir(tmp_path / "a.h5").exists()
+    with monkeypatch.context() as m:
+        m.setattr("fem_tether.jobs.store.size_tether", lambda *a: pytest.fail("a line was sized again"))
+        m.setattr("fem_tether.jobs.sweep_tasks.run_task", lambda *a: pytest.fail("a task ran again"))
+        assert sweep(sized_job, tmp_path / "a.h5", comm=MPI.COMM_SELF, progress=False).reused == 4
+    again = read_sweep(tmp_path / "a.h5")
+    for name in ("d_m", "peak_tension_N", "margin", "drag_fe_N", "drag_fd_N", "drag_fixed_N", "ge_fixed"):
+        assert np.array_equal(data[name], again[name]), name
     reversed_order = _sweep_by_hand(sized_job, tmp_path / "b.h5", [3, 2, 1, 0])    # FD first
     for name in ("d_m", "peak_tension_N", "margin", "drag_fe_N", "drag_fd_N", "ge_fixed"):
         assert np.array_equal(data[name], reversed_order[name]), name

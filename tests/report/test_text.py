@@ -1,6 +1,7 @@
 """What the commands print (fem_tether.report.text), from given results: no solver runs."""
 
 import json
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -43,13 +44,32 @@ def test_crosscheck_text_lists_each_quantity_with_its_tolerance():
     text = crosscheck_text(_check(1010.0), _fe_run([800.0, 800.0]))
     lines = text.splitlines()
     assert lines[0] == "FE <-> FD cross-check, L = 800 m"
-    assert lines[2] == "  mean drag                  1000.0 N       1010.0 N     1.000 %    2.00 %"
-    assert lines[4].startswith("  mean kite_tension") and lines[4].endswith("0.000 %    1.00 %")
-    assert lines[5] == "  shape (max |r_FE - r_FD| / L)                  0.100 %    0.50 %"
+    assert lines[2] == "  mean drag                       1000.0    1010.0     1.000 %     2.00 %"
+    assert lines[4].startswith("  mean kite tension") and lines[4].endswith("0.000 %     1.00 %")
+    assert lines[5] == "  shape, max |r_FE - r_FD| / L                         0.100 %     0.50 %"
     assert lines[-1] == "  cross-check PASSED" and "reel-out" not in text
     failed = crosscheck_text(_check(1100.0), _fe_run([800.0, 900.0]))
     assert "(reel-out: largest differences of the one-period means" in failed
     assert failed.endswith("cross-check FAILED")
+
+
+def _cells(line):
+    """(start, end) of each cell of a table line: text runs separated by two spaces or more."""
+    return [m.span() for m in re.finditer(r"\S+(?: \S+)*", line)]
+
+
+def test_crosscheck_headers_stand_over_their_columns():
+    """Each number ends where its column's header ends, the quantities start under
+    "quantity".  (Was: "FE" and "FD" 11 characters left of their numbers' right edge,
+    "difference" 2 left of its.)"""
+    lines = crosscheck_text(_check(1010.0), _fe_run([800.0, 800.0])).splitlines()
+    header = _cells(lines[1])
+    assert [lines[1][a:b] for a, b in header] == ["quantity", "FE [N]", "FD [N]", "difference", "tolerance"]
+    for line in lines[2:5]:
+        cells = _cells(line)
+        assert cells[0][0] == header[0][0] and [b for _, b in cells[1:]] == [b for _, b in header[1:]], line
+    shape = _cells(lines[5])
+    assert shape[0][0] == header[0][0] and [b for _, b in shape[1:]] == [b for _, b in header[3:]]
 
 
 def _outcome():
@@ -63,9 +83,9 @@ def _outcome():
 
 def test_sweep_text_and_summary():
     outcome = _outcome()
-    assert reused(outcome) == "1 of 4 tasks reused from the stored parts, 3 run"
+    assert reused(outcome) == "1 of 4 tasks reused from an earlier run, 3 run"
     assert sweep_text(outcome, "r.h5", 1.2).splitlines() == [
-        "sweep of 2 lengths -> r.h5 (1 of 4 tasks reused from the stored parts, 3 run)",
+        "sweep of 2 lengths -> r.h5 (1 of 4 tasks reused from an earlier run, 3 run)",
         "  L =    400 m: F_t FE    4000.0 N, FD    4010.0 N, straight    5100.0 N, cross-check ok, "
         "d 11.000 mm, margin 1.250",
         "  L =    800 m: F_t FE       nan N, FD    4010.0 N, straight    5100.0 N, cross-check "

@@ -3,6 +3,7 @@
 
 import json
 import math
+import re
 
 import pytest
 
@@ -117,7 +118,7 @@ def test_cli_exit_codes(capsys, tmp_path, monkeypatch):
     failing = Case("t/failing", "analytic", True, lambda quick: (Check("x", 1.0, 2.0, 0.1),))
     monkeypatch.setattr("fem_tether.validation.run.CASES", (failing,))
     assert main(["validate", "--quick", "--out", str(out)]) == 1
-    assert "| t/failing |" in capsys.readouterr().out
+    assert re.search(r"^t/failing: analytic$\n^  x +1 +2 +\+100 % +10 % +fail$", capsys.readouterr().out, re.M)
 
 
 def test_an_output_that_cannot_be_written_fails_before_the_first_case(tmp_path, capsys, monkeypatch):
@@ -133,3 +134,53 @@ def test_an_output_that_cannot_be_written_fails_before_the_first_case(tmp_path, 
     (tmp_path / "v" / "validation.md").write_text("# my notes\n")
     assert main(["validate", "--out", str(tmp_path / "v")]) == 2
     assert "validation.md: it exists and fem-tether did not write it" in capsys.readouterr().err
+
+
+def test_the_terminal_table_fits_the_terminal(capsys, tmp_path, monkeypatch):
+    """On an 80-column terminal every line of the table fits (was: Markdown rows of up to 515
+    characters), each header over its column; the reason of a row that did not pass is indented
+    below it, its docs links whole; on 60 columns a quantity is stacked above its numbers;
+    --markdown prints the Markdown table of validation.md."""
+    def table(columns, *options):
+        monkeypatch.setenv("COLUMNS", str(columns))
+        assert main(["validate", "--only", "roselli/tab-5.1-flexible", "--out", str(tmp_path), *options]) == 0
+        return capsys.readouterr().out.split("\n\n")[0].splitlines()
+
+    lines = table(80)
+    assert max(map(len, lines)) <= 80 and not any(line.startswith("|") for line in lines)
+    assert lines[:2] == ["  quantity              target  computed  difference  tolerance  verdict",
+                         "roselli/tab-5.1-flexible: Roselli 2016 Tab. 5.1 (flexible ropes), eq. 5.1"]
+    at_3000 = next(i for i, line in enumerate(lines) if line.startswith("  G_e flexible, 3000 m"))
+    assert re.fullmatch(r"  G_e flexible, 3000 m    7\.43   8\.\d{5}     \+10\.\d %        2 %  explained",
+                        lines[at_3000])
+    assert lines[at_3000 + 1].startswith("      docs: +10.")
+    assert "docs/tab51-gap.md#decomposition" in lines[at_3000 + 3]
+    stacked = table(60)
+    assert stacked[:2] == ["  quantity", "      target  computed  difference  tolerance  verdict"]
+    at_3000 = stacked.index("  G_e flexible, 3000 m")
+    assert re.fullmatch(r"        7\.43   8\.\d{5}     \+10\.\d %        2 %  explained", stacked[at_3000 + 1])
+    assert table(80, "--markdown")[0].startswith("| case | source | quantity | target |")
+
+
+def test_a_partial_run_never_replaces_a_full_run(capsys, tmp_path, monkeypatch):
+    """(Was: ``validate --only`` wrote over validation/ of a full run.)  By default a run with
+    --only or --quick writes into validation/partial; given a folder holding a full run's files,
+    it is refused before the first case, one line naming the folder and --out."""
+    import fem_tether.validation as validation
+
+    monkeypatch.chdir(tmp_path)
+    one = Case("t/one", "analytic", True, lambda quick: (Check("x", 1.0, 1.0, 0.1),))
+    monkeypatch.setattr("fem_tether.validation.run.CASES", (one,))
+    assert main(["validate"]) == 0                                   # the full run
+    full = (tmp_path / "validation" / "validation.json").read_text()
+    assert main(["validate", "--only", "t/*"]) == 0
+    assert "wrote validation/partial/validation.json" in capsys.readouterr().out
+    assert (tmp_path / "validation" / "validation.json").read_text() == full
+    monkeypatch.setattr(validation, "validate", lambda *a, **k: pytest.fail("a case ran"))
+    for option in (["--only", "t/*"], ["--quick"]):
+        assert main(["validate", *option, "--out", "validation"]) == 2
+        err = capsys.readouterr().err
+        assert err == ("fem-tether: error: --out validation: it holds the full run's verdicts (1 checks), which "
+                       "a --quick or --only run does not replace; choose another --out (their default: "
+                       "validation/partial)\n")
+    assert (tmp_path / "validation" / "validation.json").read_text() == full
