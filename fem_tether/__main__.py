@@ -16,6 +16,7 @@ complain), and HDF5 after a failed write (a full disk) can crash its own.
 import os
 import sys
 
+from fem_tether.core.progress import status
 from fem_tether.core.stop import defer_interrupts
 from fem_tether.core.threads import one_thread_per_process
 
@@ -23,8 +24,6 @@ from fem_tether.core.threads import one_thread_per_process
 def main() -> int:
     one_thread_per_process()
     defer_interrupts()
-    from fem_tether.core.progress import status     # NumPy's, after the thread count is set
-
     with status("fem-tether: loading the libraries ..."):
         from fem_tether.cli import main as command_line
 

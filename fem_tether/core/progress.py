@@ -9,7 +9,7 @@ How a loop shows its progress (:func:`mode`):
 * ``lines``: one plain line every ``LINE_EVERY_S`` seconds, when stderr is a
   file or a pipe (a batch job, a log), so a long loop is never silent and a
   short one writes nothing; a job's phase also says at once what it starts
-  (:meth:`Progress.start`);
+  on (:meth:`Progress.start`), and a loop that wrote a line says when it ended;
 * ``none``: nothing; the other ranks of an MPI job always.
 
 ``FEM_TETHER_PROGRESS=bar|lines|none`` in the environment chooses instead.
@@ -32,8 +32,6 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-
-from fem_tether.core.errors import InputError
 
 REDRAW_S = 0.1
 LINE_EVERY_S = 5.0
@@ -91,6 +89,8 @@ def mode(stream=None) -> str:
     ``lines`` or ``none`` (module docstring); ``FEM_TETHER_PROGRESS`` chooses if set."""
     chosen = os.environ.get(PROGRESS_VARIABLE, "").strip()
     if chosen and chosen not in MODES:
+        from fem_tether.core.errors import InputError     # NumPy's: not before the command (fem_tether.__main__)
+
         raise InputError(f"{PROGRESS_VARIABLE} = {chosen!r} is not one of {', '.join(MODES)}")
     if launch_rank() != 0:
         return "none"
@@ -111,7 +111,7 @@ def status(text: str, stream=None) -> Iterator[None]:
     stream = stream or sys.stderr
     try:
         shown = mode(stream) == "bar"
-    except InputError:
+    except ValueError:               # an InputError
         shown = False
     if shown:
         stream.write(text)

@@ -103,7 +103,7 @@ def cached(module: str) -> bool:
     (its stamp, a hash of its content).  Reads index files only, until a fresh
     one: the module is not imported (that would compile it).  With numba's
     compiler off (``NUMBA_DISABLE_JIT``) nothing compiles: True."""
-    if numba.config.DISABLE_JIT:
+    if getattr(numba.config, "DISABLE_JIT", False):      # numba sets its settings at import
         return True
     spec = importlib.util.find_spec(module)
     source = spec.origin if spec else None

@@ -8,8 +8,8 @@ solver's run compiles, says so on stderr and shows the compiles as they go
 ("compiling the solver kernels (first run after install, about N s)", with
 the count and an ETA; rank 0 of an MPI job only).  With the kernels it then
 runs each solver once on a tiny case, so that the first real run compiles
-nothing more (the leaf models, the NumPy callers' loops) and its own
-progress and ETA are its own.  A loaded cache says nothing.
+nothing more (the leaf models, the NumPy callers' loops) and its progress
+and ETA measure the run alone.  A loaded cache says nothing.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import importlib
 from collections.abc import Callable, Iterable
 from types import ModuleType
 
+from fem_tether.core.stop import checkpoint
 from fem_tether.physics.compiled import cached, compiling
 
 #: The module of each solver's kernels.
@@ -86,6 +87,7 @@ def _import(solvers: list[str], warm_up: bool = False) -> None:
     for solver in solvers:
         importlib.import_module(KERNELS[solver])
         _loaded.add(solver)              # the warm-up's own line finds it loaded
+        checkpoint()                     # a Ctrl-C held back during the import stops here
         if warm_up:
             importlib.import_module(f"fem_tether.tether.{solver}.solver").simulate(load_config(None, WARM_UP))
 
