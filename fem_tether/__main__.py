@@ -5,7 +5,9 @@ Ctrl-C while the libraries load is held back until the command starts
 and prints one line, exit 130, like any other interrupt.  Every process runs
 one linear-algebra thread unless the user set the count, before NumPy loads
 (:func:`fem_tether.core.threads.one_thread_per_process`: no oversubscribed
-cores under ``mpiexec``, and the same rounding for any number of ranks).  A command that
+cores under ``mpiexec``, and the same rounding for any number of ranks).  On a
+terminal a line says that the libraries load (a second or more), erased once
+they have (:func:`fem_tether.core.progress.status`).  A command that
 failed or was stopped leaves at once, without the libraries' exit handlers:
 a stopped MPI rank's pending requests can never complete (MPI_Finalize would
 complain), and HDF5 after a failed write (a full disk) can crash its own.
@@ -14,6 +16,7 @@ complain), and HDF5 after a failed write (a full disk) can crash its own.
 import os
 import sys
 
+from fem_tether.core.progress import status
 from fem_tether.core.stop import defer_interrupts
 from fem_tether.core.threads import one_thread_per_process
 
@@ -21,7 +24,8 @@ from fem_tether.core.threads import one_thread_per_process
 def main() -> int:
     one_thread_per_process()
     defer_interrupts()
-    from fem_tether.cli import main as command_line
+    with status("fem-tether: loading the libraries ..."):
+        from fem_tether.cli import main as command_line
 
     code = command_line()
     if code != 0:

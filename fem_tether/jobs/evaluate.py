@@ -10,7 +10,6 @@ and G_e of the configured one, the sizing loop's first run).
 
 from __future__ import annotations
 
-import importlib
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,6 +20,7 @@ from fem_tether.performance import straight
 from fem_tether.tether.crosscheck import checkable, compare
 from fem_tether.core.errors import SolverDivergedError
 from fem_tether.tether.fe import solver as fe_solver
+from fem_tether.tether.kernels import load as load_kernels     # the compile, announced on a first run
 from fem_tether.jobs.job import Task
 from fem_tether.core.quantities import lumped_name, names
 from fem_tether.performance.sizing import margin, peak_tension_N
@@ -33,18 +33,6 @@ def simulator(solver: str):
     """The ``simulate`` of the solver ``"fe"`` or ``"fd"``, looked up at each call
     (so that a replaced solver function is the one that runs)."""
     return fe_solver.simulate if solver == "fe" else fd.simulate
-
-
-#: The compiled kernels of each solver (numba compiles them on the first import
-#: after an install and caches them; a later import loads them).
-KERNEL_MODULES = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.fd.kernel"}
-
-
-def load_kernels(solvers) -> None:
-    """Import the compiled kernels of ``solvers`` (their equations are only the
-    kernels): compiled now, or loaded from numba's cache."""
-    for solver in solvers:
-        importlib.import_module(KERNEL_MODULES[solver])
 
 
 def run_crosscheck(cfg: Config, progress=False, fd_cfg: Config | None = None):

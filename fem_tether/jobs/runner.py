@@ -7,7 +7,11 @@ assigns the tasks to the ranks by longest processing time first
 (:func:`fem_tether.jobs.schedule.assign`), and on each rank, for each of its
 tasks, skips it if its part is kept and otherwise runs it (the work keeps its
 part); then it waits for the other ranks at a non-blocking barrier, during
-which rank 0 may do other work.  The assignment decides only where a task
+which rank 0 may do other work.  Rank 0's progress says at once what the
+phase starts on (its tasks, those kept already) and weighs its ETA by the
+tasks' estimated costs as the assignment schedules them
+(:func:`fem_tether.jobs.schedule.finish_times`), not by their count: the
+costliest tasks run first.  The assignment decides only where a task
 runs, never what it computes, so every number is the same whatever the
 number of ranks.  An interrupt or an exception on one rank (a full disk, a
 defect) propagates; :func:`fem_tether.core.stop.guard` stops the other ranks
@@ -24,8 +28,8 @@ from typing import Protocol
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import POLL_S, checkpoint, guard, sync
-from fem_tether.jobs.evaluate import load_kernels
-from fem_tether.jobs.schedule import assign
+from fem_tether.jobs.schedule import assign, finish_times
+from fem_tether.tether.kernels import load as load_kernels
 
 
 class Work(Protocol):
@@ -53,9 +57,19 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: 
     ``(ran, kept)``: how many of this rank's tasks ran and how many were kept
     already.  Ctrl-C and errors propagate (the caller says what is kept)."""
     rank, size = comm.Get_rank(), comm.Get_size()
+    costs = [work.cost_us(t) for t in tasks]
+    owners = assign(costs, size, rank0_load_us)
+    finished = finish_times(costs, owners)
+
+    def done(count: int) -> tuple[int, tuple[float, float]]:
+        count = min(count, len(tasks))
+        return count, (finished[count], finished[-1])
+
     ran = kept = 0
     with guard(comm):
-        for i in assign([work.cost_us(t) for t in tasks], size, rank0_load_us)[rank]:
+        if bar.enabled:                 # rank 0's: what the phase starts on
+            bar.start(*done(work.present(tasks)))
+        for i in owners[rank]:
             checkpoint()
             if work.kept(tasks[i]):
                 kept += 1
@@ -63,16 +77,16 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: 
                 work.run(tasks[i])
                 ran += 1
             if bar.due():               # rank 0's: count the parts only when the bar draws
-                bar.update(work.present(tasks))
+                bar.update(*done(work.present(tasks)))
         request = comm.Ibarrier()
         while not request.Test():
             checkpoint()
             if rank == 0:
                 if bar.due():
-                    bar.update(work.present(tasks))
+                    bar.update(*done(work.present(tasks)))
                 work.while_waiting()
             time.sleep(POLL_S)
-    bar.update(len(tasks))
+    bar.update(*done(len(tasks)))
     bar.close()
     return ran, kept
 
@@ -87,8 +101,21 @@ def raise_on_every_rank(comm, problem: InputError | None) -> None:
 
 def load_kernels_by_rank(comm, solvers: Sequence[str]) -> None:
     """Load the compiled kernels of ``solvers``: after an install the first import
-    of a solver's kernels compiles them, so each rank compiles one solver's (not
-    every rank all of them, all at once), then loads the others' from the cache."""
-    load_kernels([solvers[comm.Get_rank() % len(solvers)]])
-    sync(comm)
+    of a solver's kernels compiles them, so on several ranks each rank compiles one
+    solver's (not every rank all of them, all at once), then loads the others'
+    from the cache; rank 0 says that it compiles (:func:`fem_tether.tether.kernels.load`)."""
+    rank, size = comm.Get_rank(), comm.Get_size()
+    if size == 1:
+        load_kernels(solvers)
+        return
+    mine = solvers[rank % len(solvers)]
+
+    def wait(redraw) -> None:
+        request = comm.Ibarrier()
+        while not request.Test():
+            checkpoint()
+            redraw()
+            time.sleep(POLL_S)
+
+    load_kernels([mine], elsewhere=[s for s in solvers if s != mine], wait=wait)
     load_kernels(solvers)

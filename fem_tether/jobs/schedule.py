@@ -4,7 +4,9 @@ Tasks are assigned to ranks by longest processing time first on an estimated
 cost (time steps x a measured per-step cost of each solver, linear in its
 points); the assignment only decides where a task runs,
 never what it computes, so every number is the same whatever the number of
-ranks.
+ranks.  The same assignment says when, in the costs' unit, each number of
+tasks is done (:func:`finish_times`): the progress's ETA of a job's phase
+weighs what is done and what is left by it.
 """
 
 from __future__ import annotations
@@ -54,3 +56,16 @@ def assign(costs: list[float], n_ranks: int, rank0_load: float = 0.0) -> list[li
         loads[rank] += costs[i]
         owners[rank].append(i)
     return owners
+
+
+def finish_times(costs: list[float], owners: list[list[int]]) -> list[float]:
+    """When each number of tasks is done, in the costs' unit, if every rank runs its
+    tasks (``owners``, :func:`assign`'s) one after the other from time 0: the k-th
+    entry is when k tasks are done (the 0th is 0, the last the longest rank's load)."""
+    ends = []
+    for owned in owners:
+        at = 0.0
+        for i in owned:
+            at += costs[i]
+            ends.append(at)
+    return [0.0, *sorted(ends)]

@@ -6,6 +6,7 @@ import io
 from route import TOP_TO_BOTTOM
 from test_architecture import import_graph
 
+from fem_tether.core import progress
 from fem_tether.core.progress import Progress
 from fem_tether.jobs.runner import distribute
 
@@ -49,3 +50,40 @@ def test_the_sweeps_modules_import_only_modules_below_them():
               if b in TOP_TO_BOTTOM[:i]]
     assert upward == []
     assert "fem_tether.jobs.distribute" not in graph           # folded into the runner
+
+
+class Costly(Work):
+    """One task of cost 8, eight of cost 1, none kept; running a task takes its cost in seconds."""
+
+    def __init__(self, clock):
+        super().__init__()
+        self.parts, self.clock = set(), clock
+
+    def cost_us(self, task):
+        return 8.0 if task == 0 else 1.0
+
+    def run(self, task):
+        self.clock[0] += self.cost_us(task)
+        super().run(task)
+
+
+def test_the_progress_says_at_once_what_a_phase_starts_on_and_weighs_its_eta_by_the_costs(monkeypatch):
+    """The costliest task runs first: after it (8 s) the eight left take 8 s more, not
+    the 64 s that counting tasks gives (8 s per task)."""
+    clock = [0.0]
+    monkeypatch.setattr(progress.time, "perf_counter", lambda: clock[0])
+    monkeypatch.setattr(progress, "LINE_EVERY_S", 0.5)
+    monkeypatch.setenv(progress.PROGRESS_VARIABLE, "lines")
+    log = io.StringIO()
+    distribute(_self_comm(), Costly(clock), list(range(9)), Progress(9, "study tether runs (1 rank)", stream=log))
+    lines = log.getvalue().splitlines()
+    assert lines[:2] == ["study tether runs (1 rank): 0/9 (0 %), 0.0 s elapsed, ETA ?",
+                         "study tether runs (1 rank): 1/9 (11 %), 8.0 s elapsed, ETA 8.0 s"]
+    assert lines[-1] == "study tether runs (1 rank): 9/9 (100 %), 16.0 s elapsed, ETA 0.0 s"
+
+
+def test_a_rerun_starts_its_progress_at_the_kept_tasks(monkeypatch):
+    monkeypatch.setenv(progress.PROGRESS_VARIABLE, "lines")
+    stream = io.StringIO()
+    distribute(_self_comm(), Work(), list(range(6)), Progress(6, "sweep (1 rank)", stream=stream))
+    assert stream.getvalue().splitlines()[0] == "sweep (1 rank): 3/6 (50 %), 0.0 s elapsed, ETA ?"

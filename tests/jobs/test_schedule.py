@@ -1,6 +1,6 @@
 """Task scheduling: longest processing time first balances the ranks."""
 
-from fem_tether.jobs.schedule import assign
+from fem_tether.jobs.schedule import assign, finish_times
 
 
 def test_longest_processing_time_assignment_balances():
@@ -29,3 +29,12 @@ def test_rank0_load_counts_as_work_already_assigned():
     costs = [8.0, 5.0, 3.0, 1.0]
     assert assign(costs, 2, rank0_load=10.0) == [[2, 3], [0, 1]]
     assert assign(costs, 2) == [[0, 3], [1, 2]]
+
+
+def test_finish_times_follow_the_ranks_running_their_tasks_in_order():
+    """Costs 8, 5, 3, 1 on two ranks: rank 0 runs the 8 then the 1 (done at 8, 9),
+    rank 1 the 5 then the 3 (done at 5, 8): one task is done at 5, three at 8, four at 9."""
+    costs = [8.0, 5.0, 3.0, 1.0]
+    owners = assign(costs, 2)
+    assert owners == [[0, 3], [1, 2]]
+    assert finish_times(costs, owners) == [0.0, 5.0, 8.0, 8.0, 9.0]

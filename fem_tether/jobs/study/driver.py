@@ -55,10 +55,11 @@ class StudyInterrupted(KeyboardInterrupt):
         super().__init__(f"finished tasks kept in {directory}; run the same command to resume")
 
 
-def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutcome, progress: bool) -> None:
+def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutcome, progress: bool,
+           stage: str) -> None:
     rank, size = comm.Get_rank(), comm.Get_size()
     t0 = time.perf_counter()
-    bar = Progress(len(tasks), f"study {label} ({size} rank{'s' if size > 1 else ''})",
+    bar = Progress(len(tasks), f"study {stage}{label} ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0 and bool(tasks))
     try:
         ran, _ = distribute(comm, study, tasks, bar)
@@ -71,9 +72,11 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutc
     outcome.phase_s[label] = outcome.phase_s.get(label, 0.0) + time.perf_counter() - t0
 
 
-def _stages(comm, study: Study, points: list[Point], outcome: StudyOutcome, progress: bool) -> None:
+def _stages(comm, study: Study, points: list[Point], outcome: StudyOutcome, progress: bool,
+            stage: str = "") -> None:
+    """The phases of ``points``; ``stage`` begins their progress labels ("refined ")."""
     for label, tasks in PHASES:
-        _phase(comm, study, label, tasks(study, points), outcome, progress)
+        _phase(comm, study, label, tasks(study, points), outcome, progress, stage)
 
 
 #: The phases of a study's points, in order: (label, the study's tasks of some points).
@@ -197,7 +200,7 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
         _stages(comm, study, job.points, outcome, progress)
         extra = refinement_points(study, allow_unchecked) if job.refine else []
         if extra:
-            _stages(comm, study, extra, outcome, progress)
+            _stages(comm, study, extra, outcome, progress, "refined ")
         if rank != 0:
             return None
         outcome.surfaces = surfaces(study, extra, allow_unchecked)

@@ -45,7 +45,6 @@ entries: ``x[4k] = T_{k+1/2}`` (k < M), ``x[4k+1 : 4k+4] = r_{k+1}``
 from __future__ import annotations
 
 import copy
-import importlib
 from dataclasses import dataclass
 from typing import Any
 
@@ -55,6 +54,7 @@ from fem_tether.physics.atmosphere import AltitudeError
 from fem_tether.tether.continuation import NotConverged
 from fem_tether.core.errors import left_atmosphere
 from fem_tether.tether.line import TetherPhysics
+from fem_tether.tether import kernels
 
 _EYE = np.eye(3)
 NO_DIRECTION = np.zeros(3)     # e(t) for evaluations that do not use it (a free end; no Jacobian)
@@ -288,12 +288,13 @@ class TetherFD:
 
     Evaluated, and their Newton systems solved, by the compiled loops of
     :mod:`.kernel` (imported, and so compiled or loaded from numba's cache,
-    when the first line is made: the package itself imports without numba)."""
+    when the first line is made, :func:`fem_tether.tether.kernels.load`: the package
+    itself imports without numba)."""
 
     def __init__(self, grid: Grid, physics: TetherPhysics):
         self.grid = grid
         self.physics = physics
-        self._kernel: Any = importlib.import_module("fem_tether.tether.fd.kernel")
+        self._kernel: Any = kernels.module("fd")
         self._kernel_args: tuple = (self._kernel.physics_tables(physics), grid.kernel_layout())
 
     # --- loads -----------------------------------------------------------------

@@ -17,8 +17,8 @@ no role (its column is zero, its row holds R at ``radius_m``).
 
 The equations are evaluated, and their Newton steps solved, by the compiled
 loops of :mod:`.kernel` (imported, and so compiled or loaded from numba's
-cache, when the first system is made); this module lays out their inputs and
-outputs.
+cache, when the first system is made: :func:`fem_tether.tether.kernels.load`);
+this module lays out their inputs and outputs.
 
 Unknowns and equations share one interleaved ordering,
 ``[r_0, T_0, r_1, T_1, ..., r_N, R]`` (index ``4i + k`` for r_i, ``4e + 3``
@@ -31,7 +31,6 @@ rows are multiplied by ``k = F_ref / h_mean`` so all rows are forces.
 from __future__ import annotations
 
 import copy
-import importlib
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -44,6 +43,7 @@ from fem_tether.physics.atmosphere import AltitudeError
 from fem_tether.tether.continuation import NotConverged
 from fem_tether.core.errors import left_atmosphere
 from fem_tether.tether.fe.spaces import TetherSpaces
+from fem_tether.tether import kernels
 from fem_tether.physics.loads import CrossflowDrag, crossflow_drag
 from fem_tether.tether.line import TetherPhysics
 
@@ -110,7 +110,7 @@ class TetherSystem:
             interior[-1] = 1.0
         self.interior = interior
         self._idx = self._band_indices()
-        self._kernel = importlib.import_module("fem_tether.tether.fe.kernel")
+        self._kernel = kernels.module("fe")
         self._kernel_env = self._kernel.environment(self.physics)
         self._set_lengths()
 

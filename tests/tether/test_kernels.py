@@ -1,0 +1,61 @@
+"""The solvers' kernels: a first run after an install says that it compiles them and
+shows how far it is; a run on a loaded cache says nothing of them."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from conftest import default_sigint
+
+from fem_tether.core import progress
+from fem_tether.tether import kernels
+
+CLI = [sys.executable, "-m", "fem_tether"]
+TINY = """[fe]
+elements = 10
+dt_s = 0.2
+[time]
+average_periods = 1
+"""
+#: How long the first line may take to come: the libraries' import [s].
+FIRST_LINE_S = 120.0
+
+
+def _quiet_env(**extra) -> dict:
+    env = {k: v for k, v in os.environ.items() if k not in (progress.PROGRESS_VARIABLE, *progress.RANK_VARIABLES)}
+    return env | extra
+
+
+def test_the_table_of_first_compiles_has_every_module_a_run_compiles():
+    assert set(kernels.FIRST_COMPILE) == {*kernels.SHARED, *kernels.KERNELS.values()}
+    assert kernels.notice(10.4) == "compiling the solver kernels (first run after install, about 10 s)"
+
+
+def test_an_empty_cache_says_at_once_that_it_compiles(tmp_path):
+    """The first line on stderr of a run on an empty numba cache is the notice, as a
+    progress line (stderr is a pipe); the run is stopped there, before the compiles
+    (tens of seconds) are done."""
+    (tmp_path / "tiny.toml").write_text(TINY)
+    env = _quiet_env(NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    proc = subprocess.Popen([*CLI, "simulate", "tiny.toml"], cwd=tmp_path, env=env, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=default_sigint)
+    started = time.monotonic()
+    try:
+        first = proc.stderr.readline()
+        took_s = time.monotonic() - started
+    finally:
+        proc.kill()
+        proc.communicate()
+    assert first.startswith("compiling the solver kernels (first run after install, about "), first
+    assert " s): 0/" in first and first.endswith(" (0 %), 0.0 s elapsed, ETA ?\n"), first
+    assert took_s < FIRST_LINE_S
+
+
+def test_a_loaded_cache_says_nothing_of_the_kernels(tmp_path):
+    kernels.load(("fe",))                # the cache the subprocess reads: compiled here if it is not
+    (tmp_path / "tiny.toml").write_text(TINY)
+    done = subprocess.run([*CLI, "simulate", "tiny.toml"], cwd=tmp_path, env=_quiet_env(), capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0 and "compiling" not in done.stderr, done.stderr
