@@ -46,7 +46,7 @@ API = {
     "run_study": ("fem_tether.jobs.study.driver", "run_study"),
     "write_study_report": ("fem_tether.report.study", "write_report"),
     "read_result": ("fem_tether.jobs.result_files", "read_result"),
-    "read_simulate": ("fem_tether.io.results", "read_simulate"),
+    "read_simulate": ("fem_tether.io.records", "read_simulate"),
     "read_sweep": ("fem_tether.jobs.sweepfile", "read_sweep"),
     "read_study": ("fem_tether.jobs.study.result", "read_study"),
     "read_design": ("fem_tether.io.design_file", "read_design_hdf5"),

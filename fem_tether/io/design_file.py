@@ -43,7 +43,7 @@ import numpy as np
 from fem_tether import __version__
 from fem_tether.core.atomic import atomic_path, check_writable
 from fem_tether.io.reading import Reader
-from fem_tether.io.results import Column, Record, Table
+from fem_tether.io.records import Column, Record, Table
 
 KIND = "design"
 #: the flexible tether's scalars, attributes of ``/flexible``

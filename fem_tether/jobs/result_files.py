@@ -2,7 +2,7 @@
 
 The kind is found from the file's marks (:func:`fem_tether.io.reading.kind_of`),
 then the file is read by that kind's reader: a run (``simulate --out``'s
-``fe_L<L>.h5``, a sweep's part) as :class:`~fem_tether.io.results.SimulateResult`,
+``fe_L<L>.h5``, a sweep's part) as :class:`~fem_tether.io.records.SimulateResult`,
 a sweep as :class:`~fem_tether.jobs.sweepfile.SweepResult`, a study as
 :class:`~fem_tether.jobs.study.result.StudyResult`, a design as
 :class:`~fem_tether.io.design_file.DesignFile`.  A file that is none of them
@@ -17,7 +17,7 @@ from pathlib import Path
 
 from fem_tether.io.design_file import read_design_hdf5
 from fem_tether.io.reading import KINDS, file_kind
-from fem_tether.io.results import StoredResult, read_simulate
+from fem_tether.io.records import StoredResult, read_simulate
 from fem_tether.jobs.study.result import read_study
 from fem_tether.jobs.sweepfile import read_sweep
 

@@ -56,7 +56,7 @@ from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_lengt
 from fem_tether.jobs.job import Task, length_tag
 from fem_tether.core.quantities import attributes, names
 from fem_tether.io.reading import Reader
-from fem_tether.io.results import Record, Table, stored_column
+from fem_tether.io.records import Record, Table, stored_column
 from fem_tether.jobs.store import PartsStore, parts_dir
 
 #: A length's status: its tasks have all run and succeeded, some task has not run, some failed.

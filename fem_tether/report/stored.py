@@ -6,7 +6,7 @@ unit, mean over the averaging window, least and largest value; a sweep's
 lengths, a study's points, a design's variables and outputs.  :func:`show_text`
 prints it, ``show --json`` prints it as JSON (``null`` for an undefined
 number).  :func:`write_csv` writes a result's whole main table
-(:meth:`~fem_tether.io.results.StoredResult.table`: the series per time step,
+(:meth:`~fem_tether.io.records.StoredResult.table`: the series per time step,
 every dataset per length, per study point, the design's curves per wind
 speed) as CSV, units in the header (``name [unit]``), under a first line
 ``# fem-tether VERSION: KIND FILE`` that marks the file as fem-tether's
@@ -24,7 +24,7 @@ from fem_tether.core.atomic import check_writable
 from fem_tether.core.atomic import write_csv as atomic_write_csv
 from fem_tether.core.quantities import quantity
 from fem_tether.io.design_file import DesignFile
-from fem_tether.io.results import Column, SimulateResult, StoredResult
+from fem_tether.io.records import Column, SimulateResult, StoredResult
 from fem_tether.jobs.study.result import StudyResult
 from fem_tether.jobs.sweepfile import SweepResult
 

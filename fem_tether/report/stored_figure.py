@@ -1,7 +1,7 @@
 """What ``fem-tether plot`` draws of a stored result: quantities of its main table.
 
 The quantities are drawn against the table's independent variable
-(:class:`~fem_tether.io.results.Table`): a run's series against time, a
+(:class:`~fem_tether.io.records.Table`): a run's series against time, a
 sweep's datasets against the cable length, a study's per-point datasets
 against the length with one curve per surface and diameter (its surfaces cut
 along L), a design's curves against the wind speed.  Quantities of one unit
@@ -18,7 +18,7 @@ import numpy as np
 
 from fem_tether.core.atomic import check_writable
 from fem_tether.core.errors import InputError
-from fem_tether.io.results import StoredResult, Table
+from fem_tether.io.records import StoredResult, Table
 from fem_tether.report.plots import plt, save_atomically
 from fem_tether.report.stored import KIND_NAMES
 

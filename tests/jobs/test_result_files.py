@@ -7,7 +7,7 @@ from damage import empty, foreign, text, truncate
 from stored_files import design_file, simulate_file, study_file, sweep_file
 from fem_tether.io.design_file import DesignFile
 from fem_tether.io.reading import ResultFileError
-from fem_tether.io.results import SimulateResult
+from fem_tether.io.records import SimulateResult
 from fem_tether.jobs.result_files import read_result
 from fem_tether.jobs.study.result import StudyResult
 from fem_tether.jobs.sweepfile import SweepResult

@@ -1,4 +1,4 @@
-"""Typed results (fem_tether.io.results): a run file read as a SimulateResult with the unit of
+"""Typed results (fem_tether.io.records): a run file read as a SimulateResult with the unit of
 every series, the table of its series, and the mapping and copy of every typed result."""
 
 import dataclasses
@@ -11,7 +11,7 @@ from fem_tether.config import load_config
 from fem_tether.core.quantities import quantity
 from fem_tether.io.output import write_run_hdf5
 from fem_tether.io.reading import ResultFileError
-from fem_tether.io.results import SimulateResult, read_simulate
+from fem_tether.io.records import SimulateResult, read_simulate
 from fem_tether.tether.fe.solver import simulate
 
 
