@@ -264,7 +264,8 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     flexible = aep_of_system(cfg, lengths[keep], drag_fe[keep], resource, None if case is None else case[keep])
     caveats = (edge_caveat(straight, "straight", "best_length_straight_m"),
                edge_caveat(flexible, "flexible", "best_length_fe_m"),
-               margin_caveat(lengths, sweep_data["margin"], cfg.tether.safety_factor))
+               margin_caveat(lengths, sweep_data.get("margin", np.full(lengths.shape, np.nan)),
+                             cfg.tether.safety_factor))
     return SweepAep(
         straight=straight, flexible=flexible,
         fixed=aep_of_system(cfg, lengths[has_fixed], drag_fixed[has_fixed], resource) if has_fixed.any() else None,

@@ -460,7 +460,8 @@ def sweep_text(outcome, out, safety_factor: float) -> str:
 def aep_text(result: dict) -> str:
     """``fem-tether aep``: AEP and capacity factor per length (``SweepAep.as_dict()`` with the
     sweep's ``system`` and ``model``)."""
-    lines = [f"AEP of the {result['system']} sweep ({result['model']} model)",
+    lines = [f"AEP of the {result['system']} sweep ({result['model']} model)" if "system" in result
+             else "AEP of the sweep",
              "    L [m]  AEP straight [MWh]  CF straight  AEP flexible [MWh]  CF flexible"]
     for r in result["lengths"]:
         fe = (f"{_number(r['aep_fe_MWh'], '18.0f', 18)}  {_number(r['cf_fe'], '11.3f', 11)}"

@@ -88,10 +88,11 @@ def test_loyd_presets_are_the_seed_systems_with_their_sized_tether(name, source)
     assert cfg.kite.speed_mps == pytest.approx(point.apparent_speed_mps, rel=1e-3)
 
 
-#: The tether material each source states (docs/systems.md §3): Roselli's Dyneema SK99 (the default),
+#: The tether material and safety factor each source states (docs/systems.md §3): Roselli's Dyneema SK99 (the default;
+#: its 11 mm line carries its peak, c_s 1.0: docs/physics.md §5),
 #: Fagiano et al.'s polyethylene fibre (no numbers: the SK99 table), Loyd's steel, the M600's carbon,
 #: Trevisi's 1.5 GPa Dyneema.
-SOURCE_MATERIALS = {"kitegen": ("sk99", 1.2), "ke-yoyo": ("sk99", 1.2), "loyd-1": ("steel", 1.0),
+SOURCE_MATERIALS = {"kitegen": ("sk99", 1.0), "ke-yoyo": ("sk99", 1.2), "loyd-1": ("steel", 1.0),
                     "loyd-2": ("steel", 1.0), "loyd-3": ("steel", 1.0), "makani-m600": ("carbon", 1.0),
                     "trevisi-gg": ("trevisi", 1.55), "trevisi-fg": ("trevisi", 1.55)}
 
