@@ -59,6 +59,7 @@ def main(out_dir="out/sweep_aep") -> dict | None:
     if outcome is None:
         return None
     data = read_sweep(out / "sweep.h5")
+    system = data["config"].system
     energy = sweep_aep(data)
     lengths = data["length_m"]
     ge = "\n".join(f"  L = {length:6g} m: G_e flexible {g_fe:.2f}, straight {g_st:.2f}"
@@ -68,7 +69,7 @@ def main(out_dir="out/sweep_aep") -> dict | None:
             "aep_straight_MWh": _per_length(energy.straight, lengths), "file": out / "sweep.h5",
             "plots": write_plots(data, energy, out),
             "text": "\n".join([sweep_text(outcome, out / "sweep.h5", data["config"].tether.safety_factor), ge,
-                                aep_text(energy.as_dict())])}
+                                aep_text({"system": system.name, "model": system.model} | energy.as_dict())])}
 
 
 if __name__ == "__main__":
