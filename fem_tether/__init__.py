@@ -15,7 +15,7 @@ The public API, loaded on first use (``import fem_tether`` itself is cheap)::
 docs/api.md describes each call and the typed results.
 
 The package's folders are its layers, bottom to top (docs/architecture.md):
-``core``, ``physics``, ``systems``, ``config``, ``tether``, ``performance``,
+``core``, ``physics``, ``systems``, ``config``, ``tether``, ``performance``, ``design``,
 ``io``, ``jobs``, ``validation``, ``report``, ``commands``; ``cli`` parses and
 dispatches.  Import paths of release 0.1 still work for one release, with a
 :class:`DeprecationWarning` (:mod:`fem_tether.core.moved`).

@@ -30,7 +30,7 @@ from fem_tether.systems.tether_drag import flexible_tether_cd
 #: Which straight line the straight-line numbers of a run, a sweep and the main
 #: job are: the one in the same wind as the flexible line (``fem-tether straight``
 #: is the quiet-air one unless ``--wind``; docs/physics.md §10).
-STRAIGHT_LINE = ("a rigid straight line in the same wind as the flexible line (seed 000 §4.1 with the "
+STRAIGHT_LINE = ("a rigid straight line in the same wind as the flexible line (Roselli 2016 §4.1 with the "
                  "wind's normal component); 'fem-tether straight' gives it in quiet air unless --wind")
 
 

@@ -118,7 +118,8 @@ def summary_document(data: Mapping, energy: SweepAep, run: Mapping, files: Mappi
     """``summary.json`` (and ``run --json``): the system, the job, the run (``run``:
     ``started_utc``, ``wall_s``, ``n_ranks``, ``tasks``, ``reused_tasks`` and, if
     measured, ``peak_rss_MiB_per_rank``), the columns, one row per length, the best
-    lengths, the lengths left out, pending or kept unchecked, and the ``files``."""
+    lengths, the lengths left out, pending or kept unchecked, the ``warnings``
+    (:mod:`fem_tether.performance.caveats`, as in ``aep.json``) and the ``files``."""
     cfg = data["config"]
     d = energy.as_dict()
     peaks = list(run.get("peak_rss_MiB_per_rank", ()))
@@ -133,7 +134,7 @@ def summary_document(data: Mapping, energy: SweepAep, run: Mapping, files: Mappi
         "columns": {c.key: {"heading": c.heading, "unit": c.unit, "meaning": c.meaning} for c in COLUMNS},
         "lengths": summary_rows(data, energy),
         **{key: d[key] for key in ("best_length_straight_m", "best_length_fe_m", "excluded_m", "pending_m",
-                                   "unchecked_m")},
+                                   "unchecked_m", "warnings")},
         "files": {name: str(path) for name, path in files.items()},
     }
 

@@ -125,6 +125,7 @@ def test_run_gives_each_warning_in_the_table_aep_json_and_page(quick_run, capsys
     lines = printed.splitlines()
     best = next(i for i, line in enumerate(lines) if line.startswith("best length:"))
     assert lines[best + 1:best + 1 + len(data["warnings"])] == [f"warning: {w['message']}" for w in data["warnings"]]
+    assert json.loads((out / "summary.json").read_text())["warnings"] == data["warnings"]
     page = (out / "index.html").read_text(encoding="utf-8")
     for w in data["warnings"]:
         assert f"<strong>warning:</strong> {html.escape(w['message'])}</p>" in page
