@@ -434,3 +434,19 @@ def test_aep_checks_its_system_against_the_sweeps(capsys, unrun_sweep):
     assert code == 2 and "--system nope: unknown system" in err
     code, out, _ = run_cli(capsys, "aep", str(unrun_sweep), "--system", "kitegen", "--allow-incomplete")
     assert code == 0 and out.splitlines()[0] == "AEP of the kitegen sweep (kitegen model)"
+
+
+def test_study_refuses_a_system_its_job_does_not_list(capsys, tmp_path):
+    """Before, `study JOB --system ke-yoyo` under a job listing kitegen ran kitegen; `design` has
+    no --system (its job is Trevisi's model, no preset): argparse refuses it in one line."""
+    job = tmp_path / "job.toml"
+    job.write_text("[study]\nsystems = [\"kitegen\"]\nlengths_m = [1000]\n")
+    code, out, err = run_cli(capsys, "study", str(job), "--system", "ke-yoyo", "--out", str(tmp_path / "s.h5"))
+    assert code == 2 and out == "" and err == (
+        "fem-tether: error: [study] systems = ['kitegen']: --system ke-yoyo disagrees with the job's systems "
+        "(--system names the system of a job without [study] systems; drop it or the job's list)\n")
+    assert not (tmp_path / "s.h5").exists()
+    with pytest.raises(SystemExit) as stop:
+        main(["design", "--preset", "trevisi-3mw", "--system", "ke-yoyo", "--out", str(tmp_path / "d.h5")])
+    assert stop.value.code == 2
+    assert capsys.readouterr().err == "fem-tether: error: unrecognized arguments: --system\n"

@@ -154,3 +154,16 @@ def test_a_site_reads_its_resource_relative_to_the_job(tmp_path):
                                        "resource = {csv = 'sites/wind.csv'}\n")
     job = load_study(tmp_path / "job.toml")
     assert job.point_config(job.points[0]).resource.csv == str(tmp_path / "sites" / "wind.csv")
+
+
+@pytest.mark.parametrize("systems", [["kitegen"], ["kitegen", "ke-yoyo"]])
+def test_system_option_must_be_the_jobs_one_system(systems):
+    """Before, ``--system ke-yoyo`` under a job listing kitegen was silently ignored (the study ran
+    kitegen).  --system names the system of a job without systems, and must be the one it lists."""
+    with pytest.raises(ConfigError, match=r"^\[study\] systems = \[.*\]: --system ke-yoyo disagrees with the "
+                                          r"job's systems \(--system names the system of a job without"):
+        study_from_dict(_study(systems=systems), system="ke-yoyo")
+    assert study_from_dict(_study(systems=["ke-yoyo"]), system="ke-yoyo").systems == ("ke-yoyo",)
+    assert study_from_dict(_study(), system="ke-yoyo").systems == ("ke-yoyo",)
+    with pytest.raises(ConfigError, match=r"^--system nope: unknown system"):
+        study_from_dict(_study(systems=["kitegen"]), system="nope")

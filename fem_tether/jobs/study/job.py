@@ -200,7 +200,8 @@ def _check_flight(system: str, cfg: Config, site: str = "") -> None:
 
 def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system: str | None = None) -> StudyJob:
     """Validate a study job's tables (file names relative to ``base_dir``);
-    ``system`` is the preset under the job when it names no systems."""
+    ``system`` is the preset under the job when it names no systems, and must
+    be its one system when it does (ConfigError otherwise, not ignored)."""
     data = dict(data)
     study = data.pop("study", None)
     if not isinstance(study, dict):
@@ -216,9 +217,14 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
         raise _error("base", base, "expected a file name")
     if base and not (base_dir / base).is_file():
         raise _error("base", base, f"no such file ({base_dir / base})")
+    if system is not None:
+        catalog.path(system)            # an unknown name is refused as by every --system
     systems = study.get("systems", [system] if system else [""])
     if not isinstance(systems, list) or not systems or not all(isinstance(s, str) for s in systems):
         raise _error("systems", systems, f"expected a list of system names (known: {', '.join(catalog.names())})")
+    if system is not None and systems != [system]:
+        raise _error("systems", systems, f"--system {system} disagrees with the job's systems (--system names "
+                                         "the system of a job without [study] systems; drop it or the job's list)")
     if len(set(systems)) != len(systems):
         raise _error("systems", systems, "systems must be distinct")
     for name in systems:
