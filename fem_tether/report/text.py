@@ -21,6 +21,7 @@ from fem_tether.performance.caveats import as_json
 from fem_tether.performance.comparison import fly_gen_only
 from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, margin_caveat, sized_case
 from fem_tether.performance.summary import STRAIGHT_LINE
+from fem_tether.jobs.study.job import surface_name
 from fem_tether.report.job_summary import summary_rows
 
 #: The line under a table of straight-line numbers (in full: :data:`~fem_tether.performance.summary.STRAIGHT_LINE`).
@@ -576,7 +577,7 @@ def study_text(summary: dict) -> str:
              f"({summary['ran']} ran, {summary['reused']} reused from the stored parts) on {summary['n_ranks']} "
              f"rank(s) in {summary['wall_s']:.1f} s ({phases})"]
     for s in summary["surfaces"]:
-        lines += [f"{s['system']} at {s['site']}: {s['points']} points ({s['refined_points']} refined): "
+        lines += [f"{surface_name(s['system'], s['site'])}: {s['points']} points ({s['refined_points']} refined): "
                   f"{s['ok']} ok, {s['unchecked']} unchecked, {s['weak']} too weak for their peak tension, "
                   f"{s['failed']} failed",
                   "  AEP-optimal, flexible: " + _optimum_text(s["optimum_fe"], s["swept"]),

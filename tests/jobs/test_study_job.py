@@ -5,7 +5,7 @@ import pytest
 from fem_tether.config import ConfigError, load_config
 from fem_tether.physics.resource import weibull_resource, write_resource_csv
 from fem_tether.performance.sizing import tether_keys
-from fem_tether.jobs.study.job import Point, load_study, study_from_dict
+from fem_tether.jobs.study.job import Point, load_study, study_from_dict, surface_name
 
 
 def _study(**keys) -> dict:
@@ -167,3 +167,9 @@ def test_system_option_must_be_the_jobs_one_system(systems):
     assert study_from_dict(_study(), system="ke-yoyo").systems == ("ke-yoyo",)
     with pytest.raises(ConfigError, match=r"^--system nope: unknown system"):
         study_from_dict(_study(systems=["kitegen"]), system="nope")
+
+
+def test_a_surface_is_named_plainly_and_a_named_site_stays_in_its_name():
+    """The study's page, figures and printed summary name a surface so (before: 'kitegen at configured')."""
+    assert surface_name("kitegen", "configured") == "kitegen"
+    assert surface_name("kitegen", "debilt") == "kitegen at debilt"

@@ -44,6 +44,9 @@ from fem_tether.config import catalog
 #: kite flies (the presets' power curves cut in at 3 m/s and more).
 STUDY_WIND_MPS = from_to(1.0, MAX_WIND_MPS)
 
+#: The site a study names ``configured`` when its job gives none: the system's own [wind] and [resource].
+CONFIGURED_SITE = "configured"
+
 KEYS = ("systems", "lengths_m", "diameters_m", "wind_mps", "sites", "crosscheck", "refine", "reel_out", "base")
 SITE_KEYS = ("name", "wind", "resource")
 
@@ -59,6 +62,12 @@ class Site:
     def apply(self, cfg: Config) -> Config:
         return cfg.replace(wind=dict(self.wind), resource=dict(self.resource)) if self.wind or self.resource \
             else cfg
+
+
+def surface_name(system: str, site: str) -> str:
+    """A surface in plain words: the system, and the site where the job names one
+    ("kitegen", "kitegen at debilt")."""
+    return system if site == CONFIGURED_SITE else f"{system} at {site}"
 
 
 @dataclass(frozen=True)
@@ -160,7 +169,7 @@ def _numbers(key, value, per_system: tuple[str, ...], unit_name: str, admissible
 def _sites(value, base: Config, base_dir: Path) -> tuple[Site, ...]:
     """The job's sites (file names relative to ``base_dir``), their keys checked on ``base``."""
     if value is None:
-        return (Site("configured"),)
+        return (Site(CONFIGURED_SITE),)
     if not isinstance(value, list) or not value or not all(isinstance(s, dict) for s in value):
         raise _error("sites", value, "expected an array of tables ([[study.sites]] with name, wind, resource)")
     sites = []
