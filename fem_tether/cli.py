@@ -23,6 +23,7 @@ from fem_tether.physics import kite
 from fem_tether.report import text as report
 from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config, preset_summaries
 from fem_tether.core.errors import ConfigError, FemTetherError
+from fem_tether.commands.flight import warn_unflyable
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
 from fem_tether.core import stop
 from fem_tether.core.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
@@ -178,6 +179,7 @@ def cmd_simulate(args):
     from fem_tether.commands.simulation import simulate_case
 
     cfg = _config(args, args.length)
+    warn_unflyable([cfg])
     summary = simulate_case(cfg, args.out, args.sweep, progress=not args.json)
     print(report.json_text(summary) if args.json else report.simulate_text(summary, cfg, bool(args.out)))
     return 0
@@ -187,6 +189,7 @@ def cmd_size(args):
     from fem_tether.performance.sizing import size_tether
 
     cfg = _config(args, args.length)
+    warn_unflyable([cfg])
     data = report.size_summary(cfg, size_tether(cfg))
     print(report.json_text(data) if args.json else report.size_text(data))
     return 0
@@ -198,6 +201,7 @@ def cmd_crosscheck(args):
     cfg = _config(args, args.length)
     fd_cfg = _config(argparse.Namespace(config=args.fd_config, system=args.system), args.length) \
         if args.fd_config else None
+    warn_unflyable([cfg] if fd_cfg is None else [cfg, fd_cfg])
     check, fe_run, _ = run_crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
     print(report.json_text(check.as_dict()) if args.json else report.crosscheck_text(check, fe_run))
     return 0 if check.ok else EXIT_FAILED
@@ -214,6 +218,7 @@ def cmd_sweep(args):
     from fem_tether.jobs.sweep import sweep
 
     job = load_job(args.job, args.system)
+    warn_unflyable(job.configs.values())
     outcome = sweep(job, args.out, progress=not args.json, keep_parts=args.keep_parts)
     if outcome is None:
         return 0

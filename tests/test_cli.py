@@ -450,3 +450,24 @@ def test_study_refuses_a_system_its_job_does_not_list(capsys, tmp_path):
         main(["design", "--preset", "trevisi-3mw", "--system", "ke-yoyo", "--out", str(tmp_path / "d.h5")])
     assert stop.value.code == 2
     assert capsys.readouterr().err == "fem-tether: error: unrecognized arguments: --system\n"
+
+
+@pytest.mark.parametrize("argv", [["simulate"], ["size"], ["crosscheck"], ["sweep", "JOB", "--out", "OUT/s.h5"],
+                                  ["run", "JOB", "--out", "OUT"]])
+def test_a_line_the_flight_check_grounds_is_warned_of_before_its_run(capsys, tmp_path, argv):
+    """Before, `simulate --system loyd-2` ran silently until its solver failed.  The flight check
+    errs both ways (tests/systems/test_systems_tethers.py), so each command that flies the line
+    warns first, in one line on stderr (stdout keeps only the JSON), and runs it: here it fails."""
+    job = tmp_path / "job.toml"
+    job.write_text("[sweep]\nlengths_m = [1200]\ncrosscheck = false\n")
+    argv = [str(job) if a == "JOB" else a.replace("OUT", str(tmp_path)) for a in argv]
+    code, out, err = run_cli(capsys, *argv, "--system", "loyd-2", "--json")
+    first = err.splitlines()[0]
+    assert code == 1 and first.startswith("fem-tether: warning: L = 1200 m: flight check (an estimate that errs "
+                                          "both ways): the line's whirl mu V_k^2 L/(2 r) on its 467 m turns, 11.8 MN, ")
+    assert first.endswith("the line cannot follow the kite (docs/systems.md §3.3); the run goes ahead")
+    assert "time step did not converge at t = 7.3224 s" in (err if argv[0] in ("simulate", "size", "crosscheck")
+                                                            else out)
+    json.loads(out or "{}")
+    code, _, err = run_cli(capsys, "simulate", "--system", "kitegen", "--json")
+    assert code == 0 and "warning" not in err

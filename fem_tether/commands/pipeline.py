@@ -28,6 +28,7 @@ from fem_tether.performance.aep import SweepAep, sweep_aep
 from fem_tether.core.atomic import write_json
 from fem_tether.report.figures import PLOT_FILES, write_plots
 from fem_tether.report.job_summary import CSV_NAME, JSON_NAME, aep_document, summary_document, write_summary
+from fem_tether.commands.flight import warn_unflyable
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.report.page import PAGE_NAME, write_page
@@ -72,6 +73,7 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     t0 = time.perf_counter()
     started = datetime.now(timezone.utc).isoformat(timespec="seconds")
     job = load_job(job_file, system)
+    warn_unflyable(job.configs.values())
     out = Path(out)
     h5 = out / "sweep.h5"
     with ExitStack() as folder_lock:
