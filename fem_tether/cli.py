@@ -222,9 +222,8 @@ def cmd_sweep(args):
     outcome = sweep(job, args.out, progress=not args.json, keep_parts=args.keep_parts)
     if outcome is None:
         return 0
-    safety_factor = job.config.tether.safety_factor
-    print(report.json_text(report.sweep_summary(outcome, args.out, safety_factor)) if args.json
-          else report.sweep_text(outcome, args.out, safety_factor))
+    print(report.json_text(report.sweep_summary(outcome, args.out, job.config)) if args.json
+          else report.sweep_text(outcome, args.out, job.config))
     return 0 if outcome.ok else EXIT_FAILED
 
 

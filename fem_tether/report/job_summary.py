@@ -119,7 +119,8 @@ def summary_document(data: Mapping, energy: SweepAep, run: Mapping, files: Mappi
     ``started_utc``, ``wall_s``, ``n_ranks``, ``tasks``, ``reused_tasks`` and, if
     measured, ``peak_rss_MiB_per_rank``; None where not recorded: a page written from
     a sweep file alone), the columns, one row per length, the best
-    lengths, the lengths left out, pending or kept unchecked, and the ``files``."""
+    lengths, the lengths left out, pending or kept unchecked, the warnings (``aep.json``'s)
+    and the ``files``."""
     cfg = data["config"]
     d = energy.as_dict()
     peaks = list(run.get("peak_rss_MiB_per_rank", ()))
@@ -134,7 +135,7 @@ def summary_document(data: Mapping, energy: SweepAep, run: Mapping, files: Mappi
         "columns": {c.key: {"heading": c.heading, "unit": c.unit, "meaning": c.meaning} for c in COLUMNS},
         "lengths": summary_rows(data, energy),
         **{key: d[key] for key in ("best_length_straight_m", "best_length_fe_m", "excluded_m", "pending_m",
-                                   "unchecked_m")},
+                                   "unchecked_m", "warnings")},
         "files": {name: str(path) for name, path in files.items()},
     }
 

@@ -272,3 +272,30 @@ def test_write_run_report_writes_the_main_jobs_files_for_a_sweep_file(quick_run,
         fem_tether.write_run_report(out / "sweep.h5", tmp_path / "mine")
     assert (tmp_path / "mine" / "summary.csv").read_text() == "my own table\n"
     assert not (tmp_path / "mine" / "aep.json").exists()
+
+
+def test_an_unsettled_spinup_reaches_aep_json_summary_json_the_page_and_the_table(tmp_path, capsys):
+    """Before, a point-mass kite's unsettled spin-up was said by `simulate` on the terminal alone;
+    the main job said nothing of it.  Its FE run's ``laps_settled`` (read back from the sweep
+    file) gives one record in aep.json's and summary.json's ``warnings``, on the page and under
+    the printed table."""
+    from fem_tether.jobs.sweepfile import read_sweep
+
+    job = tmp_path / "job.toml"
+    job.write_text("[sweep]\nlengths_m = [500]\ncrosscheck = false\n[kite]\nmodel = \"point-mass\"\n[fe]\n"
+                   "elements = 20\n[time]\naverage_periods = 1\nspinup_periods = 1\nmax_spinup_periods = 1\n"
+                   "lap_tolerance = 1e-9\n")
+    out = tmp_path / "out"
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert read_sweep(out / "sweep.h5").laps_settled.tolist() == [0.0]
+    documents = [json.loads((out / name).read_text()) for name in ("aep.json", "summary.json")]
+    (spinup,) = [w for w in documents[0]["warnings"] if w["code"] == "spin-up-not-settled"]
+    assert documents[1]["warnings"] == documents[0]["warnings"]
+    assert spinup["quantity"] == "drag_fe_N" and spinup["lengths_m"] == [500.0]
+    assert spinup["message"].startswith("spin-up not settled at 500 m: the kite's lap means still changed by more "
+                                        "than [time] lap_tolerance = 1e-09 after [time] max_spinup_periods laps")
+    assert f"warning: {spinup['message']}" in printed.splitlines()
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert (f"<p class=\"warning\" data-code=\"spin-up-not-settled\" data-quantity=\"drag_fe_N\" "
+            f"style=\"color:#8a3b00\"><strong>warning:</strong> {html.escape(spinup['message'])}</p>") in page

@@ -171,7 +171,7 @@ def test_sweep_aep_gives_its_caveats_in_the_json(unrun_sweep):
     data |= {"margin": np.array([1.25, 1.1])}
     d = sweep_aep(data, allow_incomplete=True).as_dict()
     assert [c["code"] for c in d["warnings"]] == ["best-length-at-edge"]
-    data["config"] = data["config"].replace(tether={"safety_factor": 1.2})
+    data |= {"config": data["config"].replace(tether={"safety_factor": 1.2})}
     (edge, margin) = sweep_aep(data, allow_incomplete=True).as_dict()["warnings"]
     assert edge["quantity"] == "best_length_straight_m" and edge["lengths_m"] == [400.0]
     assert margin == {"code": "margin-below-safety-factor", "quantity": "margin", "lengths_m": [800.0],
