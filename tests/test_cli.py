@@ -471,3 +471,30 @@ def test_a_line_the_flight_check_grounds_is_warned_of_before_its_run(capsys, tmp
     json.loads(out or "{}")
     code, _, err = run_cli(capsys, "simulate", "--system", "kitegen", "--json")
     assert code == 0 and "warning" not in err
+
+
+#: The commands that run the solvers: their first run after an install compiles the kernels.
+SOLVER_COMMANDS = {"simulate", "size", "crosscheck", "sweep", "study", "design", "run", "validate", "bench"}
+
+
+def test_every_json_help_says_exactly_what_goes_where():
+    """Before, every --json said "no table, no progress", yet the compile notice and its progress
+    come on stderr with --json too.  Each help says stdout holds the JSON alone; a command that
+    runs the solvers says what its stderr still gets."""
+    helps = {name: text for name, options, text in _help_texts(build_parser()) if "--json" in options}
+    assert set(helps) == SOLVER_COMMANDS | {"systems", "straight", "curves", "power", "aep", "show"}
+    for name, text in helps.items():
+        assert "on stdout, which then holds the JSON alone (no table" in text and "no progress)" not in text, name
+        assert ("stderr still gets the compile notice (and its progress) of the first run after an install, "
+                "warnings and errors" in text) == (name in SOLVER_COMMANDS), name
+
+
+def test_with_json_the_compile_notice_goes_to_stderr_and_stdout_holds_the_json(capsys, monkeypatch):
+    """A first run after an install (the cache taken for empty): the notice on stderr, stdout the JSON."""
+    from fem_tether.tether import kernels
+
+    monkeypatch.setattr(kernels, "_loaded", set())
+    monkeypatch.setattr(kernels, "cached", lambda module: False)
+    code, out, err = run_cli(capsys, "simulate", "--length", "200", "--json")
+    assert code == 0 and json.loads(out)["length_m"] == 200.0
+    assert err.startswith("compiling the solver kernels (first run after install, about ")
