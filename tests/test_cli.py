@@ -188,15 +188,17 @@ def test_winch_lighter_than_its_line_is_refused_at_load(capsys, tmp_path, comman
 ])
 def test_winch_too_weak_for_the_line_is_a_solver_failure(capsys, tmp_path, command, tension_N, cause):
     """A winch tension too low for the line's drag (1000 N): one line naming the
-    length, the time and what diverged, exit code 1, no traceback and no warnings.
+    length, the time and what diverged, exit code 1, no traceback and no Python warnings;
+    before it, the flight check's warning line (whirl and weight exceed 1000 N).
     Was: a start 106 m below the ground, run until the line went slack at t = 0.4 s."""
     cfg = tmp_path / "t.toml"
     cfg.write_text(f"[winch]\nground_tension_N = {tension_N}\n")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         code, _, err = run_cli(capsys, command, str(cfg), "--json")
-    assert code == 1 and err.count("\n") == 1
-    assert err.startswith("fem-tether: solver failed: ") and re.search(cause, err)
+    flight, failure = err.splitlines()
+    assert code == 1 and flight.startswith("fem-tether: warning: L = 1000 m: flight check (an estimate")
+    assert failure.startswith("fem-tether: solver failed: ") and re.search(cause, failure)
 
 
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
