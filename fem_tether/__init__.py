@@ -9,6 +9,7 @@ The public API, loaded on first use (``import fem_tether`` itself is cheap)::
     check = ft.compare(run, fd_run, cfg.crosscheck)
     ft.run_study(ft.load_study("study.toml"), "study.h5")    # under mpiexec: every rank
     page = ft.write_study_report("study.h5")                  # study_report/index.html
+    ft.write_run_report("sweep.h5", "results")                # the main job's page, figures, summary
     result = ft.read_result("study.h5")    # typed: StudyResult, SweepResult, SimulateResult, DesignFile
     result.table().units                   # every quantity's unit
 
@@ -45,6 +46,7 @@ API = {
     "load_study": ("fem_tether.jobs.study.job", "load_study"),
     "run_study": ("fem_tether.jobs.study.driver", "run_study"),
     "write_study_report": ("fem_tether.report.study", "write_report"),
+    "write_run_report": ("fem_tether.commands.pipeline", "write_run_report"),
     "read_result": ("fem_tether.jobs.result_files", "read_result"),
     "read_simulate": ("fem_tether.io.records", "read_simulate"),
     "read_sweep": ("fem_tether.jobs.sweepfile", "read_sweep"),

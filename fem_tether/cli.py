@@ -23,13 +23,20 @@ from fem_tether.physics import kite
 from fem_tether.report import text as report
 from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config, preset_summaries
 from fem_tether.core.errors import ConfigError, FemTetherError
+from fem_tether.commands.flight import warn_unflyable
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
 from fem_tether.core import stop
 from fem_tether.core.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
 
 DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
                "energy systems (FE model with an independent FD cross-check).")
-JSON_HELP = "print the result as JSON on stdout (no table, no progress)"
+#: ``--json`` of a command that runs no solver: its stderr holds only a user's mistake.
+JSON_HELP = "print the result as JSON on stdout, which then holds the JSON alone (no table)"
+#: ``--json`` of a command that runs the solvers: the run's progress is left out, but stderr
+#: still holds what :mod:`fem_tether.tether.kernels` and the warnings before a run print.
+RUN_JSON_HELP = ("print the result as JSON on stdout, which then holds the JSON alone (no table, no progress "
+                 "of the run); stderr still gets the compile notice (and its progress) of the first run after an "
+                 "install, warnings and errors")
 
 
 class Parser(argparse.ArgumentParser):
@@ -178,6 +185,7 @@ def cmd_simulate(args):
     from fem_tether.commands.simulation import simulate_case
 
     cfg = _config(args, args.length)
+    warn_unflyable([cfg])
     summary = simulate_case(cfg, args.out, args.sweep, progress=not args.json)
     print(report.json_text(summary) if args.json else report.simulate_text(summary, cfg, bool(args.out)))
     return 0
@@ -187,6 +195,7 @@ def cmd_size(args):
     from fem_tether.performance.sizing import size_tether
 
     cfg = _config(args, args.length)
+    warn_unflyable([cfg])
     data = report.size_summary(cfg, size_tether(cfg))
     print(report.json_text(data) if args.json else report.size_text(data))
     return 0
@@ -198,6 +207,7 @@ def cmd_crosscheck(args):
     cfg = _config(args, args.length)
     fd_cfg = _config(argparse.Namespace(config=args.fd_config, system=args.system), args.length) \
         if args.fd_config else None
+    warn_unflyable([cfg] if fd_cfg is None else [cfg, fd_cfg])
     check, fe_run, _ = run_crosscheck(cfg, progress=not args.json, fd_cfg=fd_cfg)
     print(report.json_text(check.as_dict()) if args.json else report.crosscheck_text(check, fe_run))
     return 0 if check.ok else EXIT_FAILED
@@ -214,12 +224,12 @@ def cmd_sweep(args):
     from fem_tether.jobs.sweep import sweep
 
     job = load_job(args.job, args.system)
+    warn_unflyable(job.configs.values())
     outcome = sweep(job, args.out, progress=not args.json, keep_parts=args.keep_parts)
     if outcome is None:
         return 0
-    safety_factor = job.config.tether.safety_factor
-    print(report.json_text(report.sweep_summary(outcome, args.out, safety_factor)) if args.json
-          else report.sweep_text(outcome, args.out, safety_factor))
+    print(report.json_text(report.sweep_summary(outcome, args.out, job.config)) if args.json
+          else report.sweep_text(outcome, args.out, job.config))
     return 0 if outcome.ok else EXIT_FAILED
 
 
@@ -420,17 +430,17 @@ def build_parser() -> argparse.ArgumentParser:
                    "reel-out run's F_t(L) plot here (docs/outputs.md)")
     c.add_argument("--sweep", metavar="FILE.h5",
                    help="reel-out: overlay a sweep's fixed-length F_t on the F_t(L) plot")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("size", cmd_size, "size the line to its peak tension, closed loop over FE runs "
                 "([tether] material, safety_factor; docs/physics.md §5)")
     c.add_argument("--length", type=_length_m, help="cable length [m]")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("crosscheck", cmd_crosscheck, "run the FE and the FD solver on one case and compare")
     c.add_argument("--length", type=_length_m, help="cable length [m]")
     c.add_argument("--fd-config", metavar="CONFIG", help="a different configuration for the FD run")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("sweep", cmd_sweep, "FE (+ FD cross-check, straight line) over cable lengths, MPI-parallel",
                 config=False)
@@ -439,7 +449,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--keep-parts", action="store_true",
                    help="keep FILE.h5.parts/ after the sweep (default: removed once the sweep is finished, "
                         "its runs being in FILE.h5, from which a rerun takes what it reuses)")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("study", cmd_study, "design study: AEP over tether length and diameter (systems, sites) from "
                 "wind-resolved flexible drag, MPI-parallel", config=False)
@@ -448,7 +458,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="result file; plots and the report page go to FILE_report/")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="let points whose FE <-> FD gate failed count for the flexible optimum")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("design", cmd_design, "the AEP-optimal kite system (Trevisi ch. 5: wing, tether, angles, control "
                 "per wind speed), multistart over MPI ranks", config=False, system=False)
@@ -459,7 +469,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--allow-unchecked", action="store_true",
                    help="[design] tether = \"flexible\": exit 0 although the FE <-> FD gate failed "
                         "(the file says so)")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False, system=False)
     c.add_argument("file", metavar="FILE.h5", help="sweep result")
@@ -502,8 +512,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="keep lengths whose cross-check failed, marked")
     c.add_argument("--allow-incomplete", action="store_true",
                    help="compute the AEP even if lengths are pending (else exit 2 naming them)")
-    c.add_argument("--json", action="store_true", help="print the summary (summary.json) on stdout (no table, "
-                   "no progress)")
+    c.add_argument("--json", action="store_true",
+                   help=RUN_JSON_HELP.replace("the result as JSON", "the summary (summary.json)"))
     c.add_argument("--keep-parts", action="store_true",
                    help="keep DIR/sweep.h5.parts/ after the sweep (default: removed once the sweep is finished, "
                         "its runs being in DIR/sweep.h5, from which a rerun takes what it reuses)")
@@ -517,13 +527,13 @@ def build_parser() -> argparse.ArgumentParser:
                         "--only: validation/partial, and never over a full run's)")
     g = c.add_mutually_exclusive_group()
     g.add_argument("--markdown", action="store_true", help="print the table as Markdown (as in validation.md)")
-    g.add_argument("--json", action="store_true", help=JSON_HELP)
+    g.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("bench", cmd_bench, "FE cost vs accuracy on the 3000 m benchmark case", config=False, system=False)
     c.add_argument("--repeats", type=_positive_int, default=5, help="rounds over every setting; the best per setting counts")
     c.add_argument("--memory", type=_element_count, metavar="N",
                    help="instead: wall time and peak RSS of one FE run with N elements (e.g. 5000)")
-    c.add_argument("--json", action="store_true", help=JSON_HELP)
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("mesh", cmd_mesh, "write a unit-interval mesh for [fe] mesh", config=False, system=False)
     c.add_argument("out", help="output file (.vtu, .xdmf, .vtk, ...)")

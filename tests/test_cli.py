@@ -188,15 +188,17 @@ def test_winch_lighter_than_its_line_is_refused_at_load(capsys, tmp_path, comman
 ])
 def test_winch_too_weak_for_the_line_is_a_solver_failure(capsys, tmp_path, command, tension_N, cause):
     """A winch tension too low for the line's drag (1000 N): one line naming the
-    length, the time and what diverged, exit code 1, no traceback and no warnings.
+    length, the time and what diverged, exit code 1, no traceback and no Python warnings;
+    before it, the flight check's warning line (whirl and weight exceed 1000 N).
     Was: a start 106 m below the ground, run until the line went slack at t = 0.4 s."""
     cfg = tmp_path / "t.toml"
     cfg.write_text(f"[winch]\nground_tension_N = {tension_N}\n")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         code, _, err = run_cli(capsys, command, str(cfg), "--json")
-    assert code == 1 and err.count("\n") == 1
-    assert err.startswith("fem-tether: solver failed: ") and re.search(cause, err)
+    flight, failure = err.splitlines()
+    assert code == 1 and flight.startswith("fem-tether: warning: L = 1000 m: flight check (an estimate")
+    assert failure.startswith("fem-tether: solver failed: ") and re.search(cause, failure)
 
 
 @pytest.mark.parametrize("command", ["simulate", "crosscheck"])
@@ -434,3 +436,67 @@ def test_aep_checks_its_system_against_the_sweeps(capsys, unrun_sweep):
     assert code == 2 and "--system nope: unknown system" in err
     code, out, _ = run_cli(capsys, "aep", str(unrun_sweep), "--system", "kitegen", "--allow-incomplete")
     assert code == 0 and out.splitlines()[0] == "AEP of the kitegen sweep (kitegen model)"
+
+
+def test_study_refuses_a_system_its_job_does_not_list(capsys, tmp_path):
+    """Before, `study JOB --system ke-yoyo` under a job listing kitegen ran kitegen; `design` has
+    no --system (its job is Trevisi's model, no preset): argparse refuses it in one line."""
+    job = tmp_path / "job.toml"
+    job.write_text("[study]\nsystems = [\"kitegen\"]\nlengths_m = [1000]\n")
+    code, out, err = run_cli(capsys, "study", str(job), "--system", "ke-yoyo", "--out", str(tmp_path / "s.h5"))
+    assert code == 2 and out == "" and err == (
+        "fem-tether: error: [study] systems = ['kitegen']: --system ke-yoyo disagrees with the job's systems "
+        "(--system names the system of a job without [study] systems; drop it or the job's list)\n")
+    assert not (tmp_path / "s.h5").exists()
+    with pytest.raises(SystemExit) as stop:
+        main(["design", "--preset", "trevisi-3mw", "--system", "ke-yoyo", "--out", str(tmp_path / "d.h5")])
+    assert stop.value.code == 2
+    assert capsys.readouterr().err == "fem-tether: error: unrecognized arguments: --system\n"
+
+
+@pytest.mark.parametrize("argv", [["simulate"], ["size"], ["crosscheck"], ["sweep", "JOB", "--out", "OUT/s.h5"],
+                                  ["run", "JOB", "--out", "OUT"]])
+def test_a_line_the_flight_check_grounds_is_warned_of_before_its_run(capsys, tmp_path, argv):
+    """Before, `simulate --system loyd-2` ran silently until its solver failed.  The flight check
+    errs both ways (tests/systems/test_systems_tethers.py), so each command that flies the line
+    warns first, in one line on stderr (stdout keeps only the JSON), and runs it: here it fails."""
+    job = tmp_path / "job.toml"
+    job.write_text("[sweep]\nlengths_m = [1200]\ncrosscheck = false\n")
+    argv = [str(job) if a == "JOB" else a.replace("OUT", str(tmp_path)) for a in argv]
+    code, out, err = run_cli(capsys, *argv, "--system", "loyd-2", "--json")
+    first = err.splitlines()[0]
+    assert code == 1 and first.startswith("fem-tether: warning: L = 1200 m: flight check (an estimate that errs "
+                                          "both ways): the line's whirl mu V_k^2 L/(2 r) on its 467 m turns, 11.8 MN, ")
+    assert first.endswith("the line cannot follow the kite (docs/systems.md §3.3); the run goes ahead")
+    assert "time step did not converge at t = 7.3224 s" in (err if argv[0] in ("simulate", "size", "crosscheck")
+                                                            else out)
+    json.loads(out or "{}")
+    code, _, err = run_cli(capsys, "simulate", "--system", "kitegen", "--json")
+    assert code == 0 and "warning" not in err
+
+
+#: The commands that run the solvers: their first run after an install compiles the kernels.
+SOLVER_COMMANDS = {"simulate", "size", "crosscheck", "sweep", "study", "design", "run", "validate", "bench"}
+
+
+def test_every_json_help_says_exactly_what_goes_where():
+    """Before, every --json said "no table, no progress", yet the compile notice and its progress
+    come on stderr with --json too.  Each help says stdout holds the JSON alone; a command that
+    runs the solvers says what its stderr still gets."""
+    helps = {name: text for name, options, text in _help_texts(build_parser()) if "--json" in options}
+    assert set(helps) == SOLVER_COMMANDS | {"systems", "straight", "curves", "power", "aep", "show"}
+    for name, text in helps.items():
+        assert "on stdout, which then holds the JSON alone (no table" in text and "no progress)" not in text, name
+        assert ("stderr still gets the compile notice (and its progress) of the first run after an install, "
+                "warnings and errors" in text) == (name in SOLVER_COMMANDS), name
+
+
+def test_with_json_the_compile_notice_goes_to_stderr_and_stdout_holds_the_json(capsys, monkeypatch):
+    """A first run after an install (the cache taken for empty): the notice on stderr, stdout the JSON."""
+    from fem_tether.tether import kernels
+
+    monkeypatch.setattr(kernels, "_loaded", set())
+    monkeypatch.setattr(kernels, "cached", lambda module: False)
+    code, out, err = run_cli(capsys, "simulate", "--length", "200", "--json")
+    assert code == 0 and json.loads(out)["length_m"] == 200.0
+    assert err.startswith("compiling the solver kernels (first run after install, about ")

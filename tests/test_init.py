@@ -26,6 +26,8 @@ def test_the_api_pages_python_runs_and_writes_the_study_report(tmp_path, monkeyp
     page = tmp_path / "study_report" / "index.html"
     assert written_by_fem_tether(page) and written_by_fem_tether(tmp_path / "aep.png")
     assert written_by_fem_tether(tmp_path / "study.csv")
+    assert all(written_by_fem_tether(tmp_path / "tiny" / name) for name in ("index.html", "aep.json", "summary.csv",
+                                                                           "summary.json", "aep_vs_length.png"))
     assert isinstance(fem_tether.read_result(tmp_path / "study.h5"), StudyResult)
     printed = capsys.readouterr().out
     assert "kitegen | sweep over 2 length(s), 400 to 800 m (2 ok, 0 pending, 0 failed)" in printed

@@ -12,11 +12,13 @@ summary table as ``summary.csv`` and ``summary.json``
 :func:`fem_tether.report.text.summary_table`, ``run --json`` prints
 ``summary.json``.  The warnings are made once
 (:mod:`fem_tether.performance.caveats`) and rendered by all of them.
+:func:`write_run_report` writes the same files for any existing sweep file
+(``ft.write_run_report``), through the same code.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import time
 from contextlib import ExitStack
@@ -25,14 +27,15 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from fem_tether.performance.aep import SweepAep, sweep_aep
-from fem_tether.core.atomic import write_json
+from fem_tether.core.atomic import check_writable, exclusive, write_json
 from fem_tether.report.figures import PLOT_FILES, write_plots
 from fem_tether.report.job_summary import CSV_NAME, JSON_NAME, aep_document, summary_document, write_summary
+from fem_tether.commands.flight import warn_unflyable
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.report.page import PAGE_NAME, write_page
 from fem_tether.jobs.sweep import FollowUp, SweepOutcome, sweep
-from fem_tether.jobs.sweepfile import read_sweep
+from fem_tether.jobs.sweepfile import SweepResult, read_sweep
 
 
 #: Rank 0's idle work (importing matplotlib and scipy.stats: 1.1-1.2 s alone,
@@ -72,6 +75,7 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     t0 = time.perf_counter()
     started = datetime.now(timezone.utc).isoformat(timespec="seconds")
     job = load_job(job_file, system)
+    warn_unflyable(job.configs.values())
     out = Path(out)
     h5 = out / "sweep.h5"
     with ExitStack() as folder_lock:
@@ -88,17 +92,63 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
 
 def _after_sweep(outcome: SweepOutcome, h5: Path, out: Path, allow_unchecked: bool, allow_incomplete: bool,
                  t0: float, started: str) -> MainJob:
+    def measured(data: SweepResult) -> dict:      # after the figures: wall time and memory include them
+        return {"started_utc": started, "wall_s": time.perf_counter() - t0, "n_ranks": outcome.n_ranks,
+                "tasks": outcome.tasks, "reused_tasks": outcome.reused,
+                "peak_rss_MiB_per_rank": [peak_rss_MiB(), *outcome.peak_rss_MiB[1:]]}
+    written = _write_results(h5, out, allow_unchecked, allow_incomplete, measured)
+    summary = written.summary
+    outcome = replace(outcome, peak_rss_MiB=tuple(summary["peak_rss_MiB_per_rank"]))
+    return MainJob(outcome, written.data, written.energy, h5, written.files, summary["wall_s"], summary)
+
+
+@dataclass(frozen=True)
+class RunReport:
+    """The main job's files after its sweep (``files``, by name) and what they hold: the
+    sweep ``data``, its ``energy`` (the AEP) and ``summary`` (``summary.json``'s document)."""
+
+    data: SweepResult
+    energy: SweepAep
+    files: dict[str, Path]
+    summary: dict
+
+
+def recorded_run(data: SweepResult) -> dict:
+    """What a sweep file records of the run that wrote it: its ranks; its start, wall
+    time and tasks are not recorded (None: "not recorded" on the page, null in JSON)."""
+    return {"started_utc": None, "wall_s": None, "n_ranks": data.n_ranks, "tasks": None, "reused_tasks": None}
+
+
+def write_run_report(sweep_file, out_dir="results", allow_unchecked: bool = False,
+                     allow_incomplete: bool = False) -> RunReport:
+    """The main job's figures, ``aep.json``, ``summary.csv``, ``summary.json`` and
+    ``index.html`` in ``out_dir`` for the existing sweep file ``sweep_file`` (any
+    sweep's: ``fem-tether sweep --out``, ``ft.sweep``), as ``fem-tether run``
+    writes them after its sweep; the options are ``run``'s.  Each file is checked
+    before any is written, and the folder is held while they are
+    (:mod:`fem_tether.core.atomic`); the run's start, wall time and tasks, which
+    the sweep file does not hold, are "not recorded"."""
+    out = Path(out_dir)
+    files = [out / name for name in FILES]
+    for path in files:
+        check_writable(path)
+    with exclusive(out, directory=True, outputs=files):
+        return _write_results(Path(sweep_file), out, allow_unchecked, allow_incomplete, recorded_run)
+
+
+def _write_results(h5: Path, out: Path, allow_unchecked: bool, allow_incomplete: bool,
+                   run_of: Callable[[SweepResult], Mapping]) -> RunReport:
+    """Read the sweep file ``h5``, compute its AEP and write the main job's files into
+    ``out``; ``run_of(data)``, called once the figures are written, gives the run's facts
+    (:func:`~fem_tether.report.job_summary.summary_document`)."""
     data = read_sweep(h5)
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     plots = write_plots(data, energy, out)
-    outcome = replace(outcome, peak_rss_MiB=(peak_rss_MiB(),) + outcome.peak_rss_MiB[1:])  # with the plots
-    seconds = time.perf_counter() - t0          # the files below take milliseconds
-    run = {"started_utc": started, "wall_s": seconds, "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
-           "reused_tasks": outcome.reused, "peak_rss_MiB_per_rank": list(outcome.peak_rss_MiB)}
+    run = run_of(data)                          # the files below take milliseconds
     files = plots | {"aep_json": out / "aep.json", "summary_csv": out / CSV_NAME, "summary_json": out / JSON_NAME,
                      "index": out / PAGE_NAME}
     summary = summary_document(data, energy, run, {"sweep": h5} | files)
     write_json(files["aep_json"], aep_document(data, energy))
     write_summary(out, summary)
     write_page(out, data, energy, plots, run)
-    return MainJob(outcome, data, energy, h5, files, seconds, summary)
+    return RunReport(data, energy, files, summary)

@@ -88,6 +88,17 @@ def flight_check(cfg: Config) -> FlightCheck:
                   "them: the line cannot follow the kite (docs/systems.md §3.3)")
 
 
+def flight_warning(cfg: Config) -> str | None:
+    """The warning before a run whose line :func:`flight_check` says cannot fly
+    (None if it says it can).  A warning, not a refusal: the estimate errs both
+    ways (docs/systems.md §3.3; measured in tests/systems/test_systems_tethers.py):
+    KiteGen's line on its eight flies at 130 % of the winch tension, Loyd II's
+    fails at 94 %."""
+    check = flight_check(cfg)
+    return None if check.flyable else (f"L = {cfg.tether.length_m:g} m: flight check (an estimate that errs both "
+                                       f"ways): {check.reason}; the run goes ahead")
+
+
 def _force(force_N: float) -> str:
     """A force in words: MN from 1 MN up, else kN, 3 significant digits."""
     return f"{force_N / 1e6:.3g} MN" if force_N >= 1e6 else f"{force_N / 1e3:.3g} kN"

@@ -75,6 +75,8 @@ class LengthResult:
     status: str = "ok"          # "ok", "pending" (a task has not run) or "failed"
     error: str = ""
     values: dict = field(default_factory=dict)
+    #: whether the FE run's spin-up settled (a point-mass kite; None: no laps, or no FE run)
+    laps_settled: bool | None = None
 
 
 #: The per-length values, which are the numeric root datasets of a sweep result
@@ -124,6 +126,7 @@ def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, 
         v["ge_fe"] = operating_ge(cfg, drags[lumping], run_speed_mps(runs["fe"], cfg))  # a point-mass kite: at its own speed
         v["peak_tension_N"] = peak_tension_N(runs["fe"])
         v["margin"] = margin(cfg, v["peak_tension_N"])
+        res.laps_settled = runs["fe"].extra.get("laps_settled")
     v["d_m"] = cfg.tether.diameter_m
     sizing = store.stored_sizing(length_m) if cfg.tether.sizing == "load" else None
     if sizing:

@@ -286,6 +286,9 @@ class SweepResult(Record):
     file: str
     config: Config
     case_configs: tuple[Config, ...]      #: each length's configuration (its sized line with sizing = "load")
+    #: per length, whether its FE run's spin-up settled (a point-mass kite's laps, its run's
+    #: ``extra``): 1 or 0, NaN where the run has no laps (a prescribed kite) or did not run
+    laps_settled: np.ndarray
     job_toml: str
     version: str
     n_ranks: int
@@ -337,6 +340,14 @@ class SweepResult(Record):
                      x="length_m")
 
 
+def _laps_settled(f: h5py.File, length_m: float) -> float:
+    """Whether the FE run of a length settled its spin-up (its ``extra`` attribute
+    ``laps_settled``, :mod:`fem_tether.tether.laps`): 1.0, 0.0, or NaN without one."""
+    extra = f.get(f"{_group_name(length_m)}/fe/extra")
+    value = None if extra is None else extra.attrs.get("laps_settled")
+    return float("nan") if value is None else float(bool(value))
+
+
 def read_sweep(path: str | Path) -> SweepResult:
     """The sweep result file ``path``: its root datasets and attributes, and each
     length's configuration.
@@ -360,6 +371,8 @@ def read_sweep(path: str | Path) -> SweepResult:
         if unknown:
             raise reader.error(f"dataset /status holds {str(sorted(unknown)[0])!r} (known: {', '.join(STATUSES)})")
         case_configs = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
-    return SweepResult(file=str(path), config=config, case_configs=case_configs, job_toml=attrs["job_toml"],
+        laps_settled = np.array([_laps_settled(f, L) for L in lengths])
+    return SweepResult(file=str(path), config=config, case_configs=case_configs, laps_settled=laps_settled,
+                       job_toml=attrs["job_toml"],
                        version=attrs["fem_tether_version"], n_ranks=attrs["n_ranks"],
                        created_utc=attrs["created_utc"], **data)

@@ -28,6 +28,7 @@ from fem_tether.systems.power import Cycle, cycle_curves, operating_design, rate
 from fem_tether.core.quantities import lumped_name
 from fem_tether.performance.caveats import Caveat, as_json
 from fem_tether.performance.sizing import margin_caveat
+from fem_tether.performance.summary import spinup_caveat
 from fem_tether.physics.resource import Band, Resource, ResourceError
 from fem_tether.physics.resource import check_config as check_resource_config
 from fem_tether.physics.resource import from_config as resource_from_config
@@ -183,6 +184,11 @@ class IncompleteSweepError(InputError):
     """The sweep has lengths whose tasks have not run (an interrupted or running sweep)."""
 
 
+#: The number of a sweep that its FE runs' unsettled spin-up qualifies (and with it the
+#: flexible G_e and AEP that follow from it).
+SPINUP_QUANTITY = "drag_fe_N"
+
+
 @dataclass(frozen=True)
 class SweepAep:
     """AEP of a sweep's lengths, straight and flexible, with the cross-check gate."""
@@ -236,7 +242,9 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     (then they are listed in ``pending_m`` and gated like the others).  Its
     caveats: a best length at the edge of its lengths (:func:`edge_caveat`) and
     the lines whose margin is short of ``[tether] safety_factor``
-    (:func:`fem_tether.performance.sizing.margin_caveat`).
+    (:func:`fem_tether.performance.sizing.margin_caveat`) and the FE runs whose
+    point-mass kite's spin-up did not settle (``laps_settled``,
+    :func:`fem_tether.performance.summary.spinup_caveat`).
     """
     cfg = sweep_data["config"]
     lengths = np.asarray(sweep_data["length_m"], dtype=float)
@@ -265,7 +273,9 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     caveats = (edge_caveat(straight, "straight", "best_length_straight_m"),
                edge_caveat(flexible, "flexible", "best_length_fe_m"),
                margin_caveat(lengths, sweep_data.get("margin", np.full(lengths.shape, np.nan)),
-                             cfg.tether.safety_factor))
+                             cfg.tether.safety_factor),
+               spinup_caveat(lengths, sweep_data.get("laps_settled", ()), cfg.time.lap_tolerance,
+                             SPINUP_QUANTITY))
     return SweepAep(
         straight=straight, flexible=flexible,
         fixed=aep_of_system(cfg, lengths[has_fixed], drag_fixed[has_fixed], resource) if has_fixed.any() else None,

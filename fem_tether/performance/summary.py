@@ -59,11 +59,29 @@ def operating_tether_cd(cfg: Config, drag_N, speed_mps: float | None = None) -> 
                                     speed_mps or k.speed_mps))
 
 
+def spinup_caveat(lengths_m, settled, lap_tolerance: float, quantity: str) -> caveats.Caveat | None:
+    """The warning on the runs of a point-mass kite whose spin-up ended unsettled
+    (:mod:`fem_tether.tether.laps`: by ``[time] max_spinup_periods``, its laps' means
+    still changing by more than ``[time] lap_tolerance``), one record for all of
+    ``lengths_m``; ``settled`` per length: true, false, or None or NaN where the run
+    has no laps (a prescribed kite, no FE run).  ``quantity``: the mean it qualifies
+    in the command's JSON.  None if no run ended unsettled."""
+    unsettled = [float(length) for length, s in zip(lengths_m, settled) if s is not None and s == 0]
+    if not unsettled:
+        return None
+    return caveats.Caveat(
+        "spin-up-not-settled",
+        f"spin-up not settled at {', '.join(f'{length:g}' for length in unsettled)} m: the kite's lap means still "
+        f"changed by more than [time] lap_tolerance = {lap_tolerance:g} after [time] max_spinup_periods laps, so "
+        "the averaged laps may still drift (raise max_spinup_periods)", quantity, tuple(unsettled))
+
+
 def run_summary(run, cfg: Config) -> dict:
     """Period means, straight-line comparison, G_e, and the line's peak tension
     (with the length it was reached at), breaking load and margin
-    (:mod:`fem_tether.performance.sizing`) of one tether run, with the warning on a
-    margin short of the safety factor (``warnings``).  A reel-out run's G_e and
+    (:mod:`fem_tether.performance.sizing`) of one tether run, with the warnings on a
+    margin short of the safety factor and on a point-mass kite's spin-up that did
+    not settle (``warnings``: :func:`spinup_caveat` on ``mean_drag_N``).  A reel-out run's G_e and
     straight line are undefined (None) over the whole run: :func:`reel_summary` gives
     them at its first and its last period."""
     means = run.means()
@@ -71,6 +89,7 @@ def run_summary(run, cfg: Config) -> dict:
     reel = reel_summary(run, cfg)
     one_length = {} if reel else length_summary(run, cfg)
     short = sizing.margin_caveat([peak_length_m(run)], [sizing.margin(cfg, peak)], cfg.tether.safety_factor)
+    spinup = spinup_caveat([run.length_m], [run.extra.get("laps_settled")], cfg.time.lap_tolerance, "mean_drag_N")
     return {
         "solver": run.solver,
         "length_m": run.length_m,
@@ -100,7 +119,7 @@ def run_summary(run, cfg: Config) -> dict:
         "periods": run.periods,
         "period_s": run.period_s,
         "wall_s": run.wall_s,
-        "warnings": caveats.as_json(short),
+        "warnings": caveats.as_json(short, spinup),
         **run.extra,
     } | reel | free_kite_summary(run) | cycle_summary(run, cfg)
 

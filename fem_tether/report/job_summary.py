@@ -117,9 +117,10 @@ def job_table(data: Mapping) -> dict:
 def summary_document(data: Mapping, energy: SweepAep, run: Mapping, files: Mapping[str, Path]) -> dict:
     """``summary.json`` (and ``run --json``): the system, the job, the run (``run``:
     ``started_utc``, ``wall_s``, ``n_ranks``, ``tasks``, ``reused_tasks`` and, if
-    measured, ``peak_rss_MiB_per_rank``), the columns, one row per length, the best
-    lengths, the lengths left out, pending or kept unchecked, the ``warnings``
-    (:mod:`fem_tether.performance.caveats`, as in ``aep.json``) and the ``files``."""
+    measured, ``peak_rss_MiB_per_rank``; None where not recorded: a page written from
+    a sweep file alone), the columns, one row per length, the best
+    lengths, the lengths left out, pending or kept unchecked, the warnings (``aep.json``'s)
+    and the ``files``."""
     cfg = data["config"]
     d = energy.as_dict()
     peaks = list(run.get("peak_rss_MiB_per_rank", ()))

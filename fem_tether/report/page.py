@@ -131,13 +131,24 @@ def facts(pairs: Mapping[str, str]) -> str:
     return "<dl>" + "".join(f"<dt>{html.escape(k)}</dt><dd>{html.escape(v)}</dd>" for k, v in pairs.items()) + "</dl>"
 
 
+def _utc(iso: str) -> str:
+    return datetime.fromisoformat(iso).astimezone(timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+
+
 def run_facts(data: Mapping, run: Mapping) -> dict[str, str]:
-    """When, how long, on how many ranks, which version and system, which file."""
+    """When, how long, on how many ranks, which version and system, which file; a page
+    written from a sweep file alone (``run``'s start None, ``fem_tether.write_run_report``)
+    says when the file was written and that the run's start, wall time and tasks are not
+    recorded."""
     system = data["config"].system
-    started = datetime.fromisoformat(run["started_utc"]).astimezone(timezone.utc)
-    return {"run": started.strftime("%Y-%m-%d %H:%M:%S UTC"), "wall time": f"{run['wall_s']:.1f} s",
+    recorded = run["started_utc"] is not None
+    not_recorded = "not recorded (this page is written from the sweep file)"
+    return {"run": _utc(run["started_utc"]) if recorded else
+            f"not recorded: this page is written from the sweep file, which was written {_utc(data['created_utc'])}",
+            "wall time": f"{run['wall_s']:.1f} s" if recorded else not_recorded,
             "MPI ranks": f"{run['n_ranks']}",
-            "tasks": f"{run['tasks']} ({run['reused_tasks']} reused from the stored parts)",
+            "tasks": f"{run['tasks']} ({run['reused_tasks']} reused from the stored parts)" if recorded
+            else not_recorded,
             "fem-tether": __version__,
             "system": f"{system.name} ({system.model} model): {system.description}",
             "result file": Path(data["file"]).name}

@@ -25,6 +25,7 @@ from fem_tether.core.atomic import write_csv as atomic_write_csv
 from fem_tether.core.quantities import quantity
 from fem_tether.io.design_file import DesignFile
 from fem_tether.io.records import Column, SimulateResult, StoredResult
+from fem_tether.jobs.study.job import surface_name
 from fem_tether.jobs.study.result import StudyResult
 from fem_tether.jobs.sweepfile import SweepResult
 
@@ -107,10 +108,10 @@ def _notes(result: StoredResult) -> list[str]:
                 f"{', '.join(f'{v:g}' for v in result.length_m[weak])} m"] if weak.any() else [])
     if isinstance(result, StudyResult):
         lines = []
-        for name, s in result.surfaces.items():
+        for s in result.surfaces.values():
             for case, label in (("straight", "straight"), ("fe", "flexible")):
                 best = s.optimum[case]
-                lines.append(f"{name}: AEP-optimal, {label}: " + ("none" if best is None else
+                lines.append(f"{surface_name(s.system, s.site)}: AEP-optimal, {label}: " + ("none" if best is None else
                              f"L {best.length_m:g} m, d {1e3 * best.diameter_m:.1f} mm, AEP {best.aep_MWh:.0f} MWh, "
                              f"CF {best.capacity_factor:.3f}"))
         return lines + [f"status: {quantity('study', 'status').meaning}",

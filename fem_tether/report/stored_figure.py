@@ -19,6 +19,7 @@ import numpy as np
 from fem_tether.core.atomic import check_writable
 from fem_tether.core.errors import InputError
 from fem_tether.io.records import StoredResult, Table
+from fem_tether.jobs.study.job import surface_name
 from fem_tether.report.plots import plt, save_atomically
 from fem_tether.report.stored import KIND_NAMES
 
@@ -74,6 +75,8 @@ def _groups(table: Table) -> list[tuple[str, np.ndarray]]:
 
 
 def _group_label(name: str, value, table: Table) -> str:
+    if name == "surface":               # a study's "system/site", in plain words
+        return surface_name(*value.split("/"))
     if isinstance(value, str):
         return value
     unit = table.column(name).unit

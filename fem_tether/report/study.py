@@ -34,6 +34,7 @@ from fem_tether.report.page import PAGE_NAME, STYLE, image, number, table
 from fem_tether.report.text import finite_max
 
 from fem_tether.jobs.study.energy import INTERPOLATION_LIMIT
+from fem_tether.jobs.study.job import surface_name
 from fem_tether.jobs.study.result import read_study, report_dir
 
 #: Evenly spaced lengths drawn in the per-bin figures (the optimum's besides).
@@ -80,15 +81,6 @@ def _curve_label(s: dict, i: int) -> str:
 #: The source document of each power model ([system] model), by its short name (docs/sources.md).
 POWER_MODEL_SOURCES = {"kitegen": "Roselli 2016", "ke-yoyo": "Fagiano et al. 2010", "unified": "Trevisi 2019",
                        "loyd": "Lourenço"}
-#: The site a study names ``configured`` when its job gives none: the system's own [wind] and [resource].
-CONFIGURED_SITE = "configured"
-
-
-def surface_name(system: str, site: str) -> str:
-    """A surface in plain words: the system, and the site where the job names one."""
-    return system if site == CONFIGURED_SITE else f"{system} at {site}"
-
-
 def power_model(s: dict) -> str:
     """The [system] model of surface ``s``'s configuration and its source, e.g. 'ke-yoyo power
     model (Fagiano et al. 2010)'."""
@@ -194,7 +186,7 @@ def surface_html(name: str, s: dict, figures: dict[str, Path]) -> str:
     system, site = name.split("/")
     errors = [e for e, status in zip(s["error"], s["status"]) if status == "failed"]
     return "\n".join([
-        f"<h2 id=\"{html.escape(f'{system}_{site}')}\">{html.escape(f'{system} at {site}')}</h2>",
+        f"<h2 id=\"{html.escape(f'{system}_{site}')}\">{html.escape(surface_name(system, site))}</h2>",
         *(f"<p>{html.escape(n)}</p>" for n in _notes(s)),
         "<h3>AEP optimum</h3>",
         table(["case", "L [m]", "d [mm]", "AEP [MWh]", "CF", "bracketed by the grid"], optimum_rows(s)),
@@ -205,15 +197,15 @@ def surface_html(name: str, s: dict, figures: dict[str, Path]) -> str:
         *(["<h3>Failed runs</h3><ul>" + "".join(f"<li>{html.escape(e)}</li>" for e in errors) + "</ul>"]
           if errors else []),
         "<h3>Figures</h3>", *(image(p, embed=False) for p in figures.values()),
-        f"<details><summary>configuration of {html.escape(system)} at {html.escape(site)}</summary>"
+        f"<details><summary>configuration of {html.escape(surface_name(system, site))}</summary>"
         f"<pre>{html.escape(s['config_toml'])}</pre></details>"])
 
 
 def render(out: Path, study: Mapping, figures: dict[str, dict[str, Path]]) -> str:
     """The page's HTML (``figures``: per surface name, its PNGs)."""
     names = list(study["surfaces"])
-    contents = "".join(f"<li><a href=\"#{html.escape(n.replace('/', '_'))}\">{html.escape(n.replace('/', ' at '))}"
-                       f"</a></li>" for n in names)
+    contents = "".join(f"<li><a href=\"#{html.escape(n.replace('/', '_'))}\">"
+                       f"{html.escape(surface_name(*n.split('/')))}</a></li>" for n in names)
     return "\n".join([
         "<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
         f"<meta name=\"generator\" content=\"{generator_tag()}\">",

@@ -17,10 +17,12 @@ import numpy as np
 from fem_tether.config import Config
 from fem_tether.tether.crosscheck import QUANTITIES, CrossCheck, limits_of
 from fem_tether.core.columns import Columns
+from fem_tether.performance.aep import SPINUP_QUANTITY
 from fem_tether.performance.caveats import as_json
 from fem_tether.performance.comparison import fly_gen_only
 from fem_tether.performance.sizing import Sizing, breaking_load_N, margin, margin_caveat, sized_case
-from fem_tether.performance.summary import STRAIGHT_LINE
+from fem_tether.performance.summary import STRAIGHT_LINE, spinup_caveat
+from fem_tether.jobs.study.job import surface_name
 from fem_tether.report.job_summary import summary_rows
 
 #: The line under a table of straight-line numbers (in full: :data:`~fem_tether.performance.summary.STRAIGHT_LINE`).
@@ -274,9 +276,7 @@ def simulate_text(s: dict, cfg: Config, written: bool) -> str:
                   f"{s['max_abs_roll_deg']:.1f} deg"]
     if "laps" in s:
         lines.append(f"  laps: lap-to-lap spread {100 * s['lap_spread']:.3g} % over the averaged laps; "
-                     + ("spin-up settled" if s["laps_settled"] else
-                        f"warning: spin-up not settled within [time] lap_tolerance = {s['lap_tolerance']:g} "
-                        "by [time] max_spinup_periods laps"))
+                     + ("spin-up settled" if s["laps_settled"] else "spin-up not settled (the warning below)"))
     if "cycles" in s:
         lines.append(f"  pumping: {s['cycles']} whole cycle(s): out {s['cycle_energy_out_J'] / 1e6:.2f} MJ in "
                      f"{s['cycle_time_out_s']:.1f} s, in {s['cycle_energy_in_J'] / 1e6:.3f} MJ in "
@@ -423,13 +423,20 @@ def peak_memory(outcome) -> str:
             f"(max {max(peaks):.0f} MiB)") if peaks else ""
 
 
-def sweep_summary(outcome, out, safety_factor: float) -> dict:
+def sweep_caveats(outcome, cfg: Config) -> list[dict]:
+    """The warnings on a sweep's ``outcome`` (``cfg``: its job's configuration): the lines whose
+    margin is short of the safety factor, the FE runs whose spin-up did not settle."""
+    lengths = [r.length_m for r in outcome.lengths]
+    return as_json(margin_caveat(lengths, [r.values["margin"] for r in outcome.lengths], cfg.tether.safety_factor),
+                   spinup_caveat(lengths, [r.laps_settled for r in outcome.lengths], cfg.time.lap_tolerance,
+                                 SPINUP_QUANTITY))
+
+
+def sweep_summary(outcome, out, cfg: Config) -> dict:
     """``fem-tether sweep --json``: the outcome, non-finite values as null, which
-    straight line ``drag_straight_N`` is (``straight_line``), and the warnings (lines
-    whose margin is short of ``safety_factor``)."""
+    straight line ``drag_straight_N`` is (``straight_line``), and the warnings
+    (:func:`sweep_caveats`; ``cfg``: the job's configuration)."""
     peaks = getattr(outcome, "peak_rss_MiB", ())
-    caveat = margin_caveat([r.length_m for r in outcome.lengths], [r.values["margin"] for r in outcome.lengths],
-                           safety_factor)
     return {"file": str(out), "n_ranks": outcome.n_ranks, "tasks": outcome.tasks,
             "reused_tasks": outcome.reused, "straight_line": STRAIGHT_LINE,
             **({"peak_rss_MiB_per_rank": list(peaks), "peak_rss_MiB": max(peaks)} if peaks else {}),
@@ -438,12 +445,12 @@ def sweep_summary(outcome, out, safety_factor: float) -> dict:
                  **{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
                     for k, v in r.values.items()}}
                 for r in outcome.lengths],
-            "warnings": as_json(caveat)}
+            "warnings": sweep_caveats(outcome, cfg)}
 
 
-def sweep_text(outcome, out, safety_factor: float) -> str:
+def sweep_text(outcome, out, cfg: Config) -> str:
     """``fem-tether sweep``: F_t of each length, both solvers and the straight line, the
-    line's diameter and margin (a warning where it is short of ``safety_factor``)."""
+    line's diameter and margin, and the warnings (:func:`sweep_caveats`)."""
     lines = [f"sweep of {len(outcome.lengths)} lengths -> {out} ({reused(outcome)})"]
     for r in outcome.lengths:
         v = r.values
@@ -452,8 +459,7 @@ def sweep_text(outcome, out, safety_factor: float) -> str:
                      f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}, d {1e3 * v['d_m']:.3f} mm, "
                      f"margin {v['margin']:.3f}"
                      + (f"  [{r.error}]" if r.status != "ok" else ""))
-    lines += margin_warnings([(r.length_m, r.values["margin"]) for r in outcome.lengths],
-                             safety_factor)
+    lines += caveat_lines(sweep_caveats(outcome, cfg))
     return "\n".join(lines + [m for m in (peak_memory(outcome),) if m])
 
 
@@ -511,6 +517,7 @@ def summary_table(data: Mapping, energy) -> str:
                      f"{cfg.tether.safety_factor:g}): d = "
                      + ", ".join(f"{1e3 * d:.2f}" for d in data["d_m"]) + " mm")
     lines += margin_warnings(zip(data["length_m"], data["margin"]), cfg.tether.safety_factor)
+    lines += caveat_lines(d["warnings"], (SPINUP_QUANTITY,))
     return "\n".join(lines)
 
 
@@ -577,7 +584,7 @@ def study_text(summary: dict) -> str:
              f"({summary['ran']} ran, {summary['reused']} reused from the stored parts) on {summary['n_ranks']} "
              f"rank(s) in {summary['wall_s']:.1f} s ({phases})"]
     for s in summary["surfaces"]:
-        lines += [f"{s['system']} at {s['site']}: {s['points']} points ({s['refined_points']} refined): "
+        lines += [f"{surface_name(s['system'], s['site'])}: {s['points']} points ({s['refined_points']} refined): "
                   f"{s['ok']} ok, {s['unchecked']} unchecked, {s['weak']} too weak for their peak tension, "
                   f"{s['failed']} failed",
                   "  AEP-optimal, flexible: " + _optimum_text(s["optimum_fe"], s["swept"]),

@@ -17,6 +17,7 @@ from pages import check_page
 from route import TOP_TO_BOTTOM, calls_between_modules
 
 from fem_tether.cli import main
+from fem_tether.core.atomic import OutputError
 from fem_tether.physics.resource import from_config as resource_from_config
 from fem_tether.physics.resource import write_resource_csv
 from fem_tether.physics.wind import DE_BILT_ANNUAL
@@ -240,3 +241,62 @@ def test_the_main_jobs_data_goes_only_down(tmp_path):
     assert sorted({f"{a} -> {b}" for a, b, back in calls if back}) == []
     order = {m: i for i, m in enumerate(TOP_TO_BOTTOM)}
     assert sorted({f"{a} -> {b}" for a, b, _ in calls if a in order and b in order and order[b] < order[a]}) == []
+
+
+def test_write_run_report_writes_the_main_jobs_files_for_a_sweep_file(quick_run, tmp_path):
+    """Before, no call of the API wrote the main job's page for a sweep file (only ``fem-tether run``
+    after its own sweep).  ``ft.write_run_report`` writes the same files through the same code: the
+    same aep.json and summary rows; the run's start, wall time and tasks are not recorded (null in
+    summary.json, said on the page), its ranks are the file's."""
+    import fem_tether
+
+    _, out = quick_run
+    report = fem_tether.write_run_report(out / "sweep.h5", tmp_path / "again")
+    again = tmp_path / "again"
+    assert sorted(p.name for p in again.iterdir()) == sorted(["aep.json", "summary.csv", "summary.json", "index.html",
+                                                              "drag_vs_length.png", "ge_vs_length.png",
+                                                              "power_curves.png", "aep_vs_length.png"])
+    assert report.files["index"] == again / "index.html" and report.data.file == str(out / "sweep.h5")
+    assert json.loads((again / "aep.json").read_text()) == json.loads((out / "aep.json").read_text())
+    summary, run = (json.loads((d / "summary.json").read_text()) for d in (again, out))
+    assert summary == report.summary and summary["lengths"] == run["lengths"]
+    assert [summary[k] for k in ("started_utc", "wall_s", "tasks", "reused_tasks")] == [None] * 4
+    assert summary["n_ranks"] == 1 and "peak_rss_MiB" not in summary
+    assert (again / "summary.csv").read_text().splitlines()[1:] == (out / "summary.csv").read_text().splitlines()[1:]
+    text = (again / "index.html").read_text(encoding="utf-8")
+    assert "<dd>not recorded: this page is written from the sweep file, which was written 20" in text
+    assert "<dt>wall time</dt><dd>not recorded (this page is written from the sweep file)</dd>" in text
+    assert len(check_page(again / "index.html", json.loads((again / "aep.json").read_text())).images) == 4
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "summary.csv").write_text("my own table\n")         # never over a user's file
+    with pytest.raises(OutputError, match="summary.csv"):
+        fem_tether.write_run_report(out / "sweep.h5", tmp_path / "mine")
+    assert (tmp_path / "mine" / "summary.csv").read_text() == "my own table\n"
+    assert not (tmp_path / "mine" / "aep.json").exists()
+
+
+def test_an_unsettled_spinup_reaches_aep_json_summary_json_the_page_and_the_table(tmp_path, capsys):
+    """Before, a point-mass kite's unsettled spin-up was said by `simulate` on the terminal alone;
+    the main job said nothing of it.  Its FE run's ``laps_settled`` (read back from the sweep
+    file) gives one record in aep.json's and summary.json's ``warnings``, on the page and under
+    the printed table."""
+    from fem_tether.jobs.sweepfile import read_sweep
+
+    job = tmp_path / "job.toml"
+    job.write_text("[sweep]\nlengths_m = [500]\ncrosscheck = false\n[kite]\nmodel = \"point-mass\"\n[fe]\n"
+                   "elements = 20\n[time]\naverage_periods = 1\nspinup_periods = 1\nmax_spinup_periods = 1\n"
+                   "lap_tolerance = 1e-9\n")
+    out = tmp_path / "out"
+    assert main(["run", str(job), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert read_sweep(out / "sweep.h5").laps_settled.tolist() == [0.0]
+    documents = [json.loads((out / name).read_text()) for name in ("aep.json", "summary.json")]
+    (spinup,) = [w for w in documents[0]["warnings"] if w["code"] == "spin-up-not-settled"]
+    assert documents[1]["warnings"] == documents[0]["warnings"]
+    assert spinup["quantity"] == "drag_fe_N" and spinup["lengths_m"] == [500.0]
+    assert spinup["message"].startswith("spin-up not settled at 500 m: the kite's lap means still changed by more "
+                                        "than [time] lap_tolerance = 1e-09 after [time] max_spinup_periods laps")
+    assert f"warning: {spinup['message']}" in printed.splitlines()
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert (f"<p class=\"warning\" data-code=\"spin-up-not-settled\" data-quantity=\"drag_fe_N\" "
+            f"style=\"color:#8a3b00\"><strong>warning:</strong> {html.escape(spinup['message'])}</p>") in page

@@ -163,3 +163,11 @@ def test_trevisi_presets_fly_table_3_1s_inclination_at_the_kite(name):
     assert cycle.theta_rad == pytest.approx(float(kite_inclination_rad(beta, cfg.tether.length_m, sag)),
                                             rel=1e-9)
     assert math.degrees(cycle.theta_rad) == pytest.approx(20.0, abs=0.01)
+
+
+def test_flight_warning_names_the_length_and_the_checks_reason():
+    """A warning line for a line the check says cannot fly (Loyd II), none for one it flies."""
+    assert catalog.flight_warning(load_config(system="kitegen")) is None
+    cfg = load_config(system="loyd-2")
+    assert catalog.flight_warning(cfg) == (f"L = 1200 m: flight check (an estimate that errs both ways): "
+                                           f"{catalog.flight_check(cfg).reason}; the run goes ahead")

@@ -5,7 +5,7 @@ import pytest
 from fem_tether.config import ConfigError, load_config
 from fem_tether.physics.resource import weibull_resource, write_resource_csv
 from fem_tether.performance.sizing import tether_keys
-from fem_tether.jobs.study.job import Point, load_study, study_from_dict
+from fem_tether.jobs.study.job import Point, load_study, study_from_dict, surface_name
 
 
 def _study(**keys) -> dict:
@@ -154,3 +154,22 @@ def test_a_site_reads_its_resource_relative_to_the_job(tmp_path):
                                        "resource = {csv = 'sites/wind.csv'}\n")
     job = load_study(tmp_path / "job.toml")
     assert job.point_config(job.points[0]).resource.csv == str(tmp_path / "sites" / "wind.csv")
+
+
+@pytest.mark.parametrize("systems", [["kitegen"], ["kitegen", "ke-yoyo"]])
+def test_system_option_must_be_the_jobs_one_system(systems):
+    """Before, ``--system ke-yoyo`` under a job listing kitegen was silently ignored (the study ran
+    kitegen).  --system names the system of a job without systems, and must be the one it lists."""
+    with pytest.raises(ConfigError, match=r"^\[study\] systems = \[.*\]: --system ke-yoyo disagrees with the "
+                                          r"job's systems \(--system names the system of a job without"):
+        study_from_dict(_study(systems=systems), system="ke-yoyo")
+    assert study_from_dict(_study(systems=["ke-yoyo"]), system="ke-yoyo").systems == ("ke-yoyo",)
+    assert study_from_dict(_study(), system="ke-yoyo").systems == ("ke-yoyo",)
+    with pytest.raises(ConfigError, match=r"^--system nope: unknown system"):
+        study_from_dict(_study(systems=["kitegen"]), system="nope")
+
+
+def test_a_surface_is_named_plainly_and_a_named_site_stays_in_its_name():
+    """The study's page, figures and printed summary name a surface so (before: 'kitegen at configured')."""
+    assert surface_name("kitegen", "configured") == "kitegen"
+    assert surface_name("kitegen", "debilt") == "kitegen at debilt"

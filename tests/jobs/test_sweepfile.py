@@ -63,6 +63,7 @@ def test_read_sweep_returns_a_typed_result_with_every_dataset_and_its_unit(unrun
     assert table.x == "length_m" and table.names == stored
     np.testing.assert_array_equal(table.column("length_m").values, [400.0, 800.0])
     assert data["drag_fe_N"] is data.drag_fe_N and data.get("case_configs") is data.case_configs
+    assert np.isnan(data.laps_settled).all() and data.laps_settled.shape == (2,)   # a prescribed kite flies no laps
     with pytest.raises(dataclasses.FrozenInstanceError):
         data.status = data.status                                # type: ignore[misc]
 

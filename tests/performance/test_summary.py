@@ -78,3 +78,41 @@ def test_a_reel_out_runs_summary_is_given_at_its_first_and_its_last_period(tiny_
     tension = np.maximum(run.series["kite_tension_N"], run.series["ground_tension_N"])
     assert s["peak_length_m"] == L[window][np.argmax(tension[window])]
     assert s["peak_tension_N"] == tension[window].max()
+
+
+#: A point-mass kite whose spin-up cannot settle: a tolerance no lap meets, one lap allowed.
+UNSETTLED = {"tether": {"length_m": 500.0}, "kite": {"model": "point-mass"}, "fe": {"elements": 20},
+             "time": {"average_periods": 1, "spinup_periods": 1, "max_spinup_periods": 1, "lap_tolerance": 1e-9}}
+
+
+def test_spinup_caveat_names_the_lengths_whose_spinup_did_not_settle():
+    from fem_tether.performance.summary import spinup_caveat
+
+    assert spinup_caveat([500.0, 900.0], [True, None], 1e-3, "drag_fe_N") is None
+    assert spinup_caveat([500.0], [float("nan")], 1e-3, "drag_fe_N") is None     # no laps: a prescribed kite
+    caveat = spinup_caveat([500.0, 900.0, 1300.0], [0.0, 1.0, False], 1e-3, "drag_fe_N")
+    assert (caveat.code, caveat.quantity, caveat.lengths_m) == ("spin-up-not-settled", "drag_fe_N", (500.0, 1300.0))
+    assert caveat.message == ("spin-up not settled at 500, 1300 m: the kite's lap means still changed by more than "
+                              "[time] lap_tolerance = 0.001 after [time] max_spinup_periods laps, so the averaged "
+                              "laps may still drift (raise max_spinup_periods)")
+
+
+def test_an_unsettled_spinup_is_a_warning_record_of_simulate():
+    """Before, `simulate` printed "warning: spin-up not settled ..." on the terminal alone; its JSON
+    had only laps_settled = false.  Now a record in ``warnings`` (on the run's mean drag), which
+    the text prints with the others."""
+    from fem_tether.report.text import simulate_text
+
+    cfg = load_config(overrides=UNSETTLED)
+    run = simulate(cfg)
+    s = run_summary(run, cfg) | {"elements": 20, "dt_s": run.extra["dt_s"]}
+    assert s["laps_settled"] is False
+    spinup = [w for w in s["warnings"] if w["code"] == "spin-up-not-settled"]
+    assert spinup == [{"code": "spin-up-not-settled", "quantity": "mean_drag_N", "lengths_m": [500.0],
+                       "message": spinup[0]["message"]}]
+    assert spinup[0]["message"].startswith("spin-up not settled at 500 m: ")
+    lines = simulate_text(s, cfg, written=False).splitlines()
+    assert lines[-1] == f"warning: {spinup[0]['message']}"
+    assert any(line.endswith("spin-up not settled (the warning below)") for line in lines)
+    settled = load_config(overrides=UNSETTLED | {"time": {"average_periods": 1, "spinup_periods": 1}})
+    assert not [w for w in run_summary(simulate(settled), settled)["warnings"] if w["code"] == "spin-up-not-settled"]

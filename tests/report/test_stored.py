@@ -86,7 +86,7 @@ def test_show_of_a_sweep_and_a_study_tables_their_main_datasets(stored, capsys):
 def test_show_of_a_study_gives_its_optima_and_of_a_design_its_outputs(stored, capsys):
     notes = _show_json(capsys, stored["study"])["notes"]
     best = read_result(stored["study"]).surfaces["kitegen/configured"].optimum["straight"]
-    assert (f"kitegen/configured: AEP-optimal, straight: L {best.length_m:g} m, d {1e3 * best.diameter_m:.1f} mm, "
+    assert (f"kitegen: AEP-optimal, straight: L {best.length_m:g} m, d {1e3 * best.diameter_m:.1f} mm, "
             f"AEP {best.aep_MWh:.0f} MWh, CF {best.capacity_factor:.3f}") in notes
     design, outputs = _show_json(capsys, stored["design"])["tables"]
     assert design["rows"] == [["aspect_ratio", 34.4, "1"], ["span_m", 49.1, "m"]]

@@ -75,7 +75,7 @@ def test_a_studys_curves_are_one_per_diameter_its_points_not_ok_open(stored, tmp
     (ax,) = drawn[0].axes
     curves = [li for li in ax.lines if li.get_label().startswith("aep_straight_MWh")]
     diameters = sorted(set(s.diameter_m))
-    assert [li.get_label() for li in curves] == [f"aep_straight_MWh, kitegen/configured, d = {1e3 * d:g} mm"
+    assert [li.get_label() for li in curves] == [f"aep_straight_MWh, kitegen, d = {1e3 * d:g} mm"
                                                  for d in diameters]
     for d, li in zip(diameters, curves):
         at = s.diameter_m == d

@@ -87,8 +87,10 @@ def test_report_writes_every_surfaces_figures_and_the_page_links_them(study):
     page = Page(text)
     assert sorted(page.images) == sorted(names)          # linked by name: the directory stands alone
     assert str(out.parent) not in text
-    for heading in ("ke-yoyo at configured", "kitegen at configured"):
+    for heading in ("ke-yoyo", "kitegen"):       # before: "ke-yoyo at configured" (issue 29 §5)
         assert f">{heading}</h2>" in text and f">{heading}</a>" in text
+        assert f"<summary>configuration of {heading}</summary>" in text
+    assert "at configured" not in text
 
 
 def test_page_tables_hold_the_study_files_optimum_and_points(study):
@@ -132,6 +134,9 @@ def test_surface_section_states_failures_and_the_gate(study):
     assert f"{status.count('unchecked')} unchecked, {status.count('weak')} too weak for their peak tension, " \
            "1 failed" in text and "largest drag difference 1.20 %, 8 of 9 points passed" in text
     assert "<li>kitegen_configured_L1000_v0_fe: diverged</li>" in text
+    assert ">kitegen</h2>" in text and "at configured" not in text
+    named = surface_html("kitegen/debilt", s, {})           # a named site stays in the heading
+    assert ">kitegen at debilt</h2>" in named and "<summary>configuration of kitegen at debilt</summary>" in named
 
 
 def test_a_single_diameter_draws_aep_against_length(tmp_path, drawn):
@@ -201,14 +206,14 @@ def test_cli_study_prints_the_report_page(study, tmp_path, capsys):
     code = main(["study", str(tmp_path / "job.toml"), "--out", str(tmp_path / "cli.h5"), "--allow-unchecked"])
     text = capsys.readouterr().out
     assert code == 0 and "(0 ran, " in text
+    assert [line.split(":")[0] for line in text.splitlines() if " points (" in line] == ["ke-yoyo", "kitegen"]
+    assert "at configured" not in text
     assert f"report page: {tmp_path / 'cli_report' / 'index.html'}" in text.splitlines()
     assert (tmp_path / "cli_report" / "index.html").is_file()
 
 
-def test_every_power_model_has_its_source_and_a_named_site_stays_in_the_title():
+def test_every_power_model_has_its_source():
     from fem_tether.config.sections import SYSTEM_MODELS
-    from fem_tether.report.study import POWER_MODEL_SOURCES, surface_name
+    from fem_tether.report.study import POWER_MODEL_SOURCES
 
     assert set(POWER_MODEL_SOURCES) == set(SYSTEM_MODELS)
-    assert surface_name("kitegen", "configured") == "kitegen"
-    assert surface_name("kitegen", "debilt") == "kitegen at debilt"

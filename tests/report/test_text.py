@@ -13,6 +13,7 @@ from fem_tether.jobs.evaluate import LengthResult
 from fem_tether.report.text import (aep_text, bench_design_lines, crosscheck_text, json_text, reused, size_text,
                                     summary_table, sweep_summary, sweep_text)
 from fem_tether.jobs.sweepfile import read_sweep
+from fem_tether.config import load_config
 
 TOLERANCES = {"drag_rel": 0.02, "tension_rel": 0.01, "shape_rel": 0.005}
 
@@ -81,23 +82,28 @@ def _outcome():
                                                                 "crosscheck_ok": 0})])
 
 
+def _factor(safety_factor: float):
+    """The default case with ``[tether] safety_factor``."""
+    return load_config(overrides={"tether": {"safety_factor": safety_factor}})
+
+
 def test_sweep_text_and_summary():
     outcome = _outcome()
     assert reused(outcome) == "1 of 4 tasks reused from an earlier run, 3 run"
-    assert sweep_text(outcome, "r.h5", 1.2).splitlines() == [
+    assert sweep_text(outcome, "r.h5", _factor(1.2)).splitlines() == [
         "sweep of 2 lengths -> r.h5 (1 of 4 tasks reused from an earlier run, 3 run)",
         "  L =    400 m: F_t FE    4000.0 N, FD    4010.0 N, straight    5100.0 N, cross-check ok, "
         "d 11.000 mm, margin 1.250",
         "  L =    800 m: F_t FE       nan N, FD    4010.0 N, straight    5100.0 N, cross-check "
         "FAILED/not run, d 11.000 mm, margin 1.250  [FE: diverged]"]
-    short = sweep_text(outcome, "r.h5", 1.3).splitlines()
+    short = sweep_text(outcome, "r.h5", _factor(1.3)).splitlines()
     message = ("margin below the safety factor 1.3: 1.250 at 400 m, 1.250 at 800 m (the line's breaking load "
                "over its peak tension; [tether] sizing = \"load\" sizes it)")
     assert short[-1] == f"warning: {message}"
     # the same record in the JSON (was: the terminal only)
-    assert sweep_summary(outcome, "r.h5", 1.3)["warnings"] == [
+    assert sweep_summary(outcome, "r.h5", _factor(1.3))["warnings"] == [
         {"code": "margin-below-safety-factor", "message": message, "quantity": "margin", "lengths_m": [400.0, 800.0]}]
-    summary = sweep_summary(outcome, "r.h5", 1.2)
+    summary = sweep_summary(outcome, "r.h5", _factor(1.2))
     assert summary["warnings"] == []
     assert json.loads(json_text(summary)) == summary         # NaN written as null: valid JSON
     assert summary["lengths"][1]["drag_fe_N"] is None and summary["lengths"][1]["error"] == "FE: diverged"
@@ -194,18 +200,29 @@ def test_summary_table_of_a_passed_and_a_failed_cross_check(data):
     assert lines[-1] == "kept without a passed cross-check (--allow-unchecked): 800 m"
 
 
+def test_sweep_json_and_text_warn_of_an_unsettled_spinup():
+    """Before, a sweep said nothing of an FE run whose point-mass kite's spin-up did not settle."""
+    outcome = _outcome()
+    outcome.lengths[0].laps_settled = False
+    cfg = _factor(1.2)
+    (record,) = sweep_summary(outcome, "r.h5", cfg)["warnings"]
+    assert (record["code"], record["quantity"], record["lengths_m"]) == ("spin-up-not-settled", "drag_fe_N", [400.0])
+    assert f"lap_tolerance = {cfg.time.lap_tolerance:g} after" in record["message"]
+    assert sweep_text(outcome, "r.h5", cfg).splitlines()[-1] == f"warning: {record['message']}"
+
+
 def test_peak_memory_per_rank_in_the_sweep_texts():
     outcome = _outcome()
     outcome.peak_rss_MiB = (180.4, 201.6)
-    assert sweep_text(outcome, "r.h5", 1.2).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
-    summary = sweep_summary(outcome, "r.h5", 1.2)
+    assert sweep_text(outcome, "r.h5", _factor(1.2)).splitlines()[-1] == "peak memory (RSS) per rank: 180, 202 MiB (max 202 MiB)"
+    summary = sweep_summary(outcome, "r.h5", _factor(1.2))
     assert summary["peak_rss_MiB_per_rank"] == [180.4, 201.6] and summary["peak_rss_MiB"] == 201.6
 
 
 def test_sweep_json_says_which_straight_line_drag_straight_is(data):
     """(Was: drag_straight_N with no word of the wind, while 'fem-tether straight --json' gives
     the quiet-air line's drag_N.)"""
-    assert "same wind" in sweep_summary(_outcome(), "r.h5", 1.0)["straight_line"]
+    assert "same wind" in sweep_summary(_outcome(), "r.h5", _factor(1.0))["straight_line"]
 
 
 def test_bench_design_lines_report_each_time_against_its_target():

@@ -76,3 +76,29 @@ def test_seed_003_lines_against_their_working_load(name, expected):
     measured = margin(cfg, peak_tension_N(fe_simulate(cfg)))
     assert measured == pytest.approx(expected, abs=5e-4)
     assert short_of_margin(measured, cfg.tether.safety_factor) == (name == "loyd-1")
+
+
+def _flies(cfg) -> bool:
+    """Whether both solvers fly the case, the line taut at the kite throughout."""
+    try:
+        return all(simulate(cfg).series["kite_tension_N"].min() > 0 for simulate in (fe_simulate, fd_simulate))
+    except SolverDivergedError:
+        return False
+
+
+def test_the_flight_check_errs_both_ways_so_the_commands_warn_not_refuse():
+    """The check (whirl round the tightest turn plus weight against the winch tension) is an
+    estimate, wrong on either side of its boundary: KiteGen's line on its eight flies with the
+    winch at 1/1.3 of whirl plus weight (the eight's 19 m turns last an instant; measured least
+    kite tension 8.3 kN FE, 5.0 kN FD), and Loyd II's line at 800 m fails although the check puts
+    whirl plus weight at 94 % of the winch tension (both solvers stop at t ~ 4.9 s).  So
+    `simulate`, `size`, `crosscheck`, `sweep` and `run` warn before the run (fem_tether.commands.flight)
+    and do not refuse."""
+    kitegen = load_config(system="kitegen", overrides=ONE_PERIOD)
+    check = catalog.flight_check(kitegen)
+    grounded = kitegen.replace(winch={"ground_tension_N": (check.whirl_N + check.weight_N) / 1.3})
+    assert not catalog.flight_check(grounded).flyable and _flies(grounded)
+    loyd = load_config(system="loyd-2", overrides=ONE_PERIOD | {"tether": {"length_m": 800.0}})
+    check = catalog.flight_check(loyd)
+    assert check.flyable and (check.whirl_N + check.weight_N) / check.pull_N == pytest.approx(0.939, abs=5e-4)
+    assert not _flies(loyd)

@@ -44,6 +44,9 @@ from fem_tether.config import catalog
 #: kite flies (the presets' power curves cut in at 3 m/s and more).
 STUDY_WIND_MPS = from_to(1.0, MAX_WIND_MPS)
 
+#: The site a study names ``configured`` when its job gives none: the system's own [wind] and [resource].
+CONFIGURED_SITE = "configured"
+
 KEYS = ("systems", "lengths_m", "diameters_m", "wind_mps", "sites", "crosscheck", "refine", "reel_out", "base")
 SITE_KEYS = ("name", "wind", "resource")
 
@@ -59,6 +62,12 @@ class Site:
     def apply(self, cfg: Config) -> Config:
         return cfg.replace(wind=dict(self.wind), resource=dict(self.resource)) if self.wind or self.resource \
             else cfg
+
+
+def surface_name(system: str, site: str) -> str:
+    """A surface in plain words: the system, and the site where the job names one
+    ("kitegen", "kitegen at debilt")."""
+    return system if site == CONFIGURED_SITE else f"{system} at {site}"
 
 
 @dataclass(frozen=True)
@@ -160,7 +169,7 @@ def _numbers(key, value, per_system: tuple[str, ...], unit_name: str, admissible
 def _sites(value, base: Config, base_dir: Path) -> tuple[Site, ...]:
     """The job's sites (file names relative to ``base_dir``), their keys checked on ``base``."""
     if value is None:
-        return (Site("configured"),)
+        return (Site(CONFIGURED_SITE),)
     if not isinstance(value, list) or not value or not all(isinstance(s, dict) for s in value):
         raise _error("sites", value, "expected an array of tables ([[study.sites]] with name, wind, resource)")
     sites = []
@@ -200,7 +209,8 @@ def _check_flight(system: str, cfg: Config, site: str = "") -> None:
 
 def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system: str | None = None) -> StudyJob:
     """Validate a study job's tables (file names relative to ``base_dir``);
-    ``system`` is the preset under the job when it names no systems."""
+    ``system`` is the preset under the job when it names no systems, and must
+    be its one system when it does (ConfigError otherwise, not ignored)."""
     data = dict(data)
     study = data.pop("study", None)
     if not isinstance(study, dict):
@@ -216,9 +226,14 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
         raise _error("base", base, "expected a file name")
     if base and not (base_dir / base).is_file():
         raise _error("base", base, f"no such file ({base_dir / base})")
+    if system is not None:
+        catalog.path(system)            # an unknown name is refused as by every --system
     systems = study.get("systems", [system] if system else [""])
     if not isinstance(systems, list) or not systems or not all(isinstance(s, str) for s in systems):
         raise _error("systems", systems, f"expected a list of system names (known: {', '.join(catalog.names())})")
+    if system is not None and systems != [system]:
+        raise _error("systems", systems, f"--system {system} disagrees with the job's systems (--system names "
+                                         "the system of a job without [study] systems; drop it or the job's list)")
     if len(set(systems)) != len(systems):
         raise _error("systems", systems, "systems must be distinct")
     for name in systems:
