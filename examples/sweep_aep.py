@@ -68,7 +68,7 @@ def main(out_dir="out/sweep_aep") -> dict | None:
             "ge_straight": data["ge_straight"], "aep_fe_MWh": _per_length(energy.flexible, lengths),
             "aep_straight_MWh": _per_length(energy.straight, lengths), "file": out / "sweep.h5",
             "plots": write_plots(data, energy, out),
-            "text": "\n".join([sweep_text(outcome, out / "sweep.h5", data["config"].tether.safety_factor), ge,
+            "text": "\n".join([sweep_text(outcome, out / "sweep.h5", data["config"]), ge,
                                 aep_text({"system": system.name, "model": system.model} | energy.as_dict())])}
 
 
