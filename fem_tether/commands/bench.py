@@ -59,7 +59,7 @@ from fem_tether.design.optimiser import Problem, consistent, start_points
 from fem_tether.jobs.design.job import load_design_job
 from fem_tether.performance.configured import from_config, operating_density_kg_m3
 from fem_tether.systems import unified_system
-from fem_tether.jobs.evaluate import load_kernels
+from fem_tether.tether.kernels import load as load_kernels
 from fem_tether.tether.fe import solver as fe
 from fem_tether.core.memory import peak_rss_MiB
 

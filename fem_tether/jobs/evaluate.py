@@ -20,7 +20,6 @@ from fem_tether.performance import straight
 from fem_tether.tether.crosscheck import checkable, compare
 from fem_tether.core.errors import SolverDivergedError
 from fem_tether.tether.fe import solver as fe_solver
-from fem_tether.tether.kernels import load as load_kernels     # the compile, announced on a first run
 from fem_tether.jobs.job import Task
 from fem_tether.core.quantities import lumped_name, names
 from fem_tether.performance.sizing import margin, peak_tension_N

@@ -1,8 +1,5 @@
 """Evaluation of one length: the FE <-> FD cross-check run passes on the default case."""
 
-import subprocess
-import sys
-
 import os
 
 from fem_tether.config import load_config
@@ -18,18 +15,6 @@ def test_default_case_at_1000_m_passes():
           f"differences {check.rel_diff}")
     assert check.ok
     assert check.rel_diff["drag"] < 0.005 and check.rel_diff["shape"] < 0.001
-
-
-def test_load_kernels_imports_only_the_asked_solvers_kernels():
-    """``load_kernels`` imports the kernels of the solvers asked for and no other
-    (a fresh interpreter checks which modules it loaded)."""
-    code = ("import sys\n"
-            "from fem_tether.jobs.evaluate import load_kernels\n"
-            "load_kernels(['fd'])\n"
-            "assert 'fem_tether.tether.fd.kernel' in sys.modules and 'fem_tether.tether.fe.kernel' not in sys.modules\n"
-            "load_kernels(['fe', 'fd'])\n"
-            "assert 'fem_tether.tether.fe.kernel' in sys.modules\n")
-    subprocess.run([sys.executable, "-c", code], check=True)
 
 
 def test_a_lengths_evaluation_is_remembered_until_its_parts_change(tiny_job, tmp_path, monkeypatch):

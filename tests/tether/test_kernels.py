@@ -2,7 +2,6 @@
 shows how far it is; a run on a loaded cache says nothing of them."""
 
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -59,3 +58,15 @@ def test_a_loaded_cache_says_nothing_of_the_kernels(tmp_path):
     done = subprocess.run([*CLI, "simulate", "tiny.toml"], cwd=tmp_path, env=_quiet_env(), capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0 and "compiling" not in done.stderr, done.stderr
+
+
+def test_load_kernels_imports_only_the_asked_solvers_kernels():
+    """``kernels.load`` imports the kernels of the solvers asked for and no other
+    (a fresh interpreter checks which modules it loaded)."""
+    code = ("import sys\n"
+            "from fem_tether.tether.kernels import load as load_kernels\n"
+            "load_kernels(['fd'])\n"
+            "assert 'fem_tether.tether.fd.kernel' in sys.modules and 'fem_tether.tether.fe.kernel' not in sys.modules\n"
+            "load_kernels(['fe', 'fd'])\n"
+            "assert 'fem_tether.tether.fe.kernel' in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)
