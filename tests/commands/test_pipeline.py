@@ -228,7 +228,7 @@ def test_the_main_jobs_data_goes_only_down(tmp_path):
     import importlib
 
     from fem_tether.commands.pipeline import main_job
-    from fem_tether.jobs.evaluate import load_kernels
+    from fem_tether.tether.kernels import load as load_kernels
     from fem_tether.jobs.job import load_job
 
     (tmp_path / "tiny.toml").write_text(TINY_JOB)
