@@ -1,6 +1,7 @@
 """The kite's circle: a circular orbit on the sphere flown at constant speed.
 
-Seed 003 (Lourenço 2014, §3.2.1) flies its kites on a circle: "the kite flight
+Lourenço, *Technical evaluation and modelling of a cross wind kite based on
+Loyd's model* §3.2.1, flies its kites on a circle: "the kite flight
 path is circular about an orbit axis directly downwind from the anchor point,
 one radian down from the z axis and 0.4 radians up to orbit axis", at the
 angular position of a uniform circular motion (eq. 3.1)::
@@ -33,7 +34,8 @@ b = u × a = (0, −1, 0), eq. 3.2 with v = L(cosρ u + sinρ a) reads::
 
 Lourenço imposes the rotation rate β̇0 (3 rpm, then 5.5 rpm); here, as on the
 eight, the speed V is imposed, so β̇0 = ω = V / (L sinρ) and the period is
-2π L sinρ / V (Lourenço's 5.5 rpm on 400 m at 0.4 rad is 89.7 m/s).  Constant
+2π L sinρ / V; :meth:`Circle.at_rate` gives the circle of an imposed rate
+(Lourenço's 5.5 rpm on 400 m at 0.4 rad is 89.7 m/s).  Constant
 speed is exact on a circle: position, velocity and acceleration are analytic.
 """
 
@@ -67,6 +69,15 @@ class Circle:
             radius_rad=math.radians(kite.circle_radius_deg),
             speed_mps=float(kite.speed_mps),
         )
+
+    @classmethod
+    def at_rate(cls, length_m, theta0_rad, radius_rad, rate_rpm):
+        """The circle flown at the imposed rate β̇0 (eq. 3.1), in revolutions per
+        minute: V = 2π β̇0/60 · L sinρ."""
+        if not rate_rpm > 0.0:
+            raise ValueError(f"rate_rpm must be positive, got {rate_rpm}")
+        speed = 2.0 * math.pi * rate_rpm / 60.0 * length_m * math.sin(radius_rad)
+        return cls(float(length_m), float(theta0_rad), float(radius_rad), speed)
 
     @property
     def rate_rad_s(self):

@@ -3,9 +3,9 @@
 The kite flies on the sphere of its tether (global frame x downwind, z up;
 docs/steering.md).  Its only steering input is the roll ψ: the lift L is tilted
 about the apparent wind by ψ, so ``L sinψ`` pushes the kite across its own
-flight direction in the tangent plane of the sphere.  Seed 003 (Lourenço 2014,
-§5.1 "Future Work") reports that a PID on the kite's angles did not hold its
-circle; this law holds the figure-eight (:mod:`fem_tether.physics.trajectory`) and the circle
+flight direction in the tangent plane of the sphere.  Lourenço, *Technical
+evaluation and modelling of a cross wind kite based on Loyd's model* §5.1,
+reports that a PID on the kite's angles did not hold its circle; this law holds the figure-eight (:mod:`fem_tether.physics.trajectory`) and the circle
 (:mod:`fem_tether.physics.orbit`) by *inverting the lateral equation of motion*:
 
 * the reference is the nearest point of the path, tracked continuously in the
@@ -181,8 +181,9 @@ class Steering:
     ω τ_a < 2 (Routh on τ_a s³ + s² + 2ωs + ω²): take ℓ ≥ 4 V τ_a (ω τ_a ≤ 0.5)
     when that is larger.  A law sampled every h and held is stable iff ω h < 1
     (:func:`sampled_lookahead_m`; the lag τ_a ≈ h/2 reading overstates this
-    bound fourfold): take ℓ ≥ 4 V h (ω h ≤ 0.5) when that is larger.  The limits bound ψ (seed 003 §3.2.3 flies the M600's circle open-loop at
-    −7.25° … 46.68°).
+    bound fourfold): take ℓ ≥ 4 V h (ω h ≤ 0.5) when that is larger.  The limits bound ψ
+    (Lourenço §3.2.3 schedules the M600's roll open-loop between −7.25° and 46.68°,
+    :mod:`fem_tether.physics.roll_schedule`).
     """
 
     path: FigureEight | Circle

@@ -338,6 +338,11 @@ DE_BILT = {
 #: De Bilt "annual": the mean of the winter and summer profiles' speeds.
 DE_BILT_ANNUAL = MeanOfProfiles((DE_BILT["winter"], DE_BILT["summer"]))
 
+#: Lourenço's wind (*Technical evaluation and modelling of a cross wind kite based on Loyd's
+#: model* §3.2.2): the power law of eq. 3.4 with alpha = 1/7 from V_10 = 6.5 m/s, which is
+#: Loyd's 10 m/s at 204 m (6.5 (204/10)^(1/7) = 10.00 m/s); unbounded above.
+LOURENCO = PowerWind(reference_speed_mps=10.0, reference_height_m=204.0, alpha=1.0 / 7.0)
+
 #: Shear exponent alpha of the power law by terrain (seed 004 Tab. 3.2, after Archer).
 TERRAIN_ALPHA = {
     "smooth hard ground, calm water": 0.10,

@@ -12,6 +12,7 @@ from __future__ import annotations
 from functools import partial
 
 from fem_tether.validation import analytic, design, free_kite, numerics, seed000, systems
+from fem_tether.validation import lourenco_orbit
 from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -39,6 +40,9 @@ CASES: tuple[Case, ...] = (
     Case("trevisi/table-3.1", "Trevisi 2019 Table 3.1, eqs. 3.74-3.87", True, systems.trevisi_table_3_1),
     Case("trevisi/optima", "Trevisi 2019 §3.3.2, eq. 3.47", True, systems.trevisi_optima),
     Case("lourenco/tether-and-power", "Lourenço eq. 3.7, Table 4.2", True, systems.lourenco),
+    Case("lourenco/roll-schedule", "Lourenço §3.2.3, §5 (eqs. 2.14, 3.5-3.6)", True, lourenco_orbit.roll_schedule),
+    Case("lourenco/imposed-orbit-m600", "Lourenço Table 4.2 (M600, 5.5 rpm, eq. 2.12)", True, lourenco_orbit.m600),
+    Case("lourenco/table-3.3", "Lourenço Table 3.3 (C-5A, 3-8 rpm)", True, lourenco_orbit.table_3_3),
     Case("fagiano/equivalent-drag", "Fagiano et al. 2010 eq. 21, Table I", True, systems.fagiano),
     Case("free-kite/crosswind-law", "Roselli 2016 eqs. 2.35, 2.45-2.46; Trevisi 2019 eq. 3.34", True,
          free_kite.crosswind_law),

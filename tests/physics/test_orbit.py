@@ -161,3 +161,15 @@ def test_time_step_must_resolve_the_circle(section, fewest):
     message = str(info.value)
     assert message.startswith(f"[{section}] dt_s = 1.0:") and "period of the circle (3.058 s)" in message
     assert float(message.rsplit("= ", 1)[1]) == pytest.approx(3.058 / fewest, abs=1e-4)  # rounded down
+
+
+def test_the_circle_at_an_imposed_rate():
+    """Circle.at_rate: period 60/rpm; Lourenço Table 4.2's kite speeds at 5.5 rpm (89.700 m/s on
+    400 m, 98.670 m/s on 440 m, to the 0.03 % of the printed rounding)."""
+    c5a, m600 = (Circle.at_rate(length, 1.0, 0.4, 5.5) for length in (400.0, 440.0))
+    assert c5a.period_s == pytest.approx(60.0 / 5.5, rel=1e-12)
+    assert c5a.speed_mps == pytest.approx(89.700, rel=3e-4)
+    assert m600.speed_mps == pytest.approx(98.670, rel=3e-4)
+    assert c5a.state(0.0)[0] == pytest.approx(400.0 * np.array([math.sin(0.6), 0.0, math.cos(0.6)]))
+    with pytest.raises(ValueError, match="rate_rpm"):
+        Circle.at_rate(400.0, 1.0, 0.4, 0.0)

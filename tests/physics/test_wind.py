@@ -245,3 +245,12 @@ def test_power_law_speed_is_the_compiled_profiles_and_takes_complex_steps():
     assert power_law_speed_mps(200.0, 9.5, 20.0, 0.2) == pytest.approx(9.5 * 10**0.2, rel=1e-15)
     step = np.imag(power_law_speed_mps(200.0 + 1e-30j, 9.5, 20.0, 0.2)) / 1e-30
     assert step == pytest.approx(0.2 * 9.5 * 10**0.2 / 200.0, rel=1e-13)
+
+
+def test_lourencos_wind_is_6_5_mps_at_10_m_and_10_mps_at_204_m():
+    """Lourenço §3.2.2: alpha 1/7, V_10 = 6.5 m/s, 10 m/s at 204 m; 8.66-10.86 m/s at 75-363 m (§5)."""
+    LOURENCO = wind.LOURENCO
+    assert float(LOURENCO.speed_mps(10.0)) == pytest.approx(6.5, abs=0.01)
+    assert float(LOURENCO.speed_mps(204.0)) == pytest.approx(10.0, rel=1e-12)
+    assert float(LOURENCO.speed_mps(440.0 * np.cos(1.4))) == pytest.approx(8.66, abs=0.01)
+    assert float(LOURENCO.speed_mps(440.0 * np.cos(0.6))) == pytest.approx(10.86, abs=0.01)
