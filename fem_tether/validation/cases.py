@@ -35,6 +35,8 @@ CASES: tuple[Case, ...] = (
          seed000.tab_5_1_flexible),
     Case("roselli/tab-5.2", "Roselli 2016 Tab. 5.2", True, seed000.tab_5_2),
     Case("roselli/tab-5.3", "Roselli 2016 Tab. 5.3", True, seed000.tab_5_3),
+    Case("roselli/tab-5.3-own-ge", "Roselli 2016 Tab. 5.3, eqs. 2.55-2.57 with fem-tether's G_e", True,
+         seed000.tab_5_3_own_ge),
     Case("roselli/best-length", "Roselli 2016 Fig. 5.6, eq. 5.2", True, seed000.best_length),
     Case("trevisi/table-3.1", "Trevisi 2019 Table 3.1, eqs. 3.74-3.87", True, systems.trevisi_table_3_1),
     Case("trevisi/optima", "Trevisi 2019 §3.3.2, eq. 3.47", True, systems.trevisi_optima),
