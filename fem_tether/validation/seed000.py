@@ -29,6 +29,8 @@ from fem_tether.validation.case import Check, Explanation
 
 #: Roselli 2016 §4.1: the straight line's F_t at 1000 m, integral with ρ(z) and C_d,c(Re) in
 #: quiet air, and closed form eq. 4.6 with ρ = 1.1835 kg/m³ (mean over 0-707 m), C_d,c = 1.27.
+#: SEED_RE_TOP is ours: ρ V d / μ with ISA at 707 m, 80 m/s, 11 mm (56 968); Figs. 4.2-4.3 plot
+#: Re along the line but print no number.
 SEED_STRAIGHT_INTEGRAL_N, SEED_STRAIGHT_CLOSED_N = 12949.0, 13227.0
 SEED_MEAN_DENSITY_KG_M3, SEED_CD, SEED_RE_TOP = 1.1835, 1.27, 5.7e4
 #: Roselli 2016 §2.4: cut-in, full-force and full-power speeds of the seed design [m/s], "4 MW"
@@ -66,7 +68,8 @@ def straight_line(quick: bool) -> tuple[Check, ...]:
                   line.drag_N, TABLE_TOLERANCE, "N",
                   explanation=Explanation(DRAG_PLATEAU[0], DRAG_PLATEAU[1], (-0.06, -0.05))),
             Check("mean density over 0-707 m", SEED_MEAN_DENSITY_KG_M3, line.mean_density_kg_m3, 1e-3, "kg/m3"),
-            Check("Re at the top of the line", SEED_RE_TOP, line.re_top, 0.02))
+            Check("Re at the top, rho V d / mu at 707 m by hand (Figs. 4.2-4.3 print no number)",
+                  SEED_RE_TOP, line.re_top, 0.02))
 
 
 def characteristic(quick: bool) -> tuple[Check, ...]:
