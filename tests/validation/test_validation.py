@@ -56,6 +56,17 @@ def test_the_known_gaps_are_explained_with_their_docs(quick):
     assert len(ellipses) == 7 and all(r.verdict == "pass" for r in ellipses)
 
 
+def test_rows_of_numbers_the_sources_do_not_print_say_so():
+    """Fagiano et al. print no C_D,eq and Roselli no Re: self-consistency checks, labelled so;
+    Lourenço's Table 4.2 powers are computed from its own V_A and T, and the rows say so."""
+    cases = {c.name: c for c in CASES}
+    assert cases["fagiano/equivalent-drag"].source.startswith("self-consistency:")
+    rows = [c.quantity for c in cases["lourenco/tether-and-power"].compute(True) if "power" in c.quantity]
+    assert len(rows) == 2 and all("as inputs" in row for row in rows)
+    assert any("by hand" in c.quantity and c.quantity.startswith("Re at the top")
+               for c in cases["roselli/straight-line"].compute(True))
+
+
 def test_verdicts():
     assert judge(Check("x", 10.0, 10.1, 0.02)) == ("pass", "")
     assert judge(Check("x", 10.0, 11.5, 0.02, explanation=GAP)) == ("explained", "docs: shown")
