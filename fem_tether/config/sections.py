@@ -139,7 +139,7 @@ class System(Section):
     NAME = "system"
     name: str = setting("kitegen", "-", "the system's name (a preset's, 'fem-tether systems' lists them)")
     model: str = setting("kitegen", "-", "power model: 'kitegen' (Roselli 2016), 'ke-yoyo' (Fagiano et al. "
-                         "2010), 'unified' (Trevisi 2019: ground-gen/fly-gen) or 'loyd' (Lourenco 2014)",
+                         "2010), 'unified' (Trevisi 2019: ground-gen/fly-gen) or 'loyd' (Lourenco)",
                          one_of(*SYSTEM_MODELS))
     description: str = setting("KiteGen ground-gen, 120 m² wing, two 11 mm lines, 4 zones + side-slip recovery "
                                "(Roselli 2016)", "-",
@@ -156,7 +156,7 @@ class System(Section):
                                   "wing's ~180 kg (Roselli 2016 §2.3); the kitegen power model neglects it, the "
                                   "point-mass kite ([kite] model) flies with it", zero_to(MAX_KITE_MASS_KG))
     working_stress_Pa: float = setting(345e6, "Pa", "loyd: working stress the tether is sized to, "
-                                       "d = 2 sqrt(T/(pi sigma)) (Lourenco 2014 eq. 3.7; steel)",
+                                       "d = 2 sqrt(T/(pi sigma)) (Lourenco eq. 3.7; steel)",
                                        MATERIAL_STRESS_PA)
     design_wind_mps: float = setting(10.0, "m/s", "loyd: wind speed at which the tether is sized",
                                      from_to(1.0, MAX_WIND_MPS))
@@ -226,7 +226,7 @@ class Tether(Section):
                           "on; fem_tether.performance.sizing)", one_of("fixed", "load"))
     material: str = setting("sk99", "-", "line material for sizing and the margin: 'sk99' (Dyneema, Roselli "
                             "2016 Tab. 2.1), 'steel' (345 MPa working stress) or 'carbon' (2137 MPa; both "
-                            "Lourenco 2014) or 'trevisi' (Dyneema, 1.5 GPa strength, fly-gen conductor; "
+                            "Lourenco) or 'trevisi' (Dyneema, 1.5 GPa strength, fly-gen conductor; "
                             "Trevisi 2019)", one_of("sk99", "steel", "carbon", "trevisi"))
     safety_factor: float = setting(1.0, "-", "breaking load over the peak tension a line is sized to and "
                                    "checked against; 1: Roselli 2016's 11 mm SK99 line, whose 164.95 kN breaking "
@@ -293,11 +293,11 @@ class Kite(Section):
     efficiency: float = setting(28.0, "-", "aerodynamic efficiency E = C_l/C_d", from_to(1.0, 100.0))
     speed_mps: float = setting(80.0, "m/s", "crosswind flight speed V_k on the path", KITE_SPEED_MPS)
     path: str = setting("eight", "-", "the kite end's path: 'eight' (figure-eight, Roselli 2016 §4.2) or "
-                        "'circle' (Lourenco 2014 §3.2.1)", one_of("eight", "circle"))
+                        "'circle' (Lourenco §3.2.1)", one_of("eight", "circle"))
     theta0_deg: float = setting(45.0, "deg", "polar angle of the eight's centre or of the circle's axis, "
                                 "from the vertical", POLAR_ANGLE_DEG)
     circle_radius_deg: float = setting(22.918, "deg", "path = 'circle': cone half-angle rho of the circle "
-                                       "about its axis (Lourenco 2014 §3.2.1: 0.4 rad)", POLAR_ANGLE_DEG)
+                                       "about its axis (Lourenco §3.2.1: 0.4 rad)", POLAR_ANGLE_DEG)
     eight_width_m: float = setting(190.0, "m", "crosswind width W of the eight", PATH_SIZE_M)
     eight_height_m: float = setting(95.0, "m", "height H of the eight", PATH_SIZE_M)
     eight_shape: str = setting("gerono", "-", "the eight's curve: 'gerono' (lemniscate of Gerono) or 'ellipses' "

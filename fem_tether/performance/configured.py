@@ -205,7 +205,7 @@ def _loyd(cfg: Config) -> ConfiguredSystem:
     rho = operating_density_kg_m3(cfg)
     top = top_mps(cfg)
     limits = stated_limits(cfg, strength_N, "the tether's strength: [system] working_stress_Pa x pi d^2/4 "
-                                            "per line (Lourenco 2014 §4.3)")
+                                            "per line (Lourenco §4.3)")
     return ConfiguredSystem("loyd", params, loyd.size_tether(params, rho).tether_cd, cfg.kite.cl,
                             off_above(top, lambda w, cd: loyd.power_curve(params, w, rho, cd)), top, limits,
                             stated_rating(cfg))

@@ -162,7 +162,8 @@ class Rope:
     """A rope of tabulated breaking load: Dyneema SK99 (seed 000 Tab. 2.1).
 
     Its breaking load is the table's; the safety factor c_s sizes it by
-    F_b(d) = c_s T (seed 001, Fagiano et al., §IV: c_s = 1.2).
+    F_b(d) = c_s T (Fagiano et al., *High-altitude wind power generation*, §III-C:
+    c_s = 1.2).
     """
 
     name: str
@@ -191,8 +192,10 @@ class Section:
     around an optional conductor of area A_el (fly-gen tethers).
 
     ``stress_Pa`` is either a working stress, the safety factor already in it
-    (seed 003, Lourenço 2014, eq. 3.7: A_σ = T/σ), or the strength σ_lim
-    (seed 004, Trevisi 2019, eq. 5.2: T ≤ σ_lim A_σ / SF).  The mass per
+    (Lourenço, *Technical evaluation and modelling of a cross wind kite based on
+    Loyd's model*, eq. 3.7: A_σ = T/σ), or the strength σ_lim
+    (Trevisi 2019, eq. 5.2: T ≤ σ_lim A_σ as printed; we divide by the safety
+    factor SF_σlim of its Table 5.4, 1.1-2, which the printed equation leaves out).  The mass per
     length is m_r = A_σ ρ_σ + η_is A_el ρ_el (seed 004 eq. 3.16), the axial
     stiffness E A_σ (the conductor's stiffness neglected).
     """
@@ -254,7 +257,7 @@ def breaking_load_of_N(material: Material, diameter_m, safety_factor):
 
 def sized_diameter_m(material: Material, tension_N, safety_factor):
     """The d whose breaking load is c_s T: F_b(d) = c_s T for a rope or a strength
-    (seed 001 §IV, seed 004 eq. 5.2), σ_w A_σ = T for a working stress (seed 003 eq. 3.7).
+    (seed 001 §III-C; seed 004 eq. 5.2 with Table 5.4's SF_σlim), σ_w A_σ = T for a working stress (seed 003 eq. 3.7).
 
     >>> round(float(sized_diameter_m(MATERIALS["steel"], 3.2e6, 1.2)), 4)   # seed 003: 10.87 cm
     0.1087
@@ -267,7 +270,8 @@ def sized_diameter_m(material: Material, tension_N, safety_factor):
     return material.capacity_diameter_m(tension if material.working_stress else safety_factor * tension)
 
 
-#: Trevisi's tether (seed 004 §5.1.2): σ_lim = 1.5 GPa, Dyneema (970 kg/m³), no conductor.
+#: Trevisi's tether: σ_lim = 1.5 GPa (seed 004 §5.1.2, all it gives of the tether's material), no
+#: conductor; ours: the density 970 kg/m³ (Dyneema) and the modulus (the SK99 fibre's).
 TREVISI = Section("trevisi", stress_Pa=1.5e9, density_kg_m3=970.0, modulus_Pa=SK99_MODULUS_PA,
                   working_stress=False)
 
@@ -282,9 +286,11 @@ TREVISI = Section("trevisi", stress_Pa=1.5e9, density_kg_m3=970.0, modulus_Pa=SK
 #: Both are working stresses (seed 003 §2.2.3: "Working stress is the maximum
 #: allowable stress that a material may carry").  E: SK99 155 GPa (seed 000
 #: §2.3, the fibre's); seed 003 gives none for steel or carbon (its model needs
-#: none): 200 GPa is structural steel's (a textbook value), 70 GPa seed 004
-#: §3.3's "typical value of carbon fibre-epoxy composite material"; Trevisi's
-#: Dyneema the SK99 fibre's 155 GPa (seed 004 gives none for its tether).
+#: none): 200 GPa is structural steel's (a textbook value); 70 GPa is seed 004's
+#: modulus of the wing spar caps (§3.4, eq. 3.58: "typical value of carbon
+#: fibre-epoxy composite material"), not a tether's, taken here for the carbon
+#: line; Trevisi's Dyneema the SK99 fibre's 155 GPa (seed 004 gives none for
+#: its tether).
 MATERIALS: dict[str, Material] = {
     "sk99": Rope("sk99"),
     "steel": Section("steel", stress_Pa=345e6, density_kg_m3=8000.0, modulus_Pa=200e9, working_stress=True),

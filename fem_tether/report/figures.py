@@ -36,7 +36,7 @@ POWER_CURVE_STEP_MPS = 0.5
 MODEL_SOURCES = {"kitegen": "KiteGen model (Roselli 2016 §2.4 and §5)",
                  "ke-yoyo": "KE-yoyo model (Fagiano et al. 2010)",
                  "unified": "unified ground-gen/fly-gen model (Trevisi 2019 ch. 3)",
-                 "loyd": "Loyd model (Lourenço 2014)"}
+                 "loyd": "Loyd model (Lourenço)"}
 
 #: The straight line of every figure, in the captions' words.
 STRAIGHT = "the rigid straight line in the same wind"

@@ -67,7 +67,8 @@ class Check:
 @dataclass(frozen=True)
 class Case:
     """A named validation case: where its targets come from (``source``: a document of
-    :data:`DOCUMENTS` and its table or equation, or ``"analytic: ..."``), whether it
+    :data:`DOCUMENTS` and its table or equation, ``"analytic: ..."``, or ``"self-consistency:
+    ..."`` for a number the document does not print, computed by hand from it), whether it
     belongs to the quick set, and ``compute(quick)``, which returns its checks (coarser
     settings where ``quick`` is true and the case says so)."""
 

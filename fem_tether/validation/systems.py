@@ -83,12 +83,14 @@ def lourenco(quick: bool) -> tuple[Check, ...]:
                                                         ("M600", MAKANI_M600, 99.20, 0.486e6, 0.5981e6)):
         computed = drag_power_W(LOURENCO_RHO_KG_M3, system.area_m2, system.kite_cd,
                                 loyd_tether_cd(system, peak_N), apparent_mps)
-        checks.append(Check(f"{name} mean power at its apparent speed", power_W, float(computed), 0.02, "W"))
+        checks.append(Check(f"{name} mean power, the seed's V_A {apparent_mps:g} m/s and T {peak_N / 1e6:g} MN "
+                            "as inputs", power_W, float(computed), 0.02, "W"))
     return tuple(checks)
 
 
 def fagiano(quick: bool) -> tuple[Check, ...]:
     """Fagiano et al. 2010 eq. 21 with Table I (r = 875 m, the middle of 850-900 m): C_D,eq
-    = 0.089 (1 + 2·875·0.03·1.2/(4·500·0.089)) = 0.1205 by hand, to 1e-12."""
-    return (Check("C_D,eq of Table I", 0.089 * (1 + (2 * 875.0 * 0.03) * 1.2 / (4 * 500.0 * 0.089)),
+    = 0.089 (1 + 2·875·0.03·1.2/(4·500·0.089)) = 0.1205 by hand, to 1e-12.  A self-consistency
+    check: the paper prints no C_D,eq."""
+    return (Check("C_D,eq of Table I, eq. 21 by hand (not printed)", 0.089 * (1 + (2 * 875.0 * 0.03) * 1.2 / (4 * 500.0 * 0.089)),
                   float(equivalent_drag_coefficient(TABLE_I)), 1e-12),)

@@ -10,7 +10,7 @@ from fem_tether.physics.orbit import Circle
 
 CIRCLE = {"kite": {"path": "circle"}}
 
-#: Lourenço 2014 §3.2.1 and Tab. 4.2 (seed 003): axis 1 rad from the zenith, 0.4 rad cone,
+#: Lourenço §3.2.1 and Tab. 4.2: axis 1 rad from the zenith, 0.4 rad cone,
 #: the M600's 440 m line at 98.7 m/s.
 LOURENCO = Circle(length_m=440.0, theta0_rad=1.0, radius_rad=0.4, speed_mps=98.7)
 

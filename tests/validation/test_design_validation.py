@@ -5,11 +5,11 @@ thesis' statements, the cases and their documentation links.
 Fig. 5.3's sweeps cost 40 SLSQP runs (41-55 s measured on 2 shared cores); the Wing 7 design 10
 starts (3-7 s), the AP2 design 3 starts (14-21 s)."""
 
-import re
 from pathlib import Path
 
 import numpy as np
 import pytest
+from anchors import anchors
 
 from fem_tether.validation import design
 from fem_tether.validation.cases import CASES
@@ -103,12 +103,6 @@ def test_the_design_cases_are_in_the_full_run_only():
     for name in ("trevisi/design-smoothness", "trevisi/wing-7-regions", "trevisi/ap2-length-elevation",
                  "trevisi/3mw-design"):
         assert not names[name].quick
-
-
-def anchors(page: Path) -> set[str]:
-    """GitHub's anchors of a Markdown page's headings: lower case, punctuation dropped, spaces to -."""
-    headings = re.findall(r"^#+ (.+)$", page.read_text(encoding="utf-8"), flags=re.MULTILINE)
-    return {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-") for h in headings}
 
 
 @pytest.mark.parametrize("link", sorted({*design.WING7_LINKS, *design.AP2_LINKS, *design.SECTION_5_4_LINKS}))
