@@ -476,7 +476,8 @@ def test_a_line_the_flight_check_grounds_is_warned_of_before_its_run(capsys, tmp
 
 
 #: The commands that run the solvers: their first run after an install compiles the kernels.
-SOLVER_COMMANDS = {"simulate", "size", "crosscheck", "sweep", "study", "design", "run", "validate", "bench"}
+SOLVER_COMMANDS = {"simulate", "size", "crosscheck", "sweep", "study", "design", "run", "validate", "bench",
+                   "farm"}
 
 
 def test_every_json_help_says_exactly_what_goes_where():
