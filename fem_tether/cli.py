@@ -281,6 +281,12 @@ def cmd_design(args):
         else EXIT_FAILED
 
 
+def cmd_farm(args):
+    from fem_tether.commands.farm import cmd_farm as run
+
+    return run(args)
+
+
 def cmd_aep(args):
     from fem_tether.config import catalog
     from fem_tether.performance.aep import sweep_aep
@@ -458,6 +464,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="result file; plots and the report page go to FILE_report/")
     c.add_argument("--allow-unchecked", action="store_true",
                    help="let points whose FE <-> FD gate failed count for the flexible optimum")
+    c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
+
+    c = command("farm", cmd_farm, "Fagiano et al.'s KE-farm: four KE-yoyo units on a square, power per area "
+                "maximised under eq. 24, beside the paper's optimum; the FE lines against the polyhedra",
+                config=False, system=False)
+    c.add_argument("job", nargs="?", help="farm job (TOML with a [farm] table, docs/farm.md; default: the shipped "
+                   "fagiano-2010 job)")
+    c.add_argument("--preset", metavar="NAME", help="a shipped farm job instead (fagiano-2010)")
+    c.add_argument("--out", metavar="DIR", help="write DIR/farm.json and DIR/farm_layout.png (plan and side view)")
     c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
     c = command("design", cmd_design, "the AEP-optimal kite system (Trevisi ch. 5: wing, tether, angles, control "

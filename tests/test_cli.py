@@ -445,7 +445,7 @@ def test_study_refuses_a_system_its_job_does_not_list(capsys, tmp_path):
     job.write_text("[study]\nsystems = [\"kitegen\"]\nlengths_m = [1000]\n")
     code, out, err = run_cli(capsys, "study", str(job), "--system", "ke-yoyo", "--out", str(tmp_path / "s.h5"))
     assert code == 2 and out == "" and err == (
-        "fem-tether: error: [study] systems = ['kitegen']: --system ke-yoyo disagrees with the job's systems "
+        "fem-tether: error: [study] systems = [\"kitegen\"]: --system ke-yoyo disagrees with the job's systems "
         "(--system names the system of a job without [study] systems; drop it or the job's list)\n")
     assert not (tmp_path / "s.h5").exists()
     with pytest.raises(SystemExit) as stop:
@@ -476,7 +476,8 @@ def test_a_line_the_flight_check_grounds_is_warned_of_before_its_run(capsys, tmp
 
 
 #: The commands that run the solvers: their first run after an install compiles the kernels.
-SOLVER_COMMANDS = {"simulate", "size", "crosscheck", "sweep", "study", "design", "run", "validate", "bench"}
+SOLVER_COMMANDS = {"simulate", "size", "crosscheck", "sweep", "study", "design", "run", "validate", "bench",
+                   "farm"}
 
 
 def test_every_json_help_says_exactly_what_goes_where():

@@ -198,7 +198,8 @@ def test_the_json_keys_readme_names_are_in_the_commands_json(tmp_path, capsys):
             "aep": [["aep", sweep_file]],
             "show": [["show", sweep_file]],
             "study": [["study", str(study), "--out", str(tmp_path / "study.h5")]],
-            "design": [["design", str(design), "--out", str(tmp_path / "design.h5")]]}
+            "design": [["design", str(design), "--out", str(tmp_path / "design.h5")]],
+            "farm": [["farm"]]}
     rows = {m.group(1): m.group(0) for m in re.finditer(r"^\| `fem-tether (\w+)[^`]*` \|.*$", README, flags=re.M)}
     named = {name: _json_keys_named(row) for name, row in rows.items() if "JSON" in row}
     assert set(named) == set(runs)

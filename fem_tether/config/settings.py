@@ -88,6 +88,8 @@ def toml_value(v: Any) -> str:
         return json.dumps(v, ensure_ascii=False)   # JSON string escapes are TOML basic-string escapes
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k} = {toml_value(x)}" for k, x in v.items()) + "}"
     return repr(v)
 
 

@@ -11,8 +11,7 @@ from __future__ import annotations
 
 from functools import partial
 
-from fem_tether.validation import analytic, design, free_kite, numerics, seed000, systems
-from fem_tether.validation import lourenco_orbit
+from fem_tether.validation import analytic, design, farm, free_kite, lourenco_orbit, numerics, seed000, systems
 from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -48,6 +47,11 @@ CASES: tuple[Case, ...] = (
     Case("lourenco/table-3.3", "Lourenço Table 3.3 (C-5A, 3-8 rpm)", True, lourenco_orbit.table_3_3),
     Case("fagiano/equivalent-drag", "self-consistency: Fagiano et al. 2010 eq. 21, Table I", True,
          systems.fagiano),
+    Case("fagiano/ke-farm-optimum", "Fagiano et al. 2010 §V, eqs. 23-24", True, farm.optimum),
+    Case("fagiano/ke-farm-ratings", "Fagiano et al. 2010 §V: the paper's optimum rated with eq. 20", True,
+         farm.paper_design),
+    Case("fagiano/ke-farm-flexible-lines", "beyond Fagiano et al. 2010 §V: eq. 24 with the FE lines", False,
+         farm.flexible),
     Case("free-kite/crosswind-law", "Roselli 2016 eqs. 2.35, 2.45-2.46; Trevisi 2019 eq. 3.34", True,
          free_kite.crosswind_law),
     Case("free-kite/energy", "analytic: work of the air = winch + drag dissipation + dK + dU", True,

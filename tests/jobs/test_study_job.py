@@ -50,7 +50,7 @@ def _study(**keys) -> dict:
     (_study(sites=[]), r"^\[study\] sites = \[\]: expected an array of tables"),
     (_study(sites=[{"wind": {"profile": "power"}}]), r"^\[study\] sites = .*: every site needs a name"),
     (_study(sites=[{"name": "a b"}]), r"^\[study\] sites = .*: every site needs a name of letters"),
-    (_study(sites=[{"name": "a"}, {"name": "a"}]), r"^\[study\] sites = .*'a'.*: site names must be distinct"),
+    (_study(sites=[{"name": "a"}, {"name": "a"}]), r'^\[study\] sites = .*"a".*: site names must be distinct'),
     (_study(sites=[{"name": "a", "altitude_m": 3}]), r"^\[study\] sites = .*: unknown key 'altitude_m' \(known: "),
     (_study(sites=[{"name": "a", "wind": "log"}]), r"^\[study\] sites = .*: wind must be a table of \[wind\] keys"),
     # a site's keys are checked as configuration keys, by the configuration's rules
