@@ -259,14 +259,14 @@ def cmd_study(args):
 def cmd_design(args):
     from fem_tether.jobs.design.job import load_design_job
     from fem_tether.jobs.design.loop import FlexibleOutcome
-    from fem_tether.jobs.design.run import run_design
+    from fem_tether.jobs.design.run import design_content, run_design
     from fem_tether.report.design_text import design_text, flexible_text
 
     job = load_design_job(args.job, args.preset, args.objective)
     result = run_design(job, args.out, progress=not args.json)
     if result is None:
         return 0
-    content = result.as_dict()
+    content = design_content(result, job)
     page = None
     if result.found:
         from fem_tether.report.design import write_design_report
