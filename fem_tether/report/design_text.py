@@ -64,10 +64,11 @@ def is_priced(result: dict) -> bool:
 
 
 def icc_parts(outputs: dict) -> list[tuple[str, float]]:
-    """The initial capital cost's parts (label, EUR) in the outputs' order: ``cost_<part>_EUR``."""
-    return [(key.removeprefix(PART_PREFIX).removesuffix(PART_SUFFIX).replace("takeoff", "take-off").replace("_", " "),
-             value) for key, value in outputs.items()
-            if key.startswith(PART_PREFIX) and key.endswith(PART_SUFFIX) and value is not None]
+    """The initial capital cost's parts (label, EUR), the largest first: ``cost_<part>_EUR``."""
+    parts = [(key.removeprefix(PART_PREFIX).removesuffix(PART_SUFFIX).replace("takeoff", "take-off").replace("_", " "),
+              value) for key, value in outputs.items()
+             if key.startswith(PART_PREFIX) and key.endswith(PART_SUFFIX) and value is not None]
+    return sorted(parts, key=lambda part: -part[1])
 
 
 def currency(result: dict) -> str:

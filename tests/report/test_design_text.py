@@ -51,9 +51,9 @@ def test_a_priced_design_prints_its_costs_with_the_currency_and_price_year():
     assert "maximises the annual profit (Trevisi eq. 7.1)" in lines[0]
     block = lines[lines.index("costs (in EUR (2019); Trevisi ch. 6):"):]
     assert block[1].split() == ["initial", "capital", "cost", "ICC", "1489.0", "kEUR"]
-    assert block[2].split() == ["kite", "71.5", "kEUR", "(", "4.8", "%)"]
-    assert block[5].split() == ["generator", "480.0", "kEUR", "(", "32.2", "%)"]   # 480/1489
-    assert "take-off system" in block[7]
+    assert block[2].split() == ["fixed", "610.0", "kEUR", "(", "41.0", "%)"]      # the largest first
+    assert block[3].split() == ["generator", "480.0", "kEUR", "(", "32.2", "%)"]  # 480/1489
+    assert "take-off system" in block[9] and block[10].split()[:2] == ["tower", "0.0"]
     shown = {line[:35].strip(): line[35:].split() for line in block[11:]}
     assert shown["LCOE (eq. 6.17)"] == ["26.10", "EUR/MWh"]
     assert shown["annual profit (eq. 7.1)"] == ["112.8", "kEUR/year"]
