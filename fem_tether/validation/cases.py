@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from functools import partial
 
-from fem_tether.validation import analytic, design, free_kite, numerics, seed000, systems
+from fem_tether.validation import analytic, design, fagiano_costs, free_kite, numerics, seed000, systems
 from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -40,6 +40,7 @@ CASES: tuple[Case, ...] = (
     Case("trevisi/optima", "Trevisi 2019 §3.3.2, eq. 3.47", True, systems.trevisi_optima),
     Case("lourenco/tether-and-power", "Lourenço eq. 3.7, Table 4.2", True, systems.lourenco),
     Case("fagiano/equivalent-drag", "Fagiano et al. 2010 eq. 21, Table I", True, systems.fagiano),
+    Case("fagiano/energy-cost", "Fagiano et al. 2010 §VI, Tables II-III", True, fagiano_costs.energy_cost),
     Case("free-kite/crosswind-law", "Roselli 2016 eqs. 2.35, 2.45-2.46; Trevisi 2019 eq. 3.34", True,
          free_kite.crosswind_law),
     Case("free-kite/energy", "analytic: work of the air = winch + drag dissipation + dK + dU", True,
