@@ -17,6 +17,7 @@ from fem_tether.costs.fagiano import (FIVE_MW_POWER_RATIO, TABLE_III_KITENERGY_U
                                       average_power_ratio, kitenergy_cost_USD_per_MWh)
 from fem_tether.performance.aep import aep_on_band, sweep_resource
 from fem_tether.performance.configured import from_config
+from fem_tether.physics.resource import WindResource
 from fem_tether.physics.tower import FIG_8_KE_YOYO, FIG_8_TOWER
 from fem_tether.validation.case import Check, Explanation
 
@@ -44,12 +45,20 @@ class DeBiltCapacityFactors:
     ke_yoyo_eq_20: float
 
 
+def _histograms(cfg) -> WindResource:
+    """The configuration's resource as histograms per altitude band (the ``ke-yoyo`` preset's)."""
+    resource = sweep_resource(cfg)
+    if not isinstance(resource, WindResource):
+        raise TypeError(f"the resource of {cfg.system.name!r} is {type(resource).__name__}, not histograms per band")
+    return resource
+
+
 def de_bilt_capacity_factors() -> DeBiltCapacityFactors:
     """The tower at 50–150 m, the KE-yoyo at 200–800 m with Fig. 8's curve and with eq. 20."""
     cfg = load_config(system="ke-yoyo")
-    kite_band = sweep_resource(cfg).pooled(200.0, 800.0)
+    kite_band = _histograms(cfg).pooled(200.0, 800.0)
     tower_cfg = cfg.replace(resource={"band_bottom_m": 50.0, "band_top_m": 150.0, "band_width_m": 100.0})
-    tower_band = sweep_resource(tower_cfg).bands[0]
+    tower_band = _histograms(tower_cfg).bands[0]
     system = from_config(cfg)
     return DeBiltCapacityFactors(
         aep_on_band(FIG_8_TOWER.power_W, tower_band, FIG_8_TOWER.rated_power_W).capacity_factor,

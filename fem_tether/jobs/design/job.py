@@ -238,8 +238,9 @@ def cost_parameters(table: dict) -> CostParameters:
             raise ConfigError(f"[costs] {key}: unknown key ('fem-tether config --costs' lists the keys)")
         elif not _number(value):
             raise ConfigError(f"[costs] {key} = {value!r}: must be a finite number")
+    values: dict[str, Any] = {k: v if k == "fixed_costs" else float(v) for k, v in table.items()}
     try:
-        return CostParameters(**{k: float(v) if k != "fixed_costs" else v for k, v in table.items()})
+        return CostParameters(**values)
     except ValueError as exc:
         raise ConfigError(f"[costs] {exc}") from None
 
