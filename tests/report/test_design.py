@@ -122,8 +122,13 @@ def test_the_cli_writes_the_report_and_names_it(design, capsys):
     printed = capsys.readouterr().out
     assert f"report: {page_path}" in printed.splitlines()
     assert main(["design", str(job_path), "--out", str(out), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["report"] == str(page_path)
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["report"] == str(page_path)
     assert written_by_fem_tether(page_path)
+    # the objective, currency and prices the design was made with, in the JSON as in the file
+    costs = printed["costs"]
+    assert (costs["objective"], costs["currency"], costs["parameters"]["years"]) == ("aep", "EUR (2019)", 20.0)
+    assert read_design_hdf5(out).costs == costs
 
 
 def _flexible(r: dict) -> dict:
