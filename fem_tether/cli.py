@@ -27,6 +27,7 @@ from fem_tether.commands.flight import warn_unflyable
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
 from fem_tether.core import stop
 from fem_tether.core.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
+from fem_tether.jobs.design.job import OBJECTIVES, costs_toml
 
 DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
                "energy systems (FE model with an independent FD cross-check).")
@@ -104,6 +105,12 @@ def _config(args, length_m=None):
 
 # --- commands ---------------------------------------------------------------------
 def cmd_config(args):
+    if args.costs:
+        if args.config or args.system:
+            raise ConfigError("config --costs prints the design job's [costs] table; it takes no configuration "
+                              "file or --system")
+        print(costs_toml(), end="")
+        return 0
     print(_config(args).to_toml(), end="")
     return 0
 
@@ -252,14 +259,14 @@ def cmd_study(args):
 def cmd_design(args):
     from fem_tether.jobs.design.job import load_design_job
     from fem_tether.jobs.design.loop import FlexibleOutcome
-    from fem_tether.jobs.design.run import run_design
+    from fem_tether.jobs.design.run import design_content, run_design
     from fem_tether.report.design_text import design_text, flexible_text
 
-    job = load_design_job(args.job, args.preset)
+    job = load_design_job(args.job, args.preset, args.objective)
     result = run_design(job, args.out, progress=not args.json)
     if result is None:
         return 0
-    content = result.as_dict()
+    content = design_content(result, job)
     page = None
     if result.found:
         from fem_tether.report.design import write_design_report
@@ -396,7 +403,10 @@ def build_parser() -> argparse.ArgumentParser:
         c.set_defaults(func=func)
         return c
 
-    command("config", cmd_config, "print the effective configuration as TOML, each key with its meaning")
+    c = command("config", cmd_config, "print the effective configuration as TOML, each key with its meaning")
+    c.add_argument("--costs", action="store_true",
+                   help="print instead a design job's [costs] table: every price at its nominal value with its "
+                        "unit, range and source (in EUR of 2019, Trevisi ch. 6)")
 
     c = command("systems", cmd_systems, "list the system presets (--system NAME), one line each",
                 config=False, system=False)
@@ -479,6 +489,9 @@ def build_parser() -> argparse.ArgumentParser:
                 "per wind speed), multistart over MPI ranks", config=False, system=False)
     c.add_argument("job", nargs="?", help="design job (TOML with a [design] table, docs/design.md)")
     c.add_argument("--preset", metavar="NAME", help="a shipped design job instead (e.g. trevisi-3mw)")
+    c.add_argument("--objective", choices=OBJECTIVES,
+                   help="what the design optimises, instead of the job's [design] objective: the net AEP "
+                        "(Trevisi ch. 5), the annual profit (eq. 7.1) or the LCOE (eq. 6.17)")
     c.add_argument("--out", required=True, metavar="FILE.h5",
                    help="result file; the figures and the report page go to FILE_report/")
     c.add_argument("--allow-unchecked", action="store_true",

@@ -73,6 +73,30 @@ def design_content() -> dict:
             "sensitivities_Wh": {"cd0": -1e9}}
 
 
+#: Cost outputs as the cost model's design will give them (fem_tether.costs; made up, near Trevisi §7.4.1's
+#: 2 MW ground-gen design: LCOE 16 EUR/MWh, OMC 43 kEUR/year, tether life 2.4 years), EUR (2019).
+COST_OUTPUTS = {"cost_kite_EUR": 71.5e3, "cost_tether_EUR": 58.4e3, "cost_winch_EUR": 21.0e3,
+                "cost_generator_EUR": 480.0e3, "cost_electronics_EUR": 180.0e3, "cost_takeoff_system_EUR": 4.1e3,
+                "cost_launch_EUR": 64.0e3, "cost_tower_EUR": 0.0, "cost_fixed_EUR": 610.0e3,
+                "icc_EUR": 1489.0e3, "operation_EUR_per_year": 18.3e3, "tether_replacement_EUR_per_year": 24.3e3,
+                "kite_replacement_EUR_per_year": 7.2e3, "omc_EUR_per_year": 49.8e3, "crf": 0.10955,
+                "annual_cost_EUR_per_year": 212.9e3, "lcoe_EUR_per_MWh": 26.1, "profit_EUR_per_year": 112.8e3,
+                "tether_life_years": 2.4, "tether_replacements_per_year": 0.4167, "ground_area_m2": 800.0,
+                "strip_length_m": 40.0, "generator_speed_rpm": 150.0, "tower_height_m": 0.0}
+
+
+def costed_design_content() -> dict:
+    """:func:`design_content` priced: :data:`COST_OUTPUTS` in its outputs, the tether's stress per
+    wind speed in its curves and the section ``costs`` the design job adds (objective profit)."""
+    from fem_tether.costs.parameters import CURRENCY, CostParameters
+
+    content = design_content()
+    content["outputs"] |= COST_OUTPUTS
+    content["curves"]["tether_stress_Pa"] = [0.1e9, 0.4e9, 0.9e9]
+    return content | {"costs": {"objective": "profit", "currency": CURRENCY,
+                                "parameters": dataclasses.asdict(CostParameters(kite_replacements_per_year=0.1))}}
+
+
 def design_file(directory):
     """:func:`design_content` written to ``design.h5`` with :data:`DESIGN_JOB`."""
     return write_design_hdf5(directory / "design.h5", design_content(), DESIGN_JOB)

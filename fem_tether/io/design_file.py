@@ -6,12 +6,18 @@ and the unit also as the attribute ``unit``)::
     /                 attrs: fem_tether_version, kind, job_toml, best_start, seed
     /parameters       attrs: every fixed parameter (DesignParameters)
     /design           attrs: the Table 5.1 variables and the auxiliaries at the optimum
-    /outputs          attrs: AEP (Wh), capacity factor, masses (kg), take-off, rated wind speed ...
+    /outputs          attrs: AEP (Wh), capacity factor, masses (kg), take-off, rated wind speed ...; where
+                      the model prices the design, its costs (fem_tether.costs): cost_<part>_EUR, icc_EUR,
+                      the annual terms (EUR/year), lcoe_EUR_per_MWh, profit_EUR_per_year, the tether's
+                      life (years) ... in the currency of /costs
     /curves/<name>    per wind speed of the design's grid (wind_mps, power_W, cl, gamma_out ...)
     /starts/<field>   one entry per start: index, success, feasible, net_aep_Wh, iterations, violation,
                       most_violated ... (NaN: a number that was not finite)
     /active/<family>  attrs: count, largest_multiplier of each active constraint family
     /sensitivities    attrs: p · d(net AEP)/dp in Wh per unit relative change
+    /costs            attrs: objective ("aep", "profit" or "lcoe"), currency ("EUR (2019)"); a result
+                      written before the cost model has none
+      parameters      attrs: the CostParameters the design was priced with (each with its unit)
     /flexible         with [design] tether = "flexible" (fem_tether.jobs.design.loop): attrs status,
                       error, checked (the FE <-> FD gate), tolerance, iterations (the cap), fe_runs,
                       fd_runs; the flexible design in the layout above (parameters ... active), and
@@ -42,6 +48,7 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.core.atomic import atomic_path, check_writable
+from fem_tether.costs.parameters import COSTS
 from fem_tether.io.reading import Reader
 from fem_tether.io.records import Column, Record, Table
 
@@ -49,7 +56,9 @@ KIND = "design"
 #: the flexible tether's scalars, attributes of ``/flexible``
 FLEXIBLE_ATTRS = ("status", "error", "checked", "tolerance", "iterations", "fe_runs", "fd_runs")
 #: units by the ending of a name (the first that matches)
-UNITS = (("_Wh", "Wh"), ("_W_kg", "W/kg"), ("_W", "W"), ("_N", "N"), ("_m2", "m2"), ("_m", "m"),
+UNITS = (("_EUR", "EUR"), ("_EUR_per_year", "EUR/year"), ("_EUR_per_MWh", "EUR/MWh"), ("_years", "year"),
+         ("_per_year", "1/year"), ("_rpm", "rpm"), ("_Wh", "Wh"), ("_W_kg", "W/kg"), ("_W", "W"), ("_N", "N"),
+         ("_m2", "m2"), ("_m", "m"),
          ("_mps", "m/s"), ("_per_mps", "s/m"), ("_rad", "rad"), ("_kg_m3", "kg/m3"), ("_kg", "kg"),
          ("_Pa", "Pa"), ("_V", "V"), ("_ohm_m", "ohm m"), ("_s", "s"))
 
@@ -70,10 +79,11 @@ def is_design_result(path) -> bool:
         return False
 
 
-def _attrs(group, values: dict) -> None:
+def _attrs(group, values: dict, units: dict | None = None) -> None:
+    """``values`` as attributes of ``group``, their units (``units``, else by name) as its ``units``."""
     for name, value in values.items():
         group.attrs[name] = "none" if value is None else value
-    group.attrs["units"] = json.dumps({name: unit_of(name) for name in values})
+    group.attrs["units"] = json.dumps({name: (units or {}).get(name, unit_of(name)) for name in values})
 
 
 def write_design_hdf5(path, result: dict, job_toml: str) -> Path:
@@ -83,6 +93,8 @@ def write_design_hdf5(path, result: dict, job_toml: str) -> Path:
     with atomic_path(target) as tmp, h5py.File(tmp, "w") as f:
         f.attrs.update(fem_tether_version=__version__, kind=KIND, job_toml=job_toml)
         _write_design(f, result)
+        if "costs" in result:
+            _write_costs(f.create_group("costs"), result["costs"])
         if "flexible" in result:
             _write_flexible(f.create_group("flexible"), result["flexible"])
     return target
@@ -113,6 +125,14 @@ def _columns(group, columns: dict) -> None:
         data = np.asarray(column, dtype=h5py.string_dtype()) if text else \
             np.asarray([np.nan if v is None else v for v in column])
         group.create_dataset(name, data=data).attrs["unit"] = unit_of(name)
+
+
+def _write_costs(group, costs: dict) -> None:
+    """The objective, the currency and the cost parameters of a design
+    (:func:`fem_tether.jobs.design.run.costs_section`)."""
+    group.attrs.update(objective=costs["objective"], currency=costs["currency"])
+    _attrs(group.create_group("parameters"), costs["parameters"],
+           {name: ("" if name not in COSTS else COSTS[name].unit) for name in costs["parameters"]})
 
 
 def _write_flexible(group, flexible: dict) -> None:
@@ -146,8 +166,9 @@ SECTIONS = ("parameters", "design", "outputs", "sensitivities_Wh", "bounds", "he
 class DesignFile(Record):
     """A design result file: the design's sections as :meth:`DesignResult.as_dict` gives
     them (``curves`` as arrays, one entry per wind speed of the design's grid), the job
-    that made it and, with ``[design] tether = "flexible"``, the flexible loop's content
-    (``flexible``, else empty).  The file holds no time of writing."""
+    that made it, the objective, currency and cost parameters (``costs``: empty in a file
+    written before the cost model) and, with ``[design] tether = "flexible"``, the flexible
+    loop's content (``flexible``, else empty).  The file holds no time of writing."""
 
     file: str
     version: str
@@ -164,6 +185,7 @@ class DesignFile(Record):
     seed: int
     best_start: int | None
     flexible: dict = field(default_factory=dict)
+    costs: dict = field(default_factory=dict)
     kind: str = "design"
     created_utc: None = None
 
@@ -195,10 +217,12 @@ class DesignFile(Record):
                      x="wind_mps")
 
     def as_dict(self) -> dict:
-        """The content as :meth:`DesignResult.as_dict` gives it, with ``job_toml`` (and ``flexible``)."""
+        """The content as :meth:`DesignResult.as_dict` gives it, with ``job_toml`` (and ``costs``,
+        ``flexible``)."""
         content = {name: getattr(self, name) for name in SECTIONS} | {"job_toml": self.job_toml}
         content["curves"] = {k: v.tolist() for k, v in self.curves.items()}
-        return content | ({"flexible": self.flexible} if self.flexible else {})
+        return (content | ({"costs": self.costs} if self.costs else {})
+                | ({"flexible": self.flexible} if self.flexible else {}))
 
 
 def _udunits(unit: str) -> str:
@@ -215,11 +239,12 @@ def read_design_hdf5(path) -> DesignFile:
         try:
             content = _read_design(f)
             flexible = _read_flexible(f["flexible"]) if "flexible" in f else {}
+            costs = _read_costs(f["costs"]) if "costs" in f else {}
             job_toml, version = reader.attr(f, "job_toml", "str"), reader.attr(f, "fem_tether_version", "str")
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             raise reader.error(f"{type(exc).__name__}: {' '.join(str(exc).split())}") from None
     content["curves"] = {k: np.asarray(v) for k, v in content["curves"].items()}
-    return DesignFile(str(path), version, job_toml, flexible=flexible, **content)
+    return DesignFile(str(path), version, job_toml, flexible=flexible, costs=costs, **content)
 
 
 def _read_columns(group) -> dict:
@@ -243,6 +268,11 @@ def _read_design(group) -> dict:
 def _finite_or_none(value):
     """A start's entry as written: NaN (a number that was not finite) reads back as None."""
     return None if isinstance(value, float) and np.isnan(value) else value
+
+
+def _read_costs(group) -> dict:
+    return {"objective": str(group.attrs["objective"]), "currency": str(group.attrs["currency"]),
+            "parameters": _read_attrs(group["parameters"])}
 
 
 def _read_flexible(group) -> dict:

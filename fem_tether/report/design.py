@@ -17,11 +17,16 @@ turbines*, ch. 5) against the wind speed at the operating altitude:
 * with the flexible tether in the loop (``[design] tether = "flexible"``),
   ``flexible.png``: the power curves of the lumped and the flexible design and
   the factor on eq. 3.14's tether drag coefficient per wind speed (1 for the lumped);
+* for a design the cost model priced (:mod:`fem_tether.costs`), ``costs.png``: the
+  initial capital cost by subsystem (k€ and share, the breakdown of Trevisi's
+  Fig. 7.2 pie as bars), the annual cost terms beside the revenue and profit,
+  and the tether's stress per wind speed with its creep life;
 
 and ``index.html``: the summary's head (:mod:`fem_tether.report.design_text`), the
 design and output tables (its rows), the starts, the figures (linked by name: the
 directory stands alone), the active constraints, the sensitivities, the parameters
-and the job's text; with the flexible tether, its section: the loop's rounds and
+and the job's text; for a priced design, its costs (currency and price year, the ICC by part,
+the annual terms, the tether's life) and their figure; with the flexible tether, its section: the loop's rounds and
 gate, the two designs side by side, where their AEPs differ, and its figure.  Every file is written whole or not at all, never over a file
 fem-tether did not write (:mod:`fem_tether.core.atomic`).
 """
@@ -35,10 +40,12 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.core.atomic import PAGE_NAME, atomic_path, check_folder, check_writable, generator_tag
+from fem_tether.costs.parameters import COSTS
 from fem_tether.io.design_file import read_design_hdf5, unit_of
 from fem_tether.jobs.study.result import report_dir
 from fem_tether.physics.resource import weibull_density_per_mps
-from fem_tether.report.design_text import (DESIGN_ROWS, OUTPUT_ROWS, attribution_rows, design_text, flexible_text,
+from fem_tether.report.design_text import (COST_ROWS, DESIGN_ROWS, OBJECTIVE_NAMES, OUTPUT_ROWS, attribution_rows,
+                                           currency, design_text, flexible_text, icc_parts, is_priced,
                                            side_by_side_rows)
 from fem_tether.report.page import STYLE, image, number, table
 from fem_tether.report.plots import label_axes, plt, save_atomically   # plt: with the Agg backend
@@ -47,6 +54,11 @@ from fem_tether.report.plots import label_axes, plt, save_atomically   # plt: wi
 FIGURE_FILES = {name: f"{name}.png" for name in ("power", "control", "weight", "forces", "masses", "constraints")}
 #: The flexible tether's figure's file.
 FLEXIBLE_FIGURE = "flexible.png"
+#: The costs' figure's file (a priced design only).
+COSTS_FIGURE = "costs.png"
+#: The annual cost terms drawn: (label, key of the outputs); the capital's is ICC·CRF.
+ANNUAL_TERMS = (("operation", "operation_EUR_per_year"), ("tether replacement", "tether_replacement_EUR_per_year"),
+                ("kite replacement", "kite_replacement_EUR_per_year"))
 #: Sensitivities drawn (the largest by magnitude); the page's table holds all.
 SENSITIVITIES_DRAWN = 10
 #: The mass breakdown: (label, key of the outputs).
@@ -205,6 +217,62 @@ def plot_flexible(r: dict, path) -> Path:
     return save_atomically(fig, path)
 
 
+def annual_terms(o: dict) -> list[tuple[str, float]]:
+    """The annual cost's terms (label, EUR/year): the capital's ICC·CRF and the O&M's, then the
+    annual cost, the revenue (profit + annual cost, eq. 7.1) and the profit."""
+    terms = [("capital ICC·CRF", o["icc_EUR"] * o["crf"])] + [(label, o[key]) for label, key in ANNUAL_TERMS]
+    return terms + [("annual cost", o["annual_cost_EUR_per_year"]),
+                    ("revenue $p_{el}$·AEP", o["profit_EUR_per_year"] + o["annual_cost_EUR_per_year"]),
+                    ("profit", o["profit_EUR_per_year"])]
+
+
+def plot_costs(r: dict, path) -> Path:
+    """The initial capital cost by subsystem as horizontal bars (k€, share of the ICC; Trevisi
+    Fig. 7.2 draws the shares as a pie), the annual cost terms with the revenue and the profit
+    (eq. 7.1), and, where the design file holds it, the tether's stress per wind speed against its
+    limit with the creep life it implies (Trevisi §6.2)."""
+    o, money = r["outputs"], currency(r)
+    stress = "tether_stress_Pa" in r["curves"]
+    fig = plt.figure(figsize=(11.0, 8.0 if stress else 4.6), constrained_layout=True)
+    grid = fig.add_gridspec(2 if stress else 1, 2, height_ratios=(1.0, 0.8) if stress else None)
+    parts = icc_parts(o)
+    left = fig.add_subplot(grid[0, 0])
+    values = [1e-3 * v for _, v in parts]
+    bars = left.barh([label for label, _ in parts], values, color="tab:blue")
+    left.bar_label(bars, labels=[f"{v:.1f} k€ ({100 * v / (1e-3 * o['icc_EUR']):.1f} %)" for v in values],
+                   padding=3, fontsize=8.5)
+    left.set_xlim(0.0, 1.45 * max(max(values), 1.0))
+    left.set_xlabel(f"initial capital cost [k€, {money}]")
+    left.set_title(f"ICC {1e-3 * o['icc_EUR']:.0f} k€ by subsystem", fontsize=10)
+    terms = annual_terms(o)
+    right = fig.add_subplot(grid[0, 1])
+    values = [1e-3 * v for _, v in terms]
+    colours = ["tab:orange"] * (len(terms) - 3) + ["tab:red", "tab:green",
+                                                   "tab:green" if values[-1] >= 0 else "tab:red"]
+    bars = right.barh([label for label, _ in terms], values, color=colours)
+    right.bar_label(bars, labels=[f"{v:.1f}" for v in values], padding=3, fontsize=8.5)
+    right.axvline(0.0, color="0.3", lw=0.8)
+    low, high = min(0.0, min(values)), max(values)
+    right.set_xlim(low * 1.3, 1.3 * max(high, 1.0))
+    right.set_xlabel(f"per year [k€/year, {money}]")
+    right.set_title(f"annual terms: LCOE {o['lcoe_EUR_per_MWh']:.1f} €/MWh, CRF {o['crf']:.4f}", fontsize=10)
+    for ax in (left, right):
+        ax.invert_yaxis()
+        ax.grid(alpha=0.3, axis="x")
+    if stress:
+        c = _curves(r)
+        bottom = fig.add_subplot(grid[1, :])
+        bottom.plot(c["wind_mps"], 1e-9 * c["tether_stress_Pa"], "o-", ms=3.5, color="tab:purple",
+                    label="tether stress")
+        limit = r["parameters"]["tether_strength_Pa"] / r["parameters"]["tether_safety_factor"]
+        bottom.axhline(1e-9 * limit, color="tab:red", ls="--", lw=1.2, label="limit: strength / safety factor")
+        label_axes(bottom, WIND_LABEL, "tether stress [GPa]",
+                   f"tether life {o['tether_life_years']:.2f} years ({o['tether_replacements_per_year']:.3f} "
+                   "replacements a year)", "upper left", source="creep by Miner's rule: Trevisi 2019 §6.2")
+        bottom.set_ylim(top=1.15 * max(1e-9 * limit, float(np.nanmax(1e-9 * c["tether_stress_Pa"]))))
+    return save_atomically(fig, path)
+
+
 FIGURES = {"power": plot_power, "control": plot_control, "weight": plot_weight, "forces": plot_forces,
            "masses": plot_masses, "constraints": plot_constraints}
 
@@ -215,9 +283,11 @@ def has_flexible(r: dict) -> bool:
 
 
 def write_figures(r: dict, directory: Path) -> dict[str, Path]:
-    """Every figure of :data:`FIGURES` of the design result ``r`` in ``directory`` (and the flexible
-    tether's, :func:`plot_flexible`, if it has one)."""
+    """Every figure of :data:`FIGURES` of the design result ``r`` in ``directory`` (and its costs',
+    :func:`plot_costs`, if it is priced; the flexible tether's, :func:`plot_flexible`, if it has one)."""
     figures = {name: draw(r, directory / FIGURE_FILES[name]) for name, draw in FIGURES.items()}
+    if is_priced(r):
+        figures["costs"] = plot_costs(r, directory / COSTS_FIGURE)
     if has_flexible(r):
         figures["flexible"] = plot_flexible(r, directory / FLEXIBLE_FIGURE)
     return figures
@@ -268,9 +338,37 @@ def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
               [[name, f"{1e-9 * value:+.4f}"] for name, value in sensitivities_by_size(r)]),
         "<details><summary>parameters</summary>",
         table(["parameter", "value", "unit"], parameter_rows(r["parameters"])), "</details>",
+        *costs_section(r, figures),
         *flexible_section(r, figures),
         f"<h2>Job</h2><pre>{html.escape(r['job_toml'])}</pre>",
         "</body></html>"])
+
+
+def costs_section(r: dict, figures: dict[str, Path]) -> list[str]:
+    """The costs' section of the page ([] for a design the cost model did not price): the currency
+    and price year, the objective, the ICC by part, the annual terms, the tether's life, the figure
+    and the prices used."""
+    if not is_priced(r):
+        return []
+    o = r["outputs"]
+    costs = r.get("costs", {})
+    objective = OBJECTIVE_NAMES.get(costs.get("objective", ""), "not stored")
+    return [
+        "<h2>Costs</h2>", f"<p>every cost in {html.escape(currency(r))} (the prices of Trevisi ch. 6); the "
+        f"objective: {html.escape(objective)}</p>",
+        table(["initial capital cost", f"[k€, {currency(r)}]", "share"],
+              [[label, f"{1e-3 * value:.1f}", f"{100 * value / o['icc_EUR']:.1f} %"] for label, value in icc_parts(o)]
+              + [["ICC", f"{1e-3 * o['icc_EUR']:.1f}", "100 %"]]),
+        table(["cost, annual term, tether life", "value", "unit"], quantity_rows(o, COST_ROWS)),
+        image(figures["costs"], embed=False),
+        "<details><summary>prices</summary>",
+        table(["price", "value", "unit"], price_rows(costs.get("parameters", {}))), "</details>"]
+
+
+def price_rows(prices: dict) -> list[list[str]]:
+    """(name, value, unit) of the cost parameters a design was priced with."""
+    return [[name, f"{value:g}" if isinstance(value, (int, float)) else str(value),
+             COSTS[name].unit if name in COSTS else ""] for name, value in prices.items()]
 
 
 def flexible_section(r: dict, figures: dict[str, Path]) -> list[str]:
@@ -296,11 +394,12 @@ def flexible_section(r: dict, figures: dict[str, Path]) -> list[str]:
         image(figures["flexible"], embed=False)]
 
 
-def report_paths(out, flexible: bool = False) -> list[Path]:
-    """The files of the report of the design file ``out`` (``flexible``: with a flexible design):
-    the figures, then the page."""
+def report_paths(out, flexible: bool = False, priced: bool = False) -> list[Path]:
+    """The files of the report of the design file ``out`` (``flexible``: with a flexible design;
+    ``priced``: with its costs): the figures, then the page."""
     directory = report_dir(out)
-    names = [*FIGURE_FILES.values(), *([FLEXIBLE_FIGURE] if flexible else [])]
+    names = [*FIGURE_FILES.values(), *([COSTS_FIGURE] if priced else []),
+             *([FLEXIBLE_FIGURE] if flexible else [])]
     return [directory / name for name in names] + [directory / PAGE_NAME]
 
 
@@ -313,7 +412,7 @@ def write_design_report(out) -> Path:
     if r["best_start"] is None:
         raise ValueError(f"{out}: no start converged to a feasible design, so there is no design to report")
     check_folder(report_dir(out))
-    paths = report_paths(out, has_flexible(r))
+    paths = report_paths(out, has_flexible(r), is_priced(r))
     for path in paths:
         check_writable(path)
     figures = write_figures(r, report_dir(out))

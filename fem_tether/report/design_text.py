@@ -35,6 +35,60 @@ OUTPUT_ROWS = (("AEP", "aep_Wh", 1e-9, "GWh", ".3f"), ("  ground-generated", "ae
                ("propeller area A_prop", "propeller_area_m2", 1.0, "m2", ".3f"))
 
 
+#: the cost rows of a priced design (fem_tether.costs): (label, key, factor, unit, format); money in the
+#: currency of the result's ``costs`` section (EUR of 2019, Trevisi ch. 6)
+COST_ROWS = (("LCOE (eq. 6.17)", "lcoe_EUR_per_MWh", 1.0, "EUR/MWh", ".2f"),
+             ("annual profit (eq. 7.1)", "profit_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+             ("annual cost ICC CRF + OMC", "annual_cost_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+             ("capital recovery factor CRF", "crf", 1.0, "1/year", ".5f"),
+             ("O&M cost OMC", "omc_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+             ("  operation", "operation_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+             ("  tether replacement", "tether_replacement_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+             ("  kite replacement", "kite_replacement_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+             ("tether life (creep)", "tether_life_years", 1.0, "years", ".2f"),
+             ("  tether replacements", "tether_replacements_per_year", 1.0, "1/year", ".3f"),
+             ("tower height", "tower_height_m", 1.0, "m", ".1f"),
+             ("launch and landing ground", "ground_area_m2", 1.0, "m2", ".0f"),
+             ("  take-off strip", "strip_length_m", 1.0, "m", ".1f"),
+             ("generator speed", "generator_speed_rpm", 1.0, "rpm", ".1f"))
+#: the ICC's parts in a design's outputs: cost_<part>_EUR
+PART_PREFIX, PART_SUFFIX = "cost_", "_EUR"
+#: the objectives' names as printed
+OBJECTIVE_NAMES = {"aep": "net AEP (Trevisi ch. 5)", "profit": "annual profit (Trevisi eq. 7.1)",
+                   "lcoe": "LCOE (Trevisi eq. 6.17)"}
+
+
+def is_priced(result: dict) -> bool:
+    """Whether a design result holds its costs (the cost model priced it)."""
+    return result["outputs"].get("icc_EUR") is not None
+
+
+def icc_parts(outputs: dict) -> list[tuple[str, float]]:
+    """The initial capital cost's parts (label, EUR), the largest first: ``cost_<part>_EUR``."""
+    parts = [(key.removeprefix(PART_PREFIX).removesuffix(PART_SUFFIX).replace("takeoff", "take-off").replace("_", " "),
+              value) for key, value in outputs.items()
+             if key.startswith(PART_PREFIX) and key.endswith(PART_SUFFIX) and value is not None]
+    return sorted(parts, key=lambda part: -part[1])
+
+
+def currency(result: dict) -> str:
+    """The currency and price year of a result's costs."""
+    return result.get("costs", {}).get("currency", "EUR (2019)")
+
+
+def costs_text(result: dict) -> list[str]:
+    """The cost lines of a priced design ([] if it holds no costs): the ICC by part (kEUR, share),
+    LCOE, profit, the annual terms and the tether's life, with the currency and price year."""
+    o = result["outputs"]
+    if not is_priced(result):
+        return []
+    icc = o["icc_EUR"]
+    parts = [f"  {'  ' + label:<30} {value * 1e-3:>12.1f} kEUR ({100 * value / icc:5.1f} %)"
+             for label, value in icc_parts(o)]
+    return ([f"costs (in {currency(result)}; Trevisi ch. 6):",
+             f"  {'initial capital cost ICC':<30} {icc * 1e-3:>12.1f} kEUR"] + parts + _rows(o, COST_ROWS))
+
+
 def _rows(values: dict, rows) -> list[str]:
     return [f"  {label:<30} {values[key] * factor:>12{fmt}} {unit}" for label, key, factor, unit, fmt in rows
             if key in values and values[key] is not None]
@@ -70,8 +124,11 @@ def design_text(result: dict, path=None) -> str:
     p = result["parameters"]
     starts = result["starts"]
     good = sum(1 for s in starts if s["success"] and s["feasible"])
+    objective = result.get("costs", {}).get("objective")
     head = [f"design: {p['mode']}, rated {p['rated_power_W'] / 1e6:g} MW, C_L,max {p['cl_max']:g}, wing area "
             + ("free" if p["wing_area_m2"] is None else f"{p['wing_area_m2']:g} m2")
+            + (f"; maximises the {OBJECTIVE_NAMES[objective]}" if objective in ("aep", "profit") else
+               f"; minimises the {OBJECTIVE_NAMES[objective]}" if objective else "")
             + f"; {good} of {len(starts)} starts converged feasible"]
     if result["best_start"] is None:
         return "\n".join(head + [no_design(starts)])
@@ -92,8 +149,9 @@ def design_text(result: dict, path=None) -> str:
               for name, entry in result["active_constraints"].items()]
     sens = sorted(result["sensitivities_Wh"].items(), key=lambda kv: -abs(kv[1]))
     lines = head + ["", "design variables:"] + _rows(result["design"], DESIGN_ROWS) \
-        + ["", "outputs:"] + _rows(result["outputs"], OUTPUT_ROWS) + ["", "power curve (wind at the operating "
-                                                                        "altitude):"] + curve \
+        + ["", "outputs:"] + _rows(result["outputs"], OUTPUT_ROWS) \
+        + (["", *costs_text(result)] if is_priced(result) else []) \
+        + ["", "power curve (wind at the operating altitude):"] + curve \
         + ["", "active constraints:"] + active \
         + ["", "net AEP per relative change of a parameter (p dAEP/dp, GWh):"] \
         + [f"  {name:<30} {value / 1e9:+9.3f}" for name, value in sens if abs(value) > 1e-3 * 1e9]
@@ -116,7 +174,14 @@ SIDE_BY_SIDE = (("AEP", "outputs", "aep_Wh", 1e-9, "GWh", ".4f"),
                 ("  glider", "outputs", "glider_mass_kg", 1.0, "kg", ".1f"),
                 ("  generators", "outputs", "generator_mass_kg", 1.0, "kg", ".1f"),
                 ("  tether", "outputs", "tether_mass_kg", 1.0, "kg", ".1f"),
-                ("  take-off", "outputs", "takeoff_mass_kg", 1.0, "kg", ".1f"))
+                ("  take-off", "outputs", "takeoff_mass_kg", 1.0, "kg", ".1f"),
+                ("LCOE", "outputs", "lcoe_EUR_per_MWh", 1.0, "EUR/MWh", ".2f"),
+                ("annual profit", "outputs", "profit_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+                ("initial capital cost ICC", "outputs", "icc_EUR", 1e-3, "kEUR", ".1f"),
+                ("O&M cost OMC", "outputs", "omc_EUR_per_year", 1e-3, "kEUR/year", ".1f"),
+                ("tether life", "outputs", "tether_life_years", 1.0, "years", ".2f"))
+#: the side-by-side rows a design without costs leaves out
+COST_KEYS = ("lcoe_EUR_per_MWh", "profit_EUR_per_year", "icc_EUR", "omc_EUR_per_year", "tether_life_years")
 #: the attribution's lines: (label, AEP, against which AEP)
 ATTRIBUTION = (
     ("flexible design against lumped (total)", "flexible", "lumped"),
@@ -132,12 +197,15 @@ ATTRIBUTION = (
 
 def side_by_side_rows(result: dict) -> list[tuple[str, str, str, str, str]]:
     """(label, lumped, flexible, change, unit) of :data:`SIDE_BY_SIDE` (the flexible column empty
-    without a flexible design)."""
+    without a flexible design; the cost rows only where the lumped design is priced; money in
+    :func:`currency`)."""
     flexible = result["flexible"]
     rows = []
     for label, group, key, factor, unit, fmt in SIDE_BY_SIDE:
+        if key in COST_KEYS and not is_priced(result):
+            continue
         a = result[group][key]
-        b = flexible[group][key] if group in flexible else math.nan
+        b = flexible[group].get(key, math.nan) if group in flexible else math.nan
         shown = (format(a * factor, fmt), format(b * factor, fmt) if math.isfinite(b) else "-")
         # a change only from a number that shows (none from a 0.0)
         change = f"{100 * (b / a - 1):+.2f} %" if math.isfinite(b) and float(shown[0]) != 0.0 else ""
@@ -181,6 +249,8 @@ def flexible_text(result: dict, timing_s: dict | None = None, path=None) -> str:
         lines += ["", f"  {'':<30} {'lumped':>12} {'flexible':>12} {'change':>10}"]
         lines += [f"  {label:<30} {a:>12} {b:>12} {change:>10}  {unit}"
                   for label, a, b, change, unit in side_by_side_rows(result)]
+        if is_priced(result):
+            lines.append(f"  (costs in {currency(result)})")
         lc, fc, bins = result["curves"], f["curves"], f["bins"]
         lines += ["", "  per wind speed (lumped | flexible, each on its own grid; factor and sag of the last round):",
                   f"  {'V [m/s]':>8} {'C_L':>6} {'P [MW]':>7} | {'V [m/s]':>8} {'C_L':>6} {'P [MW]':>7} "

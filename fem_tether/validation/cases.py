@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from functools import partial
 
-from fem_tether.validation import analytic, design, farm, free_kite, lourenco_orbit, numerics, seed000, systems
+from fem_tether.validation import (analytic, design, fagiano_costs, farm, free_kite, lourenco_orbit, numerics,
+                                   seed000, systems)
 from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -52,6 +53,7 @@ CASES: tuple[Case, ...] = (
          farm.paper_design),
     Case("fagiano/ke-farm-flexible-lines", "beyond Fagiano et al. 2010 §V: eq. 24 with the FE lines", False,
          farm.flexible),
+    Case("fagiano/energy-cost", "Fagiano et al. 2010 §VI, Tables II-III", True, fagiano_costs.energy_cost),
     Case("free-kite/crosswind-law", "Roselli 2016 eqs. 2.35, 2.45-2.46; Trevisi 2019 eq. 3.34", True,
          free_kite.crosswind_law),
     Case("free-kite/energy", "analytic: work of the air = winch + drag dissipation + dK + dU", True,

@@ -3,11 +3,12 @@ quantity that does not exist included."""
 
 import json
 
+import h5py
 import numpy as np
 import pytest
 
 from damage import foreign, replace_dataset, text
-from stored_files import design_content as content
+from stored_files import costed_design_content, design_content as content
 from fem_tether import __version__
 from fem_tether.io.design_file import DesignFile, is_design_result, read_design_hdf5, write_design_hdf5
 from fem_tether.io.reading import ResultFileError
@@ -59,3 +60,36 @@ def test_a_missing_foreign_or_damaged_design_file_is_one_line_naming_it(tmp_path
     with pytest.raises(ResultFileError, match=problem) as caught:
         read_design_hdf5(path)
     assert str(path) in str(caught.value) and "\n" not in str(caught.value)
+
+
+def test_a_priced_design_reads_back_with_its_costs_currency_and_units(tmp_path):
+    """The cost outputs (EUR, EUR/year, EUR/MWh, years), the objective, the currency and the
+    CostParameters the design was priced with: written and read back as written, each with its unit."""
+    written = costed_design_content()
+    path = write_design_hdf5(tmp_path / "d.h5", written, "[design]\n")
+    r = read_design_hdf5(path)
+    back = r.as_dict()
+    back.pop("job_toml")
+    assert back == written
+    assert r.costs["objective"] == "profit" and r.costs["currency"] == "EUR (2019)"
+    assert r.costs["parameters"]["kite_replacements_per_year"] == 0.1
+    assert r.costs["parameters"]["fixed_costs"] == "table 6.6"
+    units = {name: r.units[name] for name in ("icc_EUR", "cost_kite_EUR", "omc_EUR_per_year", "lcoe_EUR_per_MWh",
+                                              "profit_EUR_per_year", "tether_life_years",
+                                              "tether_replacements_per_year", "crf", "generator_speed_rpm",
+                                              "tether_stress_Pa")}
+    assert units == {"icc_EUR": "EUR", "cost_kite_EUR": "EUR", "omc_EUR_per_year": "EUR/year",
+                     "lcoe_EUR_per_MWh": "EUR/MWh", "profit_EUR_per_year": "EUR/year", "tether_life_years": "year",
+                     "tether_replacements_per_year": "1/year", "crf": "1", "generator_speed_rpm": "rpm",
+                     "tether_stress_Pa": "Pa"}
+    with h5py.File(path, "r") as f:
+        assert f["costs"].attrs["currency"] == "EUR (2019)"
+        stored = json.loads(f["costs/parameters"].attrs["units"])
+        assert (stored["wing_price_EUR_per_kg"], stored["years"], stored["motor_power_per_EUR"]) == \
+            ("EUR/kg", "year", "W/EUR")
+        assert json.loads(f["outputs"].attrs["units"])["annual_cost_EUR_per_year"] == "EUR/year"
+
+
+def test_a_design_written_before_the_cost_model_reads_with_no_costs(tmp_path):
+    r = read_design_hdf5(write_design_hdf5(tmp_path / "d.h5", content(), "[design]\n"))
+    assert r.costs == {} and "costs" not in r.as_dict()

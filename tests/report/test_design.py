@@ -13,14 +13,16 @@ import pytest
 from conftest import is_png
 from figures_seen import saved, unclear, words  # noqa: F401  (saved: a fixture)
 from pages import Page
+from stored_files import COST_OUTPUTS, costed_design_content
 
 from fem_tether.cli import main
 from fem_tether.core.atomic import OutputError, written_by_fem_tether
-from fem_tether.io.design_file import read_design_hdf5
+from fem_tether.io.design_file import read_design_hdf5, write_design_hdf5
 from fem_tether.jobs.design.job import load_design_job
 from fem_tether.jobs.design.run import run_design
 from fem_tether.physics.resource import weibull_density_per_mps
-from fem_tether.report.design import FIGURE_FILES, report_dir, report_paths, write_design_report, write_figures
+from fem_tether.report.design import (COSTS_FIGURE, FIGURE_FILES, report_dir, report_paths, write_design_report,
+                                     write_figures)
 
 JOB = """[design]
 preset = "trevisi-3mw"
@@ -120,8 +122,13 @@ def test_the_cli_writes_the_report_and_names_it(design, capsys):
     printed = capsys.readouterr().out
     assert f"report: {page_path}" in printed.splitlines()
     assert main(["design", str(job_path), "--out", str(out), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["report"] == str(page_path)
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["report"] == str(page_path)
     assert written_by_fem_tether(page_path)
+    # the objective, currency and prices the design was made with, in the JSON as in the file
+    costs = printed["costs"]
+    assert (costs["objective"], costs["currency"], costs["parameters"]["years"]) == ("aep", "EUR (2019)", 20.0)
+    assert read_design_hdf5(out).costs == costs
 
 
 def _flexible(r: dict) -> dict:
@@ -148,3 +155,51 @@ def test_every_figure_of_a_design_reads_clear(design, saved, tmp_path):
     control = saved[list(FIGURE_FILES).index("control")]
     assert control.axes[0].get_ylim()[1] > 1.05 * r["parameters"]["cl_max"]
     assert not [fig for fig in saved if "seed" in words(fig)]
+
+
+def _priced(r: dict) -> dict:
+    """The fixture's design priced as the cost model will price it (fem_tether.costs; its numbers
+    :data:`stored_files.COST_OUTPUTS`), its tether stress the force over the section."""
+    content = {k: v for k, v in dict(r).items() if k not in ("job_toml", "file", "version")}
+    section = np.pi / 4 * r["design"]["tether_diameter_m"] ** 2
+    content["curves"] = {**content["curves"], "tether_stress_Pa": np.asarray(r["curves"]["tether_force_N"]) / section}
+    content["outputs"] = {**content["outputs"], **COST_OUTPUTS}
+    return content | {"costs": costed_design_content()["costs"]}
+
+
+def test_a_priced_design_has_its_costs_figure_and_section(design, tmp_path):
+    """The costs' figure beside the others and the page's costs section: the currency and price year,
+    the ICC by part with shares summing to 100 %, LCOE, profit, the annual terms, the tether's life,
+    the prices used."""
+    r = read_design_hdf5(design[1])
+    out = write_design_hdf5(tmp_path / "priced.h5", _priced(r.as_dict()), r.job_toml)
+    page_path = write_design_report(out)
+    assert report_paths(out, priced=True)[-1] == page_path
+    page = Page(page_path.read_text(encoding="utf-8"))
+    assert page.images == [*FIGURE_FILES.values(), COSTS_FIGURE]
+    assert is_png(page_path.parent / COSTS_FIGURE) and written_by_fem_tether(page_path.parent / COSTS_FIGURE)
+    text = page_path.read_text(encoding="utf-8")
+    assert "every cost in EUR (2019)" in text and "annual profit (Trevisi eq. 7.1)" in text
+    parts = _table(page, "initial capital cost")
+    assert page.tables[[t[0][0] for t in page.tables].index("initial capital cost")][0][1] == "[k€, EUR (2019)]"
+    assert parts["generator"] == ["480.0", "32.2 %"] and parts["ICC"] == ["1489.0", "100 %"]
+    assert sum(float(v[1].removesuffix(" %")) for k, v in parts.items() if k != "ICC") == pytest.approx(100, abs=0.1)
+    costs = _table(page, "cost, annual term, tether life")
+    assert costs["LCOE (eq. 6.17)"] == ["26.10", "EUR/MWh"] and costs["tether life (creep)"] == ["2.40", "years"]
+    assert _table(page, "price")["kite_replacements_per_year"] == ["0.1", "1/year"]
+
+
+def test_an_unpriced_design_has_no_costs(design):
+    page = Page(design[2].read_text(encoding="utf-8"))
+    assert COSTS_FIGURE not in page.images and "Costs" not in design[2].read_text(encoding="utf-8")
+
+
+def test_the_costs_figure_reads_clear(design, saved, tmp_path):
+    """The ICC bars with k€ and shares, the annual terms and the tether's stress: no legend over a
+    line, no text over a text, nothing cut off; the stress panel's title gives the tether's life."""
+    r = _priced(read_design_hdf5(design[1]).as_dict())
+    figures = write_figures(r, tmp_path)
+    assert set(figures) == {*FIGURE_FILES, "costs"}
+    assert unclear(saved) == {}
+    costs = saved[-1]
+    assert "2.40 years" in words(costs) and "480.0 k€ (32.2 %)" in words(costs)

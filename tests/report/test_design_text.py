@@ -1,7 +1,8 @@
 """A design result as the terminal prints it (fem_tether.report.design_text): why no start gave a
 design."""
 
-from fem_tether.report.design_text import design_text, no_design
+from stored_files import costed_design_content, design_content
+from fem_tether.report.design_text import costs_text, design_text, no_design, side_by_side_rows
 
 
 def start(index, feasible, violation, most_violated, message="Positive directional derivative for linesearch"):
@@ -31,3 +32,56 @@ def test_the_summary_of_no_design():
     text = design_text({"parameters": parameters, "starts": starts, "best_start": None})
     assert text.splitlines() == ["design: ground-gen, rated 3 MW, C_L,max 2, wing area 70 m2; 0 of 1 starts "
                                  "converged feasible", no_design(starts)]
+
+
+def _printable(content: dict) -> dict:
+    """A design content with the columns and limit the summary's power curve prints."""
+    n = len(content["curves"]["wind_mps"])
+    content["curves"] |= {k: [0.1] * n for k in ("ground_cycle_power_W", "onboard_cycle_power_W", "cl", "gamma_out",
+                                                 "gamma_in", "gamma_t", "delta_rad")}
+    content["outputs"]["force_limit_N"] = 1e6
+    return content
+
+
+def test_a_priced_design_prints_its_costs_with_the_currency_and_price_year():
+    """The ICC by part (kEUR and share), LCOE, profit, the annual terms and the tether's life under a
+    head naming the currency and price year; the objective in the summary's first line."""
+    text = design_text(_printable(costed_design_content()))
+    lines = text.splitlines()
+    assert "maximises the annual profit (Trevisi eq. 7.1)" in lines[0]
+    block = lines[lines.index("costs (in EUR (2019); Trevisi ch. 6):"):]
+    assert block[1].split() == ["initial", "capital", "cost", "ICC", "1489.0", "kEUR"]
+    assert block[2].split() == ["fixed", "610.0", "kEUR", "(", "41.0", "%)"]      # the largest first
+    assert block[3].split() == ["generator", "480.0", "kEUR", "(", "32.2", "%)"]  # 480/1489
+    assert "take-off system" in block[9] and block[10].split()[:2] == ["tower", "0.0"]
+    shown = {line[:35].strip(): line[35:].split() for line in block[11:]}
+    assert shown["LCOE (eq. 6.17)"] == ["26.10", "EUR/MWh"]
+    assert shown["annual profit (eq. 7.1)"] == ["112.8", "kEUR/year"]
+    assert shown["tether replacement"] == ["24.3", "kEUR/year"]
+    assert shown["tether life (creep)"] == ["2.40", "years"]
+
+
+def test_a_design_without_costs_prints_none():
+    """A design written before the cost model: no cost block, no objective, no cost rows side by side."""
+    content = _printable(design_content())
+    text = design_text(content)
+    assert "EUR" not in text and "maximises" not in text
+    assert costs_text(content) == []
+
+
+def test_the_flexible_design_beside_the_lumped_shows_lcoe_and_the_tether_life():
+    """The flexible tether's side-by-side table: LCOE, profit, ICC, OMC and tether life with their change."""
+    content = costed_design_content()
+    content["outputs"] |= {"capacity_factor": 0.46, "rated_wind_mps": 9.0, "altitude_m": 200.0, "total_mass_kg": 987.0,
+                           "glider_mass_kg": 650.0, "generator_mass_kg": 0.0, "tether_mass_kg": 292.0,
+                           "takeoff_mass_kg": 45.0}
+    content["design"] |= {k: 1.0 for k in ("tether_length_m", "tether_diameter_m", "elevation_rad", "cut_in_mps",
+                                           "cut_out_mps")}
+    flexible_outputs = {**content["outputs"], "lcoe_EUR_per_MWh": 27.0, "tether_life_years": 3.0}
+    content["flexible"] = {"design": content["design"], "outputs": flexible_outputs}
+    rows = {label: rest for label, *rest in side_by_side_rows(content)}
+    assert rows["LCOE"] == ["26.10", "27.00", "+3.45 %", "EUR/MWh"]
+    assert rows["tether life"] == ["2.40", "3.00", "+25.00 %", "years"]
+    assert rows["initial capital cost ICC"][:2] == ["1489.0", "1489.0"]
+    del content["outputs"]["icc_EUR"]
+    assert "LCOE" not in {row[0] for row in side_by_side_rows(content)}

@@ -8,6 +8,8 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     seed = 0                    # start k is drawn from NumPy's generator seeded (seed, k)
     tether = "lumped"           # the straight tether of eqs. 3.14-3.19, or "flexible": the FE line in
                                 # the loop (fem_tether.jobs.design.loop, docs/design-flexible.md)
+    objective = "aep"           # what the design maximises: "aep" (Trevisi ch. 5), "profit" (eq. 7.1) or
+                                # minimises: "lcoe" (eq. 6.17); `fem-tether design --objective` overrides it
 
     [design.parameters]         # any field of fem_tether.design.parameters.DesignParameters
     rated_power_W = 3e6
@@ -28,16 +30,22 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     [design.flexible.fe]
     elements = 40
 
+    [costs]                     # any price of fem_tether.costs.parameters.CostParameters, in EUR (2019)
+    kite_replacements_per_year = 0.1    # (`fem-tether config --costs` lists them with units, sources, ranges)
+
 Every key is checked: an unknown table, key or variable, a value of the
 wrong type or out of range, bounds no design can meet (an altitude, a wind
 range or a wing area they cannot reach: :func:`fem_tether.design.variables.unreachable`)
 is one :class:`~fem_tether.core.errors.ConfigError` line naming it (exit 2
-from the command line), before any optimisation.
+from the command line), before any optimisation; so is a ``[costs]`` key
+that is unknown, not a number, a negative price, a life ≤ 0 or a discount
+rate and years no capital recovery factor can be formed from.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import tomllib
 from dataclasses import dataclass
@@ -47,12 +55,17 @@ from typing import Any
 
 from fem_tether.config.tomlio import toml_and_text
 from fem_tether.core.errors import ConfigError
+from fem_tether.costs.parameters import COSTS, CURRENCY, FIXED_COSTS, CostParameters
 from fem_tether.design.optimiser import starts_for
 from fem_tether.design.parameters import CHOICES, DesignParameters
 from fem_tether.design.variables import PER_WIND, SCALARS, Layout, unreachable
 from fem_tether.jobs.design.flexible import FlexibleSettings, flexible_settings
 
-KEYS = ("preset", "starts", "seed", "tether", "parameters", "bounds", "held", "flexible")
+KEYS = ("preset", "starts", "seed", "tether", "objective", "parameters", "bounds", "held", "flexible")
+#: the tables of a design job
+TABLES = ("design", "costs")
+#: what a design optimises: the net AEP (Trevisi ch. 5), the annual profit (eq. 7.1) or the LCOE (eq. 6.17)
+OBJECTIVES = ("aep", "profit", "lcoe")
 #: tether models of a design; "lumped" is the thesis' straight tether, "flexible" the FE line in the loop
 TETHERS = ("lumped", "flexible")
 #: the largest number of starts a job may ask for (ours: a typing error, not a design, beyond it)
@@ -82,6 +95,8 @@ class DesignJob:
     text: str
     name: str
     flexible: FlexibleSettings = FlexibleSettings()
+    objective: str = "aep"
+    costs: CostParameters = CostParameters()
 
     def layout(self) -> Layout:
         return Layout.build(self.parameters, self.bounds, self.held)
@@ -91,8 +106,10 @@ def preset_names() -> list[str]:
     return sorted(PRESETS)
 
 
-def load_design_job(path: str | Path | None = None, preset: str | None = None) -> DesignJob:
-    """The job of the file ``path`` or of the shipped ``preset`` (or a file naming a preset)."""
+def load_design_job(path: str | Path | None = None, preset: str | None = None,
+                    objective: str | None = None) -> DesignJob:
+    """The job of the file ``path`` or of the shipped ``preset`` (or a file naming a preset);
+    ``objective`` (the command line's ``--objective``) replaces the job's ``[design] objective``."""
     if (path is None) == (preset is None):
         raise ConfigError("give a design job file or --preset NAME (one of them)")
     if path is not None:
@@ -100,20 +117,25 @@ def load_design_job(path: str | Path | None = None, preset: str | None = None) -
         name = str(path)
     else:
         tables, text, name = _preset(preset), PRESETS.get(str(preset), ""), f"preset {preset}"
-    design = tables.get("design")
-    unknown = sorted(set(tables) - {"design"})
+    design, costs = tables.get("design"), tables.get("costs", {})
+    unknown = sorted(set(tables) - set(TABLES))
     if unknown:
-        raise ConfigError(f"{name}: unknown table [{unknown[0]}] (a design job has only [design])")
+        raise ConfigError(f"{name}: unknown table [{unknown[0]}] (a design job has only [design] and [costs])")
     if not isinstance(design, dict):
         raise ConfigError(f"{name}: no [design] table")
+    if not isinstance(costs, dict):
+        raise ConfigError(f"{name}: costs must be a table [costs]")
     if "preset" in design:
-        base = _preset(design["preset"])["design"]
-        merged = {k: dict(v) if isinstance(v, dict) else v for k, v in base.items()}
+        base = _preset(design["preset"])
+        merged = {k: dict(v) if isinstance(v, dict) else v for k, v in base["design"].items()}
         for key, value in design.items():
             merged[key] = {**merged.get(key, {}), **value} if isinstance(value, dict) else value
         text = PRESETS[design["preset"]] + "\n# then\n" + text
-        design = merged
-    return _job(design, text, name)
+        design, costs = merged, {**base.get("costs", {}), **costs}
+    if objective is not None:
+        design = {**design, "objective": objective}
+        text += f"\n# then the command line's --objective {objective}\n"
+    return _job(design, costs, text, name)
 
 
 def _preset(name) -> dict:
@@ -122,11 +144,14 @@ def _preset(name) -> dict:
     return tomllib.loads(PRESETS[name])
 
 
-def _job(design: dict, text: str, name: str) -> DesignJob:
+def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
     for key in design:
         if key not in KEYS:
             raise ConfigError(f"[design] {key}: unknown key (one of {', '.join(KEYS)})")
-    parameters = _parameters(design.get("parameters", {}))
+    objective = design.get("objective", "aep")
+    if objective not in OBJECTIVES:
+        raise ConfigError(f"[design] objective = {objective!r}: must be one of {', '.join(OBJECTIVES)}")
+    parameters = _parameters(design.get("parameters", {}), objective)
     starts = design.get("starts", starts_for(parameters.cl_max))
     if isinstance(starts, bool) or not isinstance(starts, int) or not 1 <= starts <= MAX_STARTS:
         raise ConfigError(f"[design] starts = {starts!r}: must be an integer in 1..{MAX_STARTS}")
@@ -151,7 +176,8 @@ def _job(design: dict, text: str, name: str) -> DesignJob:
     if "flexible" in design and tether != "flexible":
         raise ConfigError(f"[design.flexible]: only with [design] tether = \"flexible\" (this job's is {tether!r})")
     flexible = flexible_settings(design.get("flexible", {}), parameters)
-    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible)
+    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible, objective,
+                     cost_parameters(costs))
 
 
 def _table(design: dict, key: str) -> dict:
@@ -173,11 +199,12 @@ def _number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def _parameters(table) -> DesignParameters:
+def _parameters(table, objective: str) -> DesignParameters:
     if not isinstance(table, dict):
         raise ConfigError("[design] parameters: must be a table")
     names = {f.name: f for f in dataclasses.fields(DesignParameters)}
-    values: dict[str, Any] = {}
+    # the design model's objective is a DesignParameters field once the cost model's design has it
+    values: dict[str, Any] = {"objective": objective} if "objective" in names else {}
     for key, value in table.items():
         if key not in names:
             raise ConfigError(f"[design.parameters] {key}: unknown parameter")
@@ -196,3 +223,47 @@ def _parameters(table) -> DesignParameters:
         return DesignParameters(**values)
     except ValueError as exc:
         raise ConfigError(f"[design.parameters] {exc}") from None
+
+
+def cost_parameters(table: dict) -> CostParameters:
+    """The ``[costs]`` table as :class:`CostParameters` (the nominal value of every key it leaves
+    out); one ConfigError line ``[costs] key = value: why`` for a key that is unknown, of the wrong
+    type or out of range."""
+    for key, value in table.items():
+        if key == "fixed_costs":
+            if value not in FIXED_COSTS:
+                raise ConfigError(f"[costs] fixed_costs = {value!r}: must be one of "
+                                  f"{', '.join(map(repr, FIXED_COSTS))}")
+        elif key not in COSTS:
+            raise ConfigError(f"[costs] {key}: unknown key ('fem-tether config --costs' lists the keys)")
+        elif not _number(value):
+            raise ConfigError(f"[costs] {key} = {value!r}: must be a finite number")
+    values: dict[str, Any] = {k: v if k == "fixed_costs" else float(v) for k, v in table.items()}
+    try:
+        return CostParameters(**values)
+    except ValueError as exc:
+        raise ConfigError(f"[costs] {exc}") from None
+
+
+def _range(entry) -> str:
+    kind, *values = entry.distribution
+    if kind == "uniform":
+        return f"range {values[0]:g}-{values[1]:g} (uniform; nominal: its midpoint)"
+    if kind == "normal":
+        return f"mean {values[0]:g}, standard deviation {values[1]:g} (normal)"
+    return "no range"
+
+
+def costs_toml(costs: CostParameters = CostParameters()) -> str:
+    """The ``[costs]`` table of a design job as TOML: every key with its value (``costs``; default
+    the nominal ones) and, as a comment, its meaning, unit, range and source; the currency and
+    price year above it."""
+    lines = [f"# the cost model's prices and economic parameters, in {CURRENCY}: Trevisi, Configuration "
+             "optimisation of kite-based wind turbines, ch. 6 (\"estimated in 2019 euros\") and Table 7.1;",
+             "# a design job's [costs] table may set any of them (docs/design.md)", "[costs]"]
+    for name, entry in COSTS.items():
+        lines.append(f"{name} = {float(getattr(costs, name))!r}  # {entry.meaning} [{entry.unit}]; "
+                     f"{_range(entry)}; {entry.source}")
+    lines.append(f"fixed_costs = {json.dumps(costs.fixed_costs)}  # the fixed costs: \"table 6.6\" (the sum of "
+                 "Table 6.6's components at the rated power) or \"table 7.1\" (fixed_cost_EUR)")
+    return "\n".join(lines) + "\n"

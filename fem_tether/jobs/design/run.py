@@ -20,7 +20,7 @@ from __future__ import annotations
 import hashlib
 import json
 from contextlib import ExitStack
-from dataclasses import fields
+from dataclasses import asdict, fields
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +30,7 @@ from fem_tether.core.atomic import (PAGE_NAME, OutputError, check_folder, check_
                                     write_json)
 from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.core.progress import Progress
+from fem_tether.costs.parameters import CURRENCY
 from fem_tether.core.stop import guard, sync
 from fem_tether.design.optimiser import Problem, Solution, consistent, start_points
 from fem_tether.design.result import DesignResult, StartRecord, design_result, never_rated, record
@@ -56,9 +57,21 @@ def parts_dir(out: Path) -> Path:
 
 
 def inputs_key(job: DesignJob) -> str:
-    """What a start's result depends on: the job's text and the package version."""
+    """What a start's result depends on: the job's text, its objective and prices and the package version."""
     return hashlib.sha256((job.text + "\n" + repr(job.parameters) + repr(sorted(job.bounds.items()))
-                           + repr(sorted(job.held.items())) + f"{job.seed}" + __version__).encode()).hexdigest()
+                           + repr(sorted(job.held.items())) + f"{job.seed}" + job.objective + repr(job.costs)
+                           + __version__).encode()).hexdigest()
+
+
+def costs_section(job: DesignJob) -> dict:
+    """What a design was priced with: the objective, the currency and price year and the
+    :class:`~fem_tether.costs.parameters.CostParameters` (the design file's ``/costs``)."""
+    return {"objective": job.objective, "currency": CURRENCY, "parameters": asdict(job.costs)}
+
+
+def design_content(outcome: DesignResult | FlexibleOutcome, job: DesignJob) -> dict:
+    """The content of a design's file and of ``design --json``: the result's, and its :func:`costs_section`."""
+    return outcome.as_dict() | {"costs": costs_section(job)}
 
 
 class DesignStarts:
@@ -169,5 +182,5 @@ def run_design(job: DesignJob, out: str | Path, comm=None,
         if outcome is None:
             return None
         if result is not None and result.found:
-            write_design_hdf5(out, outcome.as_dict(), job.text)
+            write_design_hdf5(out, design_content(outcome, job), job.text)
         return outcome
