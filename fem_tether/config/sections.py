@@ -226,8 +226,8 @@ class Tether(Section):
                           "on; fem_tether.performance.sizing)", one_of("fixed", "load"))
     material: str = setting("sk99", "-", "line material for sizing and the margin: 'sk99' (Dyneema, Roselli "
                             "2016 Tab. 2.1), 'steel' (345 MPa working stress) or 'carbon' (2137 MPa; both "
-                            "Lourenco) or 'trevisi' (Dyneema, 1.5 GPa strength, fly-gen conductor; "
-                            "Trevisi 2019)", one_of("sk99", "steel", "carbon", "trevisi"))
+                            "Lourenco) or 'trevisi' (1.5 GPa strength, Trevisi 2019 §5.1.2; "
+                            "Dyneema's 970 kg/m3 and the fly-gen conductor ours)", one_of("sk99", "steel", "carbon", "trevisi"))
     safety_factor: float = setting(1.0, "-", "breaking load over the peak tension a line is sized to and "
                                    "checked against; 1: Roselli 2016's 11 mm SK99 line, whose 164.95 kN breaking "
                                    "load carries its peak (1.10 x the 150 kN nominal tension, 1.09-1.10 x the FE "

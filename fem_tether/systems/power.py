@@ -18,7 +18,7 @@ wind speeds against a design whose fields are arrays (one per length) gives one
 column per length.
 
 With the defaults the seed case's rated cycle mean is 2.22 MW, short of the
-"≈3 MW mean" KiteGen quotes for its 4 MW active phase (seed 000 §2.4): the
+"a mean power output of 3MW" KiteGen quotes for its 4 MW active phase (seed 000 §2.4): the
 reel-in time alone caps the mean at F V_L V_in / (V_L + V_in) = 2.29 MW at
 V_in = 17.5 m/s; 3 MW would take V_in ≈ 39 m/s.
 """
@@ -69,7 +69,7 @@ class Cycle:
     - ``stroke_m``: line reeled out per active phase, then back in (seed 000
       §5: ≈450 m, the reason for its 300 m altitude bands).
     - ``reel_in_mps``: winch speed V_in of the side-slip recovery (seed 000
-      §2.4: "roughly 15–20 m/s").
+      §2.4: "roughly 15 ÷ 20 m/s").
     - ``reel_in_cd0``: drag coefficient C_d0 of the side-slipping wing on its
       area A in the reel-in force (seed 004 eq. 3.24).  Seed 004 lets a wing's
       zero-lift C_d0 range over 0.01–0.1 (its Tab. 5.4); a stalled, sideways

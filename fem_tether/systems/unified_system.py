@@ -230,7 +230,8 @@ class UnifiedSystem:
 
     @functools.cached_property
     def force_limit_N(self) -> float:
-        """min(cap, lines σ_lim A_σ / SF): the tether force allowed (seed 004 eq. 5.2)."""
+        """min(cap, lines σ_lim A_σ / SF): the tether force allowed (seed 004 eq. 5.2, printed without the SF;
+        dividing by Table 5.4's SF_σlim is ours)."""
         strength = self.tether_lines * self.tether_strength_Pa * self.structural_area_m2 \
             / self.tether_safety_factor
         return min(self.max_tether_force_N, strength)
