@@ -265,8 +265,9 @@ class Drag(Section):
 @dataclass(frozen=True)
 class Wind(Section):
     NAME = "wind"
-    profile: str = setting("log", "-", "'log' (De Bilt), 'power', 'table' (measured, table_csv) or 'none'",
-                           one_of("log", "power", "table", "none"))
+    profile: str = setting("log", "-", "'log' (De Bilt), 'power', 'table' (measured, table_csv), 'lourenco' "
+                           "(Lourenco eq. 3.4: alpha 1/7, 10 m/s at 204 m, unbounded) or 'none'",
+                           one_of("log", "power", "table", "lourenco", "none"))
     season: str = setting("annual", "-", "De Bilt log-law season", one_of("winter", "summer", "annual"))
     reference_scale_mps: float = setting(9.5, "m/s", "power law: Weibull scale A of the wind at "
                                          "reference_height_m; the mean there is A Gamma(1 + 1/k), k = "
@@ -326,6 +327,21 @@ class Kite(Section):
                                   between(-89.0, 89.0))
     lookahead_m: float = setting(0.0, "m", "model = 'point-mass': steering look-ahead l (0: half the path's "
                                  "smallest turn radius, docs/steering.md)", zero_to(MAX_LENGTH_M))
+    steering: str = setting("path", "-", "model = 'point-mass': the roll law, 'path' (path following, "
+                            "docs/steering.md), 'roll-schedule' (Lourenco eqs. 3.5-3.6 on the circle, open loop) "
+                            "or 'roll-schedule+path' (the schedule with the path law's feedback on top); the "
+                            "schedules need rotation_rpm", one_of("path", "roll-schedule", "roll-schedule+path"))
+    rotation_rpm: float = setting(0.0, "rpm", "model = 'point-mass', path = 'circle': the rotation rate held by "
+                                  "the on-board turbines' drag (Lourenco §3.2: 5.5 rpm for the M600; "
+                                  "docs/imposed-orbit.md); 0: none, the kite flies its own speed",
+                                  zero_to(60.0))
+    max_turbine_factor: float = setting(0.0, "-", "rotation_rpm > 0: the largest turbine drag over the wing's "
+                                        "drag the rate hold may command (gamma_t in [0, this])", zero_to(100.0))
+    schedule_top_deg: float = setting(0.0, "deg", "steering = 'roll-schedule...': roll at the circle's top "
+                                      "(Lourenco eq. 3.5's psi_0; both 0: from eq. 2.14 = 0 at L/D = efficiency)",
+                                      between(-89.0, 89.0))
+    schedule_bottom_deg: float = setting(0.0, "deg", "steering = 'roll-schedule...': roll at the circle's bottom "
+                                         "(eq. 3.5's psi_pi; both 0: from eq. 2.14 = 0)", between(-89.0, 89.0))
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -111,6 +112,15 @@ def airspeed(circle: Circle, t_s, wind) -> Airspeed:
                     np.einsum("ij,ij->i", relative, e_n), theta, np.einsum("ij,ij->i", v, v))
 
 
+def orbit_angle_rad(circle: Circle, position_m) -> float:
+    """β of a point off the circle: the angle of its projection on the circle's
+    plane about the axis u, from a = (−cosϑ0, 0, sinϑ0) towards b = (0, −1, 0)
+    (:mod:`fem_tether.physics.orbit`), atan2(r·b, r·a) in [0, 2π)."""
+    r = np.asarray(position_m, dtype=float)
+    along_a = float(-r[0] * math.cos(circle.theta0_rad) + r[2] * math.sin(circle.theta0_rad))
+    return math.atan2(-float(r[1]), along_a) % (2.0 * math.pi)
+
+
 def balance_roll_rad(circle: Circle, beta_rad: float, wind, lift_to_drag: float) -> float:
     """ψ at β = 0 or π from eq. 2.14 = 0: with C = tanψ, h = √(V_l² + V_m²),
 
@@ -167,16 +177,29 @@ def drag_power_W(kite: LoydKite, length_m: float, tension_N, apparent_speed_mps)
     return 0.5 * q * (kite.cd * kite.area_m2 + kite.tether_cd * line_width_m) * apparent_speed_mps
 
 
-def lap(circle: Circle, kite: LoydKite, wind, schedule: RollSchedule, samples: int = 2000,
-        gravity_mps2: float = LOURENCO_G_MPS2) -> Lap:
-    """Eq. 2.12's tension and eq. 2.23's power over one lap of ``circle`` with the roll of ``schedule``."""
+class RollLaw(Protocol):
+    """ψ against β: :class:`RollSchedule`, or a roll measured along a flight."""
+
+    def roll_rad(self, beta_rad): ...
+
+
+def lap(circle: Circle, kite: LoydKite, wind, schedule: RollLaw, samples: int = 2000,
+        gravity_mps2: float = LOURENCO_G_MPS2, turbine_factor=None) -> Lap:
+    """Eq. 2.12's tension and eq. 2.23's power over one lap of ``circle`` with the roll of ``schedule``.
+
+    ``turbine_factor`` (a function of β, or None) adds on-board turbines' drag γ_t D_K to
+    the drag of eq. 2.12: V_n/(L/D) becomes V_n (1 + γ_t)/(L/D) — not in the thesis, whose
+    turbine drag enters the power only; for the comparison with a kite whose turbines
+    hold its rate (docs/imposed-orbit.md §4)."""
     beta = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
     va = airspeed(circle, (beta - circle.phase_rad) / circle.rate_rad_s, wind)
     roll = schedule.roll_rad(beta)
     across_sq = va.l ** 2 + va.m ** 2
     h = np.sqrt((1.0 + np.tan(roll) ** 2) * across_sq)
     apparent = va.magnitude
-    aero = -0.5 * kite.rho_kg_m3 * kite.cl * kite.area_m2 * apparent * (va.n / kite.lift_to_drag - across_sq / h)
+    drag = 1.0 if turbine_factor is None else 1.0 + turbine_factor(beta)
+    aero = -0.5 * kite.rho_kg_m3 * kite.cl * kite.area_m2 * apparent * (va.n * drag / kite.lift_to_drag
+                                                                        - across_sq / h)
     weight = kite.mass_kg * gravity_mps2
     mass = weight * (va.speed_sq / (gravity_mps2 * circle.length_m) - np.cos(va.polar_rad))
     power = drag_power_W(kite, circle.length_m, aero + mass, apparent)

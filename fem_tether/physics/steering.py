@@ -45,6 +45,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from fem_tether.physics.roll_schedule import RollSchedule, orbit_angle_rad
+
 if TYPE_CHECKING:
     from fem_tether.physics.orbit import Circle
     from fem_tether.physics.trajectory import FigureEight
@@ -161,7 +163,7 @@ class Command:
     roll_rad: float
     """ψ, within [roll_min_rad, roll_max_rad]."""
     feedforward_rad: float
-    """ψ_ff: the roll of the feed-forward alone (a_⊥ = V² κ_g), unlimited."""
+    """ψ_ff: the roll of the feed-forward alone (a_⊥ = V² κ_g; a schedule's ψ(β)), unlimited."""
     cross_track_m: float
     """e = (p − r)·n: the kite's distance to the left of the path."""
     heading_error_rad: float
@@ -219,9 +221,13 @@ class Steering:
         radius inside the turn; beyond, the nearest point is ill-defined).
         """
         kappa, e, eta = point.curvature_per_m, cross_track_m, heading_error_rad
-        feedforward = kappa * math.cos(eta) / max(1.0 - kappa * e, 0.5)
-        wrapped = math.remainder(-math.atan(e / self.lookahead_m) - eta, 2.0 * math.pi)
-        return speed_mps ** 2 * (feedforward + 4.0 * wrapped / self.lookahead_m)
+        feedforward = speed_mps ** 2 * kappa * math.cos(eta) / max(1.0 - kappa * e, 0.5)
+        return feedforward + self.feedback_acceleration(speed_mps, e, eta)
+
+    def feedback_acceleration(self, speed_mps, cross_track_m, heading_error_rad):
+        """The feedback part of a_⊥: (4V²/ℓ)(η_d − η), η_d = −atan(e/ℓ), the angle wrapped to (−π, π]."""
+        wrapped = math.remainder(-math.atan(cross_track_m / self.lookahead_m) - heading_error_rad, 2.0 * math.pi)
+        return 4.0 * speed_mps ** 2 * wrapped / self.lookahead_m
 
     def command(self, point: PathPoint, position_m, velocity_mps, aero_force_N, lift_N) -> Command:
         """The roll ψ for a kite at ``position_m`` moving at ``velocity_mps``.
@@ -233,24 +239,96 @@ class Steering:
         """
         if not lift_N > 0.0:
             raise ValueError(f"lift_N must be positive to steer, got {lift_N}")
-        p = np.asarray(position_m, dtype=float)
-        e_k = p / np.linalg.norm(p)
-        v = np.asarray(velocity_mps, dtype=float)
-        v = v - (v @ e_k) * e_k
-        speed = float(np.linalg.norm(v))
-        if not speed > 0.0:
-            raise ValueError(f"velocity_mps={v.tolist()} has no speed across the tether to steer")
-        radius = float(np.linalg.norm(point.position_m))
-        e = float((p * (radius / np.linalg.norm(p)) - point.position_m) @ point.normal)
-        eta = math.atan2(float(v @ point.normal), float(v @ point.tangent))
+        track = tracking(point, position_m, velocity_mps)
         gravity = np.array([0.0, 0.0, -self.mass_kg * GRAVITY_MPS2])
-        passive = float((np.asarray(aero_force_N, dtype=float) + gravity) @ cross(e_k, v / speed))
+        passive = float((np.asarray(aero_force_N, dtype=float) + gravity) @ track.left)
+        speed, e, eta = track.speed_mps, track.cross_track_m, track.heading_error_rad
         sin_ff = (self.mass_kg * speed ** 2 * point.curvature_per_m - passive) / lift_N
         sin_roll = (self.mass_kg * self.lateral_acceleration(point, speed, e, eta) - passive) / lift_N
+        return self.limited(sin_roll, math.asin(min(max(sin_ff, -1.0), 1.0)), track)
+
+    def limited(self, sin_roll, feedforward_rad, track: Tracking) -> Command:
+        """The command of the roll whose sine is ``sin_roll``, held within the limits."""
         low, high = math.sin(self.roll_min_rad), math.sin(self.roll_max_rad)
-        return Command(roll_rad=math.asin(min(max(sin_roll, low), high)),
-                       feedforward_rad=math.asin(min(max(sin_ff, -1.0), 1.0)),
-                       cross_track_m=e, heading_error_rad=eta, saturated=not low <= sin_roll <= high)
+        return Command(roll_rad=math.asin(min(max(sin_roll, low), high)), feedforward_rad=feedforward_rad,
+                       cross_track_m=track.cross_track_m, heading_error_rad=track.heading_error_rad,
+                       saturated=not low <= sin_roll <= high)
+
+
+@dataclass(frozen=True)
+class Tracking:
+    """The kite against the nearest path point: its errors and its left normal."""
+
+    speed_mps: float
+    """V = |v|, the kite's speed across the tether"""
+    cross_track_m: float
+    """e = (p − r)·n"""
+    heading_error_rad: float
+    """η = atan2(v·n, v·t)"""
+    left: np.ndarray
+    """n_k = ê_k × v/V, the kite's own left normal"""
+
+
+def tracking(point: PathPoint, position_m, velocity_mps) -> Tracking:
+    """e, η and n_k of a kite at ``position_m`` moving at ``velocity_mps`` against
+    the path point ``point`` (module docstring; v taken across the tether)."""
+    p = np.asarray(position_m, dtype=float)
+    e_k = p / np.linalg.norm(p)
+    v = np.asarray(velocity_mps, dtype=float)
+    v = v - (v @ e_k) * e_k
+    speed = float(np.linalg.norm(v))
+    if not speed > 0.0:
+        raise ValueError(f"velocity_mps={v.tolist()} has no speed across the tether to steer")
+    radius = float(np.linalg.norm(point.position_m))
+    e = float((p * (radius / np.linalg.norm(p)) - point.position_m) @ point.normal)
+    eta = math.atan2(float(v @ point.normal), float(v @ point.tangent))
+    return Tracking(speed, e, eta, cross(e_k, v / speed))
+
+
+@dataclass(frozen=True)
+class ScheduledSteering:
+    """Lourenço's open-loop roll (*Technical evaluation and modelling of a cross wind
+    kite based on Loyd's model* §3.2.3, eqs. 3.5–3.6): ψ = ψ(β) of ``schedule`` at
+    the kite's own angle β about the circle's axis
+    (:func:`~fem_tether.physics.roll_schedule.orbit_angle_rad`), within ``law``'s
+    limits.  ``law`` (the path-following law on the same circle) gives the
+    cross-track and heading errors the run records; with ``corrected`` its
+    feedback is added on top of the schedule, the schedule taking the place of
+    the law's feed-forward::
+
+        sinψ = sinψ(β) + m (4V²/ℓ)(η_d − η) / L
+
+    (the law's sinψ less its feed-forward's; docs/steering.md)."""
+
+    law: Steering
+    """the path-following law on the circle: errors, limits, mass and look-ahead"""
+    circle: Circle
+    """the law's path"""
+    schedule: RollSchedule
+    corrected: bool = False
+    """add ``law``'s feedback to the schedule"""
+
+    def __post_init__(self):
+        if self.law.path is not self.circle:
+            raise ValueError("the schedule's circle must be the law's path")
+
+    @property
+    def path(self) -> Circle:
+        """The circle (``law``'s path)."""
+        return self.circle
+
+    def command(self, point: PathPoint, position_m, velocity_mps, aero_force_N, lift_N) -> Command:
+        """The scheduled (and, if ``corrected``, fed-back) roll; same arguments as
+        :meth:`Steering.command`, whose ``aero_force_N`` only the feedback does not need."""
+        if not lift_N > 0.0:
+            raise ValueError(f"lift_N must be positive to steer, got {lift_N}")
+        track = tracking(point, position_m, velocity_mps)
+        scheduled = float(self.schedule.roll_rad(orbit_angle_rad(self.circle, position_m)))
+        sin_roll = math.sin(scheduled)
+        if self.corrected:
+            feedback = self.law.feedback_acceleration(track.speed_mps, track.cross_track_m, track.heading_error_rad)
+            sin_roll += self.law.mass_kg * feedback / lift_N
+        return self.law.limited(sin_roll, scheduled, track)
 
 
 def sampled_lookahead_m(speed_mps, sample_s):

@@ -376,13 +376,15 @@ def from_config(wind, weibull_k: float) -> LogWind | MeanOfProfiles | PowerWind 
     speed is the mean of the Weibull of scale ``reference_scale_mps`` and shape
     ``weibull_k`` (the ``[resource]`` shape), and it is constant above
     ``boundary_layer_top_m`` (0: never).  ``"table"`` reads ``table_csv``
-    (:func:`read_wind_table`)."""
+    (:func:`read_wind_table`); ``"lourenco"`` is :data:`LOURENCO`."""
     profile: LogWind | MeanOfProfiles | PowerWind | TableWind
     if wind.profile == "log":
         profile = DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
     elif wind.profile == "power":
         profile = PowerWind(weibull_mean_mps(wind.reference_scale_mps, weibull_k), wind.reference_height_m,
                             wind.alpha, wind.boundary_layer_top_m or math.inf)
+    elif wind.profile == "lourenco":
+        profile = LOURENCO
     elif wind.profile == "table":
         try:
             profile = read_wind_table(wind.table_csv)

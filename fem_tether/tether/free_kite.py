@@ -21,7 +21,12 @@ evaluated at the start of each time step and held over it (a sampled
 controller, zero-order hold): :meth:`FreeKite.steer` tracks the nearest point
 of the reference path (the configured eight or circle) from the previous one.
 The law's mass is the kite's plus the end node's share of the line
-(``end_mass_kg``), the mass the lateral balance accelerates.
+(``end_mass_kg``), the mass the lateral balance accelerates.  On Lourenço's
+circle ``[kite] steering = "roll-schedule"`` flies eq. 3.5's roll instead
+(:class:`~fem_tether.physics.steering.ScheduledSteering`), and ``[kite]
+rotation_rpm`` holds the rate by the turbines' drag
+(:class:`~fem_tether.physics.rate_hold.RateHold`, a function of the kite's
+state inside the force and its Jacobian; docs/imposed-orbit.md).
 """
 
 from __future__ import annotations
@@ -37,7 +42,11 @@ from fem_tether.physics.kite_dynamics import (AerodynamicForce, ConstantCoeffici
                                               aerodynamic_force_N, aerodynamic_load, gravity_force_N,
                                               read_polar, steady_crosswind)
 from fem_tether.physics.loads import G_MPS2
-from fem_tether.physics.steering import (Command, Steering, min_turn_radius_m, nearest_point,
+from fem_tether.physics.orbit import Circle
+from fem_tether.physics.trajectory import FigureEight
+from fem_tether.physics.rate_hold import RateHold
+from fem_tether.physics.roll_schedule import RollSchedule, balance_schedule
+from fem_tether.physics.steering import (Command, ScheduledSteering, Steering, min_turn_radius_m, nearest_point,
                                          sampled_lookahead_m)
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.physics.wind import WindProfile
@@ -77,8 +86,8 @@ class FreeKite:
 
     kite: PointMassKite
     """the kite per line: mass m/n, area A/n"""
-    steering: Steering
-    """the path-following law and its reference path"""
+    steering: Steering | ScheduledSteering
+    """the path-following law and its reference path, or Lourenço's roll schedule"""
     wind: WindProfile
     air: AirModel
     start_tether_cd: float = 0.0
@@ -87,6 +96,9 @@ class FreeKite:
     wings: tuple[PointMassKite, PointMassKite] | None = None
     """a pumping cycle's (``[winch] reel_out = "cycle"``) powered wing and its depowered
     recovery wing (:func:`recovery_wing`); :attr:`kite` is the one flown"""
+    rate_hold: RateHold | None = None
+    """the turbines' drag law holding the circle's rate (``[kite] rotation_rpm``); None:
+    the kite's fixed ``turbine_factor``"""
 
     @property
     def depowered(self) -> bool:
@@ -105,10 +117,29 @@ class FreeKite:
 
     def load(self, r, v, tether, roll_rad: float) -> KiteLoad:
         """F = F_aero(r, v, τ_L, ψ) + m_k g and its Jacobians; ``tether`` is the
-        last element's vector d = r_N − r_{N−1}."""
-        aero, jac = aerodynamic_load(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
-        return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
-                        jac.velocity, jac.tether, aero)
+        last element's vector d = r_N − r_{N−1}.  With :attr:`rate_hold` the
+        turbines' γ_t(r, v) enters F through the drag ∂F/∂γ_t = ½ρ A C_D |W_e| W_e,
+        and the Jacobians carry ∂F/∂γ_t ∂γ_t/∂r and ∂F/∂γ_t ∂γ_t/∂v."""
+        if self.rate_hold is None:
+            aero, jac = aerodynamic_load(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
+            return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
+                            jac.velocity, jac.tether, aero)
+        gamma, d_position, d_velocity = self.rate_hold.turbine_factor(r, v)
+        aero, jac = aerodynamic_load(self._wing(gamma), r, v, self.wind, self.air, roll_rad, tether=tether)
+        rho = float(self.air.density_kg_m3(float(np.asarray(r, dtype=float)[2])))
+        apparent = aero.apparent_wind_mps
+        d_gamma = 0.5 * rho * self.kite.area_m2 * aero.cd * float(np.linalg.norm(apparent)) * apparent
+        return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2),
+                        jac.position + np.outer(d_gamma, d_position), jac.velocity + np.outer(d_gamma, d_velocity),
+                        jac.tether, aero)
+
+    def _wing(self, turbine_factor: float) -> PointMassKite:
+        """:attr:`kite` with its turbines' drag at ``turbine_factor``."""
+        return replace(self.kite, turbine_factor=turbine_factor)
+
+    def wing_at(self, r, v) -> PointMassKite:
+        """The kite as it flies at ``r``, ``v``: with the rate hold's γ_t there."""
+        return self.kite if self.rate_hold is None else self._wing(self.rate_hold.turbine_factor(r, v)[0])
 
     def steer(self, t_s: float, parameter_s: float, r, v, tether, tension_N: float = 0.0,
               line_drag_N=0.0) -> Steer:
@@ -135,7 +166,7 @@ class FreeKite:
             return Steer(0.0, math.nan, Command(0.0, 0.0, math.nan, math.nan, False))
         try:
             point = nearest_point(self.steering.path, r, parameter_s)
-            aero = aerodynamic_force_N(self.kite, r, v, self.wind, self.air, 0.0, tether=tether)
+            aero = aerodynamic_force_N(self.wing_at(r, v), r, v, self.wind, self.air, 0.0, tether=tether)
             rho = float(self.air.density_kg_m3(float(r[2])))
             lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
             pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
@@ -150,7 +181,10 @@ class FreeKite:
         kite speed): :func:`~fem_tether.physics.kite_dynamics.steady_crosswind` of this kite,
         massless, in the wind and air at its altitude, with the line's drag lumped
         as :attr:`start_tether_cd`.  Only the start uses it: the spin-up periods
-        let the kite find its own speed."""
+        let the kite find its own speed.  A kite whose rate is held starts at the
+        circle's speed (the rate's)."""
+        if self.rate_hold is not None:
+            return float(self.steering.path.speed_mps) * length_m / float(self.steering.path.length_m)
         return start_speed_mps(self.kite, self.steering.path, self.wind, self.air, self.start_tether_cd,
                                length_m)
 
@@ -173,8 +207,12 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
     else the larger of half the path's smallest turn radius and, for a law
     sampled every time step h, 4 V₀ h (:func:`~fem_tether.physics.steering.sampled_lookahead_m`,
     V₀ the start speed), with h the larger of ``[fe] dt_s`` and ``[fd] dt_s``:
-    both solvers fly the same law, so the cross-check compares the same flight."""
+    both solvers fly the same law, so the cross-check compares the same flight.
+    ``[kite] rotation_rpm`` makes the path the circle at that rate
+    (:meth:`Circle.at_rate`) and holds it by the turbines (:func:`rate_hold_from_config`);
+    ``[kite] steering`` a roll schedule flies eq. 3.5 (:func:`schedule_from_config`)."""
     k = cfg.kite
+    _check_orbit_keys(cfg)
     if k.model != "point-mass":
         return None
     lines = cfg.tether.lines
@@ -188,17 +226,69 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
                              math.radians(k.base_aoa_deg), k.turbine_factor)
     except ValueError as exc:
         raise ConfigError(f"[kite] model = \"point-mass\": {exc}") from None
-    path = cfg.path
+    path: FigureEight | Circle = cfg.path
+    if k.rotation_rpm:
+        path = Circle.at_rate(cfg.tether.length_m, math.radians(k.theta0_deg), math.radians(k.circle_radius_deg),
+                              k.rotation_rpm)
     # the line lumped as a straight rod (seed 004 eq. 3.14) with C_d,c = 1.2, the seeds' value
     start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
-    lookahead = k.lookahead_m or max(
-        0.5 * min_turn_radius_m(path),
-        sampled_lookahead_m(start_speed_mps(kite, path, wind, air, start_cd, cfg.tether.length_m),
-                            max(cfg.fe.dt_s, cfg.fd.dt_s)))
-    steering = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
-                        math.radians(k.roll_max_deg))
+    start_speed = path.speed_mps if k.rotation_rpm else start_speed_mps(kite, path, wind, air, start_cd,
+                                                                        cfg.tether.length_m)
+    lookahead = k.lookahead_m or max(0.5 * min_turn_radius_m(path),
+                                     sampled_lookahead_m(start_speed, max(cfg.fe.dt_s, cfg.fd.dt_s)))
+    law = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
+                   math.radians(k.roll_max_deg))
     wings = (kite, recovery_wing(kite, cfg.cycle.reel_in_cd0)) if cfg.winch.reel_out == "cycle" else None
-    return FreeKite(kite, steering, wind, air, start_cd, wings=wings)
+    hold = RateHold.for_circle(path, k.max_turbine_factor) if k.rotation_rpm else None
+    steering = law if k.steering == "path" else schedule_from_config(k, law, path, wind)
+    return FreeKite(kite, steering, wind, air, start_cd, wings=wings, rate_hold=hold)
+
+
+def _check_orbit_keys(cfg) -> None:
+    """The imposed orbit's keys make sense only together: a roll schedule and a held
+    rate on a point-mass kite's circle at a fixed length, the held rate with
+    turbines free to brake (γ_max > 0, no fixed ``turbine_factor``)."""
+    k = cfg.kite
+    if k.steering != "path" and not k.rotation_rpm:
+        raise ConfigError(f"[kite] steering = \"{k.steering}\": needs [kite] rotation_rpm > 0 (the schedule's "
+                          "circle is flown at an imposed rate, Lourenco §3.2)")
+    if not k.rotation_rpm:
+        return
+    if k.model != "point-mass" or k.path != "circle":
+        raise ConfigError(f"[kite] rotation_rpm = {k.rotation_rpm:g}: needs [kite] model = \"point-mass\" and "
+                          "path = \"circle\" (a kite flying under its forces on Lourenco's circle)")
+    if not k.max_turbine_factor > 0.0:
+        raise ConfigError(f"[kite] rotation_rpm = {k.rotation_rpm:g}: needs [kite] max_turbine_factor > 0 (the "
+                          "turbines' drag holds the rate)")
+    if k.turbine_factor:
+        raise ConfigError(f"[kite] turbine_factor = {k.turbine_factor:g}: the rate hold ([kite] rotation_rpm) "
+                          "sets the turbines' drag; set turbine_factor = 0")
+    if cfg.winch.reel_out != "none":
+        raise ConfigError(f"[winch] reel_out = \"{cfg.winch.reel_out}\": [kite] rotation_rpm flies the circle "
+                          "at a fixed length; set reel_out = \"none\"")
+
+
+def schedule_from_config(k, law: Steering, circle: FigureEight | Circle, wind: WindProfile) -> ScheduledSteering:
+    """Lourenço's schedule on ``circle``, ``law``'s path (``[kite] steering = "roll-schedule…"``),
+    with rolls ``schedule_top_deg``/``schedule_bottom_deg`` or, both 0, those of eq. 2.14 = 0
+    at L/D = ``[kite] efficiency`` (:func:`~fem_tether.physics.roll_schedule.balance_schedule`),
+    which must lie within the roll limits."""
+    assert isinstance(circle, Circle), "a schedule flies a circle (_check_orbit_keys)"
+    if k.schedule_top_deg or k.schedule_bottom_deg:
+        schedule = RollSchedule(math.radians(k.schedule_top_deg), math.radians(k.schedule_bottom_deg))
+        origin = "given"
+    else:
+        try:
+            schedule = balance_schedule(circle, wind, k.efficiency)
+        except ValueError as exc:
+            raise ConfigError(f"[kite] steering = \"{k.steering}\": {exc}") from None
+        origin = "eq. 2.14 = 0"
+    for name, roll in (("top", schedule.top_rad), ("bottom", schedule.bottom_rad)):
+        if not law.roll_min_rad <= roll <= law.roll_max_rad:
+            raise ConfigError(f"[kite] steering = \"{k.steering}\": the schedule's {name} roll "
+                              f"{math.degrees(roll):.2f} deg ({origin}) is outside [kite] roll_min_deg = "
+                              f"{k.roll_min_deg:g} .. roll_max_deg = {k.roll_max_deg:g}")
+    return ScheduledSteering(law, circle, schedule, corrected=k.steering == "roll-schedule+path")
 
 
 def recovery_wing(kite: PointMassKite, cd0: float) -> PointMassKite:

@@ -46,6 +46,8 @@ CASES: tuple[Case, ...] = (
     Case("lourenco/roll-schedule", "Lourenço §3.2.3, §5 (eqs. 2.14, 3.5-3.6)", True, lourenco_orbit.roll_schedule),
     Case("lourenco/imposed-orbit-m600", "Lourenço Table 4.2 (M600, 5.5 rpm, eq. 2.12)", True, lourenco_orbit.m600),
     Case("lourenco/table-3.3", "Lourenço Table 3.3 (C-5A, 3-8 rpm)", True, lourenco_orbit.table_3_3),
+    Case("lourenco/imposed-orbit-fe", "Lourenço §3.2 (M600, 5.5 rpm) on the FE line", False,
+         lourenco_orbit.imposed_orbit_fe),
     Case("fagiano/equivalent-drag", "self-consistency: Fagiano et al. 2010 eq. 21, Table I", True,
          systems.fagiano),
     Case("fagiano/ke-farm-optimum", "Fagiano et al. 2010 §V, eqs. 23-24", True, farm.optimum),

@@ -9,7 +9,7 @@ import pytest
 from fem_tether.physics.atmosphere import ConstantAir
 from fem_tether.physics.kite_dynamics import ConstantCoefficients, PointMassKite, aerodynamic_force_N
 from fem_tether.physics.orbit import Circle
-from fem_tether.physics.roll_schedule import (LoydKite, RollSchedule, airspeed, balance_roll_rad,
+from fem_tether.physics.roll_schedule import (LoydKite, RollSchedule, airspeed, balance_roll_rad, orbit_angle_rad,
                                               balance_schedule, lap)
 from fem_tether.physics.wind import LOURENCO, NoWind, PowerWind
 
@@ -84,3 +84,25 @@ def test_no_balancing_roll_is_an_error():
     circle = Circle.at_rate(440.0, 1.0, 0.4, 5.5)
     with pytest.raises(ValueError, match="no roll"):
         balance_roll_rad(circle, 0.0, PowerWind(10.0, 204.0, 0.0), 0.5)
+
+
+def test_orbit_angle_is_beta_on_and_off_the_circle():
+    """β of a point of the circle (any radius, any point of the ray) is the β that made it."""
+    circle = Circle.at_rate(440.0, 1.0, 0.4, 5.5)
+    for t in np.linspace(0.0, 0.99 * circle.period_s, 9):
+        r = circle.state(float(t), 300.0)[0]
+        assert orbit_angle_rad(circle, r) == pytest.approx(float(circle.angle(float(t))) % (2 * math.pi), abs=1e-12)
+
+
+def test_no_turbines_leave_eq_2_12_unchanged_and_turbines_add_their_radial_drag():
+    """turbine_factor 0 is eq. 2.12 as printed; γ_t adds γ_t ½ρ C_L A V_A (−V_n)/(L/D)."""
+    circle = Circle.at_rate(440.0, 1.0, 0.4, 5.5)
+    kite = LoydKite(1050.0, 35.0, 2.0, 40.0, 0.04, 2137e6)
+    schedule = RollSchedule(-0.1, 0.5)
+    bare = lap(circle, kite, LOURENCO, schedule, samples=64)
+    zero = lap(circle, kite, LOURENCO, schedule, samples=64, turbine_factor=lambda b: 0.0 * b)
+    with_turbines = lap(circle, kite, LOURENCO, schedule, samples=64, turbine_factor=lambda b: 2.0 + 0.0 * b)
+    assert np.array_equal(zero.tension_N, bare.tension_N)
+    va = airspeed(circle, (bare.beta_rad - circle.phase_rad) / circle.rate_rad_s, LOURENCO)
+    extra = -2.0 * 0.5 * 1.225 * 2.0 * 35.0 * va.magnitude * va.n / 40.0
+    assert with_turbines.tension_N - bare.tension_N == pytest.approx(extra, rel=1e-9)

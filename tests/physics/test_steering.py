@@ -17,7 +17,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from fem_tether.physics.orbit import Circle
-from fem_tether.physics.steering import (GRAVITY_MPS2, Steering, cross, min_turn_radius_m, nearest_point,
+from fem_tether.physics.roll_schedule import RollSchedule
+from fem_tether.physics.steering import (GRAVITY_MPS2, ScheduledSteering, Steering, cross, min_turn_radius_m, nearest_point, tracking,
                                          parameter_rate, path_point)
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.physics.trajectory import FigureEight
@@ -355,3 +356,30 @@ def test_nearest_point_without_a_previous_one_searches_the_whole_loop(fraction):
     n = path_point(path, s0).normal
     point = nearest_point(path, r + 20.0 * n, math.nan)
     assert math.remainder(point.parameter_s - s0, path.period_s) == pytest.approx(0.0, abs=1e-6)
+
+
+def test_the_schedule_flies_eq_3_5_and_its_correction_is_the_laws_feedback():
+    """ScheduledSteering: open loop ψ = ψ(β) of eq. 3.5 at the kite's own β (off the path
+    too); corrected, sinψ = sinψ(β) + m (4V²/ℓ)(η_d − η)/L, which on the exact path
+    (e = η = 0) is the schedule's roll."""
+    circle = Circle.at_rate(440.0, 1.0, 0.4, 5.5)
+    law = Steering(circle, 1050.0, 40.0, -1.2, 1.2)
+    schedule = RollSchedule(math.radians(-7.25), math.radians(46.68))
+    open_loop, corrected = ScheduledSteering(law, circle, schedule), ScheduledSteering(law, circle, schedule, True)
+    lift = 4e5
+    for t in np.linspace(0.0, circle.period_s, 9, endpoint=False):
+        point = path_point(circle, float(t))
+        beta = float(circle.angle(float(t)))
+        v = 99.0 * point.tangent
+        for cmd in (open_loop.command(point, point.position_m, v, np.zeros(3), lift),
+                    corrected.command(point, point.position_m, v, np.zeros(3), lift)):
+            assert cmd.roll_rad == pytest.approx(float(schedule.roll_rad(beta)), abs=1e-9)
+        off = point.position_m + 5.0 * point.normal
+        assert open_loop.command(point, off, v, np.zeros(3), lift).roll_rad == pytest.approx(
+            float(schedule.roll_rad(beta)), abs=2e-3)
+        fixed = corrected.command(point, off, v, np.zeros(3), lift)
+        track = tracking(point, off, v)
+        feedback = law.feedback_acceleration(track.speed_mps, track.cross_track_m, track.heading_error_rad)
+        scheduled = open_loop.command(point, off, v, np.zeros(3), lift).roll_rad
+        assert math.sin(fixed.roll_rad) == pytest.approx(math.sin(scheduled) + 1050.0 * feedback / lift, rel=1e-12)
+        assert fixed.roll_rad < scheduled       # left of the path: rolled right

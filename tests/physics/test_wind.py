@@ -254,3 +254,11 @@ def test_lourencos_wind_is_6_5_mps_at_10_m_and_10_mps_at_204_m():
     assert float(LOURENCO.speed_mps(204.0)) == pytest.approx(10.0, rel=1e-12)
     assert float(LOURENCO.speed_mps(440.0 * np.cos(1.4))) == pytest.approx(8.66, abs=0.01)
     assert float(LOURENCO.speed_mps(440.0 * np.cos(0.6))) == pytest.approx(10.86, abs=0.01)
+
+
+def test_lourencos_profile_is_a_config_choice():
+    """[wind] profile = "lourenco" is LOURENCO (Lourenço eq. 3.4: 6.5 m/s at 10 m, 10 m/s at 204 m)."""
+    cfg = load_config(overrides={"wind": {"profile": "lourenco"}})
+    profile = wind.from_config(cfg.wind, 2.0)
+    assert profile == wind.LOURENCO
+    assert float(profile.speed_mps(10.0)) == pytest.approx(6.5, abs=0.005)
