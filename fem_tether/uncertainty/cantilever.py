@@ -98,6 +98,26 @@ def optimum(p: Mapping[str, float]) -> Optimum:
     raise SolverDivergedError(f"no start converged feasible: {'; '.join(failures)}")
 
 
+def closed_form(p: Mapping[str, np.ndarray | float]) -> dict[str, np.ndarray]:
+    """The optimum in closed form (ours; the reference of the tests and of the exact statistics).
+
+    Where the deflection and t/b ≤ AR_lim bind: with K = 12 w L⁴/(8 E) = 1.5 w L⁴/E,
+    b t³ = K/δ_max and t = AR_lim b give t = (AR_lim K/δ_max)^(1/4), b = t/AR_lim,
+    m* = ρ L (K/(δ_max AR_lim))^(1/2), λ_δ = λ_AR = m*/2 (p · dm*/dp = −m*/2 for AR_lim,
+    δ_max and E).  Where that t exceeds its bound 1 m (δ_max < AR_lim K): t = 1 m,
+    b = K/δ_max, m* = ρ L K/δ_max, λ_δ = m*, λ_AR = 0.  Vectorised over arrays of parameters.
+    """
+    k = 1.5 * np.asarray(p["load_N_m"]) * np.asarray(p["length_m"]) ** 4 / np.asarray(p["young_modulus_Pa"])
+    ratio, delta = np.asarray(p["max_aspect_ratio"]), np.asarray(p["max_deflection_m"])
+    t = (ratio * k / delta) ** 0.25
+    bound = t > BOUNDS[1][1]
+    t = np.where(bound, BOUNDS[1][1], t)
+    b = np.where(bound, k / delta, t / ratio)
+    m = np.asarray(p["density_kg_m3"]) * np.asarray(p["length_m"]) * b * t
+    return {"mass_kg": m, "width_m": b, "thickness_m": t, "deflection_multiplier_kg": np.where(bound, m, m / 2),
+            "aspect_ratio_multiplier_kg": np.where(bound, 0.0, m / 2), "thickness_at_bound": bound}
+
+
 def design(sampled: Mapping[str, float]) -> dict[str, float]:
     """The model of the global analysis: the optimum at Table 4.1's parameters with ``sampled`` ones
     set; Table 4.4's outputs (the multipliers normalised, kg per unit relative change of the limit)

@@ -65,10 +65,10 @@ def orthonormal(basis: str, degree: int, xi) -> np.ndarray:
             values[n + 1] = ((2 * n + 1) * xi * values[n] - n * values[n - 1]) / (n + 1)
         else:
             values[n + 1] = xi * values[n] - n * values[n - 1]
-    n = np.arange(degree + 1)
+    orders = np.arange(degree + 1)
     if basis == "legendre":
-        return values * np.sqrt(2 * n + 1)[:, None]
-    return values / np.sqrt([float(factorial(k)) for k in n])[:, None]
+        return values * np.sqrt(2 * orders + 1)[:, None]
+    return values / np.sqrt([float(factorial(k)) for k in range(degree + 1)])[:, None]
 
 
 def design_matrix(indices: np.ndarray, bases: tuple[str, ...], xi) -> np.ndarray:
