@@ -26,6 +26,8 @@ INDEXED = ("mass_kg", "width_m", "thickness_m")
 #: SLOW_S seconds (so that a kill finds some parts written and some not)
 DRIVER = """
 import sys, time
+from fem_tether.core.threads import one_thread_per_process
+one_thread_per_process()
 from fem_tether.jobs.sensitivity.run import SensitivityJob, run_sensitivity
 from fem_tether.uncertainty import cantilever as beam
 
