@@ -17,8 +17,8 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "fem_tether"
 
 #: folders of the package, bottom to top; the entry modules at the top of the package come last
-LAYERS = ("core", "physics", "systems", "costs", "config", "tether", "performance", "design", "io", "jobs",
-          "validation", "report", "commands", "")
+LAYERS = ("core", "physics", "systems", "costs", "config", "tether", "performance", "design", "uncertainty", "io",
+          "jobs", "validation", "report", "commands", "")
 
 
 def module_name(path: Path) -> str:

@@ -20,7 +20,7 @@ def example(name):
 
 #: Every example, in README's order ("Python API").
 NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite", "study_assumptions",
-         "tab51_gap", "short_line_drag", "tether_lumping", "design_section_5_4")
+         "tab51_gap", "short_line_drag", "tether_lumping", "design_section_5_4", "cantilever_sensitivity")
 
 
 def test_every_example_opens_with_its_equations_and_how_to_run_it():
@@ -276,3 +276,38 @@ def test_a_wrong_argument_is_one_line_and_exit_2(name, tmp_path):
     assert done.returncode == 2 and done.stdout == "" and done.stderr.count("\n") == 1, done.stderr
     assert done.stderr.startswith(f"fem-tether: error: {name}.py: {message}")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_cantilever_sensitivity_reproduces_chapter_4(tmp_path):
+    """Trevisi ch. 4's cantilever, 300 samples (~10 s; docs/sensitivity.md): m* 3023.7 kg, λ_δ 7559 kg/m
+    (thesis 7550), the saved masses 72.87 and 554.86 kg (73, 554), Table 4.2 by the KKT route =
+    re-optimisation to 1e-6 of m*; every mean and SD of Table 4.4's outputs within 3 bootstrap SDs of
+    the closed form's exact one (measured |z| ≤ 1.3); the thesis' SD of m (772.9 kg) and mean t
+    (0.86 m) more than 5 bootstrap SDs off ours (measured 6.0 and 13.3), its λ_AR within 3 (0.6);
+    the PCE's total indices of m, b, t within 0.02 of the closed form's (pick-freeze, 4·10⁵ draws),
+    δ_max then AR_lim the largest for m (Fig. 4.5); the file and the three figures written."""
+    g = example("cantilever_sensitivity")
+    r = g.main(tmp_path, samples=300)
+    loc = r["local"]
+    assert loc["mass_kg"] == pytest.approx(3023.7, abs=0.1)
+    assert loc["deflection_multiplier_kg_per_m"] == pytest.approx(7559, abs=1)
+    assert loc["saved_kg"][0.21] == pytest.approx(72.87, abs=0.01)
+    assert loc["saved_kg"][0.3] == pytest.approx(554.86, abs=0.01)
+    for name in g.NAMES:
+        for output in ("mass_kg", "width_m", "thickness_m"):
+            assert loc["kkt"][name][output] == pytest.approx(loc["reoptimised"][name][output], abs=1e-6 * 3023.7)
+    stats, exact = r["global"]["statistics"], r["exact"]
+    for name in ("mass_kg", "width_m", "thickness_m", "deflection_multiplier_kg", "aspect_ratio_multiplier_kg"):
+        s = stats[name]
+        assert abs(s["mean"] - exact[name][0]) < 3 * s["mean_error"], name
+        assert abs(s["sd"] - exact[name][1]) < 3 * s["sd_error"], name
+    assert abs(stats["mass_kg"]["sd"] - 772.9) > 5 * stats["mass_kg"]["sd_error"]
+    assert abs(stats["thickness_m"]["mean"] - 0.86) > 5 * stats["thickness_m"]["mean_error"]
+    assert abs(stats["aspect_ratio_multiplier_kg"]["mean"] - 1583.4) < 3 * stats["aspect_ratio_multiplier_kg"]["mean_error"]
+    for name in ("mass_kg", "width_m", "thickness_m"):
+        assert r["global"]["indices"][name]["total"] == pytest.approx(r["exact_indices"][name][1], abs=0.02), name
+    total = r["global"]["indices"]["mass_kg"]["total"]
+    assert list(np.argsort(total)[::-1][:2]) == [1, 0]
+    assert r["file"].is_file()
+    assert all((tmp_path / f).is_file() for f in ("cantilever-sobol.png", "cantilever-convergence.png",
+                                                  "cantilever-scatter.png"))

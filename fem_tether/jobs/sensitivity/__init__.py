@@ -1,0 +1,1 @@
+"""Global sensitivity analyses over MPI ranks: one model evaluation (one optimisation) per sample."""

@@ -1,0 +1,186 @@
+"""A global sensitivity analysis over MPI ranks: each sample is one task, kept in its part.
+
+The samples are drawn once, the same on every rank (:func:`fem_tether.uncertainty.inputs.sample`,
+seeded); :func:`fem_tether.jobs.runner.distribute` spreads them over the ranks
+(:func:`fem_tether.jobs.schedule.assign`, all of one cost) and each evaluated
+sample is written at once to ``<out>.parts/sample_<i>.json`` with the key of
+its inputs (the model's name and function, the inputs, the sample count, seed
+and method, the package version).  A rerun of the same job reuses the parts
+whose key matches: a killed analysis resumes where it stopped, and the result
+file is the same bytes for any number of ranks.  Rank 0 reads the parts,
+analyses the evaluations (:mod:`fem_tether.uncertainty.analysis`) and writes
+the HDF5 file (:mod:`fem_tether.io.sensitivity_file`).  A sample whose model
+fails (:class:`~fem_tether.core.errors.SolverDivergedError`) is kept as NaN
+outputs with its message and left out of the statistics (the file counts them).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from collections.abc import Callable, Mapping, Sequence
+from contextlib import ExitStack
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from fem_tether import __version__
+from fem_tether.core.atomic import OutputError, check_folder, check_writable, exclusive, remove_temporaries, write_json
+from fem_tether.core.errors import InputError, SolverDivergedError
+from fem_tether.core.progress import Progress
+from fem_tether.core.stop import guard, sync
+from fem_tether.io.sensitivity_file import is_sensitivity_result, write_sensitivity_hdf5
+from fem_tether.jobs.runner import distribute, raise_on_every_rank
+from fem_tether.uncertainty.analysis import MAX_DEGREE, RESAMPLES, analyse, convergence
+from fem_tether.uncertainty.inputs import Input, sample
+
+
+@dataclass(frozen=True)
+class SensitivityJob:
+    """What to analyse: ``model(parameters) -> outputs`` at ``samples`` points of ``inputs``; the
+    outputs' units; the outputs that get Sobol' indices (``indexed``); the sample counts of the
+    convergence (``counts``, each at most ``samples``)."""
+
+    name: str
+    model: Callable[[Mapping[str, float]], Mapping[str, float]]
+    inputs: tuple[Input, ...]
+    units: Mapping[str, str]
+    indexed: tuple[str, ...]
+    samples: int
+    seed: int = 0
+    method: str = "lhs"
+    resamples: int = RESAMPLES
+    max_degree: int = MAX_DEGREE
+    counts: tuple[int, ...] = field(default=())
+
+    def points(self) -> np.ndarray:
+        return sample(self.inputs, self.samples, self.seed, self.method)
+
+
+def parts_dir(out: Path) -> Path:
+    return out.with_name(out.name + ".parts")
+
+
+def inputs_key(job: SensitivityJob) -> str:
+    """What a sample's outputs depend on: the model, the inputs, the sampling and the package version."""
+    model = f"{job.model.__module__}.{job.model.__qualname__}"
+    return hashlib.sha256(repr((job.name, model, job.inputs, job.samples, job.seed, job.method,
+                                __version__)).encode()).hexdigest()
+
+
+class Samples:
+    """The samples of a sensitivity job as :class:`fem_tether.jobs.runner.Work`."""
+
+    def __init__(self, job: SensitivityJob, out: Path):
+        self.job, self.key, self.directory = job, inputs_key(job), parts_dir(out)
+        self.points = job.points()
+
+    def path(self, index: int) -> Path:
+        return self.directory / f"sample_{index:05d}.json"
+
+    def cost_us(self, index: int) -> float:
+        return 1.0
+
+    def read(self, index: int) -> dict | None:
+        try:
+            part = json.loads(self.path(index).read_text())
+        except (OSError, ValueError):
+            return None
+        return part if part.get("key") == self.key and part.get("index") == index else None
+
+    def kept(self, index: int) -> bool:
+        return self.read(index) is not None
+
+    def run(self, index: int) -> None:
+        parameters = {x.name: float(v) for x, v in zip(self.job.inputs, self.points[index])}
+        try:
+            outputs, error = {k: float(v) for k, v in self.job.model(parameters).items()}, ""
+        except SolverDivergedError as exc:
+            outputs, error = {}, str(exc)
+        write_json(self.path(index), {"key": self.key, "index": index, "parameters": parameters,
+                                      "outputs": outputs, "error": error}, allow_nan=True)
+
+    def present(self, indices) -> int:
+        return sum(self.path(i).exists() for i in indices)
+
+    def while_waiting(self) -> None:
+        pass
+
+    def values(self) -> dict[str, np.ndarray]:
+        """Every sample's outputs (NaN where its model failed), from the parts (rank 0, after the run)."""
+        parts = []
+        for index in range(self.job.samples):
+            part = self.read(index)
+            if part is None:
+                raise InputError(f"{self.path(index)}: missing or from other inputs after the run")
+            parts.append(part["outputs"])
+        return {name: np.array([p.get(name, math.nan) for p in parts]) for name in self.job.units}
+
+
+def content(job: SensitivityJob, points: np.ndarray, values: dict[str, np.ndarray]) -> dict:
+    """The result file's content: the samples, the statistics and indices of the evaluations that did
+    not fail, and the indices' convergence (:func:`fem_tether.uncertainty.analysis.analyse`)."""
+    ok = np.all([np.isfinite(v) for v in values.values()], axis=0)
+    kept = {name: v[ok] for name, v in values.items()}
+    analyses = analyse(job.inputs, points[ok], kept, job.units, job.indexed, job.resamples, job.seed, job.max_degree)
+    counts = [n for n in job.counts if n <= int(ok.sum())]
+    converged = {name: convergence(job.inputs, points[ok], kept[name], counts, job.max_degree)
+                 for name in job.indexed if counts and analyses[name].chaos is not None}
+    return {
+        "attrs": {"model": job.name, "inputs": [x.name for x in job.inputs], "samples": job.samples,
+                  "seed": job.seed, "method": job.method, "resamples": job.resamples, "max_degree": job.max_degree,
+                  "failed": int((~ok).sum())},
+        "inputs": {x.name: {"values": points[:, k], "unit": x.unit, "source": x.source,
+                            "distribution": {"kind": type(x.distribution).__name__.lower()} | asdict(x.distribution)}
+                   for k, x in enumerate(job.inputs)},
+        "outputs": {name: {"values": v, "unit": job.units[name]} for name, v in values.items()},
+        "statistics": {name: {"mean": a.mean, "mean_error": a.mean_error, "sd": a.sd, "sd_error": a.sd_error,
+                              "unit": a.unit} for name, a in analyses.items()},
+        "indices": {name: {"degree": a.chaos.degree, "loo_error": a.chaos.loo_error, "terms": len(a.chaos.indices),
+                           "first_order": a.first_order, "first_order_error": a.first_order_error,
+                           "total": a.total, "total_error": a.total_error}
+                    for name, a in analyses.items() if a.chaos is not None},
+        "convergence": {name: {"counts": np.asarray(counts), "first_order": c.first_order, "total": c.total}
+                        for name, c in converged.items()},
+    }
+
+
+def check_out(out: Path) -> None:
+    """Before an analysis: ``out`` and its parts can be written and ``out`` is not someone else's file."""
+    if out.exists() and not is_sensitivity_result(out):
+        raise OutputError(f"cannot write {out}: it exists and is not a fem-tether sensitivity result "
+                          "(move it away or choose another file)")
+    check_writable(out)
+    check_folder(parts_dir(out))
+
+
+def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: bool = True) -> dict | None:
+    """Evaluate ``job``'s samples over the ranks of ``comm`` (MPI.COMM_WORLD by default), analyse them
+    and write ``out``; the file's content on rank 0, None on the others."""
+    if comm is None:
+        from mpi4py import MPI
+        comm = MPI.COMM_WORLD
+    out = Path(out)
+    with guard(comm), ExitStack() as output:
+        problem: InputError | None = None
+        if comm.Get_rank() == 0:
+            try:
+                check_out(out)
+                output.enter_context(exclusive(out))
+                remove_temporaries(parts_dir(out))
+            except InputError as exc:
+                problem = exc
+        raise_on_every_rank(comm, problem)
+        samples = Samples(job, out)
+        size = comm.Get_size()
+        bar = Progress(job.samples, f"sensitivity samples ({size} rank{'s' if size > 1 else ''})",
+                       enabled=progress and comm.Get_rank() == 0)
+        distribute(comm, samples, list(range(job.samples)), bar)
+        sync(comm)
+        if comm.Get_rank() != 0:
+            return None
+        result = content(job, samples.points, samples.values())
+        write_sensitivity_hdf5(out, result)
+        return result

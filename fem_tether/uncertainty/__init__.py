@@ -1,0 +1,1 @@
+"""Sensitivity and uncertainty of an optimal design: local (multipliers, gradients) and global (PCE, Sobol')."""

@@ -1,0 +1,130 @@
+"""A sensitivity analysis over MPI ranks (fem_tether.jobs.sensitivity.run) and its file
+(fem_tether.io.sensitivity_file): the cantilever's samples, the same bytes on one and two ranks,
+parts reused on a rerun, a killed run resumed to the same bytes, a foreign file refused."""
+
+import filecmp
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from fem_tether.core.atomic import OutputError
+from fem_tether.io.reading import ResultFileError
+from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
+from fem_tether.jobs.sensitivity.run import SensitivityJob, parts_dir, run_sensitivity
+from fem_tether.uncertainty import cantilever as beam
+
+ROOT = Path(__file__).resolve().parents[3]
+MPIEXEC = shutil.which("mpiexec")
+INDEXED = ("mass_kg", "width_m", "thickness_m")
+#: the driver each subprocess runs: the cantilever job of 80 samples, each evaluation slowed by
+#: SLOW_S seconds (so that a kill finds some parts written and some not)
+DRIVER = """
+import sys, time
+from fem_tether.core.threads import one_thread_per_process
+one_thread_per_process()
+from fem_tether.jobs.sensitivity.run import SensitivityJob, run_sensitivity
+from fem_tether.uncertainty import cantilever as beam
+
+def slow(sampled):
+    time.sleep(float(sys.argv[2]))
+    return beam.design(sampled)
+
+job = SensitivityJob("cantilever", slow, beam.UNCERTAIN, beam.OUTPUT_UNITS, ("mass_kg", "width_m", "thickness_m"),
+                     80, counts=(40, 80))
+run_sensitivity(job, sys.argv[1], progress=False)
+"""
+
+
+def cantilever_job(samples=80, model=beam.design):
+    return SensitivityJob("cantilever", model, beam.UNCERTAIN, beam.OUTPUT_UNITS, INDEXED, samples, counts=(40, 80))
+
+
+def test_the_file_holds_every_sample_with_units_and_the_analysis(tmp_path):
+    """Every sample's four inputs and six outputs with units; the statistics and indices as computed;
+    the inputs in Table 4.3's order with their distributions; each sample's outputs the model's."""
+    out = tmp_path / "gsa.h5"
+    content = run_sensitivity(cantilever_job(), out, progress=False)
+    r = read_sensitivity_hdf5(out)
+    assert list(r["inputs"]) == [x.name for x in beam.UNCERTAIN]
+    assert r["inputs"]["young_modulus_Pa"]["unit"] == "Pa"
+    assert r["inputs"]["young_modulus_Pa"]["distribution"] == {"kind": "gaussian", "mean": 70e9, "sd": 5e9}
+    assert r["outputs"]["mass_kg"]["unit"] == "kg" and len(r["outputs"]["mass_kg"]["values"]) == 80
+    assert r["attrs"]["samples"] == 80 and r["attrs"]["failed"] == 0
+    assert r["statistics"]["mass_kg"]["mean"] == content["statistics"]["mass_kg"]["mean"]
+    assert r["indices"]["mass_kg"]["total"] == pytest.approx(list(content["indices"]["mass_kg"]["total"]), abs=0)
+    assert set(r["indices"]) == set(INDEXED) and r["convergence"]["mass_kg"]["counts"] == [40, 80]
+    k = 17
+    sampled = {name: r["inputs"][name]["values"][k] for name in r["inputs"]}
+    assert r["outputs"]["mass_kg"]["values"][k] == beam.design(sampled)["mass_kg"]
+
+
+def test_a_rerun_reuses_the_parts_and_gives_the_same_bytes(tmp_path):
+    """Half the parts deleted: the rerun evaluates exactly those 40 samples, and the file is the same bytes."""
+    out = tmp_path / "gsa.h5"
+    run_sensitivity(cantilever_job(), out, progress=False)
+    first = out.read_bytes()
+    for path in sorted(parts_dir(out).glob("sample_*.json"))[::2]:
+        path.unlink()
+    calls = []
+
+    def counted(sampled):
+        calls.append(1)
+        return beam.design(sampled)
+
+    counted.__qualname__ = beam.design.__qualname__
+    counted.__module__ = beam.design.__module__
+    run_sensitivity(cantilever_job(model=counted), out, progress=False)
+    assert len(calls) == 40 and out.read_bytes() == first
+
+
+def test_a_foreign_file_is_refused(tmp_path):
+    out = tmp_path / "gsa.h5"
+    out.write_text("mine")
+    with pytest.raises(OutputError, match="it exists and is not a fem-tether sensitivity result"):
+        run_sensitivity(cantilever_job(), out, progress=False)
+    with pytest.raises(ResultFileError, match="not a fem-tether sensitivity result"):
+        read_sensitivity_hdf5(out)
+
+
+def _driver(tmp_path) -> Path:
+    path = tmp_path / "driver.py"
+    path.write_text(DRIVER)
+    return path
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
+def test_one_and_two_ranks_and_a_killed_run_give_the_same_bytes(tmp_path):
+    """The 80 samples on one rank, on two (mpiexec -n 2), and on one rank interrupted (SIGINT) once
+    some parts exist, then rerun: three files, byte-identical (cmp), and the parts the same."""
+    driver = _driver(tmp_path)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+    def run(*launch, out):
+        return subprocess.run([*launch, sys.executable, str(driver), str(out), "0"], capture_output=True, text=True,
+                              timeout=300, env=env)
+
+    assert run(out=tmp_path / "n1.h5").returncode == 0
+    two = run("mpiexec", "-n", "2", out=tmp_path / "n2.h5")
+    assert two.returncode == 0, two.stderr
+    assert filecmp.cmp(tmp_path / "n1.h5", tmp_path / "n2.h5", shallow=False)
+    killed = tmp_path / "killed.h5"
+    proc = subprocess.Popen([sys.executable, str(driver), str(killed), "0.05"], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while len(list(parts_dir(killed).glob("sample_*.json"))) < 10 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGINT)
+    proc.wait(timeout=60)
+    kept = len(list(parts_dir(killed).glob("sample_*.json")))
+    assert proc.returncode != 0 and 10 <= kept < 80 and not killed.exists()
+    assert run(out=killed).returncode == 0
+    assert filecmp.cmp(tmp_path / "n1.h5", killed, shallow=False)
+    names = sorted(p.name for p in parts_dir(killed).glob("*.json"))
+    assert len(names) == 80 and all(filecmp.cmp(parts_dir(tmp_path / "n1.h5") / n, parts_dir(killed) / n,
+                                                shallow=False) for n in names)
