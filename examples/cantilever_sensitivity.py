@@ -21,7 +21,6 @@ to a temporary folder (the result file) and nowhere (the figures).
 Run: ``python examples/cantilever_sensitivity.py [OUT_DIR]``.
 """
 
-import sys
 import tempfile
 from pathlib import Path
 
@@ -34,6 +33,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from fem_tether.cli import Parser  # noqa: E402
 from fem_tether.jobs.sensitivity.run import SensitivityJob, run_sensitivity  # noqa: E402
 from fem_tether.report.plots import save_atomically  # noqa: E402
 from fem_tether.uncertainty import cantilever as beam  # noqa: E402
@@ -199,4 +199,7 @@ def print_report(r: dict) -> None:
 
 
 if __name__ == "__main__":
-    print_report(main(sys.argv[1] if len(sys.argv) > 1 else None))
+    parser = Parser(description="Trevisi ch. 4's cantilever beam: local and global sensitivity end to end.")
+    parser.add_argument("out_dir", nargs="?", default=None, metavar="OUT_DIR",
+                        help="where to write the result file and figures (default: a temporary folder)")
+    print_report(main(parser.parse_args().out_dir))

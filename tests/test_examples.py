@@ -250,7 +250,8 @@ ARGUMENTS = {"tab51_gap": (["bogus"], "argument PART: invalid choice: 'bogus' (c
              "short_line_drag": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'wind', "),
              "design_section_5_4": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'both', "),
              "fe_run": (["out", "extra"], "unrecognized arguments: extra"),
-             "sweep_aep": (["out", "extra"], "unrecognized arguments: extra")}
+             "sweep_aep": (["out", "extra"], "unrecognized arguments: extra"),
+             "cantilever_sensitivity": (["out", "extra"], "unrecognized arguments: extra")}
 
 
 def test_the_examples_taking_arguments_are_the_listed_ones():
