@@ -89,6 +89,8 @@ MIN_SAG_TENSION_N = 1.0
 REFERENCE_PRICE_EUR_PER_MWH = 40.0
 #: smallest structural section the tether's stress is evaluated at [m²] (only infeasible iterates come near it)
 MIN_STRUCTURAL_AREA_M2 = 1e-9
+#: largest force over the strength limit the creep life is evaluated at (:func:`_creep_stress_Pa`)
+CREEP_FORCE_CAP = 1.001
 
 
 def profit_scale_EUR(parameters: DesignParameters) -> float:
@@ -301,7 +303,8 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
         battery_energy_Wh=takeoff.takeoff_energy_J(climb.propeller_power_W, altitude, climb.climb_rate_mps)[:, 0]
         / 3600.0, tower_height_m=scalar("tower_height_m")[:, 0], elevation_rad=beta[:, 0],
         max_tension_N=soft_max(tension)[:, 0], energy_MWh=net_Wh * 1e-6, wind_mps=wind, density_per_mps=density,
-        reel_out_stress_Pa=tension / _structural(structural), reel_in_stress_Pa=reel_force / _structural(structural),
+        reel_out_stress_Pa=_creep_stress_Pa(tension, force_limit, structural),
+        reel_in_stress_Pa=_creep_stress_Pa(reel_force, force_limit, structural),
         reel_out_share=time_shares(g_out, g_in)[0], tether_safety_factor=p.tether_safety_factor))
     if p.objective == "profit":
         objective = -costed["profit_EUR_per_year"] / profit_scale_EUR(p)
@@ -370,6 +373,15 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
 def _structural(area_m2):
     """The tether's structural section, at least :data:`MIN_STRUCTURAL_AREA_M2` (complex-safe)."""
     return np.where(real_part(area_m2) > MIN_STRUCTURAL_AREA_M2, area_m2, MIN_STRUCTURAL_AREA_M2)
+
+
+def _creep_stress_Pa(force_N, force_limit_N, structural_m2):
+    """The stress the creep life is evaluated at: the force over the structural section, the force at
+    most :data:`CREEP_FORCE_CAP` times the strength limit σ_lim A_σ/SF (beyond it the strength
+    constraint governs; an infeasible iterate's creep term would otherwise grow tenfold per ΔS and
+    swamp the objective; feasible designs are exact)."""
+    cap = CREEP_FORCE_CAP * force_limit_N
+    return np.where(real_part(force_N) < real_part(cap), force_N, cap) / _structural(structural_m2)
 
 
 def _priced(costs: CostParameters, hardware: Hardware) -> dict:
