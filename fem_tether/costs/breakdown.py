@@ -9,8 +9,8 @@ arrays with the batch first) and returns a :class:`CostBreakdown`; it is
 complex-step safe, so the design optimiser differentiates it exactly.
 
 Which parts a generation type has (the type is chosen before the optimisation,
-§7.1.4): ground-gen a ground generator at P_rated on the drum's shaft
-(:mod:`.electrical`), a winch of D/d 50 in one layer, a tether without a
+§7.1.4): ground-gen a ground generator at P_rated on the drum's shaft, its
+nominal speed where the largest tension delivers P_rated (:mod:`.electrical`), a winch of D/d 50 in one layer, a tether without a
 conductor; fly-gen on-board generators rated P_ob,max (the design's
 ``onboard_rating_W``) at the rotors' speed, both generator and electronics
 ×f_FG, a storage drum of D/d 100 in four layers, a conductive tether (×f_te);
@@ -43,12 +43,12 @@ class Hardware:
     ``mode``: "ground-gen", "fly-gen" or "both".  Tether: ``tether_diameter_m``
     d, ``tether_length_m`` r, its ``structural_mass_kg`` and ``conductor_mass_kg``.
     Flying: ``glider_mass_kg``, ``onboard_rating_W`` P_ob,max, ``turbine_area_m2``
-    A_turb, ``max_apparent_speed_mps``; ground: ``max_reel_out_speed_mps``.  The
+    A_turb, ``max_apparent_speed_mps``.  The
     strip (:mod:`.launch`): ``takeoff_mass_kg`` the mass on the strip, ``area_m2``,
     ``span_m``, ``takeoff_cl``, ``takeoff_cd``, ``climb_thrust_N``,
     ``climb_angle_rad``, ``ground_air_density_kg_m3``; the take-off system:
-    ``propeller_power_W``, ``battery_energy_Wh``.  Tower: ``tower_height_m``,
-    ``elevation_rad`` β, ``max_tension_N``.  ``energy_MWh``: the energy sold a year.
+    ``propeller_power_W``, ``battery_energy_Wh``.  Tower and ground generator: ``tower_height_m``,
+    ``elevation_rad`` β, ``max_tension_N`` the largest tether tension.  ``energy_MWh``: the energy sold a year.
     Per wind speed (creep, :mod:`.creep`): ``wind_mps``, ``density_per_mps``,
     ``reel_out_stress_Pa``, ``reel_in_stress_Pa``, ``reel_out_share`` τ_out;
     ``tether_safety_factor`` SF.
@@ -64,7 +64,6 @@ class Hardware:
     onboard_rating_W: np.ndarray
     turbine_area_m2: np.ndarray
     max_apparent_speed_mps: np.ndarray
-    max_reel_out_speed_mps: np.ndarray
     takeoff_mass_kg: np.ndarray
     area_m2: np.ndarray
     span_m: np.ndarray
@@ -138,9 +137,8 @@ def price(costs: CostParameters, hw: Hardware) -> CostBreakdown:
                      else (c.flygen_drum_to_tether_ratio, c.flygen_drum_layers))
     drum = winch.drum_mass_kg(hw.tether_diameter_m, hw.tether_length_m, ratio, layers, c.aluminium_density_kg_m3)
 
-    ground_rpm = _at_least(electrical.drum_speed_rpm(hw.max_reel_out_speed_mps,
-                                                     winch.drum_diameter_m(hw.tether_diameter_m, ratio)),
-                           LEAST_SPEED_RPM)
+    ground_rpm = _at_least(electrical.drum_speed_rpm(electrical.nominal_reel_out_speed_mps(
+        hw.rated_power_W, hw.max_tension_N), winch.drum_diameter_m(hw.tether_diameter_m, ratio)), LEAST_SPEED_RPM)
     onboard_rpm = _at_least(electrical.rotor_speed_rpm(hw.max_apparent_speed_mps, _at_least(hw.turbine_area_m2, 1e-9),
                                                        c.onboard_rotors, c.onboard_tip_speed_ratio), LEAST_SPEED_RPM)
     ground_generator = (electrical.generator_cost_EUR(c.generator_price_EUR_per_W, c.generator_speed_exponent,

@@ -296,7 +296,7 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
         conductor_mass_kg=(conductor * p.conductor_density_kg_m3 * r)[:, 0], glider_mass_kg=glider[:, 0],
         onboard_rating_W=rating[:, 0], turbine_area_m2=turbine_area[:, 0],
         max_apparent_speed_mps=soft_max(apparent_speed_mps(wind, ge, phi, g_out, g_t))[:, 0],
-        max_reel_out_speed_mps=soft_max(g_out * wind)[:, 0], takeoff_mass_kg=total_mass[:, 0], area_m2=area[:, 0],
+        takeoff_mass_kg=total_mass[:, 0], area_m2=area[:, 0],
         span_m=span[:, 0], takeoff_cl=p.cl_max, takeoff_cd=takeoff_cd[:, 0], climb_thrust_N=climb.thrust_N[:, 0],
         climb_angle_rad=scalar("climb_angle_rad")[:, 0], ground_air_density_kg_m3=p.rho0_kg_m3,
         propeller_power_W=climb.propeller_power_W[:, 0],
