@@ -10,7 +10,7 @@ complex-step safe, so the design optimiser differentiates it exactly.
 
 Which parts a generation type has (the type is chosen before the optimisation,
 §7.1.4): ground-gen a ground generator at P_rated on the drum's shaft, its
-nominal speed where the largest tension delivers P_rated (:mod:`.electrical`), a winch of D/d 50 in one layer, a tether without a
+nominal speed where the tether's tension limit delivers P_rated (:mod:`.electrical`), a winch of D/d 50 in one layer, a tether without a
 conductor; fly-gen on-board generators rated P_ob,max (the design's
 ``onboard_rating_W``) at the rotors' speed, both generator and electronics
 ×f_FG, a storage drum of D/d 100 in four layers, a conductive tether (×f_te);
@@ -48,7 +48,9 @@ class Hardware:
     ``span_m``, ``takeoff_cl``, ``takeoff_cd``, ``climb_thrust_N``,
     ``climb_angle_rad``, ``ground_air_density_kg_m3``; the take-off system:
     ``propeller_power_W``, ``battery_energy_Wh``.  Tower and ground generator: ``tower_height_m``,
-    ``elevation_rad`` β, ``max_tension_N`` the largest tether tension.  ``energy_MWh``: the energy sold a year.
+    ``elevation_rad`` β, ``tension_limit_N`` the largest tension the tether may carry,
+    σ_lim A_σ/SF (the power curve reaches it at rated, Trevisi §7.4.1; a fixed rating, not the
+    maximum over the wind speeds, whose derivative jumps where several wind speeds reach it).  ``energy_MWh``: the energy sold a year.
     Per wind speed (creep, :mod:`.creep`): ``wind_mps``, ``density_per_mps``,
     ``reel_out_stress_Pa``, ``reel_in_stress_Pa``, ``reel_out_share`` τ_out;
     ``tether_safety_factor`` SF.
@@ -76,7 +78,7 @@ class Hardware:
     battery_energy_Wh: np.ndarray
     tower_height_m: np.ndarray
     elevation_rad: np.ndarray
-    max_tension_N: np.ndarray
+    tension_limit_N: np.ndarray
     energy_MWh: np.ndarray
     wind_mps: np.ndarray
     density_per_mps: np.ndarray
@@ -138,7 +140,7 @@ def price(costs: CostParameters, hw: Hardware) -> CostBreakdown:
     drum = winch.drum_mass_kg(hw.tether_diameter_m, hw.tether_length_m, ratio, layers, c.aluminium_density_kg_m3)
 
     ground_rpm = _at_least(electrical.drum_speed_rpm(electrical.nominal_reel_out_speed_mps(
-        hw.rated_power_W, hw.max_tension_N), winch.drum_diameter_m(hw.tether_diameter_m, ratio)), LEAST_SPEED_RPM)
+        hw.rated_power_W, hw.tension_limit_N), winch.drum_diameter_m(hw.tether_diameter_m, ratio)), LEAST_SPEED_RPM)
     onboard_rpm = _at_least(electrical.rotor_speed_rpm(hw.max_apparent_speed_mps, _at_least(hw.turbine_area_m2, 1e-9),
                                                        c.onboard_rotors, c.onboard_tip_speed_ratio), LEAST_SPEED_RPM)
     ground_generator = (electrical.generator_cost_EUR(c.generator_price_EUR_per_W, c.generator_speed_exponent,
@@ -155,9 +157,9 @@ def price(costs: CostParameters, hw: Hardware) -> CostBreakdown:
                                   c.strip_thrust_share * hw.climb_thrust_N, hw.ground_air_density_kg_m3,
                                   c.strip_friction)
     ground_area = launch.ground_area_m2(strip, hw.span_m, hw.climb_angle_rad)
-    lines = tower.suspension_mass_kg(hw.max_tension_N, hw.elevation_rad, hw.tower_height_m, c.suspension_angle_rad,
+    lines = tower.suspension_mass_kg(hw.tension_limit_N, hw.elevation_rad, hw.tower_height_m, c.suspension_angle_rad,
                                      c.steel_strength_Pa, c.steel_density_kg_m3)
-    frame = tower.frame_mass_kg(hw.max_tension_N, hw.elevation_rad, hw.tower_height_m, c.suspension_angle_rad,
+    frame = tower.frame_mass_kg(hw.tension_limit_N, hw.elevation_rad, hw.tower_height_m, c.suspension_angle_rad,
                                 c.aluminium_strength_Pa, c.aluminium_density_kg_m3)
     parts = dict(kite=glider, tether=tether_cost, winch=winch.winch_cost_EUR(drum, c.aluminium_price_EUR_per_kg),
                  generator=ground_generator + onboard_generator, electronics=ground_electronics + onboard_electronics,

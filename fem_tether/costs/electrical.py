@@ -10,7 +10,8 @@ The nominal speed w_nom: the thesis prints none; ours:
 - ground-gen: the drum's speed w = 60 v_nom/(π D_drum) at the reel-out speed
   v_nom = P_rated/T_max at which the largest tether tension T_max delivers the
   rated power (the generator on the drum's shaft is sized by its largest
-  torque T_max D/2 at P_rated: w = P/torque).  Not the largest reel-out speed:
+  torque T_max D/2 at P_rated: w = P/torque); T_max is the tether's tension
+  limit σ_lim A_σ/SF, which the power curve reaches at rated (§7.4.1).  Not the largest reel-out speed:
   eq. 6.9's negative exponent makes a fast generator cheap, and a design priced
   on its fastest reel-out buys a cheap generator by reeling out fast at the
   cut-out, where the force is small (measured with that reading: a 2 MW
@@ -37,7 +38,7 @@ import numpy as np
 
 
 def nominal_reel_out_speed_mps(rated_power_W, max_tension_N):
-    """v_nom = P_rated/T_max: the reel-out speed at which the largest tension delivers the rated power."""
+    """v_nom = P_rated/T_max: the reel-out speed at which the largest tension T_max delivers the rated power."""
     return rated_power_W / max_tension_N
 
 

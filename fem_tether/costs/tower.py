@@ -12,8 +12,8 @@ Ours, to turn forces into mass (the thesis: "the lines and the tower cross
 section should be thick enough to not exceed the material strength"): each
 member's section carries its force at its allowed stress (steel
 ``steel_strength_Pa``, aluminium ``aluminium_strength_Pa``), the line is
-h/sin β_s long and the tower h; T is the largest tether tension of the power
-curve.  Where β > β_s the tether lifts the tower (T_comp < 0); the frame is
+h/sin β_s long and the tower h; T is the largest tension the tether may carry,
+σ_lim A_σ/SF (the power curve reaches it at rated).  Where β > β_s the tether lifts the tower (T_comp < 0); the frame is
 then sized by |T_comp| (smoothly, √(T_comp² + (10⁻³ T)²)).
 
     C_tower = c_t (c_SL m_SL + c_tw m_tw),   zero at h = 0.

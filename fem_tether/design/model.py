@@ -302,7 +302,7 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
         propeller_power_W=climb.propeller_power_W[:, 0],
         battery_energy_Wh=takeoff.takeoff_energy_J(climb.propeller_power_W, altitude, climb.climb_rate_mps)[:, 0]
         / 3600.0, tower_height_m=scalar("tower_height_m")[:, 0], elevation_rad=beta[:, 0],
-        max_tension_N=soft_max(tension)[:, 0], energy_MWh=net_Wh * 1e-6, wind_mps=wind, density_per_mps=density,
+        tension_limit_N=force_limit[:, 0], energy_MWh=net_Wh * 1e-6, wind_mps=wind, density_per_mps=density,
         reel_out_stress_Pa=_creep_stress_Pa(tension, force_limit, structural),
         reel_in_stress_Pa=_creep_stress_Pa(reel_force, force_limit, structural),
         reel_out_share=time_shares(g_out, g_in)[0], tether_safety_factor=p.tether_safety_factor))

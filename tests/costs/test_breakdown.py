@@ -25,7 +25,7 @@ def hardware(x, mode="ground-gen"):
         takeoff_mass_kg=987.4 * one, area_m2=127.8 * one, span_m=32.78 * one,
         takeoff_cl=2.0, takeoff_cd=0.223 * one, climb_thrust_N=2991.0 * one, climb_angle_rad=0.2122 * one,
         ground_air_density_kg_m3=1.225, propeller_power_W=40e3 * one, battery_energy_Wh=2e3 * one,
-        tower_height_m=50.0 * one, elevation_rad=0.4438 * one, max_tension_N=6e5 * one,
+        tower_height_m=50.0 * one, elevation_rad=0.4438 * one, tension_limit_N=6e5 * one,
         energy_MWh=8143.0 * one, wind_mps=wind, density_per_mps=0.06 * np.exp(-0.05 * wind),
         reel_out_stress_Pa=(0.3e9 + 0.03e9 * wind) * x, reel_in_stress_Pa=0.1e9 * x + 0 * wind,
         reel_out_share=0.7 + 0 * wind * x, tether_safety_factor=1.55)
