@@ -60,5 +60,5 @@ def flown(problem: Problem, z, tether_drag_factor=None, line_at_kite: LineAtKite
     values = problem.layout.unpack(np.asarray(z, dtype=float)[None, :])
     held = dict(problem.held) | {name: float(np.ravel(values[name])[0]) for name in hardware(problem.parameters)}
     fly = HeldProblem(problem.parameters, problem.bounds, held, tether_drag_factor,
-                      problem.options["kite_carries_tether"], line_at_kite)
+                      problem.options["kite_carries_tether"], line_at_kite, problem.costs)
     return fly.solve(fly.layout.pack({name: np.ravel(values[name]) for name in fly.layout.free}))

@@ -31,6 +31,17 @@ of normalised vectors, real or complex, and returns the objective and the
 constraints of each, so one call with the perturbed copies of a point gives
 their exact derivatives (:mod:`.optimiser`).
 
+The objective (``parameters.objective``): "aep" minimises −(AEP − E_TO)/(8760 h
+P_rated); "profit" −Π/(8760 h · P_rated · p_ref) with Π Trevisi's eq. 7.1 and
+p_ref = :data:`REFERENCE_PRICE_EUR_PER_MWH` a constant (Table 7.1's mean
+electricity price, so the scale is never zero whatever the prices); "lcoe"
+LCOE/p_ref (eq. 6.17).  The energy sold is AEP − E_TO (the take-off energy
+bought back), in the revenue, the operation cost and the LCOE.  Whatever the
+objective, every design is priced (:func:`fem_tether.costs.breakdown.price`,
+its quantities in ``Evaluation.quantities``), the tower's height adds to the
+altitude, and the cost objectives add the take-off strip's constraints (the
+kite accelerates all the way to lift-off, :mod:`fem_tether.costs.launch`).
+
 The tether's weight acts through the sag; the kite's weight m in the balance is
 the glider, its generators and its take-off system (the thesis' "total flying
 mass" adds the tether: ``kite_carries_tether = True`` is that reading).
@@ -43,6 +54,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_tether.core.arrays import as_array, real_part
+from fem_tether.costs.breakdown import Hardware, price
+from fem_tether.costs.launch import strip_acceleration_mps2
+from fem_tether.costs.parameters import CostParameters
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import MIN_OPERATING_RANGE_MPS, Layout, force_scale_N
 from fem_tether.physics.atmosphere import exponential_density_kg_m3
@@ -57,7 +71,7 @@ from fem_tether.systems.power import reel_in_force_N
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.systems.unified import (aerodynamic_force_N, apparent_speed_mps, cycle_power_W,
                                         disc_induction_factor, ground_power_W, onboard_power_W,
-                                        reel_in_power_W)
+                                        reel_in_power_W, time_shares)
 from fem_tether.systems.wing_structure import wing_structure
 
 HOURS_PER_YEAR = 8760.0
@@ -71,6 +85,17 @@ STRUCTURE_NODES = 33
 SOFT_MAX_SHARPNESS = 3000.0
 #: smallest tension the sag is evaluated at [N] (only infeasible iterates come near it)
 MIN_SAG_TENSION_N = 1.0
+#: p_ref of the cost objectives' scale [EUR/MWh] (Trevisi Table 7.1's mean electricity price, held constant)
+REFERENCE_PRICE_EUR_PER_MWH = 40.0
+#: smallest structural section the tether's stress is evaluated at [m²] (only infeasible iterates come near it)
+MIN_STRUCTURAL_AREA_M2 = 1e-9
+#: largest force over the strength limit the creep life is evaluated at (:func:`_creep_stress_Pa`)
+CREEP_FORCE_CAP = 1.001
+
+
+def profit_scale_EUR(parameters: DesignParameters) -> float:
+    """8760 h · P_rated · p_ref: the annual revenue of a capacity factor of 1 at the reference price."""
+    return HOURS_PER_YEAR * parameters.rated_power_W * 1e-6 * REFERENCE_PRICE_EUR_PER_MWH
 
 
 @dataclass(frozen=True)
@@ -87,8 +112,8 @@ class LineAtKite:
 class Evaluation:
     """A batch of designs: every array has the batch first; ``per_wind`` ones (B, n).
 
-    ``objective`` is −(AEP − E_TO per year)/(8760 h · P_rated), what the optimiser
-    minimises; ``equalities`` and ``inequalities`` (≥ 0) are scaled to O(1),
+    ``objective`` is what the optimiser minimises (module docstring: −(AEP − E_TO
+    per year)/(8760 h · P_rated) for "aep"); ``equalities`` and ``inequalities`` (≥ 0) are scaled to O(1),
     one name per column (``[j]``: the j-th wind speed or node).  The rest are the design's outputs (SI).
     """
 
@@ -168,8 +193,10 @@ def site(parameters: DesignParameters, altitude_m):
 
 
 def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor=None,
-             kite_carries_tether: bool = False, line_at_kite: LineAtKite | None = None) -> Evaluation:
-    """The designs of the normalised vectors ``z`` (B, dimension), real or complex.
+             kite_carries_tether: bool = False, line_at_kite: LineAtKite | None = None,
+             costs: CostParameters | None = None) -> Evaluation:
+    """The designs of the normalised vectors ``z`` (B, dimension), real or complex, priced at ``costs``
+    (``None``: the nominal prices).
 
     ``tether_drag_factor`` (n,) multiplies the straight tether's C_d,t (eq. 3.14)
     at each wind speed of the grid: the flexible tether's measured C_d,t over
@@ -193,7 +220,7 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     rating = scalar("onboard_rating_W")
     f_ref = force_scale_N(p)
 
-    altitude = r * np.sin(beta) + p.tower_height_m
+    altitude = r * np.sin(beta) + scalar("tower_height_m")
     rho, scale = site(p, altitude)
     wind = wind_grid(scalar("cut_in_mps"), scalar("cut_out_mps"), n)
 
@@ -261,7 +288,30 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     aep_Wh = HOURS_PER_YEAR * trapezoid(power * density, wind)
     aep_onboard_Wh = HOURS_PER_YEAR * trapezoid(onboard_cycle * density, wind)
     takeoff_Wh = p.takeoffs_per_year * climb.energy_J[:, 0] / 3600.0
-    objective = -(aep_Wh - takeoff_Wh) / (HOURS_PER_YEAR * p.rated_power_W)
+    net_Wh = aep_Wh - takeoff_Wh
+    takeoff_cd = drag_coefficient(p.cd0, p.cl_max, ar, 0.0, p.oswald)
+    costed = _priced(CostParameters() if costs is None else costs, Hardware(
+        mode=p.mode, rated_power_W=p.rated_power_W, tether_diameter_m=d[:, 0], tether_length_m=r[:, 0],
+        structural_mass_kg=(structural * p.tether_density_kg_m3 * r)[:, 0],
+        conductor_mass_kg=(conductor * p.conductor_density_kg_m3 * r)[:, 0], glider_mass_kg=glider[:, 0],
+        onboard_rating_W=rating[:, 0], turbine_area_m2=turbine_area[:, 0],
+        max_apparent_speed_mps=soft_max(apparent_speed_mps(wind, ge, phi, g_out, g_t))[:, 0],
+        takeoff_mass_kg=total_mass[:, 0], area_m2=area[:, 0],
+        span_m=span[:, 0], takeoff_cl=p.cl_max, takeoff_cd=takeoff_cd[:, 0], climb_thrust_N=climb.thrust_N[:, 0],
+        climb_angle_rad=scalar("climb_angle_rad")[:, 0], ground_air_density_kg_m3=p.rho0_kg_m3,
+        propeller_power_W=climb.propeller_power_W[:, 0],
+        battery_energy_Wh=takeoff.takeoff_energy_J(climb.propeller_power_W, altitude, climb.climb_rate_mps)[:, 0]
+        / 3600.0, tower_height_m=scalar("tower_height_m")[:, 0], elevation_rad=beta[:, 0],
+        tension_limit_N=force_limit[:, 0], energy_MWh=net_Wh * 1e-6, wind_mps=wind, density_per_mps=density,
+        reel_out_stress_Pa=_creep_stress_Pa(tension, force_limit, structural),
+        reel_in_stress_Pa=_creep_stress_Pa(reel_force, force_limit, structural),
+        reel_out_share=time_shares(g_out, g_in)[0], tether_safety_factor=p.tether_safety_factor))
+    if p.objective == "profit":
+        objective = -costed["profit_EUR_per_year"] / profit_scale_EUR(p)
+    elif p.objective == "lcoe":
+        objective = costed["lcoe_EUR_per_MWh"] / REFERENCE_PRICE_EUR_PER_MWH
+    else:
+        objective = -net_Wh / (HOURS_PER_YEAR * p.rated_power_W)
 
     equalities = [("weight balance (eq. 3.74)", balance), ("sag inclination (eqs. 3.17-3.19)", theta - sag_theta),
                   ("take-off mass (eq. 3.73)", (mass_to - climb.mass_kg) * G_MPS2 / f_ref)]
@@ -290,6 +340,10 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
         inequalities += [("generator rating", (rating - onboard_electric) / p.rated_power_W)]
     if p.mass_balance == "seed":
         inequalities += [("smallest root of eq. 3.81", smallest_root_margin_rad(theta, delta, g_out))]
+    if p.objective != "aep":
+        at_rest, at_lift_off = strip_acceleration_mps2(total_mass, area, p.cl_max, takeoff_cd,
+                                                       costed["strip_thrust_N"], p.rho0_kg_m3)
+        inequalities += [("take-off strip (eq. 6.11)", np.concatenate([at_rest, at_lift_off], axis=1) / G_MPS2)]
     quantities = dict(      # per wind speed (B, n)
         wind_mps=wind, power_W=power, mechanical_power_W=mechanical, ground_power_W=p_gr,
         onboard_power_W=onboard_electric, ground_cycle_power_W=power - onboard_cycle,
@@ -308,10 +362,33 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
         takeoff_mass_kg=mass_to[:, 0], takeoff_mass_needed_kg=climb.mass_kg[:, 0], support_m=support[:, 0],
         tip_deflection_m=wing.tip_deflection_m, centre_deflection_m=wing.centre_deflection_m,
         takeoff_thrust_N=climb.thrust_N[:, 0], climb_speed_mps=climb.climb_speed_mps[:, 0],
-        propeller_area_m2=climb.propeller_area_m2[:, 0])
+        propeller_area_m2=climb.propeller_area_m2[:, 0], tower_height_m=scalar("tower_height_m")[:, 0],
+        tether_stress_Pa=tension / _structural(structural))
+    quantities.update({k: v for k, v in costed.items() if k != "strip_thrust_N"})
     equality_values, equality_names = _columns(equalities, batch)
     inequality_values, inequality_names = _columns(inequalities, batch)
     return Evaluation(objective, equality_values, equality_names, inequality_values, inequality_names, quantities)
+
+
+def _structural(area_m2):
+    """The tether's structural section, at least :data:`MIN_STRUCTURAL_AREA_M2` (complex-safe)."""
+    return np.where(real_part(area_m2) > MIN_STRUCTURAL_AREA_M2, area_m2, MIN_STRUCTURAL_AREA_M2)
+
+
+def _creep_stress_Pa(force_N, force_limit_N, structural_m2):
+    """The stress the creep life is evaluated at: the force over the structural section, the force at
+    most :data:`CREEP_FORCE_CAP` times the strength limit σ_lim A_σ/SF (beyond it the strength
+    constraint governs; an infeasible iterate's creep term would otherwise grow tenfold per ΔS and
+    swamp the objective; feasible designs are exact)."""
+    cap = CREEP_FORCE_CAP * force_limit_N
+    return np.where(real_part(force_N) < real_part(cap), force_N, cap) / _structural(structural_m2)
+
+
+def _priced(costs: CostParameters, hardware: Hardware) -> dict:
+    """The cost quantities of ``hardware`` (:meth:`~fem_tether.costs.breakdown.CostBreakdown.quantities`)
+    and the strip's thrust (B, 1) for the take-off constraints."""
+    return price(costs, hardware).quantities() | {
+        "strip_thrust_N": (costs.strip_thrust_share * hardware.climb_thrust_N)[:, None]}
 
 
 def _columns(blocks, batch):

@@ -47,8 +47,11 @@ TABLE_5_4 = {
 MODES = ("ground-gen", "fly-gen", "both")
 #: what the rated power limits: the cycle's mean electrical power, or the reel-out phase's
 RATED_POWER_LIMITS = ("cycle", "reel-out")
+#: what the optimiser minimises: −(AEP − E_TO) (Trevisi ch. 5), −profit (eq. 7.1) or LCOE (eq. 6.17)
+OBJECTIVES = ("aep", "profit", "lcoe")
 #: the parameters that are a choice among names: field -> its choices
-CHOICES = {"mode": MODES, "mass_balance": BALANCES, "rated_power_limits": RATED_POWER_LIMITS}
+CHOICES = {"mode": MODES, "mass_balance": BALANCES, "rated_power_limits": RATED_POWER_LIMITS,
+           "objective": OBJECTIVES}
 
 
 def _mid(name: str) -> float:
@@ -96,6 +99,12 @@ class DesignParameters:
     :mod:`fem_tether.systems.mass_losses`; ``rated_power_limits`` what the
     rated power bounds at each wind speed, "cycle" (the cycle's mean, eq. 3.89)
     or "reel-out" (the reel-out phase's η_out P_gr + η_t (1 − a) P_ob).
+
+    ``objective`` (:data:`OBJECTIVES`): "aep" (default) maximises AEP − E_TO
+    (Trevisi §5.1.3), with the tower held at ``tower_height_m``; "profit"
+    maximises the annual profit (eq. 7.1) and "lcoe" minimises the levelised
+    cost (eq. 6.17), both with the tower's height a design variable (§7.1.1)
+    and the prices of :class:`fem_tether.costs.parameters.CostParameters`.
     """
 
     rated_power_W: float = 3e6
@@ -135,6 +144,7 @@ class DesignParameters:
     glider_mass_kg: float | None = None
     mass_balance: str = "exact"
     rated_power_limits: str = "cycle"
+    objective: str = "aep"
 
     def __post_init__(self):
         for name, choices in CHOICES.items():

@@ -16,7 +16,6 @@ from typing import Any
 
 import numpy as np
 
-from fem_tether.design.model import HOURS_PER_YEAR
 from fem_tether.design.optimiser import Problem, Solution, best
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.sensitivity import sensitivities_Wh
@@ -56,7 +55,9 @@ class StartRecord:
 
 
 def record(index: int, solution: Solution, parameters: DesignParameters) -> StartRecord:
-    net = -solution.objective * HOURS_PER_YEAR * parameters.rated_power_W
+    """The record of start ``index``: its net AEP = AEP − E_TO a year (whatever the objective)."""
+    q = solution.evaluation.quantities
+    net = q["aep_Wh"][0] - parameters.takeoffs_per_year * q["takeoff_energy_Wh"][0]
     return StartRecord(index, solution.success, solution.feasible, solution.message, solution.iterations,
                        solution.evaluations, float(net), solution.violation, solution.most_violated[0])
 

@@ -49,7 +49,7 @@ def net_aep_sensitivity_Wh(problem: Problem, solution: Solution, name: str) -> f
     """
     p = problem.parameters
     shifted = _perturbed(p, name, getattr(p, name) * (1.0 + 1j * STEP))
-    layout = Layout.build(shifted, problem.bounds, problem.held)
+    layout = Layout.build(shifted, problem.bounds, problem.held, problem.costs)
     e = evaluate(layout, shifted, solution.z[None, :], **problem.options)
     lam = np.array(list(solution.multipliers.values()))
     constraints = np.concatenate([e.equalities[0], e.inequalities[0]])
@@ -60,6 +60,9 @@ def net_aep_sensitivity_Wh(problem: Problem, solution: Solution, name: str) -> f
 
 
 def sensitivities_Wh(problem: Problem, solution: Solution, names=REPORTED) -> dict[str, float]:
-    """:func:`net_aep_sensitivity_Wh` for each of ``names`` the design has (a free wing area has none)."""
+    """:func:`net_aep_sensitivity_Wh` for each of ``names`` the design has (a free wing area has none);
+    none where the objective is not the AEP (the envelope derivatives are then the cost objective's)."""
+    if problem.parameters.objective != "aep":
+        return {}
     return {name: net_aep_sensitivity_Wh(problem, solution, name) for name in names
             if getattr(problem.parameters, name) is not None}

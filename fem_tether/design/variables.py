@@ -23,6 +23,10 @@ that every function the optimiser sees is smooth:
   lifts, itself included (eq. 3.73); as a variable with that equation as an
   equality constraint it needs no fixed point (which does not exist for a
   wing too heavy to climb).
+- ``tower_height_m`` q_ht, Trevisi §7.1.1's tower (0 to the cost model's
+  ``max_tower_height_m``): free where the objective prices it ("profit",
+  "lcoe"), held at the parameters' ``tower_height_m`` for "aep" (a tower that
+  costs nothing would only add altitude).
 
 Bounds are ours (the thesis does not print them) and wide; a user narrows them
 in the job's ``[design.bounds]``.  The optimiser works on z ∈ [0, 1]: x = lo +
@@ -36,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem_tether.costs.parameters import CostParameters
 from fem_tether.design.parameters import DesignParameters
 
 DEG = math.pi / 180.0
@@ -58,6 +63,7 @@ SCALARS = {
     "takeoff_mass_kg": (0.0, 0.5, "kg", "take-off system's mass m_TO (bound × the force scale / g)"),
     "design_force_N": (1e-3, 10.0, "N", "wing design load R_max (bound × the force scale)"),
     "onboard_rating_W": (0.0, 2.0, "W", "on-board generators' rating (bound × P_rated)"),
+    "tower_height_m": (0.0, 1.0, "m", "tower height q_ht (bound × the cost model's max_tower_height_m)"),
 }
 #: variables per wind speed: name -> (low, high, unit, description)
 PER_WIND = {
@@ -70,7 +76,7 @@ PER_WIND = {
 }
 #: variables scaled by a parameter: name -> the scale's name
 SCALED = {"design_force_N": "force_scale_N", "onboard_rating_W": "rated_power_W", "cl": "cl_max",
-          "takeoff_mass_kg": "mass_scale_kg"}
+          "takeoff_mass_kg": "mass_scale_kg", "tower_height_m": "max_tower_height_m"}
 #: where starts are drawn (ours): a share of the bounds (γ_out: of cosβ; C_L: of C_L,max), so that a
 #: random start flies; what is not listed is set consistent with the rest (optimiser.consistent)
 START_RANGES = {
@@ -79,7 +85,7 @@ START_RANGES = {
     "cut_in_mps": (3.0, 6.0), "cut_out_mps": (15.0, 30.0), "turbine_thrust_share": (0.0, 1.0),
     "cap_a_m": (0.002, 0.02), "cap_b_m": (0.002, 0.02), "cap_c_m": (0.002, 0.02),
     "support_share": (0.3, 0.7), "gamma_t": (0.0, 0.3), "cl": (0.5, 1.0), "gamma_out": (0.1, 0.5),
-    "gamma_in": (0.5, 3.0),
+    "gamma_in": (0.5, 3.0), "span_m": (15.0, 50.0), "tower_height_m": (0.0, 50.0),
 }
 
 
@@ -98,8 +104,10 @@ STRUCTURE = {"cap_a_m": 0.01, "cap_b_m": 0.01, "cap_c_m": 0.01, "support_share":
 
 def held_by_model(parameters: DesignParameters) -> dict[str, float]:
     """Variables the model holds: ground-gen has no turbines, fly-gen no reeling, a given glider
-    mass no structure."""
+    mass no structure, the objective "aep" the tower (at ``tower_height_m``)."""
     held = dict(STRUCTURE) if parameters.glider_mass_kg is not None else {}
+    if parameters.objective == "aep":
+        held["tower_height_m"] = parameters.tower_height_m
     if parameters.mode == "ground-gen":
         held.update(gamma_t=0.0, onboard_rating_W=0.0, turbine_thrust_share=0.0)
     if parameters.mode == "fly-gen":
@@ -122,11 +130,14 @@ class Layout:
 
     @classmethod
     def build(cls, parameters: DesignParameters, bounds: dict | None = None,
-              held: dict | None = None) -> Layout:
-        """The layout for ``parameters``: the defaults of :data:`SCALARS` and :data:`PER_WIND`
-        (scaled by :data:`SCALED`), overridden by ``bounds``, with the mode's and ``held`` values held."""
+              held: dict | None = None, costs: CostParameters | None = None) -> Layout:
+        """The layout for ``parameters`` (and ``costs``, default nominal: the tower's bound): the
+        defaults of :data:`SCALARS` and :data:`PER_WIND` (scaled by :data:`SCALED`), overridden by
+        ``bounds``, with the mode's and ``held`` values held."""
+        costs = CostParameters() if costs is None else costs
         scales = {"force_scale_N": force_scale_N(parameters), "rated_power_W": parameters.rated_power_W,
-                  "cl_max": parameters.cl_max, "mass_scale_kg": force_scale_N(parameters) / 9.81}
+                  "cl_max": parameters.cl_max, "mass_scale_kg": force_scale_N(parameters) / 9.81,
+                  "max_tower_height_m": costs.max_tower_height_m}
         full = {}
         for name, (low, high, _, _) in {**SCALARS, **PER_WIND}.items():
             factor = scales[SCALED[name]] if name in SCALED else 1.0
@@ -208,7 +219,8 @@ def unreachable(parameters: DesignParameters, layout: Layout) -> str:
     p = parameters
     r_low, r_high, r_key = _given(layout, "tether_length_m")
     b_low, b_high, b_key = _given(layout, "elevation_rad")
-    altitude = r_high * _largest_sine(b_low, b_high) + p.tower_height_m
+    _, t_high, _ = _given(layout, "tower_height_m")
+    altitude = r_high * _largest_sine(b_low, b_high) + t_high
     if altitude < p.min_altitude_m:
         return (f"{r_key} m and {b_key} rad reach an operating altitude r sin(beta) + tower_height_m of at "
                 f"most {altitude:.4g} m, below min_altitude_m = {p.min_altitude_m:g} m")

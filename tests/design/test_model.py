@@ -12,7 +12,8 @@ import pytest
 from fem_tether.design.model import (HOURS_PER_YEAR, SOFT_MAX_SHARPNESS, STRUCTURE_NODES, site, soft_max,
                                      trapezoid, weight_balance_N)
 from fem_tether.design.optimiser import STEP, Problem, consistent, start_points, unified_system
-from fem_tether.design.parameters import DesignParameters
+from fem_tether.costs.breakdown import ICC_PARTS
+from fem_tether.design.parameters import OBJECTIVES, DesignParameters
 from fem_tether.design.variables import PER_WIND
 from fem_tether.systems.mass_losses import force_scale_N as mass_force_scale_N
 from fem_tether.systems.mass_losses import mass_angle_rad, weight_term_N
@@ -80,8 +81,13 @@ def at_gamma_out_zero(problem, z) -> np.ndarray:
     return columns[z[columns] == 0.0]
 
 
+#: the cost objectives (priced designs, the tower free, the strip's constraints), one with the area free
+COSTED = (("objective", "profit"), ("wing_area_m2", None))
+
+
 @pytest.mark.parametrize("mode, readings", [("ground-gen", ()), ("both", ()), ("ground-gen", READINGS),
-                                            ("both", READINGS[1:])])
+                                            ("both", READINGS[1:]), ("ground-gen", COSTED),
+                                            ("both", (("objective", "lcoe"),))])
 def test_complex_step_jacobian_equals_finite_differences(mode, readings):
     """Problem.derivatives (complex step, h = 1e-30) equals differences of step 1e-5 in z (fourth-order
     central; second-order one-sided into the box within two steps of a bound) for the objective, the
@@ -90,7 +96,8 @@ def test_complex_step_jacobian_equals_finite_differences(mode, readings):
     "both" start has four, the ground-gen start none).  Central differences of step 1e-7 miss by
     1.2e-9 at one entry of the ground-gen start (rated power[18] by γ_in[18], 4.07e-8), their
     rounding ε (P/P_rated)/h ≈ 2e-9: that constraint is 0 there, its terms are not.  The same for
-    the thesis' readings: the printed weight balance (mass_balance "seed": eq. 3.81, η_Δ of eq. 3.84
+    the thesis' readings: the cost objectives (ground-gen "profit" with the wing area free, "both"
+    "lcoe": the whole cost model in the objective); the printed weight balance (mass_balance "seed": eq. 3.81, η_Δ of eq. 3.84
     and the smallest-root inequality) with the reel-out rating (rated_power_limits "reel-out") in
     ground-gen, the reel-out rating in "both".  (Not the "both" start with the printed balance: there
     γ_t and C_L of the last two wind speeds are equal (z to 1.5e-14, C_L on its bound), so eq. 3.68's
@@ -417,3 +424,45 @@ def test_site():
     assert scale[1] == pytest.approx(9.5, rel=1e-15)
     assert scale[2] == pytest.approx(9.5 * 15.0**0.2, rel=1e-15)
     assert scale[3:] == pytest.approx(np.full(3, 9.5 * 25.0**0.2), rel=1e-15)
+
+
+#: the cost quantities every design has, per design (B,)
+COST_QUANTITIES = tuple(f"cost_{part}_EUR" for part in ICC_PARTS) + (
+    "icc_EUR", "operation_EUR_per_year", "tether_replacement_EUR_per_year", "kite_replacement_EUR_per_year",
+    "omc_EUR_per_year", "crf", "annual_cost_EUR_per_year", "lcoe_EUR_per_MWh", "profit_EUR_per_year",
+    "tether_life_years", "tether_replacements_per_year", "ground_area_m2", "strip_length_m",
+    "generator_speed_rpm", "tower_height_m")
+
+
+@pytest.mark.parametrize("objective", OBJECTIVES)
+def test_every_objective_prices_the_design(objective):
+    """Every objective reports the same costs at the same point (B,) and the tether's stress per wind
+    (B, n); the objective is −(AEP − E_TO)/(8760 h P_rated), −Π/(8760 h P_rated p_ref) or LCOE/p_ref."""
+    problem, z = started("ground-gen")
+    costed = Problem(dataclasses.replace(problem.parameters, objective=objective))
+    values = si_values(problem.layout, z) | {"tower_height_m": 0.0}
+    e = costed.evaluate(costed.layout.pack(values))
+    reference = problem.evaluate(z).quantities
+    q = e.quantities
+    for name in COST_QUANTITIES:
+        assert q[name].shape == (1,), name
+        assert q[name][0] == pytest.approx(reference[name][0], rel=1e-12), name
+    assert q["tether_stress_Pa"].shape == (1, problem.layout.n)
+    net = q["aep_Wh"][0] - problem.parameters.takeoffs_per_year * q["takeoff_energy_Wh"][0]
+    scale = HOURS_PER_YEAR * problem.parameters.rated_power_W
+    expected = {"aep": -net / scale, "profit": -q["profit_EUR_per_year"][0] / (scale * 1e-6 * 40.0),
+                "lcoe": q["lcoe_EUR_per_MWh"][0] / 40.0}[objective]
+    assert e.objective[0] == pytest.approx(expected, rel=1e-12)
+    assert q["lcoe_EUR_per_MWh"][0] == pytest.approx(q["annual_cost_EUR_per_year"][0] / (net * 1e-6), rel=1e-12)
+    assert ("take-off strip (eq. 6.11)[0]" in e.inequality_names) == (objective != "aep")
+
+
+def test_tower_adds_to_the_altitude():
+    """The tower's height adds to r sinβ: 50 m of tower, 50 m more altitude, a tower cost > 0."""
+    problem = Problem(DesignParameters(mode="ground-gen", objective="profit"))
+    _, z = started("ground-gen")
+    values = si_values(started("ground-gen")[0].layout, z)
+    low = problem.evaluate(problem.layout.pack(values | {"tower_height_m": 0.0})).quantities
+    high = problem.evaluate(problem.layout.pack(values | {"tower_height_m": 50.0})).quantities
+    assert high["altitude_m"][0] - low["altitude_m"][0] == pytest.approx(50.0, rel=1e-12)
+    assert low["cost_tower_EUR"][0] == 0.0 < high["cost_tower_EUR"][0]

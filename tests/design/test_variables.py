@@ -7,6 +7,7 @@ import re
 import numpy as np
 import pytest
 
+from fem_tether.costs.parameters import CostParameters
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import PER_WIND, SCALARS, STRUCTURE, Layout, force_scale_N, unreachable
 
@@ -106,10 +107,22 @@ def test_held_values_leave_the_free_list():
     ("both", {})])
 def test_mode_holds(mode, held):
     """Ground-gen holds γ_t = 0, P_ob,max = 0, Q_turb = 0 (no turbines); fly-gen γ_out = 0 (and γ_in,
-    which then does not enter); both holds nothing."""
-    layout = Layout.build(DesignParameters(mode=mode))
+    which then does not enter); both holds nothing (the objective "profit" prices the tower, so it is free)."""
+    layout = Layout.build(DesignParameters(mode=mode, objective="profit"))
     assert layout.held == held
     assert set(layout.free) == (set(SCALARS) | set(PER_WIND)) - set(held)
+
+
+@pytest.mark.parametrize("objective", ["aep", "profit", "lcoe"])
+def test_tower_held_for_aep_free_for_costs(objective):
+    """The objective "aep" holds the tower at tower_height_m (it costs nothing there); "profit" and
+    "lcoe" free it within [0, max_tower_height_m] of the cost parameters."""
+    layout = Layout.build(DesignParameters(objective=objective, tower_height_m=30.0),
+                          costs=CostParameters(max_tower_height_m=180.0))
+    if objective == "aep":
+        assert layout.held["tower_height_m"] == 30.0 and "tower_height_m" not in layout.free
+    else:
+        assert "tower_height_m" in layout.free and layout.bounds["tower_height_m"] == (0.0, 180.0)
 
 
 def test_given_glider_mass_holds_the_structure():
