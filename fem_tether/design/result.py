@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from fem_tether.costs.breakdown import ICC_PARTS
 from fem_tether.design.optimiser import Problem, Solution, best
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.sensitivity import sensitivities_Wh
@@ -25,13 +26,18 @@ from fem_tether.design.variables import PER_WIND, SCALARS
 CURVES = ("wind_mps", "power_W", "mechanical_power_W", "ground_cycle_power_W", "onboard_cycle_power_W",
           "ground_power_W", "onboard_power_W", "tether_force_N", "reel_in_force_N", "reel_in_power_W",
           "aerodynamic_force_N", "apparent_speed_mps", "cd", "tether_cd", "glide_ratio", "induction",
-          "eta_delta", "probability_density_per_mps")
+          "eta_delta", "probability_density_per_mps", "tether_stress_Pa")
 #: outputs a result keeps (the model's names)
 OUTPUTS = ("aep_Wh", "aep_ground_Wh", "aep_onboard_Wh", "capacity_factor", "takeoff_energy_Wh",
            "force_limit_N", "altitude_m", "air_density_kg_m3", "weibull_scale_mps", "area_m2",
            "turbine_area_m2", "conductor_area_m2", "total_mass_kg", "kite_mass_kg", "glider_mass_kg",
            "wing_mass_kg", "generator_mass_kg", "tether_mass_kg", "takeoff_mass_kg", "support_m",
-           "tip_deflection_m", "centre_deflection_m", "takeoff_thrust_N", "climb_speed_mps", "propeller_area_m2")
+           "tip_deflection_m", "centre_deflection_m", "takeoff_thrust_N", "climb_speed_mps", "propeller_area_m2",
+           *(f"cost_{part}_EUR" for part in ICC_PARTS), "icc_EUR", "operation_EUR_per_year",
+           "tether_replacement_EUR_per_year", "kite_replacement_EUR_per_year", "omc_EUR_per_year", "crf",
+           "annual_cost_EUR_per_year", "lcoe_EUR_per_MWh", "profit_EUR_per_year", "tether_life_years",
+           "tether_replacements_per_year", "ground_area_m2", "strip_length_m", "generator_speed_rpm",
+           "tower_height_m")
 #: a constraint counts as active within this slack (scaled) and above this multiplier
 ACTIVE_SLACK, ACTIVE_MULTIPLIER = 1e-6, 1e-9
 #: the power counts as rated from this share of P_rated up

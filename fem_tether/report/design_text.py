@@ -153,8 +153,9 @@ def design_text(result: dict, path=None) -> str:
         + (["", *costs_text(result)] if is_priced(result) else []) \
         + ["", "power curve (wind at the operating altitude):"] + curve \
         + ["", "active constraints:"] + active \
-        + ["", "net AEP per relative change of a parameter (p dAEP/dp, GWh):"] \
-        + [f"  {name:<30} {value / 1e9:+9.3f}" for name, value in sens if abs(value) > 1e-3 * 1e9]
+        + (["", "net AEP per relative change of a parameter (p dAEP/dp, GWh):"]
+           + [f"  {name:<30} {value / 1e9:+9.3f}" for name, value in sens if abs(value) > 1e-3 * 1e9] if sens else
+           ["", "net AEP per relative change of a parameter: not computed (the objective is not the AEP)"])
     if path is not None:
         lines += ["", f"wrote {path}"]
     return "\n".join(lines)

@@ -164,7 +164,7 @@ def design_preset(name: str, starts: int | None = None) -> Designed:
     """The preset ``name`` optimised as ``fem-tether design --preset name`` does (``starts``: the
     job's own number unless given), in memory."""
     job = load_design_job(preset=name)
-    problem = Problem(job.parameters, job.bounds, job.held)
+    problem = Problem(job.parameters, job.bounds, job.held, costs=job.costs)
     count = job.starts if starts is None else starts
     solutions = [problem.solve(consistent(problem, s)) for s in start_points(problem.layout, count, job.seed)]
     result = design_result(problem, solutions, [record(k, s, job.parameters) for k, s in enumerate(solutions)],

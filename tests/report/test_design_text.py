@@ -85,3 +85,12 @@ def test_the_flexible_design_beside_the_lumped_shows_lcoe_and_the_tether_life():
     assert rows["initial capital cost ICC"][:2] == ["1489.0", "1489.0"]
     del content["outputs"]["icc_EUR"]
     assert "LCOE" not in {row[0] for row in side_by_side_rows(content)}
+
+
+def test_a_design_without_aep_sensitivities_says_so_instead_of_an_empty_table():
+    """(Was: a profit design printed the sensitivities' header over no rows.)"""
+    content = _printable(costed_design_content())
+    content["sensitivities_Wh"] = {}
+    lines = design_text(content).splitlines()
+    assert "net AEP per relative change of a parameter: not computed (the objective is not the AEP)" in lines
+    assert not any(line.startswith("net AEP per relative change of a parameter (p dAEP/dp") for line in lines)

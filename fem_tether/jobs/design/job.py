@@ -99,7 +99,7 @@ class DesignJob:
     costs: CostParameters = CostParameters()
 
     def layout(self) -> Layout:
-        return Layout.build(self.parameters, self.bounds, self.held)
+        return Layout.build(self.parameters, self.bounds, self.held, self.costs)
 
 
 def preset_names() -> list[str]:
@@ -163,8 +163,9 @@ def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
         raise ConfigError(f"[design] tether = {tether!r}: must be one of {', '.join(TETHERS)}")
     bounds = _table(design, "bounds")
     held = _table(design, "held")
+    prices = cost_parameters(costs)
     try:
-        layout = Layout.build(parameters, bounds, held)
+        layout = Layout.build(parameters, bounds, held, prices)
     except ValueError as exc:
         raise ConfigError(f"[design] {exc}") from None
     for variable in held:
@@ -176,8 +177,7 @@ def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
     if "flexible" in design and tether != "flexible":
         raise ConfigError(f"[design.flexible]: only with [design] tether = \"flexible\" (this job's is {tether!r})")
     flexible = flexible_settings(design.get("flexible", {}), parameters)
-    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible, objective,
-                     cost_parameters(costs))
+    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible, objective, prices)
 
 
 def _table(design: dict, key: str) -> dict:
@@ -203,9 +203,10 @@ def _parameters(table, objective: str) -> DesignParameters:
     if not isinstance(table, dict):
         raise ConfigError("[design] parameters: must be a table")
     names = {f.name: f for f in dataclasses.fields(DesignParameters)}
-    # the design model's objective is a DesignParameters field once the cost model's design has it
-    values: dict[str, Any] = {"objective": objective} if "objective" in names else {}
+    values: dict[str, Any] = {"objective": objective}
     for key, value in table.items():
+        if key == "objective":
+            raise ConfigError("[design.parameters] objective: set it as [design] objective (or --objective)")
         if key not in names:
             raise ConfigError(f"[design.parameters] {key}: unknown parameter")
         if key in ("wing_area_m2", "glider_mass_kg") and value == "free":

@@ -79,7 +79,7 @@ class DesignStarts:
 
     def __init__(self, job: DesignJob, out: Path):
         self.job, self.key, self.directory = job, inputs_key(job), parts_dir(out)
-        self.problem = Problem(job.parameters, job.bounds, job.held)
+        self.problem = Problem(job.parameters, job.bounds, job.held, costs=job.costs)
 
     def path(self, index: int) -> Path:
         return self.directory / f"start_{index:04d}.json"
