@@ -26,18 +26,21 @@ from fem_tether.design.variables import PER_WIND, SCALARS
 CURVES = ("wind_mps", "power_W", "mechanical_power_W", "ground_cycle_power_W", "onboard_cycle_power_W",
           "ground_power_W", "onboard_power_W", "tether_force_N", "reel_in_force_N", "reel_in_power_W",
           "aerodynamic_force_N", "apparent_speed_mps", "cd", "tether_cd", "glide_ratio", "induction",
-          "eta_delta", "probability_density_per_mps", "tether_stress_Pa")
+          "eta_delta", "probability_density_per_mps")
 #: outputs a result keeps (the model's names)
 OUTPUTS = ("aep_Wh", "aep_ground_Wh", "aep_onboard_Wh", "capacity_factor", "takeoff_energy_Wh",
            "force_limit_N", "altitude_m", "air_density_kg_m3", "weibull_scale_mps", "area_m2",
            "turbine_area_m2", "conductor_area_m2", "total_mass_kg", "kite_mass_kg", "glider_mass_kg",
            "wing_mass_kg", "generator_mass_kg", "tether_mass_kg", "takeoff_mass_kg", "support_m",
-           "tip_deflection_m", "centre_deflection_m", "takeoff_thrust_N", "climb_speed_mps", "propeller_area_m2",
-           *(f"cost_{part}_EUR" for part in ICC_PARTS), "icc_EUR", "operation_EUR_per_year",
-           "tether_replacement_EUR_per_year", "kite_replacement_EUR_per_year", "omc_EUR_per_year", "crf",
-           "annual_cost_EUR_per_year", "lcoe_EUR_per_MWh", "profit_EUR_per_year", "tether_life_years",
-           "tether_replacements_per_year", "ground_area_m2", "strip_length_m", "generator_speed_rpm",
-           "tower_height_m")
+           "tip_deflection_m", "centre_deflection_m", "takeoff_thrust_N", "climb_speed_mps", "propeller_area_m2")
+#: what a priced design (objective profit or lcoe) keeps besides: its costs (an AEP design is not priced: its
+#: take-off and launch are not chosen for cost, and the §5.4 ground-gen design would need a 4.2 km strip)
+COST_CURVES = ("tether_stress_Pa",)
+COST_OUTPUTS = (*(f"cost_{part}_EUR" for part in ICC_PARTS), "icc_EUR", "operation_EUR_per_year",
+                "tether_replacement_EUR_per_year", "kite_replacement_EUR_per_year", "omc_EUR_per_year", "crf",
+                "annual_cost_EUR_per_year", "lcoe_EUR_per_MWh", "profit_EUR_per_year", "tether_life_years",
+                "tether_replacements_per_year", "ground_area_m2", "strip_length_m", "generator_speed_rpm",
+                "tower_height_m")
 #: a constraint counts as active within this slack (scaled) and above this multiplier
 ACTIVE_SLACK, ACTIVE_MULTIPLIER = 1e-6, 1e-9
 #: the power counts as rated from this share of P_rated up
@@ -155,10 +158,11 @@ def design_result(problem: Problem, solutions: list[Solution], records: list[Sta
     q = solution.evaluation.quantities
     values = problem.layout.unpack(solution.z[None, :])
     design = {name: float(np.ravel(values[name])[0]) for name in SCALARS}
-    curves = {name: np.asarray(q[name][0], dtype=float) for name in CURVES}
+    priced = problem.parameters.objective != "aep"
+    curves = {name: np.asarray(q[name][0], dtype=float) for name in CURVES + (COST_CURVES if priced else ())}
     curves.update({name: np.broadcast_to(np.ravel(values[name]), (problem.layout.n,)).astype(float)
                    for name in PER_WIND})
-    outputs: dict[str, float | None] = {name: float(q[name][0]) for name in OUTPUTS}
+    outputs: dict[str, float | None] = {name: float(q[name][0]) for name in OUTPUTS + (COST_OUTPUTS if priced else ())}
     outputs["rated_wind_mps"] = rated_wind_mps(curves, problem.parameters.rated_power_W)
     outputs["net_aep_Wh"] = records[k].net_aep_Wh
     return DesignResult(best=records[k].index, design=design, curves=curves, outputs=outputs,

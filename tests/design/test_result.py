@@ -109,3 +109,20 @@ def test_no_feasible_start(ground_gen):
     out = design_result(ground_gen.problem, failed, records, seed=0)
     assert out.best is None and not out.found and out.design == {} and out.sensitivities_Wh == {}
     json.dumps(out.as_dict(), allow_nan=False)
+
+
+def test_only_a_design_for_profit_or_lcoe_is_priced():
+    """An AEP design's take-off and launch are not chosen for cost (§5.4's ground-gen design would need a
+    4.2 km strip, 1.5 GEUR): its result keeps no costs; a profit design's keeps every one."""
+    from fem_tether.design.optimiser import Problem
+    from fem_tether.design.parameters import DesignParameters
+    from fem_tether.design.result import COST_CURVES, COST_OUTPUTS
+
+    for objective in ("aep", "profit"):
+        problem = Problem(DesignParameters(rated_power_W=2e6, wing_area_m2=None, mode="fly-gen", objective=objective))
+        solution = dataclasses.replace(problem.solve(np.full(problem.layout.dimension, 0.5), max_iterations=1),
+                                       success=True, feasible=True)
+        result = design_result(problem, [solution], [record(0, solution, problem.parameters)], seed=0)
+        priced = objective != "aep"
+        assert all((name in result.outputs) == priced for name in COST_OUTPUTS)
+        assert all((name in result.curves) == priced for name in COST_CURVES)
