@@ -2,7 +2,6 @@
 against the closed form (:func:`~fem_tether.uncertainty.cantilever.closed_form`: the optimiser and the
 KKT algebra checked by the formula, each derived on its own)."""
 
-import numpy as np
 import pytest
 
 from fem_tether.uncertainty import cantilever as beam
