@@ -494,6 +494,11 @@ def remove_stale(targets: Sequence[Path]) -> None:
         _remove(path)
 
 
+def parts_dir(out: Path) -> Path:
+    """Where the parts of the result file ``out`` are kept: ``out`` + ``.parts``."""
+    return out.with_name(out.name + ".parts")
+
+
 def remove_temporaries(folder: Path) -> None:
     """Remove every temporary in ``folder`` (a parts folder whose whole output
     lock the caller holds)."""

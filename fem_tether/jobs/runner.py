@@ -22,9 +22,12 @@ object of a lower module, never a function of the caller's.
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from contextlib import ExitStack
+from pathlib import Path
 from typing import Protocol
 
+from fem_tether.core.atomic import exclusive, parts_dir, remove_temporaries
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import POLL_S, checkpoint, guard, sync
@@ -89,6 +92,21 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: 
     bar.update(*done(len(tasks)))
     bar.close()
     return ran, kept
+
+
+def claim_output(comm, out: Path, check: Callable[[Path], object], output: ExitStack) -> None:
+    """Rank 0 checks ``out`` (``check(out)``), holds it for the run (one writer of the file and its
+    parts until ``output`` closes) and removes its parts' leftover temporaries; an InputError found
+    there is raised on every rank, before any task."""
+    problem: InputError | None = None
+    if comm.Get_rank() == 0:
+        try:
+            check(out)
+            output.enter_context(exclusive(out))
+            remove_temporaries(parts_dir(out))
+        except InputError as exc:
+            problem = exc
+    raise_on_every_rank(comm, problem)
 
 
 def raise_on_every_rank(comm, problem: InputError | None) -> None:

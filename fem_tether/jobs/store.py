@@ -30,17 +30,12 @@ from pathlib import Path
 import h5py
 
 from fem_tether import __version__
-from fem_tether.core.atomic import atomic_path, write_json
+from fem_tether.core.atomic import atomic_path, parts_dir, write_json
 from fem_tether.config import FILE_KEYS, NOT_FILES, Config
 from fem_tether.jobs.job import Job, Task, length_tag
 from fem_tether.io.output import read_run_hdf5, write_run_hdf5
 from fem_tether.tether.results import TetherRun
 from fem_tether.performance.sizing import Sizing, size_tether, sized_case
-
-
-def parts_dir(out: Path) -> Path:
-    """Where the parts of the result file ``out`` are kept."""
-    return out.with_name(out.name + ".parts")
 
 
 def inputs_key(cfg: Config) -> str:

@@ -51,13 +51,13 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.config import Config
-from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check_writable, write_json
+from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check_writable, parts_dir, write_json
 from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs.job import Task, length_tag
 from fem_tether.core.quantities import attributes, names
 from fem_tether.io.reading import Reader
 from fem_tether.io.records import Record, Table, stored_column
-from fem_tether.jobs.store import PartsStore, parts_dir
+from fem_tether.jobs.store import PartsStore
 
 #: A length's status: its tasks have all run and succeeded, some task has not run, some failed.
 STATUSES = ("ok", "pending", "failed")

@@ -12,7 +12,8 @@ from fem_tether import __version__
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
 from fem_tether.tether.fe.solver import simulate
 from fem_tether.jobs.job import Task
-from fem_tether.jobs.store import PartsStore, inputs_key, parts_dir
+from fem_tether.core.atomic import parts_dir
+from fem_tether.jobs.store import PartsStore, inputs_key
 
 
 def test_parts_dir_is_beside_the_result(tmp_path):

@@ -26,8 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.core.atomic import (PAGE_NAME, OutputError, check_folder, check_writable, exclusive, remove_temporaries,
-                                    write_json)
+from fem_tether.core.atomic import PAGE_NAME, OutputError, check_folder, check_writable, parts_dir, write_json
 from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.core.progress import Progress
 from fem_tether.costs.parameters import CURRENCY
@@ -37,7 +36,7 @@ from fem_tether.design.result import DesignResult, StartRecord, design_result, n
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.design.loop import FlexibleOutcome, run_flexible
-from fem_tether.jobs.runner import distribute, raise_on_every_rank
+from fem_tether.jobs.runner import claim_output, distribute, raise_on_every_rank
 from fem_tether.jobs.study.result import report_dir
 
 
@@ -51,9 +50,6 @@ class DesignInterrupted(KeyboardInterrupt):
     def __init__(self, directory: Path):
         super().__init__(f"finished starts kept in {directory}; run the same command to resume")
 
-
-def parts_dir(out: Path) -> Path:
-    return out.with_name(out.name + ".parts")
 
 
 def inputs_key(job: DesignJob) -> str:
@@ -151,15 +147,7 @@ def run_design(job: DesignJob, out: str | Path, comm=None,
         comm = MPI.COMM_WORLD
     out = Path(out)
     with guard(comm), ExitStack() as output:
-        problem: InputError | None = None
-        if comm.Get_rank() == 0:
-            try:
-                check_out(out)
-                output.enter_context(exclusive(out))
-                remove_temporaries(parts_dir(out))
-            except InputError as exc:
-                problem = exc
-        raise_on_every_rank(comm, problem)
+        claim_output(comm, out, check_out, output)
         starts = DesignStarts(job, out)
         size = comm.Get_size()
         bar = Progress(job.starts, f"design starts ({size} rank{'s' if size > 1 else ''})",

@@ -27,12 +27,12 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.core.atomic import OutputError, check_folder, check_writable, exclusive, remove_temporaries, write_json
+from fem_tether.core.atomic import OutputError, check_folder, check_writable, parts_dir, write_json
 from fem_tether.core.errors import InputError, SolverDivergedError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
 from fem_tether.io.sensitivity_file import is_sensitivity_result, write_sensitivity_hdf5
-from fem_tether.jobs.runner import distribute, raise_on_every_rank
+from fem_tether.jobs.runner import claim_output, distribute
 from fem_tether.uncertainty.analysis import MAX_DEGREE, RESAMPLES, analyse, convergence
 from fem_tether.uncertainty.inputs import Input, sample
 
@@ -58,9 +58,6 @@ class SensitivityJob:
     def points(self) -> np.ndarray:
         return sample(self.inputs, self.samples, self.seed, self.method)
 
-
-def parts_dir(out: Path) -> Path:
-    return out.with_name(out.name + ".parts")
 
 
 def inputs_key(job: SensitivityJob) -> str:
@@ -164,15 +161,7 @@ def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: b
         comm = MPI.COMM_WORLD
     out = Path(out)
     with guard(comm), ExitStack() as output:
-        problem: InputError | None = None
-        if comm.Get_rank() == 0:
-            try:
-                check_out(out)
-                output.enter_context(exclusive(out))
-                remove_temporaries(parts_dir(out))
-            except InputError as exc:
-                problem = exc
-        raise_on_every_rank(comm, problem)
+        claim_output(comm, out, check_out, output)
         samples = Samples(job, out)
         size = comm.Get_size()
         bar = Progress(job.samples, f"sensitivity samples ({size} rank{'s' if size > 1 else ''})",

@@ -20,12 +20,9 @@ from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from fem_tether.core.atomic import exclusive, remove_temporaries
-from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
-from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
-from fem_tether.jobs.store import parts_dir
+from fem_tether.jobs.runner import claim_output, distribute, load_kernels_by_rank
 
 from fem_tether.jobs.study import optimum as opt
 from fem_tether.jobs.study import scaling
@@ -184,15 +181,7 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
                allow_unchecked: bool) -> StudyOutcome | None:
     t0 = time.perf_counter()
     rank = comm.Get_rank()
-    problem: InputError | None = None
-    if rank == 0:
-        try:
-            check_out(out)
-            output.enter_context(exclusive(out))   # one writer of out and its parts, until the end
-            remove_temporaries(parts_dir(out))
-        except InputError as exc:
-            problem = exc
-    raise_on_every_rank(comm, problem)
+    claim_output(comm, out, check_out, output)
     load_kernels_by_rank(comm, ("fe", "fd") if job.crosscheck else ("fe",))
     study = Study(job, out)
     outcome = StudyOutcome([], n_ranks=comm.Get_size())

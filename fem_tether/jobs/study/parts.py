@@ -14,8 +14,7 @@ import os
 from pathlib import Path
 
 from fem_tether import __version__
-from fem_tether.core.atomic import write_json
-from fem_tether.jobs.store import parts_dir
+from fem_tether.core.atomic import parts_dir, write_json
 
 
 def key_of(*inputs: str) -> str:

@@ -28,12 +28,11 @@ import h5py
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.core.atomic import PAGE_NAME, OutputError, atomic_path, check_folder, check_writable
+from fem_tether.core.atomic import PAGE_NAME, OutputError, atomic_path, check_folder, check_writable, parts_dir
 from fem_tether.core.quantities import attributes, names, quantity
 from fem_tether.io.reading import Reader
 from fem_tether.io.records import Column, Record, Table, stored_column
 from fem_tether.jobs.study.optimum import Optimum
-from fem_tether.jobs.store import parts_dir
 
 #: Per-point datasets, per point and bin, per point and edge (the quantities table's order).
 POINT = tuple(n for n in names("study") if n not in ("wind_mps", "edges_mps"))
