@@ -21,7 +21,8 @@ and the unit also as the attribute ``unit``)::
     /flexible         with [design] tether = "flexible" (fem_tether.jobs.design.loop): attrs status,
                       error, checked (the FE <-> FD gate), tolerance, iterations (the cap), fe_runs,
                       fd_runs; the flexible design in the layout above (parameters ... active), and
-      rounds/<field>  one entry per round: AEP, its change, the FE runs, the factors' range ...
+      rounds/<field>  one entry per round: AEP (priced: profit, LCOE), the change the loop stops
+                      on, the FE runs, the factors' range ...
       bins/<name>     per wind speed of the last round's design: its operating point, the FE and
                       straight drags, the factor, C_D,t, the sag, the tensions (NaN: no run)
       gate            attrs: the FE <-> FD gate at the final design's most bent bin

@@ -46,7 +46,7 @@ from fem_tether.jobs.study.result import report_dir
 from fem_tether.physics.resource import weibull_density_per_mps
 from fem_tether.report.design_text import (COST_ROWS, DESIGN_ROWS, OBJECTIVE_NAMES, OUTPUT_ROWS, attribution_rows,
                                            currency, design_text, flexible_text, icc_parts, is_priced,
-                                           side_by_side_rows)
+                                           STOPS_ON_LABEL, side_by_side_rows)
 from fem_tether.report.page import STYLE, image, number, table
 from fem_tether.report.plots import label_axes, plt, save_atomically   # plt: with the Agg backend
 
@@ -382,12 +382,17 @@ def flexible_section(r: dict, figures: dict[str, Path]) -> list[str]:
     if not has_flexible(r):
         return out
     rounds = f["rounds"]
+    priced = "profit_EUR_per_year" in rounds
+    stops_on = STOPS_ON_LABEL[r.get("costs", {}).get("objective", "aep")]
     return out + [
         table(["", "lumped", "flexible", "change", "unit"], [list(row) for row in side_by_side_rows(r)]),
-        table(["round", "FE runs", "drag factor", "AEP [GWh]", "change"],
-              [[str(k), str(n), f"{low:.4f}-{high:.4f}", f"{1e-9 * a:.4f}", f"{100 * c:+.3f} %"]
-               for k, n, low, high, a, c in zip(rounds["round"], rounds["fe_runs"], rounds["factor_min"],
-                                                rounds["factor_max"], rounds["aep_Wh"], rounds["change"])]),
+        table(["round", "FE runs", "drag factor", "AEP [GWh]"]
+              + (["profit [kEUR/year]", "LCOE [EUR/MWh]"] if priced else []) + [f"change ({stops_on})"],
+              [[str(rounds["round"][j]), str(rounds["fe_runs"][j]),
+                f"{rounds['factor_min'][j]:.4f}-{rounds['factor_max'][j]:.4f}", f"{1e-9 * rounds['aep_Wh'][j]:.4f}"]
+               + ([f"{1e-3 * rounds['profit_EUR_per_year'][j]:.2f}", f"{rounds['lcoe_EUR_per_MWh'][j]:.3f}"]
+                  if priced else [])
+               + [f"{100 * rounds['change'][j]:+.3f} %"] for j in range(len(rounds["round"]))]),
         "<p>where the AEPs differ (a design flown with another tether: its hardware held, its operation "
         "re-optimised)</p>",
         table(["", "AEP [GWh]", "change"], [[label.strip(), aep, change] for label, aep, change in attribution_rows(r)]),

@@ -10,6 +10,11 @@ import math
 
 import numpy as np
 
+from fem_tether.jobs.design.loop import round_values
+
+#: the quantity the flexible tether's loop stops on, per objective (:data:`fem_tether.jobs.design.loop.STOPS_ON`)
+STOPS_ON_LABEL = {"aep": "AEP", "profit": "annual profit", "lcoe": "LCOE"}
+
 #: the design table's rows: (label, key, factor, unit, format)
 DESIGN_ROWS = (("span s", "span_m", 1.0, "m", ".2f"), ("aspect ratio AR", "aspect_ratio", 1.0, "", ".2f"),
                ("tether diameter d", "tether_diameter_m", 1e3, "mm", ".2f"),
@@ -226,15 +231,16 @@ def flexible_text(result: dict, timing_s: dict | None = None, path=None) -> str:
     a design result's content with its ``flexible`` part; ``timing_s``: the loop's wall times)."""
     f = result["flexible"]
     rounds = f["rounds"]
+    objective = result.get("costs", {}).get("objective", "aep")
     lines = [f"flexible tether in the loop: {f['status']}"
              + (f" ({f['error']})" if f["error"] else "")
              + f"; {len(rounds.get('round', []))} rounds of at most {f['iterations']}, tolerance "
-               f"{100 * f['tolerance']:g} % on the AEP; {f['fe_runs']} FE runs, {f['fd_runs']} FD run"]
-    for k, runs, aep, change, low, high in zip(rounds.get("round", []), rounds.get("fe_runs", []),
-                                               rounds.get("aep_Wh", []), rounds.get("change", []),
-                                               rounds.get("factor_min", []), rounds.get("factor_max", [])):
-        lines.append(f"  round {k}: {runs} FE runs, drag factor {low:.3f}-{high:.3f}, AEP {aep / 1e9:.4f} GWh "
-                     f"({100 * change:+.3f} %)")
+               f"{100 * f['tolerance']:g} % on the {STOPS_ON_LABEL[objective]}; {f['fe_runs']} FE runs, "
+               f"{f['fd_runs']} FD run"]
+    for j in range(len(rounds.get("round", []))):
+        row = {k: v[j] for k, v in rounds.items()}
+        lines.append(f"  round {row['round']}: {row['fe_runs']} FE runs, drag factor {row['factor_min']:.3f}-"
+                     f"{row['factor_max']:.3f}, " + round_values(row, objective))
     gate = f["gate"]
     if gate:
         lines.append(f"  FE <-> FD gate at {gate['wind_mps']:.2f} m/s (the most bent bin): "

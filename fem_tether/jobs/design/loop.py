@@ -21,7 +21,8 @@ first of a loop of rounds k = 1, 2, …:
    round's design (:class:`fem_tether.design.optimiser.Problem` with
    ``tether_drag_factor`` and ``line_at_kite``);
 
-until the AEP changes by less than the tolerance (0.1 %) from one round's
+until the quantity the design optimises (:data:`STOPS_ON`: the AEP, the annual
+profit or the LCOE) changes by less than the tolerance (0.1 %) from one round's
 design to the next, or the cap of rounds is reached (then the result says it did
 not converge).  The factors are indexed by the grid's node: a re-optimised
 design's cut-in and cut-out move its grid a little, and the next round's runs
@@ -316,16 +317,23 @@ class FlexibleDesign:
         """JSON-ready (no wall times: the file is the same for any run)."""
         head = {"status": self.status, "error": self.error, "checked": self.checked, "tolerance": self.tolerance,
                 "iterations": self.iterations, "fe_runs": self.fe_runs, "fd_runs": self.fd_runs,
-                "rounds": {k: [row[k] for row in self.rounds] for k in ROUND_FIELDS},
+                "rounds": {k: [row[k] for row in self.rounds] for k in ROUND_FIELDS + PRICED_ROUND_FIELDS
+                           if all(k in row for row in self.rounds)},
                 "bins": _plain(self.bins), "gate": _plain(self.gate), "attribution_Wh": dict(self.attribution_Wh)}
         return head | (self.design.as_dict() if self.design is not None else {})
 
 
 #: what the result keeps of each round: the design its runs flew (its line), the runs, the AEP of the
-#: design it re-optimised to and its change, the factors' range, SLSQP's iterations and message
+#: design it re-optimised to and the change the loop stops on (:data:`STOPS_ON`), the factors' range,
+#: SLSQP's iterations and message; a priced design's round also its profit and LCOE
 ROUND_FIELDS = ("round", "flown_tether_length_m", "flown_tether_diameter_m", "flown_elevation_rad",
                 "flown_linear_density_kg_m", "fe_runs", "failed_runs", "aep_Wh", "change", "factor_min", "factor_max", "iterations",
                 "message")
+PRICED_ROUND_FIELDS = ("profit_EUR_per_year", "lcoe_EUR_per_MWh")
+#: the output whose relative change from the design flown to the re-optimised one stops the loop: the
+#: quantity the objective optimises (the AEP's for "aep", as the loop was first written; a profit design
+#: that keeps its AEP may still move its profit, by its tether's price and life)
+STOPS_ON = {"aep": "aep_Wh", "profit": "profit_EUR_per_year", "lcoe": "lcoe_EUR_per_MWh"}
 
 
 @dataclass(frozen=True)
@@ -446,21 +454,34 @@ def _round(job: DesignJob, current: DesignResult, runs: BinRuns, k: int, state: 
         state.status = "failed"
         state.error = f"round {k}: the re-optimisation with the FE drag did not converge ({solution.message})"
         return {"next": None, "stop": True, "failed": True, "say": state.error}, problem, factor, bins
-    before, after = current.outputs["aep_Wh"], result.outputs["aep_Wh"]
-    change = (after - before) / before
+    watched = STOPS_ON[job.objective]
+    before, after = current.outputs[watched], result.outputs[watched]
+    change = (after - before) / abs(before)
     converged = bool(abs(change) < job.flexible.tolerance)
+    priced = {k: result.outputs[k] for k in PRICED_ROUND_FIELDS if k in result.outputs}
     flew = current.design
     state.rounds.append({"round": k, "flown_tether_length_m": flew["tether_length_m"],
                          "flown_tether_diameter_m": flew["tether_diameter_m"], "flown_elevation_rad": flew["elevation_rad"],
                          "flown_linear_density_kg_m": current.outputs["tether_mass_kg"] / flew["tether_length_m"],
                          "fe_runs": int(np.count_nonzero(m.flies)),
-                         "failed_runs": int(np.count_nonzero(m.flies & ~m.ok)), "aep_Wh": after, "change": change,
+                         "failed_runs": int(np.count_nonzero(m.flies & ~m.ok)), "aep_Wh": result.outputs["aep_Wh"],
+                         **priced, "change": change,
                          "converged": converged, "factor_min": float(np.min(factor)),
                          "factor_max": float(np.max(factor)), "iterations": solution.iterations,
                          "message": solution.message})
-    say = (f"drag factor {np.min(factor):.3f}-{np.max(factor):.3f}; re-optimised: AEP {after / 1e9:.4f} GWh "
-           f"({100 * change:+.3f} %)" + ("; converged" if converged else ""))
+    say = (f"drag factor {np.min(factor):.3f}-{np.max(factor):.3f}; re-optimised: "
+           + round_values(state.rounds[-1], job.objective) + ("; converged" if converged else ""))
     return {"next": result, "stop": converged, "failed": False, "say": say}, problem, factor, bins
+
+
+def round_values(row: dict, objective: str) -> str:
+    """A round's re-optimised design as printed: its AEP, a priced design's profit and LCOE, and the
+    change the loop stops on (:data:`STOPS_ON`)."""
+    text = f"AEP {row['aep_Wh'] / 1e9:.4f} GWh"
+    if "profit_EUR_per_year" in row:
+        text += (f", profit {row['profit_EUR_per_year'] / 1e3:.2f} kEUR/year, "
+                 f"LCOE {row['lcoe_EUR_per_MWh']:.3f} EUR/MWh")
+    return text + f" ({'AEP' if objective == 'aep' else objective} {100 * row['change']:+.3f} %)"
 
 
 def _gate_node(job: DesignJob, design: DesignResult) -> tuple[int, Config] | None:
