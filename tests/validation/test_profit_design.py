@@ -77,3 +77,30 @@ def test_the_band_check():
 def test_the_explanations_link_to_a_section_that_exists(link):
     page, _, anchor = link.partition("#")
     assert anchor in anchors(DOCS / page)
+
+
+def test_the_design_cases_are_in_the_full_set_only():
+    cases = {c.name: c for c in CASES}
+    assert not cases["trevisi/2mw-profit-designs"].quick and not cases["trevisi/profit-reliability"].quick
+
+
+@pytest.mark.parametrize("measured, targets, bands", [
+    # docs/costs.md §5.2: the presets' optima as measured (ground-gen start 2; fly-gen starts 0-2)
+    (dict(span_m=58.64, aspect_ratio=9.619, area_m2=357.5, tether_diameter_m=0.03110, tether_length_m=921.0,
+          elevation_rad=22.70, aep_Wh=14603.0, capacity_factor=0.8335, lcoe_EUR_per_MWh=19.27,
+          omc_EUR_per_year=143.7e3, altitude_m=355.4, total_mass_kg=1277.0, glider_mass_kg=504.0,
+          tether_mass_kg=678.6, tether_life_years=21.15), pd.GG_TARGETS, pd.GG_BANDS),
+    (dict(span_m=56.86, aspect_ratio=9.642, area_m2=335.4, capacity_factor=0.8269, tether_life_years=53.08,
+          lcoe_EUR_per_MWh=20.33), pd.FG_TARGETS, pd.FG_BANDS)])
+def test_every_band_holds_the_measured_gap_and_excludes_the_tolerance(measured, targets, bands):
+    assert set(bands) == set(targets) == set(measured)
+    for name, (low, high) in bands.items():
+        gap = measured[name] / targets[name] - 1.0
+        assert low < gap < high, name
+        assert not low <= 0.0 <= high, name
+
+
+@pytest.mark.parametrize("link", pd.DESIGN_LINKS)
+def test_the_design_explanations_link_to_a_section_that_exists(link):
+    page, _, anchor = link.partition("#")
+    assert anchor in anchors(DOCS / page)
