@@ -75,5 +75,4 @@ CASES: tuple[Case, ...] = (
     Case("trevisi/2mw-gg-priced", "Trevisi 2019 §7.4.1 (Fig. 7.2's design priced), ch. 6", True,
          profit_design.section_7_4_1_priced),
     Case("trevisi/2mw-profit-designs", "Trevisi 2019 §7.4.1-7.4.2, §7.3.2", False, profit_design.section_7_4_designs),
-    Case("trevisi/profit-reliability", "Trevisi 2019 §7.3.1", False, profit_design.reliability),
 )
