@@ -12,7 +12,7 @@ from __future__ import annotations
 from functools import partial
 
 from fem_tether.validation import (analytic, design, fagiano_costs, farm, free_kite, lourenco_orbit, numerics,
-                                   seed000, systems)
+                                   profit_design, seed000, systems)
 from fem_tether.validation.case import Case
 
 CATENARY = "analytic: catenary of a uniform chain pinned at both ends"
@@ -72,4 +72,7 @@ CASES: tuple[Case, ...] = (
     Case("trevisi/wing-7-regions", "Trevisi 2019 §5.3.2, Table 5.2 (Makani Wing 7)", False, design.wing7_regions),
     Case("trevisi/ap2-length-elevation", "Trevisi 2019 §5.3.2, Table 5.3 (Ampyx AP2)", False, design.ap2),
     Case("trevisi/3mw-design", "Trevisi 2019 §5.4", False, design.section_5_4),
+    Case("trevisi/2mw-gg-priced", "Trevisi 2019 §7.4.1 (Fig. 7.2's design priced), ch. 6", True,
+         profit_design.section_7_4_1_priced),
+    Case("trevisi/2mw-profit-designs", "Trevisi 2019 §7.4.1-7.4.2, §7.3.2", False, profit_design.section_7_4_designs),
 )
