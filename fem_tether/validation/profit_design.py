@@ -208,9 +208,9 @@ def section_7_4_1_priced(quick: bool) -> tuple[Check, ...]:
 
 # --- §7.4.1 and §7.4.2: the presets re-optimised
 
-#: SLSQP's iteration cap for the profit designs (the design command's 500 stops every ground-gen start
-#: short; docs/costs.md §5)
-PROFIT_ITERATIONS = 2000
+#: SLSQP's iteration cap for the profit designs: the presets' ``[design] iterations`` (the design
+#: command's default 500 stops every ground-gen start short; docs/costs.md §5)
+PROFIT_ITERATIONS = load_design_job(preset="trevisi-2mw-profit-gg").iterations
 #: the starts of each preset (seed 0): ground-gen start 2 alone (the one of 0–2 that converges within
 #: the cap; 0 and 1 stop at it 1e-5 from its objective, docs/costs.md §5); fly-gen starts 0–2
 PRESET_STARTS = {"trevisi-2mw-profit-gg": (2,), "trevisi-2mw-profit-fg": (0, 1, 2)}

@@ -6,6 +6,8 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     preset = "trevisi-3mw"      # optional: start from a shipped job, then apply this file's keys
     starts = 10                 # default: N_max of Trevisi §5.3.1 (10; 15 where cl_max > 3)
     seed = 0                    # start k is drawn from NumPy's generator seeded (seed, k)
+    iterations = 500            # SLSQP's cap on the iterations of a start (a ground-gen profit design
+                                # needs ~1800: the creep term's curvature, docs/costs.md §5)
     tether = "lumped"           # the straight tether of eqs. 3.14-3.19, or "flexible": the FE line in
                                 # the loop (fem_tether.jobs.design.loop, docs/design-flexible.md)
     objective = "aep"           # what the design maximises: "aep" (Trevisi ch. 5), "profit" (eq. 7.1) or
@@ -56,12 +58,12 @@ from typing import Any
 from fem_tether.config.tomlio import toml_and_text
 from fem_tether.core.errors import ConfigError
 from fem_tether.costs.parameters import COSTS, CURRENCY, FIXED_COSTS, CostParameters
-from fem_tether.design.optimiser import starts_for
+from fem_tether.design.optimiser import MAX_ITERATIONS, starts_for
 from fem_tether.design.parameters import CHOICES, DesignParameters
 from fem_tether.design.variables import PER_WIND, SCALARS, Layout, unreachable
 from fem_tether.jobs.design.flexible import FlexibleSettings, flexible_settings
 
-KEYS = ("preset", "starts", "seed", "tether", "objective", "parameters", "bounds", "held", "flexible")
+KEYS = ("preset", "starts", "seed", "iterations", "tether", "objective", "parameters", "bounds", "held", "flexible")
 #: the tables of a design job
 TABLES = ("design", "costs")
 #: what a design optimises: the net AEP (Trevisi ch. 5), the annual profit (eq. 7.1) or the LCOE (eq. 6.17)
@@ -70,6 +72,8 @@ OBJECTIVES = ("aep", "profit", "lcoe")
 TETHERS = ("lumped", "flexible")
 #: the largest number of starts a job may ask for (ours: a typing error, not a design, beyond it)
 MAX_STARTS = 1000
+#: the largest cap on a start's SLSQP iterations a job may set (ours: a typing error beyond it)
+MOST_ITERATIONS = 100_000
 
 
 def _preset_files() -> dict[str, str]:
@@ -97,6 +101,7 @@ class DesignJob:
     flexible: FlexibleSettings = FlexibleSettings()
     objective: str = "aep"
     costs: CostParameters = CostParameters()
+    iterations: int = MAX_ITERATIONS
 
     def layout(self) -> Layout:
         return Layout.build(self.parameters, self.bounds, self.held, self.costs)
@@ -155,6 +160,9 @@ def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
     starts = design.get("starts", starts_for(parameters.cl_max))
     if isinstance(starts, bool) or not isinstance(starts, int) or not 1 <= starts <= MAX_STARTS:
         raise ConfigError(f"[design] starts = {starts!r}: must be an integer in 1..{MAX_STARTS}")
+    iterations = design.get("iterations", MAX_ITERATIONS)
+    if isinstance(iterations, bool) or not isinstance(iterations, int) or not 1 <= iterations <= MOST_ITERATIONS:
+        raise ConfigError(f"[design] iterations = {iterations!r}: must be an integer in 1..{MOST_ITERATIONS}")
     seed = design.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ConfigError(f"[design] seed = {seed!r}: must be an integer >= 0")
@@ -177,7 +185,8 @@ def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
     if "flexible" in design and tether != "flexible":
         raise ConfigError(f"[design.flexible]: only with [design] tether = \"flexible\" (this job's is {tether!r})")
     flexible = flexible_settings(design.get("flexible", {}), parameters)
-    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible, objective, prices)
+    return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible, objective, prices,
+                     iterations)
 
 
 def _table(design: dict, key: str) -> dict:

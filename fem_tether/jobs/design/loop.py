@@ -448,7 +448,7 @@ def _round(job: DesignJob, current: DesignResult, runs: BinRuns, k: int, state: 
     line = state.line = measured_line(bins)
     problem = Problem(job.parameters, job.bounds, job.held, tether_drag_factor=factor, line_at_kite=line,
                       costs=job.costs)
-    solution = problem.solve(normalised(problem, current))
+    solution = problem.solve(normalised(problem, current), job.iterations)
     result = design_result(problem, [solution], [record(current.best or 0, solution, job.parameters)], job.seed)
     if not result.found:
         state.status = "failed"

@@ -55,7 +55,7 @@ class DesignInterrupted(KeyboardInterrupt):
 def inputs_key(job: DesignJob) -> str:
     """What a start's result depends on: the job's text, its objective and prices and the package version."""
     return hashlib.sha256((job.text + "\n" + repr(job.parameters) + repr(sorted(job.bounds.items()))
-                           + repr(sorted(job.held.items())) + f"{job.seed}" + job.objective + repr(job.costs)
+                           + repr(sorted(job.held.items())) + f"{job.seed}" + job.objective + repr(job.costs) + f"{job.iterations}"
                            + __version__).encode()).hexdigest()
 
 
@@ -96,7 +96,7 @@ class DesignStarts:
 
     def run(self, index: int) -> None:
         start = start_points(self.problem.layout, 1, self.job.seed, first=index)[0]
-        solution = self.problem.solve(consistent(self.problem, start))
+        solution = self.problem.solve(consistent(self.problem, start), self.job.iterations)
         rec = record(index, solution, self.job.parameters)
         write_json(self.path(index), {"key": self.key, "record": rec.__dict__, "z": solution.z.tolist(),
                                       "multipliers": [float(v) for v in solution.multipliers.values()]},

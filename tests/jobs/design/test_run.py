@@ -1,14 +1,12 @@
 """Design jobs: keys checked with one-line errors, starts kept in parts and reused, the result file
 with its units and job, a foreign output refused."""
 
-import functools
 import json
 
 import pytest
 
 from fem_tether.cli import main
 from fem_tether.core.errors import ConfigError
-from fem_tether.design.optimiser import Problem
 from fem_tether.io.design_file import read_design_hdf5
 from fem_tether.jobs.design.job import load_design_job
 from fem_tether.jobs.design.run import parts_dir, run_design
@@ -19,6 +17,9 @@ JOB = '[design]\npreset = "trevisi-3mw"\nstarts = 2\n[design.parameters]\nmode =
 @pytest.mark.parametrize("text, message", [
     ('[design]\nstart = 2\n', "[design] start: unknown key"),
     ('[design]\nstarts = 0\n', "[design] starts = 0"),
+    ('[design]\niterations = 0\n', "[design] iterations = 0: must be an integer in 1..100000"),
+    ('[design]\niterations = 2.5\n', "[design] iterations = 2.5: must be an integer"),
+    ('[design.parameters]\nobjective = "profit"\n', "[design.parameters] objective: set it as [design] objective"),
     ('[design.parameters]\ncd0 = -1\n', "cd0 = -1.0: must be > 0"),
     ('[design.parameters]\nrotor = 1\n', "[design.parameters] rotor: unknown parameter"),
     ('[design.parameters]\nmass_balance = "taylor"\n',
@@ -109,12 +110,11 @@ def test_bounds_no_design_meets_are_refused_before_any_optimisation(tmp_path, ca
 
 
 def test_no_feasible_start_is_a_solve_failure_naming_the_constraint(tmp_path, capsys, monkeypatch):
-    """Where no start converges feasible (here SLSQP stopped after one iteration): exit 1, the summary
-    names each start's most violated constraint and by how much, the JSON carries it per start, and
-    no result file is written (the parts are kept)."""
-    monkeypatch.setattr(Problem, "solve", functools.partialmethod(Problem.solve, max_iterations=1))
+    """Where no start converges feasible (here SLSQP stopped after one iteration, ``[design]
+    iterations = 1``): exit 1, the summary names each start's most violated constraint and by how
+    much, the JSON carries it per start, and no result file is written (the parts are kept)."""
     path = tmp_path / "job.toml"
-    path.write_text(JOB)
+    path.write_text(JOB.replace("starts = 2\n", "starts = 2\niterations = 1\n"))
     out = tmp_path / "d.h5"
     assert main(["design", str(path), "--out", str(out)]) == 1
     lines = capsys.readouterr().out.splitlines()
