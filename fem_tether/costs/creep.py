@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fem_tether.core.arrays import as_array, real_part
+from fem_tether.core.arrays import as_array, real_part, trapezoid
 
 #: decades of life below L_ref the damage rate is capped at (an infeasible iterate's stress would overflow)
 MOST_DECADES = 200.0
@@ -57,5 +57,4 @@ def replacements_per_year(wind_mps, density_per_mps, reel_out_stress_Pa, reel_in
     share = as_array(reel_out_share)
     rate = (share * damage_rate_per_year(reel_out_stress_Pa, safety_factor, life_args)
             + (1.0 - share) * damage_rate_per_year(reel_in_stress_Pa, safety_factor, life_args))
-    y, x = as_array(density_per_mps) * rate, as_array(wind_mps)
-    return 0.5 * ((y[..., 1:] + y[..., :-1]) * (x[..., 1:] - x[..., :-1])).sum(axis=-1)
+    return trapezoid(as_array(density_per_mps) * rate, as_array(wind_mps))

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_tether.core.arrays import as_array, real_part
+from fem_tether.core.arrays import as_array, real_part, trapezoid
 from fem_tether.costs.breakdown import Hardware, price
 from fem_tether.costs.launch import strip_acceleration_mps2
 from fem_tether.costs.parameters import CostParameters
@@ -129,11 +129,6 @@ def wind_grid(cut_in_mps, cut_out_mps, n: int):
     """V_j = V_in + (V_out − V_in) j/(n − 1): the n wind speeds the design is flown at."""
     share = np.linspace(0.0, 1.0, n)
     return cut_in_mps + (cut_out_mps - cut_in_mps) * share
-
-
-def trapezoid(y, x):
-    """∫ y dx over the last axis by the trapezoidal rule (complex-safe)."""
-    return 0.5 * ((y[..., 1:] + y[..., :-1]) * (x[..., 1:] - x[..., :-1])).sum(axis=-1)
 
 
 def soft_max(x, sharpness=SOFT_MAX_SHARPNESS):

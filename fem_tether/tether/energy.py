@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem_tether.core.arrays import trapezoid
 from fem_tether.tether import free_kite
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.tether.results import TetherRun
@@ -60,10 +61,6 @@ class EnergyBalance:
     def relative_residual(self) -> float:
         """|residual| / |W_aero|."""
         return abs(self.residual_J) / abs(self.aero_work_J)
-
-
-def _trapezoid(t, y) -> float:
-    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)))
 
 
 def _aero_power_W(kite: free_kite.FreeKite, r, v, roll_rad: float) -> float:
@@ -120,8 +117,8 @@ def energy_balance(run: TetherRun, cfg, window: slice | None = None) -> EnergyBa
     return EnergyBalance(
         aero_work_J=float(np.sum(0.5 * (aero_left[1:] + aero[1:]) * dt)),
         winch_J=float(np.sum(0.5 * speed[steps][1:] * (tension[:-1] + tension[1:]) * dt)),
-        dissipated_J=_trapezoid(t, diss),
+        dissipated_J=float(trapezoid(diss, t)),
         kinetic_change_J=float(kinetic[-1] - kinetic[0]),
         potential_change_J=float(potential[-1] - potential[0]),
-        turbine_J=_trapezoid(t, run.series["turbine_power_W"][steps]),
+        turbine_J=float(trapezoid(run.series["turbine_power_W"][steps], t)),
     )

@@ -10,3 +10,15 @@ def test_as_array_keeps_complex_and_floats_the_rest():
     z = as_array(np.array([1.0 + 2e-30j]))
     assert z.dtype == np.complex128 and np.imag(z)[0] == 2e-30
     assert real_part(z)[0] == 1.0
+
+
+def test_trapezoid_is_numpys_on_reals_and_differentiates_by_the_complex_step():
+    from scipy.integrate import trapezoid as scipy_trapezoid
+
+    from fem_tether.core.arrays import trapezoid
+
+    x = np.array([[0.0, 0.5, 1.5, 3.0], [1.0, 2.0, 2.5, 4.0]])
+    y = np.sin(x) + x**2
+    assert np.allclose(trapezoid(y, x), scipy_trapezoid(y, x, axis=-1), rtol=1e-14)
+    h = 1e-30
+    assert np.allclose(np.imag(trapezoid(y + 1j * h * x, x)) / h, scipy_trapezoid(x, x, axis=-1), rtol=1e-14)
