@@ -21,6 +21,7 @@ object of a lower module, never a function of the caller's.
 
 from __future__ import annotations
 
+import json
 import time
 from collections.abc import Callable, Sequence
 from contextlib import ExitStack
@@ -52,6 +53,54 @@ class Work(Protocol):
 
     def while_waiting(self) -> None:
         """Rank 0's work while it waits for the other ranks' tasks."""
+
+
+class JsonParts:
+    """Tasks of equal cost, task k kept as one JSON part ``<PREFIX>_<k>.json`` in ``directory`` and valid
+    where :meth:`valid` says so (at least: the job's inputs ``key``); subclasses add :meth:`run`."""
+
+    PREFIX = "task"
+    DIGITS = 4
+
+    def __init__(self, key: str, directory: Path):
+        self.key, self.directory = key, directory
+
+    def path(self, index: int) -> Path:
+        return self.directory / f"{self.PREFIX}_{index:0{self.DIGITS}d}.json"
+
+    def cost_us(self, index: int) -> float:
+        return 1.0
+
+    def valid(self, part: dict, index: int) -> bool:
+        """Whether ``part`` is task ``index``'s for these inputs."""
+        return part.get("key") == self.key
+
+    def read(self, index: int) -> dict | None:
+        """Task ``index``'s part, or None where it is missing, unreadable or from other inputs."""
+        try:
+            part = json.loads(self.path(index).read_text())
+        except (OSError, ValueError):
+            return None
+        return part if isinstance(part, dict) and self.valid(part, index) else None
+
+    def kept(self, index: int) -> bool:
+        return self.read(index) is not None
+
+    def present(self, indices) -> int:
+        return sum(self.path(i).exists() for i in indices)
+
+    def while_waiting(self) -> None:
+        pass
+
+    def parts(self, count: int) -> list[dict]:
+        """Tasks 0 … count − 1's parts (rank 0, after every rank finished); InputError naming a missing one."""
+        parts = []
+        for index in range(count):
+            part = self.read(index)
+            if part is None:
+                raise InputError(f"{self.path(index)}: missing or from other inputs after the run")
+            parts.append(part)
+        return parts
 
 
 def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: float = 0.0) -> tuple[int, int]:

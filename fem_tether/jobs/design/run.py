@@ -18,7 +18,6 @@ nor where the design never reaches its rated power (a
 from __future__ import annotations
 
 import hashlib
-import json
 from contextlib import ExitStack
 from dataclasses import asdict, fields
 from pathlib import Path
@@ -27,7 +26,7 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.core.atomic import PAGE_NAME, OutputError, check_folder, check_writable, parts_dir, write_json
-from fem_tether.core.errors import ConfigError, InputError
+from fem_tether.core.errors import ConfigError
 from fem_tether.core.progress import Progress
 from fem_tether.costs.parameters import CURRENCY
 from fem_tether.core.stop import guard, sync
@@ -36,7 +35,7 @@ from fem_tether.design.result import DesignResult, StartRecord, design_result, n
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.design.loop import FlexibleOutcome, run_flexible
-from fem_tether.jobs.runner import claim_output, distribute, raise_on_every_rank
+from fem_tether.jobs.runner import JsonParts, claim_output, distribute, raise_on_every_rank
 from fem_tether.jobs.study.result import report_dir
 
 
@@ -70,29 +69,18 @@ def design_content(outcome: DesignResult | FlexibleOutcome, job: DesignJob) -> d
     return outcome.as_dict() | {"costs": costs_section(job)}
 
 
-class DesignStarts:
-    """The starts of a design job as :class:`fem_tether.jobs.runner.Work`."""
+class DesignStarts(JsonParts):
+    """The starts of a design job as :class:`fem_tether.jobs.runner.Work`: start k's part ``start_<k>.json``."""
+
+    PREFIX = "start"
 
     def __init__(self, job: DesignJob, out: Path):
-        self.job, self.key, self.directory = job, inputs_key(job), parts_dir(out)
+        super().__init__(inputs_key(job), parts_dir(out))
+        self.job = job
         self.problem = Problem(job.parameters, job.bounds, job.held, costs=job.costs)
 
-    def path(self, index: int) -> Path:
-        return self.directory / f"start_{index:04d}.json"
-
-    def cost_us(self, index: int) -> float:
-        return 1.0
-
-    def read(self, index: int) -> dict | None:
-        try:
-            part = json.loads(self.path(index).read_text())
-        except (OSError, ValueError):
-            return None
-        same = part.get("key") == self.key and set(part.get("record", ())) == RECORD_FIELDS
-        return part if same else None
-
-    def kept(self, index: int) -> bool:
-        return self.read(index) is not None
+    def valid(self, part: dict, index: int) -> bool:
+        return super().valid(part, index) and set(part.get("record", ())) == RECORD_FIELDS
 
     def run(self, index: int) -> None:
         start = start_points(self.problem.layout, 1, self.job.seed, first=index)[0]
@@ -102,19 +90,10 @@ class DesignStarts:
                                       "multipliers": [float(v) for v in solution.multipliers.values()]},
                    allow_nan=True)
 
-    def present(self, indices) -> int:
-        return sum(self.path(i).exists() for i in indices)
-
-    def while_waiting(self) -> None:
-        pass
-
     def solutions(self) -> tuple[list[Solution], list[StartRecord]]:
         """Every start rebuilt from its part (rank 0, after all ranks finished)."""
         solutions, records = [], []
-        for index in range(self.job.starts):
-            part = self.read(index)
-            if part is None:
-                raise InputError(f"{self.path(index)}: missing or from other inputs after the run")
+        for part in self.parts(self.job.starts):
             z = np.array(part["z"], dtype=np.float64)
             e = self.problem.evaluate(z)
             rec = StartRecord(**part["record"])

@@ -17,7 +17,6 @@ outputs with its message and left out of the statistics (the file counts them).
 from __future__ import annotations
 
 import hashlib
-import json
 import math
 from collections.abc import Callable, Mapping
 from contextlib import ExitStack
@@ -28,11 +27,11 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.core.atomic import OutputError, check_folder, check_writable, parts_dir, write_json
-from fem_tether.core.errors import InputError, SolverDivergedError
+from fem_tether.core.errors import SolverDivergedError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
 from fem_tether.io.sensitivity_file import is_sensitivity_result, write_sensitivity_hdf5
-from fem_tether.jobs.runner import claim_output, distribute
+from fem_tether.jobs.runner import JsonParts, claim_output, distribute
 from fem_tether.uncertainty.analysis import MAX_DEGREE, RESAMPLES, analyse, convergence
 from fem_tether.uncertainty.inputs import Input, sample
 
@@ -67,28 +66,19 @@ def inputs_key(job: SensitivityJob) -> str:
                                 __version__)).encode()).hexdigest()
 
 
-class Samples:
-    """The samples of a sensitivity job as :class:`fem_tether.jobs.runner.Work`."""
+class Samples(JsonParts):
+    """The samples of a sensitivity job as :class:`fem_tether.jobs.runner.Work`: sample k's part
+    ``sample_<k>.json``."""
+
+    PREFIX, DIGITS = "sample", 5
 
     def __init__(self, job: SensitivityJob, out: Path):
-        self.job, self.key, self.directory = job, inputs_key(job), parts_dir(out)
+        super().__init__(inputs_key(job), parts_dir(out))
+        self.job = job
         self.points = job.points()
 
-    def path(self, index: int) -> Path:
-        return self.directory / f"sample_{index:05d}.json"
-
-    def cost_us(self, index: int) -> float:
-        return 1.0
-
-    def read(self, index: int) -> dict | None:
-        try:
-            part = json.loads(self.path(index).read_text())
-        except (OSError, ValueError):
-            return None
-        return part if part.get("key") == self.key and part.get("index") == index else None
-
-    def kept(self, index: int) -> bool:
-        return self.read(index) is not None
+    def valid(self, part: dict, index: int) -> bool:
+        return super().valid(part, index) and part.get("index") == index
 
     def run(self, index: int) -> None:
         parameters = {x.name: float(v) for x, v in zip(self.job.inputs, self.points[index])}
@@ -99,20 +89,9 @@ class Samples:
         write_json(self.path(index), {"key": self.key, "index": index, "parameters": parameters,
                                       "outputs": outputs, "error": error}, allow_nan=True)
 
-    def present(self, indices) -> int:
-        return sum(self.path(i).exists() for i in indices)
-
-    def while_waiting(self) -> None:
-        pass
-
     def values(self) -> dict[str, np.ndarray]:
         """Every sample's outputs (NaN where its model failed), from the parts (rank 0, after the run)."""
-        parts = []
-        for index in range(self.job.samples):
-            part = self.read(index)
-            if part is None:
-                raise InputError(f"{self.path(index)}: missing or from other inputs after the run")
-            parts.append(part["outputs"])
+        parts = [part["outputs"] for part in self.parts(self.job.samples)]
         return {name: np.array([p.get(name, math.nan) for p in parts]) for name in self.job.units}
 
 
