@@ -1,0 +1,103 @@
+"""Trevisi's 3 MW AEP design as the model of a global sensitivity analysis (§5.5–§5.8).
+
+Trevisi, *Configuration optimisation of kite-based wind turbines* §5.7.1: "Each
+worker has to find the global maximum, given the problem with the selected
+model parameters. To find the global maximum, a number N_{max} of optimisation
+problems with different random initial conditions has to converge. Finally,
+the global maximum for each model parameters set (input) is considered to be
+the best of the N_{max} converged optimisation problems." with N_max = 10, and
+15 where C_L,max exceeds 3 (§5.8).
+
+:func:`design` is that worker: the design problem of
+:class:`~fem_tether.design.parameters.DesignParameters` (3 MW, ground- and
+fly-generation, the §3.8 site) with the sampled Table 5.4 parameters set, its
+starts drawn in turn (:func:`fem_tether.design.optimiser.start_points`, seed 0:
+the same starts for every sample and rank) until N_max have converged feasible
+or :data:`ATTEMPTS` × N_max have been tried; the best of the converged ones is
+the sample's optimum.  Its outputs are Table 5.6's (in SI units) and the
+normalised sensitivities of the net AEP to every Table 5.4 parameter and to
+the limits of §5.8.1 (:func:`fem_tether.design.sensitivity.sensitivities_Wh`:
+p · d AEP*/dp by the envelope theorem, exact to rounding; for a limit this is
+the normalised Lagrange multiplier λ of Table 5.6).
+
+The inputs (:data:`UNCERTAIN`) are Table 5.4's ranges, each uniform: the
+thesis' caption says "ranges, distributions and descriptions" and prints only
+a minimum and a maximum for each.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+from fem_tether.core.errors import SolverDivergedError
+from fem_tether.design.optimiser import Problem, Solution, best, consistent, start_points, starts_for
+from fem_tether.design.parameters import TABLE_5_4, DesignParameters
+from fem_tether.design.sensitivity import REPORTED, sensitivities_Wh
+from fem_tether.design.variables import SCALARS
+from fem_tether.uncertainty.inputs import Input, Uniform
+
+SOURCE = "Trevisi, Configuration optimisation of kite-based wind turbines Table 5.4"
+#: the starts a sample may try, in multiples of N_max, before it keeps fewer than N_max converged (ours)
+ATTEMPTS = 3
+
+#: the units of Table 5.4's parameters (SI: the voltage in V, E_gen in W/kg, δ as a share of the span)
+UNITS = {"line_voltage_V": "V", "spar_density_kg_m3": "kg/m3", "generator_power_density_W_kg": "W/kg",
+         "min_altitude_m": "m", "wing_area_m2": "m2"}
+#: Table 5.4's parameters, each uniform over its range
+UNCERTAIN = tuple(Input(name, UNITS.get(name, "-"), Uniform(*TABLE_5_4[name]), SOURCE) for name in TABLE_5_4)
+#: Table 5.6's outputs the model computes: the design's (model name: unit)
+QUANTITIES = {"aep_Wh": "Wh", "aep_ground_Wh": "Wh", "aep_onboard_Wh": "Wh", "capacity_factor": "-",
+              "total_mass_kg": "kg", "glider_mass_kg": "kg", "generator_mass_kg": "kg", "tether_mass_kg": "kg",
+              "takeoff_mass_kg": "kg", "altitude_m": "m", "support_m": "m", "tip_deflection_m": "m",
+              "centre_deflection_m": "m", "turbine_area_m2": "m2", "takeoff_thrust_N": "N",
+              "takeoff_energy_Wh": "Wh", "propeller_area_m2": "m2"}
+#: Table 5.6's outputs that are design variables (variable name: unit)
+VARIABLES = {name: SCALARS[name][2] for name in ("tether_length_m", "tether_diameter_m", "elevation_rad",
+                                                  "cut_in_mps", "cut_out_mps", "span_m", "aspect_ratio",
+                                                  "climb_angle_rad", "turbine_thrust_share")}
+#: every output: the design's quantities and variables, the net AEP's sensitivities (Wh per unit relative
+#: change of the parameter), the starts tried and converged
+OUTPUT_UNITS = (QUANTITIES | VARIABLES | {f"aep_per_{name}_Wh": "Wh" for name in REPORTED}
+                | {"starts_tried": "-", "starts_converged": "-"})
+#: the outputs that get Sobol' indices: Table 5.6's performance and main design outputs (Fig. 5.8: the AEP)
+INDEXED = ("aep_Wh", "aep_ground_Wh", "aep_onboard_Wh", "capacity_factor", "total_mass_kg", "tether_length_m",
+           "tether_diameter_m", "altitude_m", "elevation_rad", "span_m", "aspect_ratio")
+
+
+def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS) -> tuple[Solution, int, int]:
+    """The best of the first ``n_max`` starts that converge feasible (§5.7.1), trying at most
+    ``attempts`` × ``n_max`` starts; (best, starts tried, starts converged).  Raises
+    :class:`SolverDivergedError` where none converged."""
+    converged: list[Solution] = []
+    tried = 0
+    for start in start_points(problem.layout, attempts * n_max):
+        tried += 1
+        solution = problem.solve(consistent(problem, start))
+        if solution.success and solution.feasible:
+            converged.append(solution)
+            if len(converged) == n_max:
+                break
+    k = best(converged)
+    if k is None:
+        raise SolverDivergedError(f"no start of {tried} converged feasible")
+    return converged[k], tried, len(converged)
+
+
+def design(sampled: Mapping[str, float]) -> dict[str, float]:
+    """The model of the global analysis: the best of N_max converged designs (:func:`multistart`,
+    N_max by :func:`~fem_tether.design.optimiser.starts_for`) at the nominal parameters with
+    ``sampled`` ones set; its :data:`OUTPUT_UNITS`."""
+    parameters = dataclasses.replace(DesignParameters(), **{k: float(v) for k, v in sampled.items()})
+    problem = Problem(parameters)
+    solution, tried, converged = multistart(problem, starts_for(parameters.cl_max))
+    q = solution.evaluation.quantities
+    values = problem.layout.unpack(solution.z[None, :])
+    out = {name: float(q[name][0]) for name in QUANTITIES}
+    out |= {name: float(np.ravel(values[name])[0]) for name in VARIABLES}
+    out |= {f"aep_per_{name}_Wh": value for name, value in sensitivities_Wh(problem, solution).items()}
+    out |= {"starts_tried": float(tried), "starts_converged": float(converged)}
+    return {name: out.get(name, math.nan) for name in OUTPUT_UNITS}

@@ -1,0 +1,73 @@
+"""The 3 MW design as a sensitivity model: Table 5.4's inputs, §5.7.1's multistart, Table 5.6's outputs."""
+
+import math
+
+import pytest
+
+from fem_tether.core.errors import SolverDivergedError
+from fem_tether.design.optimiser import Problem, Solution
+from fem_tether.design.parameters import TABLE_5_4, DesignParameters
+from fem_tether.uncertainty import kite_design
+from fem_tether.uncertainty.inputs import Uniform
+
+
+def test_the_inputs_are_table_5_4_uniform_with_units():
+    assert [x.name for x in kite_design.UNCERTAIN] == list(TABLE_5_4)
+    for x in kite_design.UNCERTAIN:
+        assert isinstance(x.distribution, Uniform)
+        assert (x.distribution.low, x.distribution.high) == TABLE_5_4[x.name]
+        assert "Table 5.4" in x.source
+    units = {x.name: x.unit for x in kite_design.UNCERTAIN}
+    assert units["wing_area_m2"] == "m2" and units["line_voltage_V"] == "V" and units["cd0"] == "-"
+    assert set(kite_design.INDEXED) <= set(kite_design.OUTPUT_UNITS)
+
+
+AREA_M2 = 57.5
+
+
+@pytest.fixture(scope="module")
+def sample():
+    """A sample at the nominal parameters with A_kite 57.5 m², N_max patched to 1 (for time), and the
+    same multistart done directly."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(kite_design, "starts_for", lambda cl_max: 1)
+        out = kite_design.design({"wing_area_m2": AREA_M2})
+    problem = Problem(DesignParameters(wing_area_m2=AREA_M2))
+    return out, problem, kite_design.multistart(problem, 1)
+
+
+def test_a_sample_is_its_multistart_best_with_every_output(sample):
+    out, problem, (best, tried, converged) = sample
+    assert set(out) == set(kite_design.OUTPUT_UNITS)
+    assert all(math.isfinite(v) for v in out.values())
+    assert (out["starts_tried"], out["starts_converged"]) == (tried, converged) and converged == 1
+    q = best.evaluation.quantities
+    assert all(out[name] == q[name][0] for name in kite_design.QUANTITIES)
+    assert out["aep_Wh"] == pytest.approx(out["aep_ground_Wh"] + out["aep_onboard_Wh"], rel=1e-9)
+    assert out["capacity_factor"] == pytest.approx(out["aep_Wh"] / (8760.0 * 3e6), rel=1e-9)
+    assert out["elevation_rad"] == problem.layout.unpack(best.z[None, :])["elevation_rad"].item()
+
+
+def test_a_sample_with_no_converged_start_fails_with_its_count(monkeypatch):
+    real = Problem.solve
+
+    def diverged(self, z0, max_iterations=10):
+        s = real(self, z0, 1)
+        return Solution(**{**s.__dict__, "success": False})
+
+    monkeypatch.setattr(Problem, "solve", diverged)
+    with pytest.raises(SolverDivergedError, match="no start of 3 converged feasible"):
+        kite_design.multistart(Problem(DesignParameters()), 1, attempts=3)
+
+
+def test_the_sensitivities_are_the_envelope_derivatives_of_the_kept_design(sample):
+    """aep_per_<p>_Wh is p · dAEP*/dp: for the wing area it matches a finite difference of re-optimised
+    designs (relative step 1e-3, both from the kept optimum) within 1 %."""
+    out, base, (best, _, _) = sample
+    h = 1e-3
+    shifted = Problem(DesignParameters(wing_area_m2=AREA_M2 * (1 + h)))
+
+    def net_Wh(problem):
+        return -problem.solve(best.z).objective * 8760.0 * problem.parameters.rated_power_W
+
+    assert out["aep_per_wing_area_m2_Wh"] == pytest.approx((net_Wh(shifted) - net_Wh(base)) / h, rel=1e-2)
