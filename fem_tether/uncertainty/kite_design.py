@@ -30,6 +30,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -91,7 +92,8 @@ def design(sampled: Mapping[str, float]) -> dict[str, float]:
     """The model of the global analysis: the best of N_max converged designs (:func:`multistart`,
     N_max by :func:`~fem_tether.design.optimiser.starts_for`) at the nominal parameters with
     ``sampled`` ones set; its :data:`OUTPUT_UNITS`."""
-    parameters = dataclasses.replace(DesignParameters(), **{k: float(v) for k, v in sampled.items()})
+    changes: dict[str, Any] = {k: float(v) for k, v in sampled.items()}
+    parameters = dataclasses.replace(DesignParameters(), **changes)
     problem = Problem(parameters)
     solution, tried, converged = multistart(problem, starts_for(parameters.cl_max))
     q = solution.evaluation.quantities
