@@ -41,7 +41,7 @@ from fem_tether.design.sensitivity import REPORTED, sensitivities_Wh
 from fem_tether.design.variables import SCALARS
 from fem_tether.uncertainty.inputs import Input, Uniform
 
-SOURCE = "Trevisi, Configuration optimisation of kite-based wind turbines Table 5.4"
+THESIS = "Trevisi, Configuration optimisation of kite-based wind turbines"
 #: the starts a sample may try, in multiples of N_max, before it keeps fewer than N_max converged (ours)
 ATTEMPTS = 3
 
@@ -49,7 +49,13 @@ ATTEMPTS = 3
 UNITS = {"line_voltage_V": "V", "spar_density_kg_m3": "kg/m3", "generator_power_density_W_kg": "W/kg",
          "min_altitude_m": "m", "wing_area_m2": "m2"}
 #: Table 5.4's parameters, each uniform over its range
-UNCERTAIN = tuple(Input(name, UNITS.get(name, "-"), Uniform(*TABLE_5_4[name]), SOURCE) for name in TABLE_5_4)
+UNCERTAIN = tuple(Input(name, UNITS.get(name, "-"), Uniform(*TABLE_5_4[name]), f"{THESIS} Table 5.4") for name in TABLE_5_4)
+#: Table 5.7's wind-resource parameters (§5.10), each uniform, to add to :data:`UNCERTAIN`
+WIND_RESOURCE = (Input("shear_alpha", "-", Uniform(0.1, 0.3), f"{THESIS} Table 5.7"),
+                 Input("weibull_scale_mps", "m/s", Uniform(6.0, 15.0), f"{THESIS} Table 5.7"),
+                 Input("weibull_shape", "-", Uniform(1.0, 3.0), f"{THESIS} Table 5.7"))
+#: the parameters a sample may set: every number of :class:`DesignParameters`
+ACCEPTS = frozenset(f.name for f in dataclasses.fields(DesignParameters) if f.type in ("float", "float | None"))
 #: Table 5.6's outputs the model computes: the design's (model name: unit)
 QUANTITIES = {"aep_Wh": "Wh", "aep_ground_Wh": "Wh", "aep_onboard_Wh": "Wh", "capacity_factor": "-",
               "total_mass_kg": "kg", "glider_mass_kg": "kg", "generator_mass_kg": "kg", "tether_mass_kg": "kg",

@@ -71,3 +71,11 @@ def test_the_sensitivities_are_the_envelope_derivatives_of_the_kept_design(sampl
         return -problem.solve(best.z).objective * 8760.0 * problem.parameters.rated_power_W
 
     assert out["aep_per_wing_area_m2_Wh"] == pytest.approx((net_Wh(shifted) - net_Wh(base)) / h, rel=1e-2)
+
+
+def test_table_5_7_adds_the_wind_resource_and_any_number_of_the_parameters_may_be_sampled():
+    assert {x.name: (x.distribution.low, x.distribution.high) for x in kite_design.WIND_RESOURCE} == {
+        "shear_alpha": (0.1, 0.3), "weibull_scale_mps": (6.0, 15.0), "weibull_shape": (1.0, 3.0)}
+    assert all("Table 5.7" in x.source for x in kite_design.WIND_RESOURCE)
+    assert {x.name for x in kite_design.UNCERTAIN + kite_design.WIND_RESOURCE} <= kite_design.ACCEPTS
+    assert "mode" not in kite_design.ACCEPTS and "objective" not in kite_design.ACCEPTS
