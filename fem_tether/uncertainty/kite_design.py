@@ -49,7 +49,8 @@ ATTEMPTS = 3
 UNITS = {"line_voltage_V": "V", "spar_density_kg_m3": "kg/m3", "generator_power_density_W_kg": "W/kg",
          "min_altitude_m": "m", "wing_area_m2": "m2"}
 #: Table 5.4's parameters, each uniform over its range
-UNCERTAIN = tuple(Input(name, UNITS.get(name, "-"), Uniform(*TABLE_5_4[name]), f"{THESIS} Table 5.4") for name in TABLE_5_4)
+UNCERTAIN = tuple(Input(name, UNITS.get(name, "-"), Uniform(*TABLE_5_4[name]), f"{THESIS} Table 5.4")
+                  for name in TABLE_5_4)
 #: Table 5.7's wind-resource parameters (§5.10), each uniform, to add to :data:`UNCERTAIN`
 WIND_RESOURCE = (Input("shear_alpha", "-", Uniform(0.1, 0.3), f"{THESIS} Table 5.7"),
                  Input("weibull_scale_mps", "m/s", Uniform(6.0, 15.0), f"{THESIS} Table 5.7"),
@@ -65,7 +66,8 @@ QUANTITIES = {"aep_Wh": "Wh", "aep_ground_Wh": "Wh", "aep_onboard_Wh": "Wh", "ca
 #: Table 5.6's outputs that are design variables (variable name: unit)
 VARIABLES = {name: SCALARS[name][2] for name in ("tether_length_m", "tether_diameter_m", "elevation_rad",
                                                   "cut_in_mps", "cut_out_mps", "span_m", "aspect_ratio",
-                                                  "climb_angle_rad", "turbine_thrust_share")}
+                                                  "climb_angle_rad", "turbine_thrust_share", "cap_a_m", "cap_b_m",
+                                                  "cap_c_m")}
 #: every output: the design's quantities and variables, the net AEP's sensitivities (Wh per unit relative
 #: change of the parameter), the starts tried and converged
 OUTPUT_UNITS = (QUANTITIES | VARIABLES | {f"aep_per_{name}_Wh": "Wh" for name in REPORTED}
