@@ -84,12 +84,16 @@ def aero_moment_Nm(x_m, span_m, force_N):
                = Σ_{k≥2} (−1)^k (3/8 + 3^{2k+1}/24 − (2k+1)/2) φ^{2k+1}/(2k+1)!  (= φ⁵/15 + …),
 
     evaluated by the series below φ = 0.5 (ours, for the precision of the
-    complex-step derivatives near the tip).  M_aero(s/2) = −Ra_max s/(3π).
+    complex-step derivatives near the tip), by Horner's rule in φ².  M_aero(s/2) = −Ra_max s/(3π).
     """
     phi = 2.0 * np.arcsin(np.sqrt(x_m / span_m))
     small = np.real(phi) < _SERIES_BELOW_RAD
     phi_small = np.where(small, phi, 0.0 * phi)
-    series = np.sum(_SERIES_COEFFICIENTS * phi_small[..., None] ** (2 * _SERIES_POWERS + 1), axis=-1)
+    phi2 = phi_small * phi_small
+    series = 0.0 * phi2 + _SERIES_COEFFICIENTS[-1]
+    for coefficient in _SERIES_COEFFICIENTS[-2::-1]:      # Horner in φ², then times φ⁵
+        series = series * phi2 + coefficient
+    series = series * phi2 * phi2 * phi_small
     closed = 3.0 / 8.0 * np.sin(phi) + np.sin(3.0 * phi) / 24.0 - 0.5 * phi * np.cos(phi)
     return -force_N * span_m / np.pi * np.where(small, series, closed)
 
