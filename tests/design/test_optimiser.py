@@ -162,7 +162,7 @@ def test_section_7_3_1_the_profit_optimum_is_smooth_in_p_rated_and_p_el():
     14485.8, 14588.1 MWh; the chord 14480.9 MWh, 0.034 % below E*(40); each optimum earns 0.06-0.38 %
     more than the others' at its price.  f 0.404921, 0.406542, 0.407973 at 1.9, 2.0, 2.1 MW; the
     centre from the ends within 1.1e-9; jump ratio 0.118.  481 SLSQP iterations from the start, 33-59
-    from a neighbour; 13-26 s."""
+    from a neighbour; 13-31 s (alone, under load)."""
     import dataclasses as dc
 
     from fem_tether.design.model import HOURS_PER_YEAR, REFERENCE_PRICE_EUR_PER_MWH
