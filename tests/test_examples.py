@@ -312,3 +312,17 @@ def test_cantilever_sensitivity_reproduces_chapter_4(tmp_path):
     assert r["file"].is_file()
     assert all((tmp_path / f).is_file() for f in ("cantilever-sobol.png", "cantilever-convergence.png",
                                                   "cantilever-scatter.png"))
+
+
+@pytest.mark.parametrize("name, preset", [("design_flexible_3mw", "trevisi-3mw"),
+                                          ("design_profit_fg_flexible", "trevisi-2mw-profit-fg"),
+                                          ("design_profit_gg_flexible", "trevisi-2mw-profit-gg")])
+def test_design_jobs_load(name, preset):
+    """The design jobs of docs/design-flexible.md are valid jobs: their preset's design with the
+    flexible tether in the loop (the profit ones at the preset's 2000-iteration cap)."""
+    from fem_tether.jobs.design.job import load_design_job
+
+    job, shipped = load_design_job(EXAMPLES / f"{name}.toml"), load_design_job(preset=preset)
+    assert job.tether == "flexible" and shipped.tether == "lumped"
+    assert (job.parameters, job.objective, job.costs, job.iterations) == \
+        (shipped.parameters, shipped.objective, shipped.costs, shipped.iterations)

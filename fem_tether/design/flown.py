@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from fem_tether.design.model import LineAtKite
-from fem_tether.design.optimiser import FEASIBILITY_TOLERANCE, Problem, Solution
+from fem_tether.design.optimiser import FEASIBILITY_TOLERANCE, MAX_ITERATIONS, Problem, Solution
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import SCALARS
 
@@ -54,11 +54,13 @@ class HeldProblem(Problem):
         return f, grad, c_eq, j_eq, c_in + SLACK, j_in
 
 
-def flown(problem: Problem, z, tether_drag_factor=None, line_at_kite: LineAtKite | None = None) -> Solution:
+def flown(problem: Problem, z, tether_drag_factor=None, line_at_kite: LineAtKite | None = None,
+          max_iterations: int = MAX_ITERATIONS) -> Solution:
     """The design of ``problem`` at the normalised point ``z``, its :func:`hardware` held, flown with
-    ``tether_drag_factor`` and ``line_at_kite``; the solution of its held problem."""
+    ``tether_drag_factor`` and ``line_at_kite``; the solution of its held problem (at most
+    ``max_iterations`` SLSQP iterations: a job's ``[design] iterations``)."""
     values = problem.layout.unpack(np.asarray(z, dtype=float)[None, :])
     held = dict(problem.held) | {name: float(np.ravel(values[name])[0]) for name in hardware(problem.parameters)}
     fly = HeldProblem(problem.parameters, problem.bounds, held, tether_drag_factor,
                       problem.options["kite_carries_tether"], line_at_kite, problem.costs)
-    return fly.solve(fly.layout.pack({name: np.ravel(values[name]) for name in fly.layout.free}))
+    return fly.solve(fly.layout.pack({name: np.ravel(values[name]) for name in fly.layout.free}), max_iterations)

@@ -7,7 +7,7 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
     starts = 10                 # default: N_max of Trevisi §5.3.1 (10; 15 where cl_max > 3)
     seed = 0                    # start k is drawn from NumPy's generator seeded (seed, k)
     iterations = 500            # SLSQP's cap on the iterations of a start (a ground-gen profit design
-                                # needs ~1800: the creep term's curvature, docs/costs.md §5)
+                                # needs ~1700: the creep term prices its control above rated, docs/costs.md §5.2)
     tether = "lumped"           # the straight tether of eqs. 3.14-3.19, or "flexible": the FE line in
                                 # the loop (fem_tether.jobs.design.loop, docs/design-flexible.md)
     objective = "aep"           # what the design maximises: "aep" (Trevisi ch. 5), "profit" (eq. 7.1) or

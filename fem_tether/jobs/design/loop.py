@@ -248,7 +248,8 @@ def measured_line(bins: dict) -> LineAtKite:
 def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, flexible_problem: Problem,
                 factor: np.ndarray, bins: dict) -> dict:
     """Where the flexible design's AEP differs from the lumped one's, in AEPs [Wh] (NaN: the flight's
-    re-optimisation did not converge feasible; :func:`fem_tether.design.flown.flown`):
+    re-optimisation did not converge feasible within the job's ``[design] iterations``;
+    :func:`fem_tether.design.flown.flown`):
 
     ``lumped`` and ``flexible``: the two designs (the flexible one optimised with the FE line's drag
     factors and its :func:`measured_line`); ``lumped_flexible_line``: the lumped design flown with all that
@@ -273,16 +274,19 @@ def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, fl
         return float(solution.evaluation.quantities["aep_Wh"][0]) if solution.success and solution.feasible \
             else math.nan
 
+    def fly(problem: Problem, z, factor, line_at_kite=None) -> Solution:
+        return flown(problem, z, factor, line_at_kite, job.iterations)
+
     return {"lumped": lumped.outputs["aep_Wh"], "flexible": flexible.outputs["aep_Wh"],
-            "lumped_flexible_line": aep(flown(lumped_problem, z_lumped, factor, line)),
-            "lumped_flexible_drag": aep(flown(lumped_problem, z_lumped, factor)),
-            "flexible_straight_drag": aep(flown(flexible_problem, z_flexible, None)),
-            "flexible_model_line": aep(flown(flexible_problem, z_flexible, factor)),
-            "flexible_model_sag": aep(flown(flexible_problem, z_flexible, factor,
-                                            LineAtKite(zeros, line.ground_tension_share))),
-            "flexible_model_tension": aep(flown(flexible_problem, z_flexible, factor,
-                                                LineAtKite(line.extra_inclination_rad, ones))),
-            "flexible_measured_cd": aep(flown(flexible_problem, z_flexible, measured_cd, line))}
+            "lumped_flexible_line": aep(fly(lumped_problem, z_lumped, factor, line)),
+            "lumped_flexible_drag": aep(fly(lumped_problem, z_lumped, factor)),
+            "flexible_straight_drag": aep(fly(flexible_problem, z_flexible, None)),
+            "flexible_model_line": aep(fly(flexible_problem, z_flexible, factor)),
+            "flexible_model_sag": aep(fly(flexible_problem, z_flexible, factor,
+                                          LineAtKite(zeros, line.ground_tension_share))),
+            "flexible_model_tension": aep(fly(flexible_problem, z_flexible, factor,
+                                              LineAtKite(line.extra_inclination_rad, ones))),
+            "flexible_measured_cd": aep(fly(flexible_problem, z_flexible, measured_cd, line))}
 
 
 @dataclass

@@ -181,6 +181,31 @@ def test_the_stored_designs_are_their_problems_optima(small):
     assert a["flexible_straight_drag"] > a["flexible"]
 
 
+
+def test_the_attribution_flies_within_the_jobs_iteration_cap(small, monkeypatch):
+    """Every flight of the attribution gets the job's ``[design] iterations`` as its SLSQP cap, and
+    :func:`flown` keeps to it.  (Was: the flights ran at the optimiser's default cap of 500 whatever the
+    job said, so the ground-gen profit preset's flights, set to 2000, stopped unconverged: NaN.)"""
+    import dataclasses
+
+    from fem_tether.jobs.design import loop
+
+    r = read_design_hdf5(small[1])
+    f = r["flexible"]
+    factor, line = np.asarray(f["bins"]["factor"]), measured_line(f["bins"])
+    job = dataclasses.replace(load_design_job(small[0]), iterations=3)
+    caps = []
+
+    def counted(*args, **kwargs):
+        solution = flown(*args, **kwargs)
+        caps.append((args[4] if len(args) > 4 else kwargs.get("max_iterations"), solution.iterations))
+        return solution
+
+    monkeypatch.setattr(loop, "flown", counted)
+    problem = Problem(job.parameters, job.bounds, job.held, tether_drag_factor=factor, line_at_kite=line)
+    loop.attribution(job, _result(r), _result(f), problem, factor, f["bins"])
+    assert len(caps) == 7 and all(cap == 3 and iterations <= 3 for cap, iterations in caps)
+
 def test_the_line_holds_its_tension_and_loses_its_weight_less_its_swing(small):
     """Each bin's run: the winch holds the design's tether force (1e-6); the kite's end pulls more
     by the line's weight m_r g h less the centripetal pull of its sweep m_r V_a^2 / 2 (a rod turning
