@@ -55,7 +55,7 @@ NAMES = [x.name for x in beam.UNCERTAIN]
 LABELS = {"max_aspect_ratio": "AR_lim", "max_deflection_m": "δ_max", "young_modulus_Pa": "E",
           "stress_limit_Pa": "σ_lim", "mass_kg": "m", "width_m": "b", "thickness_m": "t",
           "deflection_multiplier_kg": "λ_δ", "aspect_ratio_multiplier_kg": "λ_AR", "stress_multiplier_kg": "λ_σ"}
-INDEXED = ("mass_kg", "width_m", "thickness_m", "deflection_multiplier_kg", "aspect_ratio_multiplier_kg")
+INDEXED = beam.INDEXED
 #: draws of the closed form's exact statistics
 EXACT_DRAWS = 400_000
 
