@@ -62,8 +62,22 @@ def _grid(count: int, width: float, height: float, **options):
     return fig, list(axes.flat[:count])
 
 
+#: SI units drawn with a prefix (GPa, MW, GWh, kN ...) where their values are large
+PREFIXED = ("Pa", "W", "Wh", "N", "J", "EUR", "EUR/year")
+PREFIXES = ((1e9, "G"), (1e6, "M"), (1e3, "k"))
+
+
 def _values(r: dict, group: str, name: str) -> np.ndarray:
     return np.asarray(r[group][name]["values"], dtype=float)
+
+
+def scale(r: dict, group: str, name: str) -> tuple[float, str]:
+    """(factor, label) to draw a quantity in: its unit with the SI prefix of its largest finite
+    value (GPa for 7e10 Pa), the unit itself where it takes none."""
+    unit = r[group][name]["unit"]
+    largest = np.nanmax(np.abs(_values(r, group, name)), initial=0.0)
+    factor, prefix = next(((f, p) for f, p in PREFIXES if unit in PREFIXED and largest >= f), (1.0, ""))
+    return factor, labelled(name, prefix + unit)
 
 
 def _colours(names: list[str]) -> dict[str, tuple]:
@@ -113,10 +127,12 @@ def plot_histograms(r: dict, path) -> Path:
     bins = max(10, min(40, int(np.sqrt(ok.size))))
     for ax, name in zip(axes, shown):
         s, unit = r["statistics"][name], r["outputs"][name]["unit"]
-        ax.hist(_values(r, "outputs", name)[ok], bins=bins, color="tab:blue", alpha=0.7)
-        ax.axvspan(s["mean"] - s["sd"], s["mean"] + s["sd"], color="tab:orange", alpha=0.2, lw=0, zorder=0)
-        ax.axvline(s["mean"], color="tab:red", lw=1.2)
-        ax.set_xlabel(labelled(name, unit), fontsize=9)
+        factor, label = scale(r, "outputs", name)
+        ax.hist(_values(r, "outputs", name)[ok] / factor, bins=bins, color="tab:blue")
+        ax.axvspan((s["mean"] - s["sd"]) / factor, (s["mean"] + s["sd"]) / factor, color="tab:orange", alpha=0.2,
+                   lw=0, zorder=0)
+        ax.axvline(s["mean"] / factor, color="tab:red", lw=1.2)
+        ax.set_xlabel(label, fontsize=9)
         ax.set_ylabel("evaluations")
         ax.set_title(f"mean {with_error(s['mean'], s['mean_error'])}, SD {with_error(s['sd'], s['sd_error'])} {unit}",
                      fontsize=8)
@@ -135,12 +151,14 @@ def plot_scatter(r: dict, path) -> Path:
                              constrained_layout=True)
     colours = _colours(names)
     for row, output in zip(axes, outputs):
-        y = _values(r, "outputs", output)[ok]
+        y_factor, y_label = scale(r, "outputs", output)
+        y = _values(r, "outputs", output)[ok] / y_factor
         for ax, k in zip(row, ranking(r, output)[:dominant]):
             name = names[k]
-            ax.scatter(_values(r, "inputs", name)[ok], y, s=5, color=colours[name], alpha=0.7, lw=0)
-            ax.set_xlabel(labelled(name, r["inputs"][name]["unit"]), fontsize=9)
-            ax.set_ylabel(labelled(output, r["outputs"][output]["unit"]), fontsize=9)
+            x_factor, x_label = scale(r, "inputs", name)
+            ax.scatter(_values(r, "inputs", name)[ok] / x_factor, y, s=5, color=colours[name], alpha=0.7, lw=0)
+            ax.set_xlabel(x_label, fontsize=9)
+            ax.set_ylabel(y_label, fontsize=9)
             ax.set_title(f"$S_T$ = {r['indices'][output]['total'][k]:.2f}", fontsize=9)
             ax.grid(alpha=0.3)
     fig.suptitle("every evaluation: the indexed outputs against their two inputs of largest total index", fontsize=10)
@@ -183,14 +201,16 @@ def plot_surface(r: dict, path) -> Path:
     xi = np.zeros((gx.size, len(names)))
     xi[:, names.index(x_name)] = _standard(r["inputs"][x_name]["distribution"], gx.ravel())
     xi[:, names.index(y_name)] = _standard(r["inputs"][y_name]["distribution"], gy.ravel())
-    z = chaos(xi).reshape(gx.shape)
+    (x_factor, x_label), (y_factor, y_label) = scale(r, "inputs", x_name), scale(r, "inputs", y_name)
+    z_factor, z_label = scale(r, "outputs", output)
+    z = chaos(xi).reshape(gx.shape) / z_factor
     fig, ax = plt.subplots(figsize=(7.0, 5.2), constrained_layout=True)
-    filled = ax.contourf(gx, gy, z, levels=20, cmap="viridis")
-    ax.contour(gx, gy, z, levels=filled.levels[::4], colors="k", linewidths=0.5)
-    ax.scatter(xs, ys, s=4, color="w", edgecolors="k", linewidths=0.3)
-    fig.colorbar(filled, ax=ax, label=f"metamodel of {labelled(output, r['outputs'][output]['unit'])}")
-    ax.set_xlabel(labelled(x_name, r["inputs"][x_name]["unit"]))
-    ax.set_ylabel(labelled(y_name, r["inputs"][y_name]["unit"]))
+    filled = ax.contourf(gx / x_factor, gy / y_factor, z, levels=20, cmap="viridis")
+    ax.contour(gx / x_factor, gy / y_factor, z, levels=filled.levels[::4], colors="k", linewidths=0.5)
+    ax.scatter(xs / x_factor, ys / y_factor, s=4, color="w", edgecolors="k", linewidths=0.3)
+    fig.colorbar(filled, ax=ax, label=f"metamodel of {z_label}")
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
     others = [n for n in names if n not in (x_name, y_name)]
     ax.set_title(f"{output}: polynomial chaos of degree {chaos.degree} ($\\varepsilon_{{LOO}}$ "
                  f"{chaos.loo_error:.2g}),\n{'the other inputs at their means; ' if others else ''}"

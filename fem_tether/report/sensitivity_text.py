@@ -69,7 +69,7 @@ def sensitivity_text(r: dict, out=None) -> str:
     lines += ["", "Sobol' indices, inputs by total index: S_T / S_i (± bootstrap SD)"]
     for output, entry in r["indices"].items():
         trust = "" if entry["loo_error"] <= LOO_WARNING else \
-            f"; eps_LOO above {LOO_WARNING:g}: the expansion misses part of the output, its indices are rough"
+            f"; above {LOO_WARNING:g}: the expansion misses part of this output, its indices are rough"
         lines.append(f"  {output} (degree {entry['degree']}, {entry['terms']} terms, eps_LOO "
                      f"{entry['loo_error']:.2g}{trust}):")
         order = ranking(r, output)

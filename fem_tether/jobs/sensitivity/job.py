@@ -44,6 +44,7 @@ from fem_tether.uncertainty.models import MODELS, Model, model
 KEYS = ("model", "samples", "seed", "method", "counts", "inputs", "surface")
 #: each distribution's keys
 DISTRIBUTION_KEYS = {Uniform: ("low", "high"), Gaussian: ("mean", "sd")}
+KIND_NAMES = {Uniform: "uniform", Gaussian: "Gaussian"}
 SURFACE_KEYS = ("output", "inputs")
 #: the most samples a job may ask for (ours: a typing error, not an analysis, beyond it)
 MAX_SAMPLES = 1_000_000
@@ -86,7 +87,7 @@ def load_sensitivity_job(path: str | Path | None = None, preset: str | None = No
     if table["model"] not in MODELS:
         raise ConfigError(f"[sensitivity] model = {table['model']!r}: unknown (one of {', '.join(sorted(MODELS))})")
     chosen = model(table["model"])
-    inputs = _inputs(chosen, table.get("inputs", {}), name)
+    inputs = _inputs(chosen, table.get("inputs", {}))
     least = math.ceil(terms(len(inputs), 1) / MAX_TERMS_SHARE)
     count = _integer(table, "samples", least, MAX_SAMPLES,
                      f" (a degree-1 expansion in {len(inputs)} inputs needs {least} evaluations)")
@@ -135,7 +136,7 @@ def _number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def _inputs(chosen: Model, table, name: str) -> tuple[Input, ...]:
+def _inputs(chosen: Model, table) -> tuple[Input, ...]:
     """The model's inputs with the distributions of ``[sensitivity.inputs.<name>]`` in place of theirs."""
     if not isinstance(table, dict):
         raise ConfigError("[sensitivity] inputs: must be a table of tables [sensitivity.inputs.NAME]")
@@ -143,10 +144,10 @@ def _inputs(chosen: Model, table, name: str) -> tuple[Input, ...]:
     for key in table:
         if key not in known:
             raise ConfigError(f"[sensitivity.inputs] {key}: unknown input (one of {', '.join(known)})")
-    return tuple(_input(x, table[x.name], name) if x.name in table else x for x in chosen.UNCERTAIN)
+    return tuple(_input(x, table[x.name]) if x.name in table else x for x in chosen.UNCERTAIN)
 
 
-def _input(default: Input, given, name: str) -> Input:
+def _input(default: Input, given) -> Input:
     where = f"[sensitivity.inputs.{default.name}]"
     if not isinstance(given, dict) or not given:
         raise ConfigError(f"{where}: must be a table with low and high (uniform) or mean and sd (Gaussian)")
@@ -162,15 +163,17 @@ def _input(default: Input, given, name: str) -> Input:
     if kind is not type(default.distribution) and set(given) != set(keys):
         missing = next(k for k in keys if k not in given)
         raise ConfigError(f"{where} {missing}: missing (the model's {default.name} is "
-                          f"{type(default.distribution).__name__.lower()}; a {kind.__name__.lower()} one needs "
+                          f"{KIND_NAMES[type(default.distribution)]}; a {KIND_NAMES[kind]} one needs "
                           f"{' and '.join(keys)})")
-    values = {k: float(given.get(k, getattr(default.distribution, k))) for k in keys}
+    values = {k: float(given[k] if k in given else getattr(default.distribution, k)) for k in keys}
     try:
         distribution = kind(**values)
     except InputError as exc:
         raise ConfigError(f"{where} {exc}") from None
+    model_s = ", ".join(f"{k} {getattr(default.distribution, k):g}" for k in DISTRIBUTION_KEYS[type(default.distribution)])
     return dataclasses.replace(default, distribution=distribution,
-                               source=f"{name} (the model's: {default.distribution}, {default.source})")
+                               source=f"the job's {where}; the model's: {KIND_NAMES[type(default.distribution)]} {model_s} "
+                                      f"({default.source})")
 
 
 def _surface(table, chosen: Model, inputs: tuple[Input, ...]) -> tuple[str, ...]:
