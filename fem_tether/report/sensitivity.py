@@ -206,7 +206,7 @@ def plot_surface(r: dict, path) -> Path:
     z = chaos(xi).reshape(gx.shape) / z_factor
     fig, ax = plt.subplots(figsize=(7.0, 5.2), constrained_layout=True)
     filled = ax.contourf(gx / x_factor, gy / y_factor, z, levels=20, cmap="viridis")
-    ax.contour(gx / x_factor, gy / y_factor, z, levels=filled.levels[::4], colors="k", linewidths=0.5)
+    ax.contour(gx / x_factor, gy / y_factor, z, levels=np.asarray(filled.levels)[::4], colors="k", linewidths=0.5)
     ax.scatter(xs / x_factor, ys / y_factor, s=4, color="w", edgecolors="k", linewidths=0.3)
     fig.colorbar(filled, ax=ax, label=f"metamodel of {z_label}")
     ax.set_xlabel(x_label)

@@ -167,13 +167,14 @@ def _input(default: Input, given) -> Input:
                           f"{' and '.join(keys)})")
     values = {k: float(given[k] if k in given else getattr(default.distribution, k)) for k in keys}
     try:
-        distribution = kind(**values)
+        distribution = Uniform(values["low"], values["high"]) if kind is Uniform \
+            else Gaussian(values["mean"], values["sd"])
     except InputError as exc:
         raise ConfigError(f"{where} {exc}") from None
-    model_s = ", ".join(f"{k} {getattr(default.distribution, k):g}" for k in DISTRIBUTION_KEYS[type(default.distribution)])
+    was = type(default.distribution)
+    numbers = ", ".join(f"{k} {getattr(default.distribution, k):g}" for k in DISTRIBUTION_KEYS[was])
     return dataclasses.replace(default, distribution=distribution,
-                               source=f"the job's {where}; the model's: {KIND_NAMES[type(default.distribution)]} {model_s} "
-                                      f"({default.source})")
+                               source=f"the job's {where}; the model's: {KIND_NAMES[was]} {numbers} ({default.source})")
 
 
 def _surface(table, chosen: Model, inputs: tuple[Input, ...]) -> tuple[str, ...]:
