@@ -223,7 +223,7 @@ def plot_convergence(r: dict, path) -> Path:
     bootstrap SD of the full analysis at the last count."""
     names, converged = r["attrs"]["inputs"], r["convergence"]
     colours = _colours(names)
-    fig, axes = _grid(max(len(converged), 1), 4.2, 3.0, sharey=True)
+    fig, axes = _grid(len(converged), 4.2, 3.0, sharey=True)
     for ax, (output, c) in zip(axes, converged.items()):
         counts, total = np.asarray(c["counts"]), np.asarray(c["total"], dtype=float)
         final = r["indices"][output]
@@ -245,6 +245,14 @@ def plot_convergence(r: dict, path) -> Path:
 
 FIGURES = {"sobol": plot_sobol, "histograms": plot_histograms, "scatter": plot_scatter, "surface": plot_surface,
            "convergence": plot_convergence}
+
+
+def drawable(r: dict) -> list[str]:
+    """The figures the result has data for: the indices' need an indexed output that varies, the
+    convergence a count fitted, the histograms a varying output."""
+    needs = {"sobol": bool(r["indices"]), "histograms": bool(_varying(r)), "scatter": bool(r["indices"]),
+             "surface": bool(r["indices"]), "convergence": bool(r["convergence"])}
+    return [name for name in FIGURE_FILES if needs[name]]
 
 
 def index_rows(r: dict, output: str) -> list[list[str]]:
@@ -280,7 +288,7 @@ def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
         "<h2>Sobol' indices</h2><p>inputs by total index, each ± its bootstrap SD; a leave-one-out error "
         "well above a few per cent says the expansion misses part of the output and its indices are rough</p>",
         *sections,
-        "<h2>Figures</h2>", *(image(figures[name], embed=False) for name in FIGURE_FILES),
+        "<h2>Figures</h2>", *(image(path, embed=False) for path in figures.values()),
         f"<details><summary>summary as printed</summary><pre>{html.escape(sensitivity_text(r))}</pre></details>",
         f"<h2>Job</h2><pre>{html.escape(r['attrs'].get('job_toml') or '(not a job file: run from Python)')}</pre>",
         "</body></html>"])
@@ -300,12 +308,13 @@ def check_report(out) -> None:
 
 
 def write_sensitivity_report(out) -> Path:
-    """The figures and the report page of the sensitivity file ``out`` in ``<out stem>_report/``;
-    returns the page's path.  Every target is checked before any is written."""
+    """The figures (those it has data for, :func:`drawable`) and the report page of the sensitivity
+    file ``out`` in ``<out stem>_report/``; returns the page's path.  Every target is checked
+    before any is written."""
     out = Path(out)
     r = read_sensitivity_hdf5(out)
     check_report(out)
-    figures = {name: draw(r, report_dir(out) / FIGURE_FILES[name]) for name, draw in FIGURES.items()}
+    figures = {name: FIGURES[name](r, report_dir(out) / FIGURE_FILES[name]) for name in drawable(r)}
     page = report_paths(out)[-1]
     with atomic_path(page) as tmp:
         tmp.write_text(render(out, r, figures), encoding="utf-8")

@@ -127,3 +127,26 @@ def test_the_summary_gives_statistics_with_errors_and_the_ranking(result):
                                                  (0.0, 0.0, "0")])
 def test_a_value_is_shown_to_its_errors_second_digit(value, error, shown):
     assert with_error(value, error) == shown
+
+
+def test_failed_samples_are_counted_and_the_report_drawn_from_the_others(tmp_path):
+    """A model that finds no design above AR_lim = 4: those samples NaN in the file, counted in the
+    summary, left out of the statistics and the figures; every figure drawn."""
+    from fem_tether.core.errors import SolverDivergedError
+
+    def fails_above_4(sampled):
+        if sampled["max_aspect_ratio"] > 4.0:
+            raise SolverDivergedError("no start converged feasible")
+        return beam.design(sampled)
+
+    fails_above_4.__qualname__ = "fails_above_4"
+    out = tmp_path / "beam.h5"
+    job = SensitivityJob("cantilever", fails_above_4, beam.UNCERTAIN, beam.OUTPUT_UNITS, beam.INDEXED, 60,
+                         counts=(30, 40))
+    run_sensitivity(job, out, progress=False)
+    r = read_sensitivity_hdf5(out)
+    failed = int(np.sum(np.asarray(r["inputs"]["max_aspect_ratio"]["values"]) > 4.0))
+    assert failed > 0 and r["attrs"]["failed"] == failed
+    assert f"{failed} failed (NaN outputs, left out of the statistics)" in sensitivity_text(r)
+    page = write_sensitivity_report(out)
+    assert Page(page.read_text(encoding="utf-8")).images == list(FIGURE_FILES.values())
