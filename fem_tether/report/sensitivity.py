@@ -16,9 +16,9 @@ global analysis of Trevisi, *Configuration optimisation of kite-based wind turbi
 * ``convergence.png``: each indexed output's total indices against the number of evaluations
   the expansion is fitted on, the bootstrap SD at the last;
 
-and ``index.html``: the summary (:mod:`fem_tether.report.sensitivity_text`), the inputs, the
-statistics and the indices as tables, the figures (linked by name: the folder stands alone)
-and the job's text.  Every file is written whole or not at all, never over a file
+and ``index.html``: the summary's head (:mod:`fem_tether.report.sensitivity_text`), the inputs,
+the statistics and the indices as tables, the figures with their captions (linked by name: the
+folder stands alone) and the job's text.  Every file is written whole or not at all, never over a file
 fem-tether did not write (:mod:`fem_tether.core.atomic`).
 """
 
@@ -36,13 +36,20 @@ from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.study.result import report_dir
 from fem_tether.report.page import STYLE, image, table
 from fem_tether.report.plots import plt, save_atomically   # plt: with the Agg backend
-from fem_tether.report.sensitivity_text import distribution_text, head, labelled, ranking, sensitivity_text, \
-    with_error
+from fem_tether.report.sensitivity_text import distribution_text, head, labelled, ranking, with_error
 from fem_tether.uncertainty.chaos import Chaos
 from fem_tether.uncertainty.inputs import Gaussian, Uniform
 
 #: The figures' files, by name.
 FIGURE_FILES = {name: f"{name}.png" for name in ("sobol", "histograms", "scatter", "surface", "convergence")}
+#: What each figure shows, its caption on the page.
+CAPTIONS = {"sobol": "Total and first-order Sobol' indices of every input, per indexed output, with their bootstrap "
+                     "SDs (Trevisi Figs. 4.5, 5.8)",
+            "histograms": "Every output over the evaluations, its mean and ± one SD marked",
+            "scatter": "The indexed outputs against their two inputs of largest total index (Trevisi Fig. 4.6)",
+            "surface": "The polynomial-chaos metamodel of one output over two inputs, the others at their means "
+                       "(Trevisi Fig. 5.20a)",
+            "convergence": "The total indices against the number of evaluations the expansion is fitted on"}
 #: Panels per row of the multi-panel figures.
 COLUMNS = 3
 #: The indexed outputs drawn in the scatter (the first of the model's ``INDEXED``).
@@ -288,8 +295,7 @@ def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
         "<h2>Sobol' indices</h2><p>inputs by total index, each ± its bootstrap SD; a leave-one-out error "
         "well above a few per cent says the expansion misses part of the output and its indices are rough</p>",
         *sections,
-        "<h2>Figures</h2>", *(image(path, embed=False) for path in figures.values()),
-        f"<details><summary>summary as printed</summary><pre>{html.escape(sensitivity_text(r))}</pre></details>",
+        "<h2>Figures</h2>", *(image(path, CAPTIONS[name], embed=False) for name, path in figures.items()),
         f"<h2>Job</h2><pre>{html.escape(r['attrs'].get('job_toml') or '(not a job file: run from Python)')}</pre>",
         "</body></html>"])
 
