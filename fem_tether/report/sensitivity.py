@@ -96,7 +96,7 @@ def _colours(names: list[str]) -> dict[str, tuple]:
 def plot_sobol(r: dict, path) -> Path:
     """Per indexed output, S_Ti and S_i of every input with their bootstrap SDs."""
     names, indexed = r["attrs"]["inputs"], list(r["indices"])
-    fig, axes = _grid(len(indexed), 4.2, 0.32 * len(names) + 1.4, sharex=True)
+    fig, axes = _grid(len(indexed), 3.6, 0.32 * len(names) + 1.4, sharex=True, sharey=True)
     y = np.arange(len(names))
     for ax, output in zip(axes, indexed):
         e = r["indices"][output]
@@ -104,7 +104,7 @@ def plot_sobol(r: dict, path) -> Path:
         ax.barh(y + 0.2, e["first_order"], 0.4, xerr=e["first_order_error"], color="tab:orange", capsize=2,
                 label="first-order $S_i$")
         ax.set_yticks(y, names, fontsize=8)
-        ax.invert_yaxis()
+        ax.set_ylim(len(names) - 0.5, -0.5)                 # the first input on top (the axis is shared)
         ax.set_xlim(0.0, 1.0)
         ax.grid(alpha=0.3, axis="x")
         ax.set_xlabel("Sobol' index [-]")
