@@ -40,6 +40,6 @@ class Model(Protocol):
 
 def model(name: str) -> Model:
     """The module of the model ``name``; an InputError naming the known ones where it is not one."""
-    if name not in MODELS:
-        raise InputError(f"model {name!r}: unknown (one of {', '.join(sorted(MODELS))})")
+    if not (isinstance(name, str) and name in MODELS):
+        raise InputError(f"model = {name!r}: unknown (one of {', '.join(sorted(MODELS))})")
     return cast(Model, importlib.import_module(MODELS[name]))

@@ -84,9 +84,10 @@ def load_sensitivity_job(path: str | Path | None = None, preset: str | None = No
             raise ConfigError(f"[sensitivity] {key}: unknown key (one of {', '.join(KEYS)})")
     if "model" not in table:
         raise ConfigError(f"[sensitivity] model: missing (one of {', '.join(sorted(MODELS))})")
-    if table["model"] not in MODELS:
-        raise ConfigError(f"[sensitivity] model = {table['model']!r}: unknown (one of {', '.join(sorted(MODELS))})")
-    chosen = model(table["model"])
+    try:
+        chosen = model(table["model"])
+    except InputError as exc:
+        raise ConfigError(f"[sensitivity] {exc}") from None
     inputs = _inputs(chosen, table.get("inputs", {}))
     least = math.ceil(terms(len(inputs), 1) / MAX_TERMS_SHARE)
     count = _integer(table, "samples", least, MAX_SAMPLES,
@@ -102,14 +103,15 @@ def load_sensitivity_job(path: str | Path | None = None, preset: str | None = No
     if method not in METHODS:
         raise ConfigError(f"[sensitivity] method = {method!r}: must be one of {', '.join(METHODS)}")
     return SensitivityJob(table["model"], chosen.design, inputs, dict(chosen.OUTPUT_UNITS), tuple(chosen.INDEXED),
-                          count, seed=_integer(table, "seed", 0, 2**63 - 1), method=method, counts=counts,
+                          count, seed=_integer(table, "seed", 0, 2**63 - 1, default=0), method=method, counts=counts,
                           surface=_surface(table.get("surface", {}), chosen, inputs), text=text)
 
 
-def _integer(table: dict, key: str, low: int, high: int, why: str = "") -> int:
-    if key not in table and key != "seed":
+def _integer(table: dict, key: str, low: int, high: int, why: str = "", default: int | None = None) -> int:
+    """``table[key]`` (else ``default``; required without one), an integer from ``low`` to ``high``."""
+    value = table.get(key, default)
+    if value is None:
         raise ConfigError(f"[sensitivity] {key}: missing (an integer in {low}..{high}{why})")
-    value = table.get(key, 0)
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
         raise ConfigError(f"[sensitivity] {key} = {value!r}: must be an integer in {low}..{high}{why}")
     return value

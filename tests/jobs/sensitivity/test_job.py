@@ -109,8 +109,10 @@ def test_bad_command_line_choices_are_one_line(path, preset, samples, message):
         load_sensitivity_job(path, preset, samples)
 
 
-def test_an_unknown_model_is_named(tmp_path):
+@pytest.mark.parametrize("name, shown", [('"kite"', "'kite'"), ("3", "3"), ('["kite"]', "['kite']")])
+def test_an_unknown_model_is_named(tmp_path, name, shown):
     path = tmp_path / "job.toml"
-    path.write_text("[sensitivity]\nmodel = \"kite\"\nsamples = 20\n")
-    with pytest.raises(ConfigError, match=r"\[sensitivity\] model = 'kite': unknown \(one of cantilever\)"):
+    path.write_text(f"[sensitivity]\nmodel = {name}\nsamples = 20\n")
+    with pytest.raises(ConfigError) as raised:
         load_sensitivity_job(path)
+    assert str(raised.value) == f"[sensitivity] model = {shown}: unknown (one of cantilever)"
