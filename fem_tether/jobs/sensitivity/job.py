@@ -4,7 +4,7 @@ A sensitivity job is a TOML file (or a shipped preset, :data:`PRESETS`)::
 
     [sensitivity]
     model = "cantilever"          # a model of fem_tether.uncertainty.models.MODELS
-    samples = 650                 # model evaluations (one optimisation each)
+    samples = 650                 # model evaluations (one optimisation each; `--samples N` replaces it)
     seed = 0                      # the samples' generator (the same points on any rank, after any restart)
     method = "lhs"                # Latin hypercube ("lhs") or scrambled Sobol' sequence ("sobol")
     counts = [100, 400, 650]      # the indices' convergence: expansions on the first n evaluations
@@ -90,13 +90,12 @@ def load_sensitivity_job(path: str | Path | None = None, preset: str | None = No
         raise ConfigError(f"[sensitivity] {exc}") from None
     inputs = _inputs(chosen, table.get("inputs", {}))
     least = math.ceil(terms(len(inputs), 1) / MAX_TERMS_SHARE)
-    count = _integer(table, "samples", least, MAX_SAMPLES,
-                     f" (a degree-1 expansion in {len(inputs)} inputs needs {least} evaluations)")
+    why = f" (a degree-1 expansion in {len(inputs)} inputs needs {least} evaluations)"
+    if samples is not None and not least <= samples <= MAX_SAMPLES:
+        raise ConfigError(f"--samples {samples}: must be an integer in {least}..{MAX_SAMPLES}{why}")
+    count = _integer(table, "samples", least, MAX_SAMPLES, why, default=samples)     # --samples for a missing key
     counts = _counts(table, count, least)
     if samples is not None:
-        if not least <= samples <= MAX_SAMPLES:
-            raise ConfigError(f"--samples {samples}: must be an integer in {least}..{MAX_SAMPLES} "
-                              f"(a degree-1 expansion in {len(inputs)} inputs needs {least} evaluations)")
         count, counts = samples, (*(n for n in counts if n < samples), samples)
         text += f"\n# then the command line's --samples {samples}\n"
     method = table.get("method", "lhs")

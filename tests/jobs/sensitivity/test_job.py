@@ -52,10 +52,11 @@ def test_default_counts_are_quarters_of_the_samples(tmp_path):
     assert _job(tmp_path, "samples = 20\n").counts == (10, 15, 20)       # none below a degree-1 expansion's 10
 
 
-def test_samples_on_the_command_line_replace_the_jobs_and_cut_the_counts():
+def test_samples_on_the_command_line_replace_the_jobs_and_cut_the_counts(tmp_path):
     job = load_sensitivity_job(preset="cantilever", samples=250)
     assert job.samples == 250 and job.counts == (100, 200, 250)
     assert job.text.endswith("# then the command line's --samples 250\n")
+    assert _job(tmp_path, "", samples=40).counts == (10, 20, 30, 40)      # the job without samples of its own
 
 
 @pytest.mark.parametrize("text, message", [
