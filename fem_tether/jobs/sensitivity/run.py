@@ -64,6 +64,13 @@ class SensitivityJob:
 
 
 
+class SensitivityInterrupted(KeyboardInterrupt):
+    """Ctrl-C during the samples; the message says what is kept and how to resume."""
+
+    def __init__(self, directory: Path):
+        super().__init__(f"finished samples kept in {directory}; run the same command to resume")
+
+
 def inputs_key(job: SensitivityJob) -> str:
     """What a sample's outputs depend on: the model, the inputs, the sampling and the package version."""
     model = f"{job.model.__module__}.{job.model.__qualname__}"
@@ -153,7 +160,11 @@ def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: b
         size = comm.Get_size()
         bar = Progress(job.samples, f"sensitivity samples ({size} rank{'s' if size > 1 else ''})",
                        enabled=progress and comm.Get_rank() == 0)
-        distribute(comm, samples, list(range(job.samples)), bar)
+        try:
+            distribute(comm, samples, list(range(job.samples)), bar)
+        except KeyboardInterrupt:
+            bar.close()
+            raise SensitivityInterrupted(samples.directory) from None
         sync(comm)
         if comm.Get_rank() != 0:
             return None

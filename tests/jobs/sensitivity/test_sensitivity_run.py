@@ -128,3 +128,21 @@ def test_one_and_two_ranks_and_a_killed_run_give_the_same_bytes(tmp_path):
     names = sorted(p.name for p in parts_dir(killed).glob("*.json"))
     assert len(names) == 80 and all(filecmp.cmp(parts_dir(tmp_path / "n1.h5") / n, parts_dir(killed) / n,
                                                 shallow=False) for n in names)
+
+
+def test_an_interrupt_says_where_the_samples_are_kept_and_how_to_resume(tmp_path):
+    """(Was: the command's line "fem-tether: interrupted" alone.)  Ctrl-C at the 11th sample: the
+    ten evaluated are kept, and the message names their folder and the rerun."""
+    out = tmp_path / "gsa.h5"
+    calls = []
+
+    def interrupted(sampled):
+        calls.append(1)
+        if len(calls) > 10:
+            raise KeyboardInterrupt
+        return beam.design(sampled)
+
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        run_sensitivity(cantilever_job(model=interrupted), out, progress=False)
+    assert str(stopped.value) == f"finished samples kept in {parts_dir(out)}; run the same command to resume"
+    assert len(list(parts_dir(out).glob("sample_*.json"))) == 10 and not out.exists()
