@@ -46,8 +46,9 @@ def cantilever_job(samples=80, model=beam.design):
 
 
 def test_the_file_holds_every_sample_with_units_and_the_analysis(tmp_path):
-    """Every sample's four inputs and six outputs with units; the statistics and indices as computed;
-    the inputs in Table 4.3's order with their distributions; each sample's outputs the model's."""
+    """Every sample's four inputs and six outputs with units, in the model's order; the statistics,
+    indices and expansions as computed; the inputs in Table 4.3's order with their distributions;
+    each sample's outputs the model's."""
     out = tmp_path / "gsa.h5"
     content = run_sensitivity(cantilever_job(), out, progress=False)
     r = read_sensitivity_hdf5(out)
@@ -59,6 +60,10 @@ def test_the_file_holds_every_sample_with_units_and_the_analysis(tmp_path):
     assert r["statistics"]["mass_kg"]["mean"] == content["statistics"]["mass_kg"]["mean"]
     assert r["indices"]["mass_kg"]["total"] == pytest.approx(list(content["indices"]["mass_kg"]["total"]), abs=0)
     assert set(r["indices"]) == set(INDEXED) and r["convergence"]["mass_kg"]["counts"] == [40, 80]
+    assert list(r["outputs"]) == list(r["statistics"]) == list(beam.OUTPUT_UNITS)      # the model's order
+    expansion = r["indices"]["mass_kg"]
+    assert len(expansion["coefficients"]) == len(expansion["multi_indices"]) == expansion["terms"]
+    assert expansion["coefficients"] == pytest.approx(list(content["indices"]["mass_kg"]["coefficients"]), abs=0)
     k = 17
     sampled = {name: r["inputs"][name]["values"][k] for name in r["inputs"]}
     assert r["outputs"]["mass_kg"]["values"][k] == beam.design(sampled)["mass_kg"]
