@@ -36,6 +36,7 @@ import numpy as np  # noqa: E402
 from fem_tether.cli import Parser  # noqa: E402
 from fem_tether.jobs.sensitivity.run import SensitivityJob, run_sensitivity  # noqa: E402
 from fem_tether.report.plots import save_atomically  # noqa: E402
+from fem_tether.report.sensitivity import plot_convergence  # noqa: E402
 from fem_tether.uncertainty import cantilever as beam  # noqa: E402
 from fem_tether.uncertainty.inputs import sample  # noqa: E402
 from fem_tether.uncertainty.local import kkt_gradients, normalised_multipliers, reoptimised_gradients  # noqa: E402
@@ -55,7 +56,7 @@ NAMES = [x.name for x in beam.UNCERTAIN]
 LABELS = {"max_aspect_ratio": "AR_lim", "max_deflection_m": "δ_max", "young_modulus_Pa": "E",
           "stress_limit_Pa": "σ_lim", "mass_kg": "m", "width_m": "b", "thickness_m": "t",
           "deflection_multiplier_kg": "λ_δ", "aspect_ratio_multiplier_kg": "λ_AR", "stress_multiplier_kg": "λ_σ"}
-INDEXED = ("mass_kg", "width_m", "thickness_m", "deflection_multiplier_kg", "aspect_ratio_multiplier_kg")
+INDEXED = beam.INDEXED
 #: draws of the closed form's exact statistics
 EXACT_DRAWS = 400_000
 
@@ -113,25 +114,6 @@ def sobol_figure(result: dict, path: Path) -> None:
     save_atomically(fig, path)
 
 
-def convergence_figure(result: dict, path: Path) -> None:
-    """S_Ti of each output against the number of evaluations the expansion is fitted on."""
-    fig, axes = plt.subplots(1, len(INDEXED), figsize=(14, 3.2), sharey=True, constrained_layout=True)
-    for ax, output in zip(axes, INDEXED):
-        entry = result["convergence"][output]
-        for k, name in enumerate(NAMES):
-            ax.plot(entry["counts"], np.asarray(entry["total"])[:, k], marker="o", label=LABELS[name])
-        final = result["indices"][output]
-        ax.errorbar(np.full(len(NAMES), entry["counts"][-1]), final["total"], yerr=final["total_error"], fmt="none",
-                    ecolor="k", capsize=3)
-        ax.set_title(f"{LABELS[output]} (ε_LOO {final['loo_error']:.1e})", fontsize=9)
-        ax.set_xlabel("evaluations N")
-    axes[0].set_ylabel("total Sobol' index S_Ti")
-    axes[-1].legend(fontsize=8)
-    fig.suptitle("Convergence of the total indices (first N of the Latin hypercube; bars: bootstrap SD at the "
-                 "last N)", fontsize=10)
-    save_atomically(fig, path)
-
-
 def scatter_figure(result: dict, path: Path) -> None:
     """Fig. 4.6: m and λ_δ of every evaluation against δ_max and AR_lim."""
     fig, axes = plt.subplots(2, 2, figsize=(9, 6.5), constrained_layout=True)
@@ -156,7 +138,7 @@ def main(out_dir=None, samples: int = 650) -> dict:
     result = run_sensitivity(job(samples), folder / "cantilever_sensitivity.h5", progress=False)
     if keep:
         sobol_figure(result, keep / "cantilever-sobol.png")
-        convergence_figure(result, keep / "cantilever-convergence.png")
+        plot_convergence(result, keep / "cantilever-convergence.png")
         scatter_figure(result, keep / "cantilever-scatter.png")
     return {"local": local(), "global": result, "exact": exact_statistics(), "exact_indices": exact_indices(),
             "file": folder / "cantilever_sensitivity.h5"}

@@ -294,6 +294,12 @@ def cmd_farm(args):
     return run(args)
 
 
+def cmd_sensitivity(args):
+    from fem_tether.commands.sensitivity import cmd_sensitivity as run
+
+    return run(args)
+
+
 def cmd_aep(args):
     from fem_tether.config import catalog
     from fem_tether.performance.aep import sweep_aep
@@ -499,6 +505,17 @@ def build_parser() -> argparse.ArgumentParser:
                         "(the file says so)")
     c.add_argument("--json", action="store_true", help=RUN_JSON_HELP)
 
+    c = command("sensitivity", cmd_sensitivity, "global sensitivity of an optimal design (Trevisi ch. 4): "
+                "statistics and Sobol' indices of its outputs over uncertain inputs, samples over MPI ranks",
+                config=False, system=False)
+    c.add_argument("job", nargs="?", help="sensitivity job (TOML with a [sensitivity] table, docs/sensitivity.md)")
+    c.add_argument("--preset", metavar="NAME", help="a shipped sensitivity job instead (cantilever)")
+    c.add_argument("--out", required=True, metavar="FILE.h5",
+                   help="result file; the figures and the report page go to FILE_report/")
+    c.add_argument("--samples", type=_option(int, "a whole number", lambda v: v >= 2, "at least 2"), metavar="N",
+                   help="evaluations instead of the job's samples (its convergence counts above N left out)")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False, system=False)
     c.add_argument("file", metavar="FILE.h5", help="sweep result")
     c.add_argument("--system", metavar="NAME", help="the sweep's system, checked against the file (its AEP is "
@@ -574,7 +591,7 @@ def build_parser() -> argparse.ArgumentParser:
 #: Environment variables set by MPI launchers (MPICH/Intel MPI hydra, Open MPI, PMIx).
 _LAUNCHER_VARIABLES = ("PMI_RANK", "PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "PMIX_RANK")
 #: Commands that share their work among the ranks; every other one runs on rank 0 alone.
-_PARALLEL_COMMANDS = ("sweep", "run", "study", "design")
+_PARALLEL_COMMANDS = ("sweep", "run", "study", "design", "sensitivity")
 
 
 def _world():

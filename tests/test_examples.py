@@ -245,6 +245,16 @@ def test_study_jobs_load(name):
     assert len(job.points) >= 16 and job.wind_mps is not None
 
 
+def test_the_sensitivity_job_loads():
+    """examples/sensitivity_cantilever.toml (docs/sensitivity.md §5) is a valid job: the cantilever
+    with E 70 ± 10 GPa and δ_max 0.1-0.3 m, 256 Sobol' points, its surface chosen."""
+    from fem_tether.jobs.sensitivity.job import load_sensitivity_job
+
+    job = load_sensitivity_job(EXAMPLES / "sensitivity_cantilever.toml")
+    assert (job.name, job.samples, job.method, job.counts) == ("cantilever", 256, "sobol", (64, 128, 256))
+    assert job.surface == ("mass_kg", "max_deflection_m", "young_modulus_Pa")
+
+
 #: The examples that take arguments on the command line, and a wrong command line of each.
 ARGUMENTS = {"tab51_gap": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'implied', "),
              "short_line_drag": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'wind', "),

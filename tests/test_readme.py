@@ -199,7 +199,9 @@ def test_the_json_keys_readme_names_are_in_the_commands_json(tmp_path, capsys):
             "show": [["show", sweep_file]],
             "study": [["study", str(study), "--out", str(tmp_path / "study.h5")]],
             "design": [["design", str(design), "--out", str(tmp_path / "design.h5")]],
-            "farm": [["farm"]]}
+            "farm": [["farm"]],
+            "sensitivity": [["sensitivity", "--preset", "cantilever", "--samples", "20", "--out",
+                             str(tmp_path / "beam.h5")]]}
     rows = {m.group(1): m.group(0) for m in re.finditer(r"^\| `fem-tether (\w+)[^`]*` \|.*$", README, flags=re.M)}
     named = {name: _json_keys_named(row) for name, row in rows.items() if "JSON" in row}
     assert set(named) == set(runs)

@@ -2,16 +2,20 @@
 
 Layout (``kind = "sensitivity"``; every dataset with its unit as the attribute ``unit``)::
 
-    /                   attrs: fem_tether_version, kind, model, inputs (their names, in order), samples,
+    /                   attrs: fem_tether_version, kind, model, inputs (their names, in order), outputs
+                        (theirs), indexed (the outputs with Sobol' indices), samples,
                         seed, method, resamples, max_degree, failed (samples whose model failed: NaN
-                        outputs, left out of the statistics)
+                        outputs, left out of the statistics), job_toml (the job's text), surface
+                        (if the job chose the report's metamodel surface: output[, input, input])
     /inputs/<name>      (samples,) each sample's value; attrs unit, distribution ("uniform": low, high;
                         "gaussian": mean, sd), source
     /outputs/<name>     (samples,) each sample's value; attrs unit
     /statistics/<name>  attrs mean, mean_error, sd, sd_error (bootstrap SDs), unit
     /indices/<name>     first_order, first_order_error, total, total_error (inputs,): Sobol' indices in
                         the order of attrs ``inputs``; attrs degree, loo_error (the expansion's relative
-                        leave-one-out error), terms
+                        leave-one-out error), terms; the expansion itself: multi_indices (terms, inputs),
+                        coefficients (terms,) in the output's unit, on the inputs' orthonormal bases
+                        (uniform: Legendre, Gaussian: Hermite; fem_tether.uncertainty.chaos)
     /convergence/<name> counts (k,), first_order, total (k, inputs): indices from the first n samples
 
 The file holds no time of writing: the same analysis gives the same bytes.
@@ -63,6 +67,9 @@ def write_sensitivity_hdf5(path, content: dict) -> Path:
                                terms=entry["terms"])
             for field in ("first_order", "first_order_error", "total", "total_error"):
                 group.create_dataset(field, data=np.asarray(entry[field], dtype=float)).attrs["unit"] = "1"
+            group.create_dataset("multi_indices", data=np.asarray(entry["multi_indices"], dtype=int)).attrs["unit"] = "1"
+            group.create_dataset("coefficients", data=np.asarray(entry["coefficients"], dtype=float)).attrs["unit"] = \
+                content["outputs"][name]["unit"]
         convergence = f.create_group("convergence")
         for name, entry in content["convergence"].items():
             group = convergence.create_group(name)
@@ -85,16 +92,19 @@ def read_sensitivity_hdf5(path) -> dict:
                 "inputs": {k: {"values": d[()].tolist(), "unit": d.attrs["unit"], "source": d.attrs["source"],
                                "distribution": json.loads(d.attrs["distribution"])}
                            for k, d in ((k, f["inputs"][k]) for k in attrs["inputs"])},
-                "outputs": {k: {"values": d[()].tolist(), "unit": d.attrs["unit"]} for k, d in f["outputs"].items()},
+                "outputs": {k: {"values": d[()].tolist(), "unit": d.attrs["unit"]}
+                            for k, d in ((k, f["outputs"][k]) for k in attrs["outputs"])},
                 "statistics": {k: {a: (v.item() if isinstance(v, np.generic) else v) for a, v in g.attrs.items()}
-                               for k, g in f["statistics"].items()},
+                               for k, g in ((k, f["statistics"][k]) for k in attrs["outputs"])},
                 "indices": {k: {"degree": int(g.attrs["degree"]), "loo_error": float(g.attrs["loo_error"]),
                                 "terms": int(g.attrs["terms"]),
                                 **{field: g[field][()].tolist() for field in
-                                   ("first_order", "first_order_error", "total", "total_error")}}
-                            for k, g in f["indices"].items()},
+                                   ("first_order", "first_order_error", "total", "total_error", "coefficients",
+                                    "multi_indices")}}
+                            for k, g in ((k, f["indices"][k]) for k in attrs["indexed"] if k in f["indices"])},
                 "convergence": {k: {field: g[field][()].tolist() for field in ("counts", "first_order", "total")}
-                                for k, g in f["convergence"].items()},
+                                for k, g in ((k, f["convergence"][k]) for k in attrs["indexed"]
+                                             if k in f["convergence"])},
             }
     except (OSError, KeyError, ValueError, TypeError) as exc:
         raise ResultFileError(f"{path}: damaged fem-tether sensitivity result ({' '.join(str(exc).split())})") from None

@@ -40,7 +40,8 @@ from fem_tether.uncertainty.inputs import Input, sample
 class SensitivityJob:
     """What to analyse: ``model(parameters) -> outputs`` at ``samples`` points of ``inputs``; the
     outputs' units; the outputs that get Sobol' indices (``indexed``); the sample counts of the
-    convergence (``counts``, each at most ``samples``)."""
+    convergence (``counts``, each at most ``samples``).  ``surface`` and ``text`` go to the file
+    (the report's choice, the job's text), not into what a sample's outputs depend on."""
 
     name: str
     model: Callable[[Mapping[str, float]], Mapping[str, float]]
@@ -53,10 +54,21 @@ class SensitivityJob:
     resamples: int = RESAMPLES
     max_degree: int = MAX_DEGREE
     counts: tuple[int, ...] = field(default=())
+    #: the report's metamodel surface: (output, input, input), (output,) or () for its default
+    surface: tuple[str, ...] = ()
+    #: the job file's text, kept in the result file
+    text: str = ""
 
     def points(self) -> np.ndarray:
         return sample(self.inputs, self.samples, self.seed, self.method)
 
+
+
+class SensitivityInterrupted(KeyboardInterrupt):
+    """Ctrl-C during the samples; the message says what is kept and how to resume."""
+
+    def __init__(self, directory: Path):
+        super().__init__(f"finished samples kept in {directory}; run the same command to resume")
 
 
 def inputs_key(job: SensitivityJob) -> str:
@@ -105,9 +117,11 @@ def content(job: SensitivityJob, points: np.ndarray, values: dict[str, np.ndarra
     converged = {name: convergence(job.inputs, points[ok], kept[name], counts, job.max_degree)
                  for name in job.indexed if counts and analyses[name].chaos is not None}
     return {
-        "attrs": {"model": job.name, "inputs": [x.name for x in job.inputs], "samples": job.samples,
+        "attrs": {"model": job.name, "inputs": [x.name for x in job.inputs], "outputs": list(job.units),
+                  "indexed": list(job.indexed), "samples": job.samples,
                   "seed": job.seed, "method": job.method, "resamples": job.resamples, "max_degree": job.max_degree,
-                  "failed": int((~ok).sum())},
+                  "failed": int((~ok).sum()), "job_toml": job.text}
+                 | ({"surface": list(job.surface)} if job.surface else {}),
         "inputs": {x.name: {"values": points[:, k], "unit": x.unit, "source": x.source,
                             "distribution": {"kind": type(x.distribution).__name__.lower()} | asdict(x.distribution)}
                    for k, x in enumerate(job.inputs)},
@@ -116,7 +130,8 @@ def content(job: SensitivityJob, points: np.ndarray, values: dict[str, np.ndarra
                               "unit": a.unit} for name, a in analyses.items()},
         "indices": {name: {"degree": a.chaos.degree, "loo_error": a.chaos.loo_error, "terms": len(a.chaos.indices),
                            "first_order": a.first_order, "first_order_error": a.first_order_error,
-                           "total": a.total, "total_error": a.total_error}
+                           "total": a.total, "total_error": a.total_error,
+                           "coefficients": a.chaos.coefficients, "multi_indices": a.chaos.indices}
                     for name, a in analyses.items() if a.chaos is not None},
         "convergence": {name: {"counts": np.asarray(counts), "first_order": c.first_order, "total": c.total}
                         for name, c in converged.items()},
@@ -145,7 +160,11 @@ def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: b
         size = comm.Get_size()
         bar = Progress(job.samples, f"sensitivity samples ({size} rank{'s' if size > 1 else ''})",
                        enabled=progress and comm.Get_rank() == 0)
-        distribute(comm, samples, list(range(job.samples)), bar)
+        try:
+            distribute(comm, samples, list(range(job.samples)), bar)
+        except KeyboardInterrupt:
+            bar.close()
+            raise SensitivityInterrupted(samples.directory) from None
         sync(comm)
         if comm.Get_rank() != 0:
             return None

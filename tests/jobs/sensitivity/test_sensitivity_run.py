@@ -46,8 +46,9 @@ def cantilever_job(samples=80, model=beam.design):
 
 
 def test_the_file_holds_every_sample_with_units_and_the_analysis(tmp_path):
-    """Every sample's four inputs and six outputs with units; the statistics and indices as computed;
-    the inputs in Table 4.3's order with their distributions; each sample's outputs the model's."""
+    """Every sample's four inputs and six outputs with units, in the model's order; the statistics,
+    indices and expansions as computed; the inputs in Table 4.3's order with their distributions;
+    each sample's outputs the model's."""
     out = tmp_path / "gsa.h5"
     content = run_sensitivity(cantilever_job(), out, progress=False)
     r = read_sensitivity_hdf5(out)
@@ -59,6 +60,10 @@ def test_the_file_holds_every_sample_with_units_and_the_analysis(tmp_path):
     assert r["statistics"]["mass_kg"]["mean"] == content["statistics"]["mass_kg"]["mean"]
     assert r["indices"]["mass_kg"]["total"] == pytest.approx(list(content["indices"]["mass_kg"]["total"]), abs=0)
     assert set(r["indices"]) == set(INDEXED) and r["convergence"]["mass_kg"]["counts"] == [40, 80]
+    assert list(r["outputs"]) == list(r["statistics"]) == list(beam.OUTPUT_UNITS)      # the model's order
+    expansion = r["indices"]["mass_kg"]
+    assert len(expansion["coefficients"]) == len(expansion["multi_indices"]) == expansion["terms"]
+    assert expansion["coefficients"] == pytest.approx(list(content["indices"]["mass_kg"]["coefficients"]), abs=0)
     k = 17
     sampled = {name: r["inputs"][name]["values"][k] for name in r["inputs"]}
     assert r["outputs"]["mass_kg"]["values"][k] == beam.design(sampled)["mass_kg"]
@@ -128,3 +133,21 @@ def test_one_and_two_ranks_and_a_killed_run_give_the_same_bytes(tmp_path):
     names = sorted(p.name for p in parts_dir(killed).glob("*.json"))
     assert len(names) == 80 and all(filecmp.cmp(parts_dir(tmp_path / "n1.h5") / n, parts_dir(killed) / n,
                                                 shallow=False) for n in names)
+
+
+def test_an_interrupt_says_where_the_samples_are_kept_and_how_to_resume(tmp_path):
+    """(Was: the command's line "fem-tether: interrupted" alone.)  Ctrl-C at the 11th sample: the
+    ten evaluated are kept, and the message names their folder and the rerun."""
+    out = tmp_path / "gsa.h5"
+    calls = []
+
+    def interrupted(sampled):
+        calls.append(1)
+        if len(calls) > 10:
+            raise KeyboardInterrupt
+        return beam.design(sampled)
+
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        run_sensitivity(cantilever_job(model=interrupted), out, progress=False)
+    assert str(stopped.value) == f"finished samples kept in {parts_dir(out)}; run the same command to resume"
+    assert len(list(parts_dir(out).glob("sample_*.json"))) == 10 and not out.exists()

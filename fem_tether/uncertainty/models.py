@@ -1,0 +1,45 @@
+"""The models a global sensitivity analysis can vary, by name: ``[sensitivity] model = "NAME"``.
+
+A model is a module with
+
+* ``UNCERTAIN``: the uncertain inputs (:class:`~fem_tether.uncertainty.inputs.Input`,
+  each with its distribution and its source), the job's defaults;
+* ``OUTPUT_UNITS``: the outputs recorded for every sample, name -> unit;
+* ``INDEXED``: the outputs that get a polynomial-chaos expansion and Sobol' indices;
+* ``design(sampled) -> outputs``: one evaluation (one optimisation) at the model's
+  nominal parameters with the ``sampled`` ones set; a
+  :class:`~fem_tether.core.errors.SolverDivergedError` where it finds no design.
+
+A model is registered by one line of :data:`MODELS`; its module is imported
+only when a job names it (a model may need the whole design layer).
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Mapping
+from typing import Protocol, cast
+
+from fem_tether.core.errors import InputError
+from fem_tether.uncertainty.inputs import Input
+
+#: model name -> its module
+MODELS = {
+    "cantilever": "fem_tether.uncertainty.cantilever",     # Trevisi ch. 4's beam (§4.1, Table 4.3)
+}
+
+
+class Model(Protocol):
+    """What a model module exposes (the module docstring)."""
+
+    UNCERTAIN: tuple[Input, ...]
+    OUTPUT_UNITS: Mapping[str, str]
+    INDEXED: tuple[str, ...]
+    design: Callable[[Mapping[str, float]], dict[str, float]]
+
+
+def model(name: str) -> Model:
+    """The module of the model ``name``; an InputError naming the known ones where it is not one."""
+    if not (isinstance(name, str) and name in MODELS):
+        raise InputError(f"model = {name!r}: unknown (one of {', '.join(sorted(MODELS))})")
+    return cast(Model, importlib.import_module(MODELS[name]))

@@ -1,0 +1,139 @@
+"""fem-tether sensitivity: a small cantilever job through the command (summary, JSON, the file and
+its report), the same bytes on one rank and under mpiexec -n 2 (cmp), and every bad input one
+line with exit 2, nothing written."""
+
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from fem_tether import cli
+from fem_tether.core.atomic import written_by_fem_tether
+from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
+from fem_tether.report.sensitivity import FIGURE_FILES, report_paths
+
+ROOT = Path(__file__).resolve().parents[2]
+MPIEXEC = shutil.which("mpiexec")
+#: 40 samples of Table 4.3's inputs, E's scatter widened (about 0.3 s of optimisations)
+JOB = """[sensitivity]
+model = "cantilever"
+samples = 40
+counts = [20, 30, 40]
+[sensitivity.inputs.young_modulus_Pa]
+sd = 10e9
+"""
+
+
+@pytest.fixture
+def job(tmp_path) -> Path:
+    path = tmp_path / "job.toml"
+    path.write_text(JOB)
+    return path
+
+
+def test_the_command_prints_the_summary_and_writes_the_file_and_its_report(job, tmp_path, capsys):
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert text.startswith("global sensitivity of the model 'cantilever': 40 samples (lhs, seed 0) of 4 inputs")
+    assert "Sobol' indices, inputs by total index" in text
+    assert text.rstrip().endswith(f"report: {report_paths(out)[-1]}")
+    r = read_sensitivity_hdf5(out)
+    assert r["attrs"]["samples"] == 40 and r["attrs"]["job_toml"] == JOB
+    assert r["inputs"]["young_modulus_Pa"]["distribution"] == {"kind": "gaussian", "mean": 70e9, "sd": 10e9}
+    assert r["convergence"]["mass_kg"]["counts"] == [20, 30, 40]
+    assert all(written_by_fem_tether(path) for path in report_paths(out))
+
+
+def test_json_gives_the_analysis_without_the_samples(job, tmp_path, capsys):
+    """The statistics, indices and convergence; the samples and the expansions only in the file."""
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert set(data) == {"attrs", "inputs", "statistics", "indices", "convergence", "file", "report"}
+    assert data["file"] == str(out) and data["report"] == str(report_paths(out)[-1])
+    assert "values" not in data["inputs"]["max_deflection_m"] and "coefficients" not in data["indices"]["mass_kg"]
+    assert data["statistics"]["mass_kg"] == read_sensitivity_hdf5(out)["statistics"]["mass_kg"]
+
+
+def test_samples_on_the_command_line_replace_the_jobs(job, tmp_path, capsys):
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--samples", "25"]) == 0
+    r = read_sensitivity_hdf5(out)
+    assert r["attrs"]["samples"] == 25 and r["convergence"]["mass_kg"]["counts"] == [20, 25]
+
+
+def test_a_samples_option_below_2_is_a_usage_error(job, tmp_path, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        cli.main(["sensitivity", str(job), "--out", str(tmp_path / "beam.h5"), "--samples", "1"])
+    assert stopped.value.code == 2
+    assert capsys.readouterr().err == "fem-tether: error: sensitivity: argument --samples: '1' must be at least 2\n"
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--samples", "5"], "--samples 5: must be an integer in 10..1000000"),
+    (["--preset", "cantilever"], "give a sensitivity job file or --preset NAME (one of them)"),
+])
+def test_bad_options_exit_2_with_one_line_and_write_nothing(job, tmp_path, capsys, argv, message):
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out), *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["job.toml"]
+
+
+@pytest.mark.parametrize("text, message", [
+    ('[sensitivity]\nmodel = "kite"\nsamples = 20\n', "[sensitivity] model = 'kite': unknown (one of cantilever)"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.wing_area_m2]\nlow = 1\n',
+     "[sensitivity.inputs] wing_area_m2: unknown input"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.max_deflection_m]\nlow = 0.3\n'
+     'high = 0.2\n', "[sensitivity.inputs.max_deflection_m] uniform range [0.3, 0.2]: needs finite low < high"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 1\n', "[sensitivity] samples = 1: must be an integer"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\ncounts = [10, 40]\n',
+     "[sensitivity] counts = [10, 40]: 40 is more than samples = 20"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\nsample = 20\n', "[sensitivity] sample: unknown key"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[design]\n', "unknown table [design]"),
+    ('[sensitivity\n', "invalid TOML"),
+])
+def test_a_bad_job_exits_2_with_one_line_and_writes_nothing(tmp_path, capsys, text, message):
+    job = tmp_path / "job.toml"
+    job.write_text(text)
+    assert cli.main(["sensitivity", str(job), "--out", str(tmp_path / "beam.h5")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["job.toml"]
+
+
+def test_a_users_report_page_is_refused_before_any_evaluation(job, tmp_path, capsys):
+    out = tmp_path / "beam.h5"
+    page = report_paths(out)[-1]
+    page.parent.mkdir()
+    page.write_text("<html>mine</html>")
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 2
+    assert "fem-tether did not write it" in capsys.readouterr().err
+    assert page.read_text() == "<html>mine</html>" and not out.exists()
+    assert not (tmp_path / "beam.h5.parts").exists()
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
+def test_one_rank_and_two_give_the_same_file_and_figures(job, tmp_path):
+    """``fem-tether sensitivity`` serially and under ``mpiexec -n 2``: the result file and every
+    figure byte-identical (cmp), the summary printed once."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+    def run(*launch, out):
+        return subprocess.run([*launch, sys.executable, "-m", "fem_tether", "sensitivity", str(job), "--out",
+                               str(tmp_path / out)], capture_output=True, text=True, timeout=300, env=env,
+                              cwd=tmp_path)
+
+    one, two = run(out="n1.h5"), run("mpiexec", "-n", "2", out="n2.h5")
+    assert one.returncode == 0 and two.returncode == 0, one.stderr + two.stderr
+    assert two.stdout.count("global sensitivity of the model") == 1
+    assert filecmp.cmp(tmp_path / "n1.h5", tmp_path / "n2.h5", shallow=False)
+    for name in FIGURE_FILES.values():
+        assert filecmp.cmp(tmp_path / "n1_report" / name, tmp_path / "n2_report" / name, shallow=False), name
