@@ -103,7 +103,8 @@ def curves_of(data, energy, site: Site, resource) -> list[Curve]:
             force = system.limits.tether_force_N or max(p.tether_force_N for p in points)
             curves.append(Curve(tether, float(length), float(length) * math.cos(theta), ratio,
                                 np.array([p.electrical_power_W for p in points]), system.rated_power_W(cd),
-                                float(force), case.kite.area_m2, system.top_mps))
+                                float(force), case.kite.area_m2, system.top_mps,
+                                tether == "straight" or float(length) not in energy.unchecked_m))
     return curves
 
 

@@ -105,7 +105,7 @@ def wind_resource_document(site: Site, name: str) -> dict:
 @dataclass(frozen=True)
 class Curve:
     """One length's power curve for a power-curves document: the tether model
-    ("straight" or "flexible"), the length, its operating altitude L cos(theta0), the
+    ("straight" or "flexible"; ``checked``: a flexible line's FE <-> FD cross-check passed), the length, its operating altitude L cos(theta0), the
     speed ratio r, the electrical cycle-mean power at r times each reference speed,
     and the model's figures for ``model_config``."""
 
@@ -118,6 +118,7 @@ class Curve:
     tether_force_N: float
     wing_area_m2: float
     cut_out_mps: float
+    checked: bool = True
 
 
 def power_curves_document(site: Site, curve: Curve, name: str, description: str) -> dict:
@@ -133,7 +134,8 @@ def power_curves_document(site: Site, curve: Curve, name: str, description: str)
             "name": f"{name} L = {curve.length_m:g} m, {curve.tether} tether",
             "description": description,
             "note": f"electrical cycle-mean power with the {curve.tether} tether's drag "
-                    + ("(the straight line's)" if curve.tether == "straight" else "(the FE line's, cross-checked)")
+                    + ("(the straight line's)" if curve.tether == "straight" else
+                       f"(the FE line's, {'cross-checked' if curve.checked else 'NOT cross-checked: --allow-unchecked'})")
                     + f"; the wind at the operating altitude is {curve.speed_ratio:.6g} x the reference speed",
             "awesIO_version": AWESIO_VERSION, "schema": "power_curves_schema.yml", "time_created": _now(),
             "model_config": {

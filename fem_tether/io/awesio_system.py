@@ -66,6 +66,8 @@ NOT_NEEDED = {
     **{f"{c}.{f}": "a label" for c in (W, "components.bridle", K, T, G) for f in ("name", "version")},
     f"{W}.structure.span_m": "geometry: the kitegen model's wing is its area, C_L and C_D",
     f"{W}.structure.aspect_ratio": "geometry: the given C_D holds the induced drag",
+    **{f"{W}.structure.{f}": "a fixed wing's geometry: the kitegen model's wing is its area, C_L and C_D"
+       for f in ("chord_m", "taper_ratio", "dihedral_angle_deg", "sweep_angle_deg")},
     f"{W}.structure.flattening_factor": "geometry: the area given is the projected one the coefficients refer to",
     f"{W}.structure.wing_sections": "geometry, for aerodynamic solvers; the simple model's coefficients hold its effect",
     f"{W}.structure.material": "the wing's structure: no model of fem-tether uses it",
