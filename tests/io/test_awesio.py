@@ -8,38 +8,13 @@ from pathlib import Path
 import pytest
 from jsonschema import Draft7Validator
 
+from awesio_valid import assert_valid
+
 from fem_tether.core.atomic import written_by_fem_tether
-from fem_tether.io.awesio import (KINDS, SCHEMAS_DIR, AwesioError, check, kind_of, parse_yaml, read_document,
-                                  schema, schema_errors, yaml_text)
+from fem_tether.io.awesio import (KINDS, SCHEMAS_DIR, AwesioError, check, parse_yaml, read_document, schema,
+                                  yaml_text)
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "awesio" / "soft_kite_system.yml"
-
-
-def restrictive(node):
-    """A schema as awesIO's own validator applies it by default (``restrictive=True``): every
-    object schema reached through ``properties``, ``items`` and the combinators (not
-    ``definitions``, ``if``/``then``) that does not say otherwise admits no other keys."""
-    if not isinstance(node, dict):
-        return node
-    node = dict(node)
-    if (node.get("type") == "object" or "properties" in node) and "additionalProperties" not in node:
-        node["additionalProperties"] = False
-    if isinstance(node.get("properties"), dict):
-        node["properties"] = {k: restrictive(v) for k, v in node["properties"].items()}
-    for key in ("items", "additionalItems"):
-        if key in node:
-            node[key] = restrictive(node[key])
-    for key in ("oneOf", "anyOf", "allOf"):
-        if key in node:
-            node[key] = [restrictive(v) for v in node[key]]
-    return node
-
-
-def assert_valid(document: dict) -> None:
-    """``document`` validates against its schema, as published and as awesIO's validator applies it."""
-    kind = kind_of(document, "document")
-    assert schema_errors(document, kind) == []
-    assert list(Draft7Validator(restrictive(schema(kind))).iter_errors(document)) == []
 
 
 def test_the_shipped_schemas_are_the_published_ones_byte_for_byte():
