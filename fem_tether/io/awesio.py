@@ -8,8 +8,8 @@ each opening with a ``metadata`` block that names its schema
 schemas are JSON Schemas (draft 07) written as YAML; the copies in
 ``awesio_schemas/`` are the published ones, byte for byte (their provenance
 and licence: ``awesio_schemas/PROVENANCE.md``).  The schema is the contract:
-v0.1's own example files disagree with it in places (``length`` where the
-schema asks ``length_m``), and a document is read only if it validates.
+example files of awesIO disagree with their schema in places (``length``
+where the schema asks ``length_m``), and a document is read only if it validates.
 
 YAML is read as YAML 1.2 reads numbers: ``1.0e9`` is a float (PyYAML, a
 YAML 1.1 parser, reads it as the string "1.0e9", which the schemas refuse;

@@ -85,7 +85,8 @@ NOT_NEEDED = {
     f"{T}.structure.material.shear_modulus_pa": "the FE line is a cable: no bending or torsion",
     f"{T}.structure.material.poisson_ratio": "the FE line is a cable: its diameter does not change with strain",
     f"{T}.structure.material.breaking_strain": "the line is checked on its breaking load, not its strain",
-    f"{G}.structure": "the station's mass, footprint and height: the line is anchored at the ground, z = 0",
+    f"{G}.structure": "the station's mass and footprint enter no model; its height: the line is anchored at the "
+                      "ground, z = 0",
     f"{G}.drum.max_winch_acceleration_m_s2": "the cycle model is quasi-steady: the phases change speed at once",
     f"{G}.drum.drum_diameter_m": "drum geometry: the winch is a tension and a speed",
     f"{G}.drum.drum_width_m": "drum geometry: the winch is a tension and a speed",
