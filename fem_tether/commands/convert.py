@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether.core.atomic import atomic_outputs, atomic_path, check_folder, check_writable
+from fem_tether.core.atomic import atomic_outputs, atomic_path, check_folder, check_writable, exclusive
 from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import check, kind_of, read_document, yaml_text
 from fem_tether.io.awesio_results import Curve, Site, power_curves_document, wind_resource_document
@@ -129,7 +129,8 @@ def results_to_awesio(sweep_file: Path, out, reference_height_m: float, allow_un
         documents[path] = power_curves_document(site, curve, name, description)
     for path, document in documents.items():
         check(document, kind_of(document, str(path)), str(path))
-    with atomic_outputs(files=list(documents)) as temporaries:
+        check_writable(path)
+    with exclusive(out, directory=True, outputs=list(documents)), atomic_outputs(files=list(documents)) as temporaries:
         for tmp, document in zip(temporaries, documents.values()):
             tmp.write_text(yaml_text(document), encoding="utf-8")
     return {"kind": "awesio", "source": str(sweep_file), "files": [str(p) for p in documents],

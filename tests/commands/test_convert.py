@@ -77,8 +77,14 @@ def test_the_round_trip_awesio_fem_tether_awesio_validates_and_keeps_the_aep(tmp
     sweep(load_job(job), tmp_path / "run" / "sweep.h5", comm=MPI.COMM_SELF, progress=False)
     capsys.readouterr()
     out = tmp_path / "awesio"
+    out.mkdir()
+    (out / "wind_resource.yml").write_text("# my site\n")          # a user's file: refused before any is written
+    assert main(["convert", str(tmp_path / "run"), "--out", str(out)]) == 2
+    assert "fem-tether did not write it" in capsys.readouterr().err and not list(out.glob("power_curves*"))
+    assert (out / "wind_resource.yml").read_text() == "# my site\n"
+    (out / "wind_resource.yml").unlink()
     assert main(["convert", str(tmp_path / "run"), "--out", str(out)]) == 0
-    names = sorted(p.name for p in out.iterdir())
+    names = sorted(p.name for p in out.glob("*.yml"))
     assert names == ["power_curves_flexible_L400.yml", "power_curves_straight_L400.yml", "wind_resource.yml"]
     documents = {name: read_document(out / name)[1] for name in names}
     for document in documents.values():
