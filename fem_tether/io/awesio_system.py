@@ -161,20 +161,6 @@ def _get(document: dict, path: str, default: Any = None) -> Any:
     return node
 
 
-def _need(document: dict, path: str, source: str, what: str) -> float:
-    value = _get(document, path)
-    if value is None:
-        raise AwesioError(f"{source}: {path} missing: the case needs {what}")
-    return float(value)
-
-
-def _one_of(document: dict, path: str, admitted: tuple[str, ...], source: str, why: str) -> str:
-    value = _get(document, path)
-    if value not in admitted:
-        raise AwesioError(f"{source}: {path} = {value!r} cannot be mapped: {why}")
-    return value
-
-
 @dataclass(frozen=True)
 class MappedCase:
     """A case from a system document: its tables over fem-tether's defaults and, per
@@ -187,100 +173,131 @@ class MappedCase:
         return Config.from_dict(self.tables)
 
 
+class _Filling:
+    """A case being filled from the system ``document`` read from ``source``."""
+
+    def __init__(self, document: dict, source: str):
+        self.document, self.source = document, source
+        self.case = MappedCase({}, {})
+
+    def get(self, path: str) -> Any:
+        return _get(self.document, path)
+
+    def need(self, path: str, what: str) -> float:
+        """The number at ``path``; refused, naming it, if the document does not give it."""
+        value = self.get(path)
+        if value is None:
+            raise AwesioError(f"{self.source}: {path} missing: the case needs {what}")
+        return float(value)
+
+    def refuse(self, path: str, why: str) -> AwesioError:
+        return AwesioError(f"{self.source}: {path} cannot be mapped: {why}")
+
+    def one_of(self, path: str, admitted: tuple[str, ...], why: str) -> None:
+        if self.get(path) not in admitted:
+            raise self.refuse(f"{path} = {self.get(path)!r}", why)
+
+    def put(self, section: str, key: str, value: Any, origin: str) -> None:
+        self.case.tables.setdefault(section, {})[key] = value
+        self.case.sources[section, key] = origin
+
+
+def _system(f: _Filling) -> None:
+    f.one_of("assembly.generation_type", ("pumping_ground_gen",), "fem-tether reads pumping ground-gen systems "
+             "(the kitegen model); fly-gen and rotary systems have no mapping yet")
+    f.one_of(f"{G}.type", ("pumping_ground_gen_station",),
+             "a pumping ground-gen system's station is a pumping_ground_gen_station")
+    f.put("system", "name", str(f.get("metadata.name")), "metadata.name")
+    f.put("system", "model", "kitegen", "assembly.generation_type = pumping_ground_gen")
+    f.put("system", "description", f"awesIO: {' '.join(str(f.get('metadata.description')).split())}",
+          "metadata.description")
+    masses = [f"{W}.structure.mass_kg", "components.bridle.structure.mass_kg", f"{K}.structure.mass_kg"]
+    f.put("system", "kite_mass_kg", sum(float(f.get(p) or 0.0) for p in masses), " + ".join(masses))
+
+
+def _wing(f: _Filling) -> None:
+    """Area, C_L and E = C_L / (C_D + C_D,kcu A_kcu / A): the control unit's drag referred
+    to the wing's area; the design kite speed V_k = E x :data:`CUT_IN_MPS`."""
+    area_path = next((f"{W}.structure.{k}" for k in ("projected_surface_area_m2", "wing_area_m2")
+                      if f.get(f"{W}.structure.{k}") is not None), f"{W}.structure.projected_surface_area_m2")
+    area = f.need(area_path, "the wing's area ([kite] area_m2)")
+    cl = f.need(f"{AERO}.lift_coefficient_reel_out", "the wing's C_L ([kite] cl)")
+    cd = f.need(f"{AERO}.drag_coefficient_reel_out", "the wing's C_D ([kite] efficiency = C_L/C_D)")
+    kcu_cd, kcu_area = f.get(f"{K}.aerodynamics.drag_coefficient"), f.get(f"{K}.structure.frontal_area_m2")
+    if (kcu_cd is None) != (kcu_area is None):
+        given = f"{K}.aerodynamics.drag_coefficient" if kcu_area is None else f"{K}.structure.frontal_area_m2"
+        raise f.refuse(f"{given} alone", "the control unit's drag is its coefficient times its frontal area; "
+                                         "give both")
+    efficiency = cl / (cd + (0.0 if kcu_cd is None else float(kcu_cd) * float(kcu_area) / area))
+    f.put("kite", "area_m2", area, area_path)
+    f.put("kite", "cl", cl, f"{AERO}.lift_coefficient_reel_out")
+    f.put("kite", "efficiency", efficiency,
+          f"C_L / (C_D + C_D,kcu A_kcu / A): {AERO}.lift_coefficient_reel_out, drag_coefficient_reel_out"
+          + (f", {K}.aerodynamics.drag_coefficient x structure.frontal_area_m2 / area" if kcu_cd is not None else ""))
+    f.put("kite", "speed_mps", CUT_IN_MPS * efficiency,
+          f"ours: the design crosswind speed V_k = E x cut-in wind, the cut-in {CUT_IN_MPS:g} m/s (Roselli eq. 2.55 "
+          "V_cut-in = V_k / E; the document gives no cut-in)")
+    reel_in_cd = f.get(f"{AERO}.drag_coefficient_reel_in")
+    if reel_in_cd is not None:
+        f.put("cycle", "reel_in_cd0", float(reel_in_cd), f"{AERO}.drag_coefficient_reel_in")
+
+
+def _station(f: _Filling) -> None:
+    """The drum's force and speed limits; the efficiencies out (generator x gearbox) and
+    in (the same x storage)."""
+    force_paths = [f"{T}.structure.max_tether_force_n", f"{G}.drum.max_tether_force_n"]
+    force = min(f.need(p, "the tether force limit ([kite] nominal_force_N)") for p in force_paths)
+    speed = f.need(f"{G}.drum.max_tether_speed_m_s", "the reel speed limit")
+    f.put("kite", "nominal_force_N", force, f"the least of {' and '.join(force_paths)} (one tether)")
+    f.put("kite", "max_reel_out_mps", speed, f"{G}.drum.max_tether_speed_m_s")
+    f.put("winch", "ground_tension_N", force, "the force limit, held by the winch on the one line")
+    f.put("cycle", "reel_in_mps", speed, f"{G}.drum.max_tether_speed_m_s (ours: reel-in at the drum's top speed)")
+    out = [p for p in (f"{G}.generator.efficiency", f"{G}.gearbox.efficiency") if f.get(p) is not None]
+    into = out + [p for p in (f"{G}.storage.efficiency",) if f.get(p) is not None]
+    for key, paths in (("eta_e", out), ("eta_c", into)):
+        f.put("cycle", key, math.prod(float(f.get(p)) for p in paths), " x ".join(paths) or "none given: 1")
+
+
+def _tether(f: _Filling) -> None:
+    """One line: length, diameter d, mass per length rho pi d^2/4, material, EA = E pi d^2/4, C_d."""
+    diameter = f.need(f"{T}.structure.diameter_m", "the line's diameter")
+    section_m2 = math.pi * diameter**2 / 4.0
+    f.put("tether", "length_m", f.need(f"{T}.structure.length_m", "the line's length"), f"{T}.structure.length_m")
+    f.put("tether", "diameter_m", diameter, f"{T}.structure.diameter_m")
+    f.put("tether", "linear_density_kg_m", f.need(f"{T}.structure.density_kg_m3", "the line's density") * section_m2,
+          f"{T}.structure.density_kg_m3 x pi d^2 / 4")
+    f.put("tether", "lines", 1, "one tether (components.tether)")
+    material = f.get(f"{T}.structure.material.type")
+    if material is not None:
+        if str(material).lower() not in MATERIALS:
+            raise f.refuse(f"{T}.structure.material.type = {material!r}",
+                           "[tether] material knows Dyneema (its SK99 table), steel and carbon")
+        f.put("tether", "material", MATERIALS[str(material).lower()], f"{T}.structure.material.type")
+    modulus = f.get(f"{T}.structure.material.youngs_modulus_pa")
+    if modulus is not None:
+        f.put("tether", "axial_stiffness_N", float(modulus) * section_m2,
+              f"{T}.structure.material.youngs_modulus_pa x pi d^2 / 4 (used by [tether] elasticity = "
+              "'elastic'; the case keeps the default inextensible line, which a fixed-length run's winch needs)")
+    tether_cd = f.get(f"{T}.aerodynamics.drag_coefficient")
+    if tether_cd is not None:
+        f.put("drag", "model", "constant", f"{T}.aerodynamics.drag_coefficient given")
+        f.put("drag", "cd", float(tether_cd), f"{T}.aerodynamics.drag_coefficient")
+
+
 def case_tables(document: dict, source: str) -> MappedCase:
     """The case of the valid system ``document`` (read from ``source``): every mapped field
     converted, each unmappable one refused (:func:`check_fields`), then the case checked
     as any configuration is and against the generator's powers (:func:`check_powers`)."""
     check_fields(document, source)
-    _one_of(document, "assembly.generation_type", ("pumping_ground_gen",), source,
-            "fem-tether reads pumping ground-gen systems (the kitegen model); fly-gen and rotary systems have no "
-            "mapping yet")
-    _one_of(document, f"{G}.type", ("pumping_ground_gen_station",), source,
-            "a pumping ground-gen system's station is a pumping_ground_gen_station")
-    tables: dict[str, dict[str, Any]] = {}
-    sources: dict[tuple[str, str], str] = {}
-
-    def put(section: str, key: str, value: Any, origin: str) -> None:
-        tables.setdefault(section, {})[key] = value
-        sources[section, key] = origin
-
-    put("system", "name", str(_get(document, "metadata.name")), "metadata.name")
-    put("system", "model", "kitegen", "assembly.generation_type = pumping_ground_gen")
-    put("system", "description", f"awesIO: {' '.join(str(_get(document, 'metadata.description')).split())}",
-        "metadata.description")
-    masses = [f"{W}.structure.mass_kg", "components.bridle.structure.mass_kg", f"{K}.structure.mass_kg"]
-    put("system", "kite_mass_kg", sum(float(_get(document, p, 0.0)) for p in masses), " + ".join(masses))
-
-    area_path = next((f"{W}.structure.{k}" for k in ("projected_surface_area_m2", "wing_area_m2")
-                      if _get(document, f"{W}.structure.{k}") is not None), f"{W}.structure.projected_surface_area_m2")
-    area = _need(document, area_path, source, "the wing's area ([kite] area_m2)")
-    cl = _need(document, f"{AERO}.lift_coefficient_reel_out", source, "the wing's C_L ([kite] cl)")
-    cd = _need(document, f"{AERO}.drag_coefficient_reel_out", source, "the wing's C_D ([kite] efficiency = C_L/C_D)")
-    kcu_cd = _get(document, f"{K}.aerodynamics.drag_coefficient")
-    kcu_area = _get(document, f"{K}.structure.frontal_area_m2")
-    if (kcu_cd is None) != (kcu_area is None):
-        given = f"{K}.aerodynamics.drag_coefficient" if kcu_area is None else f"{K}.structure.frontal_area_m2"
-        raise AwesioError(f"{source}: {given} cannot be mapped alone: the control unit's drag is its coefficient "
-                          "times its frontal area; give both")
-    kcu_share = 0.0 if kcu_cd is None else float(kcu_cd) * float(kcu_area) / area
-    put("kite", "area_m2", area, area_path)
-    put("kite", "cl", cl, f"{AERO}.lift_coefficient_reel_out")
-    put("kite", "efficiency", cl / (cd + kcu_share),
-        f"C_L / (C_D + C_D,kcu A_kcu / A): {AERO}.lift_coefficient_reel_out, drag_coefficient_reel_out"
-        + (f", {K}.aerodynamics.drag_coefficient x structure.frontal_area_m2 / area" if kcu_cd is not None else ""))
-
-    put("kite", "speed_mps", CUT_IN_MPS * tables["kite"]["efficiency"],
-        f"ours: the design crosswind speed V_k = E x cut-in wind, the cut-in {CUT_IN_MPS:g} m/s (Roselli eq. 2.55 "
-        "V_cut-in = V_k / E; the document gives no cut-in)")
-    force_paths = [f"{T}.structure.max_tether_force_n", f"{G}.drum.max_tether_force_n"]
-    force = min(_need(document, p, source, "the tether force limit ([kite] nominal_force_N)") for p in force_paths)
-    speed = _need(document, f"{G}.drum.max_tether_speed_m_s", source, "the reel speed limit")
-    put("kite", "nominal_force_N", force, f"the least of {' and '.join(force_paths)} (one tether)")
-    put("kite", "max_reel_out_mps", speed, f"{G}.drum.max_tether_speed_m_s")
-    put("winch", "ground_tension_N", force, "the force limit, held by the winch on the one line")
-    put("cycle", "reel_in_mps", speed, f"{G}.drum.max_tether_speed_m_s (ours: reel-in at the drum's top speed)")
-    reel_in_cd = _get(document, f"{AERO}.drag_coefficient_reel_in")
-    if reel_in_cd is not None:
-        put("cycle", "reel_in_cd0", float(reel_in_cd), f"{AERO}.drag_coefficient_reel_in")
-    efficiencies = {p: float(_get(document, p)) for p in
-                    (f"{G}.generator.efficiency", f"{G}.gearbox.efficiency") if _get(document, p) is not None}
-    out = math.prod(efficiencies.values())
-    put("cycle", "eta_e", out, " x ".join(efficiencies) or "none given: 1")
-    storage = _get(document, f"{G}.storage.efficiency")
-    put("cycle", "eta_c", out * (1.0 if storage is None else float(storage)),
-        " x ".join([*efficiencies, *([f"{G}.storage.efficiency"] if storage is not None else [])]) or "none given: 1")
-
-    diameter = _need(document, f"{T}.structure.diameter_m", source, "the line's diameter")
-    section_m2 = math.pi * diameter**2 / 4.0
-    put("tether", "length_m", _need(document, f"{T}.structure.length_m", source, "the line's length"),
-        f"{T}.structure.length_m")
-    put("tether", "diameter_m", diameter, f"{T}.structure.diameter_m")
-    put("tether", "linear_density_kg_m",
-        _need(document, f"{T}.structure.density_kg_m3", source, "the line's density") * section_m2,
-        f"{T}.structure.density_kg_m3 x pi d^2 / 4")
-    put("tether", "lines", 1, "one tether (components.tether)")
-    material = _get(document, f"{T}.structure.material.type")
-    if material is not None:
-        put("tether", "material", MATERIALS.get(str(material).lower()) or _one_of(
-            document, f"{T}.structure.material.type", tuple(MATERIALS), source,
-            "[tether] material knows Dyneema (its SK99 table), steel and carbon"), f"{T}.structure.material.type")
-    modulus = _get(document, f"{T}.structure.material.youngs_modulus_pa")
-    if modulus is not None:
-        put("tether", "axial_stiffness_N", float(modulus) * section_m2,
-            f"{T}.structure.material.youngs_modulus_pa x pi d^2 / 4 (used by [tether] elasticity = "
-            "'elastic'; the case keeps the default inextensible line, which a fixed-length run's winch needs)")
-    tether_cd = _get(document, f"{T}.aerodynamics.drag_coefficient")
-    if tether_cd is not None:
-        put("drag", "model", "constant", f"{T}.aerodynamics.drag_coefficient given")
-        put("drag", "cd", float(tether_cd), f"{T}.aerodynamics.drag_coefficient")
-
-    case = MappedCase(tables, sources)
+    filling = _Filling(document, source)
+    for part in (_system, _wing, _station, _tether):
+        part(filling)
     try:
-        cfg = case.config()
+        cfg = filling.case.config()
     except ConfigError as exc:
         raise AwesioError(f"{source}: the case it maps to is refused: {exc}") from None
     check_powers(cfg, document, source)
-    return case
+    return filling.case
 
 
 def check_powers(cfg: Config, document: dict, source: str) -> None:
