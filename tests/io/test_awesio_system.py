@@ -104,7 +104,7 @@ def _with(document, path, value):
     ("components.ground_station.generator.max_power_kw", 30.0,
      "max_power_kw = 30.0 cannot be mapped: the case reaches 40 kW as its reel-out power"),
     ("components.control_system.structure.frontal_area_m2", None,
-     "drag_coefficient cannot be mapped alone"),
+     "control_system.aerodynamics.drag_coefficient alone cannot be mapped"),
 ])
 def test_what_cannot_be_mapped_is_one_line_naming_it(document, path, value, says):
     with pytest.raises(AwesioError) as err:
