@@ -316,7 +316,8 @@ def cmd_aep(args):
 def cmd_convert(args):
     from fem_tether.commands.convert import convert
 
-    result = convert(args.source, args.out, args.reference_height, args.allow_unchecked, args.allow_incomplete)
+    result = convert(args.source, args.out, args.reference_height, args.allow_unchecked, args.allow_incomplete,
+                     args.constraints)
     print(report.json_text(result) if args.json else "\n".join(f"wrote {path}" for path in result["files"]))
     return 0
 
@@ -525,6 +526,9 @@ def build_parser() -> argparse.ArgumentParser:
                    "(run --out DIR) or a sweep file")
     c.add_argument("--out", required=True, metavar="FILE.toml | DIR",
                    help="the case file (from a system document), or the folder of the awesIO documents")
+    c.add_argument("--constraints", metavar="FILE.yml",
+                   help="with a system document: its awesIO operational_constraints document (cut-in and cut-out "
+                        "winds, tether force and speed limits, largest power)")
     c.add_argument("--reference-height", type=_between(1.0, 1000.0, "a height", "m", "of a wind profile"),
                    default=100.0, metavar="Z",
                    help="reference height [m] of the written resource and power curves (default 100)")

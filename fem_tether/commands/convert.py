@@ -36,26 +36,32 @@ RESOURCE_NAME = "wind_resource.yml"
 
 
 def convert(source, out, reference_height_m: float = REFERENCE_HEIGHT_M, allow_unchecked: bool = False,
-            allow_incomplete: bool = False) -> dict:
-    """Convert ``source`` (a system document, a main job's folder or a sweep file) into
-    ``out`` (a TOML file, or a folder of awesIO documents); what was written, by kind."""
+            allow_incomplete: bool = False, constraints=None) -> dict:
+    """Convert ``source`` (a system document, with an operational-constraints document
+    ``constraints`` if given; a main job's folder or a sweep file) into ``out`` (a TOML
+    file, or a folder of awesIO documents); what was written, by kind."""
     source = Path(source)
+    if constraints is not None and (source.is_dir() or source.suffix.lower() in (".h5", ".hdf5")):
+        raise InputError(f"--constraints {constraints}: read beside a system document, not with results ({source})")
     if source.is_dir():
         return results_to_awesio(source / "sweep.h5", out, reference_height_m, allow_unchecked, allow_incomplete)
     if source.suffix.lower() in (".h5", ".hdf5"):
         return results_to_awesio(source, out, reference_height_m, allow_unchecked, allow_incomplete)
-    return system_to_case(source, out)
+    return system_to_case(source, out, constraints)
 
 
-def system_to_case(source: Path, out) -> dict:
-    """The system document ``source`` as the case file ``out``."""
+def system_to_case(source: Path, out, constraints=None) -> dict:
+    """The system document ``source`` (and the operational constraints ``constraints``, if
+    given) as the case file ``out``."""
     out = check_writable(out)
     if out.suffix.lower() != ".toml":
         raise InputError(f"--out {out}: a system document converts to a case file, FILE.toml")
     _, document = read_document(source, "system")
-    case = case_tables(document, str(source))
+    limits = None if constraints is None else read_document(constraints, "operational_constraints")[1]
+    case = case_tables(document, str(source), limits, str(constraints))
+    sources = str(source) if constraints is None else f"{source} and {constraints}"
     with atomic_path(out) as tmp:
-        tmp.write_text(case_toml(case, str(source), document), encoding="utf-8")
+        tmp.write_text(case_toml(case, sources, document), encoding="utf-8")
     return {"kind": "case", "source": str(source), "files": [str(out)],
             "keys": [f"[{section}] {key}" for section, key in case.sources]}
 

@@ -118,7 +118,7 @@ def read_document(path: str | Path, kind: str | None = None) -> tuple[str, dict]
     document = parse_yaml(read_text(path, AwesioError), str(path))
     found = kind_of(document, str(path))
     if kind is not None and found != kind:
-        raise AwesioError(f"{path}: an awesIO {found} document, not a {kind} document")
+        raise AwesioError(f"{path}: an awesIO {found} document, where one of {kind}_schema.yml is expected")
     check(document, found, str(path))
     return found, document
 

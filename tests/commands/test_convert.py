@@ -21,6 +21,7 @@ from fem_tether.jobs.sweepfile import read_sweep
 from fem_tether.performance.aep import sweep_aep
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "awesio" / "soft_kite_system.yml"
+LIMITS = EXAMPLE.with_name("soft_kite_operational_constraints.yml")
 
 #: The converted case swept coarsely at one length, FE and FD (about a second).
 SWEEP = """[sweep]
@@ -44,6 +45,8 @@ def test_a_system_document_becomes_a_case_file(tmp_path, capsys):
     cfg = load_config(out)
     assert (cfg.system.model, cfg.kite.area_m2, cfg.tether.length_m) == ("kitegen", 20.0, 400.0)
     assert main(["convert", str(EXAMPLE), "--out", str(out)]) == 0        # ours: replaced
+    assert main(["convert", str(EXAMPLE), "--constraints", str(LIMITS), "--out", str(out)]) == 0
+    assert load_config(out).system.cut_out_mps == 20.0 and str(LIMITS) in out.read_text().splitlines()[0]
 
 
 def test_what_convert_cannot_do_is_one_line_and_exit_2(tmp_path, capsys):
@@ -55,7 +58,11 @@ def test_what_convert_cannot_do_is_one_line_and_exit_2(tmp_path, capsys):
                        (["convert", str(EXAMPLE), "--out", str(tmp_path / "case.txt")], "FILE.toml"),
                        (["convert", str(bad), "--out", str(tmp_path / "c.toml")], "generation_type = 'fly_gen'"),
                        (["convert", str(tmp_path / "none.yml"), "--out", str(tmp_path / "c.toml")], "no such file"),
-                       (["convert", str(tmp_path), "--out", str(tmp_path / "aw")], "sweep.h5")]:
+                       (["convert", str(tmp_path), "--out", str(tmp_path / "aw")], "sweep.h5"),
+                       (["convert", str(tmp_path), "--constraints", str(LIMITS), "--out", str(tmp_path / "aw")],
+                        "read beside a system document"),
+                       (["convert", str(EXAMPLE), "--constraints", str(EXAMPLE), "--out", str(tmp_path / "c.toml")],
+                        "an awesIO system document, where one of operational_constraints_schema.yml is expected")]:
         assert main(argv) == 2
         err = capsys.readouterr().err
         assert says in err and err.count("\n") == 1, (argv, err)

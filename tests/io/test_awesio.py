@@ -74,7 +74,7 @@ def test_a_file_that_is_no_awesio_document_is_one_line(tmp_path, text, says):
 def test_a_document_of_another_kind_is_refused_naming_both(tmp_path):
     path = tmp_path / "x.yml"
     path.write_text("metadata: {schema: power_curves_schema.yml}\n")
-    with pytest.raises(AwesioError, match="an awesIO power_curves document, not a system document"):
+    with pytest.raises(AwesioError, match="an awesIO power_curves document, where one of system_schema.yml is expected"):
         read_document(path, "system")
 
 

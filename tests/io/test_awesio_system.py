@@ -11,15 +11,21 @@ import pytest
 
 from fem_tether.config import Config
 from fem_tether.io.awesio import AwesioError, read_document, schema
-from fem_tether.io.awesio_system import (MAPPED, NOT_NEEDED, REFUSED, case_tables, case_toml, check_fields,
-                                         _not_needed)
+from fem_tether.io.awesio_system import CONSTRAINTS, SYSTEM, case_tables, case_toml
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "awesio" / "soft_kite_system.yml"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "awesio"
+EXAMPLE = EXAMPLES / "soft_kite_system.yml"
+LIMITS = EXAMPLES / "soft_kite_operational_constraints.yml"
 
 
 @pytest.fixture
 def document():
     return read_document(EXAMPLE, "system")[1]
+
+
+@pytest.fixture
+def limits():
+    return read_document(LIMITS, "operational_constraints")[1]
 
 
 def schema_fields(node, root, prefix=""):
@@ -40,14 +46,17 @@ def schema_fields(node, root, prefix=""):
     return found
 
 
-def test_every_field_of_the_schema_is_mapped_not_needed_or_refused():
-    fields = schema_fields(schema("system"), schema("system"))
-    assert len(fields) > 80
-    unknown = sorted(f for f in fields if f not in MAPPED and f not in REFUSED and not _not_needed(f))
+@pytest.mark.parametrize("kind, fields", [("system", SYSTEM), ("operational_constraints", CONSTRAINTS)])
+def test_every_field_of_the_schema_is_mapped_not_needed_or_refused(kind, fields):
+    found = schema_fields(schema(kind), schema(kind))
+    assert len(found) > 40
+    unknown = sorted(f for f in found if f not in fields.mapped and fields.refused_at(f) is None
+                     and not fields.not_needed_at(f))
     assert unknown == []
-    assert not (set(MAPPED) & set(REFUSED)) and not any(_not_needed(f) for f in MAPPED | set(REFUSED))
-    assert set(MAPPED) <= fields and set(REFUSED) <= fields
-    assert all(any(f == n or f.startswith(n + ".") for f in fields) for n in NOT_NEEDED)
+    assert not any(fields.refused_at(f) or fields.not_needed_at(f) for f in fields.mapped)
+    assert not any(fields.refused_at(f) and fields.not_needed_at(f) for f in found)
+    assert fields.mapped <= found
+    assert all(any(f == n or f.startswith(n + ".") for f in found) for n in [*fields.not_needed, *fields.refused])
 
 
 def test_the_example_maps_to_these_keys(document):
@@ -119,4 +128,28 @@ def test_a_case_fem_tether_refuses_is_named(document):
 
 
 def test_null_optional_fields_are_no_refusal(document):
-    check_fields(_with(document, "components.wing.aerodynamics.lift_polynomial", None), "x.yml")
+    SYSTEM.check(_with(document, "components.wing.aerodynamics.lift_polynomial", None), "x.yml")
+
+
+def test_the_operational_constraints_set_the_cut_in_and_out_and_tighten_the_limits(document, limits):
+    """V_k = E x 4.5 m/s (the constraints' cut-in, not our 4 m/s); cut-out 20 m/s; the
+    least force (4.5 kN, the constraints') and speed (7 m/s) of the two documents."""
+    cfg = case_tables(document, "x.yml", limits, "c.yml").config()
+    assert cfg.kite.speed_mps == pytest.approx(4.5 * cfg.kite.efficiency, rel=1e-15)
+    assert cfg.system.cut_out_mps == 20.0
+    assert (cfg.kite.nominal_force_N, cfg.winch.ground_tension_N) == (4500.0, 4500.0)
+    assert (cfg.kite.max_reel_out_mps, cfg.cycle.reel_in_mps) == (7.0, 7.0)
+
+
+@pytest.mark.parametrize("path, value, says", [
+    ("flight_envelope.max_bank_angle_deg", 30.0, "c.yml: flight_envelope.max_bank_angle_deg cannot be mapped: "
+                                                 "the kite flies the configured eight"),
+    ("wind_envelope.max_turbulence_intensity", 0.2, "max_turbulence_intensity cannot be mapped"),
+    ("metadata.system_type", "fly_gen", "c.yml: metadata.system_type = 'fly_gen' cannot be mapped"),
+    ("electrical_constraints.max_power_kw", 20.0, "c.yml: electrical_constraints.max_power_kw = 20.0 cannot be "
+                                                  "mapped: the case reaches 31.5 kW as its reel-out power"),
+])
+def test_constraints_that_cannot_be_mapped_are_one_line_naming_them(document, limits, path, value, says):
+    with pytest.raises(AwesioError) as err:
+        case_tables(document, "x.yml", _with(limits, path, value), "c.yml")
+    assert says in str(err.value) and "\n" not in str(err.value)
