@@ -19,12 +19,23 @@ profile scaled, and has no such form.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from datetime import datetime, timezone
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import AWESIO_VERSION, AwesioError
+
+if TYPE_CHECKING:
+    from fem_tether.config import Config
+    from fem_tether.performance.aep import SweepAep
+    from fem_tether.physics.resource import Resource
+
+#: Altitudes of the written profile: every ALTITUDE_STEP_M from the ground [m].
+ALTITUDE_STEP_M = 10.0
 
 
 def _now() -> str:
@@ -150,3 +161,53 @@ def power_curves_document(site: Site, curve: Curve, name: str, description: str)
                           "u_normalized": site.u_normalized, "v_normalized": [0.0] * len(site.altitudes_m),
                           "probability_weight": 1.0, "cycle_power_w": power}],
     }
+
+
+def site_of(cfg: Config, reference_height_m: float) -> Site:
+    """The Weibull resource of ``cfg`` as one awesIO cluster (:class:`Site`)."""
+    from fem_tether.physics import wind
+    from fem_tether.physics.resource import weibull_bands, weibull_probabilities
+
+    if cfg.resource.csv:
+        raise InputError(f"[resource] csv = {cfg.resource.csv!r}: measured histograms per altitude band have no "
+                         "awesIO wind_resource form (one profile shape scaled from a reference height); not written")
+    profile = wind.from_config(cfg.wind, cfg.resource.weibull_k)
+    reference_mps = float(profile.speed_mps(reference_height_m))
+    if not reference_mps > 0:
+        raise InputError(f"--reference-height {reference_height_m:g}: the wind profile ([wind] profile = "
+                         f"{cfg.wind.profile!r}) is {reference_mps:g} m/s there; the speeds are scaled by it")
+    r = cfg.resource
+    _, edges = weibull_bands(profile, r.weibull_k, r.band_bottom_m, r.band_top_m, 0.0, r.bin_width_mps,
+                             r.max_speed_mps)
+    top = max(r.band_top_m, reference_height_m)
+    altitudes = np.arange(0.0, top + ALTITUDE_STEP_M, ALTITUDE_STEP_M)
+    season = f" ({cfg.wind.season})" if cfg.wind.profile == "log" else ""
+    return Site(altitudes, np.asarray(profile.speed_mps(altitudes), dtype=float), reference_height_m, reference_mps,
+                edges, weibull_probabilities(edges, reference_mps, r.weibull_k), r.weibull_k,
+                f"fem-tether [wind] profile = {cfg.wind.profile!r}{season}, Weibull k = {r.weibull_k:g}")
+
+
+def curves_of(cfg: Config, energy: SweepAep, site: Site, resource: Resource) -> list[Curve]:
+    """The curve of each length a sweep's AEP counts (``energy``, of a sweep of ``cfg``)
+    against ``site``'s reference speeds, straight then flexible: the length's power at r
+    times each reference speed, r = U(z_b)/U(z_ref) with z_b the centre of the band of
+    ``resource`` it flies in."""
+    from fem_tether.performance.aep import configured_system
+    from fem_tether.physics import wind
+
+    profile = wind.from_config(cfg.wind, cfg.resource.weibull_k)
+    theta = math.radians(cfg.kite.theta0_deg)
+    curves = []
+    for tether, lines in energy.lines.items():
+        for i, length in enumerate(lines.length_m):
+            case = lines.case(cfg, i)
+            system, cd = configured_system(case, lines.drag_N[i])
+            band = resource.band_for_length(float(length), theta)
+            ratio = float(profile.speed_mps(band.centre_m)) / site.reference_speed_mps
+            points = system.power_curve(ratio * site.edges_mps, cd)
+            force = system.limits.tether_force_N or max(p.tether_force_N for p in points)
+            curves.append(Curve(tether, float(length), float(length) * math.cos(theta), ratio,
+                                np.array([p.electrical_power_W for p in points]), system.rated_power_W(cd),
+                                float(force), case.kite.area_m2, system.top_mps,
+                                tether == "straight" or float(length) not in energy.unchecked_m))
+    return curves

@@ -10,10 +10,8 @@ from mpi4py import MPI
 
 from awesio_valid import assert_valid
 from fem_tether.cli import main
-from fem_tether.commands.convert import site_of
-from fem_tether.config import Config, load_config
+from fem_tether.config import load_config
 from fem_tether.core.atomic import written_by_fem_tether
-from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import read_document
 from fem_tether.jobs.job import load_job
 from fem_tether.jobs.sweep import sweep
@@ -103,10 +101,3 @@ def test_the_round_trip_awesio_fem_tether_awesio_validates_and_keeps_the_aep(tmp
         aep_MWh = 8760.0 * np.sum(probability * 0.5 * (power[1:] + power[:-1])) / 1e6
         assert aep_MWh == pytest.approx(result.aep_MWh[0], rel=2e-3)
     assert main(["convert", str(tmp_path / "run"), "--out", str(out)]) == 0     # ours: replaced
-
-
-def test_a_resource_with_no_awesio_form_is_refused():
-    with pytest.raises(InputError, match=r"\[resource\] csv = 'w.csv': measured histograms per altitude band"):
-        site_of(Config.from_dict({"resource": {"csv": "w.csv"}}), 100.0)
-    with pytest.raises(InputError, match="--reference-height 100: the wind profile"):
-        site_of(Config.from_dict({"wind": {"profile": "none"}}), 100.0)

@@ -7,8 +7,10 @@ import numpy as np
 import pytest
 from scipy.stats import weibull_min
 
+from fem_tether.config import Config
+from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import AwesioError
-from fem_tether.io.awesio_results import Curve, Site, power_curves_document, wind_resource_document
+from fem_tether.io.awesio_results import Curve, Site, power_curves_document, site_of, wind_resource_document
 from fem_tether.physics.resource import weibull_probabilities
 from awesio_valid import assert_valid
 
@@ -56,3 +58,10 @@ def test_a_curve_that_is_not_finite_is_not_written():
     power[3] = np.nan
     with pytest.raises(AwesioError, match="the flexible power curve at 800 m: not finite at 3; not written"):
         power_curves_document(site(), curve(power), "s", "d")
+
+
+def test_a_resource_with_no_awesio_form_is_refused():
+    with pytest.raises(InputError, match=r"\[resource\] csv = 'w.csv': measured histograms per altitude band"):
+        site_of(Config.from_dict({"resource": {"csv": "w.csv"}}), 100.0)
+    with pytest.raises(InputError, match="--reference-height 100: the wind profile"):
+        site_of(Config.from_dict({"wind": {"profile": "none"}}), 100.0)
