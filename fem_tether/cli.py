@@ -319,6 +319,15 @@ def cmd_aep(args):
     return 0
 
 
+def cmd_convert(args):
+    from fem_tether.commands.convert import convert
+
+    result = convert(args.source, args.out, args.reference_height, args.allow_unchecked, args.allow_incomplete,
+                     args.constraints)
+    print(report.json_text(result) if args.json else "\n".join(f"wrote {path}" for path in result["files"]))
+    return 0
+
+
 # --- stored results: show, plot, export (fem_tether.jobs.result_files, fem_tether.report.stored)
 def cmd_show(args):
     from fem_tether.jobs.result_files import read_result
@@ -525,6 +534,25 @@ def build_parser() -> argparse.ArgumentParser:
                    help="keep lengths whose cross-check failed, marked")
     c.add_argument("--allow-incomplete", action="store_true",
                    help="compute the AEP of an unfinished sweep (else exit 2 naming the pending lengths)")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
+    c = command("convert", cmd_convert, "awesIO (IEA Wind Task 48) documents in and out: a system document to a "
+                "case file, a main job's results to wind_resource and power_curves documents (docs/awesio.md)",
+                config=False, system=False)
+    c.add_argument("source", metavar="SOURCE", help="an awesIO system document (YAML), or a main job's folder "
+                   "(run --out DIR) or a sweep file")
+    c.add_argument("--out", required=True, metavar="FILE.toml | DIR",
+                   help="the case file (from a system document), or the folder of the awesIO documents")
+    c.add_argument("--constraints", metavar="FILE.yml",
+                   help="with a system document: its awesIO operational_constraints document (cut-in and cut-out "
+                        "winds, tether force and speed limits, largest power)")
+    c.add_argument("--reference-height", type=_between(1.0, 1000.0, "a height", "m", "of a wind profile"),
+                   default=100.0, metavar="Z",
+                   help="reference height [m] of the written resource and power curves (default 100)")
+    c.add_argument("--allow-unchecked", action="store_true",
+                   help="write the flexible curves of lengths whose cross-check failed too")
+    c.add_argument("--allow-incomplete", action="store_true",
+                   help="convert an unfinished sweep's finished lengths (else exit 2 naming the pending ones)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     stored = "a result file: simulate --out's fe_L<L>.h5, a sweep's, a study's or a design's"

@@ -100,7 +100,8 @@ NUMERIC_OPTIONS = [("straight", "--length"), ("straight", "--lengths"), ("straig
                    ("power", "--wind-speed"), ("power", "--length"), ("simulate", "--length"), ("size", "--length"),
                    ("crosscheck", "--length"), ("bench", "--repeats"), ("bench", "--memory"),
                    ("mesh {out}", "--elements"), ("mesh {out} --elements 10", "--grading"),
-                   ("sensitivity --preset cantilever --out {out}", "--samples")]
+                   ("sensitivity --preset cantilever --out {out}", "--samples"),
+                   ("convert {out} --out {out}", "--reference-height")]
 
 
 def test_every_numeric_option_is_in_the_extreme_values_test():
@@ -486,7 +487,7 @@ def test_every_json_help_says_exactly_what_goes_where():
     come on stderr with --json too.  Each help says stdout holds the JSON alone; a command that
     runs the solvers says what its stderr still gets."""
     helps = {name: text for name, options, text in _help_texts(build_parser()) if "--json" in options}
-    assert set(helps) == SOLVER_COMMANDS | {"systems", "straight", "curves", "power", "aep", "show", "sensitivity"}
+    assert set(helps) == SOLVER_COMMANDS | {"systems", "straight", "curves", "power", "aep", "show", "sensitivity", "convert"}
     for name, text in helps.items():
         assert "on stdout, which then holds the JSON alone (no table" in text and "no progress)" not in text, name
         assert ("stderr still gets the compile notice (and its progress) of the first run after an install, "

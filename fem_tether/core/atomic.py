@@ -8,7 +8,8 @@ Four rules, each one function here, which every writer of the package uses:
   the target is absent or a regular file (or, for a ParaView folder, a folder)
   that fem-tether wrote (:func:`written_by_fem_tether`: an HDF5 attribute, a
   PNG text chunk, an HTML ``generator`` tag, a Markdown comment, a JSON key,
-  a CSV table's first line ``# fem-tether VERSION``).
+  the first line ``# fem-tether VERSION`` of a CSV table, a YAML document or a
+  TOML file).
   A symbolic link, a FIFO, a device or a user's file is refused, naming it.
 - **Commit** (:func:`atomic_path`, :func:`atomic_outputs`): every target is
   written under a hidden temporary name beside it and renamed into place only
@@ -110,8 +111,9 @@ def _text_ours(path: Path) -> bool:
             or f"<!-- {GENERATOR}" in head)
 
 
-def _csv_ours(path: Path) -> bool:
-    """A CSV table whose first line is our comment (:func:`write_csv`)."""
+def _comment_ours(path: Path) -> bool:
+    """A CSV table (:func:`write_csv`), a YAML document or a TOML file whose first line is
+    our comment ``# fem-tether VERSION``."""
     with open(path, "rb") as fh:
         return fh.readline(_HEAD_BYTES).startswith(f"# {GENERATOR} ".encode())
 
@@ -146,7 +148,8 @@ def _json_ours(path: Path) -> bool:
 
 _RECOGNISERS = {".h5": _hdf5_ours, ".hdf5": _hdf5_ours, ".png": _png_ours, ".html": _text_ours,
                 ".md": _text_ours, ".pvd": _text_ours, ".vtu": _text_ours, ".vtk": _vtk_ours,
-                ".json": _json_ours, ".csv": _csv_ours}
+                ".json": _json_ours, ".csv": _comment_ours, ".yml": _comment_ours, ".yaml": _comment_ours,
+                ".toml": _comment_ours}
 
 
 def written_by_fem_tether(path) -> bool:

@@ -15,8 +15,10 @@ out there; it is reported as ``unbinned_probability``.  Usage::
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -32,6 +34,9 @@ from fem_tether.performance.summary import spinup_caveat
 from fem_tether.physics.resource import Band, Resource, ResourceError
 from fem_tether.physics.resource import check_config as check_resource_config
 from fem_tether.physics.resource import from_config as resource_from_config
+
+if TYPE_CHECKING:
+    from fem_tether.performance.configured import ConfiguredSystem
 
 HOURS_PER_YEAR = 8760.0
 
@@ -159,25 +164,50 @@ def aep_by_length(design: KiteGenDesign, air, lengths_m, global_efficiency, mean
     return _by_length(lengths, design.theta_rad, resource, curve_at)
 
 
-def aep_of_system(cfg: Config, lengths_m, drag_N, resource: Resource, cases=None) -> AepByLength:
-    """AEP (eq. 5.2) and capacity factor of the configured system (any ``[system]
-    model``, :mod:`fem_tether.performance.configured`) on each length, with the tether
-    drag F_t per line of that length as its C_D,t
-    (:func:`fem_tether.performance.summary.operating_tether_cd`); ``cases``, if given, the
-    configuration of each length (a sized line's), else ``cfg`` at each length."""
+def configured_system(case: Config, drag_N: float) -> tuple[ConfiguredSystem, float]:
+    """The configured system of ``case`` (any ``[system] model``,
+    :mod:`fem_tether.performance.configured`) and its C_D,t with the tether drag F_t
+    per line ``drag_N`` (:func:`fem_tether.performance.summary.operating_tether_cd`)."""
     from fem_tether.performance.summary import operating_tether_cd
     from fem_tether.performance.configured import from_config
 
+    return from_config(case), operating_tether_cd(case, drag_N)
+
+
+def aep_of_system(cfg: Config, lengths_m, drag_N, resource: Resource, cases=None) -> AepByLength:
+    """AEP (eq. 5.2) and capacity factor of the configured system on each length, with
+    the tether drag F_t per line of that length as its C_D,t (:func:`configured_system`);
+    ``cases``, if given, the configuration of each length (a sized line's), else ``cfg``
+    at each length."""
     lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
     drags = np.broadcast_to(drag_N, lengths.shape)
 
     def curve_at(i):
-        case = cases[i] if cases is not None else cfg.with_length(lengths[i])
-        cd = operating_tether_cd(case, drags[i])
-        system = from_config(case)
+        system, cd = configured_system(cases[i] if cases is not None else cfg.with_length(lengths[i]), drags[i])
         return (lambda wind_mps: system.electrical_power_W(wind_mps, cd)), system.rated_power_W(cd)
 
     return _by_length(lengths, np.radians(cfg.kite.theta0_deg), resource, curve_at)
+
+
+@dataclass(frozen=True)
+class Lines:
+    """The lengths of a sweep whose AEP one tether model counts, each with its drag F_t
+    per line (lumped as ``[drag] tether_drag_lumping``) and, for a sized sweep, its own case."""
+
+    length_m: np.ndarray
+    drag_N: np.ndarray
+    cases: np.ndarray | None = None
+
+    def case(self, cfg: Config, i: int) -> Config:
+        """The configuration length ``i`` flies: its own (a sized line's), else ``cfg`` at that length."""
+        return self.cases[i] if self.cases is not None else cfg.with_length(float(self.length_m[i]))
+
+    @classmethod
+    def chosen(cls, lengths, drag_N, cases, mask) -> Lines:
+        return cls(lengths[mask], drag_N[mask], None if cases is None else cases[mask])
+
+    def aep(self, cfg: Config, resource: Resource) -> AepByLength:
+        return aep_of_system(cfg, self.length_m, self.drag_N, resource, self.cases)
 
 
 class IncompleteSweepError(InputError):
@@ -201,6 +231,8 @@ class SweepAep:
     fixed: AepByLength | None = None   # [tether] sizing = "load": the configured (unsized) line's
     #: the warnings on these numbers and on the sweep's lines (:mod:`fem_tether.performance.caveats`)
     caveats: tuple[Caveat, ...] = ()
+    #: the lengths each AEP counts, with their drag and case: "straight" and "flexible" (:class:`Lines`)
+    lines: Mapping[str, Lines] = dataclasses.field(default_factory=dict)
 
     def as_dict(self) -> dict:
         """Per length its AEP and CF, straight and flexible, the best lengths and the
@@ -267,9 +299,9 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     drag_fixed = np.asarray(sweep_data.get(lumped_name("drag_fixed_N", lumping), np.full(lengths.shape, np.nan)),
                             dtype=float)
     has_fixed = np.isfinite(drag_fixed)
-    straight = aep_of_system(cfg, lengths[has_straight], drag_straight[has_straight], resource,
-                             None if case is None else case[has_straight])
-    flexible = aep_of_system(cfg, lengths[keep], drag_fe[keep], resource, None if case is None else case[keep])
+    lines = {"straight": Lines.chosen(lengths, drag_straight, case, has_straight),
+             "flexible": Lines.chosen(lengths, drag_fe, case, keep)}
+    straight, flexible = lines["straight"].aep(cfg, resource), lines["flexible"].aep(cfg, resource)
     caveats = (edge_caveat(straight, "straight", "best_length_straight_m"),
                edge_caveat(flexible, "flexible", "best_length_fe_m"),
                margin_caveat(lengths, sweep_data.get("margin", np.full(lengths.shape, np.nan)),
@@ -282,7 +314,7 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
         excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),
-        caveats=tuple(c for c in caveats if c is not None),
+        caveats=tuple(c for c in caveats if c is not None), lines=lines,
     )
 
 

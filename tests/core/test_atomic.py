@@ -92,11 +92,15 @@ def test_our_files_are_recognised_by_their_markers(tmp_path):
     md.write_text(f"<!-- {generator_tag()} -->\n# x\n")
     table = tmp_path / "t.csv"
     table.write_text(f"# {generator_tag()}: sweep r.h5\nlength_m [m]\n400.0\n")
-    for path in (png, page, md, table, _ours_h5(tmp_path / "r.h5")):
+    documents = [tmp_path / name for name in ("w.yml", "w.yaml", "case.toml")]   # convert's awesIO and case files
+    for path in documents:
+        path.write_text(f"# {generator_tag()}: awesIO 0.1.0 document\nmetadata: {{}}\n")
+    for path in (png, page, md, table, *documents, _ours_h5(tmp_path / "r.h5")):
         assert written_by_fem_tether(path), path
     strangers = {"p.png": plt.imread(png).tobytes()[:64], "index.html": b"<html>mine</html>",
                  "v.md": b"# my notes", "r.h5": b"\x89HDF\r\n\x1a\n", "r.json": b'{"a": 1}',
-                 "notes.txt": b"fem-tether", "t.csv": b"length_m\n# fem-tether 0.2.0\n"}
+                 "notes.txt": b"fem-tether", "t.csv": b"length_m\n# fem-tether 0.2.0\n",
+                 "w.yml": b"metadata: {}\n# fem-tether 0.2.0\n", "case.toml": b"# my case\n[tether]\n"}
     for name, content in strangers.items():
         (tmp_path / "other").mkdir(exist_ok=True)
         (tmp_path / "other" / name).write_bytes(content)

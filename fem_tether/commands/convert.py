@@ -1,0 +1,91 @@
+"""``fem-tether convert``: awesIO documents in and out (docs/awesio.md).
+
+One command, its direction set by what it is given:
+
+- an awesIO ``system`` document (YAML) -> a case file (TOML) whose every key
+  names the field it came from (:mod:`fem_tether.io.awesio_system`);
+- a main job's folder (``fem-tether run --out DIR``) or a sweep file -> the
+  awesIO ``wind_resource`` document of its resource and one ``power_curves``
+  document per length and tether (straight line, and the FE line where the
+  sweep has it and its cross-check passed), :mod:`fem_tether.io.awesio_results`.
+
+Every document is checked against its schema before it is written, and the
+files are written together through :mod:`fem_tether.core.atomic` (temporary
+names, never over a file fem-tether did not write).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from fem_tether.core.atomic import atomic_outputs, atomic_path, check_folder, check_writable, exclusive
+from fem_tether.core.errors import InputError
+from fem_tether.io.awesio import check, kind_of, read_document, yaml_text
+from fem_tether.io.awesio_results import curves_of, power_curves_document, site_of, wind_resource_document
+from fem_tether.io.awesio_system import case_tables, case_toml
+
+#: The reference height of the written resource and power curves [m] (awesIO's examples' 100 m).
+REFERENCE_HEIGHT_M = 100.0
+#: The resource's file in the output folder.
+RESOURCE_NAME = "wind_resource.yml"
+
+
+def convert(source, out, reference_height_m: float = REFERENCE_HEIGHT_M, allow_unchecked: bool = False,
+            allow_incomplete: bool = False, constraints=None) -> dict:
+    """Convert ``source`` (a system document, with an operational-constraints document
+    ``constraints`` if given; a main job's folder or a sweep file) into ``out`` (a TOML
+    file, or a folder of awesIO documents); what was written, by kind."""
+    source = Path(source)
+    if constraints is not None and (source.is_dir() or source.suffix.lower() in (".h5", ".hdf5")):
+        raise InputError(f"--constraints {constraints}: read beside a system document, not with results ({source})")
+    if source.is_dir():
+        return results_to_awesio(source / "sweep.h5", out, reference_height_m, allow_unchecked, allow_incomplete)
+    if source.suffix.lower() in (".h5", ".hdf5"):
+        return results_to_awesio(source, out, reference_height_m, allow_unchecked, allow_incomplete)
+    return system_to_case(source, out, constraints)
+
+
+def system_to_case(source: Path, out, constraints=None) -> dict:
+    """The system document ``source`` (and the operational constraints ``constraints``, if
+    given) as the case file ``out``."""
+    out = check_writable(out)
+    if out.suffix.lower() != ".toml":
+        raise InputError(f"--out {out}: a system document converts to a case file, FILE.toml")
+    _, document = read_document(source, "system")
+    limits = None if constraints is None else read_document(constraints, "operational_constraints")[1]
+    case = case_tables(document, str(source), limits, str(constraints))
+    sources = str(source) if constraints is None else f"{source} and {constraints}"
+    with atomic_path(out) as tmp:
+        tmp.write_text(case_toml(case, sources, document), encoding="utf-8")
+    return {"kind": "case", "source": str(source), "files": [str(out)],
+            "keys": [f"[{section}] {key}" for section, key in case.sources]}
+
+
+def results_to_awesio(sweep_file: Path, out, reference_height_m: float, allow_unchecked: bool,
+                      allow_incomplete: bool) -> dict:
+    """The resource and power curves of the sweep in ``sweep_file`` as awesIO documents in the folder ``out``."""
+    from fem_tether.jobs.job import length_tag
+    from fem_tether.jobs.sweepfile import read_sweep
+    from fem_tether.performance.aep import sweep_aep, sweep_resource
+
+    out = check_folder(out)
+    data = read_sweep(sweep_file)
+    cfg = data["config"]
+    site = site_of(cfg, reference_height_m)
+    energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
+    name = cfg.system.name
+    documents = {out / RESOURCE_NAME: wind_resource_document(site, name)}
+    for curve in curves_of(cfg, energy, site, sweep_resource(cfg)):
+        description = (f"{name} ({cfg.system.model} model), {curve.tether} tether of {curve.length_m:g} m: "
+                       f"{cfg.system.description} (fem-tether sweep {sweep_file})")
+        path = out / f"power_curves_{curve.tether}_L{length_tag(curve.length_m)}.yml"
+        documents[path] = power_curves_document(site, curve, name, description)
+    for path, document in documents.items():
+        check(document, kind_of(document, str(path)), str(path))
+        check_writable(path)
+    with exclusive(out, directory=True, outputs=list(documents)), atomic_outputs(files=list(documents)) as temporaries:
+        for tmp, document in zip(temporaries, documents.values()):
+            tmp.write_text(yaml_text(document), encoding="utf-8")
+    return {"kind": "awesio", "source": str(sweep_file), "files": [str(p) for p in documents],
+            "reference_height_m": reference_height_m,
+            "lengths_m": {tether: [float(v) for v in lines.length_m] for tether, lines in energy.lines.items()}}

@@ -1,0 +1,33 @@
+"""Checks of awesIO documents for the tests: valid against the published schema, and
+against it as awesIO's own validator applies it by default."""
+
+from jsonschema import Draft7Validator
+
+from fem_tether.io.awesio import kind_of, schema, schema_errors
+
+
+def restrictive(node):
+    """A schema as awesIO's own validator applies it by default (``restrictive=True``): every
+    object schema reached through ``properties``, ``items`` and the combinators (not
+    ``definitions``, ``if``/``then``) that does not say otherwise admits no other keys."""
+    if not isinstance(node, dict):
+        return node
+    node = dict(node)
+    if (node.get("type") == "object" or "properties" in node) and "additionalProperties" not in node:
+        node["additionalProperties"] = False
+    if isinstance(node.get("properties"), dict):
+        node["properties"] = {k: restrictive(v) for k, v in node["properties"].items()}
+    for key in ("items", "additionalItems"):
+        if key in node:
+            node[key] = restrictive(node[key])
+    for key in ("oneOf", "anyOf", "allOf"):
+        if key in node:
+            node[key] = [restrictive(v) for v in node[key]]
+    return node
+
+
+def assert_valid(document: dict) -> None:
+    """``document`` validates against its schema, as published and as awesIO's validator applies it."""
+    kind = kind_of(document, "document")
+    assert schema_errors(document, kind) == []
+    assert list(Draft7Validator(restrictive(schema(kind))).iter_errors(document)) == []

@@ -1,0 +1,91 @@
+"""awesIO documents: the shipped schemas are the published ones, YAML reads numbers as
+YAML 1.2 does, a document that breaks its schema is one line naming where."""
+
+import hashlib
+import re
+from pathlib import Path
+
+import pytest
+from jsonschema import Draft7Validator
+
+from awesio_valid import assert_valid
+
+from fem_tether.core.atomic import written_by_fem_tether
+from fem_tether.io.awesio import (KINDS, SCHEMAS_DIR, AwesioError, check, parse_yaml, read_document, schema,
+                                  yaml_text)
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "awesio" / "soft_kite_system.yml"
+
+
+def test_the_shipped_schemas_are_the_published_ones_byte_for_byte():
+    """PROVENANCE.md's SHA-256 of each file (computed on the files of the awesIO commit it names)."""
+    table = dict(re.findall(r"\| `(\w+_schema\.yml)` \| `([0-9a-f]{64})` \|", (SCHEMAS_DIR / "PROVENANCE.md").read_text()))
+    assert sorted(table) == sorted(f"{k}_schema.yml" for k in KINDS)
+    for name, digest in table.items():
+        assert hashlib.sha256((SCHEMAS_DIR / name).read_bytes()).hexdigest() == digest, name
+    assert (SCHEMAS_DIR / "LICENSE").read_text().startswith("MIT License")
+    assert "Apache License" in (SCHEMAS_DIR / "LICENSE-src-awesio").read_text()
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_schema_is_a_draft_7_schema(kind):
+    Draft7Validator.check_schema(schema(kind))
+
+
+def test_yaml_reads_numbers_as_yaml_1_2():
+    """PyYAML alone reads 1.0e9 as a string (YAML 1.1), which the schemas refuse as a number."""
+    data = parse_yaml("a: 1.0e9\nb: 1e-3\nc: 42\nd: 0.1.0\ne: .5\nf: -2.5E+3\ng: 1.0\nh: abc\n", "t")
+    assert data == {"a": 1e9, "b": 1e-3, "c": 42, "d": "0.1.0", "e": 0.5, "f": -2500.0, "g": 1.0, "h": "abc"}
+    assert isinstance(data["c"], int) and isinstance(data["a"], float)
+
+
+def test_our_example_system_document_is_valid():
+    kind, document = read_document(EXAMPLE)
+    assert kind == "system"
+    assert_valid(document)
+
+
+def test_a_document_breaking_its_schema_is_one_line_naming_the_file_and_the_field(tmp_path):
+    """v0.1's own examples write ``length`` where the schema asks ``length_m``: refused, named."""
+    text = EXAMPLE.read_text().replace("length_m: 400.0", "length: 400.0")
+    path = tmp_path / "system.yml"
+    path.write_text(text)
+    with pytest.raises(AwesioError) as err:
+        read_document(path)
+    message = str(err.value)
+    assert "\n" not in message and str(path) in message and "components.tether.structure" in message
+    assert "'length_m' is a required property" in message
+
+
+@pytest.mark.parametrize("text, says", [
+    ("metadata: {name: x}\n", "metadata.schema is None"),
+    ("metadata: {schema: turbine_schema.yml}\n", "metadata.schema is 'turbine_schema.yml'"),
+    ("- a\n- b\n", "not an awesIO document"),
+    ("a: [1, 2\n", "not YAML"),
+])
+def test_a_file_that_is_no_awesio_document_is_one_line(tmp_path, text, says):
+    path = tmp_path / "x.yml"
+    path.write_text(text)
+    with pytest.raises(AwesioError, match=re.escape(says)) as err:
+        read_document(path)
+    assert "\n" not in str(err.value)
+
+
+def test_a_document_of_another_kind_is_refused_naming_both(tmp_path):
+    path = tmp_path / "x.yml"
+    path.write_text("metadata: {schema: power_curves_schema.yml}\n")
+    with pytest.raises(AwesioError, match="an awesIO power_curves document, where one of system_schema.yml is expected"):
+        read_document(path, "system")
+
+
+def test_check_counts_the_other_errors():
+    with pytest.raises(AwesioError, match=r"\(and \d+ more\)"):
+        check({"metadata": {"schema": "system_schema.yml"}}, "system", "s.yml")
+
+
+def test_written_yaml_reads_back_equal_and_is_marked_as_ours(tmp_path):
+    _, document = read_document(EXAMPLE)
+    path = tmp_path / "back.yml"
+    path.write_text(yaml_text(document))
+    assert parse_yaml(path.read_text(), "back") == document
+    assert written_by_fem_tether(path)
