@@ -76,6 +76,26 @@ OUTPUT_UNITS = (QUANTITIES | VARIABLES | {f"aep_per_{name}_Wh": "Wh" for name in
 INDEXED = ("aep_Wh", "aep_ground_Wh", "aep_onboard_Wh", "capacity_factor", "total_mass_kg", "tether_length_m",
            "tether_diameter_m", "altitude_m", "elevation_rad", "span_m", "aspect_ratio")
 
+#: Table 5.6, the thesis' mean and SD over its 650 evaluations, in this model's outputs and SI units (the
+#: normalised multipliers λ as the AEP's sensitivity to the limit: λ_hmin's sign turned, raising h_min
+#: costs AEP; λ_M and λ_δout, λ_δin have no single counterpart here, Δ is per wind speed)
+REFERENCE = {
+    "aep_Wh": (21.1e9, 3.6e9), "aep_ground_Wh": (15.8e9, 3.28e9), "aep_onboard_Wh": (5.3e9, 1.97e9),
+    "capacity_factor": (0.80, 0.14), "total_mass_kg": (3684.0, 1705.0), "glider_mass_kg": (2884.0, 1475.0),
+    "generator_mass_kg": (160.0, 106.0), "tether_mass_kg": (626.0, 314.0), "takeoff_mass_kg": (14.0, 48.0),
+    "tether_length_m": (463.0, 116.0), "tether_diameter_m": (38e-3, 8e-3), "altitude_m": (211.0, 45.0),
+    "elevation_rad": (math.radians(27.4), math.radians(2.6)), "cut_in_mps": (2.21, 0.82),
+    "cut_out_mps": (19.32, 0.61), "span_m": (34.91, 8.62), "aspect_ratio": (22.5, 3.9), "support_m": (8.55, 2.16),
+    "tip_deflection_m": (1.34, 1.76), "centre_deflection_m": (1.88, 1.08), "turbine_area_m2": (83.6, 59.0),
+    "turbine_thrust_share": (0.92, 0.19), "climb_angle_rad": (math.radians(24.27), math.radians(20.5)),
+    "takeoff_thrust_N": (15.69e3, 12.04e3), "takeoff_energy_Wh": (6311.3, 4515.22),
+    "propeller_area_m2": (0.11, 0.39), "cap_a_m": (3e-3, 8e-3), "cap_b_m": (16e-3, 14e-3), "cap_c_m": (29e-3, 11e-3),
+    "aep_per_tether_strength_Pa_Wh": (1.94e9, 1.67e9), "aep_per_rated_power_W_Wh": (33.27e9, 10.56e9),
+    "aep_per_cl_max_Wh": (3.82e9, 5.47e9), "aep_per_wing_area_m2_Wh": (4.56e9, 3.09e9),
+    "aep_per_min_altitude_m_Wh": (-0.91e9, 1.14e9)}
+#: where :data:`REFERENCE` comes from
+REFERENCE_SOURCE = f"{THESIS} Table 5.6 (650 evaluations)"
+
 
 def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS) -> tuple[Solution, int, int]:
     """The best of the first ``n_max`` starts that converge feasible (§5.7.1), trying at most

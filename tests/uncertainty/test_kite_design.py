@@ -79,3 +79,11 @@ def test_table_5_7_adds_the_wind_resource_and_any_number_of_the_parameters_may_b
     assert all("Table 5.7" in x.source for x in kite_design.WIND_RESOURCE)
     assert {x.name for x in kite_design.UNCERTAIN + kite_design.WIND_RESOURCE} <= kite_design.ACCEPTS
     assert "mode" not in kite_design.ACCEPTS and "objective" not in kite_design.ACCEPTS
+
+
+def test_table_5_6_is_stated_in_the_outputs_si_units():
+    ref = kite_design.REFERENCE
+    assert set(ref) <= set(kite_design.OUTPUT_UNITS)
+    assert ref["aep_Wh"] == (21.1e9, 3.6e9) and ref["tether_diameter_m"] == (38e-3, 8e-3)
+    assert ref["elevation_rad"][0] == pytest.approx(0.478220, abs=1e-6)     # 27.4°
+    assert all(sd > 0 for _, sd in ref.values())
