@@ -98,14 +98,18 @@ REFERENCE_SOURCE = f"{THESIS} Table 5.6 (650 evaluations)"
 
 
 def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS) -> tuple[Solution, int, int]:
-    """The best of the first ``n_max`` starts that converge feasible (§5.7.1), trying at most
+    """The best of the first ``n_max`` starts that converge feasible (§5.7.1; a start the model refuses
+    counts as not converged), trying at most
     ``attempts`` × ``n_max`` starts; (best, starts tried, starts converged).  Raises
     :class:`SolverDivergedError` where none converged."""
     converged: list[Solution] = []
     tried = 0
     for start in start_points(problem.layout, attempts * n_max):
         tried += 1
-        solution = problem.solve(consistent(problem, start))
+        try:
+            solution = problem.solve(consistent(problem, start))
+        except ValueError:          # a start the model cannot make consistent (no load-bearing tether left)
+            continue
         if solution.success and solution.feasible:
             converged.append(solution)
             if len(converged) == n_max:

@@ -87,3 +87,14 @@ def test_table_5_6_is_stated_in_the_outputs_si_units():
     assert ref["aep_Wh"] == (21.1e9, 3.6e9) and ref["tether_diameter_m"] == (38e-3, 8e-3)
     assert ref["elevation_rad"][0] == pytest.approx(0.478220, abs=1e-6)     # 27.4°
     assert all(sd > 0 for _, sd in ref.values())
+
+
+def test_a_start_the_model_refuses_counts_as_not_converged(monkeypatch):
+    """Sample 8 of the 650 (seed 0) stopped the whole analysis: one start's tether had no load-bearing
+    section left ("the conductor ... leaves no load-bearing section", a ValueError)."""
+    def refused(problem, start, passes=10):
+        raise ValueError("tether_diameter_m = 0.0156: the conductor leaves no load-bearing section")
+
+    monkeypatch.setattr(kite_design, "consistent", refused)
+    with pytest.raises(SolverDivergedError, match="no start of 2 converged feasible"):
+        kite_design.multistart(Problem(DesignParameters()), 1, attempts=2)
