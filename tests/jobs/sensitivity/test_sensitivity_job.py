@@ -116,4 +116,4 @@ def test_an_unknown_model_is_named(tmp_path, name, shown):
     path.write_text(f"[sensitivity]\nmodel = {name}\nsamples = 20\n")
     with pytest.raises(ConfigError) as raised:
         load_sensitivity_job(path)
-    assert str(raised.value) == f"[sensitivity] model = {shown}: unknown (one of cantilever)"
+    assert str(raised.value) == f"[sensitivity] model = {shown}: unknown (one of cantilever, trevisi-3mw)"
