@@ -29,6 +29,16 @@ def test_the_cantilever_preset_is_section_4_3s_analysis():
     assert job.text == PRESETS["cantilever"] and job.surface == ()
 
 
+def test_the_trevisi_3mw_preset_is_section_5_7s_analysis():
+    """Table 5.4's sixteen inputs (the model's), 650 Latin-hypercube samples as Table 5.6, counts 100 ... 650."""
+    from fem_tether.uncertainty import kite_design
+    job = load_sensitivity_job(preset="trevisi-3mw")
+    assert (job.name, job.samples, job.method, job.seed) == ("trevisi-3mw", 650, "lhs", 0)
+    assert job.inputs == kite_design.UNCERTAIN and len(job.inputs) == 16
+    assert job.counts == (100, 200, 300, 400, 500, 650) and job.model is kite_design.design
+    assert job.indexed == kite_design.INDEXED and job.text == PRESETS["trevisi-3mw"]
+
+
 def test_the_example_replaces_two_distributions_and_keeps_the_others():
     """E: the model's mean with the job's sd; δ_max: the job's range; the others untouched; the
     sources say what the model's were."""
@@ -102,7 +112,7 @@ def test_a_bad_job_is_one_line_naming_the_key(tmp_path, text, message):
 @pytest.mark.parametrize("path, preset, samples, message", [
     (None, None, None, "give a sensitivity job file or --preset NAME (one of them)"),
     ("job.toml", "cantilever", None, "give a sensitivity job file or --preset NAME (one of them)"),
-    (None, "kite", None, "--preset kite: unknown (one of cantilever)"),
+    (None, "kite", None, "--preset kite: unknown (one of cantilever, trevisi-3mw)"),
     (None, "cantilever", 5, "--samples 5: must be an integer in 10..1000000"),
 ])
 def test_bad_command_line_choices_are_one_line(path, preset, samples, message):
