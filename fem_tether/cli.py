@@ -518,7 +518,7 @@ def build_parser() -> argparse.ArgumentParser:
                 "statistics and Sobol' indices of its outputs over uncertain inputs, samples over MPI ranks",
                 config=False, system=False)
     c.add_argument("job", nargs="?", help="sensitivity job (TOML with a [sensitivity] table, docs/sensitivity.md)")
-    c.add_argument("--preset", metavar="NAME", help="a shipped sensitivity job instead (cantilever)")
+    c.add_argument("--preset", metavar="NAME", help="a shipped sensitivity job instead (e.g. cantilever, trevisi-3mw)")
     c.add_argument("--out", required=True, metavar="FILE.h5",
                    help="result file; the figures and the report page go to FILE_report/")
     c.add_argument("--samples", type=_option(int, "a whole number", lambda v: v >= 2, "at least 2"), metavar="N",

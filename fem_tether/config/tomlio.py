@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import tomllib
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +28,28 @@ def toml_and_text(path: str | Path) -> tuple[dict[str, Any], str]:
         return tomllib.loads(text), text
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+
+
+def shipped_tomls(package: str) -> dict[str, str]:
+    """The TOML files shipped in ``package``'s folder ``presets``: name (the file's stem) -> text."""
+    folder = resources.files(package) / "presets"
+    return {f.name.removesuffix(".toml"): f.read_text(encoding="utf-8") for f in folder.iterdir()
+            if f.name.endswith(".toml")}
+
+
+def job_table(tables: dict[str, Any], source: str, table: str, keys: tuple[str, ...]) -> dict[str, Any]:
+    """A job file's one table ``[table]`` (``tables`` parsed from ``source``), its keys among ``keys``;
+    a ConfigError line naming another table, the missing table or an unknown key."""
+    unknown = sorted(set(tables) - {table})
+    if unknown:
+        raise ConfigError(f"{source}: unknown table [{unknown[0]}] (a {table} job has only [{table}])")
+    values = tables.get(table)
+    if not isinstance(values, dict):
+        raise ConfigError(f"{source}: no [{table}] table")
+    for key in values:
+        if key not in keys:
+            raise ConfigError(f"[{table}] {key}: unknown key (one of {', '.join(keys)})")
+    return values
 
 
 def resolve_paths(values: dict[str, Any], base_dir: Path) -> dict[str, Any]:

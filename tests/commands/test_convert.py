@@ -9,6 +9,7 @@ import pytest
 from mpi4py import MPI
 
 from awesio_valid import assert_valid
+from conftest import TINY_JOB
 from fem_tether.cli import main
 from fem_tether.config import load_config
 from fem_tether.core.atomic import written_by_fem_tether
@@ -22,17 +23,7 @@ EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "awesio" / "soft_ki
 LIMITS = EXAMPLE.with_name("soft_kite_operational_constraints.yml")
 
 #: The converted case swept coarsely at one length, FE and FD (about a second).
-SWEEP = """[sweep]
-lengths_m = [400]
-[fe]
-elements = 10
-dt_s = 0.2
-[fd]
-segments = 20
-dt_s = 0.05
-[time]
-average_periods = 1
-"""
+SWEEP = TINY_JOB.replace("[400, 800]", "[400]")
 
 
 def test_a_system_document_becomes_a_case_file(tmp_path, capsys):

@@ -51,11 +51,10 @@ import json
 import math
 import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from fem_tether.config.tomlio import toml_and_text
+from fem_tether.config.tomlio import shipped_tomls, toml_and_text
 from fem_tether.core.errors import ConfigError
 from fem_tether.costs.parameters import COSTS, CURRENCY, FIXED_COSTS, CostParameters
 from fem_tether.design.optimiser import MAX_ITERATIONS, starts_for
@@ -76,14 +75,8 @@ MAX_STARTS = 1000
 MOST_ITERATIONS = 100_000
 
 
-def _preset_files() -> dict[str, str]:
-    folder = resources.files("fem_tether.jobs.design") / "presets"
-    return {f.name.removesuffix(".toml"): f.read_text(encoding="utf-8") for f in folder.iterdir()
-            if f.name.endswith(".toml")}
-
-
 #: shipped design jobs: name -> TOML text
-PRESETS = _preset_files()
+PRESETS = shipped_tomls("fem_tether.jobs.design")
 
 
 @dataclass(frozen=True)

@@ -26,10 +26,9 @@ from __future__ import annotations
 import math
 import tomllib
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 
-from fem_tether.config.tomlio import toml_and_text
+from fem_tether.config.tomlio import job_table, shipped_tomls, toml_and_text
 from fem_tether.core.errors import ConfigError
 from fem_tether.core.mesh import MAX_ELEMENTS
 
@@ -43,14 +42,8 @@ RANGES = {"polyhedron_side_m": (0.0, 5000.0, False), "min_height_m": (0.0, 5000.
 RATED_W = (1e3, 1e9)
 
 
-def _preset_files() -> dict[str, str]:
-    folder = resources.files("fem_tether.jobs.farm") / "presets"
-    return {f.name.removesuffix(".toml"): f.read_text(encoding="utf-8") for f in folder.iterdir()
-            if f.name.endswith(".toml")}
-
-
 #: Shipped farm jobs: name -> TOML text.
-PRESETS = _preset_files()
+PRESETS = shipped_tomls("fem_tether.jobs.farm")
 DEFAULT_PRESET = "fagiano-2010"
 
 
@@ -85,15 +78,7 @@ def load_farm_job(path: str | Path | None = None, preset: str | None = None) -> 
     else:
         preset = DEFAULT_PRESET if preset is None else preset
         tables, text, name = _preset(preset), PRESETS.get(str(preset), ""), f"preset {preset}"
-    unknown = sorted(set(tables) - {"farm"})
-    if unknown:
-        raise ConfigError(f"{name}: unknown table [{unknown[0]}] (a farm job has only [farm])")
-    farm = tables.get("farm")
-    if not isinstance(farm, dict):
-        raise ConfigError(f"{name}: no [farm] table")
-    for key in farm:
-        if key not in KEYS:
-            raise ConfigError(f"[farm] {key}: unknown key (one of {', '.join(KEYS)})")
+    farm = job_table(tables, name, "farm", KEYS)
     base_name = farm.get("preset", DEFAULT_PRESET)
     base = _preset(base_name)["farm"]
     if "preset" in farm or path is not None:

@@ -31,10 +31,9 @@ from __future__ import annotations
 import dataclasses
 import math
 import tomllib
-from importlib import resources
 from pathlib import Path
 
-from fem_tether.config.tomlio import toml_and_text
+from fem_tether.config.tomlio import job_table, shipped_tomls, toml_and_text
 from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.jobs.sensitivity.run import SensitivityJob
 from fem_tether.uncertainty.chaos import MAX_TERMS_SHARE, terms
@@ -50,14 +49,8 @@ SURFACE_KEYS = ("output", "inputs")
 MAX_SAMPLES = 1_000_000
 
 
-def _preset_files() -> dict[str, str]:
-    folder = resources.files("fem_tether.jobs.sensitivity") / "presets"
-    return {f.name.removesuffix(".toml"): f.read_text(encoding="utf-8") for f in folder.iterdir()
-            if f.name.endswith(".toml")}
-
-
 #: shipped sensitivity jobs: name -> TOML text
-PRESETS = _preset_files()
+PRESETS = shipped_tomls("fem_tether.jobs.sensitivity")
 
 
 def load_sensitivity_job(path: str | Path | None = None, preset: str | None = None,
@@ -73,15 +66,7 @@ def load_sensitivity_job(path: str | Path | None = None, preset: str | None = No
         if preset not in PRESETS:
             raise ConfigError(f"--preset {preset}: unknown (one of {', '.join(sorted(PRESETS))})")
         tables, text, name = tomllib.loads(PRESETS[preset]), PRESETS[preset], f"preset {preset}"
-    unknown = sorted(set(tables) - {"sensitivity"})
-    if unknown:
-        raise ConfigError(f"{name}: unknown table [{unknown[0]}] (a sensitivity job has only [sensitivity])")
-    table = tables.get("sensitivity")
-    if not isinstance(table, dict):
-        raise ConfigError(f"{name}: no [sensitivity] table")
-    for key in table:
-        if key not in KEYS:
-            raise ConfigError(f"[sensitivity] {key}: unknown key (one of {', '.join(KEYS)})")
+    table = job_table(tables, name, "sensitivity", KEYS)
     if "model" not in table:
         raise ConfigError(f"[sensitivity] model: missing (one of {', '.join(sorted(MODELS))})")
     try:
