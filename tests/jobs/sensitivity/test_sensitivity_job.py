@@ -37,6 +37,7 @@ def test_the_trevisi_3mw_preset_is_section_5_7s_analysis():
     assert job.inputs == kite_design.UNCERTAIN and len(job.inputs) == 16
     assert job.counts == (100, 200, 300, 400, 500, 650) and job.model is kite_design.design
     assert job.indexed == kite_design.INDEXED and job.text == PRESETS["trevisi-3mw"]
+    assert job.surface == ("capacity_factor", "wing_area_m2", "cl_max")       # Fig. 5.10a
 
 
 def test_the_example_replaces_two_distributions_and_keeps_the_others():
