@@ -27,6 +27,7 @@ from fem_tether.uncertainty.inputs import Input
 MODELS = {
     "cantilever": "fem_tether.uncertainty.cantilever",     # Trevisi ch. 4's beam (§4.1, Table 4.3)
     "trevisi-3mw": "fem_tether.uncertainty.kite_design",     # Trevisi §5.7: the 3 MW AEP design (Table 5.4)
+    "trevisi-3mw-flexible": "fem_tether.jobs.sensitivity.flexible_design",   # the same, FE tether in the loop
 }
 
 

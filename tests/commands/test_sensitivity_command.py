@@ -16,6 +16,7 @@ from fem_tether import cli
 from fem_tether.core.atomic import written_by_fem_tether
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.report.sensitivity import FIGURE_FILES, report_paths
+from fem_tether.uncertainty.models import MODELS
 
 ROOT = Path(__file__).resolve().parents[2]
 MPIEXEC = shutil.which("mpiexec")
@@ -88,7 +89,7 @@ def test_bad_options_exit_2_with_one_line_and_write_nothing(job, tmp_path, capsy
 
 
 @pytest.mark.parametrize("text, message", [
-    ('[sensitivity]\nmodel = "kite"\nsamples = 20\n', "[sensitivity] model = 'kite': unknown (one of cantilever, trevisi-3mw)"),
+    ('[sensitivity]\nmodel = "kite"\nsamples = 20\n', f"[sensitivity] model = 'kite': unknown (one of {', '.join(sorted(MODELS))})"),
     ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.wing_area_m2]\nlow = 1\n',
      "[sensitivity.inputs] wing_area_m2: unknown input"),
     ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.max_deflection_m]\nlow = 0.3\n'

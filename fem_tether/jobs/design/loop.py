@@ -378,9 +378,10 @@ def _say(progress: bool, line: str) -> None:
 
 
 def run_flexible(comm, job: DesignJob, out: Path, lumped: DesignResult | None,
-                 progress: bool) -> FlexibleOutcome | None:
+                 progress: bool, attribute: bool = True) -> FlexibleOutcome | None:
     """The loop over the ranks of ``comm`` from rank 0's ``lumped`` design (module docstring); its
-    outcome on rank 0, None on the others.  KeyboardInterrupt propagates (the parts are kept)."""
+    outcome on rank 0, None on the others; without the attribution's flights if not ``attribute``
+    (a sensitivity sample's loop).  KeyboardInterrupt propagates (the parts are kept)."""
     rank = comm.Get_rank()
     t0 = time.perf_counter()
     settings = job.flexible
@@ -430,7 +431,7 @@ def run_flexible(comm, job: DesignJob, out: Path, lumped: DesignResult | None,
         state.gate = _gate(job, current, runs, gate[0], factor)
         _say(progress, f"flexible tether: the FE <-> FD gate at {state.gate['wind_mps']:.2f} m/s "
                        + ("passed" if state.checked else "failed"))
-    if not failed and problem is not None:
+    if attribute and not failed and problem is not None:
         t1 = time.perf_counter()
         state.attribution_Wh = attribution(job, lumped, current, problem, factor, bins)
         timing["attribution_s"] = time.perf_counter() - t1
