@@ -41,6 +41,13 @@ def test_the_trevisi_3mw_preset_is_section_5_7s_analysis():
     assert job.surface == ("capacity_factor", "wing_area_m2", "cl_max")       # Fig. 5.10a
 
 
+def test_the_trevisi_3mw_flexible_preset_samples_the_tethers_inputs():
+    from fem_tether.jobs.sensitivity import flexible_design
+    job = load_sensitivity_job(preset="trevisi-3mw-flexible")
+    assert (job.name, job.samples, job.counts) == ("trevisi-3mw-flexible", 100, (25, 50, 75, 100))
+    assert job.inputs == flexible_design.UNCERTAIN and job.model is flexible_design.design
+
+
 def test_the_example_replaces_two_distributions_and_keeps_the_others():
     """E: the model's mean with the job's sd; δ_max: the job's range; the others untouched; the
     sources say what the model's were."""
