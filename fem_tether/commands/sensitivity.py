@@ -11,9 +11,11 @@ its JSON: the file's content without the per-sample values and the expansions' c
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
-from fem_tether.jobs.sensitivity.run import run_sensitivity
+from fem_tether.jobs.sensitivity.run import Samples, run_sensitivity
 from fem_tether.report import text as report
 from fem_tether.report.sensitivity import check_report, write_sensitivity_report
 from fem_tether.report.sensitivity_text import sensitivity_text
@@ -37,6 +39,23 @@ def cmd_sensitivity(args) -> int:
         return 0
     page = write_sensitivity_report(args.out)
     r = read_sensitivity_hdf5(args.out)
-    print(report.json_text(summary(r) | {"file": str(args.out), "report": str(page)}) if args.json
-          else f"{sensitivity_text(r, args.out)}\nreport: {page}")
+    model_s = Samples(job, Path(args.out)).ranks_model()
+    print(report.json_text(summary(r) | {"file": str(args.out), "report": str(page),
+                                         "ranks_model_s": {str(n): t for n, t in model_s.items()}}) if args.json
+          else f"{sensitivity_text(r, args.out)}\n{ranks_text(model_s)}report: {page}")
     return 0
+
+
+def ranks_text(model_s: dict[int, float]) -> str:
+    """The line of the samples' modelled wall time on N ranks (empty without a model)."""
+    if not model_s:
+        return ""
+    return ("the samples' wall time on N ranks, modelled from their measured times (docs/sensitivity.md §4): "
+            + ", ".join(f"{n} {_duration(t)}" for n, t in model_s.items()) + "\n")
+
+
+def _duration(seconds: float) -> str:
+    """1.23 s, 45.6 s, 12.3 min, 4.56 h."""
+    if seconds < 60.0:
+        return f"{seconds:.3g} s"
+    return f"{seconds / 60:.1f} min" if seconds < 3600.0 else f"{seconds / 3600:.2f} h"

@@ -56,10 +56,20 @@ def test_json_gives_the_analysis_without_the_samples(job, tmp_path, capsys):
     out = tmp_path / "beam.h5"
     assert cli.main(["sensitivity", str(job), "--out", str(out), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert set(data) == {"attrs", "inputs", "statistics", "indices", "convergence", "file", "report"}
+    assert set(data) == {"attrs", "inputs", "statistics", "indices", "convergence", "file", "report", "ranks_model_s"}
     assert data["file"] == str(out) and data["report"] == str(report_paths(out)[-1])
     assert "values" not in data["inputs"]["max_deflection_m"] and "coefficients" not in data["indices"]["mass_kg"]
     assert data["statistics"]["mass_kg"] == read_sensitivity_hdf5(out)["statistics"]["mass_kg"]
+    model = {int(n): t for n, t in data["ranks_model_s"].items()}      # the samples' modelled wall time
+    assert model[1] >= model[2] >= model[128] > 0.0
+
+
+def test_the_text_ends_with_the_ranks_model_and_the_report(job, tmp_path, capsys):
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[-2].startswith("the samples' wall time on N ranks, modelled from their measured times")
+    assert ", 2 " in lines[-2] and lines[-1] == f"report: {report_paths(out)[-1]}"
 
 
 def test_samples_on_the_command_line_replace_the_jobs(job, tmp_path, capsys):

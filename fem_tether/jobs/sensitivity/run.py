@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import time
 from collections.abc import Callable, Mapping
 from contextlib import ExitStack
 from dataclasses import asdict, dataclass, field
@@ -31,6 +32,7 @@ from fem_tether.core.errors import SolverDivergedError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
 from fem_tether.io.sensitivity_file import is_sensitivity_result, write_sensitivity_hdf5
+from fem_tether.jobs import scaling
 from fem_tether.jobs.runner import JsonParts, claim_output, distribute
 from fem_tether.uncertainty.analysis import MAX_DEGREE, RESAMPLES, analyse, convergence
 from fem_tether.uncertainty.inputs import Input, sample
@@ -94,12 +96,24 @@ class Samples(JsonParts):
 
     def run(self, index: int) -> None:
         parameters = {x.name: float(v) for x, v in zip(self.job.inputs, self.points[index])}
+        t0 = time.perf_counter()
         try:
             outputs, error = {k: float(v) for k, v in self.job.model(parameters).items()}, ""
         except SolverDivergedError as exc:
             outputs, error = {}, str(exc)
         write_json(self.path(index), {"key": self.key, "index": index, "parameters": parameters,
-                                      "outputs": outputs, "error": error}, allow_nan=True)
+                                      "outputs": outputs, "error": error, "wall_s": time.perf_counter() - t0},
+                   allow_nan=True)
+
+    def ranks_model(self) -> dict[int, float]:
+        """The samples' wall time on N ranks (:func:`fem_tether.jobs.scaling.model`: one phase, every
+        sample of one estimated cost) from their parts' measured ``wall_s``; {} where a part has none
+        (one written before they were measured)."""
+        measured = [part.get("wall_s") for part in self.parts(self.job.samples)]
+        walls = [w for w in measured if isinstance(w, float)]
+        if len(walls) < len(measured):
+            return {}
+        return scaling.model([([1.0] * len(walls), walls)], 0.0)
 
     def values(self) -> dict[str, np.ndarray]:
         """Every sample's outputs (NaN where its model failed), from the parts (rank 0, after the run)."""

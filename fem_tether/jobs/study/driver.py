@@ -22,10 +22,10 @@ from pathlib import Path
 
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
+from fem_tether.jobs import scaling
 from fem_tether.jobs.runner import claim_output, distribute, load_kernels_by_rank
 
 from fem_tether.jobs.study import optimum as opt
-from fem_tether.jobs.study import scaling
 from fem_tether.jobs.study.job import Point, StudyJob
 from fem_tether.jobs.study.result import check_out, write_study
 from fem_tether.jobs.study.tasks import Study, Task
@@ -82,7 +82,7 @@ PHASES = (("seed runs", Study.seed_tasks), ("operating points", Study.ops_tasks)
 
 
 def scaling_model(study: Study, extra: list[Point], other_s: float) -> dict[int, float]:
-    """Modelled wall time of the whole study on N ranks (:mod:`fem_tether.jobs.study.scaling`)
+    """Modelled wall time of the whole study on N ranks (:mod:`fem_tether.jobs.scaling`)
     from every task's measured time; ``other_s``: the time spent outside the phases."""
     phases = []
     for points in (study.job.points, extra):

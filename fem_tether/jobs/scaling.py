@@ -1,14 +1,16 @@
-"""A model of a study's wall time on N ranks, from its tasks' measured times.
+"""A model of a job's wall time on N ranks, from its tasks' measured times.
 
-Each phase ends at a barrier, so a study on N ranks takes
+A job's tasks run in phases, each ending at a barrier (a study's seed runs,
+operating points, tether runs, …; a sensitivity analysis's samples are one
+phase), so a job on N ranks takes
 
     T(N) = sum over phases of  max over ranks r of  sum of t_i, i assigned to r,
 
 with the assignment the scheduler makes (:func:`fem_tether.jobs.schedule.assign`
 on the estimated costs) and t_i each task's measured wall time (its part's
-``wall_s``), plus what the ranks do besides tasks (loading the job, planning
-each phase, rank 0 writing the file: measured as the wall time not spent in
-tasks on one rank).  It ignores contention between ranks for memory
+``wall_s``), plus what the ranks do besides tasks (a study's: loading the job,
+planning each phase, rank 0 writing the file, measured as the wall time not
+spent in tasks on one rank).  It ignores contention between ranks for memory
 bandwidth and the file system, so it is a lower bound of what a cluster
 measures; the largest task bounds every phase from below.
 """
