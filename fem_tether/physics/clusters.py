@@ -153,7 +153,11 @@ class ClusterResource:
 
 
 def _cells(line: str) -> list[str]:
-    return [c.strip() for c in line.split(";")]
+    """A line's fields, without the empty ones a spreadsheet leaves at its end."""
+    cells = [c.strip() for c in line.split(";")]
+    while len(cells) > 1 and cells[-1] == "":
+        cells.pop()
+    return cells
 
 
 def _float(cell: str, where: str) -> float:
@@ -167,8 +171,6 @@ def _float(cell: str, where: str) -> float:
 
 
 def _row(cells: list[str], count: int, where: str) -> list[float]:
-    while len(cells) > count and cells[-1] == "":   # a spreadsheet's trailing separators
-        cells = cells[:-1]
     if len(cells) != count:
         raise ClusterError(f"{where}: {len(cells)} fields, expected {count}")
     return [_float(c, where) for c in cells]
@@ -205,11 +207,11 @@ def read_clusters_csv(path) -> ClusterResource:
     profile: list[list[float]] = []
     rest = list(blocks)
     i = 0
-    while i < len(rest) and rest[i][1][0] != CSV_FREQUENCY:
+    while i < len(rest) and rest[i][1][0] not in (CSV_FREQUENCY, CSV_BINS):
         number, cells = rest[i]
         profile.append(_row(cells, 1 + 2 * k, f"{name} line {number}"))
         i += 1
-    if i == len(rest):
+    if i == len(rest) or rest[i][1][0] != CSV_FREQUENCY:
         raise ClusterError(f"{name}: no line '{CSV_FREQUENCY};f1;...;f{k}' after the heights")
     number, cells = rest[i]
     frequency = _row(cells[1:], k, f"{name} line {number}")

@@ -1,0 +1,79 @@
+"""Wind profiles from NetCDF4 files read with h5py: the plain, ERA5 and DOWA layouts give the
+profiles written, and a file that is none of them is one line naming what is missing."""
+
+import h5py
+import numpy as np
+import pytest
+
+from fem_tether.io.netcdf_profiles import GRID_STEP_M, ProfileFileError, read_profiles
+from synthetic_profiles import HEIGHTS_M, draw, write_dowa, write_era5, write_plain
+
+
+def test_the_plain_layout_is_read_as_written(tmp_path):
+    east, north, _ = draw(counts=(5, 3, 2))
+    profiles = read_profiles(write_plain(tmp_path / "p.nc", east, north))
+    assert profiles.heights_m.tolist() == HEIGHTS_M.tolist() and profiles.dropped == 0
+    assert np.array_equal(profiles.u_mps, east) and np.array_equal(profiles.v_mps, north)
+
+
+def test_heights_in_any_order_and_incomplete_profiles(tmp_path):
+    east, north, _ = draw(counts=(5, 3, 2))
+    east[3, 2] = np.nan
+    order = np.arange(HEIGHTS_M.size)[::-1]
+    profiles = read_profiles(write_plain(tmp_path / "p.nc", east[:, order], north[:, order], HEIGHTS_M[order]))
+    assert profiles.heights_m.tolist() == HEIGHTS_M.tolist() and profiles.dropped == 1
+    assert np.array_equal(profiles.u_mps, np.delete(east, 3, axis=0))
+
+
+def test_the_era5_layout_is_unpacked_and_put_on_one_grid_of_heights(tmp_path):
+    """int16 with scale 0.001 m/s: unpacked within half of it; each profile's levels are shifted by
+    up to 5 m, and the grid starts at the lowest height every profile reaches (10 + 5 m -> 20 m)."""
+    east, north, _ = draw(counts=(5, 3, 2))
+    profiles = read_profiles(write_era5(tmp_path / "e.nc", east, north))
+    assert profiles.layout.startswith("ERA5") and profiles.dropped == 0
+    assert profiles.heights_m[0] == 20.0 and profiles.heights_m[-1] == 590.0
+    assert np.diff(profiles.heights_m) == pytest.approx(GRID_STEP_M)
+    wobble = 5.0 * np.sin(np.arange(len(east)))
+    for t in range(len(east)):
+        expected = np.interp(profiles.heights_m, HEIGHTS_M + wobble[t], east[t])
+        assert profiles.u_mps[t] == pytest.approx(expected, abs=0.5e-3 + 1e-12)
+
+
+def test_the_dowa_layout_gives_east_and_north_components(tmp_path):
+    east, north, _ = draw(counts=(5, 3, 2))
+    profiles = read_profiles(write_dowa(tmp_path / "d.nc", east, north))
+    assert profiles.u_mps == pytest.approx(east, abs=1e-12) and profiles.v_mps == pytest.approx(north, abs=1e-12)
+
+
+def _file(path, **variables):
+    with h5py.File(path, "w") as f:
+        for name, data in variables.items():
+            f[name] = data
+    return path
+
+
+@pytest.mark.parametrize("variables, match", [
+    (dict(speed=np.zeros((3, 2))), "no wind profiles: expected variables u, v and height .*; found speed"),
+    (dict(u=np.zeros((3, 2)), v=np.zeros((3, 2))), "variables 'u' and 'v' but neither 'height' \\[m\\] nor ERA5's"),
+    (dict(u=np.zeros((3, 2)), v=np.zeros((3, 3)), height=np.array([10.0, 20.0])), "variable 'v' has 3 heights"),
+    (dict(u=np.zeros((3, 2, 2)), v=np.zeros((3, 2, 2)), height=np.array([10.0, 20.0])),
+     r"variable 'u' is shaped \(3, 2, 2\), expected \(time, height\); it holds more than one site"),
+    (dict(u=np.zeros((3, 2)), v=np.zeros((3, 2)), height=np.array([10.0, 10.0])), "distinct finite heights"),
+    (dict(u=np.full((3, 2), np.nan), v=np.zeros((3, 2)), height=np.array([10.0, 20.0])), "no complete profile"),
+    (dict(u=np.array([[b"a", b"b"]]), v=np.zeros((1, 2)), height=np.array([10.0, 20.0])), "'u' is not numeric"),
+])
+def test_a_file_of_no_known_layout_is_one_line_naming_what_is_missing(tmp_path, variables, match):
+    with pytest.raises(ProfileFileError, match=match) as info:
+        read_profiles(_file(tmp_path / "x.nc", **variables))
+    assert "\n" not in str(info.value) and "x.nc" in str(info.value)
+
+
+def test_a_missing_or_classic_netcdf_file_is_one_line(tmp_path):
+    with pytest.raises(ProfileFileError, match="no such file"):
+        read_profiles(tmp_path / "none.nc")
+    classic = tmp_path / "c.nc"
+    classic.write_bytes(b"CDF\x01" + bytes(60))
+    with pytest.raises(ProfileFileError, match="not a NetCDF4 \\(HDF5\\) file; a NetCDF3 .*nccopy -k nc4"):
+        read_profiles(classic)
+    with pytest.raises(ProfileFileError, match="not a regular file"):
+        read_profiles(tmp_path)
