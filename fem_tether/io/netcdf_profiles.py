@@ -9,8 +9,8 @@ variables (the first that fits):
 - **plain**: ``u``, ``v`` [m/s] (east and north components) shaped (time,
   height) and ``height`` [m above ground], one value per height;
 - **ERA5** (Copernicus CDS NetCDF4, one grid point, pressure or model levels):
-  ``u``, ``v`` and the geopotential ``z`` [m^2/s^2] shaped (time, level[,
-  latitude, longitude]); each profile's heights are its geopotential heights
+  ``u``, ``v`` and the geopotential ``z`` [m^2/s^2] shaped as they are (time,
+  level[, latitude, longitude]; units, if stated, in s^-2); each profile's heights are its geopotential heights
   z / g0 (g0 = 9.80665 m/s^2, above mean sea level), and each profile is
   interpolated onto heights every :data:`GRID_STEP_M` from the lowest height
   every profile reaches to :data:`TOP_M` (or the highest every profile reaches);
@@ -155,7 +155,12 @@ def read_profiles(path) -> Profiles:
                                "'nccopy -k nc4 IN OUT'") from None
     with f:
         names = set(f.keys())
-        if {"u", "v", "z"} <= names:
+        if {"u", "v", "z"} <= names and f["z"].shape == f["u"].shape:
+            units = f["z"].attrs.get("units", b"m**2 s**-2")
+            units = units.decode() if isinstance(units, bytes) else str(units)
+            if "s" not in units:
+                raise ProfileFileError(f"{source}: 'z' is in {units!r}; the ERA5 layout reads the geopotential "
+                                       "[m2/s2] (heights in m: name them 'height', the plain layout)")
             u = _time_by_level(f, "u", source)
             v = _time_by_level(f, "v", source, u.shape[1])
             heights = _time_by_level(f, "z", source, u.shape[1]) / G0_MPS2

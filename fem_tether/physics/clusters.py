@@ -184,49 +184,41 @@ def read_clusters_csv(path) -> ClusterResource:
     name = path.name
     lines = [(n, _cells(text)) for n, text in enumerate(read_text(path, ClusterError).splitlines(), 1)
              if text.strip() and not text.lstrip().startswith("#")]
-    blocks = iter(lines)
 
-    def expect(first: str):
-        try:
-            number, cells = next(blocks)
-        except StopIteration:
-            raise ClusterError(f"{name}: ends before the line '{first};...'") from None
-        if cells[0] != first:
-            raise ClusterError(f"{name} line {number}: starts with {cells[0]!r}, expected {first!r} (docs/resource.md)")
-        return number, cells
+    def where(i: int) -> str:
+        return f"{name} line {lines[i][0]}"
 
-    number, cells = expect(CSV_REFERENCE)
-    reference = _row(cells[1:], 1, f"{name} line {number}")[0]
-    number, header = expect(CSV_HEIGHTS)
-    pairs = header[1:]
+    def find(first: str, start: int, fields: str) -> int:
+        """The index of the line opening with ``first``: at ``start`` if fields is '', else the first from it."""
+        for i in range(start, len(lines) if fields else min(start + 1, len(lines))):
+            if lines[i][1][0] == first:
+                return i
+        if not fields and start < len(lines):
+            raise ClusterError(f"{where(start)}: starts with {lines[start][1][0]!r}, expected {first!r} "
+                               "(docs/resource.md)")
+        raise ClusterError(f"{name}: no line '{first};{fields or '...'}'"
+                           + (f" after line {lines[start - 1][0]}" if 0 < start <= len(lines) else ""))
+
+    reference = _row(lines[find(CSV_REFERENCE, 0, "")][1][1:], 1, where(0))[0]
+    pairs = lines[find(CSV_HEIGHTS, 1, "")][1][1:]
     k = len(pairs) // 2
     expected = [f"{c}{i}" for i in range(1, k + 1) for c in "uv"]
     if k < 1 or pairs != expected:
-        raise ClusterError(f"{name} line {number}: columns {';'.join(pairs)!r}, expected u1;v1;u2;v2;... "
+        raise ClusterError(f"{where(1)}: columns {';'.join(pairs)!r}, expected u1;v1;u2;v2;... "
                            f"({';'.join(expected) or 'u1;v1'})")
-    profile: list[list[float]] = []
-    rest = list(blocks)
-    i = 0
-    while i < len(rest) and rest[i][1][0] not in (CSV_FREQUENCY, CSV_BINS):
-        number, cells = rest[i]
-        profile.append(_row(cells, 1 + 2 * k, f"{name} line {number}"))
-        i += 1
-    if i == len(rest) or rest[i][1][0] != CSV_FREQUENCY:
-        raise ClusterError(f"{name}: no line '{CSV_FREQUENCY};f1;...;f{k}' after the heights")
-    number, cells = rest[i]
-    frequency = _row(cells[1:], k, f"{name} line {number}")
-    if i + 1 == len(rest) or rest[i + 1][1][0] != CSV_BINS:
-        raise ClusterError(f"{name}: no speed distribution table '{CSV_BINS};v_high [m/s];p1;...' after the frequencies")
-    number, cells = rest[i + 1]
-    if cells[1:] != ["v_high [m/s]", *[f"p{j}" for j in range(1, k + 1)]]:
-        raise ClusterError(f"{name} line {number}: expected {CSV_BINS};v_high [m/s];"
-                           f"{';'.join(f'p{j}' for j in range(1, k + 1))}")
+    f = find(CSV_FREQUENCY, 2, f"f1;...;f{k}")
+    b = find(CSV_BINS, f + 1, "")
+    bins = ["v_high [m/s]", *[f"p{j}" for j in range(1, k + 1)]]
+    if lines[b][1][1:] != bins:
+        raise ClusterError(f"{where(b)}: expected {CSV_BINS};{';'.join(bins)}")
+    profile = [_row(lines[i][1], 1 + 2 * k, where(i)) for i in range(2, f)]
+    frequency = _row(lines[f][1][1:], k, where(f))
     edges: list[float] = []
     rows = []
-    for number, cells in rest[i + 2:]:
-        low, high, *p = _row(cells, 2 + k, f"{name} line {number}")
+    for i in range(b + 1, len(lines)):
+        low, high, *p = _row(lines[i][1], 2 + k, where(i))
         if edges and abs(low - edges[-1]) > 1e-9 * max(1.0, abs(low)):
-            raise ClusterError(f"{name} line {number}: bin starts at {low:g} m/s but the previous bin ends at "
+            raise ClusterError(f"{where(i)}: bin starts at {low:g} m/s but the previous bin ends at "
                                f"{edges[-1]:g} m/s (bins must be ascending and contiguous)")
         edges = edges or [low]
         edges.append(high)

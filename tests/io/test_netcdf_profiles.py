@@ -39,6 +39,15 @@ def test_the_era5_layout_is_unpacked_and_put_on_one_grid_of_heights(tmp_path):
         assert profiles.u_mps[t] == pytest.approx(expected, abs=1e-3 + 1e-12)
 
 
+def test_an_era5_z_in_metres_is_refused(tmp_path):
+    east, north, _ = draw(counts=(5, 3, 2))
+    path = write_era5(tmp_path / "e.nc", east, north)
+    with h5py.File(path, "r+") as f:
+        f["z"].attrs["units"] = "m"
+    with pytest.raises(ProfileFileError, match="'z' is in 'm'; the ERA5 layout reads the geopotential"):
+        read_profiles(path)
+
+
 def test_the_dowa_layout_gives_east_and_north_components(tmp_path):
     east, north, _ = draw(counts=(5, 3, 2))
     profiles = read_profiles(write_dowa(tmp_path / "d.nc", east, north))
@@ -61,6 +70,7 @@ def _file(path, **variables):
     (dict(u=np.zeros((3, 2)), v=np.zeros((3, 2)), height=np.array([10.0, 10.0])), "distinct finite heights"),
     (dict(u=np.full((3, 2), np.nan), v=np.zeros((3, 2)), height=np.array([10.0, 20.0])), "no complete profile"),
     (dict(u=np.array([[b"a", b"b"]]), v=np.zeros((1, 2)), height=np.array([10.0, 20.0])), "'u' is not numeric"),
+    (dict(u=np.zeros((3, 2)), v=np.zeros((3, 2)), z=np.array([10.0, 20.0])), "neither 'height' \\[m\\] nor ERA5's"),
 ])
 def test_a_file_of_no_known_layout_is_one_line_naming_what_is_missing(tmp_path, variables, match):
     with pytest.raises(ProfileFileError, match=match) as info:
