@@ -574,8 +574,8 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--out", required=True, metavar="FILE.yaml", help="the awesIO wind_resource document")
     c.add_argument("--clusters", type=_option(int, "a whole number", lambda v: 1 <= v <= MAX_CLUSTERS,
                                               f"from 1 to {MAX_CLUSTERS}"), default=8, metavar="K",
-                   help="number of clusters (default 8; the AEP is within 3 %% of its converged value from about 4, "
-                        "Schelbergen et al. 2020)")
+                   help="number of clusters (default 8; Schelbergen et al. 2020 found the AEP within 3 %% of its "
+                        "converged value from 4 clusters)")
     c.add_argument("--reference-height", type=_between(1.0, 1000.0, "a height", "m", "within the profiles"),
                    default=100.0, metavar="M",
                    help="height [m] at which the shapes are normalised and the speed distributions are given "

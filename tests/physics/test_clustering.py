@@ -90,3 +90,13 @@ def test_too_few_windy_profiles_or_a_reference_height_outside_are_one_line():
         cluster_profiles(HEIGHTS_M, east, north, REFERENCE_M, 8, 0, "s")
     with pytest.raises(ClusterError, match="reference height 700 m is outside the heights 10-600 m"):
         cluster_profiles(HEIGHTS_M, east, north, 700.0, 1, 0, "s")
+
+
+def test_identical_profiles_cannot_make_more_clusters_than_one():
+    east = np.tile(np.linspace(6.0, 9.0, HEIGHTS_M.size), (20, 1))
+    with pytest.raises(ClusterError, match="k-means left a cluster empty in all 10 starts: fewer distinct profiles "
+                                           "than 2 clusters; ask for fewer"):
+        cluster_profiles(HEIGHTS_M, east, np.zeros_like(east), REFERENCE_M, 2, 0, "s")
+    resource, _ = cluster_profiles(HEIGHTS_M, east, np.zeros_like(east), REFERENCE_M, 1, 0, "s")
+    assert resource.u_shape[0] == pytest.approx(np.linspace(6.0, 9.0, HEIGHTS_M.size) / np.interp(
+        REFERENCE_M, HEIGHTS_M, np.linspace(6.0, 9.0, HEIGHTS_M.size)), abs=1e-12)
