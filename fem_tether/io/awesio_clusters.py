@@ -59,8 +59,8 @@ def wind_resource_document(resource: ClusterResource, name: str, description: st
         "wind_speed_bins": {"bin_edges_m_s": _floats(edges), "bin_centers_m_s": _floats(0.5 * (edges[1:] + edges[:-1]))},
         "wind_direction_bins": {"bin_edges_deg": [0.0, 360.0], "bin_centers_deg": [180.0]},
         "clusters": clusters,
-        "probability_matrix": {"description": "probability of each cluster and wind-speed bin at the reference "
-                                              "height (fractions of all samples; one direction bin)",
+        "probability_matrix": {"description": "joint probability of each cluster and wind-speed bin at the "
+                                              "reference height (fractions; one direction bin)",
                                "dimensions": "cluster x wind speed bin x wind direction bin",
                                "data": [[[float(p)] for p in row] for row in joint]},
     }
