@@ -7,7 +7,9 @@ a profile with any NaN is dropped).  Three layouts, recognised by their
 variables (the first that fits):
 
 - **plain**: ``u``, ``v`` [m/s] (east and north components) shaped (time,
-  height) and ``height`` [m above ground], one value per height;
+  height) and ``height`` [m above ground], one value per height, or one per
+  profile and height shaped as ``u`` (ERA5 model levels with the heights
+  computed per hour): then each profile is put on one grid as ERA5's below;
 - **ERA5** (Copernicus CDS NetCDF4, one grid point, pressure or model levels):
   ``u``, ``v`` and the geopotential ``z`` [m^2/s^2] shaped as they are (time,
   level[, latitude, longitude]; units, if stated, in s^-2); each profile's heights are its geopotential heights
@@ -119,7 +121,7 @@ def _complete(heights, u, v) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
 
 
 def _on_grid(heights, u, v, source: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
-    """ERA5: each profile (its own heights, time x level) on one grid of heights."""
+    """Each profile at its own heights (time x level) on one grid of heights."""
     good = np.all(np.isfinite(u) & np.isfinite(v) & np.isfinite(heights), axis=1)
     heights, u, v = heights[good], u[good], v[good]
     if not len(u):
@@ -127,7 +129,7 @@ def _on_grid(heights, u, v, source: str) -> tuple[np.ndarray, np.ndarray, np.nda
     low = np.ceil(np.max(np.min(heights, axis=1)) / GRID_STEP_M) * GRID_STEP_M
     high = min(TOP_M, np.floor(np.min(np.max(heights, axis=1)) / GRID_STEP_M) * GRID_STEP_M)
     if not high > low:
-        raise ProfileFileError(f"{source}: the levels' heights (z / g0) span no common range below {TOP_M:g} m")
+        raise ProfileFileError(f"{source}: the profiles' heights span no common range below {TOP_M:g} m")
     grid = np.arange(low, high + 0.5 * GRID_STEP_M, GRID_STEP_M)
     order = np.argsort(heights, axis=1)
     pick = np.take_along_axis
@@ -168,6 +170,11 @@ def read_profiles(path) -> Profiles:
                 raise ProfileFileError(f"{source}: 'z' is {heights.shape}, 'u' {u.shape}")
             grid, u, v, dropped = _on_grid(heights, u, v, source)
             return Profiles(grid, u, v, "ERA5 (geopotential heights above mean sea level)", dropped)
+        if {"u", "v", "height"} <= names and f["height"].ndim > 1 and f["height"].shape == f["u"].shape:
+            u = _time_by_level(f, "u", source)
+            v = _time_by_level(f, "v", source, u.shape[1])
+            grid, u, v, dropped = _on_grid(_time_by_level(f, "height", source, u.shape[1]), u, v, source)
+            return Profiles(grid, u, v, "u, v and each profile's heights", dropped)
         if {"u", "v", "height"} <= names:
             z = _values(f, "height", source).ravel()
             u = _time_by_level(f, "u", source, z.size)

@@ -39,6 +39,20 @@ def test_the_era5_layout_is_unpacked_and_put_on_one_grid_of_heights(tmp_path):
         assert profiles.u_mps[t] == pytest.approx(expected, abs=1e-3 + 1e-12)
 
 
+def test_heights_per_profile_are_put_on_one_grid(tmp_path):
+    """ERA5 model levels with each hour's heights [m]: as the geopotential layout, without g0."""
+    east, north, _ = draw(counts=(5, 3, 2))
+    heights = HEIGHTS_M[None, :] + 5.0 * np.sin(np.arange(len(east)))[:, None]
+    with h5py.File(tmp_path / "m.nc", "w") as f:
+        for name, data in (("u", east), ("v", north), ("height", heights)):
+            f[name] = data[:, :, None, None]
+    profiles = read_profiles(tmp_path / "m.nc")
+    assert profiles.layout == "u, v and each profile's heights"
+    assert profiles.heights_m[0] == 20.0 and profiles.heights_m[-1] == 590.0
+    for t in range(len(east)):
+        assert profiles.v_mps[t] == pytest.approx(np.interp(profiles.heights_m, heights[t], north[t]), abs=1e-12)
+
+
 def test_an_era5_z_in_metres_is_refused(tmp_path):
     east, north, _ = draw(counts=(5, 3, 2))
     path = write_era5(tmp_path / "e.nc", east, north)
