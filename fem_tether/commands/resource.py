@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-
 from fem_tether.core.atomic import atomic_path, check_writable
 from fem_tether.core.errors import ConfigError
 from fem_tether.io.awesio import check, yaml_text
