@@ -22,7 +22,8 @@ variables (the first that fits):
   v = -wspeed cos(wdir).
 
 Axes of length 1 (a single latitude and longitude) are dropped; a file of
-more than one grid point is refused, naming the axis.  Anything else is one
+more than one grid point (or another axis of more than one value, such as an
+old CDS file's ``expver``) is refused, naming the axis.  Anything else is one
 line naming the file and what is missing (:class:`ProfileFileError`).
 """
 
@@ -99,10 +100,11 @@ def _time_by_level(f, name: str, source: str, n_levels: int | None = None) -> np
     axes = _axes(f, name)
     keep = [i for i, n in enumerate(data.shape) if n != 1]
     if len(keep) != 2:
+        named = any(axes)                      # without names: (time, height, ...) assumed
         extra = [f"{axes[i] or f'axis {i}'} ({data.shape[i]})" for i in keep
-                 if axes[i] not in LEVEL_AXES + TIME_AXES]
+                 if (axes[i] not in LEVEL_AXES + TIME_AXES if named else i > 1)]
         raise ProfileFileError(f"{source}: variable {name!r} is shaped {data.shape}, expected (time, height)"
-                               + (f"; it holds more than one site along {', '.join(extra)}: cut one grid point"
+                               + (f"; cut it to one value along {', '.join(extra)} (one grid point)"
                                   if extra else ""))
     data = data.reshape([data.shape[i] for i in keep])
     names = [axes[i] for i in keep]

@@ -53,6 +53,24 @@ def test_heights_per_profile_are_put_on_one_grid(tmp_path):
         assert profiles.v_mps[t] == pytest.approx(np.interp(profiles.heights_m, heights[t], north[t]), abs=1e-12)
 
 
+def test_an_axis_of_more_than_one_value_besides_time_and_level_is_named(tmp_path):
+    """An old CDS file's expver axis (ERA5 and ERA5T side by side), two longitudes."""
+    east, north, _ = draw(counts=(5, 3, 2))
+    path = write_era5(tmp_path / "e.nc", east, north)
+    with h5py.File(path, "r+") as f:
+        f["expver"] = [1.0, 5.0]
+        f["expver"].make_scale("expver")
+        for name in ("u", "v", "z"):
+            data = f[name][()]
+            del f[name]
+            f[name] = np.stack([data, data], axis=1)[:, :, :, :, 0]
+            for i, axis in enumerate(["valid_time", "expver", "pressure_level", "latitude"]):
+                f[name].dims[i].attach_scale(f[axis])
+    with pytest.raises(ProfileFileError, match=r"variable 'u' is shaped \(10, 2, 12, 1\), expected \(time, height\); "
+                                               r"cut it to one value along expver \(2\) \(one grid point\)"):
+        read_profiles(path)
+
+
 def test_an_era5_z_in_metres_is_refused(tmp_path):
     east, north, _ = draw(counts=(5, 3, 2))
     path = write_era5(tmp_path / "e.nc", east, north)
@@ -80,7 +98,8 @@ def _file(path, **variables):
     (dict(u=np.zeros((3, 2)), v=np.zeros((3, 2))), "variables 'u' and 'v' but neither 'height' \\[m\\] nor ERA5's"),
     (dict(u=np.zeros((3, 2)), v=np.zeros((3, 3)), height=np.array([10.0, 20.0])), "variable 'v' has 3 heights"),
     (dict(u=np.zeros((3, 2, 2)), v=np.zeros((3, 2, 2)), height=np.array([10.0, 20.0])),
-     r"variable 'u' is shaped \(3, 2, 2\), expected \(time, height\); it holds more than one site"),
+     r"variable 'u' is shaped \(3, 2, 2\), expected \(time, height\); cut it to one value along axis 2 "
+     r"\(2\) \(one grid point\)"),
     (dict(u=np.zeros((3, 2)), v=np.zeros((3, 2)), height=np.array([10.0, 10.0])), "distinct finite heights"),
     (dict(u=np.full((3, 2), np.nan), v=np.zeros((3, 2)), height=np.array([10.0, 20.0])), "no complete profile"),
     (dict(u=np.array([[b"a", b"b"]]), v=np.zeros((1, 2)), height=np.array([10.0, 20.0])), "'u' is not numeric"),
