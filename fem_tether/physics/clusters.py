@@ -188,26 +188,34 @@ def read_clusters_csv(path) -> ClusterResource:
     def where(i: int) -> str:
         return f"{name} line {lines[i][0]}"
 
-    def find(first: str, start: int, fields: str) -> int:
-        """The index of the line opening with ``first``: at ``start`` if fields is '', else the first from it."""
-        for i in range(start, len(lines) if fields else min(start + 1, len(lines))):
-            if lines[i][1][0] == first:
-                return i
-        if not fields and start < len(lines):
-            raise ClusterError(f"{where(start)}: starts with {lines[start][1][0]!r}, expected {first!r} "
-                               "(docs/resource.md)")
-        raise ClusterError(f"{name}: no line '{first};{fields or '...'}'"
-                           + (f" after line {lines[start - 1][0]}" if 0 < start <= len(lines) else ""))
+    def missing(first: str, fields: str, after: int) -> ClusterError:
+        return ClusterError(f"{name}: no line '{first};{fields}'"
+                            + (f" after line {lines[after - 1][0]}" if 0 < after <= len(lines) else ""))
 
-    reference = _row(lines[find(CSV_REFERENCE, 0, "")][1][1:], 1, where(0))[0]
-    pairs = lines[find(CSV_HEIGHTS, 1, "")][1][1:]
+    def expect(first: str, i: int) -> int:
+        """``i`` if line i opens with ``first``."""
+        if i >= len(lines):
+            raise missing(first, "...", i)
+        if lines[i][1][0] != first:
+            raise ClusterError(f"{where(i)}: starts with {lines[i][1][0]!r}, expected {first!r} (docs/resource.md)")
+        return i
+
+    def search(first: str, start: int, fields: str) -> int:
+        """The first line from ``start`` that opens with ``first``."""
+        found = next((i for i in range(start, len(lines)) if lines[i][1][0] == first), None)
+        if found is None:
+            raise missing(first, fields, start)
+        return found
+
+    reference = _row(lines[expect(CSV_REFERENCE, 0)][1][1:], 1, where(0))[0]
+    pairs = lines[expect(CSV_HEIGHTS, 1)][1][1:]
     k = len(pairs) // 2
     expected = [f"{c}{i}" for i in range(1, k + 1) for c in "uv"]
     if k < 1 or pairs != expected:
         raise ClusterError(f"{where(1)}: columns {';'.join(pairs)!r}, expected u1;v1;u2;v2;... "
                            f"({';'.join(expected) or 'u1;v1'})")
-    f = find(CSV_FREQUENCY, 2, f"f1;...;f{k}")
-    b = find(CSV_BINS, f + 1, "")
+    f = search(CSV_FREQUENCY, 2, f"f1;...;f{k}")
+    b = expect(CSV_BINS, f + 1)
     bins = ["v_high [m/s]", *[f"p{j}" for j in range(1, k + 1)]]
     if lines[b][1][1:] != bins:
         raise ClusterError(f"{where(b)}: expected {CSV_BINS};{';'.join(bins)}")
