@@ -79,6 +79,9 @@ AIR_DENSITY_KG_M3 = (0.3, 2.0)
 #: spans 0.31 (post-critical) to 26 at Re = 0.1 (fem_tether.physics.drag_coefficient).
 CYLINDER_CD = (0.1, 30.0)
 
+#: Most clusters ``resource --clusters`` makes (awesIO's examples hold 8; AEP converges from about 4).
+MAX_CLUSTERS = 50
+
 _positive_int = _option(int, "a whole number", lambda v: v >= 1, "at least 1")
 _element_count = _option(int, "a whole number", lambda v: 2 <= v <= MAX_ELEMENTS, f"from 2 to {MAX_ELEMENTS}")
 _azimuth_deg = _option(float, "a number", lambda v: -90.0 < v < 90.0, "an azimuth in (-90, 90) degrees")
@@ -328,6 +331,14 @@ def cmd_convert(args):
     return 0
 
 
+def cmd_resource(args):
+    from fem_tether.commands.resource import build_resource, resource_text
+
+    result = build_resource(args.netcdf, args.out, args.clusters, args.reference_height, args.seed)
+    print(report.json_text(result) if args.json else resource_text(result))
+    return 0
+
+
 # --- stored results: show, plot, export (fem_tether.jobs.result_files, fem_tether.report.stored)
 def cmd_show(args):
     from fem_tether.jobs.result_files import read_result
@@ -553,6 +564,25 @@ def build_parser() -> argparse.ArgumentParser:
                    help="write the flexible curves of lengths whose cross-check failed too")
     c.add_argument("--allow-incomplete", action="store_true",
                    help="convert an unfinished sweep's finished lengths (else exit 2 naming the pending ones)")
+    c.add_argument("--json", action="store_true", help=JSON_HELP)
+
+    c = command("resource", cmd_resource, "wind-profile clusters (Schelbergen et al. 2020: normalised profiles, "
+                "principal components, k-means) from a NetCDF4 file of u(z), v(z) time series, written as an awesIO "
+                "wind_resource document (docs/resource.md)", config=False, system=False)
+    c.add_argument("netcdf", metavar="NETCDF", help="NetCDF4 file of wind profiles: u, v and height; ERA5's u, v "
+                   "and z at one grid point; or DOWA's wspeed, wdir and height")
+    c.add_argument("--out", required=True, metavar="FILE.yaml", help="the awesIO wind_resource document")
+    c.add_argument("--clusters", type=_option(int, "a whole number", lambda v: 1 <= v <= MAX_CLUSTERS,
+                                              f"from 1 to {MAX_CLUSTERS}"), default=8, metavar="K",
+                   help="number of clusters (default 8; Schelbergen et al. 2020 found the AEP within 3 %% of its "
+                        "converged value from 4 clusters)")
+    c.add_argument("--reference-height", type=_between(1.0, 1000.0, "a height", "m", "within the profiles"),
+                   default=100.0, metavar="M",
+                   help="height [m] at which the shapes are normalised and the speed distributions are given "
+                        "(default 100)")
+    c.add_argument("--seed", type=_option(int, "a whole number", lambda v: 0 <= v < 2**32, "from 0 to 2^32 - 1"),
+                   default=0, metavar="S", help="seed of the k-means starts (default 0; same file and seed, same "
+                                                "clusters)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     stored = "a result file: simulate --out's fe_L<L>.h5, a sweep's, a study's or a design's"

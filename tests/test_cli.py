@@ -12,6 +12,7 @@ import warnings
 import pytest
 
 from conftest import is_png
+from synthetic_profiles import draw, write_plain
 from fem_tether.cli import build_parser, main
 
 
@@ -101,7 +102,9 @@ NUMERIC_OPTIONS = [("straight", "--length"), ("straight", "--lengths"), ("straig
                    ("crosscheck", "--length"), ("bench", "--repeats"), ("bench", "--memory"),
                    ("mesh {out}", "--elements"), ("mesh {out} --elements 10", "--grading"),
                    ("sensitivity --preset cantilever --out {out}", "--samples"),
-                   ("convert {out} --out {out}", "--reference-height")]
+                   ("convert {out} --out {out}", "--reference-height"),
+                   *[("resource {netcdf} --out {yml}", option) for option in ("--clusters", "--reference-height",
+                                                                              "--seed")]]
 
 
 def test_every_numeric_option_is_in_the_extreme_values_test():
@@ -125,7 +128,8 @@ ABSURD_NUMBER = re.compile(r"\b(nan|inf|infinity)\b|\d{16,}", re.IGNORECASE)
 def test_extreme_option_values_exit_2_or_print_sane_numbers(capsys, tmp_path, command, option, value):
     """power --wind-speed 1e300, curves --ge 1e-300, straight --closed-form --rho 1e308 printed
     RuntimeWarnings, inf and 300-digit numbers with exit 0: every option has a physical range."""
-    argv = command.format(out=tmp_path / "m.vtu").split() + [f"{option}={value}"]
+    netcdf = write_plain(tmp_path / "p.nc", *draw()[:2]) if "{netcdf}" in command else None
+    argv = command.format(out=tmp_path / "m.vtu", netcdf=netcdf, yml=tmp_path / "r.yml").split() + [f"{option}={value}"]
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         try:
@@ -487,7 +491,8 @@ def test_every_json_help_says_exactly_what_goes_where():
     come on stderr with --json too.  Each help says stdout holds the JSON alone; a command that
     runs the solvers says what its stderr still gets."""
     helps = {name: text for name, options, text in _help_texts(build_parser()) if "--json" in options}
-    assert set(helps) == SOLVER_COMMANDS | {"systems", "straight", "curves", "power", "aep", "show", "sensitivity", "convert"}
+    assert set(helps) == SOLVER_COMMANDS | {"systems", "straight", "curves", "power", "aep", "show", "sensitivity", "convert",
+                                              "resource"}
     for name, text in helps.items():
         assert "on stdout, which then holds the JSON alone (no table" in text and "no progress)" not in text, name
         assert ("stderr still gets the compile notice (and its progress) of the first run after an install, "

@@ -28,6 +28,8 @@ import numpy as np
 
 from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import AWESIO_VERSION, AwesioError
+from fem_tether.io.awesio_clusters import wind_resource_document as clusters_document
+from fem_tether.physics.clusters import ClusterResource
 
 if TYPE_CHECKING:
     from fem_tether.config import Config
@@ -75,42 +77,31 @@ class Site:
 
 
 def wind_resource_document(site: Site, name: str) -> dict:
-    """The awesIO ``wind_resource`` document of ``site`` (system ``name``): one cluster,
-    one direction bin (fem-tether's wind has no direction), the speed bins at the
-    reference height with their probabilities as ``probability_matrix`` (cluster x
-    speed bin x direction bin)."""
+    """The awesIO ``wind_resource`` document of ``site`` (system ``name``): one cluster of
+    the profile U(z)/U(z_ref) without veer, one direction bin (fem-tether's wind has no
+    direction), the Weibull's bins at the reference height
+    (:func:`fem_tether.io.awesio_clusters.wind_resource_document`), and the Weibull's mean
+    and standard deviation there."""
     from scipy.special import gamma
 
     k = site.weibull_k
     mean = site.reference_speed_mps
     std = mean * float(np.sqrt(gamma(1.0 + 2.0 / k) / gamma(1.0 + 1.0 / k) ** 2 - 1.0))
-    probability = _numbers(site.probability, "the wind-speed probabilities")
-    centres = 0.5 * (site.edges_mps[1:] + site.edges_mps[:-1])
-    return {
-        "metadata": {
-            "name": f"{name} wind resource",
-            "description": f"fem-tether's Weibull resource (k = {k:g}) of one wind profile: {site.data_source}",
-            "note": "one cluster (no veer: v = 0); one direction bin; speeds at the reference height; the "
-                    f"probability above {site.edges_mps[-1]:g} m/s ({1.0 - sum(probability):.3g}) is left out of "
-                    "the bins, as fem-tether's AEP leaves it",
-            "awesIO_version": AWESIO_VERSION, "schema": "wind_resource_schema.yml", "n_clusters": 1,
-            "n_wind_speed_bins": len(probability), "n_wind_direction_bins": 1, "wind_direction_bin_width_deg": 360.0,
-            "reference_height_m": site.reference_height_m, "wind_speed_range_m_s": _numbers(
-                site.edges_mps[[0, -1]], "the speed bins"),
-            "data_source": site.data_source,
-            "altitude_range_m": _numbers(site.altitudes_m[[0, -1]], "the altitudes"), "time_created": _now()},
-        "altitudes": _numbers(site.altitudes_m, "the altitudes"),
-        "wind_speed_bins": {"bin_edges_m_s": _numbers(site.edges_mps, "the speed bins"),
-                            "bin_centers_m_s": _numbers(centres, "the speed bins")},
-        "wind_direction_bins": {"bin_edges_deg": [0.0, 360.0], "bin_centers_deg": [180.0]},
-        "clusters": [{"id": 1, "frequency": 1.0, "u_ref_mean_m_s": mean, "u_ref_std_m_s": std,
-                      "v_ref_mean_m_s": 0.0, "v_ref_std_m_s": 0.0, "u_normalized": site.u_normalized,
-                      "v_normalized": [0.0] * len(site.altitudes_m), "wind_speed_distribution": probability,
-                      "wind_direction_distribution": [1.0]}],
-        "probability_matrix": {"description": "probability of each wind-speed bin at the reference height",
-                               "dimensions": "cluster x wind speed bin x wind direction bin",
-                               "data": [[[p] for p in probability]]},
-    }
+    probability = np.array(_numbers(site.probability, "the wind-speed probabilities"))
+    altitudes = np.array(_numbers(site.altitudes_m, "the altitudes"))
+    cluster = ClusterResource(altitudes, site.reference_height_m, np.array([site.u_normalized]),
+                              np.zeros((1, altitudes.size)), np.array([1.0]),
+                              np.array(_numbers(site.edges_mps, "the speed bins")), probability[None, :],
+                              site.data_source)
+    document = clusters_document(
+        cluster, f"{name} wind resource",
+        f"fem-tether's Weibull resource (k = {k:g}) of one wind profile: {site.data_source}",
+        "one cluster (no veer: v = 0); one direction bin; speeds at the reference height; the probability above "
+        f"{site.edges_mps[-1]:g} m/s ({1.0 - float(probability.sum()):.3g}) is left out of the bins, as "
+        "fem-tether's AEP leaves it")
+    document["clusters"][0] |= {"u_ref_mean_m_s": mean, "u_ref_std_m_s": std, "v_ref_mean_m_s": 0.0,
+                                "v_ref_std_m_s": 0.0}
+    return document
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,86 @@
+"""A cluster resource as an awesIO wind_resource document: valid against the schema (as published
+and as awesIO's validator applies it), read back unchanged; documents that give their
+probabilities only as a matrix (in percent, as awesIO's examples do) read too."""
+
+import numpy as np
+import pytest
+
+from awesio_valid import assert_valid
+from fem_tether.io.awesio import AwesioError, yaml_text
+from fem_tether.io.awesio_clusters import read_wind_resource, wind_resource_document
+from fem_tether.physics.clusters import ClusterError, ClusterResource
+from fem_tether.physics.clustering import cluster_profiles
+from synthetic_profiles import HEIGHTS_M, REFERENCE_M, draw
+
+
+def clusters() -> ClusterResource:
+    east, north, _ = draw()
+    return cluster_profiles(HEIGHTS_M, east, north, REFERENCE_M, 3, 0, "synthetic profiles")[0]
+
+
+def write(path, document):
+    path.write_text(yaml_text(document), encoding="utf-8")
+    return path
+
+
+def test_written_clusters_are_valid_and_read_back_unchanged(tmp_path):
+    resource = clusters()
+    document = wind_resource_document(resource, "site", "three shapes", "a test", 400)
+    assert_valid(document)
+    assert document["metadata"]["n_clusters"] == 3 and document["metadata"]["total_samples"] == 400
+    matrix = np.array(document["probability_matrix"]["data"])
+    assert matrix.shape == (3, resource.edges_mps.size - 1, 1) and matrix.sum() == pytest.approx(1.0, abs=1e-12)
+    back = read_wind_resource(write(tmp_path / "r.yml", document))
+    for name in ("heights_m", "u_shape", "v_shape", "frequency", "edges_mps", "probability"):
+        assert np.array_equal(getattr(back, name), getattr(resource, name)), name   # YAML keeps every digit
+    assert back.reference_height_m == REFERENCE_M and back.source == str(tmp_path / "r.yml")
+
+
+def test_a_document_with_only_a_probability_matrix_in_percent_reads(tmp_path):
+    """awesIO 0.1.0's example resources state neither frequency nor wind_speed_distribution, and their
+    matrix in percent of all samples over 36 direction bins."""
+    resource = clusters()
+    document = wind_resource_document(resource, "site", "d", "n")
+    joint = resource.joint_probability()
+    spread = np.array([0.1, 0.3, 0.6])                   # over three direction bins
+    document["probability_matrix"]["data"] = (100.0 * joint[:, :, None] * spread).tolist()
+    document["wind_direction_bins"] = {"bin_edges_deg": [0.0, 120.0, 240.0, 360.0], "bin_centers_deg": [60.0, 180.0, 300.0]}
+    for cluster in document["clusters"]:
+        del cluster["frequency"], cluster["wind_speed_distribution"], cluster["wind_direction_distribution"]
+    assert_valid(document)
+    back = read_wind_resource(write(tmp_path / "r.yml", document))
+    assert back.frequency == pytest.approx(resource.frequency, abs=1e-12)
+    assert back.probability == pytest.approx(resource.probability, abs=1e-12)
+
+
+def _changed(document, change):
+    change(document)
+    return document
+
+
+@pytest.mark.parametrize("change, error, match", [
+    (lambda d: d["metadata"].pop("reference_height_m"), AwesioError, "'reference_height_m' is a required property"),
+    (lambda d: d.pop("wind_speed_bins"), AwesioError, "no wind_speed_bins.bin_edges_m_s"),
+    (lambda d: d["clusters"][1]["wind_speed_distribution"].pop(), AwesioError,
+     "wind_speed_distribution of .* bins, expected"),
+    (lambda d: d["clusters"][0]["u_normalized"].pop(), AwesioError, "cluster 1's u_normalized and v_normalized have 11"),
+    (lambda d: [c.pop("frequency") for c in d["clusters"]] and d["probability_matrix"].update(data=[[[0.5]]]),
+     AwesioError, r"probability_matrix.data is \(1, 1, 1\), expected 3 cluster"),
+    (lambda d: [c.pop("frequency") for c in d["clusters"]] and d["probability_matrix"]["data"][0][0].__setitem__(0, 7.0),
+     AwesioError, "sums to .*, neither 1 \\(fractions\\) nor 100 \\(percent\\)"),
+    (lambda d: d["clusters"][0].update(frequency=0.9), ClusterError, "cluster frequencies sum to"),
+    (lambda d: d["clusters"][2]["u_normalized"].__setitem__(4, 1.5), ClusterError,
+     "cluster 3's shape is u = 1.5, v = .* at the reference height 100 m, not normalised"),
+])
+def test_a_wrong_document_is_one_line_naming_the_file_and_field(tmp_path, change, error, match):
+    document = _changed(wind_resource_document(clusters(), "site", "d", "n"), change)
+    with pytest.raises(error, match=match) as info:
+        read_wind_resource(write(tmp_path / "r.yml", document))
+    assert "\n" not in str(info.value) and "r.yml" in str(info.value)
+
+
+def test_a_document_of_another_kind_is_refused(tmp_path):
+    path = tmp_path / "s.yml"
+    path.write_text("metadata:\n  schema: power_curves_schema.yml\n")
+    with pytest.raises(AwesioError, match="an awesIO power_curves document, where one of wind_resource_schema.yml"):
+        read_wind_resource(path)

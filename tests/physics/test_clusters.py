@@ -1,0 +1,97 @@
+"""The cluster resource: its speeds and turns by hand, its checks, and the legacy CSV (one line per fault)."""
+
+import numpy as np
+import pytest
+
+from fem_tether.physics.clusters import ClusterError, ClusterResource, read_clusters_csv
+
+CSV = """# two clusters, normalised at 100 m
+reference_height [m];100
+h [m];u1;v1;u2;v2
+10;0.71;0.02;0.80;-0.01
+100;1;0;1;0
+300;1.21;-0.08;1.05;0.01
+frequency;0.6;0.4
+v_low [m/s];v_high [m/s];p1;p2
+0;5;0.2;0.3
+5;10;0.5;0.4
+10;30;0.3;0.3
+"""
+
+
+def resource(**changes) -> ClusterResource:
+    fields = dict(heights_m=np.array([10.0, 100.0, 300.0]), reference_height_m=100.0,
+                  u_shape=np.array([[0.7, 1.0, 1.2], [0.8, 1.0, 1.0]]), v_shape=np.array([[0.0, 0.0, -0.1], [0.0, 0.0, 0.0]]),
+                  frequency=np.array([0.75, 0.25]), edges_mps=np.array([0.0, 10.0, 20.0]),
+                  probability=np.array([[0.5, 0.5], [1.0, 0.0]]), source="test")
+    return ClusterResource(**(fields | changes))
+
+
+def test_speed_and_turn_of_a_cluster_are_the_shape_times_the_reference_speed():
+    r = resource()
+    assert r.speed_mps(0, 10.0, 300.0) == pytest.approx(10.0 * np.hypot(1.2, 0.1), rel=1e-15)
+    assert r.speed_mps(0, 10.0, 200.0) == pytest.approx(10.0 * np.hypot(1.1, 0.05), rel=1e-15)  # linear
+    assert r.speed_mps(1, np.array([5.0, 8.0]), 100.0) == pytest.approx([5.0, 8.0])
+    assert r.turn_deg(0, 300.0) == pytest.approx(np.degrees(np.arctan2(-0.1, 1.2)), rel=1e-15)
+    assert r.joint_probability() == pytest.approx(np.array([[0.375, 0.375], [0.25, 0.0]]))
+    assert r.remainder() == pytest.approx([0.0, 0.0])
+    with pytest.raises(ClusterError, match="height 400-400 m is outside the clusters' heights 10-300 m"):
+        r.speed_mps(0, 10.0, 400.0)
+
+
+@pytest.mark.parametrize("changes, match", [
+    (dict(frequency=np.array([0.7, 0.25])), "frequencies sum to 0.95, not 1"),
+    (dict(u_shape=np.array([[0.7, 1.1, 1.2], [0.8, 1.0, 1.0]])), "cluster 1's shape is u = 1.1, v = 0 at the "
+                                                                  "reference height 100 m, not normalised"),
+    (dict(reference_height_m=5.0), "reference height 5 m is outside the heights 10-300 m"),
+    (dict(probability=np.array([[0.6, 0.5], [1.0, 0.0]])), "cluster 1's speed probabilities sum to 1.1"),
+    (dict(probability=np.array([[1.0], [1.0]])), r"speed distributions are \(2, 1\), expected 2 cluster\(s\) x 2"),
+    (dict(edges_mps=np.array([0.0, 20.0, 10.0])), "edges must be at least two, non-negative and ascending"),
+    (dict(heights_m=np.array([10.0, 300.0, 100.0])), "heights must be at least two, ascending"),
+    (dict(v_shape=np.array([[0.0, np.nan, 0.0], [0.0, 0.0, 0.0]])), "v_shape holds a value that is not finite"),
+])
+def test_a_malformed_resource_is_one_line_naming_the_fault(changes, match):
+    with pytest.raises(ClusterError, match=match):
+        resource(**changes)
+
+
+def test_the_legacy_csv_is_read(tmp_path):
+    path = tmp_path / "clusters.csv"
+    path.write_text(CSV)
+    r = read_clusters_csv(path)
+    assert r.reference_height_m == 100.0 and r.heights_m.tolist() == [10.0, 100.0, 300.0]
+    assert r.u_shape.tolist() == [[0.71, 1.0, 1.21], [0.80, 1.0, 1.05]]
+    assert r.v_shape.tolist() == [[0.02, 0.0, -0.08], [-0.01, 0.0, 0.01]]
+    assert r.frequency.tolist() == [0.6, 0.4] and r.edges_mps.tolist() == [0.0, 5.0, 10.0, 30.0]
+    assert r.probability.tolist() == [[0.2, 0.5, 0.3], [0.3, 0.4, 0.3]]
+    path.write_text(CSV.replace("\n", ";\n").replace("# two clusters, normalised at 100 m;", "#"))
+    assert read_clusters_csv(path).frequency.tolist() == [0.6, 0.4]    # a spreadsheet's trailing separators
+
+
+@pytest.mark.parametrize("old, new, match", [
+    ("reference_height [m];100", "reference height;100", r"line 2: starts with 'reference height', expected "
+                                                          r"'reference_height \[m\]'"),
+    ("h [m];u1;v1;u2;v2", "h [m];u1;v1;u2", "line 3: columns 'u1;v1;u2', expected u1;v1;u2;v2"),
+    ("100;1;0;1;0", "100;1;0;1", "line 5: 4 fields, expected 5"),
+    ("300;1.21", "300;x", "line 6: 'x' is not a number"),
+    ("frequency;0.6;0.4", "frequency;0.6;0.5", "frequencies sum to 1.1, not 1"),
+    ("frequency;0.6;0.4\n", "", "no line 'frequency;f1;...;f2' after line 3"),
+    ("v_low [m/s];v_high [m/s];p1;p2\n0;5;0.2;0.3\n5;10;0.5;0.4\n10;30;0.3;0.3\n", "",
+     r"no line 'v_low \[m/s\];...' after line 7"),
+    ("5;10;0.5;0.4", "6;10;0.5;0.4", "line 10: bin starts at 6 m/s but the previous bin ends at 5 m/s"),
+    ("v_low [m/s];v_high [m/s];p1;p2", "v_low [m/s];v_high [m/s];p1", r"line 8: expected v_low \[m/s\];v_high"),
+    ("100;1;0;1;0", "100;1;0;1;0.2", "cluster 2's shape is u = 1, v = 0.2 at the reference height 100 m"),
+    ("0;5;0.2;0.3\n5;10;0.5;0.4\n10;30;0.3;0.3\n", "", "no speed bins"),
+])
+def test_a_bad_legacy_csv_is_one_line_naming_the_file_and_line(tmp_path, old, new, match):
+    path = tmp_path / "clusters.csv"
+    assert old in CSV
+    path.write_text(CSV.replace(old, new))
+    with pytest.raises(ClusterError, match=match) as info:
+        read_clusters_csv(path)
+    assert "\n" not in str(info.value) and "clusters.csv" in str(info.value)
+
+
+def test_a_missing_csv_is_one_line(tmp_path):
+    with pytest.raises(ClusterError, match="no such file"):
+        read_clusters_csv(tmp_path / "none.csv")
