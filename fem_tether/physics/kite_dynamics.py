@@ -248,6 +248,8 @@ class AerodynamicForce:
     """C_L(α)"""
     cd: float
     """C_D(α) of the wing"""
+    density_kg_m3: float
+    """ρ at the kite's altitude"""
 
 
 @dataclass(frozen=True)
@@ -380,9 +382,9 @@ def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_
     """Eqs. (1)–(3) at the kite's position r and velocity v (the wind and the air
     as their modules' ``COMPILED`` forms give V_w(z), V_w'(z), ρ(z), ρ'(z) at
     z = r_z), e along ``tether`` (``straight``: along r), roll ψ: F, W_e,
-    (P_t, α, C_L, C_D) into ``force``, ``apparent``, ``state`` and the Jacobians
-    of :func:`aerodynamic_jacobian` into ``jac_v``, ``jac_r``, ``jac_d``,
-    ``jac_roll``.  Returns :data:`_OK`, :data:`_ZERO_TETHER`,
+    (P_t, α, C_L, C_D, ρ) into ``force``, ``apparent``, ``state`` and the
+    Jacobians of :func:`aerodynamic_jacobian` into ``jac_v``, ``jac_r``,
+    ``jac_d``, ``jac_roll``.  Returns :data:`_OK`, :data:`_ZERO_TETHER`,
     :data:`_ABOVE_AIR` (r_z above the air model's ceiling) or what
     :func:`air_force` returns."""
     d = r if straight else tether
@@ -398,6 +400,7 @@ def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_
     rho, mu, drho, dmu = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
     if air_state(air_address, air_parameters, air_ceiling_m, z, rho, mu, drho, dmu) >= 0:
         return _ABOVE_AIR
+    state[4] = rho[0]
     jac_w, jac_e = np.empty((3, 3)), np.empty((3, 3))
     status = air_force(kite, limits_deg, breaks_rad, cubics, apparent, direction, rho[0], roll_rad, force, state,
                        jac_w, jac_e, jac_roll)
@@ -493,13 +496,13 @@ def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel
     in any case)."""
     r = np.asarray(r, dtype=float)
     d = r if tether is None else np.asarray(tether, dtype=float)
-    force, apparent, state, jac_roll = np.empty(3), np.empty(3), np.empty(4), np.empty(3)
+    force, apparent, state, jac_roll = np.empty(3), np.empty(3), np.empty(5), np.empty(3)
     jac_v, jac_r, jac_d = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
     status = air_load(*kite.compiled, *_compiled(wind, air), r, np.asarray(v, dtype=float), d, tether is None,
                       float(roll_rad), force, apparent, state, jac_v, jac_r, jac_d, jac_roll)
     _raise(status, kite, apparent, state, r, tether)
-    power, alpha, cl, cd = state.tolist()
-    return (AerodynamicForce(force, power, apparent, alpha, cl, cd),
+    power, alpha, cl, cd, rho = state.tolist()
+    return (AerodynamicForce(force, power, apparent, alpha, cl, cd, rho),
             AerodynamicJacobian(velocity=jac_v, position=jac_r, tether=jac_d, roll=jac_roll))
 
 
