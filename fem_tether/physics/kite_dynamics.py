@@ -34,7 +34,7 @@ import functools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -131,6 +131,8 @@ _NO_LIMITS = np.array([-np.inf, np.inf])
 _NO_BREAKS = np.empty(0)
 _OK, _ZERO_TETHER, _ALONG_TETHER, _OUTSIDE_POLAR, _ABOVE_AIR = range(5)
 """What the compiled functions return: the force is defined, or why it is not."""
+KITE_OK, KITE_ABOVE_AIR = _OK, _ABOVE_AIR
+"""The returns of :func:`air_load` a compiled caller tells apart (the others: the force is undefined)."""
 
 
 @jit
@@ -498,7 +500,7 @@ def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel
     d = r if tether is None else np.asarray(tether, dtype=float)
     force, apparent, state, jac_roll = np.empty(3), np.empty(3), np.empty(5), np.empty(3)
     jac_v, jac_r, jac_d = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
-    status = air_load(*kite.compiled, *_compiled(wind, air), r, np.asarray(v, dtype=float), d, tether is None,
+    status = air_load(*kite.compiled, *compiled_environment(wind, air), r, np.asarray(v, dtype=float), d, tether is None,
                       float(roll_rad), force, apparent, state, jac_v, jac_r, jac_d, jac_roll)
     _raise(status, kite, apparent, state, r, tether)
     power, alpha, cl, cd, rho = state.tolist()
@@ -506,7 +508,7 @@ def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel
             AerodynamicJacobian(velocity=jac_v, position=jac_r, tether=jac_d, roll=jac_roll))
 
 
-def _compiled(wind: WindProfile, air: AirModel) -> tuple:
+def compiled_environment(wind: WindProfile, air: AirModel) -> tuple:
     """(wind address, rows, air address, parameters, ceiling) of ``wind`` and ``air``,
     remembered for the last few pairs of hashable models (reading a model's
     ``compiled`` hashes numba's signature, several µs a call)."""
@@ -518,8 +520,8 @@ def _compiled(wind: WindProfile, air: AirModel) -> tuple:
 
 
 @functools.lru_cache(maxsize=64)
-def _remembered(wind: WindProfile, air: AirModel) -> tuple:
-    """The compiled forms of :func:`_compiled`, in this process only (their addresses
+def _remembered(wind: Any, air: Any) -> tuple:
+    """The compiled forms of :func:`compiled_environment`, in this process only (their addresses
     hold here: the models travel to other processes, this does not)."""
     return (*wind.compiled, *air.compiled)
 
