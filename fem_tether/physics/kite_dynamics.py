@@ -30,11 +30,10 @@ seed 003 eq. 2.11 with its roll tangent C = tan ψ.  (2) is seed 001 eq. 16
 from __future__ import annotations
 
 import csv
-import functools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -508,22 +507,27 @@ def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel
             AerodynamicJacobian(velocity=jac_v, position=jac_r, tether=jac_d, roll=jac_roll))
 
 
+#: The compiled forms of the wind and air models asked last, by the pair of models (their
+#: addresses hold in this process only: the models travel to other processes, this does not).
+_ENVIRONMENTS: dict[tuple, tuple] = {}
+ENVIRONMENTS_KEPT = 64
+
+
 def compiled_environment(wind: WindProfile, air: AirModel) -> tuple:
-    """(wind address, rows, air address, parameters, ceiling) of ``wind`` and ``air``,
-    remembered for the last few pairs of hashable models (reading a model's
-    ``compiled`` hashes numba's signature, several µs a call)."""
+    """(wind address, rows, air address, parameters, ceiling) of ``wind`` and ``air``
+    (their modules' ``COMPILED`` forms), remembered for the last
+    :data:`ENVIRONMENTS_KEPT` pairs of hashable models: reading a model's
+    ``compiled`` hashes numba's signature, several µs a call."""
     try:
-        hash((wind, air))
-    except TypeError:
+        return _ENVIRONMENTS[wind, air]
+    except TypeError:              # a model that is not hashable
         return (*wind.compiled, *air.compiled)
-    return _remembered(wind, air)
-
-
-@functools.lru_cache(maxsize=64)
-def _remembered(wind: Any, air: Any) -> tuple:
-    """The compiled forms of :func:`compiled_environment`, in this process only (their addresses
-    hold here: the models travel to other processes, this does not)."""
-    return (*wind.compiled, *air.compiled)
+    except KeyError:
+        pass
+    forms = _ENVIRONMENTS[wind, air] = (*wind.compiled, *air.compiled)
+    while len(_ENVIRONMENTS) > ENVIRONMENTS_KEPT:
+        _ENVIRONMENTS.pop(next(iter(_ENVIRONMENTS)))
+    return forms
 
 
 def gravity_force_N(kite: PointMassKite, g_mps2: float = G_MPS2) -> np.ndarray:
