@@ -40,6 +40,17 @@ dropped first), in this process; and one start of the design optimisation
 ``trevisi-3mw`` design job, lumped tether, seed 0, start 0; its consistent
 start and SLSQP) in ground-gen and in "both" mode, best of ``repeats``.  Each
 is reported against its target (:data:`POINT_TARGET_MS`, :data:`START_TARGET_S`).
+
+The free-kite section (:func:`free_kite`) times the steps of the default case
+(KiteGen's eight on 1000 m with ``[kite] model = "point-mass"``: the 180 kg
+wing flying under its forces, steered along the eight) against the same case
+with the prescribed kite, FE at 40 elements and dt = 0.05 s, FD at 100
+segments and dt = 0.025 s (the settings of docs/free-kite.md and
+docs/free-kite-fd.md): the wall time of :data:`FREE_KITE_PERIODS` periods of
+steps after the model is built and its static start solved, per step, best
+over the rounds as above; each free kite's cost per step against its target
+(:data:`FREE_KITE_TARGET_MS`) and over the prescribed kite's, measured in the
+same rounds.
 """
 
 from __future__ import annotations
@@ -53,7 +64,7 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from fem_tether.tether import fd
+from fem_tether.tether import fd, protocol
 from fem_tether.config import load_config
 from fem_tether.design.optimiser import Problem, consistent, start_points
 from fem_tether.jobs.design.job import load_design_job
@@ -95,6 +106,12 @@ POINT_TARGET_MS = 10.0
 """Target of one unified-model operating point (issue 28: 24 ms for trevisi-gg at 10 m/s before)."""
 START_TARGET_S = 5.0
 """Target of one design start, lumped tether (issue 28: 0.5-1.5 s ground-gen, 1.8-6.8 s "both" before)."""
+FREE_KITE_SETTINGS = (("fe", 40, 0.05), ("fd", 100, 0.025))
+"""The free-kite section's settings: (solver, elements or segments, dt [s])."""
+FREE_KITE_PERIODS = 3
+"""Periods of the eight (6.5 s each) each free-kite setting runs after its static start."""
+FREE_KITE_TARGET_MS = {"fe": 0.25, "fd": 0.6}
+"""Targets of a free-kite step (issue 33: 1.8 ms FE and 3.5 ms FD before, 0.13 and 0.35 ms prescribed)."""
 
 
 @dataclass(frozen=True)
@@ -158,25 +175,53 @@ def _measure(solver, resolution, dt_s, repeats, base_MiB=0.0) -> dict:
             "peak_rss_MiB": base_MiB + run_MiB, "run_rss_MiB": run_MiB}
 
 
+def _measure_steps(solver, resolution, dt_s, repeats, kite, base_MiB=0.0) -> dict:
+    """One setting of the free-kite section in this process (module docstring): the
+    default case with ``[kite] model = kite``; best-of-``repeats`` wall time of
+    :data:`FREE_KITE_PERIODS` periods of steps after the static start."""
+    at_start = peak_rss_MiB()
+    cfg = load_config(overrides={"kite": {"model": kite}, "output": {"every": 1000000},
+                                 solver: {"elements" if solver == "fe" else "segments": resolution, "dt_s": dt_s}})
+    stepper_of = (lambda: fe.FESolver(fe.build_model(cfg))) if solver == "fe" else \
+        (lambda: fd.FDSolver(fd.build_model(cfg)))
+    best, run = np.inf, None
+    for _ in range(repeats):
+        stepper = stepper_of()
+        start = stepper.initial_state()
+        t0 = time.perf_counter()
+        run = protocol.run(stepper, dt_s, 0, FREE_KITE_PERIODS, cfg.output.every, config=cfg, initial=start)
+        best = min(best, time.perf_counter() - t0)
+    assert run is not None
+    run_MiB = peak_rss_MiB() - at_start
+    return {"solver": solver, "elements": resolution, "dt_s": run.extra["dt_s"], "kite": kite,
+            "steps": run.time_s.size - 1, "wall_s": best, "drag_N": run.mean("drag_N"),
+            "newton_iterations": int(run.extra["newton_iterations"]),
+            "simulated_s": float(run.time_s[-1] - run.time_s[0]),
+            "peak_rss_MiB": base_MiB + run_MiB, "run_rss_MiB": run_MiB}
+
+
 def _child(conn, args) -> None:
     try:
-        conn.send(_measure(*args))
+        conn.send(_measure_steps(*args) if len(args) == 6 else _measure(*args))
     except BaseException as exc:      # the parent raises it
         conn.send(exc)
     finally:
         conn.close()
 
 
-def _run(solver, resolution, dt_s, repeats) -> dict:
+def _run(solver, resolution, dt_s, repeats, kite=None) -> dict:
     """:func:`_measure` of one setting in a child process forked for it (so that
     its peak RSS is its own); ``resolution`` is the FE element count or the FD
-    segment count.  The compiled kernels are loaded here first, so the child
-    inherits them and no setting's time or memory counts their one-time loading."""
+    segment count; with ``kite`` (``"prescribed"`` or ``"point-mass"``) the
+    free-kite section's :func:`_measure_steps` instead.  The compiled kernels are
+    loaded here first, so the child inherits them and no setting's time or
+    memory counts their one-time loading."""
     load_kernels(("fe", "fd"))
     ctx = multiprocessing.get_context("fork")
     parent, child = ctx.Pipe(duplex=False)
     base = peak_rss_MiB()             # this process runs no solver: its peak is its imports
-    process = ctx.Process(target=_child, args=(child, (solver, resolution, dt_s, repeats, base)))
+    setting = (solver, resolution, dt_s, repeats) + (() if kite is None else (kite,))
+    process = ctx.Process(target=_child, args=(child, setting + (base,)))
     process.start()
     child.close()
     try:
@@ -280,6 +325,29 @@ def design(repeats=3, points_mps=DESIGN_POINTS_MPS, winds_mps=DESIGN_WINDS_MPS,
             "starts": [design_start(mode, repeats) for mode in start_modes]}
 
 
+def free_kite(repeats=3, settings=FREE_KITE_SETTINGS) -> dict:
+    """The free-kite section (module docstring): per setting the prescribed and the
+    point-mass kite's cost per step, best of ``repeats`` rounds, the free kite's
+    against its target and over the prescribed kite's."""
+    kites = ("prescribed", "point-mass")
+    runs = _best_of_rounds([(*setting, RUNS_PER_CHILD, kite) for setting in settings for kite in kites], repeats)
+    rows = []
+    for prescribed, free in zip(runs[::2], runs[1::2]):
+        free_ms, prescribed_ms = (1e3 * m["wall_s"] / m["steps"] for m in (free, prescribed))
+        target = FREE_KITE_TARGET_MS[free["solver"]]
+        rows.append({"solver": free["solver"], "elements": free["elements"], "dt_s": free["dt_s"],
+                     "steps": free["steps"], "simulated_s": free["simulated_s"],
+                     "free_ms_per_step": free_ms, "prescribed_ms_per_step": prescribed_ms,
+                     "free_over_prescribed": free_ms / prescribed_ms,
+                     "free_newton_per_step": free["newton_iterations"] / free["steps"],
+                     "prescribed_newton_per_step": prescribed["newton_iterations"] / prescribed["steps"],
+                     "real_time_factor": free["simulated_s"] / free["wall_s"],
+                     "target_ms": target, "met": bool(free_ms <= target)})
+    return {"case": (f"default case (KiteGen eight, 1000 m), [kite] model = \"point-mass\" and \"prescribed\", "
+                     f"{FREE_KITE_PERIODS} periods of steps after the static start; best of {repeats}"),
+            "rows": rows}
+
+
 def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
           fd_time_steps_s=FD_TIME_STEPS_S, scaling_elements=SCALING_ELEMENTS, repeats=5) -> dict:
     """Run both grids and the references; return the tables and the summary."""
@@ -323,5 +391,6 @@ def bench(elements=ELEMENTS, time_steps_s=TIME_STEPS_S, fd_segments=FD_SEGMENTS,
                     "fit_s_per_element": float(slope),
                     "fit_max_rel_dev": float(np.max(np.abs(intercept + slope * n_el - wall) / wall))},
         "design": design(repeats),
+        "free_kite": free_kite(repeats),
     }
 

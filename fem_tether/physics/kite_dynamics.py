@@ -30,6 +30,7 @@ seed 003 eq. 2.11 with its roll tangent C = tan ψ.  (2) is seed 001 eq. 16
 from __future__ import annotations
 
 import csv
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NamedTuple
@@ -38,15 +39,14 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
-from fem_tether.physics.atmosphere import AirModel
+from fem_tether.physics.atmosphere import AirModel, AltitudeError, air_state
 from fem_tether.core.errors import InputError, SolverDivergedError
 from fem_tether.core.inputfile import read_text
+from fem_tether.physics.compiled import jit
 from fem_tether.physics.loads import G_MPS2
-from fem_tether.physics.wind import WindProfile
+from fem_tether.physics.wind import WindProfile, wind_state
 
-_EYE = np.eye(3)
 _E_X = np.array([1.0, 0.0, 0.0])
-_E_Z = np.array([0.0, 0.0, 1.0])
 
 
 class PolarError(InputError):
@@ -67,9 +67,17 @@ class ConstantCoefficients:
         if not self.cd > 0.0:
             raise ValueError(f"cd = {self.cd!r}: must be > 0")
 
+    @property
+    def table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The coefficients as :func:`wing_coefficients` takes them: no limits, no
+        breaks, one piece whose constant terms are C_L and C_D."""
+        cubics = np.zeros((16, 1))
+        cubics[3, 0], cubics[7, 0] = self.cl, self.cd
+        return _NO_LIMITS, _NO_BREAKS, cubics
+
     def coefficients(self, alpha_rad: float) -> tuple[float, float, float, float]:
         """(C_L, C_D, dC_L/dα, dC_D/dα) at α [rad]: the constants and zero slopes."""
-        return self.cl, self.cd, 0.0, 0.0
+        return _coefficients(self.table, alpha_rad, "")
 
 
 @dataclass(frozen=True)
@@ -87,7 +95,8 @@ class Polar:
     """drag coefficients at ``alpha_deg``, all > 0"""
     source: str = ""
     """where the table came from (a file name), for error messages"""
-    _curves: tuple = field(init=False, repr=False, compare=False)
+    table: tuple = field(init=False, repr=False, compare=False)
+    """(limits [deg], breaks [rad], pieces) of the PCHIP curves, as :func:`wing_coefficients` takes them"""
 
     def __post_init__(self):
         alpha, cl, cd = (np.asarray(x, dtype=float) for x in (self.alpha_deg, self.cl, self.cd))
@@ -108,17 +117,62 @@ class Polar:
                              f"{alpha[np.argmax(cd <= 0.0)]:g}: must be > 0")
         alpha_rad = np.radians(alpha)
         lift, drag = PchipInterpolator(alpha_rad, cl), PchipInterpolator(alpha_rad, cd)
-        object.__setattr__(self, "_curves", (lift, drag, lift.derivative(), drag.derivative()))
+        slopes = [np.vstack([np.zeros((1, alpha.size - 1)), curve.derivative().c]) for curve in (lift, drag)]
+        object.__setattr__(self, "table", (np.array([alpha[0], alpha[-1]]), alpha_rad,
+                                           np.ascontiguousarray(np.vstack([lift.c, drag.c, *slopes]))))
 
     def coefficients(self, alpha_rad: float) -> tuple[float, float, float, float]:
         """(C_L, C_D, dC_L/dα, dC_D/dα) at α [rad], slopes per radian."""
-        low, high = self.alpha_deg[0], self.alpha_deg[-1]
-        alpha_deg = float(np.degrees(alpha_rad))
-        if not low <= alpha_deg <= high:
-            raise PolarError(f"angle of attack {alpha_deg:.3f} deg is outside the polar "
-                             f"{self.source + ' ' if self.source else ''}({low:g} to {high:g} deg)")
-        cl, cd, dcl, dcd = (float(curve(alpha_rad)) for curve in self._curves)
-        return cl, cd, dcl, dcd
+        return _coefficients(self.table, alpha_rad, self.source)
+
+
+_NO_LIMITS = np.array([-np.inf, np.inf])
+_NO_BREAKS = np.empty(0)
+_OK, _ZERO_TETHER, _ALONG_TETHER, _OUTSIDE_POLAR, _ABOVE_AIR = range(5)
+"""What the compiled functions return: the force is defined, or why it is not."""
+KITE_OK, KITE_ABOVE_AIR = _OK, _ABOVE_AIR
+"""The returns of :func:`air_load` a compiled caller tells apart (the others: the force is undefined)."""
+
+
+@jit
+def wing_coefficients(limits_deg, breaks_rad, cubics, alpha_rad, out):
+    """(C_L, C_D, dC_L/dα, dC_D/dα) at α into ``out``, of the piecewise cubics of a
+    coefficient table (:attr:`Polar.table`, :attr:`ConstantCoefficients.table`):
+    rows 0-3, 4-7, 8-11 and 12-15 of ``cubics`` hold C_L, C_D and their slopes as
+    c₀ s³ + c₁ s² + c₂ s + c₃ in the piece k with breaks_k <= α < breaks_k+1,
+    s = α − breaks_k, summed from c₃ up as SciPy's ``PPoly`` does (no breaks:
+    the one piece at s = 0, the constants).  Returns :data:`_OUTSIDE_POLAR` if
+    α [deg] is outside ``limits_deg``."""
+    k, s = 0, 0.0
+    if breaks_rad.shape[0] > 0:
+        alpha_deg = math.degrees(alpha_rad)
+        if not limits_deg[0] <= alpha_deg <= limits_deg[1]:
+            return _OUTSIDE_POLAR
+        k = min(max(np.searchsorted(breaks_rad, alpha_rad, side="right") - 1, 0), breaks_rad.shape[0] - 2)
+        s = alpha_rad - breaks_rad[k]
+    for m in range(4):
+        value, power = 0.0, 1.0
+        for p in range(4):
+            value = value + cubics[4 * m + 3 - p, k] * power
+            power *= s
+        out[m] = value
+    return _OK
+
+
+def _coefficients(table, alpha_rad: float, source: str) -> tuple[float, float, float, float]:
+    """:func:`wing_coefficients` of ``table`` at α; :class:`PolarError` (naming the
+    polar ``source``) outside its range."""
+    out = np.empty(4)
+    if wing_coefficients(*table, float(alpha_rad), out) == _OUTSIDE_POLAR:
+        raise _outside(table, alpha_rad, source)
+    cl, cd, dcl, dcd = out.tolist()
+    return cl, cd, dcl, dcd
+
+
+def _outside(table, alpha_rad: float, source: str) -> PolarError:
+    low, high = table[0]
+    return PolarError(f"angle of attack {math.degrees(alpha_rad):.3f} deg is outside the polar "
+                      f"{source + ' ' if source else ''}({low:g} to {high:g} deg)")
 
 
 POLAR_HEADER = ("alpha_deg", "cl", "cd")
@@ -172,6 +226,12 @@ class PointMassKite:
         if not self.turbine_factor >= 0.0:
             raise ValueError(f"turbine_factor = {self.turbine_factor!r}: must be >= 0")
 
+    @property
+    def compiled(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The kite as :func:`air_force` takes it: (A, γ_t, α₀) and its coefficient table."""
+        return (np.array([self.area_m2, self.turbine_factor, self.base_aoa_rad]),
+                *self.aerodynamics.table)
+
 
 @dataclass(frozen=True)
 class AerodynamicForce:
@@ -189,6 +249,8 @@ class AerodynamicForce:
     """C_L(α)"""
     cd: float
     """C_D(α) of the wing"""
+    density_kg_m3: float
+    """ρ at the kite's altitude"""
 
 
 @dataclass(frozen=True)
@@ -213,9 +275,150 @@ def _unit(vector, name):
     return vector / norm, norm
 
 
-def _cross_matrix(a):
-    """[a]× with [a]× b = a × b."""
-    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+@jit
+def _cross_columns(a, m, out):
+    """out = [a]× m: a × each column of the 3 × 3 matrix m."""
+    for j in range(3):
+        out[0, j] = a[1] * m[2, j] - a[2] * m[1, j]
+        out[1, j] = a[2] * m[0, j] - a[0] * m[2, j]
+        out[2, j] = a[0] * m[1, j] - a[1] * m[0, j]
+
+
+@jit
+def air_force(kite, limits_deg, breaks_rad, cubics, apparent, direction, rho, roll_rad, force, state, jac_w, jac_e,
+              jac_roll):
+    """Eqs. (1)–(3) for W_e = ``apparent`` and a unit tether direction e (``kite``
+    as :attr:`PointMassKite.compiled`), and their derivatives ∂F/∂W_e, ∂F/∂e and
+    ∂F/∂ψ: F into ``force``, (P_t, α, C_L, C_D) into ``state``, the derivatives
+    into ``jac_w``, ``jac_e`` (3 × 3) and ``jac_roll``.  With ŵ = W_e/|W_e|,
+    c = ŵ·e, n = √(1 − c²), u = e − c ŵ, l₀ = u/n, s = ŵ × l₀,
+    λ = cos ψ l₀ + sin ψ s, α = α₀ + arcsin c, k = ½ ρ A::
+
+        ∂ŵ/∂W_e = (I − ŵŵᵀ)/|W_e|,   ∂c/∂W_e = u/|W_e|,   ∂c/∂e = ŵ,
+        ∂u/∂W_e = −ŵ (∂c/∂W_e)ᵀ − c ∂ŵ/∂W_e,   ∂u/∂e = I − ŵ ŵᵀ,
+        ∂l₀/∂x = ∂u/∂x / n + u c (∂c/∂x)ᵀ / n³,
+        ∂s/∂W_e = [ŵ]× ∂l₀/∂W_e − [l₀]× ∂ŵ/∂W_e,   ∂s/∂e = [ŵ]× ∂l₀/∂e,
+        ∂F/∂x = k [(1 + γ_t) W_e (C_D' |W_e| ∂α/∂x + C_D ∂|W_e|/∂x)ᵀ + (1 + γ_t) C_D |W_e| ∂W_e/∂x
+                   + λ (C_L' |W_e|² ∂α/∂x + 2 C_L |W_e| ∂|W_e|/∂x)ᵀ + C_L |W_e|² ∂λ/∂x],
+        ∂α/∂x = (∂c/∂x)/n,   ∂F/∂ψ = k C_L |W_e|² (−sin ψ l₀ + cos ψ s).
+
+    Returns :data:`_OK`, or :data:`_ALONG_TETHER` (no lift direction, n < 1e-12)
+    or :data:`_OUTSIDE_POLAR` (α outside the polar's range)."""
+    area, turbine_factor, base_aoa = kite[0], kite[1], kite[2]
+    coefficients = np.empty(4)
+    speed = math.sqrt(apparent[0] ** 2 + apparent[1] ** 2 + apparent[2] ** 2)
+    if speed == 0.0:
+        if wing_coefficients(limits_deg, breaks_rad, cubics, base_aoa, coefficients) != _OK:
+            return _OUTSIDE_POLAR
+        force[:] = 0.0
+        jac_w[:] = 0.0
+        jac_e[:] = 0.0
+        jac_roll[:] = 0.0
+        state[0], state[1], state[2], state[3] = 0.0, base_aoa, coefficients[0], coefficients[1]
+        return _OK
+    w_hat = apparent / speed
+    c = w_hat[0] * direction[0] + w_hat[1] * direction[1] + w_hat[2] * direction[2]
+    n = math.sqrt(max(1.0 - c * c, 0.0))
+    if n < 1e-12:
+        return _ALONG_TETHER
+    u = direction - c * w_hat
+    lift0 = u / n
+    side = np.empty(3)
+    side[0] = w_hat[1] * lift0[2] - w_hat[2] * lift0[1]
+    side[1] = w_hat[2] * lift0[0] - w_hat[0] * lift0[2]
+    side[2] = w_hat[0] * lift0[1] - w_hat[1] * lift0[0]
+    cos_psi, sin_psi = math.cos(roll_rad), math.sin(roll_rad)
+    lift_dir = cos_psi * lift0 + sin_psi * side
+    alpha = base_aoa + math.asin(c)
+    if wing_coefficients(limits_deg, breaks_rad, cubics, alpha, coefficients) != _OK:
+        state[1] = alpha
+        return _OUTSIDE_POLAR
+    cl, cd, dcl, dcd = coefficients[0], coefficients[1], coefficients[2], coefficients[3]
+    k = 0.5 * rho * area
+    drag_factor = 1.0 + turbine_factor
+    force[:] = k * (drag_factor * cd * speed * apparent + cl * speed ** 2 * lift_dir)
+    state[0], state[1], state[2], state[3] = turbine_factor * cd * k * speed ** 3, alpha, cl, cd
+    d_what = np.empty((3, 3))
+    du_w = np.empty((3, 3))
+    du_e = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            eye = 1.0 if i == j else 0.0
+            d_what[i, j] = (eye - w_hat[i] * w_hat[j]) / speed
+            du_e[i, j] = eye - w_hat[i] * w_hat[j]
+    dc_w = u / speed
+    dlift0_w = np.empty((3, 3))
+    dlift0_e = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            du_w[i, j] = -w_hat[i] * dc_w[j] - c * d_what[i, j]
+            dlift0_w[i, j] = du_w[i, j] / n + u[i] * (c * dc_w[j]) / n ** 3
+            dlift0_e[i, j] = du_e[i, j] / n + u[i] * (c * w_hat[j]) / n ** 3
+    dside_w = np.empty((3, 3))
+    dside_e = np.empty((3, 3))
+    turn = np.empty((3, 3))
+    _cross_columns(w_hat, dlift0_w, dside_w)
+    _cross_columns(lift0, d_what, turn)
+    _cross_columns(w_hat, dlift0_e, dside_e)
+    q = cl * speed ** 2
+    for i in range(3):
+        for j in range(3):
+            eye = 1.0 if i == j else 0.0
+            dlift_w = cos_psi * dlift0_w[i, j] + sin_psi * (dside_w[i, j] - turn[i, j])
+            dlift_e = cos_psi * dlift0_e[i, j] + sin_psi * dside_e[i, j]
+            dalpha_w, dalpha_e = dc_w[j] / n, w_hat[j] / n
+            jac_w[i, j] = k * (drag_factor * (apparent[i] * (dcd * speed * dalpha_w + cd * w_hat[j])
+                                              + cd * speed * eye)
+                               + lift_dir[i] * (dcl * speed ** 2 * dalpha_w + 2.0 * cl * speed * w_hat[j])
+                               + q * dlift_w)
+            jac_e[i, j] = k * (drag_factor * apparent[i] * (dcd * speed * dalpha_e)
+                               + lift_dir[i] * (dcl * speed ** 2 * dalpha_e) + q * dlift_e)
+    jac_roll[:] = k * cl * speed ** 2 * (-sin_psi * lift0 + cos_psi * side)
+    return _OK
+
+
+@jit
+def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_address, air_parameters,
+             air_ceiling_m, r, v, tether, straight, roll_rad, force, apparent, state, jac_v, jac_r, jac_d, jac_roll):
+    """Eqs. (1)–(3) at the kite's position r and velocity v (the wind and the air
+    as their modules' ``COMPILED`` forms give V_w(z), V_w'(z), ρ(z), ρ'(z) at
+    z = r_z), e along ``tether`` (``straight``: along r), roll ψ: F, W_e,
+    (P_t, α, C_L, C_D, ρ) into ``force``, ``apparent``, ``state`` and the
+    Jacobians of :func:`aerodynamic_jacobian` into ``jac_v``, ``jac_r``,
+    ``jac_d``, ``jac_roll``.  Returns :data:`_OK`, :data:`_ZERO_TETHER`,
+    :data:`_ABOVE_AIR` (r_z above the air model's ceiling) or what
+    :func:`air_force` returns."""
+    d = r if straight else tether
+    length = math.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
+    if not length > 0.0:
+        return _ZERO_TETHER
+    direction = d / length
+    z = np.empty(1)
+    z[0] = r[2]
+    speed, shear = np.empty(1), np.empty(1)
+    wind_state(wind_address, wind_rows, z, speed, shear)
+    apparent[0], apparent[1], apparent[2] = speed[0] - v[0], 0.0 - v[1], 0.0 - v[2]
+    rho, mu, drho, dmu = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
+    if air_state(air_address, air_parameters, air_ceiling_m, z, rho, mu, drho, dmu) >= 0:
+        return _ABOVE_AIR
+    state[4] = rho[0]
+    jac_w, jac_e = np.empty((3, 3)), np.empty((3, 3))
+    status = air_force(kite, limits_deg, breaks_rad, cubics, apparent, direction, rho[0], roll_rad, force, state,
+                       jac_w, jac_e, jac_roll)
+    if status != _OK:
+        return status
+    for i in range(3):
+        for j in range(3):
+            jac_v[i, j] = -jac_w[i, j]
+            jac_d[i, j] = (jac_e[i, j] - (jac_e[i, 0] * direction[0] + jac_e[i, 1] * direction[1]
+                                         + jac_e[i, 2] * direction[2]) * direction[j]) / length
+            jac_r[i, j] = 0.0
+        jac_r[i, 2] = shear[0] * jac_w[i, 0] + force[i] / rho[0] * drho[0]
+    if straight:
+        for i in range(3):
+            for j in range(3):
+                jac_r[i, j] += jac_d[i, j]
+    return _OK
 
 
 class _Air(NamedTuple):
@@ -230,55 +433,31 @@ class _Air(NamedTuple):
 
 
 def _air_force(kite, apparent, direction, rho, roll_rad) -> _Air:
-    """Eqs. (1)–(3) for W_e = ``apparent`` and a unit tether direction e, and
-    their derivatives ∂F/∂W_e, ∂F/∂e and ∂F/∂ψ (a few 3 × 3 products: always)."""
-    speed = float(np.linalg.norm(apparent))
-    if speed == 0.0:
-        cl, cd, _, _ = kite.aerodynamics.coefficients(kite.base_aoa_rad)
-        return _Air(np.zeros(3), 0.0, kite.base_aoa_rad, cl, cd, np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(3))
-    w_hat = apparent / speed
-    c = float(w_hat @ direction)
-    n = np.sqrt(max(1.0 - c * c, 0.0))
-    if n < 1e-12:
+    """:func:`air_force` for W_e = ``apparent`` and a unit tether direction e; raises
+    what it cannot evaluate (:func:`_raise`)."""
+    apparent = np.asarray(apparent, dtype=float)
+    force, state, jac_w, jac_e, jac_roll = np.empty(3), np.empty(4), np.empty((3, 3)), np.empty((3, 3)), np.empty(3)
+    status = air_force(*kite.compiled, apparent, np.asarray(direction, dtype=float), float(rho), float(roll_rad),
+                       force, state, jac_w, jac_e, jac_roll)
+    _raise(status, kite, apparent, state)
+    power, alpha, cl, cd = state.tolist()
+    return _Air(force, power, alpha, cl, cd, jac_w, jac_e, jac_roll)
+
+
+def _raise(status, kite, apparent, state, r=None, tether=None) -> None:
+    """The error of a compiled function's ``status`` (nothing if it is :data:`_OK`),
+    as the NumPy code of this module raised it."""
+    if status == _ZERO_TETHER:
+        raise ValueError(f"tether = {np.asarray(r if tether is None else tether, dtype=float).tolist()}: "
+                         "must be a non-zero vector")
+    if status == _ABOVE_AIR:
+        raise AltitudeError(float(np.asarray(r, dtype=float)[2]))
+    if status == _ALONG_TETHER:
         raise ValueError(f"apparent wind {apparent.tolist()} m/s is along the tether: the lift "
                          "direction (eq. 1) is undefined")
-    u = direction - c * w_hat
-    lift0 = u / n
-    w_cross = _cross_matrix(w_hat)
-    side = w_cross @ lift0
-    cos_psi, sin_psi = np.cos(roll_rad), np.sin(roll_rad)
-    lift_dir = cos_psi * lift0 + sin_psi * side
-    alpha = kite.base_aoa_rad + np.arcsin(c)
-    cl, cd, dcl, dcd = kite.aerodynamics.coefficients(alpha)
-    k = 0.5 * rho * kite.area_m2
-    drag_factor = 1.0 + kite.turbine_factor
-    force = k * (drag_factor * cd * speed * apparent + cl * speed**2 * lift_dir)
-    turbine_power = kite.turbine_factor * cd * k * speed**3
-    # differentials as row vectors / matrices against W_e (…_w) and e (…_e)
-    d_speed = w_hat
-    d_what = (_EYE - np.outer(w_hat, w_hat)) / speed
-    dc_w, dc_e = u / speed, w_hat
-    du_w = -np.outer(w_hat, dc_w) - c * d_what
-    du_e = _EYE - np.outer(w_hat, dc_e)
-    dlift0_w = du_w / n + np.outer(u, c * dc_w) / n**3
-    dlift0_e = du_e / n + np.outer(u, c * dc_e) / n**3
-    dside_w = w_cross @ dlift0_w - _cross_matrix(lift0) @ d_what
-    dside_e = w_cross @ dlift0_e
-    dlift_w = cos_psi * dlift0_w + sin_psi * dside_w
-    dlift_e = cos_psi * dlift0_e + sin_psi * dside_e
-    dalpha_w, dalpha_e = dc_w / n, dc_e / n
-    jac_w = k * (drag_factor * (np.outer(apparent, dcd * speed * dalpha_w + cd * d_speed) + cd * speed * _EYE)
-                 + np.outer(lift_dir, dcl * speed**2 * dalpha_w + 2.0 * cl * speed * d_speed)
-                 + cl * speed**2 * dlift_w)
-    jac_e = k * (drag_factor * np.outer(apparent, dcd * speed * dalpha_e)
-                 + np.outer(lift_dir, dcl * speed**2 * dalpha_e) + cl * speed**2 * dlift_e)
-    jac_roll = k * cl * speed**2 * (-sin_psi * lift0 + cos_psi * side)
-    return _Air(force, turbine_power, alpha, cl, cd, jac_w, jac_e, jac_roll)
-
-
-def _tether_direction(r, tether):
-    """e and |d| of the tether vector d (``None``: the straight line from the ground origin to r)."""
-    return _unit(r if tether is None else tether, "tether")
+    if status == _OUTSIDE_POLAR:
+        raise _outside(kite.aerodynamics.table, kite.base_aoa_rad if not apparent.any() else state[1],
+                       getattr(kite.aerodynamics, "source", ""))
 
 
 def aerodynamic_force_N(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
@@ -305,7 +484,7 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
       (``tether=None``).
 
     ∂F/∂W_e differentiates ŵ, the lift basis (l₀, ŵ × l₀) and α = α₀ + arcsin(ŵ·e)
-    through C_L(α), C_D(α).
+    through C_L(α), C_D(α) (:func:`air_force`).
     """
     return aerodynamic_load(kite, r, v, wind, air, roll_rad, tether)[1]
 
@@ -313,21 +492,42 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
 def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
                      tether=None) -> tuple[AerodynamicForce, AerodynamicJacobian]:
     """:func:`aerodynamic_force_N` and :func:`aerodynamic_jacobian` (same arguments)
-    from one evaluation of the force (an implicit solver needs both every iteration;
-    :func:`_air_force` gives the derivatives with the force in any case)."""
+    from one evaluation of the compiled :func:`air_load` (an implicit solver needs
+    both every iteration; :func:`air_force` gives the derivatives with the force
+    in any case)."""
     r = np.asarray(r, dtype=float)
-    direction, length = _tether_direction(r, tether)
-    apparent = wind.velocity_mps(r[2]) - np.asarray(v, dtype=float)
-    rho = float(air.density_kg_m3(r[2]))
-    air_force = _air_force(kite, apparent, direction, rho, roll_rad)
-    force, jac_w, jac_e = air_force.force, air_force.d_apparent, air_force.d_direction
-    jac_d = jac_e @ (_EYE - np.outer(direction, direction)) / length
-    jac_r = (float(wind.shear_per_s(r[2])) * np.outer(jac_w @ _E_X, _E_Z)
-             + np.outer(force / rho, float(air.density_gradient_kg_m4(r[2])) * _E_Z))
-    if tether is None:
-        jac_r = jac_r + jac_d
-    return (AerodynamicForce(force, air_force.turbine_power, apparent, air_force.alpha, air_force.cl, air_force.cd),
-            AerodynamicJacobian(velocity=-jac_w, position=jac_r, tether=jac_d, roll=air_force.d_roll))
+    d = r if tether is None else np.asarray(tether, dtype=float)
+    force, apparent, state, jac_roll = np.empty(3), np.empty(3), np.empty(5), np.empty(3)
+    jac_v, jac_r, jac_d = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+    status = air_load(*kite.compiled, *compiled_environment(wind, air), r, np.asarray(v, dtype=float), d, tether is None,
+                      float(roll_rad), force, apparent, state, jac_v, jac_r, jac_d, jac_roll)
+    _raise(status, kite, apparent, state, r, tether)
+    power, alpha, cl, cd, rho = state.tolist()
+    return (AerodynamicForce(force, power, apparent, alpha, cl, cd, rho),
+            AerodynamicJacobian(velocity=jac_v, position=jac_r, tether=jac_d, roll=jac_roll))
+
+
+#: The compiled forms of the wind and air models asked last, by the pair of models (their
+#: addresses hold in this process only: the models travel to other processes, this does not).
+_ENVIRONMENTS: dict[tuple, tuple] = {}
+ENVIRONMENTS_KEPT = 64
+
+
+def compiled_environment(wind: WindProfile, air: AirModel) -> tuple:
+    """(wind address, rows, air address, parameters, ceiling) of ``wind`` and ``air``
+    (their modules' ``COMPILED`` forms), remembered for the last
+    :data:`ENVIRONMENTS_KEPT` pairs of hashable models: reading a model's
+    ``compiled`` hashes numba's signature, several µs a call."""
+    try:
+        return _ENVIRONMENTS[wind, air]
+    except TypeError:              # a model that is not hashable
+        return (*wind.compiled, *air.compiled)
+    except KeyError:
+        pass
+    forms = _ENVIRONMENTS[wind, air] = (*wind.compiled, *air.compiled)
+    while len(_ENVIRONMENTS) > ENVIRONMENTS_KEPT:
+        _ENVIRONMENTS.pop(next(iter(_ENVIRONMENTS)))
+    return forms
 
 
 def gravity_force_N(kite: PointMassKite, g_mps2: float = G_MPS2) -> np.ndarray:

@@ -131,7 +131,7 @@ def nearest_point(path, position_m, guess_s, iterations=N_NEWTON) -> PathPoint:
             raise ValueError(f"position_m={p.tolist()} is beyond the path's centre of curvature at "
                              f"parameter {sigma:.6g} s: no nearest point near guess_s={guess_s}")
         limit = float(np.linalg.norm(offset)) / math.sqrt(float(dr @ dr)) + 1.0
-        sigma -= float(np.clip((offset @ dr) / slope, -limit, limit))
+        sigma -= min(max(float(offset @ dr) / slope, -limit), limit)
     return path_point(path, sigma)
 
 

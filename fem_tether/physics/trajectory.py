@@ -75,12 +75,12 @@ def local_to_global(theta_rad, phi_rad, a_theta, a_phi, a_r):
     e_φ = (−sinφ, cosφ, 0), e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ).
     a_ϑ and a_φ carry the shape; a_r may be a scalar.
     """
-    st, ct = np.sin(theta_rad), np.cos(theta_rad)
-    sp, cp = np.sin(phi_rad), np.cos(phi_rad)
+    f = functions_of(theta_rad)
+    st, ct = f.sin(theta_rad), f.cos(theta_rad)
+    sp, cp = f.sin(phi_rad), f.cos(phi_rad)
     horizontal = ct * a_theta + st * a_r
-    return np.stack([cp * horizontal - sp * a_phi,
-                     sp * horizontal + cp * a_phi,
-                     ct * a_r - st * a_theta], axis=-1)
+    components = [cp * horizontal - sp * a_phi, sp * horizontal + cp * a_phi, ct * a_r - st * a_theta]
+    return np.array(components) if f is math else np.stack(components, axis=-1)
 
 
 def gerono(tau, width_m, height_m):
@@ -272,7 +272,8 @@ class FigureEight:
         u, w = SHAPES[self.shape](tau, self.width_m, self.height_m)
         L = self.length_m
         theta = (self.theta0_rad - w[0] / L, -w[1] / L, -w[2] / L)
-        phi = tuple(ui / (L * math.sin(self.theta0_rad)) for ui in u)
+        radius = L * math.sin(self.theta0_rad)
+        phi = (u[0] / radius, u[1] / radius, u[2] / radius)
         return theta, phi
 
     def arc_rate(self, tau):
@@ -334,7 +335,8 @@ class FigureEight:
         tau_dot = self.speed_mps / g
         tau_ddot = -self.speed_mps ** 2 * dg / g ** 3
         (th, dth, d2th), (ph, dph, d2ph) = theta, phi
-        st, ct = np.sin(th), np.cos(th)
+        f = functions_of(th)
+        st, ct = f.sin(th), f.cos(th)
         velocity = local_to_global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0)
         acceleration = local_to_global(
             th, ph,

@@ -366,7 +366,23 @@ def bench_text(result: dict) -> str:
         f"{r['elements']} el {r['peak_rss_MiB']:.0f} MiB" for r in s["runs"]))
     if "design" in result:
         lines += ["", *bench_design_lines(result["design"])]
+    if "free_kite" in result:
+        lines += ["", *bench_free_kite_lines(result["free_kite"])]
     return "\n".join(lines)
+
+
+def bench_free_kite_lines(section: dict) -> list[str]:
+    """The free-kite section of ``fem-tether bench``: per solver the point-mass kite's cost per
+    step against the prescribed kite's and against its target."""
+    lines = [f"free kite: {section['case']}"]
+    for r in section["rows"]:
+        lines.append(f" {r['solver'].upper()} {r['elements']} {'elements' if r['solver'] == 'fe' else 'segments'}, "
+                     f"dt = {r['dt_s']:.4f} s, {r['steps']} steps: point-mass {r['free_ms_per_step']:.3f} ms/step "
+                     f"({r['free_newton_per_step']:.2f} Newton/step, {r['real_time_factor']:.0f} x real time), "
+                     f"prescribed {r['prescribed_ms_per_step']:.3f} ms/step ({r['prescribed_newton_per_step']:.2f} "
+                     f"Newton/step), point-mass / prescribed {r['free_over_prescribed']:.1f}; target <= "
+                     f"{r['target_ms']:g} ms/step: {'met' if r['met'] else 'NOT met'}")
+    return lines
 
 
 def bench_design_lines(design: dict) -> list[str]:

@@ -126,9 +126,8 @@ class FreeKite:
                             jac.velocity, jac.tether, aero)
         gamma, d_position, d_velocity = self.rate_hold.turbine_factor(r, v)
         aero, jac = aerodynamic_load(self._wing(gamma), r, v, self.wind, self.air, roll_rad, tether=tether)
-        rho = float(self.air.density_kg_m3(float(np.asarray(r, dtype=float)[2])))
         apparent = aero.apparent_wind_mps
-        d_gamma = 0.5 * rho * self.kite.area_m2 * aero.cd * float(np.linalg.norm(apparent)) * apparent
+        d_gamma = 0.5 * aero.density_kg_m3 * self.kite.area_m2 * aero.cd * float(np.linalg.norm(apparent)) * apparent
         return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2),
                         jac.position + np.outer(d_gamma, d_position), jac.velocity + np.outer(d_gamma, d_velocity),
                         jac.tether, aero)
@@ -167,8 +166,7 @@ class FreeKite:
         try:
             point = nearest_point(self.steering.path, r, parameter_s)
             aero = aerodynamic_force_N(self.wing_at(r, v), r, v, self.wind, self.air, 0.0, tether=tether)
-            rho = float(self.air.density_kg_m3(float(r[2])))
-            lift_N = 0.5 * rho * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
+            lift_N = 0.5 * aero.density_kg_m3 * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
             pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
             command = self.steering.command(point, r, v, aero.force_N + pull + line_drag_N, lift_N)
         except ValueError as exc:

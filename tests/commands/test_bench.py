@@ -58,3 +58,22 @@ def test_the_design_section_times_points_curves_and_a_design_start():
     assert start["mode"] == "ground-gen" and start["wall_s"] > 0 and start["iterations"] > 0
     assert start["converged"] and start["met"] == (start["wall_s"] <= bench.START_TARGET_S)
     assert start["consistent_s"] + start["slsqp_s"] == pytest.approx(start["wall_s"], rel=1e-6)
+
+
+def test_the_free_kite_section_times_both_kites_per_solver():
+    """The free-kite section: per setting the point-mass and the prescribed kite's cost per step
+    (positive), their ratio, the real-time factor of the point-mass kite's run and its verdict
+    against the solver's target, as printed (report.text.bench_free_kite_lines)."""
+    from fem_tether.report.text import bench_free_kite_lines
+
+    section = bench.free_kite(repeats=1, settings=(("fe", 10, 0.1), ("fd", 10, 0.1)))
+    assert [r["solver"] for r in section["rows"]] == ["fe", "fd"]
+    for row in section["rows"]:
+        assert row["free_ms_per_step"] > 0 and row["prescribed_ms_per_step"] > 0 and row["steps"] > 0
+        assert row["free_over_prescribed"] == pytest.approx(row["free_ms_per_step"] / row["prescribed_ms_per_step"])
+        assert row["real_time_factor"] == pytest.approx(row["simulated_s"] / (1e-3 * row["free_ms_per_step"]
+                                                                              * row["steps"]))
+        assert row["met"] == (row["free_ms_per_step"] <= bench.FREE_KITE_TARGET_MS[row["solver"]])
+    lines = bench_free_kite_lines(section)
+    assert lines[0].startswith("free kite: default case") and len(lines) == 3
+    assert "FE 10 elements" in lines[1] and "FD 10 segments" in lines[2] and "ms/step" in lines[2]

@@ -395,23 +395,33 @@ def test_mesh_file_beyond_the_cap_is_refused(tmp_path):
         load_config(overrides={"fe": {"mesh": str(path)}})          # the mesh is read at load
 
 
-@pytest.mark.parametrize("free", [False, True], ids=["whole-step kernel", "free kite's iteration"])
-def test_a_step_with_kept_factors_reaches_the_fresh_solution(free):
+@pytest.mark.parametrize("end", ["kinematic", "free", "held rate"],
+                         ids=["whole-step kernel", "free kite in the kernel", "held-rate kite's iteration"])
+def test_a_step_with_kept_factors_reaches_the_fresh_solution(end):
     """A step starting with the previous step's factors (a chord step) converges to
     the solution a step with a fresh Jacobian reaches, within the Newton tolerance;
     factors that are garbage send it back to the predictor with a fresh Jacobian,
     to the same solution.  Both for the whole step in one kernel call (a
-    kinematic end; the band scrambled) and for a free kite's Newton iteration in
-    Python (``kept.factors``; U negated, so that the chord step goes the wrong
-    way: a scrambled LU's non-finite iterate has no kite force, a NotConverged)."""
-    overrides = {"tether": {"length_m": 1000.0}, "fe": {"elements": 12, "dt_s": 0.2}}
-    if free:
+    kinematic end, the band scrambled; a free kite, U negated, so that the chord
+    step goes the wrong way: a scrambled LU's non-finite iterate has no kite
+    force, a NotConverged) and for a held-rate kite's Newton iteration in Python
+    (``kept.factors``; U negated)."""
+    overrides: dict = {"tether": {"length_m": 1000.0}, "fe": {"elements": 12, "dt_s": 0.2}}
+    system = None
+    if end == "free":
         overrides |= {"kite": {"model": "point-mass"}, "system": {"kite_mass_kg": 180.0}}
-    solver = FESolver(build_model(load_config(overrides=overrides)))
+    if end == "held rate":
+        overrides |= {"wind": {"profile": "lourenco"}, "fe": {"elements": 12, "dt_s": 0.05},
+                      "kite": {"model": "point-mass", "rotation_rpm": 5.5, "max_turbine_factor": 20.0,
+                               "roll_min_deg": -80.0, "roll_max_deg": 80.0}}
+        system = "makani-m600"
+    solver = FESolver(build_model(load_config(overrides=overrides, system=system)))
     start = solver.initial_state()
     model = solver.model
-    assert model.system.free_end == free
-    h = 0.2
+    free = end != "kinematic"
+    assert model.system.free_end == free and (model.kite is None or
+                                              (model.kite.rate_hold is not None) == (end == "held rate"))
+    h = overrides["fe"]["dt_s"]
     # leaves its factors kept, made for the row scale of the tensions the next step starts from
     state = start if free else _step(model, start, h, Statistics())
     if free:
@@ -432,8 +442,10 @@ def test_a_step_with_kept_factors_reaches_the_fresh_solution(free):
     np.testing.assert_allclose(with_kept.T, fresh.T, rtol=1e-8)
     fresh_step()                                   # fresh factors, kept for the next step ...
     assert kept.valid_for(h, k_s, model.scheme.coefficients(h)[1], 0.0)
-    if free:
+    if end == "held rate":
         kept.factors.lu[:2 * BAND + 1] *= -1.0
+    elif end == "free":
+        kept.band[:2 * BAND + 1] *= -1.0
     else:
         kept.band[:] = np.random.default_rng(1).permutation(kept.band.ravel()).reshape(kept.band.shape)
     stats = Statistics()

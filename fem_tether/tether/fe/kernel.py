@@ -43,6 +43,7 @@ import numpy as np
 from fem_tether.physics import atmosphere, drag_coefficient, wind
 from fem_tether.physics.atmosphere import air_state
 from fem_tether.physics.drag_coefficient import drag_coefficient_state
+from fem_tether.physics.kite_dynamics import KITE_ABOVE_AIR, KITE_OK, air_load
 from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
 from fem_tether.physics.wind import wind_state
 from fem_tether.tether.fe.system import BAND
@@ -54,8 +55,12 @@ __all__ = ["band_solve", "bordered_step", "environment", "evaluate", "factorize"
 V, M, F, B, I = "f8[:]", "f8[:, :]", "f8", "b1", "i8"     # vector, matrix (any layout), float, bool, int
 BF = "f8[::1, :]"                                         # the band: Fortran order
 
-CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE = 0, 1, 2
+CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE, KITE_UNDEFINED = 0, 1, 2, 3
 """What :func:`solve_step` returns."""
+#: :func:`solve_step`'s point-mass kite on the free end: whether there is one, the kite and its
+#: coefficients (:attr:`~fem_tether.physics.kite_dynamics.PointMassKite.compiled`), its wind and
+#: air (their ``COMPILED`` forms), the roll ψ held over the step and its weight m g (3,).
+KITE = (B, V, V, V, M, *wind.COMPILED, *atmosphere.COMPILED, F, V)
 
 
 def jit(*types, returns="void"):
@@ -386,14 +391,33 @@ def _predict(r, T, q_n, v_n, a_n, T_n, dt_s):
         T[e] = T_n[e]
 
 
+@numba.njit(cache=True, error_model="numpy")
+def _add_end_force(res, band, with_jacobian, force_N, weight_N, d_position, d_velocity, d_tether, c_v, n_nodes):
+    """The kite's force F + m g on the free end node N added to the residual (its
+    rows ``... - F``) and, ``with_jacobian``, ``-(dF/dr_N + c_v dF/dv_N + dF/dd)``
+    to block (N, N) and ``dF/dd`` to block (N, N - 1) of the band, as
+    :meth:`.system.TetherSystem.add_end_force` adds them."""
+    row0 = 4 * (n_nodes - 1)
+    for i in range(3):
+        res[row0 + i] -= force_N[i] + weight_N[i]
+    if not with_jacobian:
+        return
+    for i in range(3):
+        for j in range(3):
+            band[2 * BAND + i - j, row0 + j] -= d_position[i, j] + c_v * d_velocity[i, j] + d_tether[i, j]
+            band[2 * BAND + 4 + i - j, row0 - 4 + j] -= -d_tether[i, j]
+
+
 @jit(M, V, M, M, M, M, V, F, F, F, F, F, F, V, *(F,) * 8, I, *LINE, M, M, M, *OUTPUTS[:-1], V, V,
-     BF, "i8[:]", V, B, returns=I)
+     BF, "i8[:]", V, B, *KITE, returns=I)
 def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, beta, gamma, kite_dir,
                ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, reel_mps, newton_tol, max_newton,
                air_function, air_parameters, ceiling_m, wind_function, wind_rows, drag_function, drag_parameters,
                drag_factor, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
                damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
-               series, info, band, ipiv, z, factored):
+               series, info, band, ipiv, z, factored, free, kite, kite_limits, kite_breaks, kite_cubics,
+               kite_wind_function, kite_wind_rows, kite_air_function, kite_air_parameters, kite_ceiling_m,
+               roll_rad, kite_weight):
     """One generalised-alpha time step of size ``dt_s`` from the state
     ``(q_n, v_n, a_n, qdd_n, T_n, R_n)``, Newton's iteration in one call, as
     :func:`fem_tether.tether.fe.solver._step` takes it in Python for a free kite.
@@ -427,7 +451,15 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     chord step raises the residual, the iteration starts again from the
     predictor with a fresh Jacobian.  Measured on the benchmark case at 40
     elements: 1.6 instead of 2.5 factorisations per step at dt = 0.2 s, the
-    same residual evaluations (5.8)."""
+    same residual evaluations (5.8).
+
+    ``free``: the end node carries the point-mass kite of :data:`KITE` (the
+    system's free end, R held: no R column): each evaluation adds its force
+    F(r_N, v_N, d, ψ) + m g (:func:`~fem_tether.physics.kite_dynamics.air_load`,
+    d = r_N - r_{N-1}) as :func:`fem_tether.tether.fe.solver.add_kite` does, and
+    returns :data:`KITE_UNDEFINED` where an iterate leaves the polar or the
+    force is undefined (an iterate whose kite is above the air model's ceiling
+    left the atmosphere)."""
     n_nodes = r.shape[0]
     n = 4 * n_nodes
     q_known, v_known, qdd_known = np.empty_like(v), np.empty_like(v), np.empty_like(v)
@@ -442,9 +474,12 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
     v_per_a = dt_s * gamma
     qdd_per_a = (1.0 - alpha_m) / (1.0 - alpha_f)
     r_col = np.zeros(n - 1)
-    for k in range(3):
-        r_col[n - 4 + k] = -k_s * kite_dir[k]
+    if not free:
+        for k in range(3):
+            r_col[n - 4 + k] = -k_s * kite_dir[k]
     dx = np.empty(n)
+    tether, kite_force, apparent, kite_state = np.empty(3), np.empty(3), np.empty(3), np.empty(5)
+    jac_v, jac_r, jac_d, jac_roll = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty(3)
     stale = factored                  # an earlier step's factors: z for this step's kite direction
     if stale:
         for i in range(n - 1):
@@ -468,6 +503,19 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
                          drag_function, drag_parameters, drag_factor, diameter_m, skin_friction_cf, weight, mass,
                          interior, w, h, compliance_per_N, damping_time_s, tension_mode, res, tau, length, r_mid,
                          force, vn, vn_mps, re, cd, band) >= 0
+        if free and not above:
+            for k in range(3):
+                tether[k] = r[n_nodes - 1, k] - r[n_nodes - 2, k]
+            status = air_load(kite, kite_limits, kite_breaks, kite_cubics, kite_wind_function, kite_wind_rows,
+                              kite_air_function, kite_air_parameters, kite_ceiling_m, r[n_nodes - 1],
+                              v[n_nodes - 1], tether, False, roll_rad, kite_force, apparent, kite_state, jac_v,
+                              jac_r, jac_d, jac_roll)
+            if status == KITE_ABOVE_AIR:
+                above = True
+            elif status != KITE_OK:
+                return KITE_UNDEFINED
+            else:
+                _add_end_force(res, band, not chord, kite_force, kite_weight, jac_r, jac_v, jac_d, c_v, n_nodes)
         if above and not checking:
             return LEFT_ATMOSPHERE
         info[0] += 1.0

@@ -36,10 +36,10 @@ from fem_tether.core.errors import (SolverDivergedError, left_atmosphere, static
 from fem_tether.core.mesh import unit_mesh_from_config
 from fem_tether.tether.fe.integrator import Kinematics, Scheme, scheme_from_config
 from fem_tether.tether.fe.spaces import build_spaces
-from fem_tether.tether.fe.system import Evaluation, TetherSystem
+from fem_tether.tether.fe.system import Evaluation, KiteForceUndefined, TetherSystem
 from fem_tether.tether.free_kite import FreeKite, KiteLoad, Steer
 from fem_tether.tether import free_kite as free_kite_module
-from fem_tether.physics.kite_dynamics import PolarError
+from fem_tether.physics.kite_dynamics import PolarError, compiled_environment, gravity_force_N
 from fem_tether.tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether.tether import protocol
 from fem_tether.tether.protocol import Statistics, reuse_factors, speed_jumped
@@ -330,13 +330,20 @@ def add_kite(system: TetherSystem, ev: Evaluation, kite: FreeKite, r, v, roll_ra
     (d = r_N - r_{N-1}, v_N's dependence on r_N through the integrator's c_v).
     Raises :class:`NotConverged` where the iterate leaves the polar or the
     force is undefined (apparent wind along the tether)."""
-    try:
-        load = kite.load(r[-1], v[-1], r[-1] - r[-2], roll_rad)
-    except (PolarError, ValueError) as exc:
-        raise NotConverged(math.inf, f"the kite's force at {np.round(r[-1], 1).tolist()} m: {exc}") from None
+    load = kite_load(kite, r, v, roll_rad)
     system.add_end_force(ev, load.force_N, load.d_position + c_v * load.d_velocity + load.d_tether,
                          -load.d_tether)
     return load
+
+
+def kite_load(kite: FreeKite, r, v, roll_rad: float) -> KiteLoad:
+    """The kite's load at the end node of positions ``r`` and velocities ``v``
+    (:meth:`FreeKite.load`); raises :class:`NotConverged` saying why where it is
+    undefined (the iterate left the polar, the apparent wind along the tether)."""
+    try:
+        return kite.load(r[-1], v[-1], r[-1] - r[-2], roll_rad)
+    except (PolarError, ValueError) as exc:
+        raise NotConverged(math.inf, f"the kite's force at {np.round(r[-1], 1).tolist()} m: {exc}") from None
 
 
 def sampled(model: FEModel, state: State) -> State:
@@ -364,11 +371,15 @@ def _end_line_drag_N(model: FEModel, state: State) -> np.ndarray:
 
 def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     """One generalised-alpha step of size h solved by Newton (iterations counted in
-    ``stats``); raises :class:`NotConverged`.  A kinematic end takes the whole
-    step in one call (:meth:`TetherSystem.solve_step`); a free kite's step is the
-    same iteration in Python, the kite's force added to each of the kernel's
-    evaluations (:func:`add_kite`): the kite's roll is ``state``'s sample, held
-    over the step, and the new state gets its own (:func:`sampled`;
+    ``stats``); raises :class:`NotConverged`.  The step is one call
+    (:meth:`TetherSystem.solve_step`), a free kite's too: the kernel adds the
+    kite's force to each evaluation (compiled
+    :func:`~fem_tether.physics.kite_dynamics.air_load`, as :func:`add_kite`).  A
+    kite whose rate is held (``[kite] rotation_rpm``: its turbines' law,
+    :class:`~fem_tether.physics.rate_hold.RateHold`, is NumPy code) takes the
+    same iteration in Python, the force added by :func:`add_kite`.  The kite's
+    roll is ``state``'s sample, held over the step, and the new state gets its
+    own (:func:`sampled`;
     :meth:`~fem_tether.tether.free_kite.FreeKite.steer` raises
     :class:`SolverDivergedError` when the kite has lost its path)."""
     sys_ = model.system
@@ -377,13 +388,28 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
     f_ref = model.force_ref_N(state.T, sys_.physics)
     kin = state.kin
     kite = model.kite if sys_.free_end else None
-    if kite is None:
-        r, T, R, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h,
-                                                 model.scheme, e, model.ground_tension_N, model.radius_m,
-                                                 f_ref, model.reel_mps, model.newton_tol, model.max_newton,
-                                                 stats)
-        return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
-    steer, load = state.steer, None
+    steer = state.steer
+    if kite is None or kite.rate_hold is None:
+        kite_arguments = None
+        if kite is not None:
+            assert steer is not None, "a free kite's state carries its steering sample"
+            kite_arguments = (*kite.kite.compiled, *compiled_environment(kite.wind, kite.air), steer.roll_rad,
+                              gravity_force_N(kite.kite, kite.gravity_mps2))
+        try:
+            r, T, R, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h,
+                                                     model.scheme, e, model.ground_tension_N, model.radius_m,
+                                                     f_ref, model.reel_mps, model.newton_tol, model.max_newton,
+                                                     stats, kite_arguments)
+        except KiteForceUndefined as exc:
+            assert kite is not None and steer is not None
+            kite_load(kite, exc.r, exc.v, steer.roll_rad)      # raises NotConverged saying why
+            raise
+        if kite is None:
+            return State(t_new, Kinematics(r, v, a, qdd), T, R, ev)
+        assert steer is not None
+        return sampled(model, State(t_new, Kinematics(r, v, a, qdd), T, R, ev, steer,
+                                    kite_load(kite, r, v, steer.roll_rad)))
+    load = None
     assert steer is not None, "a free kite's state carries its steering sample"
     c_a, c_v = model.scheme.coefficients(h)
     k_s = sys_.row_scale(f_ref)

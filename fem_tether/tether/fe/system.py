@@ -271,7 +271,7 @@ class TetherSystem:
         return Evaluation(res, k_s, tau, length, r_mid, CrossflowDrag(force, vn, vn_mps, re, cd))
 
     def solve_step(self, q, v, a, qdd, T, R, dt_s, scheme, kite_dir, ground_tension_N, radius_m,
-                   force_ref_N, reel_mps, newton_tol, max_newton, stats):
+                   force_ref_N, reel_mps, newton_tol, max_newton, stats, kite=None):
         """One time step of size ``dt_s`` from the kinematics ``(q, v, a, qdd)``
         and ``T``, ``R``, by the compiled :func:`.kernel.solve_step` (the
         generalised-alpha ``scheme``'s predictor, kinematics and Newton's
@@ -282,7 +282,10 @@ class TetherSystem:
         :class:`~fem_tether.tether.continuation.NotConverged` as the free kite's
         iteration (:func:`fem_tether.tether.fe.solver._step`) does (with the
         altitude when an iterate left the atmosphere).  The
-        iterations are added to ``stats.newton_iterations``."""
+        iterations are added to ``stats.newton_iterations``.  ``kite``: the
+        point-mass kite on the free end as :data:`.kernel.KITE` takes it after
+        its first entry (None: a kinematic end); where its force is undefined
+        raises :class:`KiteForceUndefined` at that iterate."""
         r_new = np.empty_like(q)
         v_new, a_new, qdd_new = np.empty_like(v), np.empty_like(v), np.empty_like(v)
         T_new = np.empty_like(T)
@@ -295,13 +298,16 @@ class TetherSystem:
             r_new, T_new, q, v, a, qdd, T, R, dt_s, scheme.alpha_m, scheme.alpha_f, scheme.beta, scheme.gamma,
             kite_dir, ground_tension_N, radius_m, force_ref_N, k_s, c_a, c_v, float(reel_mps), newton_tol,
             max_newton, *self._line_constants(), v_new, a_new, qdd_new, *outputs, series, info,
-            kept.band, kept.ipiv, kept.z, kept.valid_for(dt_s, k_s, c_v, reel_mps))
+            kept.band, kept.ipiv, kept.z, kept.valid_for(dt_s, k_s, c_v, reel_mps),
+            *((False, *_NO_KITE) if kite is None else (True, *kite)))
         kept.keep(bool(info[3]), dt_s, k_s, c_v, reel_mps)
         stats.newton_iterations += int(info[0])
         if status == self._kernel.CONVERGED:
             evaluation = self._evaluation(k_s, outputs)
             evaluation.series = series
             return r_new, T_new, float(info[2]), v_new, a_new, qdd_new, evaluation
+        if status == self._kernel.KITE_UNDEFINED:
+            raise KiteForceUndefined(r_new, v_new)
         if status == self._kernel.LEFT_ATMOSPHERE:
             raise NotConverged(float(info[1]),
                                left_atmosphere(AltitudeError(float(np.max(outputs[3][:, 2])))))
@@ -450,6 +456,21 @@ class TetherSystem:
             return splu(self.jacobian_matrix(ev)).solve(-ev.residual)
         except RuntimeError as exc:          # SuperLU: "Factor is exactly singular"
             raise np.linalg.LinAlgError(str(exc)) from None
+
+
+_NO_KITE = (np.empty(0), np.empty(0), np.empty(0), np.empty((16, 1)), 0, np.empty((1, 0)), 0, np.empty(0), 0.0,
+            0.0, np.zeros(3))
+"""The kernel's kite arguments (:data:`.kernel.KITE` after its first) when there is no kite."""
+
+
+class KiteForceUndefined(NotConverged):
+    """The kite's force was undefined at an iterate of :meth:`TetherSystem.solve_step`
+    (outside its polar, the apparent wind along the tether): positions ``r`` and
+    velocities ``v`` of that iterate, for the caller to say why."""
+
+    def __init__(self, r: np.ndarray, v: np.ndarray):
+        super().__init__(float("inf"))
+        self.r, self.v = r, v
 
 
 class KeptFactors:
