@@ -30,6 +30,7 @@ from matplotlib.cm import ScalarMappable
 from matplotlib.collections import LineCollection
 from matplotlib.colors import Normalize
 from matplotlib.lines import Line2D
+from matplotlib.ticker import ScalarFormatter
 from PIL import Image
 
 from fem_tether.core.atomic import generator_tag
@@ -104,7 +105,7 @@ class GifInMemory(PillowWriter):
     comment ``fem-tether VERSION``."""
 
     def __init__(self, durations_ms: list[int]):
-        super().__init__(fps=1000.0 / float(np.mean(durations_ms)))
+        super().__init__()
         self.durations_ms = durations_ms
         self.data = b""
 
@@ -122,10 +123,10 @@ def _span(values: np.ndarray) -> tuple[float, float]:
     return float(np.nanmin(values)), float(np.nanmax(values))
 
 
-def _segments(position_m: np.ndarray, axes: tuple[int, int]) -> np.ndarray:
-    """The elements of a line as segments of two of its coordinates, (n_el, 2, 2)."""
+def _segments(position_m: np.ndarray, axes: tuple[int, int]) -> list[np.ndarray]:
+    """The elements of a line as segments of two of its coordinates, each (2, 2)."""
     xy = position_m[:, axes]
-    return np.stack([xy[:-1], xy[1:]], axis=1)
+    return list(np.stack([xy[:-1], xy[1:]], axis=1))
 
 
 #: The panels: title, the coordinates drawn (indices of x, y, z) and their labels.
@@ -164,7 +165,7 @@ def flight_gif(run: TetherRun, title: str, max_frames: int = MAX_FRAMES) -> tupl
         ax.set_title(name, fontsize=10)
         ax.grid(alpha=0.3)
     bar = fig.colorbar(ScalarMappable(norm, CMAP), ax=axes, label="line tension [kN]", shrink=0.9)
-    bar.formatter.set_useOffset(False)
+    bar.ax.yaxis.set_major_formatter(ScalarFormatter(useOffset=False))
     fig.legend(handles=[Line2D([], [], color=plt.get_cmap(CMAP)(0.6), lw=2.2, label="line (FE), by tension"),
                         Line2D([], [], ls="none", marker="o", color="k", mfc="tab:cyan", ms=8, label="kite"),
                         Line2D([], [], color="0.55", lw=0.8, label=f"kite track over the {window.name}"),
