@@ -52,13 +52,10 @@ def cycle_png(run: TetherRun, title: str) -> bytes:
         ax.grid(alpha=0.3)
     mean_kW = 1e-3 * run.mean("winch_power_W")
     axes[-1].axhline(mean_kW, color="C3", ls="--", lw=1.2)
-    axes[-1].text(0.01, 0.97, f"mean from t = {run.average_start_s:.1f} s to {run.average_end_s:.1f} s: "
-                              f"{mean_kW:.1f} kW", color="C3",
-                  transform=axes[-1].transAxes, ha="left", va="top", fontsize=9,
-                  bbox=dict(fc="white", ec="none", alpha=0.8))
     axes[-1].set_xlabel("time $t$ [s]")
-    axes[0].set_title(headline(title, "one line's winch; shaded: the recoveries (reel-in, kite depowered)"),
-                      fontsize=10)
+    axes[0].set_title(headline(title, "one line's winch; shaded: the recoveries (reel-in, kite depowered); dashed: "
+                                      f"the mean power from t = {run.average_start_s:.1f} s to "
+                                      f"{run.average_end_s:.1f} s, {mean_kW:.1f} kW"), fontsize=10)
     buffer = BytesIO()
     fig.savefig(buffer, format="png", dpi=100, metadata={"Software": generator_tag()})
     plt.close(fig)

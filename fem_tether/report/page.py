@@ -130,11 +130,11 @@ def figure(source: str, name: str, text: str | None = None, file: bool = True) -
     return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{label}</figcaption></figure>"
 
 
-def flight_html(flight: Sequence[Media]) -> str:
+def flight_html(flight: Sequence[Media] | str) -> str:
     """The flight's section (:func:`fem_tether.report.flight.flight_media`): each image
-    embedded with its caption; a sentence if no length ran."""
-    if not flight:
-        return "<h2>Flight</h2><p id=\"flight\">No length ran: no flight to show.</p>"
+    embedded with its caption, or the sentence saying why there is none."""
+    if isinstance(flight, str):
+        return f"<h2>Flight</h2><p id=\"flight\">{html.escape(flight)}</p>"
     return "<h2>Flight</h2>" + "".join(figure(data_uri(m.data, m.mime), m.name, m.caption, file=False)
                                   for m in flight)
 
@@ -224,10 +224,11 @@ def configuration_toml(cfg: Config, lengths_m) -> str:
 
 
 def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: str, run: Mapping,
-           flight: Sequence[Media] | None = None) -> str:
+           flight: Sequence[Media] | str | None = None) -> str:
     """The page's HTML (``validation``: the status, already HTML; ``run``: as
     :func:`fem_tether.report.job_summary.summary_document` takes it; ``flight``: the
-    flight's media, :func:`fem_tether.report.flight.flight_media`; None: no flight section)."""
+    flight's media or why there are none, :func:`fem_tether.report.flight.flight_media`; None:
+    no flight section)."""
     d = energy.as_dict()
     cfg = data["config"]
     notes = [f"straight: {STRAIGHT_LINE}.", report.best_length_text(d)] + [
@@ -256,7 +257,7 @@ def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: 
 
 
 def write_page(directory, data: Mapping, energy: SweepAep, plots: dict[str, Path], run: Mapping,
-               flight: Sequence[Media] | None = None) -> Path:
+               flight: Sequence[Media] | str | None = None) -> Path:
     """``directory/index.html`` of a sweep's ``data`` (:func:`fem_tether.jobs.sweepfile.read_sweep`),
     its AEP, its PNG ``plots`` (by their names in :func:`fem_tether.report.figures.write_plots`),
     the ``run``'s date, wall time, ranks and tasks and the ``flight``

@@ -300,7 +300,8 @@ def test_write_run_report_writes_the_main_jobs_files_for_a_sweep_file(quick_run,
     text = (again / "index.html").read_text(encoding="utf-8")
     assert "<dd>not recorded: this page is written from the sweep file, which was written 20" in text
     assert "<dt>wall time</dt><dd>not recorded (this page is written from the sweep file)</dd>" in text
-    assert len(check_page(again / "index.html", json.loads((again / "aep.json").read_text())).images) == 4
+    images = check_page(again / "index.html", json.loads((again / "aep.json").read_text())).images
+    assert len(images) == 5 and images[-1].startswith("data:image/gif;base64,")   # the four plots, the flight
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "summary.csv").write_text("my own table\n")         # never over a user's file
     with pytest.raises(OutputError, match="summary.csv"):

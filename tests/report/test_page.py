@@ -137,8 +137,8 @@ def test_the_configuration_shows_the_keys_that_matter_for_the_system(system, pre
 def test_page_embeds_the_flight_with_its_captions(results):
     """The flight's media (fem_tether.report.flight.flight_media) are embedded as they are,
     an animated GIF beside PNGs, each captioned without a file name (they have no file);
-    no length ran: a sentence says so; none given (a page of other media): no section."""
-    from fem_tether.report.flight import Media
+    none (no length ran): the sentence saying why; none given: no section."""
+    from fem_tether.report.flight import NO_RUN, Media
     from test_animation import circling_run
     from fem_tether.report.animation import flight_gif
 
@@ -151,6 +151,6 @@ def test_page_embeds_the_flight_with_its_captions(results):
     assert embedded(page.images[-1]) == gif and page.alts[-1] == "flight_L400.gif"
     assert page.captions[-1] == "The flight, as it was flown." and "flight_L400.gif" not in page.captions[-1]
     assert not (out / "flight_L400.gif").exists()
-    text = write_page(out, data, energy, plots, RUN, []).read_text(encoding="utf-8")
+    text = write_page(out, data, energy, plots, RUN, NO_RUN).read_text(encoding="utf-8")
     assert check_html(text).ids["flight"] == "No length ran: no flight to show."
     assert "<h2>Flight</h2>" not in write_page(out, data, energy, plots, RUN).read_text(encoding="utf-8")
