@@ -99,8 +99,8 @@ def frame_durations_ms(times_s: np.ndarray, window: Window) -> list[int]:
 
 
 class GifInMemory(PillowWriter):
-    """matplotlib's Pillow writer keeping the GIF in memory (:attr:`data`) instead of a file:
-    every frame on the first frame's palette (the colour bar puts every colour of the line
+    """matplotlib's Pillow writer keeping the GIF in memory (:attr:`data`) instead of a file,
+    each frame grabbed with one draw of the canvas; every frame on the first frame's palette (the colour bar puts every colour of the line
     into it; one palette, no flicker), each shown ``durations_ms``, looping, with the
     comment ``fem-tether VERSION``."""
 
@@ -108,6 +108,14 @@ class GifInMemory(PillowWriter):
         super().__init__()
         self.durations_ms = durations_ms
         self.data = b""
+
+    def grab_frame(self, **savefig_kwargs):
+        """The figure as drawn now, one draw (PillowWriter's ``savefig`` draws twice where the
+        figure keeps a layout engine, as one with a colour bar does even after ``"none"``)."""
+        canvas = self.fig.canvas
+        canvas.draw()
+        self._frames.append(Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba(),
+                                             "raw", "RGBA", 0, 1).convert("RGB"))
 
     def finish(self):
         palette = self._frames[0].quantize(colors=256, dither=Image.Dither.NONE)
