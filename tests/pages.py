@@ -107,14 +107,27 @@ def check_html(text: str) -> Page:
     return page
 
 
+#: The images a page may embed: their data URI's start and their files' signature.
+EMBEDDED = {"data:image/png;base64,": b"\x89PNG\r\n\x1a\n", "data:image/gif;base64,": b"GIF89a"}
+
+
+def embedded(src: str) -> bytes:
+    """The bytes of an embedded PNG or GIF (its data URI ``src``), checked by their signature."""
+    kind = next((k for k in EMBEDDED if src.startswith(k)), None)
+    assert kind is not None, src[:40]
+    data = base64.b64decode(src[len(kind):])
+    assert data.startswith(EMBEDDED[kind])
+    return data
+
+
 def check_page(path, aep_json):
-    """``path`` parses; every image is an embedded, non-empty PNG; the summary table's AEP
-    and capacity factors equal ``aep_json``'s to the digits shown.  Returns the parsed page."""
+    """``path`` parses; every image is an embedded, non-empty PNG (or an animated GIF); the
+    summary table's AEP and capacity factors equal ``aep_json``'s to the digits shown.
+    Returns the parsed page."""
     page = Page(path.read_text(encoding="utf-8"))
     assert page.images
     for src in page.images:
-        assert src.startswith("data:image/png;base64,")
-        assert base64.b64decode(src.split(",", 1)[1]).startswith(b"\x89PNG\r\n\x1a\n")
+        embedded(src)
     header, *rows = page.tables[0]
     assert header[0] == "L [m]" and len(rows) == len(aep_json["lengths"])
     columns = {"aep_straight_MWh": ("AEP straight (with wind) [MWh]", 0.05),

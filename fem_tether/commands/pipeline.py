@@ -33,6 +33,7 @@ from fem_tether.report.job_summary import CSV_NAME, JSON_NAME, aep_document, sum
 from fem_tether.commands.flight import warn_unflyable
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
+from fem_tether.report.flight import flight_media
 from fem_tether.report.page import PAGE_NAME, write_page
 from fem_tether.jobs.sweep import FollowUp, SweepOutcome, sweep
 from fem_tether.jobs.sweepfile import SweepResult, read_sweep
@@ -144,11 +145,12 @@ def _write_results(h5: Path, out: Path, allow_unchecked: bool, allow_incomplete:
     data = read_sweep(h5)
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     plots = write_plots(data, energy, out)
+    flight = flight_media(data, energy)
     run = run_of(data)                          # the files below take milliseconds
     files = plots | {"aep_json": out / "aep.json", "summary_csv": out / CSV_NAME, "summary_json": out / JSON_NAME,
                      "index": out / PAGE_NAME}
     summary = summary_document(data, energy, run, {"sweep": h5} | files)
     write_json(files["aep_json"], aep_document(data, energy))
     write_summary(out, summary)
-    write_page(out, data, energy, plots, run)
+    write_page(out, data, energy, plots, run, flight)
     return RunReport(data, energy, files, summary)

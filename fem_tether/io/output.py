@@ -149,16 +149,23 @@ def read_run_hdf5(path, config: Config | None = None, snapshots: bool = True) ->
     snapshot missing, of another length or type)."""
     reader = Reader(path, "run")
     with reader.open() as f:
-        attrs = {name: reader.attr(f, name, kind) for name, kind in RUN_ATTRS.items()}
-        if config is None and reader.attr(f, "config_toml", "str"):
-            config = reader.config(f)
-        group = reader.node(f, "series")
-        time_s = reader.dataset(group, "time_s", shape=(None,))
-        for name in SERIES:                         # every solver records them
-            reader.node(group, name, group=False)
-        series = {k: reader.dataset(group, k, shape=time_s.shape) for k in group if k != "time_s"}
-        snapshot_time_s, fields = _read_snapshots(reader, reader.node(f, "snapshots"), snapshots)
-        extra = {k: _python(v) for k, v in reader.node(f, "extra").attrs.items() if k != "description"}
+        return read_run_node(reader, f, config, snapshots)
+
+
+def read_run_node(reader: Reader, node, config: Config | None = None, snapshots: bool = True) -> TetherRun:
+    """The run stored in the group ``node`` of a file open through ``reader``, in the
+    layout of :func:`write_run_hdf5` (a run file's root, or a sweep's ``L<L>/fe``),
+    checked as :func:`read_run_hdf5` checks a run file."""
+    attrs = {name: reader.attr(node, name, kind) for name, kind in RUN_ATTRS.items()}
+    if config is None and reader.attr(node, "config_toml", "str"):
+        config = reader.config(node)
+    group = reader.node(node, "series")
+    time_s = reader.dataset(group, "time_s", shape=(None,))
+    for name in SERIES:                         # every solver records them
+        reader.node(group, name, group=False)
+    series = {k: reader.dataset(group, k, shape=time_s.shape) for k in group if k != "time_s"}
+    snapshot_time_s, fields = _read_snapshots(reader, reader.node(node, "snapshots"), snapshots)
+    extra = {k: _python(v) for k, v in reader.node(node, "extra").attrs.items() if k != "description"}
     return TetherRun(solver=attrs["solver"], length_m=attrs["length_m"], period_s=attrs["period_s"],
                      time_s=time_s, series=series, snapshot_time_s=snapshot_time_s, snapshots=fields,
                      average_start_s=attrs["average_start_s"], config=config, wall_s=attrs["wall_s"],

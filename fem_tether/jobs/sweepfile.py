@@ -55,9 +55,11 @@ from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check
 from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
 from fem_tether.jobs.job import Task, length_tag
 from fem_tether.core.quantities import attributes, names
-from fem_tether.io.reading import Reader
+from fem_tether.io.output import read_run_node
+from fem_tether.io.reading import Reader, ResultFileError
 from fem_tether.io.records import Record, Table, stored_column
 from fem_tether.jobs.store import PartsStore
+from fem_tether.tether.results import TetherRun
 
 #: A length's status: its tasks have all run and succeeded, some task has not run, some failed.
 STATUSES = ("ok", "pending", "failed")
@@ -376,3 +378,17 @@ def read_sweep(path: str | Path) -> SweepResult:
                        job_toml=attrs["job_toml"],
                        version=attrs["fem_tether_version"], n_ranks=attrs["n_ranks"],
                        created_utc=attrs["created_utc"], **data)
+
+
+def read_length_run(path: str | Path, length_m: float, solver: str = "fe") -> TetherRun:
+    """The ``solver``'s run of the length ``length_m`` that the sweep result file ``path``
+    holds (group ``L<L>/<solver>``, the layout of :func:`fem_tether.io.output.write_run_hdf5`),
+    its snapshots included; one :class:`~fem_tether.io.reading.ResultFileError` line if
+    the file is not a sweep result, the run failed, is missing or damaged."""
+    reader = Reader(path, "sweep")
+    with reader.open() as f:
+        node = reader.node(reader.node(f, _group_name(length_m)), solver)
+        if node.attrs.get("status", "ok") != "ok":
+            raise ResultFileError(f"{path}: the {solver.upper()} run of L = {length_m:g} m failed "
+                                  f"({node.attrs.get('error', 'no error stored')})")
+        return read_run_node(reader, node)

@@ -5,7 +5,9 @@ job (its lengths and ``[sweep]`` table, the job file), the summary table
 (:mod:`fem_tether.report.job_summary`: F_t, G_e, AEP and capacity factor per
 length, the numbers of ``aep.json`` and ``summary.csv``), every plot of the
 run embedded as a base64 PNG data URI with a caption saying what it shows,
-the FE <-> FD cross-check of each length against its tolerance, the
+the FE <-> FD cross-check of each length against its tolerance, the flight
+(one period of a length's FE run animated, and its pumping cycles where it
+flew them: :mod:`fem_tether.report.flight`, embedded likewise), the
 configuration keys that matter for the system's power model (:func:`configuration_toml`)
 and the validation status: the verdict counts of a ``validation.json`` beside
 the page (``fem-tether validate --quick --out DIR``), else "not run".  Long
@@ -19,7 +21,7 @@ import base64
 import dataclasses
 import html
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from datetime import datetime, timezone
 from pathlib import Path
 
@@ -31,6 +33,7 @@ from fem_tether.config.sections import SYSTEM_MODELS
 from fem_tether.config.settings import toml_value
 from fem_tether.report import text as report
 from fem_tether.report.figures import caption
+from fem_tether.report.flight import Media
 from fem_tether.report.job_summary import COLUMNS, summary_rows
 from fem_tether.performance.aep import SweepAep
 from fem_tether.performance.summary import STRAIGHT_LINE
@@ -110,10 +113,30 @@ def validation_status(directory: Path) -> str:
 def image(path: Path, text: str | None = None, embed: bool = True) -> str:
     """A PNG captioned with ``text`` (default: its name): embedded as a base64 data URI,
     or (``embed`` false) linked by its name, for a page in the PNG's directory."""
-    name = html.escape(Path(path).name)
-    source = f"data:image/png;base64,{base64.b64encode(Path(path).read_bytes()).decode('ascii')}" if embed else name
-    label = name if text is None else f"{html.escape(text)} <span class=\"file\">({name})</span>"
+    source = data_uri(Path(path).read_bytes(), "image/png") if embed else html.escape(Path(path).name)
+    return figure(source, Path(path).name, text)
+
+
+def data_uri(data: bytes, mime: str) -> str:
+    """``data`` as a base64 data URI of the MIME type ``mime``."""
+    return f"data:{mime};base64,{base64.b64encode(data).decode('ascii')}"
+
+
+def figure(source: str, name: str, text: str | None = None, file: bool = True) -> str:
+    """An image of ``source`` (a URI) named ``name``, captioned with ``text`` (default: its
+    name) and, if it is a ``file`` beside the page, its name."""
+    name = html.escape(name)
+    label = name if text is None else html.escape(text) + (f" <span class=\"file\">({name})</span>" if file else "")
     return f"<figure><img src=\"{source}\" alt=\"{name}\"><figcaption>{label}</figcaption></figure>"
+
+
+def flight_html(flight: Sequence[Media] | str) -> str:
+    """The flight's section (:func:`fem_tether.report.flight.flight_media`): each image
+    embedded with its caption, or the sentence saying why there is none."""
+    if isinstance(flight, str):
+        return f"<h2>Flight</h2><p id=\"flight\">{html.escape(flight)}</p>"
+    return "<h2>Flight</h2>" + "".join(figure(data_uri(m.data, m.mime), m.name, m.caption, file=False)
+                                  for m in flight)
 
 
 def warnings_html(energy: dict) -> str:
@@ -200,9 +223,12 @@ def configuration_toml(cfg: Config, lengths_m) -> str:
     return "\n\n".join(tables) + "\n"
 
 
-def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: str, run: Mapping) -> str:
+def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: str, run: Mapping,
+           flight: Sequence[Media] | str | None = None) -> str:
     """The page's HTML (``validation``: the status, already HTML; ``run``: as
-    :func:`fem_tether.report.job_summary.summary_document` takes it)."""
+    :func:`fem_tether.report.job_summary.summary_document` takes it; ``flight``: the
+    flight's media or why there are none, :func:`fem_tether.report.flight.flight_media`; None:
+    no flight section)."""
     d = energy.as_dict()
     cfg = data["config"]
     notes = [f"straight: {STRAIGHT_LINE}.", report.best_length_text(d)] + [
@@ -223,18 +249,22 @@ def render(data: Mapping, energy: SweepAep, plots: dict[str, Path], validation: 
         warnings_html(d),
         f"<h2>FE &lt;-&gt; FD cross-check</h2>{checks}",
         "<h2>Plots</h2>", *(image(p, caption(name, cfg, data["length_m"])) for name, p in plots.items()),
+        "" if flight is None else flight_html(flight),
         "<h2>Configuration</h2><p>The keys of the "
         f"{html.escape(cfg.system.model)} model's case, each with its meaning; the lengths are the job's.</p>",
         f"<pre id=\"configuration\">{html.escape(configuration_toml(cfg, data['length_m']))}</pre>",
         "</body></html>"])
 
 
-def write_page(directory, data: Mapping, energy: SweepAep, plots: dict[str, Path], run: Mapping) -> Path:
+def write_page(directory, data: Mapping, energy: SweepAep, plots: dict[str, Path], run: Mapping,
+               flight: Sequence[Media] | str | None = None) -> Path:
     """``directory/index.html`` of a sweep's ``data`` (:func:`fem_tether.jobs.sweepfile.read_sweep`),
-    its AEP, its PNG ``plots`` (by their names in :func:`fem_tether.report.figures.write_plots`)
-    and the ``run``'s date, wall time, ranks and tasks, written whole or not at all."""
+    its AEP, its PNG ``plots`` (by their names in :func:`fem_tether.report.figures.write_plots`),
+    the ``run``'s date, wall time, ranks and tasks and the ``flight``
+    (:func:`fem_tether.report.flight.flight_media`: embedded, no file of its own),
+    written whole or not at all."""
     directory = Path(directory)
-    text = render(data, energy, plots, validation_status(directory), run)
+    text = render(data, energy, plots, validation_status(directory), run, flight)
     with atomic_path(directory / PAGE_NAME) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return directory / PAGE_NAME

@@ -10,10 +10,12 @@ import sys
 from pathlib import Path
 
 import h5py
+import numpy as np
 import pytest
+from PIL import Image
 
 from conftest import TINY_JOB
-from pages import check_page
+from pages import check_page, embedded
 from route import TOP_TO_BOTTOM, calls_between_modules
 
 from fem_tether.cli import main
@@ -22,6 +24,7 @@ from fem_tether.physics.resource import from_config as resource_from_config
 from fem_tether.physics.resource import write_resource_csv
 from fem_tether.physics.wind import DE_BILT_ANNUAL
 from fem_tether.config import load_config
+from fem_tether.jobs.sweepfile import read_length_run
 
 QUICK = Path(__file__).parents[2] / "sweeps" / "quick.toml"
 
@@ -56,9 +59,40 @@ def test_run_writes_results_plots_and_table(quick_run, capsys):
     assert all(r["aep_fe_MWh"] > r["aep_straight_MWh"] for r in rows[1:])
     with h5py.File(out / "sweep.h5") as f:
         assert f["drag_fe_N"][2] < f["drag_straight_N"][2] and f["ge_fe"][2] > f["ge_straight"][2]
-    # the report page: self-contained, the numbers of aep.json, the four plots
+    # the report page: self-contained, the numbers of aep.json, the four plots and the flight
     page = check_page(out / "index.html", data)
-    assert len(page.images) == 4
+    assert len(page.images) == 5
+
+
+def test_run_page_shows_the_flight_as_an_animation_that_decodes(quick_run):
+    """(Issue 34, "a flight you can watch".)  The page embeds the last period of the best
+    flexible length's FE run as an animated GIF: it decodes (Pillow), with one frame per
+    snapshot the run stored in (t_end - T, t_end] (counted here from the sweep file), each
+    shown for the time to the next snapshot (real time), at the size drawn; the page,
+    self-contained, stays under 3 MB."""
+    _, out = quick_run
+    aep = json.loads((out / "aep.json").read_text())
+    page = check_page(out / "index.html", aep)
+    gifs = [embedded(src) for src in page.images if src.startswith("data:image/gif")]
+    assert len(gifs) == 1
+    run = read_length_run(out / "sweep.h5", aep["best_length_fe_m"])
+    t = run.snapshot_time_s
+    shown = t[t > t[-1] - run.period_s + 1e-6]
+    gif = Image.open(io.BytesIO(gifs[0]))
+    assert gif.n_frames == shown.size >= 5 and gif.size == (768, 368)
+    assert gif.info["comment"].decode().startswith("fem-tether ")
+    durations = []
+    for k in range(gif.n_frames):
+        gif.seek(k)
+        durations.append(gif.info["duration"])
+    gaps = np.diff(shown)
+    assert durations == [10 * round(100 * g) for g in [*gaps, gaps[-1]]]
+    caption = next(c for c in page.captions if c.startswith("The flight at"))
+    assert f"L = {aep['best_length_fe_m']:g} m (the flexible line's best length)" in caption
+    assert f"{shown.size} frames" in caption
+    size = (out / "index.html").stat().st_size
+    print(f"index.html: {size / 1e6:.2f} MB, the GIF {len(gifs[0]) / 1e3:.0f} kB, {gif.n_frames} frames")
+    assert size < 3e6
 
 
 def test_run_writes_its_summary_table_as_csv_and_json(quick_run):
@@ -266,7 +300,8 @@ def test_write_run_report_writes_the_main_jobs_files_for_a_sweep_file(quick_run,
     text = (again / "index.html").read_text(encoding="utf-8")
     assert "<dd>not recorded: this page is written from the sweep file, which was written 20" in text
     assert "<dt>wall time</dt><dd>not recorded (this page is written from the sweep file)</dd>" in text
-    assert len(check_page(again / "index.html", json.loads((again / "aep.json").read_text())).images) == 4
+    images = check_page(again / "index.html", json.loads((again / "aep.json").read_text())).images
+    assert len(images) == 5 and images[-1].startswith("data:image/gif;base64,")   # the four plots, the flight
     (tmp_path / "mine").mkdir()
     (tmp_path / "mine" / "summary.csv").write_text("my own table\n")         # never over a user's file
     with pytest.raises(OutputError, match="summary.csv"):

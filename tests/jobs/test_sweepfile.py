@@ -21,7 +21,9 @@ from fem_tether.tether.fe.solver import simulate
 from fem_tether.jobs.job import Task, load_job
 from fem_tether.jobs.store import PartsStore, parts_dir
 from fem_tether.jobs.sweep import sweep
-from fem_tether.jobs.sweepfile import SweepResult, assemble, check_out, is_sweep_result, read_sweep, update
+from fem_tether.io.reading import ResultFileError
+from fem_tether.jobs.sweepfile import (SweepResult, assemble, check_out, is_sweep_result, read_length_run, read_sweep,
+                                      update)
 from fem_tether import __version__
 from fem_tether.core.quantities import names, quantity
 
@@ -282,3 +284,11 @@ def test_an_update_killed_midway_leaves_the_result_file_whole(tiny_job, tmp_path
         run_task(store, task)
         update(store, 800.0, n_ranks=1)
     assert list(read_sweep(store.out)["status"]) == ["ok", "ok"]
+
+
+def test_read_length_run_of_a_run_that_failed_or_is_missing_is_one_line(unrun_sweep):
+    """(Its read of a run that ran: tests/commands/test_pipeline.py, the page's flight.)"""
+    with pytest.raises(ResultFileError, match=r"r\.h5: the FE run of L = 800 m failed \(FE: time step did not "):
+        read_length_run(unrun_sweep, 800.0)
+    with pytest.raises(ResultFileError, match=r"r\.h5: damaged fem-tether sweep result: group /L500 is missing"):
+        read_length_run(unrun_sweep, 500.0)

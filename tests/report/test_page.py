@@ -7,7 +7,7 @@ import json
 
 import numpy as np
 import pytest
-from pages import check_html, check_page
+from pages import check_html, check_page, embedded
 
 from fem_tether.config import load_config
 from fem_tether.performance.aep import sweep_aep
@@ -132,3 +132,25 @@ def test_the_configuration_shows_the_keys_that_matter_for_the_system(system, pre
         assert key not in text, key
     chosen = configuration_toml(load_config(overrides={"kite": {"path": "circle"}}), [500.0])
     assert "circle_radius_deg" in chosen
+
+
+def test_page_embeds_the_flight_with_its_captions(results):
+    """The flight's media (fem_tether.report.flight.flight_media) are embedded as they are,
+    an animated GIF beside PNGs, each captioned without a file name (they have no file);
+    none (no length ran): the sentence saying why; none given: no section."""
+    from fem_tether.report.flight import NO_RUN, Media
+    from test_animation import circling_run
+    from fem_tether.report.animation import flight_gif
+
+    data, energy, plots, out = results
+    gif, frames = flight_gif(circling_run(), "a made-up circling kite")
+    flight = [Media(gif, "image/gif", "flight_L400.gif", "The flight, as it was flown.")]
+    text = write_page(out, data, energy, plots, RUN, flight).read_text(encoding="utf-8")
+    page = check_page(out / "index.html", energy.as_dict())
+    check_html(text)
+    assert embedded(page.images[-1]) == gif and page.alts[-1] == "flight_L400.gif"
+    assert page.captions[-1] == "The flight, as it was flown." and "flight_L400.gif" not in page.captions[-1]
+    assert not (out / "flight_L400.gif").exists()
+    text = write_page(out, data, energy, plots, RUN, NO_RUN).read_text(encoding="utf-8")
+    assert check_html(text).ids["flight"] == "No length ran: no flight to show."
+    assert "<h2>Flight</h2>" not in write_page(out, data, energy, plots, RUN).read_text(encoding="utf-8")
