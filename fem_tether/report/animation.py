@@ -15,7 +15,8 @@ in real time (each frame shown for the time to the next snapshot, no shorter
 than :data:`MIN_FRAME_MS`).
 
 The GIF is drawn with matplotlib (:class:`matplotlib.animation.PillowWriter`
-grabbing each frame) and kept in memory (:class:`GifInMemory`), all frames on
+grabbing each frame; the axes, colour bar and legend drawn once, each frame
+only the line, the kite, the winch and the time over them) and kept in memory (:class:`GifInMemory`), all frames on
 one palette, marked as fem-tether's in its comment, for a page to embed it.
 """
 
@@ -99,21 +100,33 @@ def frame_durations_ms(times_s: np.ndarray, window: Window) -> list[int]:
 
 
 class GifInMemory(PillowWriter):
-    """matplotlib's Pillow writer keeping the GIF in memory (:attr:`data`) instead of a file,
-    each frame grabbed with one draw of the canvas; every frame on the first frame's palette (the colour bar puts every colour of the line
+    """matplotlib's Pillow writer keeping the GIF in memory (:attr:`data`) instead of a file;
+    every frame on the first frame's palette (the colour bar puts every colour of the line
     into it; one palette, no flicker), each shown ``durations_ms``, looping, with the
-    comment ``fem-tether VERSION``."""
+    comment ``fem-tether VERSION``.  The figure is drawn once; each frame then draws only the
+    ``animated`` artists (in their z-order) over that background (blitting)."""
 
-    def __init__(self, durations_ms: list[int]):
+    def __init__(self, durations_ms: list[int], animated=()):
         super().__init__()
         self.durations_ms = durations_ms
+        self.animated = sorted(animated, key=lambda artist: artist.get_zorder())
         self.data = b""
+        self._background = None
 
     def grab_frame(self, **savefig_kwargs):
-        """The figure as drawn now, one draw (PillowWriter's ``savefig`` draws twice where the
-        figure keeps a layout engine, as one with a colour bar does even after ``"none"``)."""
+        """The figure as it stands: the background drawn at the first frame (which fixes the
+        layout for all), the animated artists drawn over it."""
         canvas = self.fig.canvas
-        canvas.draw()
+        for artist in self.animated:
+            artist.set_animated(True)
+        if self._background is None:
+            canvas.draw()
+            self._background = canvas.copy_from_bbox(self.fig.bbox)
+            self.fig.set_layout_engine("none")
+        else:
+            canvas.restore_region(self._background)
+        for artist in self.animated:
+            self.fig.draw_artist(artist)
         self._frames.append(Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba(),
                                              "raw", "RGBA", 0, 1).convert("RGB"))
 
@@ -157,10 +170,10 @@ def flight_gif(run: TetherRun, title: str, max_frames: int = MAX_FRAMES) -> tupl
     fig = plt.figure(figsize=FIGSIZE_IN, dpi=DPI, layout="constrained")
     spans = [np.ptp(positions[:, h]) for _, (h, _), _ in VIEWS]
     axes = fig.subplots(1, 2, width_ratios=[max(s, 0.35 * max(spans)) for s in spans])
-    drawn = []
+    drawn, winches = [], []
     for ax, (name, (h, v), label) in zip(axes, VIEWS):
         ax.plot(track[:, h], track[:, v], color="0.55", lw=0.8, zorder=1)
-        ax.plot([0.0], [0.0], "^", color="k", ms=7, zorder=3)
+        winches += ax.plot([0.0], [0.0], "^", color="k", ms=7, zorder=3)     # over the line: drawn with it
         segments = LineCollection(_segments(lines[0]["position_m"], (h, v)), cmap=CMAP, norm=norm, lw=2.2, zorder=2)
         ax.add_collection(segments)
         kite, = ax.plot([], [], "o", color="k", mfc="tab:cyan", ms=8, zorder=4)
@@ -182,9 +195,10 @@ def flight_gif(run: TetherRun, title: str, max_frames: int = MAX_FRAMES) -> tupl
     clock = fig.suptitle("", fontsize=10)
     length = f"T = {run.period_s:.2f} s" if window.name == "period" else f"{window.duration_s:.1f} s"
     durations = frame_durations_ms(times, window)
-    writer = GifInMemory(durations)
+    writer = GifInMemory(durations, [clock, *winches, *(artist for segments, kite, _ in drawn
+                                                        for artist in (segments, kite))])
     with writer.saving(fig, "flight.gif", DPI):
-        for k, (line, t) in enumerate(zip(lines, times)):
+        for line, t in zip(lines, times):
             for segments, kite, view in drawn:
                 segments.set_segments(_segments(line["position_m"], view))
                 segments.set_array(line["tension_N"] * 1e-3)
@@ -192,7 +206,5 @@ def flight_gif(run: TetherRun, title: str, max_frames: int = MAX_FRAMES) -> tupl
             clock.set_text(f"{title}\nt = {t:.2f} s, {(t - window.start_s) / window.duration_s:.2f} "
                            f"of the {window.name} ({length}), L = {line['s_m'][-1]:.0f} m")
             writer.grab_frame()
-            if k == 0:
-                fig.set_layout_engine("none")           # the layout of the first frame holds for all
     plt.close(fig)
     return writer.data, len(lines)
