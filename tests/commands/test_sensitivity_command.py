@@ -88,7 +88,8 @@ def test_bad_options_exit_2_with_one_line_and_write_nothing(job, tmp_path, capsy
 
 
 @pytest.mark.parametrize("text, message", [
-    ('[sensitivity]\nmodel = "kite"\nsamples = 20\n', "[sensitivity] model = 'kite': unknown (one of cantilever, trevisi-3mw)"),
+    ('[sensitivity]\nmodel = "kite"\nsamples = 20\n', "[sensitivity] model = 'kite': unknown (one of cantilever, "
+     "trevisi-2mw-profit, trevisi-3mw, trevisi-3mw-30m2, trevisi-3mw-wind)"),
     ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.wing_area_m2]\nlow = 1\n',
      "[sensitivity.inputs] wing_area_m2: unknown input"),
     ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.max_deflection_m]\nlow = 0.3\n'
