@@ -23,7 +23,7 @@ leaves them open:
   (:class:`~fem_tether.costs.parameters.CostParameters`);
 - the tower is held at :data:`TOWER_HEIGHT_M` = 0, as the profit presets
   (``fem_tether/jobs/design/presets/trevisi-2mw-profit-*.toml``): our
-  reading of §6.6's tower prices a 200 m tower at ~20 k€, so a free tower runs
+  reading of §6.6's tower prices a 200 m tower at 12-20 k€, so a free tower runs
   to its bound, while Table 7.2's mean tower is 0.52 m; Table 7.1's tower
   inputs (c_t, h_t^max) therefore change nothing and are left out;
 - a Gaussian price drawn below zero is priced at zero (a price cannot be
