@@ -98,11 +98,12 @@ REFERENCE = {
 REFERENCE_SOURCE = f"{THESIS} Table 5.6 (650 evaluations)"
 
 
-def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS,
-               max_iterations: int = MAX_ITERATIONS) -> tuple[Solution, int, int]:
+def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS, max_iterations: int = MAX_ITERATIONS,
+               at_limit: bool = False) -> tuple[Solution, int, int]:
     """The best of the first ``n_max`` starts that converge feasible (§5.7.1; a start the model refuses
     counts as not converged), trying at most ``attempts`` × ``n_max`` starts of at most
-    ``max_iterations`` SLSQP iterations each; (best, starts tried, starts converged).  Raises
+    ``max_iterations`` SLSQP iterations each; (best, starts tried, starts converged).  With
+    ``at_limit`` a feasible start stopped by the iteration cap counts as converged.  Raises
     :class:`SolverDivergedError` where none converged."""
     converged: list[Solution] = []
     tried = 0
@@ -112,11 +113,12 @@ def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS,
             solution = problem.solve(consistent(problem, start), max_iterations)
         except ValueError:          # a start the model cannot make consistent (no load-bearing tether left)
             continue
-        if solution.success and solution.feasible:
+        stopped = at_limit and solution.iterations >= max_iterations
+        if solution.feasible and (solution.success or stopped):
             converged.append(solution)
             if len(converged) == n_max:
                 break
-    k = best(converged)
+    k = best([dataclasses.replace(s, success=True) for s in converged])
     if k is None:
         raise SolverDivergedError(f"no start of {tried} converged feasible")
     return converged[k], tried, len(converged)

@@ -44,8 +44,9 @@ def fly_gen_only():
     calls, kept = [], []
     real = kite_design.multistart
 
-    def multistart(problem, n_max, attempts=kite_design.ATTEMPTS, max_iterations=500):
-        calls.append((problem.parameters.mode, n_max, attempts, max_iterations, problem.layout.held["tower_height_m"]))
+    def multistart(problem, n_max, attempts=kite_design.ATTEMPTS, max_iterations=500, at_limit=False):
+        calls.append((problem.parameters.mode, n_max, attempts, max_iterations, at_limit,
+                      problem.layout.held["tower_height_m"]))
         if problem.parameters.mode != "fly-gen":
             raise SolverDivergedError(f"no start of {n_max * attempts} converged feasible")
         kept.append(real(problem, 1, 1, max_iterations)[0])
@@ -59,8 +60,10 @@ def fly_gen_only():
 
 
 def test_each_generation_type_is_a_multistart_of_n_max_7_converged(fly_gen_only):
+    """Of at most 2000 iterations a start, a feasible start stopped there counted as converged, the tower
+    held at 0 m."""
     calls, _, _ = fly_gen_only
-    assert calls == [(mode, 7, kite_design.ATTEMPTS, 2000, 0.0) for mode in MODES]
+    assert calls == [(mode, 7, kite_design.ATTEMPTS, 2000, True, 0.0) for mode in MODES]
 
 
 def test_the_outputs_are_the_kept_design_and_obey_eq_7_1(fly_gen_only):
@@ -87,7 +90,7 @@ def test_the_best_generation_type_is_kept_and_none_converging_fails(fly_gen_only
     _, solution, out = fly_gen_only
     worse = dataclasses.replace(solution, objective=solution.objective + 0.01)
 
-    def with_worse(problem, n_max, attempts=3, max_iterations=500):
+    def with_worse(problem, n_max, attempts=3, max_iterations=500, at_limit=False):
         return (solution, 1, 1) if problem.parameters.mode == "fly-gen" else (worse, 4, 2)
 
     monkeypatch.setattr(kite_design, "multistart", with_worse)
@@ -96,7 +99,7 @@ def test_the_best_generation_type_is_kept_and_none_converging_fails(fly_gen_only
     assert again["profit_EUR_per_year"] == out["profit_EUR_per_year"]
     assert (again["starts_tried"], again["starts_converged"]) == (1 + 4 + 4, 1 + 2 + 2)
 
-    def none(problem, n_max, attempts=3, max_iterations=500):
+    def none(problem, n_max, attempts=3, max_iterations=500, at_limit=False):
         raise SolverDivergedError("no start of 21 converged feasible")
 
     monkeypatch.setattr(kite_design, "multistart", none)
