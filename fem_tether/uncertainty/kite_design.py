@@ -35,7 +35,8 @@ from typing import Any
 import numpy as np
 
 from fem_tether.core.errors import SolverDivergedError
-from fem_tether.design.optimiser import Problem, Solution, best, consistent, start_points, starts_for
+from fem_tether.design.optimiser import (MAX_ITERATIONS, Problem, Solution, best, consistent, start_points,
+                                         starts_for)
 from fem_tether.design.parameters import TABLE_5_4, DesignParameters
 from fem_tether.design.sensitivity import REPORTED, sensitivities_Wh
 from fem_tether.design.variables import SCALARS
@@ -97,24 +98,27 @@ REFERENCE = {
 REFERENCE_SOURCE = f"{THESIS} Table 5.6 (650 evaluations)"
 
 
-def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS) -> tuple[Solution, int, int]:
+def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS, max_iterations: int = MAX_ITERATIONS,
+               at_limit: bool = False) -> tuple[Solution, int, int]:
     """The best of the first ``n_max`` starts that converge feasible (§5.7.1; a start the model refuses
-    counts as not converged), trying at most
-    ``attempts`` × ``n_max`` starts; (best, starts tried, starts converged).  Raises
+    counts as not converged), trying at most ``attempts`` × ``n_max`` starts of at most
+    ``max_iterations`` SLSQP iterations each; (best, starts tried, starts converged).  With
+    ``at_limit`` a feasible start stopped by the iteration cap counts as converged.  Raises
     :class:`SolverDivergedError` where none converged."""
     converged: list[Solution] = []
     tried = 0
     for start in start_points(problem.layout, attempts * n_max):
         tried += 1
         try:
-            solution = problem.solve(consistent(problem, start))
+            solution = problem.solve(consistent(problem, start), max_iterations)
         except ValueError:          # a start the model cannot make consistent (no load-bearing tether left)
             continue
-        if solution.success and solution.feasible:
+        stopped = at_limit and solution.iterations >= max_iterations
+        if solution.feasible and (solution.success or stopped):
             converged.append(solution)
             if len(converged) == n_max:
                 break
-    k = best(converged)
+    k = best([dataclasses.replace(s, success=True) for s in converged])
     if k is None:
         raise SolverDivergedError(f"no start of {tried} converged feasible")
     return converged[k], tried, len(converged)
@@ -128,10 +132,15 @@ def design(sampled: Mapping[str, float]) -> dict[str, float]:
     parameters = dataclasses.replace(DesignParameters(), **changes)
     problem = Problem(parameters)
     solution, tried, converged = multistart(problem, starts_for(parameters.cl_max))
-    q = solution.evaluation.quantities
-    values = problem.layout.unpack(solution.z[None, :])
-    out = {name: float(q[name][0]) for name in QUANTITIES}
-    out |= {name: float(np.ravel(values[name])[0]) for name in VARIABLES}
+    out = design_outputs(problem, solution)
     out |= {f"aep_per_{name}_Wh": value for name, value in sensitivities_Wh(problem, solution).items()}
     out |= {"starts_tried": float(tried), "starts_converged": float(converged)}
     return {name: out.get(name, math.nan) for name in OUTPUT_UNITS}
+
+
+def design_outputs(problem: Problem, solution: Solution) -> dict[str, float]:
+    """The :data:`QUANTITIES` and :data:`VARIABLES` of ``solution``'s design."""
+    q = solution.evaluation.quantities
+    values = problem.layout.unpack(solution.z[None, :])
+    return ({name: float(q[name][0]) for name in QUANTITIES}
+            | {name: float(np.ravel(values[name])[0]) for name in VARIABLES})

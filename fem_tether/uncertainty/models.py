@@ -28,6 +28,9 @@ MODELS = {
     "cantilever": "fem_tether.uncertainty.cantilever",     # Trevisi ch. 4's beam (§4.1, Table 4.3)
     "trevisi-3mw": "fem_tether.uncertainty.kite_design",     # Trevisi §5.7: the 3 MW AEP design (Table 5.4)
     "trevisi-3mw-flexible": "fem_tether.jobs.sensitivity.flexible_design",   # the same, FE tether in the loop
+    "trevisi-3mw-30m2": "fem_tether.uncertainty.kite_fixed_wing",   # Trevisi §5.9: the same, wing fixed to 30 m²
+    "trevisi-3mw-wind": "fem_tether.uncertainty.kite_wind",    # Trevisi §5.10: the same with Table 5.7's wind
+    "trevisi-profit": "fem_tether.uncertainty.kite_profit",  # Trevisi §7.5-7.7: the profit design (Table 7.1)
 }
 
 

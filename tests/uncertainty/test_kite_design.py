@@ -98,3 +98,20 @@ def test_a_start_the_model_refuses_counts_as_not_converged(monkeypatch):
     monkeypatch.setattr(kite_design, "consistent", refused)
     with pytest.raises(SolverDivergedError, match="no start of 2 converged feasible"):
         kite_design.multistart(Problem(DesignParameters()), 1, attempts=2)
+
+
+def test_a_feasible_start_stopped_at_the_iteration_cap_counts_only_where_asked(monkeypatch):
+    """The profit model's rule (at_limit): kept, and returned as it ended (success False); by default
+    not converged."""
+    real = Problem.solve
+
+    def capped(self, z0, max_iterations=500):
+        s = real(self, z0, 1)
+        return Solution(**{**s.__dict__, "success": False, "feasible": True, "iterations": max_iterations})
+
+    monkeypatch.setattr(Problem, "solve", capped)
+    problem = Problem(DesignParameters())
+    with pytest.raises(SolverDivergedError, match="no start of 1 converged feasible"):
+        kite_design.multistart(problem, 1, attempts=1, max_iterations=7)
+    kept, tried, converged = kite_design.multistart(problem, 1, attempts=1, max_iterations=7, at_limit=True)
+    assert (tried, converged, kept.iterations, kept.success) == (1, 1, 7, False)

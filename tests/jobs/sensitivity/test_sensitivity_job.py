@@ -11,6 +11,7 @@ from fem_tether.uncertainty import cantilever as beam
 from fem_tether.uncertainty.models import MODELS
 from fem_tether.uncertainty.inputs import Gaussian, Uniform
 
+#: what an unknown model or preset is told: every registered model (each has its preset)
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "sensitivity_cantilever.toml"
 
 
@@ -136,3 +137,20 @@ def test_an_unknown_model_is_named(tmp_path, name, shown):
     with pytest.raises(ConfigError) as raised:
         load_sensitivity_job(path)
     assert str(raised.value) == f"[sensitivity] model = {shown}: unknown (one of {', '.join(sorted(MODELS))})"
+
+
+@pytest.mark.parametrize("preset, module, inputs, samples, surface", [
+    ("trevisi-3mw-wind", "kite_wind", 19, 650, ("capacity_factor", "weibull_scale_mps", "wing_area_m2")),
+    ("trevisi-3mw-30m2", "kite_fixed_wing", 15, 650, ("capacity_factor", "cl_max", "cd0")),
+    ("trevisi-profit", "kite_profit", 28, 2400, ("profit_EUR_per_year", "rated_power_W",
+                                                     "electricity_price_EUR_per_MWh"))])
+def test_the_chapter_5_and_7_presets_are_their_models_analyses(preset, module, inputs, samples, surface):
+    """§5.10 (Table 5.7 added; Fig. 5.20a's surface), §5.9 (30 m² wing; Fig. 5.18a's) and §7.7 (Table 7.1;
+    2400 samples as Table 7.2): the model's inputs, design and outputs, the counts up to the samples."""
+    import importlib
+    m = importlib.import_module(f"fem_tether.uncertainty.{module}")
+    job = load_sensitivity_job(preset=preset)
+    assert (job.name, job.samples, job.method, job.seed, job.surface) == (preset, samples, "lhs", 0, surface)
+    assert job.inputs == m.UNCERTAIN and len(job.inputs) == inputs and job.model is m.design
+    assert job.indexed == m.INDEXED and dict(job.units) == m.OUTPUT_UNITS and job.counts[-1] == samples
+    assert job.text == PRESETS[preset]
