@@ -16,7 +16,7 @@ from fem_tether import cli
 from fem_tether.core.atomic import written_by_fem_tether
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.report.sensitivity import FIGURE_FILES, report_paths
-from fem_tether.uncertainty.models import MODELS
+from fem_tether.jobs.sensitivity.models import MODELS
 
 ROOT = Path(__file__).resolve().parents[2]
 MPIEXEC = shutil.which("mpiexec")

@@ -3,7 +3,7 @@
 A sensitivity job is a TOML file (or a shipped preset, :data:`PRESETS`)::
 
     [sensitivity]
-    model = "cantilever"          # a model of fem_tether.uncertainty.models.MODELS
+    model = "cantilever"          # a model of fem_tether.jobs.sensitivity.models.MODELS
     samples = 650                 # model evaluations (one optimisation each; `--samples N` replaces it)
     seed = 0                      # the samples' generator (the same points on any rank, after any restart)
     method = "lhs"                # Latin hypercube ("lhs") or scrambled Sobol' sequence ("sobol")
@@ -38,7 +38,7 @@ from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.jobs.sensitivity.run import SensitivityJob
 from fem_tether.uncertainty.chaos import MAX_TERMS_SHARE, terms
 from fem_tether.uncertainty.inputs import METHODS, Gaussian, Input, Uniform
-from fem_tether.uncertainty.models import MODELS, Model, model
+from fem_tether.jobs.sensitivity.models import MODELS, Model, model
 
 KEYS = ("model", "samples", "seed", "method", "counts", "inputs", "surface")
 #: each distribution's keys

@@ -8,7 +8,7 @@ import pytest
 from fem_tether.core.errors import ConfigError
 from fem_tether.jobs.sensitivity.job import PRESETS, load_sensitivity_job
 from fem_tether.uncertainty import cantilever as beam
-from fem_tether.uncertainty.models import MODELS
+from fem_tether.jobs.sensitivity.models import MODELS
 from fem_tether.uncertainty.inputs import Gaussian, Uniform
 
 #: what an unknown model or preset is told: every registered model (each has its preset)

@@ -1,4 +1,4 @@
-"""The models a sensitivity job can name (fem_tether.uncertainty.models): each exposes what the job
+"""The models a sensitivity job can name (fem_tether.jobs.sensitivity.models): each exposes what the job
 and the analysis need, and an unknown name is refused naming the known ones."""
 
 import pytest
@@ -6,7 +6,7 @@ import pytest
 from fem_tether.core.errors import InputError
 from fem_tether.uncertainty import cantilever
 from fem_tether.uncertainty.inputs import Input
-from fem_tether.uncertainty.models import MODELS, model
+from fem_tether.jobs.sensitivity.models import MODELS, model
 
 
 def test_cantilever_is_registered_as_its_module():

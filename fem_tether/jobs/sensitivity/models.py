@@ -11,7 +11,9 @@ A model is a module with
   :class:`~fem_tether.core.errors.SolverDivergedError` where it finds no design.
 
 A model is registered by one line of :data:`MODELS`; its module is imported
-only when a job names it (a model may need the whole design layer).
+only when a job names it (a model may need the whole design layer, or, as the
+flexible tether's, the jobs that fly the line).  The registry sits here, in
+the jobs layer, so that it may name models of the layers below it and of this one.
 """
 
 from __future__ import annotations
