@@ -43,6 +43,8 @@ SYSTEM_MODES = ("ground-gen", "fly-gen", "both")
 #: the optimiser's variables at one wind speed: γ_out, γ_in, the rotors' load
 #: γ_t/γ_t,max(C_L) (so that its bound does not move with C_L) and C_L
 VARIABLES = ("gamma_out", "gamma_in", "rotor_load", "cl")
+#: :meth:`_Problem.pulled_back`'s representable steps from Brent's crossing before it bisects
+ULP_STEPS = 64
 #: C_L,min/C_L,max when ``min_cl`` is not given (ours; the thesis prints no lower bound)
 MIN_CL_SHARE = 0.1
 #: optima :func:`optimal_cycle` remembers (a power curve is 31–51 of them)
@@ -767,14 +769,24 @@ class _Problem:
     def pulled_back(inside, outside, margin):
         """The point of the segment from ``inside`` (``margin`` ≥ 0) to ``outside`` (< 0) nearest
         ``outside`` where ``margin`` ≥ 0: its crossing by Brent's method on the segment's parameter,
-        taken on the inside."""
+        taken on the inside: from Brent's t a few representable steps towards ``inside``
+        (:data:`ULP_STEPS`), then, where the crossing is farther than that (Brent's absolute
+        tolerance is many steps of a small t), the last acceptable t of a bisection of [0, t]."""
         def at(t):
             return {n: inside[n] + t * (outside[n] - inside[n]) for n in VARIABLES}
 
+        def ok(t):
+            return margin(at(t)) >= 0
+
         t = brentq(lambda t: margin(at(t)), 0.0, 1.0, xtol=1e-15)
-        while margin(at(t)) < 0:
+        for _ in range(ULP_STEPS):
+            if ok(t):
+                return at(t)
             t = math.nextafter(t, 0.0)
-        return at(t)
+        low, high = 0.0, t
+        while low < (middle := 0.5 * (low + high)) < high:
+            low, high = (middle, high) if ok(middle) else (low, middle)
+        return at(low)
 
     def _solve(self, free, bounds, start, objective, constraints):
         """SLSQP from ``start`` over ``free``: least ``objective(point)`` with ``constraints(point)``

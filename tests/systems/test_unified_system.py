@@ -409,3 +409,36 @@ def test_seed_balance_with_a_sagging_tether():
         assert c.delta_rad == pytest.approx(delta, rel=1e-12)
         r_a = q_star * (math.cos(c.theta_rad + delta) - 0.1) ** 2
         assert c.tether_force_N == pytest.approx(float(mass_efficiency(delta, c.theta_rad)) * r_a, rel=1e-12)
+
+
+def test_a_pull_back_whose_crossing_is_at_a_small_t_ends_inside(monkeypatch):
+    """(Was a hang: a 3 MW sensitivity sample's consistent start spun for hours.)  Brent's result may
+    lie past the crossing by its absolute tolerance, 1e-15: near t = 2.6e-9 (measured in the hung
+    sample) that is billions of representable steps, and stepping back one at a time never reached
+    the crossing.  Brent's result past a crossing at 1e-9 by 1e-15 (patched in): the pull-back
+    bisects, returns an acceptable point within 1e-20 of the crossing, in a few hundred calls."""
+    from fem_tether.systems import unified_system
+    from fem_tether.systems.unified_system import VARIABLES, _Problem
+
+    monkeypatch.setattr(unified_system, "brentq", lambda f, a, b, xtol: 1e-9 + 1e-15)
+    inside = {n: 0.0 for n in VARIABLES}
+    outside = {n: 1.0 for n in VARIABLES}
+    calls = []
+
+    def margin(point):
+        calls.append(1)
+        return 1.0 if point["cl"] <= 1e-9 else -1.0
+
+    found = _Problem.pulled_back(inside, outside, margin)
+    assert margin(found) >= 0 and 1e-9 - 1e-20 < found["cl"] <= 1e-9
+    assert len(calls) < 400
+
+
+def test_a_pull_back_near_its_crossing_steps_back_as_before():
+    """A crossing Brent finds within a few representable steps: the same point as stepping back."""
+    from fem_tether.systems.unified_system import VARIABLES, _Problem
+
+    inside = {n: 0.0 for n in VARIABLES}
+    outside = {n: 1.0 for n in VARIABLES}
+    found = _Problem.pulled_back(inside, outside, lambda p: 0.3 - p["cl"])
+    assert 0.3 - found["cl"] >= 0 and found["cl"] == pytest.approx(0.3, abs=1e-15)
