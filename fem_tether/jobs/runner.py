@@ -105,11 +105,13 @@ class JsonParts:
 
 def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: float = 0.0) -> tuple[int, int]:
     """Run this rank's share of ``tasks`` (rank 0 starts loaded with ``rank0_load_us``,
-    in the unit of ``work.cost_us``), then wait until every rank has run its share;
+    in the unit of ``work.cost_us``; the tasks whose parts rank 0 finds kept cost nothing, so
+    that a resumed job spreads what is left), then wait until every rank has run its share;
     ``(ran, kept)``: how many of this rank's tasks ran and how many were kept
     already.  Ctrl-C and errors propagate (the caller says what is kept)."""
     rank, size = comm.Get_rank(), comm.Get_size()
-    costs = [work.cost_us(t) for t in tasks]
+    kept_before = comm.bcast([work.kept(t) for t in tasks] if rank == 0 else None, root=0)
+    costs = [0.0 if k else work.cost_us(t) for t, k in zip(tasks, kept_before)]    # a resumed job: the rest balanced
     owners = assign(costs, size, rank0_load_us)
     finished = finish_times(costs, owners)
 

@@ -34,6 +34,10 @@ from fem_tether.uncertainty import cantilever as beam
 
 def slow(sampled):
     time.sleep(float(sys.argv[2]))
+    if len(sys.argv) > 3:                   # count the samples each rank evaluates
+        from mpi4py import MPI
+        with open(f"{sys.argv[3]}.{MPI.COMM_WORLD.Get_rank()}", "a") as fh:
+            fh.write("x")
     return beam.design(sampled)
 
 job = SensitivityJob("cantilever", slow, beam.UNCERTAIN, beam.OUTPUT_UNITS, ("mass_kg", "width_m", "thickness_m"),
@@ -154,6 +158,30 @@ def test_one_and_two_ranks_and_a_killed_run_give_the_same_bytes(tmp_path):
     names = sorted(p.name for p in parts_dir(killed).glob("*.json"))
     assert len(names) == 80 and all(_timeless(parts_dir(tmp_path / "n1.h5") / n) == _timeless(parts_dir(killed) / n)
                                     for n in names)
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
+def test_a_resumed_run_spreads_the_samples_left_over_the_ranks(tmp_path):
+    """(Was: each rank kept its share of the first run, so a resumed 2-rank run whose missing samples
+    were all rank 1's left rank 0 idle.)  The odd samples' parts deleted: the rerun on two ranks
+    evaluates 20 of the 40 on each, and the file is the first run's bytes."""
+    driver = _driver(tmp_path)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    out = tmp_path / "gsa.h5"
+
+    def run(*extra):
+        return subprocess.run(["mpiexec", "-n", "2", sys.executable, str(driver), str(out), "0", *extra],
+                              capture_output=True, text=True, timeout=300, env=env)
+
+    assert run().returncode == 0
+    first = out.read_bytes()
+    for path in parts_dir(out).glob("sample_*.json"):
+        if int(path.stem.split("_")[1]) % 2:
+            path.unlink()
+    again = run(str(tmp_path / "count"))
+    assert again.returncode == 0, again.stderr
+    counts = [len((tmp_path / f"count.{rank}").read_text()) for rank in (0, 1)]
+    assert counts == [20, 20] and out.read_bytes() == first
 
 
 def _timeless(path: Path) -> dict:
