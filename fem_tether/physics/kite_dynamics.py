@@ -30,19 +30,21 @@ seed 003 eq. 2.11 with its roll tangent C = tan ψ.  (2) is seed 001 eq. 16
 from __future__ import annotations
 
 import csv
+import functools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
+from numba.core import types
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
 from fem_tether.physics.atmosphere import AirModel, AltitudeError, air_state
 from fem_tether.core.errors import InputError, SolverDivergedError
 from fem_tether.core.inputfile import read_text
-from fem_tether.physics.compiled import jit
+from fem_tether.physics.compiled import address, jit
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.wind import WindProfile, wind_state
 
@@ -419,6 +421,23 @@ def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_
             for j in range(3):
                 jac_r[i, j] += jac_d[i, j]
     return _OK
+
+
+_VECTOR, _MATRIX = types.float64[:], types.float64[:, :]
+#: A kite's load on the line's end node as a compiled loop takes it (:mod:`.compiled`): the
+#: signature of :func:`air_load`, F, W_e, the kite's state and the Jacobians at the end node's
+#: r and v from the kite's arrays and its wind's and air's compiled forms; returns a status.
+KITE_LOAD_SIGNATURE = types.int64(_VECTOR, _VECTOR, _VECTOR, _MATRIX, types.int64, _MATRIX, types.int64, _VECTOR,
+                                  types.float64, _VECTOR, _VECTOR, _VECTOR, types.boolean, types.float64,
+                                  _VECTOR, _VECTOR, _VECTOR, _MATRIX, _MATRIX, _MATRIX, _VECTOR)
+
+
+@functools.cache
+def kite_load_address() -> int:
+    """The address of :func:`air_load` compiled for :data:`KITE_LOAD_SIGNATURE` (compiled, or
+    loaded from numba's cache, when first asked: only a run that flies the kite asks; kept,
+    as :func:`~.compiled.address` hashes the signature, several µs a time step)."""
+    return address(air_load, KITE_LOAD_SIGNATURE)
 
 
 class _Air(NamedTuple):

@@ -32,6 +32,23 @@ def test_the_table_of_first_compiles_has_every_module_a_run_compiles():
     assert kernels.notice(10.4) == "compiling the solver kernels (first run after install, about 10 s)"
 
 
+def test_a_prescribed_first_run_compiles_the_table_and_not_the_kite(tmp_path):
+    """On an empty numba cache, loading the FE kernels (their warm-up flies the default,
+    prescribed kite) leaves every module of the table that an FE run compiles cached, so
+    the next run says nothing, and compiles none of the point-mass kite's code, which
+    the kernel calls by address (before: the kernel compiled the kite in, 4 of its
+    compiles and ~3 s)."""
+    code = ("from fem_tether.physics.compiled import cached\n"
+            "from fem_tether.tether import kernels\n"
+            "kernels.load(['fe'])\n"
+            "modules = [*kernels.SHARED, kernels.KERNELS['fe']]\n"
+            "assert all(cached(m) for m in modules), [m for m in modules if not cached(m)]\n"
+            "assert not cached('fem_tether.physics.kite_dynamics')\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600,
+                          env=_quiet_env(NUMBA_CACHE_DIR=str(tmp_path / "numba-cache")))
+    assert done.returncode == 0, done.stderr[-3000:]
+
+
 def test_an_empty_cache_says_at_once_that_it_compiles(tmp_path):
     """The first line on stderr of a run on an empty numba cache is the notice, as a
     progress line (stderr is a pipe); the run is stopped there, before the compiles

@@ -43,7 +43,8 @@ import numpy as np
 from fem_tether.physics import atmosphere, drag_coefficient, wind
 from fem_tether.physics.atmosphere import air_state
 from fem_tether.physics.drag_coefficient import drag_coefficient_state
-from fem_tether.physics.kite_dynamics import KITE_ABOVE_AIR, KITE_OK, air_load
+from fem_tether.physics.compiled import caller
+from fem_tether.physics.kite_dynamics import KITE_ABOVE_AIR, KITE_LOAD_SIGNATURE, KITE_OK
 from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
 from fem_tether.physics.wind import wind_state
 from fem_tether.tether.fe.system import BAND
@@ -57,10 +58,13 @@ BF = "f8[::1, :]"                                         # the band: Fortran or
 
 CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE, KITE_UNDEFINED = 0, 1, 2, 3
 """What :func:`solve_step` returns."""
-#: :func:`solve_step`'s point-mass kite on the free end: whether there is one, the kite and its
-#: coefficients (:attr:`~fem_tether.physics.kite_dynamics.PointMassKite.compiled`), its wind and
-#: air (their ``COMPILED`` forms), the roll ψ held over the step and its weight m g (3,).
-KITE = (B, V, V, V, M, *wind.COMPILED, *atmosphere.COMPILED, F, V)
+#: :func:`solve_step`'s point-mass kite on the free end: whether there is one, the address of its
+#: load (:func:`~fem_tether.physics.kite_dynamics.kite_load_address`, called by address so that
+#: the kernel compiles without the kite's code: a run that does not fly the kite never compiles
+#: it), the kite and its coefficients (:attr:`~fem_tether.physics.kite_dynamics.PointMassKite.compiled`),
+#: its wind and air (their ``COMPILED`` forms), the roll ψ held over the step and its weight m g (3,).
+KITE = (B, I, V, V, V, M, *wind.COMPILED, *atmosphere.COMPILED, F, V)
+_kite_load = caller(KITE_LOAD_SIGNATURE)
 
 
 def jit(*types, returns="void"):
@@ -415,7 +419,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
                air_function, air_parameters, ceiling_m, wind_function, wind_rows, drag_function, drag_parameters,
                drag_factor, diameter_m, skin_friction_cf, weight, mass, interior, w, h, compliance_per_N,
                damping_time_s, tension_mode, v, a, qdd, res, tau, length, r_mid, force, vn, vn_mps, re, cd,
-               series, info, band, ipiv, z, factored, free, kite, kite_limits, kite_breaks, kite_cubics,
+               series, info, band, ipiv, z, factored, free, kite_load, kite, kite_limits, kite_breaks, kite_cubics,
                kite_wind_function, kite_wind_rows, kite_air_function, kite_air_parameters, kite_ceiling_m,
                roll_rad, kite_weight):
     """One generalised-alpha time step of size ``dt_s`` from the state
@@ -455,8 +459,8 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
 
     ``free``: the end node carries the point-mass kite of :data:`KITE` (the
     system's free end, R held: no R column): each evaluation adds its force
-    F(r_N, v_N, d, ψ) + m g (:func:`~fem_tether.physics.kite_dynamics.air_load`,
-    d = r_N - r_{N-1}) as :func:`fem_tether.tether.fe.solver.add_kite` does, and
+    F(r_N, v_N, d, ψ) + m g (:func:`~fem_tether.physics.kite_dynamics.air_load` at the address
+    ``kite_load``, d = r_N - r_{N-1}) as :func:`fem_tether.tether.fe.solver.add_kite` does, and
     returns :data:`KITE_UNDEFINED` where an iterate leaves the polar or the
     force is undefined (an iterate whose kite is above the air model's ceiling
     left the atmosphere)."""
@@ -506,7 +510,7 @@ def solve_step(r, T, q_n, v_n, a_n, qdd_n, T_n, R_n, dt_s, alpha_m, alpha_f, bet
         if free and not above:
             for k in range(3):
                 tether[k] = r[n_nodes - 1, k] - r[n_nodes - 2, k]
-            status = air_load(kite, kite_limits, kite_breaks, kite_cubics, kite_wind_function, kite_wind_rows,
+            status = _kite_load(kite_load)(kite, kite_limits, kite_breaks, kite_cubics, kite_wind_function, kite_wind_rows,
                               kite_air_function, kite_air_parameters, kite_ceiling_m, r[n_nodes - 1],
                               v[n_nodes - 1], tether, False, roll_rad, kite_force, apparent, kite_state, jac_v,
                               jac_r, jac_d, jac_roll)

@@ -458,9 +458,10 @@ class TetherSystem:
             raise np.linalg.LinAlgError(str(exc)) from None
 
 
-_NO_KITE = (np.empty(0), np.empty(0), np.empty(0), np.empty((16, 1)), 0, np.empty((1, 0)), 0, np.empty(0), 0.0,
+_NO_KITE = (0, np.empty(0), np.empty(0), np.empty(0), np.empty((16, 1)), 0, np.empty((1, 0)), 0, np.empty(0), 0.0,
             0.0, np.zeros(3))
-"""The kernel's kite arguments (:data:`.kernel.KITE` after its first) when there is no kite."""
+"""The kernel's kite arguments (:data:`.kernel.KITE` after its first) when there is no kite (its
+load's address 0: the kernel calls it only for a kite)."""
 
 
 class KiteForceUndefined(NotConverged):
