@@ -480,7 +480,7 @@ def _raise(status, kite, apparent, state, r=None, tether=None) -> None:
 
 
 def aerodynamic_force_N(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
-                        tether=None) -> AerodynamicForce:
+                        tether=None, forms: tuple | None = None) -> AerodynamicForce:
     """F_aero = ½ ρ A |W_e|² [(1 + γ_t) C_D(α) ŵ + C_L(α) λ] and P_t = γ_t C_D q A |W_e|:
     eqs. (1)–(3) of the module (seed 001 eqs. 8–16, seed 003 eqs. 2.9–2.11 and
     2.18–2.23, seed 004 eqs. 3.31–3.33).
@@ -488,9 +488,10 @@ def aerodynamic_force_N(kite: PointMassKite, r, v, wind: WindProfile, air: AirMo
     ``r``, ``v``: the kite's position and velocity [m, m/s]; ``wind`` and ``air``
     give V_w(z) and ρ(z) at its altitude r_z; ``roll_rad`` is ψ; ``tether`` a
     vector along the tether at the kite, pointing to the kite (any length;
-    ``None``: r itself, the straight tether of the sources).
+    ``None``: r itself, the straight tether of the sources); ``forms``: :func:`load_forms`
+    of the kite, wind and air if at hand (a time step's).
     """
-    return aerodynamic_load(kite, r, v, wind, air, roll_rad, tether)[0]
+    return aerodynamic_load(kite, r, v, wind, air, roll_rad, tether, forms)[0]
 
 
 def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
@@ -509,21 +510,27 @@ def aerodynamic_jacobian(kite: PointMassKite, r, v, wind: WindProfile, air: AirM
 
 
 def aerodynamic_load(kite: PointMassKite, r, v, wind: WindProfile, air: AirModel, roll_rad: float,
-                     tether=None) -> tuple[AerodynamicForce, AerodynamicJacobian]:
+                     tether=None, forms: tuple | None = None) -> tuple[AerodynamicForce, AerodynamicJacobian]:
     """:func:`aerodynamic_force_N` and :func:`aerodynamic_jacobian` (same arguments)
     from one evaluation of the compiled :func:`air_load` (an implicit solver needs
     both every iteration; :func:`air_force` gives the derivatives with the force
-    in any case)."""
+    in any case; ``forms`` as :func:`aerodynamic_force_N` takes them)."""
     r = np.asarray(r, dtype=float)
     d = r if tether is None else np.asarray(tether, dtype=float)
     force, apparent, state, jac_roll = np.empty(3), np.empty(3), np.empty(5), np.empty(3)
     jac_v, jac_r, jac_d = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
-    status = air_load(*kite.compiled, *compiled_environment(wind, air), r, np.asarray(v, dtype=float), d, tether is None,
+    status = air_load(*(forms or load_forms(kite, wind, air)), r, np.asarray(v, dtype=float), d, tether is None,
                       float(roll_rad), force, apparent, state, jac_v, jac_r, jac_d, jac_roll)
     _raise(status, kite, apparent, state, r, tether)
     power, alpha, cl, cd, rho = state.tolist()
     return (AerodynamicForce(force, power, apparent, alpha, cl, cd, rho),
             AerodynamicJacobian(velocity=jac_v, position=jac_r, tether=jac_d, roll=jac_roll))
+
+
+def load_forms(kite: PointMassKite, wind: WindProfile, air: AirModel) -> tuple:
+    """The kite, wind and air as :func:`air_load` takes them before the kite's state: the
+    kite's ``compiled`` form and :func:`compiled_environment`."""
+    return (*kite.compiled, *compiled_environment(wind, air))
 
 
 #: The compiled forms of the wind and air models asked last, by the pair of models (their

@@ -41,12 +41,44 @@ speed is exact on a circle: position, velocity and acceleration are analytic.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, functions_of, gauss_legendre_nodes
+from fem_tether.physics.compiled import address, jit
+from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, PATH_SIGNATURE, functions_of, gauss_legendre_nodes
+
+
+@jit
+def _unit(theta0, k_up, k_side, k_axis, out, row, scale):
+    """``scale`` times :meth:`Circle._unit` of one β into ``out[row]``."""
+    st, ct = math.sin(theta0), math.cos(theta0)
+    out[row, 0] = scale * (k_axis * st - k_up * ct)
+    out[row, 1] = scale * -k_side
+    out[row, 2] = scale * (k_axis * ct + k_up * st)
+
+
+@jit
+def circle_state(parameters, breaks, coefficients, t_s, out):
+    """:meth:`Circle.state` at one time, compiled (:data:`~.trajectory.PATH_SIGNATURE`):
+    parameters (L, ϑ0, ρ, ω, β0); no breaks or coefficients."""
+    length, theta0, radius, omega, phase = parameters[0], parameters[1], parameters[2], parameters[3], parameters[4]
+    beta = phase + omega * t_s
+    c, s = math.cos(beta), math.sin(beta)
+    sr = math.sin(radius)
+    _unit(theta0, sr * math.cos(beta), sr * math.sin(beta), math.cos(radius), out, 0, length)
+    _unit(theta0, -omega * sr * s, omega * sr * c, 0.0, out, 1, length)
+    _unit(theta0, -omega ** 2 * sr * c, -omega ** 2 * sr * s, 0.0, out, 2, length)
+
+
+@functools.cache
+def _circle_address() -> int:
+    return address(circle_state, PATH_SIGNATURE)
+
+
+_NO_TABLE = np.empty((0, 0))
 
 
 @dataclass(frozen=True)
@@ -78,6 +110,13 @@ class Circle:
             raise ValueError(f"rate_rpm must be positive, got {rate_rpm}")
         speed = 2.0 * math.pi * rate_rpm / 60.0 * length_m * math.sin(radius_rad)
         return cls(float(length_m), float(theta0_rad), float(radius_rad), speed)
+
+    @property
+    def compiled(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The circle as :data:`~.trajectory.PATH_SIGNATURE`'s functions take it: the address of
+        :func:`circle_state`, its parameters and no tables."""
+        parameters = np.array([self.length_m, self.theta0_rad, self.radius_rad, self.rate_rad_s, self.phase_rad])
+        return _circle_address(), parameters, _NO_TABLE, _NO_TABLE
 
     @property
     def rate_rad_s(self):

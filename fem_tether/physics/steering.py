@@ -45,7 +45,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from fem_tether.physics.compiled import caller, jit
 from fem_tether.physics.roll_schedule import RollSchedule, orbit_angle_rad
+from fem_tether.physics.trajectory import PATH_SIGNATURE
 
 if TYPE_CHECKING:
     from fem_tether.physics.orbit import Circle
@@ -72,20 +74,6 @@ def cross(a, b):
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]).T
 
 
-def path_geometry(r, dr, d2r):
-    """The path's speed V_p = |r'|, tangent t = r'/V_p, normal n = (r/|r|) × t and geodesic
-    curvature κ_g = r''·n/V_p² from r, r', r'' (3-vectors, or arrays of them (..., 3))."""
-    speed = np.sqrt(_dot(dr, dr))
-    tangent = dr / speed[..., None]
-    normal = cross(r / np.sqrt(_dot(r, r))[..., None], tangent)
-    return speed, tangent, normal, _dot(d2r, normal) / speed ** 2
-
-
-def _dot(a, b):
-    """a · b over the last axis."""
-    return np.einsum("...i,...i->...", a, b)
-
-
 @dataclass(frozen=True)
 class PathPoint:
     """A point of the reference path and its local geometry on the sphere."""
@@ -104,13 +92,64 @@ class PathPoint:
     """V_p = |r'|, the speed at which the path object flies its path."""
 
 
+_path_at = caller(PATH_SIGNATURE)
+#: What :func:`nearest` writes of a path point: σ, r (3), t (3), n (3), κ_g, V_p.
+POINT_SIZE = 12
+
+
+@jit
+def nearest(path_address, parameters, breaks, coefficients, position_m, guess_s, iterations, point):
+    """The path point of :func:`nearest_point` (``iterations`` Newton steps from ``guess_s``)
+    into ``point`` (:data:`POINT_SIZE`: σ, r, t, n, κ_g, V_p), the path as its ``compiled``
+    form gives it (:data:`~fem_tether.physics.trajectory.PATH_SIGNATURE`), compiled.  False
+    if the distance has no minimum near ``guess_s`` (σ of that step into ``point[0]``)."""
+    state = _path_at(path_address)
+    out = np.empty((3, 3))
+    p = position_m
+    p_norm = math.sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
+    sigma = guess_s
+    offset = np.empty(3)
+    for _ in range(iterations):
+        state(parameters, breaks, coefficients, sigma, out)
+        r_norm = math.sqrt(out[0, 0] ** 2 + out[0, 1] ** 2 + out[0, 2] ** 2)
+        for i in range(3):
+            offset[i] = out[0, i] - p[i] * (r_norm / p_norm)
+        speed2 = out[1, 0] * out[1, 0] + out[1, 1] * out[1, 1] + out[1, 2] * out[1, 2]
+        slope = speed2 + offset[0] * out[2, 0] + offset[1] * out[2, 1] + offset[2] * out[2, 2]
+        if slope <= 0.0:
+            point[0] = sigma
+            return False
+        limit = math.sqrt(offset[0] ** 2 + offset[1] ** 2 + offset[2] ** 2) / math.sqrt(speed2) + 1.0
+        step = (offset[0] * out[1, 0] + offset[1] * out[1, 1] + offset[2] * out[1, 2]) / slope
+        sigma -= min(max(step, -limit), limit)
+    state(parameters, breaks, coefficients, sigma, out)
+    speed = math.sqrt(out[1, 0] * out[1, 0] + out[1, 1] * out[1, 1] + out[1, 2] * out[1, 2])
+    r_norm = math.sqrt(out[0, 0] * out[0, 0] + out[0, 1] * out[0, 1] + out[0, 2] * out[0, 2])
+    t0, t1, t2 = out[1, 0] / speed, out[1, 1] / speed, out[1, 2] / speed
+    e0, e1, e2 = out[0, 0] / r_norm, out[0, 1] / r_norm, out[0, 2] / r_norm
+    n0, n1, n2 = e1 * t2 - e2 * t1, e2 * t0 - e0 * t2, e0 * t1 - e1 * t0
+    point[0] = sigma
+    point[1], point[2], point[3] = out[0, 0], out[0, 1], out[0, 2]
+    point[4], point[5], point[6] = t0, t1, t2
+    point[7], point[8], point[9] = n0, n1, n2
+    point[10] = (out[2, 0] * n0 + out[2, 1] * n1 + out[2, 2] * n2) / speed ** 2
+    point[11] = speed
+    return True
+
+
+def _point(values: np.ndarray) -> PathPoint:
+    """The :class:`PathPoint` of :func:`nearest`'s output."""
+    return PathPoint(float(values[0]), values[1:4], values[4:7], values[7:10], float(values[10]), float(values[11]))
+
+
 def path_point(path, parameter_s) -> PathPoint:
     """The point of ``path`` (a :class:`~fem_tether.physics.trajectory.FigureEight` or
     :class:`~fem_tether.physics.orbit.Circle`) at its time σ, from r, r', r'' of
-    ``path.state(σ)``: t = r'/|r'|, n = (r/|r|) × t, κ_g = r''·n/|r'|²."""
-    r, dr, d2r = path.state(float(parameter_s))
-    speed, tangent, normal, curvature = path_geometry(r, dr, d2r)
-    return PathPoint(float(parameter_s), r, tangent, normal, float(curvature), float(speed))
+    ``path.state(σ)``: t = r'/|r'|, n = (r/|r|) × t, κ_g = r''·n/|r'|² (:func:`nearest`
+    without a Newton step)."""
+    values = np.empty(POINT_SIZE)
+    nearest(*path.compiled, np.zeros(3), float(parameter_s), 0, values)
+    return _point(values)
 
 
 def nearest_point(path, position_m, guess_s, iterations=N_NEWTON) -> PathPoint:
@@ -128,8 +167,10 @@ def nearest_point(path, position_m, guess_s, iterations=N_NEWTON) -> PathPoint:
     ``guess_s`` (no previous point: a kite that tracked no path, such as a
     pumping cycle's depowered recovery) starts from the nearest of
     :data:`LOOP_SAMPLES` points of one loop, with :data:`N_NEWTON_GLOBAL` steps.
+    The steps and the point are the compiled :func:`nearest` (a time step's
+    steering sample: 4 evaluations of the path).
     """
-    p = np.asarray(position_m, dtype=float)
+    p = np.ascontiguousarray(position_m, dtype=float)
     sigma = float(guess_s)
     if math.isnan(sigma):
         samples = np.linspace(0.0, path.period_s, LOOP_SAMPLES, endpoint=False)
@@ -137,16 +178,11 @@ def nearest_point(path, position_m, guess_s, iterations=N_NEWTON) -> PathPoint:
         gaps = points / np.linalg.norm(points, axis=1)[:, None] - p / np.linalg.norm(p)
         sigma = float(samples[np.argmin(np.einsum("ij,ij->i", gaps, gaps))])
         iterations = max(iterations, N_NEWTON_GLOBAL)
-    for _ in range(iterations):
-        r, dr, d2r = path.state(sigma)
-        offset = r - p * (np.linalg.norm(r) / np.linalg.norm(p))
-        slope = float(dr @ dr + offset @ d2r)
-        if slope <= 0.0:
-            raise ValueError(f"position_m={p.tolist()} is beyond the path's centre of curvature at "
-                             f"parameter {sigma:.6g} s: no nearest point near guess_s={guess_s}")
-        limit = float(np.linalg.norm(offset)) / math.sqrt(float(dr @ dr)) + 1.0
-        sigma -= min(max(float(offset @ dr) / slope, -limit), limit)
-    return path_point(path, sigma)
+    values = np.empty(POINT_SIZE)
+    if not nearest(*path.compiled, p, sigma, int(iterations), values):
+        raise ValueError(f"position_m={p.tolist()} is beyond the path's centre of curvature at "
+                         f"parameter {values[0]:.6g} s: no nearest point near guess_s={guess_s}")
+    return _point(values)
 
 
 def parameter_rate(point: PathPoint, position_m, velocity_mps) -> float:
@@ -372,5 +408,6 @@ def min_turn_radius_m(path, samples=2048):
     equal steps of σ (the 190 × 95 m eight: 18.7 m, near the top and bottom
     of each lobe, 94 m at its tips; the circle: L tanρ, the geodesic radius
     of a cone of half-angle ρ)."""
-    curvature = path_geometry(*path.state(np.linspace(0.0, path.period_s, samples, endpoint=False)))[3]
+    curvature = [path_point(path, sigma).curvature_per_m for sigma in np.linspace(0.0, path.period_s, samples,
+                                                                                    endpoint=False)]
     return 1.0 / float(np.max(np.abs(curvature)))

@@ -41,7 +41,10 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from numba.core import types
 from scipy.interpolate import BPoly, PPoly
+
+from fem_tether.physics.compiled import address, jit
 
 #: Subintervals of [0, 2π] on which the arc length s(τ) is tabulated (by
 #: N_GAUSS-point Gauss–Legendre) and interpolated (quintic Hermite: s, g, g'
@@ -154,6 +157,10 @@ class PiecewisePolynomial:
         power = PPoly.from_bernstein_basis(bpoly)
         self._breaks = power.x.tolist()
         self._coefficients = power.c.T.tolist()
+        self.breaks = np.ascontiguousarray(power.x)
+        """the breaks x_0 < ... < x_n, as :func:`piece_value` takes them"""
+        self.coefficients = np.ascontiguousarray(power.c.T)
+        """the power-basis coefficients of each interval, highest power first (n, degree + 1)"""
 
     def __call__(self, x):
         if not isinstance(x, float):
@@ -165,6 +172,20 @@ class PiecewisePolynomial:
         for ck in c[1:]:
             value = value * dx + ck
         return value
+
+
+@jit
+def piece_value(breaks, coefficients, x):
+    """:class:`PiecewisePolynomial`'s value at one x, compiled: Horner's rule on the power-basis
+    coefficients of the interval of x (the end intervals extrapolating), in the order of its
+    Python evaluation."""
+    n = coefficients.shape[0]
+    k = min(max(np.searchsorted(breaks, x, side="right") - 1, 0), n - 1)
+    dx = x - breaks[k]
+    value = coefficients[k, 0]
+    for j in range(1, coefficients.shape[1]):
+        value = value * dx + coefficients[k, j]
+    return value
 
 
 def quintic_hermite(x, y, dy, d2y) -> PiecewisePolynomial:
@@ -195,6 +216,87 @@ def sphere_arc_rate(length_m, theta, phi):
     g = length_m * f.sqrt(dth ** 2 + (st * dph) ** 2)
     dg = length_m ** 2 * (dth * d2th + st * f.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
     return g, dg
+
+
+#: A path's position and its derivatives at one time, compiled (the steering's nearest point,
+#: :mod:`.steering`, calls it by address, :mod:`.compiled`): (parameters, breaks, coefficients,
+#: t [s], out), out (3, 3) getting r, ṙ, r̈ on the sphere of radius L (``state(t)``).
+PATH_SIGNATURE = types.void(types.float64[:], types.float64[:, :], types.float64[:, :], types.float64,
+                            types.float64[:, :])
+
+
+@jit
+def _shape(shape, tau, width_m, height_m):
+    """(u, u', u'', w, w', w'') of :data:`SHAPES` at one τ (0: :func:`gerono`, 1: :func:`ellipses`)."""
+    s, c = math.sin(tau), math.cos(tau)
+    s2, c2 = 2.0 * s * c, c * c - s * s
+    if shape == 0:
+        u0, u1, u2 = 0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s
+    else:
+        side = math.copysign(1.0, s)
+        u0, u1, u2 = 0.5 * width_m * s * abs(s), width_m * abs(s) * c, width_m * side * c2
+    return u0, u1, u2, 0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2
+
+
+@jit
+def _eight_angles(parameters, tau):
+    """(ϑ, ϑ', ϑ'', φ, φ', φ'') at τ: :meth:`FigureEight.angle_derivatives` at one τ."""
+    length, theta0, width, height = parameters[0], parameters[1], parameters[2], parameters[3]
+    u0, u1, u2, w0, w1, w2 = _shape(int(parameters[6]), tau, width, height)
+    radius = length * math.sin(theta0)
+    return theta0 - w0 / length, -w1 / length, -w2 / length, u0 / radius, u1 / radius, u2 / radius
+
+
+@jit
+def _arc_rate(length, th, dth, d2th, dph, d2ph):
+    """(g, g') of :func:`sphere_arc_rate` at one τ."""
+    st = math.sin(th)
+    g = length * math.sqrt(dth ** 2 + (st * dph) ** 2)
+    return g, length ** 2 * (dth * d2th + st * math.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
+
+
+@jit
+def _global(th, ph, a_theta, a_phi, a_r, out, row, scale):
+    """``scale`` times :func:`local_to_global` of one vector into ``out[row]``."""
+    st, ct = math.sin(th), math.cos(th)
+    sp, cp = math.sin(ph), math.cos(ph)
+    horizontal = ct * a_theta + st * a_r
+    out[row, 0] = scale * (cp * horizontal - sp * a_phi)
+    out[row, 1] = scale * (sp * horizontal + cp * a_phi)
+    out[row, 2] = scale * (ct * a_r - st * a_theta)
+
+
+@jit
+def eight_state(parameters, breaks, coefficients, t_s, out):
+    """:meth:`FigureEight.state` at one time, compiled (:data:`PATH_SIGNATURE`):
+    parameters (L, ϑ0, W, H, V, s(2π), shape), ``breaks`` the rows of the breaks of s(τ)
+    and of τ(s), ``coefficients`` their pieces' (those of s(τ), then those of τ(s))."""
+    length, speed, loop = parameters[0], parameters[4], parameters[5]
+    n = breaks.shape[1]
+    arc_breaks, tau_breaks = breaks[0], breaks[1]
+    arc_pieces, tau_pieces = coefficients[:n - 1], coefficients[n - 1:]
+    loops, arc_m = divmod(speed * t_s, loop)
+    tau = piece_value(tau_breaks, tau_pieces, arc_m)
+    for _ in range(N_NEWTON):
+        th, dth, d2th, ph, dph, d2ph = _eight_angles(parameters, tau)
+        tau = tau - (piece_value(arc_breaks, arc_pieces, tau) - arc_m) / _arc_rate(length, th, dth, d2th, dph,
+                                                                                   d2ph)[0]
+    tau = tau + 2.0 * np.pi * loops
+    th, dth, d2th, ph, dph, d2ph = _eight_angles(parameters, tau)
+    g, dg = _arc_rate(length, th, dth, d2th, dph, d2ph)
+    tau_dot = speed / g
+    tau_ddot = -speed ** 2 * dg / math.pow(g, 3.0)       # as Python raises a float to 3
+    st, ct = math.sin(th), math.cos(th)
+    _global(th, ph, 0.0, 0.0, 1.0, out, 0, length)
+    _global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0, out, 1, length)
+    _global(th, ph, tau_dot ** 2 * (d2th - st * ct * dph ** 2) + tau_ddot * dth,
+            tau_dot ** 2 * (st * d2ph + 2.0 * ct * dth * dph) + tau_ddot * st * dph,
+            -tau_dot ** 2 * (dth ** 2 + (st * dph) ** 2), out, 2, length)
+
+
+@functools.cache
+def _eight_address() -> int:
+    return address(eight_state, PATH_SIGNATURE)
 
 
 #: The arc-length tables of the eights made last, by geometry (L, theta0, W, H, shape): the
@@ -263,6 +365,19 @@ class FigureEight:
         g, dg = self.arc_rate(knots)
         return (float(arc_m[-1]), quintic_hermite(knots, arc_m, g, dg),
                 quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3))
+
+    @property
+    def compiled(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The eight as :data:`PATH_SIGNATURE`'s functions take it: the address of
+        :func:`eight_state`, its parameters, breaks and coefficients."""
+        return _eight_address(), *self._compiled_tables
+
+    @functools.cached_property
+    def _compiled_tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        parameters = np.array([self.length_m, self.theta0_rad, self.width_m, self.height_m, self.speed_mps,
+                               self._loop_m, list(SHAPES).index(self.shape)])
+        return (parameters, np.stack([self._arc_m.breaks, self._tau_of_arc.breaks]),
+                np.concatenate([self._arc_m.coefficients, self._tau_of_arc.coefficients]))
 
     def angle_derivatives(self, tau):
         """(ϑ, ϑ', ϑ''), (φ, φ', φ'') along the eight, ' = d/dτ.

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -40,7 +41,7 @@ from fem_tether.physics.atmosphere import AirModel
 from fem_tether.core.errors import ConfigError, SolverDivergedError
 from fem_tether.physics.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, Polar,
                                               aerodynamic_force_N, aerodynamic_load, gravity_force_N,
-                                              read_polar, steady_crosswind)
+                                              load_forms, read_polar, steady_crosswind)
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.orbit import Circle
 from fem_tether.physics.trajectory import FigureEight
@@ -115,14 +116,30 @@ class FreeKite:
         wing = self.wings[1] if reel_mps < 0.0 else self.wings[0]
         return self if wing is self.kite else replace(self, kite=wing)
 
+    @cached_property
+    def forms(self) -> tuple:
+        """The kite, its wind and air as :func:`~fem_tether.physics.kite_dynamics.air_load` takes
+        them (:func:`~fem_tether.physics.kite_dynamics.load_forms`), made once: a time step
+        asks for them three times, and making them costs several µs.  They hold the wind's and
+        air's addresses, valid in this process only: a pickled kite leaves them behind."""
+        return load_forms(self.kite, self.wind, self.air)
+
+    @cached_property
+    def weight_N(self) -> np.ndarray:
+        """m_k g (3,)."""
+        return gravity_force_N(self.kite, self.gravity_mps2)
+
+    def __getstate__(self) -> dict:
+        return {k: v for k, v in self.__dict__.items() if k not in ("forms", "weight_N")}
+
     def load(self, r, v, tether, roll_rad: float) -> KiteLoad:
         """F = F_aero(r, v, τ_L, ψ) + m_k g and its Jacobians; ``tether`` is the
         last element's vector d = r_N − r_{N−1}.  With :attr:`rate_hold` the
         turbines' γ_t(r, v) enters F through the drag ∂F/∂γ_t = ½ρ A C_D |W_e| W_e,
         and the Jacobians carry ∂F/∂γ_t ∂γ_t/∂r and ∂F/∂γ_t ∂γ_t/∂v."""
         if self.rate_hold is None:
-            aero, jac = aerodynamic_load(self.kite, r, v, self.wind, self.air, roll_rad, tether=tether)
-            return KiteLoad(aero.force_N + gravity_force_N(self.kite, self.gravity_mps2), jac.position,
+            aero, jac = aerodynamic_load(self.kite, r, v, self.wind, self.air, roll_rad, tether, self.forms)
+            return KiteLoad(aero.force_N + self.weight_N, jac.position,
                             jac.velocity, jac.tether, aero)
         gamma, d_position, d_velocity = self.rate_hold.turbine_factor(r, v)
         aero, jac = aerodynamic_load(self._wing(gamma), r, v, self.wind, self.air, roll_rad, tether=tether)
@@ -165,7 +182,8 @@ class FreeKite:
             return Steer(0.0, math.nan, Command(0.0, 0.0, math.nan, math.nan, False))
         try:
             point = nearest_point(self.steering.path, r, parameter_s)
-            aero = aerodynamic_force_N(self.wing_at(r, v), r, v, self.wind, self.air, 0.0, tether=tether)
+            aero = aerodynamic_force_N(self.wing_at(r, v), r, v, self.wind, self.air, 0.0, tether,
+                                       self.forms if self.rate_hold is None else None)
             lift_N = 0.5 * aero.density_kg_m3 * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
             pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
             command = self.steering.command(point, r, v, aero.force_N + pull + line_drag_N, lift_N)

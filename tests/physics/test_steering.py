@@ -385,21 +385,52 @@ def test_the_schedule_flies_eq_3_5_and_its_correction_is_the_laws_feedback():
         assert fixed.roll_rad < scheduled       # left of the path: rolled right
 
 
-def test_path_geometry_of_many_points_is_path_points_one_by_one():
-    """min_turn_radius_m evaluates the path at all its samples at once (path_geometry on arrays): each
-    point's speed, tangent, normal and curvature equal path_point's to rounding; cross is numpy's."""
-    from fem_tether.physics.steering import cross, path_geometry
-    from fem_tether.physics.trajectory import FigureEight
+def _numpy_nearest_point(path, p, guess_s, iterations):
+    """The nearest point as the NumPy code computed it before it was compiled: Newton on
+    (r − p)·r' from ``path.state`` of one time (the paths' Python evaluation), the step
+    limited to |p − r|/V_p + 1; (σ, r, t, n, κ_g, V_p), or None with no minimum near."""
+    sigma = guess_s
+    for _ in range(iterations):
+        r, dr, d2r = path.state(sigma)
+        offset = r - p * (np.linalg.norm(r) / np.linalg.norm(p))
+        slope = float(dr @ dr + offset @ d2r)
+        if slope <= 0.0:
+            return None
+        limit = float(np.linalg.norm(offset)) / math.sqrt(float(dr @ dr)) + 1.0
+        sigma -= min(max(float(offset @ dr) / slope, -limit), limit)
+    r, dr, d2r = path.state(sigma)
+    speed = float(np.linalg.norm(dr))
+    tangent = dr / speed
+    normal = np.cross(r / np.linalg.norm(r), tangent)
+    return sigma, r, tangent, normal, float(d2r @ normal) / speed ** 2, speed
 
-    path = FigureEight(1000.0, math.radians(45.0), 190.0, 95.0, 80.0)
-    times = np.linspace(0.0, path.period_s, 37)
-    speed, tangent, normal, curvature = path_geometry(*path.state(times))
-    for k, t in enumerate(times):
-        point = path_point(path, t)
-        assert speed[k] == pytest.approx(point.path_speed_mps, rel=1e-12)
-        assert curvature[k] == pytest.approx(point.curvature_per_m, rel=1e-9, abs=1e-14)
-        assert np.allclose(tangent[k], point.tangent, rtol=0, atol=1e-12)
-        assert np.allclose(normal[k], point.normal, rtol=0, atol=1e-12)
-    a, b = np.random.default_rng(0).normal(size=(2, 5, 3))
+
+@pytest.mark.parametrize("path", [FigureEight(1000.0, math.radians(45.0), 190.0, 95.0, 80.0),
+                                  FigureEight(600.0, math.radians(35.0), 190.0, 120.0, 60.0, shape="ellipses"),
+                                  Circle(400.0, 1.0, 0.4, 89.7, 0.3)], ids=["gerono", "ellipses", "circle"])
+def test_the_compiled_nearest_point_is_the_numpy_one(path):
+    """The compiled steering sample's path part (nearest_point, path_point: the path's
+    compiled state and Newton) equals the NumPy computation to rounding at 400 random kites
+    around the path (σ, position, tangent, normal, curvature, speed), and fails where it does."""
+    rng = np.random.default_rng(33)
+    checked = 0
+    for _ in range(400):
+        sigma = rng.uniform(-path.period_s, 3.0 * path.period_s)
+        kite = path.state(sigma)[0] + rng.normal(scale=8.0, size=3)
+        guess = sigma + rng.normal(scale=0.1)
+        iterations = int(rng.integers(0, 5))
+        expected = _numpy_nearest_point(path, kite, guess, iterations)
+        if expected is None:
+            with pytest.raises(ValueError, match="beyond the path's centre of curvature"):
+                nearest_point(path, kite, guess, iterations)
+            continue
+        point = nearest_point(path, kite, guess, iterations)
+        got = (point.parameter_s, point.position_m, point.tangent, point.normal, point.curvature_per_m,
+               point.path_speed_mps)
+        for ours, theirs in zip(got, expected):
+            assert np.allclose(ours, theirs, rtol=1e-12, atol=1e-12 * float(np.max(np.abs(theirs)))), (ours, theirs)
+        checked += 1
+    assert checked > 300
+    a, b = rng.normal(size=(2, 5, 3))
     assert np.allclose(cross(a, b), np.cross(a, b), rtol=0, atol=1e-15)
     assert np.allclose(cross(a[0], b[0]), np.cross(a[0], b[0]), rtol=0, atol=1e-15)

@@ -39,7 +39,7 @@ from fem_tether.tether.fe.spaces import build_spaces
 from fem_tether.tether.fe.system import Evaluation, KiteForceUndefined, TetherSystem
 from fem_tether.tether.free_kite import FreeKite, KiteLoad, Steer
 from fem_tether.tether import free_kite as free_kite_module
-from fem_tether.physics.kite_dynamics import PolarError, compiled_environment, gravity_force_N, kite_load_address
+from fem_tether.physics.kite_dynamics import PolarError, kite_load_address
 from fem_tether.tether.continuation import ContinuationFailed, NotConverged, continuation, with_load_factor
 from fem_tether.tether import protocol
 from fem_tether.tether.protocol import Statistics, reuse_factors, speed_jumped
@@ -393,8 +393,7 @@ def _step(model: FEModel, state: State, h: float, stats: Statistics) -> State:
         kite_arguments = None
         if kite is not None:
             assert steer is not None, "a free kite's state carries its steering sample"
-            kite_arguments = (kite_load_address(), *kite.kite.compiled, *compiled_environment(kite.wind, kite.air), steer.roll_rad,
-                              gravity_force_N(kite.kite, kite.gravity_mps2))
+            kite_arguments = (kite_load_address(), *kite.forms, steer.roll_rad, kite.weight_N)
         try:
             r, T, R, v, a, qdd, ev = sys_.solve_step(kin.q, kin.v, kin.a, kin.qdd, state.T, state.R, h,
                                                      model.scheme, e, model.ground_tension_N, model.radius_m,
