@@ -36,7 +36,6 @@ numba's compile events, which fire on a cache miss only).
 
 from __future__ import annotations
 
-import functools
 import importlib.util
 import pickle
 import sys
@@ -59,12 +58,22 @@ def jit(func):
     return numba.njit(cache=True, error_model="numpy")(func)
 
 
-@functools.cache
+#: The addresses :func:`address` gave, by the identities of the function and the signature
+#: (with both, which keep those identities theirs).
+_ADDRESSES: dict[tuple[int, int], tuple[int, object, Signature]] = {}
+
+
 def address(function, signature: Signature) -> int:
     """The entry point of ``function`` (a :func:`jit` function) compiled for
-    ``signature`` (compiled now, or loaded from the cache, if it was not)."""
-    function.compile(signature)
-    return _get_jit_address(function, signature)
+    ``signature`` (compiled now, or loaded from the cache, if it was not).
+    Remembered by the objects' identities: hashing a numba signature costs
+    several µs, and a model's NumPy method asks for its address at every call."""
+    key = (id(function), id(signature))
+    known = _ADDRESSES.get(key)
+    if known is None:
+        function.compile(signature)
+        known = _ADDRESSES[key] = (_get_jit_address(function, signature), function, signature)
+    return known[0]
 
 
 def caller(signature: Signature):

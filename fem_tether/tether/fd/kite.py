@@ -43,7 +43,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from fem_tether.physics.loads import crossflow_drag
+from fem_tether.physics.atmosphere import AltitudeError, air_state
+from fem_tether.physics.compiled import jit
+from fem_tether.physics.drag_coefficient import drag_coefficient_state
+from fem_tether.physics.loads import derivative_work, drag_derivatives, normal_flow, relative_velocity
+from fem_tether.physics.wind import wind_state
 from fem_tether.tether.fd.system import NO_DIRECTION, Evaluation, TetherFD
 from fem_tether.tether.free_kite import FreeKite
 
@@ -55,22 +59,56 @@ def end_mass_kg(eq: TetherFD, kite: FreeKite) -> float:
     return kite.kite.mass_kg + eq.physics.linear_density_kg_m * 0.5 * eq.grid.h[-1]
 
 
-def _end_drag_derivatives(physics, r_end, v_end, tau, c_v):
-    """The end node's drag f_M (one-sided tangent ``tau``, the line's ``physics``,
-    a :class:`~fem_tether.tether.line.TetherPhysics`) differentiated: in r_M
-    through the velocity v_M = c_v r_M + .. and the altitude,
+@jit
+def end_drag_derivatives(air_function, air_parameters, ceiling_m, wind_function, wind_rows, drag_function,
+                         drag_parameters, drag_factor, diameter_m, skin_friction_cf, r_end, v_end, tau, c_v,
+                         df_dr, df_dtau):
+    """The end node's drag f_M (one-sided tangent ``tau``; the line's air, wind and drag
+    models as their ``compiled`` forms give them) differentiated: in r_M through the
+    velocity v_M = c_v r_M + .. and the altitude,
     ``df/dr_M = -c_v df/dV_rel + (df/dV_rel e_x V_w'(z) + df/drho rho'(z) + df/dmu mu_air'(z)) e_z^T``,
-    and in ``tau`` (3, 3 each); by :func:`fem_tether.physics.loads.crossflow_drag`."""
-    z = r_end[2:3]
-    air = physics.air.state(z, gradients=True)
-    drag = crossflow_drag(physics.wind.velocity_mps(z) - v_end[None, :], tau[None, :], air.density_kg_m3,
-                          air.viscosity_Pa_s, physics.diameter_m, physics.drag, physics.skin_friction_cf,
-                          jacobian=True)
-    d_dvrel = drag.d_dvrel[0]
-    df_dr = -c_v * d_dvrel
-    df_dr[:, 2] += (d_dvrel[:, 0] * physics.wind.shear_per_s(z)[0] + drag.d_drho[0] * air.density_gradient_kg_m4[0]
-                    + drag.d_dmu[0] * air.viscosity_gradient_Pa_s_m[0])
-    return df_dr, drag.d_dtau[0]
+    into ``df_dr``, and in ``tau`` into ``df_dtau`` (3, 3 each), by the loops of
+    :func:`fem_tether.physics.loads.crossflow_drag` at the one point.  False if r_M is above
+    the air model's ceiling."""
+    z = np.empty(1)
+    z[0] = r_end[2]
+    rho, mu, drho, dmu = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
+    if air_state(air_function, air_parameters, ceiling_m, z, rho, mu, drho, dmu) >= 0:
+        return False
+    speed, shear = np.empty(1), np.empty(1)
+    wind_state(wind_function, wind_rows, z, speed, shear)
+    v_rel, tangent, vn = np.empty((1, 3)), np.empty((1, 3)), np.empty((1, 3))
+    velocity = np.empty((1, 3))
+    for i in range(3):
+        velocity[0, i] = v_end[i]
+        tangent[0, i] = tau[i]
+    relative_velocity(speed, velocity, v_rel)
+    along, vn_mps, re, cd, dcd_dre = np.empty(1), np.empty(1), np.empty(1), np.empty(1), np.empty(1)
+    normal_flow(v_rel, tangent, rho, mu, diameter_m, along, vn, vn_mps, re)
+    drag_coefficient_state(drag_function, drag_parameters, drag_factor, re, cd, dcd_dre)
+    proj, df_dvn, d_dvrel, _, d_drho, d_dmu = derivative_work()
+    for i in range(3):
+        for j in range(3):
+            proj[i, j] = (1.0 if i == j else 0.0) - tangent[0, i] * tangent[0, j]
+    drag_derivatives(0, tangent, proj, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu, diameter_m,
+                     skin_friction_cf, df_dvn, d_dvrel, df_dtau, d_drho, d_dmu)
+    for i in range(3):
+        for j in range(3):
+            df_dr[i, j] = -c_v * d_dvrel[i, j]
+        df_dr[i, 2] += d_dvrel[i, 0] * shear[0] + d_drho[i] * drho[0] + d_dmu[i] * dmu[0]
+    return True
+
+
+def _end_drag_derivatives(physics, r_end, v_end, tau, c_v):
+    """(df/dr_M, df/dtau) of :func:`end_drag_derivatives` for the line's ``physics`` (a
+    :class:`~fem_tether.tether.line.TetherPhysics`); raises :class:`AltitudeError` above
+    its air model's ceiling."""
+    df_dr, df_dtau = np.empty((3, 3)), np.empty((3, 3))
+    if not end_drag_derivatives(*physics.air.compiled, *physics.wind.compiled, *physics.drag.compiled,
+                                physics.diameter_m, float(physics.skin_friction_cf), r_end, v_end, tau, float(c_v),
+                                df_dr, df_dtau):
+        raise AltitudeError(float(r_end[2]))
+    return df_dr, df_dtau
 
 
 def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_ref_N: float,
