@@ -74,6 +74,23 @@ def cross(a, b):
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]).T
 
 
+def path_geometry(r, dr, d2r):
+    """The path's speed V_p = |r'|, tangent t = r'/V_p, normal n = (r/|r|) × t and geodesic
+    curvature κ_g = r''·n/V_p² from r, r', r'' (3-vectors, or arrays of them (..., 3)): the
+    NumPy form for many points at once (a loop's samples, :func:`min_turn_radius_m`, which a
+    prescribed run's flight check calls without compiling the steering); one point's is
+    :func:`nearest`'s."""
+    speed = np.sqrt(_dot(dr, dr))
+    tangent = dr / speed[..., None]
+    normal = cross(r / np.sqrt(_dot(r, r))[..., None], tangent)
+    return speed, tangent, normal, _dot(d2r, normal) / speed ** 2
+
+
+def _dot(a, b):
+    """a · b over the last axis."""
+    return np.einsum("...i,...i->...", a, b)
+
+
 @dataclass(frozen=True)
 class PathPoint:
     """A point of the reference path and its local geometry on the sphere."""
@@ -408,6 +425,5 @@ def min_turn_radius_m(path, samples=2048):
     equal steps of σ (the 190 × 95 m eight: 18.7 m, near the top and bottom
     of each lobe, 94 m at its tips; the circle: L tanρ, the geodesic radius
     of a cone of half-angle ρ)."""
-    curvature = [path_point(path, sigma).curvature_per_m for sigma in np.linspace(0.0, path.period_s, samples,
-                                                                                    endpoint=False)]
+    curvature = path_geometry(*path.state(np.linspace(0.0, path.period_s, samples, endpoint=False)))[3]
     return 1.0 / float(np.max(np.abs(curvature)))

@@ -37,13 +37,17 @@ def test_a_prescribed_first_run_compiles_the_table_and_not_the_kite(tmp_path):
     prescribed kite) leaves every module of the table that an FE run compiles cached, so
     the next run says nothing, and compiles none of the point-mass kite's code, which
     the kernel calls by address (before: the kernel compiled the kite in, 4 of its
-    compiles and ~3 s)."""
+    compiles and ~3 s), nor its steering's (the flight check's turn radius is NumPy's)."""
     code = ("from fem_tether.physics.compiled import cached\n"
             "from fem_tether.tether import kernels\n"
             "kernels.load(['fe'])\n"
             "modules = [*kernels.SHARED, kernels.KERNELS['fe']]\n"
             "assert all(cached(m) for m in modules), [m for m in modules if not cached(m)]\n"
-            "assert not cached('fem_tether.physics.kite_dynamics')\n")
+            "from fem_tether.config import load_config\n"
+            "from fem_tether.physics.steering import min_turn_radius_m\n"
+            "min_turn_radius_m(load_config(None).path)\n"
+            "for kite in ('kite_dynamics', 'steering', 'trajectory', 'orbit'):\n"
+            "    assert not cached(f'fem_tether.physics.{kite}'), kite\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600,
                           env=_quiet_env(NUMBA_CACHE_DIR=str(tmp_path / "numba-cache")))
     assert done.returncode == 0, done.stderr[-3000:]
