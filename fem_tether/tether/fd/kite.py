@@ -51,9 +51,6 @@ from fem_tether.physics.wind import wind_state
 from fem_tether.tether.fd.system import NO_DIRECTION, Evaluation, TetherFD
 from fem_tether.tether.free_kite import FreeKite
 
-_EYE = np.eye(3)
-
-
 def end_mass_kg(eq: TetherFD, kite: FreeKite) -> float:
     """m_k + m_M: the kite's mass and the last half segment's line mass."""
     return kite.kite.mass_kg + eq.physics.linear_density_kg_m * 0.5 * eq.grid.h[-1]
@@ -104,11 +101,43 @@ def _end_drag_derivatives(physics, r_end, v_end, tau, c_v):
     :class:`~fem_tether.tether.line.TetherPhysics`); raises :class:`AltitudeError` above
     its air model's ceiling."""
     df_dr, df_dtau = np.empty((3, 3)), np.empty((3, 3))
-    if not end_drag_derivatives(*physics.air.compiled, *physics.wind.compiled, *physics.drag.compiled,
-                                physics.diameter_m, float(physics.skin_friction_cf), r_end, v_end, tau, float(c_v),
-                                df_dr, df_dtau):
+    if not end_drag_derivatives(*_line_forms(physics), r_end, v_end, tau, float(c_v), df_dr, df_dtau):
         raise AltitudeError(float(r_end[2]))
     return df_dr, df_dtau
+
+
+def _line_forms(physics) -> tuple:
+    """The line's air, wind and drag models, diameter and c_f as :func:`end_drag_derivatives` takes them."""
+    return (*physics.air.compiled, *physics.wind.compiled, *physics.drag.compiled, physics.diameter_m,
+            float(physics.skin_friction_cf))
+
+
+@jit
+def kite_rows(force_N, d_position, d_velocity, d_tether, a_end, tau, tension_N, length_m, end_drag_N, weight_N_m,
+              mass_kg, half_m, force_ref_N, c_a, c_v, df_dr, df_dtau, residual, d_end, d_before, d_tension):
+    """The kite's rows of the module docstring, scaled by 1/F_ref: the residual
+    ``(m a_M + T tau - (h/2)(w + f_M) - F)`` into ``residual`` (3,) and, from the drag's
+    derivatives ``df_dr``, ``df_dtau`` (:func:`end_drag_derivatives`) and the kite's load
+    (``force_N`` = F and its derivatives, :class:`~fem_tether.tether.free_kite.KiteLoad`),
+    the derivatives in r_M, r_{M-1} and T_{M-1/2} into ``d_end``, ``d_before`` (3, 3) and
+    ``d_tension`` (3,), with ``K = (T/l) P``, ``D = df/dtau P / l``, ``P = I - tau tau^T``."""
+    proj, d_tangent = np.empty((3, 3)), np.empty((3, 3))
+    for i in range(3):
+        residual[i] = (mass_kg * a_end[i] + tension_N * tau[i] - half_m * (weight_N_m[i] + end_drag_N[i])
+                       - force_N[i]) / force_ref_N
+        d_tension[i] = tau[i] / force_ref_N
+        for j in range(3):
+            proj[i, j] = (1.0 if i == j else 0.0) - tau[i] * tau[j]
+    for i in range(3):
+        for j in range(3):
+            d_tangent[i, j] = (df_dtau[i, 0] * proj[0, j] + df_dtau[i, 1] * proj[1, j]
+                               + df_dtau[i, 2] * proj[2, j]) / length_m
+    for i in range(3):
+        for j in range(3):
+            stiffness = (tension_N / length_m) * proj[i, j]
+            d_end[i, j] = (mass_kg * c_a * (1.0 if i == j else 0.0) + stiffness - half_m * (df_dr[i, j] + d_tangent[i, j])
+                           - (d_position[i, j] + c_v * d_velocity[i, j] + d_tether[i, j])) / force_ref_N
+            d_before[i, j] = (-stiffness + half_m * d_tangent[i, j] + d_tether[i, j]) / force_ref_N
 
 
 def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_ref_N: float,
@@ -122,23 +151,17 @@ def evaluate(eq: TetherFD, kite: FreeKite, r, v, a, T, roll_rad: float, force_re
     d = r[-1] - r[-2]
     tau = d / line.length_m[-1]
     load = kite.load(r[-1], v[-1], d, roll_rad)
-    half = 0.5 * g.h[-1]
-    mass = end_mass_kg(eq, kite)
+    df_dr, df_dtau = _end_drag_derivatives(ph, r[-1], v[-1], tau, c_v)
+    rows, d_end, d_before, d_tension = np.empty(3), np.empty((3, 3)), np.empty((3, 3)), np.empty(3)
+    kite_rows(load.force_N, load.d_position, load.d_velocity, load.d_tether, a[-1], tau, float(T[-1]),
+              float(line.length_m[-1]), line.drag.force[-1], ph.weight_N_m, end_mass_kg(eq, kite), 0.5 * g.h[-1],
+              float(force_ref_N), float(c_a), float(c_v), df_dr, df_dtau, rows, d_end, d_before, d_tension)
     residual = line.residual
-    residual[-3:] = (mass * a[-1] + T[-1] * tau - half * (ph.weight_N_m + line.drag.force[-1])
-                     - load.force_N) / force_ref_N
+    residual[-3:] = rows
 
     def build():
         ab = line.ab
-        ell = line.length_m[-1]
-        proj = _EYE - np.outer(tau, tau)
-        stiffness = (T[-1] / ell) * proj
-        df_dr, df_dtau = _end_drag_derivatives(ph, r[-1], v[-1], tau, c_v)
-        d_tangent = df_dtau @ proj / ell
-        d_end = (mass * c_a * _EYE + stiffness - half * (df_dr + d_tangent)
-                 - (load.d_position + c_v * load.d_velocity + load.d_tether))
-        d_before = -stiffness + half * d_tangent + load.d_tether
-        g.put_end_rows(ab, d_end / force_ref_N, d_before / force_ref_N, tau / force_ref_N)
+        g.put_end_rows(ab, d_end, d_before, d_tension)
         return ab
 
     return Evaluation(residual, line.length_m, line.drag, build)
