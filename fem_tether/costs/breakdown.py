@@ -173,6 +173,8 @@ def price(costs: CostParameters, hw: Hardware) -> CostBreakdown:
     tether_rate = creep.replacements_per_year(hw.wind_mps, hw.density_per_mps, hw.reel_out_stress_Pa,
                                               hw.reel_in_stress_Pa, hw.reel_out_share, hw.tether_safety_factor,
                                               life_args)
+    with np.errstate(divide="ignore"):      # a line the creep never wears lives for ever: 1/0 = inf
+        tether_life = 1.0 / tether_rate
     flying = glider + onboard_generator + onboard_electronics + takeoff_system
     operation = maintenance.operation_EUR_per_year(c.operation_EUR_per_MWh, hw.energy_MWh)
     omc = maintenance.maintenance_EUR_per_year(c.operation_EUR_per_MWh, hw.energy_MWh, tether_rate, tether_cost,
@@ -186,6 +188,6 @@ def price(costs: CostParameters, hw: Hardware) -> CostBreakdown:
         lcoe_EUR_per_MWh=lcoe.levelised_cost_constant(icc, omc, hw.energy_MWh, c.discount_rate, c.years),
         profit_EUR_per_year=lcoe.annual_profit(c.electricity_price_EUR_per_MWh, hw.energy_MWh, icc, omc,
                                                c.discount_rate, c.years),
-        tether_life_years=1.0 / tether_rate, tether_replacements_per_year=tether_rate, flying_cost_EUR=flying,
+        tether_life_years=tether_life, tether_replacements_per_year=tether_rate, flying_cost_EUR=flying,
         ground_area_m2=ground_area, strip_length_m=strip,
         generator_speed_rpm=ground_rpm if reeling else onboard_rpm)

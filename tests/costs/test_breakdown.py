@@ -1,6 +1,8 @@
 """The priced batch: parts, totals, modes and exact derivatives."""
 
+import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -68,6 +70,19 @@ def test_parts_and_totals():
     assert b.kite_replacement_EUR_per_year == pytest.approx(0.1 * b.flying_cost_EUR)
     assert b.tether_life_years == pytest.approx(1 / b.tether_replacements_per_year)
     assert set(b.quantities()) >= {f"cost_{p}_EUR" for p in ICC_PARTS}
+
+
+def test_a_line_that_never_wears_lives_for_ever_without_a_warning():
+    """A line that never flies loaded (no time at any wind speed) gets no replacements: its life is
+    inf, said without NumPy's divide-by-zero RuntimeWarning (it reached the sensitivity command's
+    output, from starts of the 3 MW design)."""
+    hw = hardware(1.0)
+    idle = dataclasses.replace(hw, density_per_mps=0 * hw.density_per_mps)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        b = price(CostParameters(), idle)
+    assert b.tether_replacements_per_year[0] == 0.0
+    assert b.tether_life_years[0] == math.inf
 
 
 def test_fly_gen_parts():
