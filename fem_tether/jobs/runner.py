@@ -105,18 +105,20 @@ class JsonParts:
         return parts
 
 
-def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: float = 0.0,
+def distribute(comm, work: Work, tasks: Sequence, bar: Progress, loads_us: Sequence[float] = (),
                costs: Sequence[float] | None = None) -> tuple[int, int]:
-    """Run this rank's share of ``tasks`` (their ``costs`` if given, the same on every rank, else
-    estimated on rank 0 alone, ``work.cost_us``, and sent to the others; rank 0 starts loaded with ``rank0_load_us``, in that unit; the tasks
-    whose parts rank 0 finds kept cost nothing, so that a resumed job spreads what is left), then wait until every rank has run its share;
+    """Run this rank's share of ``tasks`` (their ``costs`` if given, the same on every rank,
+    else estimated on rank 0 alone, ``work.cost_us``, and sent to the others; the first ranks
+    start loaded with ``loads_us``, rank 0's first, in that unit; the tasks whose parts rank 0
+    finds kept cost nothing, so that a resumed job spreads what is left), then wait until
+    every rank has run its share;
     ``(ran, kept)``: how many of this rank's tasks ran and how many were kept
     already.  Ctrl-C and errors propagate (the caller says what is kept)."""
     rank, size = comm.Get_rank(), comm.Get_size()
     if costs is None:                               # a resumed job: the rest balanced
         costs = comm.bcast([0.0 if work.kept(t) else work.cost_us(t) for t in tasks] if rank == 0 else None,
                            root=0)
-    owners = assign(list(costs), size, rank0_load_us)
+    owners = assign(list(costs), size, loads_us)
     finished = finish_times(list(costs), owners)
 
     def done(count: int) -> tuple[int, tuple[float, float]]:

@@ -11,6 +11,8 @@ weighs what is done and what is left by it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from fem_tether.config import Config
 from fem_tether.jobs.job import Job, Task
 from fem_tether.tether.results import time_grid
@@ -45,11 +47,12 @@ def task_cost(job: Job, task: Task) -> float:
     return run_cost_us(job.config_for(task.length_m), task.solver)
 
 
-def assign(costs: list[float], n_ranks: int, rank0_load: float = 0.0) -> list[list[int]]:
+def assign(costs: list[float], n_ranks: int, loads: Sequence[float] = ()) -> list[list[int]]:
     """Longest processing time first: each task, costliest first, to the least
-    loaded rank (ties to the lowest rank); deterministic.  Rank 0 starts with
-    ``rank0_load``, the cost of other work it does (in the costs' unit)."""
-    loads = [rank0_load] + [0.0] * (n_ranks - 1)
+    loaded rank (ties to the lowest rank); deterministic.  The first ranks start
+    with ``loads`` (rank 0's first), the cost of other work they do (in the costs'
+    unit; those beyond the ranks are left out)."""
+    loads = [*loads[:n_ranks], *[0.0] * (n_ranks - len(loads))]
     owners: list[list[int]] = [[] for _ in range(n_ranks)]
     for i in sorted(range(len(costs)), key=lambda i: (-costs[i], i)):
         rank = min(range(n_ranks), key=lambda r: (loads[r], r))
