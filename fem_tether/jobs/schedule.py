@@ -41,10 +41,18 @@ def run_cost_us(cfg: Config, solver: str) -> float:
     return float(steps * (overhead_us + per_point_us * points))
 
 
+#: What a sweep task costs besides its run [us]: writing its part and bringing its length of the
+#: result file up to date (:class:`fem_tether.jobs.sweep_tasks.SweepTasks`).  Measured on
+#: 2026-12-03 in loaded 2-rank runs of the default job, timing each call: 0.1-0.4 s per task
+#: beside 0.1-0.26 s for an FE run, an FE task with it 0.3-0.45 s and an FD task 0.9-1.1 s
+#: (2.5-3 FE tasks, against 5.3 from the runs' estimates alone).
+TASK_OVERHEAD_US = 0.09e6
+
+
 def task_cost(job: Job, task: Task) -> float:
-    """Estimated cost of a sweep task in microseconds (:func:`run_cost_us`).  With
-    the default job the estimate puts an FD run at 5.0 FE runs, as measured (4.2-5.5)."""
-    return run_cost_us(job.config_for(task.length_m), task.solver)
+    """Estimated cost of a sweep task in microseconds: its run (:func:`run_cost_us`; with the
+    default job an FD run at 5.0 FE runs, as measured, 4.2-5.5) and :data:`TASK_OVERHEAD_US`."""
+    return run_cost_us(job.config_for(task.length_m), task.solver) + TASK_OVERHEAD_US
 
 
 def assign(costs: list[float], n_ranks: int, loads: Sequence[float] = ()) -> list[list[int]]:

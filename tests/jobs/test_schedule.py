@@ -14,13 +14,14 @@ def test_longest_processing_time_assignment_balances():
 
 def test_task_cost_is_steps_times_the_solvers_step_cost():
     """The default job: an FD task (870 steps of 101 nodes) costs what its steps
-    cost by STEP_COST_US, more than an FE task (435 steps of 41 nodes)."""
+    cost by STEP_COST_US, more than an FE task (435 steps of 41 nodes), each with
+    the task's writing (TASK_OVERHEAD_US)."""
     from fem_tether.jobs.job import Task, load_job
-    from fem_tether.jobs.schedule import STEP_COST_US, task_cost
+    from fem_tether.jobs.schedule import STEP_COST_US, TASK_OVERHEAD_US, task_cost
     job = load_job()
     fe, fd = task_cost(job, Task(500.0, "fe")), task_cost(job, Task(500.0, "fd"))
-    assert fe == 435 * (STEP_COST_US["fe"][0] + 41 * STEP_COST_US["fe"][1])
-    assert fd == 870 * (STEP_COST_US["fd"][0] + 101 * STEP_COST_US["fd"][1]) > fe
+    assert fe == 435 * (STEP_COST_US["fe"][0] + 41 * STEP_COST_US["fe"][1]) + TASK_OVERHEAD_US
+    assert fd == 870 * (STEP_COST_US["fd"][0] + 101 * STEP_COST_US["fd"][1]) + TASK_OVERHEAD_US > fe
 
 
 def test_a_ranks_load_counts_as_work_already_assigned():
