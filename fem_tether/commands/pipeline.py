@@ -1,6 +1,10 @@
 """The main job: sweep -> cross-check gate -> AEP -> plots, summary and JSON.
 
-Rank 0 of the sweep does everything after the sweep.  Files written into the
+Rank 0 of the sweep does everything after the sweep but draw the flight: on
+several ranks rank :data:`FLIGHT_RANK` draws it meanwhile, from the sweep file
+(:mod:`fem_tether.jobs.handoff`), and rank 0 embeds it in the page; on one
+rank, rank 0 draws it too.  Either way the same code draws the same bytes,
+and an error there is raised on rank 0.  Files written into the
 output directory (docs/outputs.md): ``sweep.h5`` (the sweep result, see
 :mod:`fem_tether.jobs.sweepfile`) and its parts ``sweep.h5.parts/``, four PNG
 plots (F_t, G_e, power curves, AEP vs L), ``aep.json``
@@ -33,7 +37,9 @@ from fem_tether.report.job_summary import CSV_NAME, JSON_NAME, aep_document, sum
 from fem_tether.commands.flight import warn_unflyable
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
-from fem_tether.report.flight import flight_media
+from fem_tether.core.stop import guard
+from fem_tether.jobs.handoff import finished, hand, serve, wait_until_finished
+from fem_tether.report.flight import Flight, Media, draw_flight, shown_flight
 from fem_tether.report.page import PAGE_NAME, write_page
 from fem_tether.jobs.sweep import FollowUp, SweepOutcome, sweep
 from fem_tether.jobs.sweepfile import SweepResult, read_sweep
@@ -48,6 +54,16 @@ from fem_tether.jobs.sweepfile import SweepResult, read_sweep
 #: task (exit at 8.4-9.5 s), with 1.3e6 it idled 3 s; with 0.75e6 the imports
 #: end before the other rank's tasks (exit at 8.4-9.1 s).
 IDLE_COST_US = 0.75e6
+
+#: The rank that draws the flight (the animation, a pumping run's cycles) while rank 0 draws the
+#: figures, on two ranks or more, and the modules it imports before its tasks, their cost counted
+#: as its load as :data:`IDLE_COST_US` is rank 0's.  Measured on 2026-12-03 in loaded 2-rank
+#: runs: its imports 1.0-1.25 s against rank 0's 1.75-2.0 s for matplotlib and scipy.stats; with
+#: 0.4e6 (and the tasks' estimates without their writing) rank 0 idled 1 s before the last task;
+#: imported after the sweep, rank 0 waited 0.39 s for the flight.
+FLIGHT_RANK = 1
+FLIGHT_IMPORTS = ("fem_tether.report.animation", "fem_tether.report.cycle")
+FLIGHT_IMPORTS_COST_US = 0.5e6
 
 #: The files the main job writes into its folder beside ``sweep.h5``.
 FILES = (*PLOT_FILES, "aep.json", CSV_NAME, JSON_NAME, PAGE_NAME)
@@ -73,6 +89,9 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     preset job of ``system``, else the embedded default job) into the
     directory ``out`` (the sweep's parts kept with ``keep_parts``); ``None`` on
     the MPI ranks other than 0."""
+    from mpi4py import MPI
+
+    comm = MPI.COMM_WORLD
     t0 = time.perf_counter()
     started = datetime.now(timezone.utc).isoformat(timespec="seconds")
     job = load_job(job_file, system)
@@ -84,20 +103,65 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
         # sweep, and one run into ``out`` at a time (until they are written); rank 0 imports
         # the plotting and scipy.stats while it waits for the other ranks' tasks
         follow_up = FollowUp(out, tuple(out / name for name in FILES), folder_lock, aep=True,
-                             imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US)
-        outcome = sweep(job, h5, progress=progress, follow_up=follow_up, keep_parts=keep_parts)
-        if outcome is None:
-            return None
-        return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0, started)
+                             imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US,
+                             helper=FLIGHT_RANK, helper_imports=FLIGHT_IMPORTS,
+                             helper_imports_cost_us=FLIGHT_IMPORTS_COST_US)
+        outcome = sweep(job, h5, comm, progress=progress, follow_up=follow_up, keep_parts=keep_parts)
+        with guard(comm):
+            if outcome is None:             # the other ranks wait for rank 0 (one of them draws the flight)
+                if comm.Get_rank() == FLIGHT_RANK:
+                    serve(comm, draw_measured)
+                wait_until_finished(comm)
+                return None
+            done = _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0, started,
+                                flight_drawer(comm))
+            finished(comm)
+            return done
+
+
+#: A flight drawn: its media (or why there are none) and the peak RSS [MiB] of the other rank
+#: that drew it, by rank (none if drawn here).
+Drawn = tuple[list[Media] | str, dict[int, float]]
+
+#: Draws a flight: takes the flight to draw, returns the function giving it drawn.
+FlightDrawer = Callable[[Flight | None], Callable[[], Drawn]]
+
+
+def draw_here(flight: Flight | None) -> Callable[[], Drawn]:
+    """The flight drawn on this rank, when asked for."""
+    return lambda: (draw_flight(flight), {})
+
+
+def draw_measured(flight: Flight | None) -> tuple[list[Media] | str, float]:
+    """The flight drawn and this rank's peak RSS after drawing it [MiB] (on :data:`FLIGHT_RANK`)."""
+    return draw_flight(flight), peak_rss_MiB()
+
+
+def flight_drawer(comm) -> FlightDrawer:
+    """Rank 0's drawer of the flight: on several ranks rank :data:`FLIGHT_RANK`'s (drawing
+    at once, while rank 0 goes on), on one rank its own."""
+    if comm.Get_size() == 1:
+        return draw_here
+
+    def elsewhere(flight: Flight | None) -> Callable[[], Drawn]:
+        result = hand(comm, FLIGHT_RANK, flight)
+
+        def drawn() -> Drawn:
+            media, rss_MiB = result()
+            return media, {FLIGHT_RANK: rss_MiB}
+        return drawn
+    return elsewhere
 
 
 def _after_sweep(outcome: SweepOutcome, h5: Path, out: Path, allow_unchecked: bool, allow_incomplete: bool,
-                 t0: float, started: str) -> MainJob:
-    def measured(data: SweepResult) -> dict:      # after the figures: wall time and memory include them
+                 t0: float, started: str, flight: FlightDrawer) -> MainJob:
+    def measured(data: SweepResult, drew_rss_MiB: dict[int, float]) -> dict:   # after the figures and the
+        rss = [peak_rss_MiB(), *outcome.peak_rss_MiB[1:]]                       # flight: time and memory
+        for rank, rss_MiB in drew_rss_MiB.items():                              # include them
+            rss[rank] = rss_MiB
         return {"started_utc": started, "wall_s": time.perf_counter() - t0, "n_ranks": outcome.n_ranks,
-                "tasks": outcome.tasks, "reused_tasks": outcome.reused,
-                "peak_rss_MiB_per_rank": [peak_rss_MiB(), *outcome.peak_rss_MiB[1:]]}
-    written = _write_results(h5, out, allow_unchecked, allow_incomplete, measured)
+                "tasks": outcome.tasks, "reused_tasks": outcome.reused, "peak_rss_MiB_per_rank": rss}
+    written = _write_results(h5, out, allow_unchecked, allow_incomplete, measured, flight)
     summary = written.summary
     outcome = replace(outcome, peak_rss_MiB=tuple(summary["peak_rss_MiB_per_rank"]))
     return MainJob(outcome, written.data, written.energy, h5, written.files, summary["wall_s"], summary)
@@ -114,9 +178,10 @@ class RunReport:
     summary: dict
 
 
-def recorded_run(data: SweepResult) -> dict:
+def recorded_run(data: SweepResult, drew_rss_MiB: dict[int, float]) -> dict:
     """What a sweep file records of the run that wrote it: its ranks; its start, wall
-    time and tasks are not recorded (None: "not recorded" on the page, null in JSON)."""
+    time and tasks are not recorded (None: "not recorded" on the page, null in JSON), nor
+    is memory (``drew_rss_MiB`` is this call's, not the run's)."""
     return {"started_utc": None, "wall_s": None, "n_ranks": data.n_ranks, "tasks": None, "reused_tasks": None}
 
 
@@ -134,19 +199,22 @@ def write_run_report(sweep_file, out_dir="results", allow_unchecked: bool = Fals
     for path in files:
         check_writable(path)
     with exclusive(out, directory=True, outputs=files):
-        return _write_results(Path(sweep_file), out, allow_unchecked, allow_incomplete, recorded_run)
+        return _write_results(Path(sweep_file), out, allow_unchecked, allow_incomplete, recorded_run, draw_here)
 
 
 def _write_results(h5: Path, out: Path, allow_unchecked: bool, allow_incomplete: bool,
-                   run_of: Callable[[SweepResult], Mapping]) -> RunReport:
+                   run_of: Callable[[SweepResult, dict[int, float]], Mapping], draw: FlightDrawer) -> RunReport:
     """Read the sweep file ``h5``, compute its AEP and write the main job's files into
-    ``out``; ``run_of(data)``, called once the figures are written, gives the run's facts
+    ``out``, the flight drawn by ``draw`` (while the figures are, if it is another rank's);
+    ``run_of(data, rss)``, called once the figures and the flight are drawn (``rss``: the peak RSS of
+    the rank that drew the flight, :data:`Drawn`), gives the run's facts
     (:func:`~fem_tether.report.job_summary.summary_document`)."""
     data = read_sweep(h5)
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
+    drawn = draw(shown_flight(data, energy))
     plots = write_plots(data, energy, out)
-    flight = flight_media(data, energy)
-    run = run_of(data)                          # the files below take milliseconds
+    flight, drew_rss_MiB = drawn()
+    run = run_of(data, drew_rss_MiB)                          # the files below take milliseconds
     files = plots | {"aep_json": out / "aep.json", "summary_csv": out / CSV_NAME, "summary_json": out / JSON_NAME,
                      "index": out / PAGE_NAME}
     summary = summary_document(data, energy, run, {"sweep": h5} | files)

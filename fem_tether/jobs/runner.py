@@ -4,7 +4,9 @@
 work (:class:`Work`: a sweep's :class:`~fem_tether.jobs.sweep_tasks.SweepTasks`,
 a study's :class:`~fem_tether.jobs.study.tasks.Study`) what each task costs,
 assigns the tasks to the ranks by longest processing time first
-(:func:`fem_tether.jobs.schedule.assign`), and on each rank, for each of its
+(:func:`fem_tether.jobs.schedule.assign`; rank 0 estimates the costs and
+finds the kept parts, and sends both to the others, unless the work's plan
+gives them, so that planning the work is done once however many ranks run it), and on each rank, for each of its
 tasks, skips it if its part is kept and otherwise runs it (the work keeps its
 part); then it waits for the other ranks at a non-blocking barrier, during
 which rank 0 may do other work.  Rank 0's progress says at once what the
@@ -103,17 +105,21 @@ class JsonParts:
         return parts
 
 
-def distribute(comm, work: Work, tasks: Sequence, bar: Progress, rank0_load_us: float = 0.0) -> tuple[int, int]:
-    """Run this rank's share of ``tasks`` (rank 0 starts loaded with ``rank0_load_us``,
-    in the unit of ``work.cost_us``; the tasks whose parts rank 0 finds kept cost nothing, so
-    that a resumed job spreads what is left), then wait until every rank has run its share;
+def distribute(comm, work: Work, tasks: Sequence, bar: Progress, loads_us: Sequence[float] = (),
+               costs: Sequence[float] | None = None) -> tuple[int, int]:
+    """Run this rank's share of ``tasks`` (their ``costs`` if given, the same on every rank,
+    else estimated on rank 0 alone, ``work.cost_us``, and sent to the others; the first ranks
+    start loaded with ``loads_us``, rank 0's first, in that unit; the tasks whose parts rank 0
+    finds kept cost nothing, so that a resumed job spreads what is left), then wait until
+    every rank has run its share;
     ``(ran, kept)``: how many of this rank's tasks ran and how many were kept
     already.  Ctrl-C and errors propagate (the caller says what is kept)."""
     rank, size = comm.Get_rank(), comm.Get_size()
-    kept_before = comm.bcast([work.kept(t) for t in tasks] if rank == 0 else None, root=0)
-    costs = [0.0 if k else work.cost_us(t) for t, k in zip(tasks, kept_before)]    # a resumed job: the rest balanced
-    owners = assign(costs, size, rank0_load_us)
-    finished = finish_times(costs, owners)
+    if costs is None:                               # a resumed job: the rest balanced
+        costs = comm.bcast([0.0 if work.kept(t) else work.cost_us(t) for t in tasks] if rank == 0 else None,
+                           root=0)
+    owners = assign(list(costs), size, loads_us)
+    finished = finish_times(list(costs), owners)
 
     def done(count: int) -> tuple[int, tuple[float, float]]:
         count = min(count, len(tasks))

@@ -11,6 +11,8 @@ weighs what is done and what is left by it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from fem_tether.config import Config
 from fem_tether.jobs.job import Job, Task
 from fem_tether.tether.results import time_grid
@@ -39,17 +41,26 @@ def run_cost_us(cfg: Config, solver: str) -> float:
     return float(steps * (overhead_us + per_point_us * points))
 
 
+#: What a sweep task costs besides its run [us]: writing its part and bringing its length of the
+#: result file up to date (:class:`fem_tether.jobs.sweep_tasks.SweepTasks`).  Measured on
+#: 2026-12-03 in loaded 2-rank runs of the default job, timing each call: 0.1-0.4 s per task
+#: beside 0.1-0.26 s for an FE run, an FE task with it 0.3-0.45 s and an FD task 0.9-1.1 s
+#: (2.5-3 FE tasks, against 5.3 from the runs' estimates alone).
+TASK_OVERHEAD_US = 0.09e6
+
+
 def task_cost(job: Job, task: Task) -> float:
-    """Estimated cost of a sweep task in microseconds (:func:`run_cost_us`).  With
-    the default job the estimate puts an FD run at 5.0 FE runs, as measured (4.2-5.5)."""
-    return run_cost_us(job.config_for(task.length_m), task.solver)
+    """Estimated cost of a sweep task in microseconds: its run (:func:`run_cost_us`; with the
+    default job an FD run at 5.0 FE runs, as measured, 4.2-5.5) and :data:`TASK_OVERHEAD_US`."""
+    return run_cost_us(job.config_for(task.length_m), task.solver) + TASK_OVERHEAD_US
 
 
-def assign(costs: list[float], n_ranks: int, rank0_load: float = 0.0) -> list[list[int]]:
+def assign(costs: list[float], n_ranks: int, loads: Sequence[float] = ()) -> list[list[int]]:
     """Longest processing time first: each task, costliest first, to the least
-    loaded rank (ties to the lowest rank); deterministic.  Rank 0 starts with
-    ``rank0_load``, the cost of other work it does (in the costs' unit)."""
-    loads = [rank0_load] + [0.0] * (n_ranks - 1)
+    loaded rank (ties to the lowest rank); deterministic.  The first ranks start
+    with ``loads`` (rank 0's first), the cost of other work they do (in the costs'
+    unit; those beyond the ranks are left out)."""
+    loads = [*loads[:n_ranks], *[0.0] * (n_ranks - len(loads))]
     owners: list[list[int]] = [[] for _ in range(n_ranks)]
     for i in sorted(range(len(costs)), key=lambda i: (-costs[i], i)):
         rank = min(range(n_ranks), key=lambda r: (loads[r], r))

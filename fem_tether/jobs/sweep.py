@@ -18,6 +18,7 @@ from the result file (:func:`fem_tether.jobs.sweepfile.restore_parts`).
 
 from __future__ import annotations
 
+import importlib
 from contextlib import ExitStack
 from dataclasses import dataclass
 from pathlib import Path
@@ -46,7 +47,9 @@ class FollowUp:
     rank 0 waits for the other ranks' tasks; ``imports_cost_us``, their cost
     in the unit of :func:`~fem_tether.jobs.schedule.task_cost`, is counted as
     rank 0's load, so that with several ranks they are imported while the
-    others finish their tasks)."""
+    others finish their tasks) and those another rank, ``helper``, imports
+    before its tasks to do its part of the work after the sweep
+    (``helper_imports``, their cost ``helper_imports_cost_us`` counted as its load)."""
 
     folder: Path
     files: tuple[Path, ...]
@@ -54,6 +57,15 @@ class FollowUp:
     aep: bool = False
     imports: tuple[str, ...] = ()
     imports_cost_us: float = 0.0
+    helper: int = 1
+    helper_imports: tuple[str, ...] = ()
+    helper_imports_cost_us: float = 0.0
+
+    def loads_us(self, n_ranks: int) -> tuple[float, ...]:
+        """The ranks' loads besides the tasks, rank 0's first (:func:`~fem_tether.jobs.schedule.assign`)."""
+        if n_ranks <= self.helper:
+            return (self.imports_cost_us,)
+        return (self.imports_cost_us, *[0.0] * (self.helper - 1), self.helper_imports_cost_us)
 
 
 @dataclass(frozen=True)
@@ -119,8 +131,11 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
                    enabled=progress and rank == 0)
     try:                                # from here on Ctrl-C says what is kept
         load_kernels_by_rank(comm, job.solvers)
+        if follow_up is not None and rank == follow_up.helper:
+            for module in follow_up.helper_imports:
+                importlib.import_module(module)
         tasks = SweepTasks(store, size, follow_up.imports if follow_up else ())
-        _, kept = distribute(comm, tasks, job.tasks, bar, follow_up.imports_cost_us if follow_up else 0.0)
+        _, kept = distribute(comm, tasks, job.tasks, bar, follow_up.loads_us(size) if follow_up else ())
         sync(comm)
         reused = comm.reduce(kept, root=0)
         if rank != 0:

@@ -5,7 +5,10 @@ best length, else the first length that ran.  Its media (:func:`flight_media`):
 one period as an animated GIF (:mod:`fem_tether.report.animation`) and, where
 the run flew pumping cycles, their force, reel speed and power
 (:mod:`fem_tether.report.cycle`); each with a caption saying what it shows, to
-embed (:func:`fem_tether.report.page.media`).
+embed (:func:`fem_tether.report.page.media`).  Which run is shown
+(:func:`shown_flight`, from the sweep and its AEP) is apart from drawing it
+(:func:`draw_flight`, from the sweep file alone), so that another MPI rank can
+draw it while rank 0 draws the figures (:mod:`fem_tether.commands.pipeline`).
 """
 
 from __future__ import annotations
@@ -28,6 +31,17 @@ class Media:
     mime: str
     name: str
     caption: str
+
+
+@dataclass(frozen=True)
+class Flight:
+    """The run a page shows: the sweep ``file``, the run's length, the system's name and
+    whether the length is the flexible line's best."""
+
+    file: str
+    length_m: float
+    system: str
+    best: bool
 
 
 def shown_length(data: Mapping, energy: SweepAep) -> float | None:
@@ -62,29 +76,41 @@ def flight_caption(run, frames: int, best: bool) -> str:
 NO_RUN = "No length ran: no flight to show."
 
 
-def flight_media(data: Mapping, energy: SweepAep) -> list[Media] | str:
-    """The flight of the run :func:`shown_length` picks, read from the sweep file
-    ``data["file"]``: the animation and, for pumping cycles, their time series; else why
-    there is none (:data:`NO_RUN`, or the one line of a run the file holds damaged or
-    from an earlier fem-tether: the rest of the page stands without it)."""
+def shown_flight(data: Mapping, energy: SweepAep) -> Flight | None:
+    """The run of the sweep ``data`` (its file ``data["file"]``) the page shows
+    (:func:`shown_length`); None if no length ran."""
+    length = shown_length(data, energy)
+    if length is None:
+        return None
+    return Flight(str(data["file"]), length, data["config"].system.name, length == energy.flexible.best_length_m)
+
+
+def draw_flight(flight: Flight | None) -> list[Media] | str:
+    """The media of ``flight``, read from its sweep file: the animation and, for pumping
+    cycles, their time series; else why there are none (:data:`NO_RUN`, or the one line of a
+    run the file holds damaged or from an earlier fem-tether: the rest of the page stands
+    without it)."""
     from fem_tether.report.animation import flight_gif
     from fem_tether.report.cycle import cycle_png, is_pumping
 
-    length = shown_length(data, energy)
-    if length is None:
+    if flight is None:
         return NO_RUN
+    length = flight.length_m
     try:
-        run = read_length_run(data["file"], length)
+        run = read_length_run(flight.file, length)
     except ResultFileError as exc:
         return f"No flight to show: {exc}"
-    system = data["config"].system.name
     diameter = f", d = {1e3 * run.config.tether.diameter_m:g} mm" if run.config else ""
-    gif, frames = flight_gif(run, f"{system}, L = {run.length_m:g} m{diameter}: one period of the FE run")
-    best = length == energy.flexible.best_length_m
-    media = [Media(gif, "image/gif", f"flight_L{length:g}.gif", flight_caption(run, frames, best))]
+    gif, frames = flight_gif(run, f"{flight.system}, L = {run.length_m:g} m{diameter}: one period of the FE run")
+    media = [Media(gif, "image/gif", f"flight_L{length:g}.gif", flight_caption(run, frames, flight.best))]
     if is_pumping(run):
-        png = cycle_png(run, f"{system}, L = {run.length_m:g} m: the pumping cycles flown")
+        png = cycle_png(run, f"{flight.system}, L = {run.length_m:g} m: the pumping cycles flown")
         media.append(Media(png, "image/png", f"cycle_L{length:g}.png",
                            "The pumping cycles of the same run (after its spin-up): the tension at the winch, "
                            "the reel-out speed and the winch power against time, the recoveries shaded."))
     return media
+
+
+def flight_media(data: Mapping, energy: SweepAep) -> list[Media] | str:
+    """The flight of the run :func:`shown_length` picks (:func:`draw_flight`)."""
+    return draw_flight(shown_flight(data, energy))

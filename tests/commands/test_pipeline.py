@@ -4,6 +4,7 @@ import contextlib
 import html
 import io
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -335,3 +336,64 @@ def test_an_unsettled_spinup_reaches_aep_json_summary_json_the_page_and_the_tabl
     page = (out / "index.html").read_text(encoding="utf-8")
     assert (f"<p class=\"warning\" data-code=\"spin-up-not-settled\" data-quantity=\"drag_fe_N\" "
             f"style=\"color:#8a3b00\"><strong>warning:</strong> {html.escape(spinup['message'])}</p>") in page
+
+
+#: What differs between two runs of the same job: the run's own facts (its start, wall time,
+#: ranks and memory, the folder it wrote into), on the page and in summary.json.
+RUN_FACTS = re.compile(r"<dt>(run|wall time|MPI ranks)</dt><dd>[^<]*</dd>")
+RUN_KEYS = {"files", "n_ranks", "peak_rss_MiB", "peak_rss_MiB_per_rank", "result_file", "started_utc", "wall_s"}
+
+
+def _run_on(ranks: int, out: Path, *before: str) -> subprocess.CompletedProcess:
+    """``fem-tether run QUICK --out OUT`` under ``mpiexec -n ranks`` (``before``: Python run first on each rank)."""
+    code = "\n".join([*before, "import sys", "from fem_tether.cli import main",
+                      f"sys.exit(main(['run', {str(QUICK)!r}, '--out', {str(out)!r}]))"])
+    return subprocess.run(["mpiexec", "-n", str(ranks), sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=150)
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_one_two_and_four_ranks_write_the_same_files(tmp_path):
+    """Rank 1 draws the flight while rank 0 draws the figures: the files of 1, 2 and 4 ranks (4
+    oversubscribed on this machine) are the same bytes but for the run's own facts (its start, wall
+    time, ranks, memory, folder); the flight is on the page."""
+    for ranks in (1, 2, 4):
+        proc = _run_on(ranks, tmp_path / f"n{ranks}")
+        assert proc.returncode == 0, proc.stderr
+    one = tmp_path / "n1"
+    for ranks in (2, 4):
+        other = tmp_path / f"n{ranks}"
+        for name in ("aep.json", "summary.csv", "drag_vs_length.png", "ge_vs_length.png", "power_curves.png",
+                     "aep_vs_length.png"):
+            assert (one / name).read_bytes() == (other / name).read_bytes(), name    # tolerance: none
+        pages = [RUN_FACTS.sub("", (d / "index.html").read_text(encoding="utf-8")) for d in (one, other)]
+        assert pages[0] == pages[1]
+        summaries = [json.loads((d / "summary.json").read_text()) for d in (one, other)]
+        assert {k: v for k, v in summaries[0].items() if k not in RUN_KEYS} == \
+            {k: v for k, v in summaries[1].items() if k not in RUN_KEYS}
+        assert summaries[1]["n_ranks"] == ranks and len(summaries[1]["peak_rss_MiB_per_rank"]) == ranks
+    assert "data:image/gif;base64," in pages[0]
+
+
+#: A failure after the sweep on either rank: (the module, the function replaced by one raising).
+FAILURES = {"the flight, on rank 1": ("fem_tether.report.animation", "flight_gif"),
+            "the figures, on rank 0": ("fem_tether.commands.pipeline", "write_plots")}
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+@pytest.mark.parametrize("where", FAILURES)
+def test_a_failure_after_the_sweep_stops_both_ranks_with_its_error(tmp_path, where):
+    """Rank 1 draws the flight, rank 0 the figures; a failure of either reaches rank 0, which
+    raises it (a failure on rank 1 with its traceback) and every rank exits 1, none hanging.
+    Before, a failure of rank 0 after the sweep hung the job (the other ranks waited in a
+    barrier, which the ranks' agreement on the exit code was then matched with); no page is
+    written."""
+    module, name = FAILURES[where]
+    fail = (f"import {module} as m", "def broken(*args, **kwargs): raise RuntimeError('it cannot be drawn')",
+            f"m.{name} = broken")
+    proc = _run_on(2, tmp_path / "out", *fail)
+    assert proc.returncode == 1, proc.stderr
+    assert "RuntimeError: it cannot be drawn" in proc.stderr
+    assert ("raised on MPI rank 1:" in proc.stderr) == (where == "the flight, on rank 1")
+    assert not (tmp_path / "out" / "index.html").exists()
+    assert not [p.name for p in (tmp_path / "out").iterdir() if p.name.startswith(".") and "tmp" in p.name]

@@ -16,3 +16,10 @@ def test_the_model_sums_phases_and_adds_the_time_outside_tasks():
     t = model(phases, other_s=1.5)
     assert set(t) == set(RANKS)
     assert t[1] == 1.5 + 6.0 + 5.0 and t[2] == 1.5 + 4.0 + 5.0 and t[128] == t[2]
+
+
+def test_the_time_the_ranks_share_is_divided_by_their_number():
+    """A study's planning, shared out over the ranks: T_shared / N on top of the rest."""
+    phases = [([1.0, 1.0], [2.0, 4.0])]
+    t = model(phases, other_s=1.5, ranks=(1, 2, 4), shared_s=8.0)
+    assert t == {1: 1.5 + 8.0 + 6.0, 2: 1.5 + 4.0 + 4.0, 4: 1.5 + 2.0 + 4.0}

@@ -14,20 +14,25 @@ def test_longest_processing_time_assignment_balances():
 
 def test_task_cost_is_steps_times_the_solvers_step_cost():
     """The default job: an FD task (870 steps of 101 nodes) costs what its steps
-    cost by STEP_COST_US, more than an FE task (435 steps of 41 nodes)."""
+    cost by STEP_COST_US, more than an FE task (435 steps of 41 nodes), each with
+    the task's writing (TASK_OVERHEAD_US)."""
     from fem_tether.jobs.job import Task, load_job
-    from fem_tether.jobs.schedule import STEP_COST_US, task_cost
+    from fem_tether.jobs.schedule import STEP_COST_US, TASK_OVERHEAD_US, task_cost
     job = load_job()
     fe, fd = task_cost(job, Task(500.0, "fe")), task_cost(job, Task(500.0, "fd"))
-    assert fe == 435 * (STEP_COST_US["fe"][0] + 41 * STEP_COST_US["fe"][1])
-    assert fd == 870 * (STEP_COST_US["fd"][0] + 101 * STEP_COST_US["fd"][1]) > fe
+    assert fe == 435 * (STEP_COST_US["fe"][0] + 41 * STEP_COST_US["fe"][1]) + TASK_OVERHEAD_US
+    assert fd == 870 * (STEP_COST_US["fd"][0] + 101 * STEP_COST_US["fd"][1]) + TASK_OVERHEAD_US > fe
 
 
-def test_rank0_load_counts_as_work_already_assigned():
+def test_a_ranks_load_counts_as_work_already_assigned():
     """A head start on rank 0 moves tasks to the other ranks: with 10 units of
-    other work, rank 0 takes the 3 and the 1 and rank 1 the 8 and the 5 (14 against 13)."""
+    other work, rank 0 takes the 3 and the 1 and rank 1 the 8 and the 5 (14 against 13);
+    with 10 on rank 0 and 4 on rank 1, rank 1 takes the 8 and the 3 (15), rank 0 the 5 and the 1 (16);
+    loads beyond the ranks are left out."""
     costs = [8.0, 5.0, 3.0, 1.0]
-    assert assign(costs, 2, rank0_load=10.0) == [[2, 3], [0, 1]]
+    assert assign(costs, 2, loads=(10.0,)) == [[2, 3], [0, 1]]
+    assert assign(costs, 2, loads=(10.0, 4.0)) == [[1, 3], [0, 2]]
+    assert assign(costs, 1, loads=(10.0, 4.0)) == [[0, 1, 2, 3]]
     assert assign(costs, 2) == [[0, 3], [1, 2]]
 
 

@@ -76,6 +76,30 @@ def test_two_ranks_write_the_same_bytes(kitegen, tmp_path):
     assert filecmp.cmp(n1, tmp_path / "n2.h5", shallow=False)          # tolerance: none, the same bytes
 
 
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
+def test_two_ranks_plan_each_bin_once_and_write_the_same_bytes(kitegen, tmp_path):
+    """Before, every rank planned every phase itself: each prepared every bin's case (two ranks:
+    twice as many as the bins).  Now each plans its share of the points and adopts the others':
+    two ranks prepare each bin's case once between them, both some, and write the same bytes."""
+    job, n1, _ = kitegen
+    out = tmp_path / "n2.h5"
+    code = "\n".join(["import sys", "from mpi4py import MPI", "from fem_tether.jobs.study.tasks import Study",
+                      "calls = []", "case = Study.case",
+                      "def counted(self, point, node):",
+                      "    calls.append((point, node) not in self._cases)", "    return case(self, point, node)",
+                      "Study.case = counted", "from fem_tether.cli import main",
+                      f"code = main(['study', {str(job)!r}, '--out', {str(out)!r}])",
+                      f"open({str(tmp_path)!r} + f'/cases_{{MPI.COMM_WORLD.Get_rank()}}', 'w').write(str(sum(calls)))",
+                      "sys.exit(code)"])
+    proc = subprocess.run(["mpiexec", "-n", "2", sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    prepared = [int((tmp_path / f"cases_{rank}").read_text()) for rank in (0, 1)]
+    bins = _runs_kept(parts_dir(out))
+    assert sum(prepared) == bins and min(prepared) > 0, (prepared, bins)
+    assert filecmp.cmp(n1, out, shallow=False)                           # tolerance: none, the same bytes
+
+
 def _runs_kept(directory) -> int:
     """Tether runs finished (their parts, not a temporary file)."""
     return len([p for p in directory.glob("*_v*.json") if not p.name.startswith(".")])

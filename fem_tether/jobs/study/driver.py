@@ -2,10 +2,13 @@
 
 Each phase's tasks (:mod:`fem_tether.jobs.study.tasks`) run over the ranks
 through the sweep's runner, :func:`fem_tether.jobs.runner.distribute` (longest
-estimated cost first, a task whose part is kept skipped);
-every rank then reads the parts the phase wrote and plans the next phase the
-same way, so the plan and every number are the same whatever the number of
-ranks.  Phases: seed runs (each point's configured case) -> operating points ->
+estimated cost first, a task whose part is kept skipped).  Before each
+phase the ranks plan it together (:func:`plan_phase`): each plans every N-th
+point (its tasks, their costs, the cases of its bins, which bin the gate
+runs at, which parts are kept) from the parts the phases before wrote, and
+every rank receives every plan and what it prepared, so no rank prepares a
+case twice and planning takes 1/N of one rank's time.  The plan, and so
+every number, is the same whatever the number of ranks.  Phases: seed runs (each point's configured case) -> operating points ->
 tether runs (with the FE <-> FD gate) -> AEP per point -> (refinement: the
 same four for the points about each surface's maximum) -> the result file,
 written by rank 0.  An interrupted
@@ -16,9 +19,11 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TypeVar
 
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
@@ -29,6 +34,8 @@ from fem_tether.jobs.study import optimum as opt
 from fem_tether.jobs.study.job import Point, StudyJob
 from fem_tether.jobs.study.result import check_out, write_study
 from fem_tether.jobs.study.tasks import Study, Task
+
+T = TypeVar("T")
 
 
 @dataclass
@@ -43,6 +50,8 @@ class StudyOutcome:
     wall_s: float = 0.0
     #: Modelled wall time on N ranks [s] (:func:`scaling_model`).
     model_s: dict = field(default_factory=dict)
+    #: The ranks' summed time planning the phases [s] (``phase_s["planning"]`` is its wall time).
+    plan_s: float = 0.0
 
 
 class StudyInterrupted(KeyboardInterrupt):
@@ -52,14 +61,14 @@ class StudyInterrupted(KeyboardInterrupt):
         super().__init__(f"finished tasks kept in {directory}; run the same command to resume")
 
 
-def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutcome, progress: bool,
-           stage: str) -> None:
+def _phase(comm, study: Study, label: str, tasks: list[Task], costs: list[float], outcome: StudyOutcome,
+           progress: bool, stage: str) -> None:
     rank, size = comm.Get_rank(), comm.Get_size()
     t0 = time.perf_counter()
     bar = Progress(len(tasks), f"study {stage}{label} ({size} rank{'s' if size > 1 else ''})",
                    enabled=progress and rank == 0 and bool(tasks))
     try:
-        ran, _ = distribute(comm, study, tasks, bar)
+        ran, _ = distribute(comm, study, tasks, bar, costs=costs)
     except KeyboardInterrupt:
         bar.close()
         raise StudyInterrupted(study.parts.directory) from None
@@ -69,11 +78,44 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], outcome: StudyOutc
     outcome.phase_s[label] = outcome.phase_s.get(label, 0.0) + time.perf_counter() - t0
 
 
+def planned(comm, plan: Callable[[], T]) -> T:
+    """``plan()`` made on rank 0 and sent to every rank (the others wait, stoppably, asleep)."""
+    made = plan() if comm.Get_rank() == 0 else None
+    sync(comm)
+    return comm.bcast(made, root=0)
+
+
+def plan_phase(comm, study: Study, tasks_of: Callable[[Study, list[Point]], list[Task]],
+               points: list[Point]) -> tuple[list[Task], list[float], float]:
+    """The tasks ``tasks_of`` gives for ``points`` and their estimated costs (nothing for a task whose
+    part is kept), planned over the ranks: rank r of N plans the points r, r + N, …, and every rank
+    adopts every rank's plan and what it prepared (:meth:`~fem_tether.jobs.study.tasks.Study.prepared`);
+    also the ranks' summed time planning."""
+    rank, size = comm.Get_rank(), comm.Get_size()
+    t0 = time.perf_counter()
+    mine = [tasks_of(study, [point]) for point in points[rank::size]]
+    costs = [[0.0 if study.kept(t) else study.cost_us(t) for t in tasks] for tasks in mine]
+    spent_s = time.perf_counter() - t0
+    if size > 1:
+        sync(comm)
+        every = comm.allgather((mine, costs, study.prepared(points[rank::size]), spent_s))
+        for _, _, prepared, _ in every:
+            study.adopt(prepared)
+        mine = [every[i % size][0][i // size] for i in range(len(points))]
+        costs = [every[i % size][1][i // size] for i in range(len(points))]
+        spent_s = sum(spent for *_, spent in every)
+    return [t for tasks in mine for t in tasks], [c for point in costs for c in point], spent_s
+
+
 def _stages(comm, study: Study, points: list[Point], outcome: StudyOutcome, progress: bool,
             stage: str = "") -> None:
-    """The phases of ``points``; ``stage`` begins their progress labels ("refined ")."""
-    for label, tasks in PHASES:
-        _phase(comm, study, label, tasks(study, points), outcome, progress, stage)
+    """The phases of ``points``, each planned first; ``stage`` begins their progress labels ("refined ")."""
+    for label, tasks_of in PHASES:
+        t0 = time.perf_counter()
+        tasks, costs, spent_s = plan_phase(comm, study, tasks_of, points)
+        outcome.phase_s["planning"] = outcome.phase_s.get("planning", 0.0) + time.perf_counter() - t0
+        outcome.plan_s += spent_s
+        _phase(comm, study, label, tasks, costs, outcome, progress, stage)
 
 
 #: The phases of a study's points, in order: (label, the study's tasks of some points).
@@ -81,16 +123,17 @@ PHASES = (("seed runs", Study.seed_tasks), ("operating points", Study.ops_tasks)
           ("AEP", Study.aep_tasks))
 
 
-def scaling_model(study: Study, extra: list[Point], other_s: float) -> dict[int, float]:
+def scaling_model(study: Study, extra: list[Point], other_s: float, plan_s: float) -> dict[int, float]:
     """Modelled wall time of the whole study on N ranks (:mod:`fem_tether.jobs.scaling`)
-    from every task's measured time; ``other_s``: the time spent outside the phases."""
+    from every task's measured time; ``other_s``: the time spent outside the phases and
+    their planning, ``plan_s``: the ranks' summed time planning (shared out evenly)."""
     phases = []
     for points in (study.job.points, extra):
         for _, tasks in PHASES:
             mine = tasks(study, points)
             phases.append(([study.cost_us(t) for t in mine], [(study.stored(t) or {}).get("wall_s", math.nan)
                                                               for t in mine]))
-    return scaling.model(phases, other_s)
+    return scaling.model(phases, other_s, shared_s=plan_s)
 
 
 def _usable(values: dict, allow_unchecked: bool) -> bool:
@@ -187,7 +230,7 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
     outcome = StudyOutcome([], n_ranks=comm.Get_size())
     try:
         _stages(comm, study, job.points, outcome, progress)
-        extra = refinement_points(study, allow_unchecked) if job.refine else []
+        extra = planned(comm, lambda: refinement_points(study, allow_unchecked)) if job.refine else []
         if extra:
             _stages(comm, study, extra, outcome, progress, "refined ")
         if rank != 0:
@@ -199,5 +242,5 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
     except KeyboardInterrupt:           # between phases: the parts are kept all the same
         raise StudyInterrupted(study.parts.directory) from None
     outcome.wall_s = time.perf_counter() - t0
-    outcome.model_s = scaling_model(study, extra, outcome.wall_s - sum(outcome.phase_s.values()))
+    outcome.model_s = scaling_model(study, extra, outcome.wall_s - sum(outcome.phase_s.values()), outcome.plan_s)
     return outcome

@@ -188,6 +188,23 @@ class Study:
             return 0.0
         return run_cost_us(case, "fe") + (run_cost_us(case, "fd") if task.kind == "check" else 0.0)
 
+    # -- planning shared between ranks -------------------------------------------
+    def prepared(self, points: Sequence[Point]) -> dict:
+        """What planning ``points`` prepared: their configurations, their bins' cases, their
+        tether runs and their tasks' keys (for the other ranks to :meth:`adopt`)."""
+        of = set(points)
+        return {"configs": {p: c for p, c in self._configs.items() if p in of},
+                "cases": {k: c for k, c in self._cases.items() if k[0] in of},
+                "runs": {p: r for p, r in self._runs.items() if p in of},
+                "keys": {t: k for t, k in self._keys.items() if t.point in of}}
+
+    def adopt(self, prepared: dict) -> None:
+        """Take what another rank prepared (:meth:`prepared`): the same as this rank would."""
+        self._configs |= prepared["configs"]
+        self._cases |= prepared["cases"]
+        self._runs |= prepared["runs"]
+        self._keys |= prepared["keys"]
+
     # -- running one task --------------------------------------------------------
     def run_key(self, task: Task) -> str:
         try:
