@@ -7,7 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from conftest import dense_fe_jacobian
+from conftest import VEERING_WIND, dense_fe_jacobian
 from fem_tether.config import load_config
 from fem_tether.tether.fe.solver import build_model, initial_state, static_equilibrium
 from fem_tether.tether.fe.system import TetherSystem
@@ -34,10 +34,26 @@ def test_jacobian_matches_central_differences(mode, overrides, reel_mps, free, s
     tangent and altitude, the reeling winch element, the Kelvin-Voigt terms, a
     free end's mass row) within 1e-6 of the largest, against central differences
     of the kernel's residual."""
+    _check_jacobian(mode, overrides, reel_mps, free, seed)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+@pytest.mark.parametrize("mode, reel_mps, free", [("tension", 0.0, False), ("prescribed", 13.5, False),
+                                                  ("prescribed", 0.0, True)])
+def test_jacobian_matches_central_differences_in_a_veering_wind(mode, reel_mps, free, seed):
+    """As above in a measured wind that turns 65 deg over the line (:data:`conftest.VEERING_WIND`):
+    the drag's altitude derivative through (du/dz, dv/dz) within 1e-6 of the largest entry."""
+    _check_jacobian(mode, {}, reel_mps, free, seed, VEERING_WIND)
+
+
+def _check_jacobian(mode, overrides, reel_mps, free, seed, wind=None):
+    """The assembled Jacobian against central differences of the residual (the tests above)."""
     cfg = load_config(overrides={"fe": {"elements": 6}, "winch": {"mode": mode}, "kite": {"radius_m": 990.0},
                                  "drag": {"skin_friction_cf": 0.01}} | overrides)
     model = build_model(cfg)
     sys_ = model.system
+    if wind is not None:
+        sys_ = sys_.with_physics(replace(sys_.physics, wind=wind))
     st = static_equilibrium(model)
     if free:
         sys_ = TetherSystem(sys_.spaces, sys_.physics, False, end_mass_kg=90.0)
