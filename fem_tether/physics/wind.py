@@ -164,9 +164,6 @@ class WindProfile(Protocol):
 
     def turn_deg(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
-    @property
-    def veers(self) -> bool: ...
-
 
 class _Profile:
     """The NumPy methods of a profile: its law (:attr:`compiled`) over arrays of
@@ -182,11 +179,6 @@ class _Profile:
     def compiled(self) -> tuple[int, np.ndarray]:
         """(the address of the law's function, the parameters as one row)."""
         return address(self.law, WIND_SIGNATURE), self.parameters[None, :]
-
-    @property
-    def veers(self) -> bool:
-        """Whether the wind turns with height (has a y component anywhere); False for the laws along x."""
-        return False
 
     def _state(self, z_m):
         """(u, v, du/dz, dv/dz) at ``z_m``, shape ``(4,) + z.shape``."""
@@ -272,11 +264,6 @@ class MeanOfProfiles(_Profile):
         return (address(self.profiles[0].law, WIND_SIGNATURE),
                 np.stack([p.parameters for p in self.profiles]))
 
-    @property
-    def veers(self) -> bool:
-        """Whether any of the profiles turns with height."""
-        return any(p.veers for p in self.profiles)
-
     def scaled(self, factor: float) -> MeanOfProfiles:
         """Each profile scaled."""
         return MeanOfProfiles(tuple(p.scaled(factor) for p in self.profiles))
@@ -340,11 +327,6 @@ class TableWind(_Profile):
         """(h_0 .. h_n-1, V_0 .. V_n-1, theta_0 .. theta_n-1 [rad])."""
         turns = np.radians(self.turns_deg) if self.turns_deg else np.zeros(len(self.heights_m))
         return np.concatenate([np.array(self.heights_m + self.speeds_mps, dtype=float), turns])
-
-    @property
-    def veers(self) -> bool:
-        """Whether the rows' turns differ."""
-        return len(set(self.turns_deg)) > 1
 
     def scaled(self, factor: float) -> TableWind:
         """Every speed times ``factor`` (the turns kept)."""

@@ -335,7 +335,8 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     above = air_state(air_function, air_parameters, ceiling_m, z, rho, mu_air, drho_dz, dmu_dz)
     if above >= 0:
         return above
-    wind_u, wind_v, shear_u, shear_v = np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes)
+    wind = np.empty((4, n_nodes))     # u, v, du/dz, dv/dz: one allocation
+    wind_u, wind_v, shear_u, shear_v = wind[0], wind[1], wind[2], wind[3]
     along, dcd_dre = np.empty(n_nodes), np.empty(n_nodes)
     wind_state(wind_function, wind_rows, z, wind_u, wind_v, shear_u, shear_v)
     v_rel, vn = np.empty((n_nodes, 3)), np.empty((n_nodes, 3))

@@ -330,7 +330,8 @@ def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_
     midpoint above the air model's ceiling, the ISA troposphere (the outputs then incomplete)."""
     n_el = tau.shape[0]
     v_mid, dv, v_rel = np.empty((n_el, 3)), np.empty((n_el, 3)), np.empty((n_el, 3))
-    wind_u, wind_v, shear_u, shear_v = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
+    wind = np.empty((4, n_el))        # u, v, du/dz, dv/dz: one allocation
+    wind_u, wind_v, shear_u, shear_v = wind[0], wind[1], wind[2], wind[3]
     along, dcd_dre = np.empty(n_el), np.empty(n_el)
     rho, mu, drho_dz, dmu_dz = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
     midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv)
