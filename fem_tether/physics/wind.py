@@ -332,6 +332,19 @@ class TableWind(_Profile):
         """Every speed times ``factor`` (the turns kept)."""
         return TableWind(self.heights_m, tuple(v * factor for v in self.speeds_mps), self.turns_deg)
 
+    @classmethod
+    def from_components(cls, heights_m, u_mps, v_mps) -> TableWind:
+        """The table of winds given by their components (u, v) along x and y at the heights
+        (a cluster's shape times its reference speed, :mod:`.clusters`, uses this frame): speeds
+        sqrt(u^2 + v^2), turns atan2(v, u) unwrapped row to row on the shorter arc.
+
+        >>> TableWind.from_components((10.0, 100.0), (3.0, 0.0), (-3.0, 8.0)).turns_deg
+        (-45.0, 90.0)
+        """
+        u, v = np.asarray(u_mps, dtype=float), np.asarray(v_mps, dtype=float)
+        turns = np.degrees(np.unwrap(np.arctan2(v, u)))
+        return cls(tuple(float(h) for h in heights_m), tuple(np.hypot(u, v).tolist()), tuple(turns.tolist()))
+
 
 #: The headers of a wind table: speeds only (the wind along x), or speeds and directions.
 TABLE_HEADERS = (["height_m", "speed_mps"], ["height_m", "speed_mps", "direction_deg"])

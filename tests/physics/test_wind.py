@@ -369,3 +369,13 @@ def test_the_measured_profile_of_the_configuration_is_turned_to_its_reference_he
     path.write_text("height_m,speed_mps,direction_deg\n10,5,250\n100,8,400\n")
     with pytest.raises(ConfigError, match=r"^\[wind\] table_csv = .*mast.csv line 3: direction 400 deg is outside"):
         load_config(overrides={"wind": {"profile": "table", "table_csv": str(path)}})
+
+
+def test_a_table_of_components_gives_them_back_at_its_rows():
+    """TableWind.from_components: at each row the profile's (u, v) is the row's (1e-14), the
+    turn crossing -x (179 deg to -179 deg) unwrapped to 181 deg, a 2 deg turn between rows."""
+    heights, u, v = (10.0, 100.0, 300.0, 600.0), np.array([4.0, 7.0, -9.0, -9.0]), \
+        np.array([-1.0, 0.5, 9.0 * np.tan(np.radians(1.0)), -9.0 * np.tan(np.radians(1.0))])
+    table = TableWind.from_components(heights, u, v)
+    np.testing.assert_allclose(table.velocity_mps(heights)[:, :2], np.stack([u, v], axis=1), rtol=1e-14, atol=1e-14)
+    assert table.turns_deg[3] - table.turns_deg[2] == pytest.approx(2.0)
