@@ -1,4 +1,5 @@
-"""A measured (tabulated) wind profile in an FE run: the default log law as a table gives the log law's run."""
+"""A measured (tabulated) wind profile in the runs: the default log law as a table gives the log law's
+run; in a profile that veers, the FE and FD lines (prescribed eight, point-mass kite) agree."""
 
 import numpy as np
 import pytest
