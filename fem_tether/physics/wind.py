@@ -132,7 +132,8 @@ def no_wind(parameters, z_m, u_mps, v_mps, du_dz, dv_dz):
 def wind_state(function_address, rows, z_m, u_mps, v_mps, du_dz, dv_dz):
     """The wind's components u(z), v(z) along x and y and their derivatives du/dz,
     dv/dz at the altitudes ``z_m`` (the profile as :data:`COMPILED`): the mean of
-    the law at the parameter rows, summed in order (from 0) and divided by their number."""
+    the law at the parameter rows, summed in order (from 0) and divided by their number
+    (not for one row: x / 1 is x)."""
     law = _wind_at(function_address)
     for i in range(z_m.shape[0]):
         u_mps[i] = 0.0
@@ -141,6 +142,8 @@ def wind_state(function_address, rows, z_m, u_mps, v_mps, du_dz, dv_dz):
         dv_dz[i] = 0.0
     for k in range(rows.shape[0]):
         law(rows[k], z_m, u_mps, v_mps, du_dz, dv_dz)
+    if rows.shape[0] == 1:
+        return
     for i in range(z_m.shape[0]):
         u_mps[i] /= rows.shape[0]
         v_mps[i] /= rows.shape[0]
