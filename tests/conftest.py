@@ -12,6 +12,7 @@ from fem_tether.jobs.job import Task, load_job
 from fem_tether.tether.results import SERIES, TetherRun
 from fem_tether.jobs.store import PartsStore
 from fem_tether.jobs.sweepfile import assemble
+from fem_tether.physics.wind import TableWind
 
 #: A sweep job small enough for the suite: coarse meshes and steps, one averaged period.
 TINY_JOB = """[sweep]
@@ -45,6 +46,11 @@ systems = ["kitegen"]
 lengths_m = [600, 800, 1000]
 wind_mps = [9, 12, 15, 18, 21, 24, 27]
 """ + STUDY_FAST
+
+#: A measured wind that turns 65 deg clockwise (a veer) and slows in a layer over the first
+#: kilometre (x downwind at 300 m), for the kernels' checks in a wind with a y component.
+VEERING_WIND = TableWind((0.0, 100.0, 300.0, 500.0, 800.0, 1500.0), (0.0, 7.0, 9.0, 8.0, 10.0, 12.0),
+                         (25.0, 15.0, 0.0, -10.0, -20.0, -40.0))
 
 QUIET = {"air": {"model": "constant", "density_kg_m3": 1.2},
          "drag": {"model": "constant", "cd": 1.2},

@@ -272,15 +272,17 @@ class Wind(Section):
     reference_scale_mps: float = setting(9.5, "m/s", "power law: Weibull scale A of the wind at "
                                          "reference_height_m; the mean there is A Gamma(1 + 1/k), k = "
                                          "[resource] weibull_k (Trevisi eq. 3.92: 9.5 m/s)", zero_to(MAX_WIND_MPS))
-    reference_height_m: float = setting(20.0, "m", "power law: reference height (Trevisi: 20 m)",
+    reference_height_m: float = setting(20.0, "m", "power law: reference height (Trevisi: 20 m); table with "
+                                        "directions: the height whose wind is +x (the eight's centre)",
                                         from_to(1.0, 1000.0))
     alpha: float = setting(0.2, "-", "power law: shear exponent (Trevisi Tab. 3.2: 0.10 calm water to 0.40 "
                            "large city; 0.20 high crops, hedges and shrubs)", between(0.0, 1.0, (True, False)))
     boundary_layer_top_m: float = setting(500.0, "m", "power law: the wind is constant above this height "
                                           "(Trevisi eq. 3.91: 500 m; 0: never)", zero_to(CEILING_M))
-    table_csv: str = setting("", "-", "profile = 'table': CSV height_m,speed_mps of a measured profile, heights "
-                             "increasing from >= 0 (linear between rows and from 0 at the ground to the first, "
-                             "constant above the last)")
+    table_csv: str = setting("", "-", "profile = 'table': CSV height_m,speed_mps[,direction_deg] of a measured "
+                             "profile, heights increasing from >= 0 (linear between rows and from 0 at the ground "
+                             "to the first, constant above the last); directions whence the wind blows, clockwise "
+                             "from north, interpolated on the shorter arc")
     scale: float = setting(1.0, "-", "factor on the profile's speed at every height (a design study sets "
                            "it so that the wind at the kite is a power-curve bin's speed; 1: as given)",
                            up_to(MAX_WIND_SCALE))

@@ -383,7 +383,7 @@ def air_force(kite, limits_deg, breaks_rad, cubics, apparent, direction, rho, ro
 def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_address, air_parameters,
              air_ceiling_m, r, v, tether, straight, roll_rad, force, apparent, state, jac_v, jac_r, jac_d, jac_roll):
     """Eqs. (1)–(3) at the kite's position r and velocity v (the wind and the air
-    as their modules' ``COMPILED`` forms give V_w(z), V_w'(z), ρ(z), ρ'(z) at
+    as their modules' ``COMPILED`` forms give V_w(z) = (u, v, 0), V_w'(z), ρ(z), ρ'(z) at
     z = r_z), e along ``tether`` (``straight``: along r), roll ψ: F, W_e,
     (P_t, α, C_L, C_D, ρ) into ``force``, ``apparent``, ``state`` and the
     Jacobians of :func:`aerodynamic_jacobian` into ``jac_v``, ``jac_r``,
@@ -397,9 +397,9 @@ def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_
     direction = d / length
     z = np.empty(1)
     z[0] = r[2]
-    speed, shear = np.empty(1), np.empty(1)
-    wind_state(wind_address, wind_rows, z, speed, shear)
-    apparent[0], apparent[1], apparent[2] = speed[0] - v[0], 0.0 - v[1], 0.0 - v[2]
+    wind_u, wind_v, shear_u, shear_v = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
+    wind_state(wind_address, wind_rows, z, wind_u, wind_v, shear_u, shear_v)
+    apparent[0], apparent[1], apparent[2] = wind_u[0] - v[0], wind_v[0] - v[1], 0.0 - v[2]
     rho, mu, drho, dmu = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
     if air_state(air_address, air_parameters, air_ceiling_m, z, rho, mu, drho, dmu) >= 0:
         return _ABOVE_AIR
@@ -415,7 +415,7 @@ def air_load(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_
             jac_d[i, j] = (jac_e[i, j] - (jac_e[i, 0] * direction[0] + jac_e[i, 1] * direction[1]
                                          + jac_e[i, 2] * direction[2]) * direction[j]) / length
             jac_r[i, j] = 0.0
-        jac_r[i, 2] = shear[0] * jac_w[i, 0] + force[i] / rho[0] * drho[0]
+        jac_r[i, 2] = shear_u[0] * jac_w[i, 0] + shear_v[0] * jac_w[i, 1] + force[i] / rho[0] * drho[0]
     if straight:
         for i in range(3):
             for j in range(3):

@@ -62,11 +62,12 @@ class CrossflowDrag:
 
 
 @jit
-def relative_velocity(wind_speed_mps, v, v_rel):
-    """``V_rel = V_w(z) e_x - v`` at every point (the wind along +x)."""
+def relative_velocity(wind_u_mps, wind_v_mps, v, v_rel):
+    """``V_rel = (u(z), v(z), 0) - v`` at every point (the horizontal wind's components
+    along x and y, :func:`fem_tether.physics.wind.wind_state`)."""
     for i in range(v.shape[0]):
-        v_rel[i, 0] = wind_speed_mps[i] - v[i, 0]
-        v_rel[i, 1] = -v[i, 1]
+        v_rel[i, 0] = wind_u_mps[i] - v[i, 0]
+        v_rel[i, 1] = wind_v_mps[i] - v[i, 1]
         v_rel[i, 2] = -v[i, 2]
 
 

@@ -184,10 +184,10 @@ class TractionLaw:
     HOLD_GAIN = 0.5
 
     def radial_wind_mps(self, kite_position_m) -> float:
-        """W_r = V_w(z_k) sin(theta) cos(phi): the wind along the line at the kite."""
-        p = kite_position_m
-        theta = np.arccos(p[2] / np.linalg.norm(p))
-        return float(self.wind.speed_mps(np.array(max(p[2], 0.0)))) * np.sin(theta) * np.cos(np.arctan2(p[1], p[0]))
+        """W_r = V_w(z_k) . e_r: the wind along the line at the kite (V_w sin(theta) cos(phi)
+        for a wind along x; a wind turned with height, :mod:`~fem_tether.physics.wind`, as it blows there)."""
+        p = np.asarray(kite_position_m, dtype=float)
+        return float(self.wind.velocity_mps(np.array(max(p[2], 0.0))) @ p) / float(np.linalg.norm(p))
 
     def reel_out_mps(self, kite_position_m) -> float:
         z = np.array(max(kite_position_m[2], 0.0))

@@ -1,15 +1,22 @@
-"""Wind speed profiles V_w(z); the wind blows along +x.
+"""Wind profiles: the horizontal wind vector against altitude z.
 
-Only the mean speed against altitude z is modelled (seed 000 §3): the
-logarithmic law with De Bilt coefficients, the power law (constant above the
-boundary layer, seed 004 eq. 3.91), a measured profile tabulated against
-height, or still air.  Every profile offers ``speed_mps(z)``, its analytic
-shear ``shear_per_s(z) = dV/dz`` and ``velocity_mps(z)``, the vector (V, 0, 0)
-with shape ``z.shape + (3,)``.
+The mean wind at altitude z is horizontal, ``(u(z), v(z), 0)`` in the frame of
+the run: x downwind at the profile's reference height (the direction the
+kite's eight is centred on), z up, y = z x x (90 deg counterclockwise of x,
+seen from above).  The laws of a single direction (seed 000 §3) blow along
++x (v = 0): the logarithmic law with De Bilt coefficients, the power law
+(constant above the boundary layer, seed 004 eq. 3.91), still air.  A
+measured profile tabulated against height may also turn with height (veer,
+:class:`TableWind`).  Every profile offers ``speed_mps(z) = |(u, v)|``, its
+shear ``shear_per_s(z) = d|(u, v)|/dz``, ``velocity_mps(z)``, the vector
+(u, v, 0), ``velocity_shear_per_s(z)``, (du/dz, dv/dz, 0), each with shape
+``z.shape + (3,)``, and ``turn_deg(z)``, the wind's direction against +x,
+counterclockwise seen from above (0 for the laws along x; a northern
+hemisphere's veer, clockwise with height, is negative above z_ref).
 
-Each law is one compiled function of :data:`WIND_SIGNATURE`, (V, dV/dz) at a
-set of altitudes from a profile's parameters; :func:`wind_state` runs it, for
-the NumPy methods of the profiles and for the solvers' kernels
+Each law is one compiled function of :data:`WIND_SIGNATURE`, (u, v, du/dz,
+dv/dz) at a set of altitudes from a profile's parameters; :func:`wind_state`
+runs it, for the NumPy methods of the profiles and for the solvers' kernels
 (:mod:`.compiled`).  A new law is one such function and one class here (and
 its value of ``[wind] profile`` in :func:`from_config`).
 
@@ -34,9 +41,10 @@ from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.core.inputfile import read_text
 from fem_tether.physics.compiled import address, caller, jit
 
-#: A wind law: (parameters, z [m], V [m/s], dV/dz [1/s]), adding V and dV/dz at every
-#: altitude of z into the last two arrays (so that a mean of profiles sums its rows)
-WIND_SIGNATURE = types.void(*(types.float64[:],) * 4)
+#: A wind law: (parameters, z [m], u, v [m/s], du/dz, dv/dz [1/s]), adding the wind's x and y
+#: components and their derivatives at every altitude of z into the last four arrays (so that a
+#: mean of profiles sums its rows); a law along x adds nothing to v and dv/dz
+WIND_SIGNATURE = types.void(*(types.float64[:],) * 6)
 #: A profile as :func:`wind_state` and the kernels take it, as numba types: the
 #: address of its law's function, one row of parameters per profile of a mean.
 COMPILED = ("i8", "f8[:, :]")
@@ -44,15 +52,15 @@ _wind_at = caller(WIND_SIGNATURE)
 
 
 @jit
-def log_wind(parameters, z_m, speed_mps, shear_per_s):
-    """Logarithmic law (seed 000 eq. 3.2), parameters (V0, z_r, ln(z0/z_r)):
-    V = V0 ln(z/z_r) / ln(z0/z_r) and dV/dz = V0 / (z ln(z0/z_r)) for z > z_r, else 0."""
+def log_wind(parameters, z_m, u_mps, v_mps, du_dz, dv_dz):
+    """Logarithmic law along x (seed 000 eq. 3.2), parameters (V0, z_r, ln(z0/z_r)):
+    u = V0 ln(z/z_r) / ln(z0/z_r) and du/dz = V0 / (z ln(z0/z_r)) for z > z_r, else 0."""
     v0, zr, log_z0_zr = parameters[0], parameters[1], parameters[2]
     for i in range(z_m.shape[0]):
         z = z_m[i]
         if z > zr:
-            speed_mps[i] += v0 * math.log(z / zr) / log_z0_zr
-            shear_per_s[i] += v0 / (z * log_z0_zr)
+            u_mps[i] += v0 * math.log(z / zr) / log_z0_zr
+            du_dz[i] += v0 / (z * log_z0_zr)
 
 
 def power_law_speed_mps(z_m, reference_speed_mps, reference_height_m, alpha):
@@ -65,69 +73,86 @@ _power_law = jit(power_law_speed_mps)
 
 
 @jit
-def power_wind(parameters, z_m, speed_mps, shear_per_s):
-    """Power law (seed 000 eq. 3.1, seed 004 eq. 3.91), parameters (V_ref, z_ref, alpha, z_top):
-    V = V_ref (min(z, z_top)/z_ref)^alpha for z > 0 (else 0); dV/dz = alpha V / z for
+def power_wind(parameters, z_m, u_mps, v_mps, du_dz, dv_dz):
+    """Power law along x (seed 000 eq. 3.1, seed 004 eq. 3.91), parameters (V_ref, z_ref, alpha, z_top):
+    u = V_ref (min(z, z_top)/z_ref)^alpha for z > 0 (else 0); du/dz = alpha u / z for
     0 < z <= z_top, else 0."""
     speed_ref, z_ref, alpha, top = parameters[0], parameters[1], parameters[2], parameters[3]
     for i in range(z_m.shape[0]):
         z = z_m[i]
         if z > top:
-            speed_mps[i] += _power_law(top, speed_ref, z_ref, alpha)
+            u_mps[i] += _power_law(top, speed_ref, z_ref, alpha)
         elif z > 0.0:
             speed = _power_law(z, speed_ref, z_ref, alpha)
-            speed_mps[i] += speed
-            shear_per_s[i] += alpha * speed / z
+            u_mps[i] += speed
+            du_dz[i] += alpha * speed / z
 
 
 @jit
-def tabulated_wind(parameters, z_m, speed_mps, shear_per_s):
-    """Linear interpolation of rows (h_k, V_k), parameters (h_0 .. h_n-1, V_0 .. V_n-1):
-    0 at and below the ground (z <= 0); from (0, 0) to the first row below it;
-    V_k + s_k (z - h_k) with the segment's slope s_k = (V_k+1 - V_k) / (h_k+1 - h_k)
-    as dV/dz (the upper segment's at a row); V_n-1 and no shear from the last row up."""
-    n = parameters.shape[0] // 2
-    heights, speeds = parameters[:n], parameters[n:]
+def tabulated_wind(parameters, z_m, u_mps, v_mps, du_dz, dv_dz):
+    """Linear interpolation of rows (h_k, V_k, theta_k) of speed and turn (radians against x,
+    counterclockwise, unwrapped), parameters (h_0 .. h_n-1, V_0 .. V_n-1, theta_0 .. theta_n-1):
+    0 at and below the ground (z <= 0); V from (0, 0) to the first row below it, theta
+    theta_0 there; V = V_k + s_k (z - h_k) and theta = theta_k + t_k (z - h_k) with the
+    segment's slopes s_k = (V_k+1 - V_k) / (h_k+1 - h_k), t_k likewise (the upper segment's
+    at a row); V_n-1, theta_n-1 and no shear from the last row up.  Then
+    (u, v) = V (cos theta, sin theta), du/dz = s cos theta - V t sin theta,
+    dv/dz = s sin theta + V t cos theta."""
+    n = parameters.shape[0] // 3
+    heights, speeds, turns = parameters[:n], parameters[n:2 * n], parameters[2 * n:]
     for i in range(z_m.shape[0]):
         z = z_m[i]
         if z <= 0.0:
             continue
         if z >= heights[n - 1]:
-            speed_mps[i] += speeds[n - 1]
+            speed, slope, turn, rate = speeds[n - 1], 0.0, turns[n - 1], 0.0
         else:
             k = np.searchsorted(heights, z, side="right") - 1
             if k < 0:
                 slope = speeds[0] / heights[0]
-                speed_mps[i] += slope * z
+                speed, turn, rate = slope * z, turns[0], 0.0
             else:
                 slope = (speeds[k + 1] - speeds[k]) / (heights[k + 1] - heights[k])
-                speed_mps[i] += speeds[k] + slope * (z - heights[k])
-            shear_per_s[i] += slope
+                rate = (turns[k + 1] - turns[k]) / (heights[k + 1] - heights[k])
+                speed = speeds[k] + slope * (z - heights[k])
+                turn = turns[k] + rate * (z - heights[k])
+        cos_turn, sin_turn = math.cos(turn), math.sin(turn)
+        u_mps[i] += speed * cos_turn
+        v_mps[i] += speed * sin_turn
+        du_dz[i] += slope * cos_turn - speed * rate * sin_turn
+        dv_dz[i] += slope * sin_turn + speed * rate * cos_turn
 
 
 @jit
-def no_wind(parameters, z_m, speed_mps, shear_per_s):
-    """Still air: V = 0, dV/dz = 0 (nothing to add)."""
+def no_wind(parameters, z_m, u_mps, v_mps, du_dz, dv_dz):
+    """Still air: u = v = 0 and no shear (nothing to add)."""
 
 
 @jit
-def wind_state(function_address, rows, z_m, speed_mps, shear_per_s):
-    """The wind speed V(z) and shear dV/dz at the altitudes ``z_m`` (the profile
-    as :data:`COMPILED`): the mean of the law at the parameter rows, summed in
-    order (from 0) and divided by their number."""
+def wind_state(function_address, rows, z_m, u_mps, v_mps, du_dz, dv_dz):
+    """The wind's components u(z), v(z) along x and y and their derivatives du/dz,
+    dv/dz at the altitudes ``z_m`` (the profile as :data:`COMPILED`): the mean of
+    the law at the parameter rows, summed in order (from 0) and divided by their number
+    (not for one row: x / 1 is x)."""
     law = _wind_at(function_address)
     for i in range(z_m.shape[0]):
-        speed_mps[i] = 0.0
-        shear_per_s[i] = 0.0
+        u_mps[i] = 0.0
+        v_mps[i] = 0.0
+        du_dz[i] = 0.0
+        dv_dz[i] = 0.0
     for k in range(rows.shape[0]):
-        law(rows[k], z_m, speed_mps, shear_per_s)
+        law(rows[k], z_m, u_mps, v_mps, du_dz, dv_dz)
+    if rows.shape[0] == 1:
+        return
     for i in range(z_m.shape[0]):
-        speed_mps[i] /= rows.shape[0]
-        shear_per_s[i] /= rows.shape[0]
+        u_mps[i] /= rows.shape[0]
+        v_mps[i] /= rows.shape[0]
+        du_dz[i] /= rows.shape[0]
+        dv_dz[i] /= rows.shape[0]
 
 
 class WindProfile(Protocol):
-    """A wind profile as the loads use it: speed, shear and velocity against z (m)."""
+    """A wind profile as the loads use it: speed, shear, velocity and turn against z (m)."""
 
     @property
     def compiled(self) -> tuple[int, np.ndarray]: ...
@@ -137,6 +162,10 @@ class WindProfile(Protocol):
     def shear_per_s(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
     def velocity_mps(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def velocity_shear_per_s(self, z_m: npt.ArrayLike) -> np.ndarray: ...
+
+    def turn_deg(self, z_m: npt.ArrayLike) -> np.ndarray: ...
 
 
 class _Profile:
@@ -155,26 +184,42 @@ class _Profile:
         return address(self.law, WIND_SIGNATURE), self.parameters[None, :]
 
     def _state(self, z_m):
+        """(u, v, du/dz, dv/dz) at ``z_m``, shape ``(4,) + z.shape``."""
         z = np.asarray(z_m, dtype=float)
         flat = z.ravel()
-        out = np.empty((2, flat.size))
-        wind_state(*self.compiled, flat, out[0], out[1])
-        return out.reshape((2,) + z.shape)
+        out = np.empty((4, flat.size))
+        wind_state(*self.compiled, flat, out[0], out[1], out[2], out[3])
+        return out.reshape((4,) + z.shape)
 
     def speed_mps(self, z_m):
-        """V(z) [m/s]."""
-        return self._state(z_m)[0][()]
+        """|V_w(z)| = sqrt(u^2 + v^2) [m/s]."""
+        u, v, _, _ = self._state(z_m)
+        return np.hypot(u, v)[()]
 
     def shear_per_s(self, z_m):
-        """dV/dz [1/s]."""
-        return self._state(z_m)[1][()]
+        """d|V_w|/dz = (u du/dz + v dv/dz) / |V_w| [1/s]; du/dz where the wind has no y
+        component (the laws along x, whose u >= 0) or none at all."""
+        u, v, du, dv = self._state(z_m)
+        speed = np.hypot(u, v)
+        along_x = ((v == 0.0) & (dv == 0.0)) | (speed == 0.0)
+        return np.where(along_x, du, (u * du + v * dv) / np.where(along_x, 1.0, speed))[()]
 
     def velocity_mps(self, z_m):
-        """V_w(z) = V(z) e_x, shape ``z.shape + (3,)``."""
-        speed = np.asarray(self.speed_mps(z_m), dtype=float)
-        velocity = np.zeros(speed.shape + (3,))
-        velocity[..., 0] = speed
-        return velocity
+        """V_w(z) = (u, v, 0), shape ``z.shape + (3,)``."""
+        u, v, _, _ = self._state(z_m)
+        return np.stack([u, v, np.zeros_like(u)], axis=-1)
+
+    def velocity_shear_per_s(self, z_m):
+        """dV_w/dz = (du/dz, dv/dz, 0), shape ``z.shape + (3,)``."""
+        _, _, du, dv = self._state(z_m)
+        return np.stack([du, dv, np.zeros_like(du)], axis=-1)
+
+    def turn_deg(self, z_m):
+        """The wind's direction against +x, atan2(v, u) [deg], counterclockwise seen from above
+        (the meteorological direction, whence it blows clockwise from north, is the reference
+        height's minus this); 0 where there is no wind."""
+        u, v, _, _ = self._state(z_m)
+        return np.degrees(np.arctan2(v, u))[()]
 
 
 @dataclass(frozen=True)
@@ -259,59 +304,133 @@ class WindTableError(InputError):
 
 @dataclass(frozen=True)
 class TableWind(_Profile):
-    """A measured profile: speeds at heights, interpolated linearly (:func:`tabulated_wind`):
-    zero at the ground, linear from (0, 0) to the first row (if that is above
-    the ground), constant above the last row.  Heights strictly increasing from
-    >= 0, speeds >= 0 (:func:`read_wind_table` checks a file's)."""
+    """A measured profile: speeds and turns at heights, interpolated linearly
+    (:func:`tabulated_wind`): zero at the ground, the speed linear from (0, 0) to the
+    first row (if that is above the ground) at the first row's turn, constant above
+    the last row.  Heights strictly increasing from >= 0, speeds >= 0
+    (:func:`read_wind_table` checks a file's).
+
+    ``turns_deg``: the wind's direction at each height against +x, counterclockwise
+    seen from above, unwrapped (consecutive rows differ by the shorter arc; linear
+    between rows); empty (the default): the wind along +x at every height."""
 
     heights_m: tuple[float, ...]
     speeds_mps: tuple[float, ...]
+    turns_deg: tuple[float, ...] = ()
     law = staticmethod(tabulated_wind)
 
     def __post_init__(self):
-        if not 0 < len(self.heights_m) == len(self.speeds_mps):
-            raise ValueError(f"a wind table needs as many speeds as heights, at least one: "
-                             f"{len(self.heights_m)} heights, {len(self.speeds_mps)} speeds")
+        if not 0 < len(self.heights_m) == len(self.speeds_mps) or len(self.turns_deg) not in (0, len(self.heights_m)):
+            raise ValueError(f"a wind table needs as many speeds (and turns, if any) as heights, at least one: "
+                             f"{len(self.heights_m)} heights, {len(self.speeds_mps)} speeds, "
+                             f"{len(self.turns_deg)} turns")
 
     @property
     def parameters(self) -> np.ndarray:
-        """(h_0 .. h_n-1, V_0 .. V_n-1)."""
-        return np.array(self.heights_m + self.speeds_mps, dtype=float)
+        """(h_0 .. h_n-1, V_0 .. V_n-1, theta_0 .. theta_n-1 [rad])."""
+        turns = np.radians(self.turns_deg) if self.turns_deg else np.zeros(len(self.heights_m))
+        return np.concatenate([np.array(self.heights_m + self.speeds_mps, dtype=float), turns])
 
     def scaled(self, factor: float) -> TableWind:
-        """Every speed times ``factor``."""
-        return TableWind(self.heights_m, tuple(v * factor for v in self.speeds_mps))
+        """Every speed times ``factor`` (the turns kept)."""
+        return TableWind(self.heights_m, tuple(v * factor for v in self.speeds_mps), self.turns_deg)
+
+    @classmethod
+    def from_components(cls, heights_m, u_mps, v_mps) -> TableWind:
+        """The table of winds given by their components (u, v) along x and y at the heights
+        (a cluster's shape times its reference speed, :mod:`.clusters`, uses this frame): speeds
+        sqrt(u^2 + v^2), turns atan2(v, u) unwrapped row to row on the shorter arc.
+
+        >>> TableWind.from_components((10.0, 100.0), (3.0, 0.0), (-3.0, 8.0)).turns_deg
+        (-45.0, 90.0)
+        """
+        u, v = np.asarray(u_mps, dtype=float), np.asarray(v_mps, dtype=float)
+        turns = np.degrees(np.unwrap(np.arctan2(v, u)))
+        return cls(tuple(float(h) for h in heights_m), tuple(np.hypot(u, v).tolist()), tuple(turns.tolist()))
 
 
-def read_wind_table(path) -> TableWind:
-    """The profile of a CSV file of ``height_m,speed_mps`` rows (with that header):
-    heights strictly increasing, the first >= 0; speeds finite and >= 0."""
+#: The headers of a wind table: speeds only (the wind along x), or speeds and directions.
+TABLE_HEADERS = (["height_m", "speed_mps"], ["height_m", "speed_mps", "direction_deg"])
+
+
+def shortest_arc_deg(from_deg, to_deg):
+    """The turn from ``from_deg`` to ``to_deg`` on the shorter arc, in [-180, 180) [deg]:
+    359 -> 1 is +2, 1 -> 359 is -2."""
+    return (to_deg - from_deg + 180.0) % 360.0 - 180.0
+
+
+def turns_from_directions(heights_m, directions_deg, reference_height_m: float) -> tuple[float, ...]:
+    """The turns against +x [deg, counterclockwise from above] of meteorological directions
+    (whence the wind blows, clockwise from north), x downwind at ``reference_height_m``.
+
+    The directions are unwrapped row to row on the shorter arc, interpolated linearly in
+    height at ``reference_height_m`` (the first row's below it, the last row's above it, as
+    :func:`tabulated_wind` does) to D_ref, and turned into theta_k = -(D_k - D_ref): a
+    direction clockwise of D_ref (a veer, with height in the northern hemisphere) is a
+    negative turn.  Example: the wind from 270 deg (west) at z_ref = 100 m and from
+    300 deg at 300 m: x points east, y north, and at 300 m the wind blows towards
+    120 deg (east-south-east), theta = -30 deg, (u, v) = V (cos 30 deg, -sin 30 deg).
+
+    >>> turns_from_directions((100.0, 300.0), (270.0, 300.0), 100.0)
+    (0.0, -30.0)
+    >>> turns_from_directions((10.0, 50.0, 200.0), (350.0, 359.0, 1.0), 50.0)
+    (9.0, 0.0, -2.0)
+    """
+    unwrapped = [float(directions_deg[0])]
+    for direction in directions_deg[1:]:
+        unwrapped.append(unwrapped[-1] + shortest_arc_deg(unwrapped[-1], float(direction)))
+    reference = float(np.interp(reference_height_m, heights_m, unwrapped))
+    return tuple(reference - d + 0.0 for d in unwrapped)
+
+
+def _cells(path, line: int, row: list[str], count: int) -> list[float]:
+    """The ``count`` finite numbers of a row."""
+    try:
+        values = [float(c) for c in row]
+    except ValueError:
+        values = []
+    if len(values) != count:
+        raise WindTableError(f"{path} line {line}: expected {('two', 'three')[count - 2]} numbers, "
+                             f"got {','.join(row)!r}")
+    if not all(math.isfinite(x) for x in values):
+        raise WindTableError(f"{path} line {line}: values must be finite")
+    return values
+
+
+def read_wind_table(path, reference_height_m: float = 0.0) -> TableWind:
+    """The profile of a CSV file of ``height_m,speed_mps`` rows, or of
+    ``height_m,speed_mps,direction_deg`` rows (with that header): heights strictly
+    increasing, the first >= 0; speeds finite and >= 0; directions meteorological
+    (whence the wind blows, clockwise from north) in [0, 360], made turns against the
+    wind at ``reference_height_m`` (:func:`turns_from_directions`, whose example gives
+    the frame); without directions the wind blows along x at every height."""
     path = Path(path)
     rows = list(csv.reader(read_text(path, WindTableError).splitlines()))
-    if not rows or [c.strip() for c in rows[0]] != ["height_m", "speed_mps"]:
-        raise WindTableError(f"{path} line 1: expected the header 'height_m,speed_mps'")
-    heights: list[float] = []
-    speeds: list[float] = []
+    header = [c.strip() for c in rows[0]] if rows else []
+    if header not in TABLE_HEADERS:
+        raise WindTableError(f"{path} line 1: expected the header 'height_m,speed_mps' or "
+                             f"'height_m,speed_mps,direction_deg', got {','.join(header)!r}")
+    columns: list[list[float]] = [[] for _ in header]
     for line, row in enumerate(rows[1:], start=2):
         if not row or not "".join(row).strip():
             continue
-        try:
-            h, v = (float(c) for c in row)
-        except ValueError:
-            raise WindTableError(f"{path} line {line}: expected two numbers, got {','.join(row)!r}") from None
-        if not (math.isfinite(h) and math.isfinite(v)):
-            raise WindTableError(f"{path} line {line}: values must be finite")
+        values = _cells(path, line, row, len(header))
+        h, v = values[0], values[1]
+        heights = columns[0]
         if heights and h <= heights[-1]:
             raise WindTableError(f"{path} line {line}: height {h:g} m is not above {heights[-1]:g} m")
         if h < 0.0:
             raise WindTableError(f"{path} line {line}: height {h:g} m is below the ground")
         if v < 0.0:
             raise WindTableError(f"{path} line {line}: speed {v:g} m/s is negative")
-        heights.append(h)
-        speeds.append(v)
-    if not heights:
+        if len(values) == 3 and not 0.0 <= values[2] <= 360.0:
+            raise WindTableError(f"{path} line {line}: direction {values[2]:g} deg is outside [0, 360]")
+        for column, value in zip(columns, values):
+            column.append(value)
+    if not columns[0]:
         raise WindTableError(f"{path}: no rows")
-    return TableWind(tuple(heights), tuple(speeds))
+    turns = turns_from_directions(columns[0], columns[2], reference_height_m) if len(columns) == 3 else ()
+    return TableWind(tuple(columns[0]), tuple(columns[1]), turns)
 
 
 @dataclass(frozen=True)
@@ -376,7 +495,8 @@ def from_config(wind, weibull_k: float) -> LogWind | MeanOfProfiles | PowerWind 
     speed is the mean of the Weibull of scale ``reference_scale_mps`` and shape
     ``weibull_k`` (the ``[resource]`` shape), and it is constant above
     ``boundary_layer_top_m`` (0: never).  ``"table"`` reads ``table_csv``
-    (:func:`read_wind_table`); ``"lourenco"`` is :data:`LOURENCO`."""
+    (:func:`read_wind_table`; with directions, x is downwind at ``reference_height_m``);
+    ``"lourenco"`` is :data:`LOURENCO`."""
     profile: LogWind | MeanOfProfiles | PowerWind | TableWind
     if wind.profile == "log":
         profile = DE_BILT_ANNUAL if wind.season == "annual" else DE_BILT[wind.season]
@@ -387,7 +507,7 @@ def from_config(wind, weibull_k: float) -> LogWind | MeanOfProfiles | PowerWind 
         profile = LOURENCO
     elif wind.profile == "table":
         try:
-            profile = read_wind_table(wind.table_csv)
+            profile = read_wind_table(wind.table_csv, wind.reference_height_m)
         except InputError as exc:
             raise ConfigError(f"[wind] table_csv: {exc}") from None
     else:

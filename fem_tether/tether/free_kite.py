@@ -207,12 +207,15 @@ class FreeKite:
 
 def start_speed_mps(kite: PointMassKite, path, wind: WindProfile, air: AirModel, tether_cd: float,
                     length_m: float) -> float:
-    """:meth:`FreeKite.start_speed_mps` of ``kite`` on ``path`` with the line lumped as ``tether_cd``."""
+    """:meth:`FreeKite.start_speed_mps` of ``kite`` on ``path`` with the line lumped as ``tether_cd``:
+    the steady crosswind state in the wind at the start's altitude, its azimuth counted from
+    that wind's direction (a wind turned with height, :meth:`~fem_tether.physics.wind.WindProfile.turn_deg`)."""
     theta, phi = path.angles(0.0)
     z = length_m * math.cos(float(theta))
     massless = PointMassKite(0.0, kite.area_m2, kite.aerodynamics, kite.base_aoa_rad, kite.turbine_factor)
-    state = steady_crosswind(massless, float(wind.speed_mps(z)), float(theta), float(phi), 0.0,
-                             float(air.density_kg_m3(z)), tether_cd)
+    state = steady_crosswind(massless, float(wind.speed_mps(z)), float(theta),
+                             float(phi) - math.radians(float(wind.turn_deg(z))), 0.0, float(air.density_kg_m3(z)),
+                             tether_cd)
     return state.kite_speed_mps
 
 

@@ -257,6 +257,24 @@ def test_the_wind_table_key_is_checked_at_load(tmp_path):
     assert load_config(overrides={"wind": {"profile": "table", "table_csv": str(path)}}).wind.table_csv == str(path)
 
 
+@pytest.mark.parametrize("rows, message", [
+    ("0,1,270\n50,6,361\n", "line 3: direction 361 deg is outside [0, 360]"),
+    ("0,1,270\n50,6\n", "line 3: expected three numbers, got '50,6'"),
+    ("0,1,270\n0,6,270\n", "line 3: height 0 m is not above 0 m"),
+    ("0,1,270\n50,-6,270\n", "line 3: speed -6 m/s is negative"),
+])
+def test_a_bad_measured_profile_exits_2_with_one_line(tmp_path, capsys, rows, message):
+    """A profile with directions that the reader refuses: the command line says so in one line
+    naming the key, the file, the line and the value, and exits 2."""
+    from fem_tether.cli import main
+
+    (tmp_path / "mast.csv").write_text("height_m,speed_mps,direction_deg\n" + rows)
+    (tmp_path / "case.toml").write_text('[wind]\nprofile = "table"\ntable_csv = "mast.csv"\n')
+    assert main(["config", str(tmp_path / "case.toml")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "[wind] table_csv" in err and "mast.csv" in err and message in err
+
+
 def test_a_relative_wind_table_is_read_next_to_the_case(tmp_path):
     (tmp_path / "wind.csv").write_text("height_m,speed_mps\n0,0\n50,6\n")
     (tmp_path / "case.toml").write_text('[wind]\nprofile = "table"\ntable_csv = "wind.csv"\n')

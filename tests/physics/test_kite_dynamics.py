@@ -15,6 +15,7 @@ from fem_tether.physics.kite_dynamics import (ConstantCoefficients, Polar, Polar
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.physics.wind import DE_BILT, PowerWind
+from conftest import VEERING_WIND
 
 KITEGEN = PointMassKite(mass_kg=0.0, area_m2=120.0, aerodynamics=ConstantCoefficients(1.0, 1.0 / 28.0))
 """Seed 000 §2.4: A = 120 m², C_l = 1, E = 28 (massless for the crosswind law)."""
@@ -152,12 +153,14 @@ CASES = [
 ]
 
 
+@pytest.mark.parametrize("wind", [DE_BILT["winter"], VEERING_WIND], ids=["log-wind", "veering-wind"])
 @pytest.mark.parametrize("kite,tether,roll", CASES)
-def test_jacobians_match_central_differences(kite, tether, roll):
-    """∂F/∂v, ∂F/∂r (De Bilt log wind, ISA density), ∂F/∂d, ∂F/∂ψ analytic vs central
-    differences with steps h = 1e-4 m/s, 1e-3 m, 1e-6 (tether vector), 1e-7 rad: agreement
-    to 1e-7 of the largest entry (the truncation error is O(h²) relative to the scale)."""
-    wind, air = DE_BILT["winter"], ISA()
+def test_jacobians_match_central_differences(kite, tether, roll, wind):
+    """∂F/∂v, ∂F/∂r (De Bilt log wind, or a measured wind turning with height: V_w'(z) =
+    (du/dz, dv/dz, 0); ISA density), ∂F/∂d, ∂F/∂ψ analytic vs central differences with steps
+    h = 1e-4 m/s, 1e-3 m, 1e-6 (tether vector), 1e-7 rad: agreement to 1e-7 of the largest
+    entry (the truncation error is O(h²) relative to the scale)."""
+    air = ISA()
     jac = aerodynamic_jacobian(kite, R, V, wind, air, roll, tether)
 
     def force(r=R, v=V, psi=roll, d=tether):

@@ -78,15 +78,15 @@ def test_drag_and_skin_friction_are_the_formulas():
 
 
 def test_the_kernels_relative_flow_is_the_wind_less_the_motion():
-    """V_rel = V_w e_x - v (the kernels' first step), and the normal flow from it
+    """V_rel = (u, v, 0) - v (the kernels' first step), and the normal flow from it
     is :func:`crossflow_drag`'s."""
     rng = np.random.default_rng(5)
-    v, wind = rng.normal(size=(7, 3)), rng.uniform(0.0, 12.0, 7)
+    v, wind_u, wind_v = rng.normal(size=(7, 3)), rng.uniform(0.0, 12.0, 7), rng.uniform(-4.0, 4.0, 7)
     tau = rng.normal(size=(7, 3))
     tau /= np.linalg.norm(tau, axis=1)[:, None]
     v_rel = np.empty((7, 3))
-    loads.relative_velocity(wind, v, v_rel)
-    np.testing.assert_array_equal(v_rel, np.stack([wind, np.zeros(7), np.zeros(7)], axis=1) - v)
+    loads.relative_velocity(wind_u, wind_v, v, v_rel)
+    np.testing.assert_array_equal(v_rel, np.stack([wind_u, wind_v, np.zeros(7)], axis=1) - v)
     rho, mu = np.full(7, 1.2), np.full(7, 1.8e-5)
     along, vn, vn_mps, re = np.empty(7), np.empty((7, 3)), np.empty(7), np.empty(7)
     loads.normal_flow(v_rel, tau, rho, mu, 0.01, along, vn, vn_mps, re)

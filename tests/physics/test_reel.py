@@ -69,3 +69,19 @@ def test_a_point_mass_kite_reels_out_at_the_held_tension():
     run = simulate(cfg.with_length(1000.0))
     assert run.mean("ground_tension_N") == pytest.approx(150e3, rel=0.02)
     assert run.mean("reel_out_mps") > 0.5 and run.series["length_m"][-1] > 1010.0
+
+
+@pytest.mark.parametrize("turn_deg", [0.0, 30.0, -75.0])
+def test_the_wind_along_the_line_is_that_of_the_wind_as_it_blows_at_the_kite(turn_deg):
+    """W_r = V_w(z_k) . e_r = V sin(theta) cos(phi - theta_w) for a wind turned by theta_w
+    (a measured profile of one direction): the kite at polar angle 0.7 rad, azimuth 0.3 rad (1e-14)."""
+    from dataclasses import replace
+
+    from fem_tether.physics.wind import TableWind
+
+    law = reel_from_config(load_config(overrides={"winch": {"reel_out": "controlled"}})).law
+    law = replace(law, wind=TableWind((0.0, 2000.0), (8.0, 14.0), (turn_deg, turn_deg)))
+    p = 1200.0 * np.array([np.sin(0.7) * np.cos(0.3), np.sin(0.7) * np.sin(0.3), np.cos(0.7)])
+    speed = 8.0 + 6.0 * p[2] / 2000.0
+    assert law.radial_wind_mps(p) == pytest.approx(speed * np.sin(0.7) * np.cos(0.3 - np.radians(turn_deg)),
+                                                   rel=1e-14)

@@ -262,3 +262,120 @@ def test_lourencos_profile_is_a_config_choice():
     profile = wind.from_config(cfg.wind, 2.0)
     assert profile == wind.LOURENCO
     assert float(profile.speed_mps(10.0)) == pytest.approx(6.5, abs=0.005)
+
+
+#: A measured profile that veers: 40 deg clockwise over 600 m (turns against the wind at 100 m),
+#: with a slower layer at 200 m.
+VEERING = TableWind((10.0, 100.0, 200.0, 600.0), (5.0, 8.0, 7.0, 11.0), (10.0, 0.0, -12.0, -30.0))
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_law_along_x_has_no_y_component_and_no_turn(profile):
+    """Every law of one direction: v = dv/dz = 0 at every height, so its vector is
+    (V, 0, 0), its vector shear (dV/dz, 0, 0) and its turn 0."""
+    z = np.linspace(-5.0, 3000.0, 61)
+    np.testing.assert_array_equal(profile.velocity_shear_per_s(z)[:, 0], profile.shear_per_s(z))
+    np.testing.assert_array_equal(profile.velocity_shear_per_s(z)[:, 1:], 0.0)
+    np.testing.assert_array_equal(profile.turn_deg(z), 0.0)
+
+
+def test_a_veering_table_interpolates_speed_and_turn_linearly():
+    """Between rows the speed and the turn are linear in z (the vector is not): at 150 m
+    7.5 m/s turned -6 deg; below the first row the first row's turn (the speed linear
+    from 0), above the last row the last row's; (u, v) = V (cos, sin) of the turn."""
+    z = np.array([5.0, 10.0, 55.0, 150.0, 400.0, 600.0, 2000.0])
+    np.testing.assert_allclose(VEERING.speed_mps(z), [2.5, 5.0, 6.5, 7.5, 9.0, 11.0, 11.0], rtol=1e-14)
+    np.testing.assert_allclose(VEERING.turn_deg(z), [10.0, 10.0, 5.0, -6.0, -21.0, -30.0, -30.0], atol=1e-12)
+    velocity = VEERING.velocity_mps(z)
+    turn = np.radians(VEERING.turn_deg(z))
+    np.testing.assert_allclose(velocity[:, :2], VEERING.speed_mps(z)[:, None]
+                               * np.stack([np.cos(turn), np.sin(turn)], axis=1), rtol=1e-14, atol=1e-14)
+    np.testing.assert_array_equal(velocity[:, 2], 0.0)
+
+
+@pytest.mark.parametrize("z", [5.0, 37.0, 150.0, 320.0, 599.0, 900.0])
+def test_the_vector_shear_and_the_speed_shear_are_the_derivatives(z):
+    """(du/dz, dv/dz) and d|V|/dz of a veering table against central differences (within a
+    segment: the law is smooth there) to 1e-7."""
+    h = 1e-4
+    fd = (VEERING.velocity_mps(z + h) - VEERING.velocity_mps(z - h)) / (2 * h)
+    np.testing.assert_allclose(VEERING.velocity_shear_per_s(z), fd, rtol=1e-7, atol=1e-10)
+    fd_speed = (VEERING.speed_mps(z + h) - VEERING.speed_mps(z - h)) / (2 * h)
+    assert VEERING.shear_per_s(z) == pytest.approx(fd_speed, rel=1e-7, abs=1e-10)
+
+
+def test_a_scaled_or_averaged_veering_table_keeps_its_turns():
+    """Scaling multiplies the speeds only; a mean of two tables is the mean of their vectors."""
+    z = np.array([50.0, 150.0, 900.0])
+    scaled = wind.scaled(VEERING, 2.0)
+    np.testing.assert_allclose(scaled.velocity_mps(z), 2.0 * VEERING.velocity_mps(z), rtol=1e-14)
+    other = TableWind(VEERING.heights_m, VEERING.speeds_mps, (0.0, 0.0, 0.0, 90.0))
+    mean = MeanOfProfiles((VEERING, other))
+    np.testing.assert_allclose(mean.velocity_mps(z), (VEERING.velocity_mps(z) + other.velocity_mps(z)) / 2,
+                               rtol=1e-14, atol=1e-14)
+
+
+@pytest.mark.parametrize("start, end, turn", [(359.0, 1.0, 2.0), (1.0, 359.0, -2.0), (90.0, 270.0, -180.0),
+                                              (10.0, 200.0, -170.0), (200.0, 10.0, 170.0), (0.0, 360.0, 0.0)])
+def test_directions_are_interpolated_on_the_shorter_arc(start, end, turn):
+    assert wind.shortest_arc_deg(start, end) == pytest.approx(turn)
+    # a clockwise change of the meteorological direction is a negative turn against x
+    assert wind.turns_from_directions((0.0, 100.0), (start, end), 0.0) == pytest.approx((0.0, -turn))
+
+
+def test_a_measured_profile_round_trips_through_its_csv(tmp_path):
+    """Rows written as height, speed and direction (whence, clockwise from north; across
+    north between 200 and 400 m) read back: the profile gives each row's speed and, with
+    the direction at the reference height D_ref (interpolated on the shorter arc: 350 deg
+    at 150 m), each row's direction as D_ref - turn (mod 360); x is downwind at 150 m."""
+    heights, speeds, directions = [10.0, 100.0, 200.0, 400.0, 800.0], [4.0, 7.0, 8.5, 9.0, 12.0], \
+        [300.0, 340.0, 0.0, 20.0, 45.0]
+    path = tmp_path / "mast.csv"
+    path.write_text("height_m,speed_mps,direction_deg\n"
+                    + "".join(f"{h},{v},{d}\n" for h, v, d in zip(heights, speeds, directions)))
+    profile = wind.read_wind_table(path, reference_height_m=150.0)
+    np.testing.assert_allclose(profile.speed_mps(heights), speeds, rtol=1e-14)
+    np.testing.assert_allclose((350.0 - profile.turn_deg(heights)) % 360.0, directions, atol=1e-12)
+    assert profile.turn_deg(150.0) == pytest.approx(0.0, abs=1e-14)
+    assert profile.velocity_mps(150.0)[1] == pytest.approx(0.0, abs=1e-14)
+    assert profile.turn_deg(300.0) == pytest.approx(-20.0)        # 10 deg: clockwise of 350
+
+
+@pytest.mark.parametrize("text, match", [
+    ("height_m,speed_mps,direction\n0,1,2\n", r"line 1: expected the header 'height_m,speed_mps' or "
+                                              r"'height_m,speed_mps,direction_deg', got 'height_m,speed_mps,direction'"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2\n", r"line 3: expected three numbers, got '10,2'"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2,x\n", r"line 3: expected three numbers, got '10,2,x'"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2,361\n", r"line 3: direction 361 deg is outside \[0, 360\]"),
+    ("height_m,speed_mps,direction_deg\n0,1,-1\n", r"line 2: direction -1 deg is outside \[0, 360\]"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,-2,270\n", r"line 3: speed -2 m/s is negative"),
+    ("height_m,speed_mps,direction_deg\n5,1,270\n5,2,270\n", r"line 3: height 5 m is not above 5 m"),
+    ("height_m,speed_mps,direction_deg\n0,1,nan\n", r"line 2: values must be finite"),
+])
+def test_a_malformed_measured_profile_names_its_file_line_and_value(tmp_path, text, match):
+    path = tmp_path / "mast.csv"
+    path.write_text(text)
+    with pytest.raises(WindTableError, match=match) as info:
+        wind.read_wind_table(path)
+    assert str(path) in str(info.value) and "\n" not in str(info.value)
+
+
+def test_the_measured_profile_of_the_configuration_is_turned_to_its_reference_height(tmp_path):
+    """[wind] profile = "table" with a direction column: x downwind at [wind] reference_height_m."""
+    path = tmp_path / "mast.csv"
+    path.write_text("height_m,speed_mps,direction_deg\n10,5,250\n100,8,270\n400,10,300\n")
+    cfg = load_config(overrides={"wind": {"profile": "table", "table_csv": str(path), "reference_height_m": 100.0}})
+    assert wind.from_config(cfg.wind, 2.0) == TableWind((10.0, 100.0, 400.0), (5.0, 8.0, 10.0), (20.0, 0.0, -30.0))
+    path.write_text("height_m,speed_mps,direction_deg\n10,5,250\n100,8,400\n")
+    with pytest.raises(ConfigError, match=r"^\[wind\] table_csv = .*mast.csv line 3: direction 400 deg is outside"):
+        load_config(overrides={"wind": {"profile": "table", "table_csv": str(path)}})
+
+
+def test_a_table_of_components_gives_them_back_at_its_rows():
+    """TableWind.from_components: at each row the profile's (u, v) is the row's (1e-14), the
+    turn crossing -x (179 deg to -179 deg) unwrapped to 181 deg, a 2 deg turn between rows."""
+    heights, u, v = (10.0, 100.0, 300.0, 600.0), np.array([4.0, 7.0, -9.0, -9.0]), \
+        np.array([-1.0, 0.5, 9.0 * np.tan(np.radians(1.0)), -9.0 * np.tan(np.radians(1.0))])
+    table = TableWind.from_components(heights, u, v)
+    np.testing.assert_allclose(table.velocity_mps(heights)[:, :2], np.stack([u, v], axis=1), rtol=1e-14, atol=1e-14)
+    assert table.turns_deg[3] - table.turns_deg[2] == pytest.approx(2.0)

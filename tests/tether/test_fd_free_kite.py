@@ -249,13 +249,20 @@ def test_compiled_kite_flies_the_numpy_kites_run():
     assert run.mean("ground_tension_N") == pytest.approx(250686.37778654124, rel=1e-10)
 
 
-def test_the_compiled_end_drag_derivatives_are_the_numpy_ones():
+@pytest.mark.parametrize("veering", [False, True])
+def test_the_compiled_end_drag_derivatives_are_the_numpy_ones(veering):
     """The end node's drag derivatives, compiled in one call (kite_end._end_drag_derivatives), equal
     those computed from the NumPy crossflow_drag (its loops one array call at a time) to 1e-13 of
-    their largest entry at 200 random end states under a log wind and the ISA, skin friction on."""
+    their largest entry at 200 random end states under a log wind (or a measured wind veering
+    65 deg) and the ISA, skin friction on: the altitude derivative through (du/dz, dv/dz, 0)."""
+    from dataclasses import replace
+
+    from conftest import VEERING_WIND
     from fem_tether.physics.loads import crossflow_drag
 
     physics = fd.build_model(free_cfg(drag={"skin_friction_cf": 0.01})).eq.physics
+    if veering:
+        physics = replace(physics, wind=VEERING_WIND)
     rng = np.random.default_rng(33)
     for _ in range(200):
         r_end = rng.uniform([-800.0, -300.0, 5.0], [800.0, 300.0, 1500.0])
@@ -269,7 +276,7 @@ def test_the_compiled_end_drag_derivatives_are_the_numpy_ones():
                               air.viscosity_Pa_s, physics.diameter_m, physics.drag, physics.skin_friction_cf,
                               jacobian=True)
         expected = -c_v * drag.d_dvrel[0]
-        expected[:, 2] += (drag.d_dvrel[0][:, 0] * physics.wind.shear_per_s(z)[0]
+        expected[:, 2] += (drag.d_dvrel[0] @ physics.wind.velocity_shear_per_s(z)[0]
                            + drag.d_drho[0] * air.density_gradient_kg_m4[0] + drag.d_dmu[0] * air.viscosity_gradient_Pa_s_m[0])
         df_dr, df_dtau = kite_end._end_drag_derivatives(physics, r_end, v_end, tau, c_v)
         assert np.allclose(df_dr, expected, rtol=0, atol=1e-13 * np.abs(expected).max())

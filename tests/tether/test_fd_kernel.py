@@ -17,6 +17,7 @@ from fem_tether.physics.loads import crossflow_drag
 from fem_tether.tether.continuation import NotConverged
 from fem_tether.tether.fd.solver import _apply, _nodes
 from fem_tether.tether.fd.system import Grid, TetherFD
+from conftest import VEERING_WIND
 
 CASES = {
     "bench: constant air and C_d, no wind": (
@@ -26,12 +27,19 @@ CASES = {
     "elastic Kelvin-Voigt line, prescribed radius, power-law wind": (
         {"tether": {"elasticity": "elastic", "damping_time_s": 0.05}, "winch": {"mode": "prescribed"},
          "kite": {"radius_m": 1001.0}, "wind": {"profile": "power"}}, -2.0),
+    "measured wind veering 65 deg over the line, reeling out": ({"wind": VEERING_WIND}, 13.5),
 }
 
 
 def _model(overrides, reel_mps):
+    """The line of ``overrides`` (a profile object as its ``wind``: that wind, the line's physics')."""
+    wind = overrides.get("wind")
+    if not isinstance(wind, dict):
+        overrides = {k: v for k, v in overrides.items() if k != "wind"}
     cfg = load_config(overrides={"tether": {"length_m": 1000.0}, "fd": {"segments": 20}} | overrides)
     model = fd.build_model(cfg)
+    if not isinstance(wind, (dict, type(None))):
+        model = replace(model, eq=TetherFD(model.grid, replace(model.eq.physics, wind=wind)))
     if reel_mps:        # a short winch segment, as while reeling
         grid = Grid.from_lengths(np.r_[17.0, 83.0, np.full(18, 50.0)], model.grid.tension_mode)
         model = replace(model, eq=TetherFD(grid, model.eq.physics), reel_mps=reel_mps)

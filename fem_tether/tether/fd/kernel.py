@@ -139,21 +139,21 @@ def _stiffness(T, unit, length, k, out):
             out[p, q] *= scale
 
 
-@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, F, F, F, F, F, F, F, F, V, V, VC)
+@jit(V, M, V, M, M, V, M, V, V, V, V, V, V, V, V, V, V, F, F, F, F, F, F, F, F, V, V, VC)
 def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
-             density_gradient, viscosity_gradient, shear, diameter_m, skin_friction_cf, mu,
+             density_gradient, viscosity_gradient, shear_u, shear_v, diameter_m, skin_friction_cf, mu,
              compliance_per_N, damping_time_s, c_a, c_v, force_ref_N, hbar, h, values):
     """The entries of the banded Jacobian of :func:`residual` in the layout
     order of :meth:`.system.Grid.kernel_layout` (:func:`assemble`), into ``values``.  ``unit`` and ``length`` are
     the rows of :func:`directions`; the nodal flow and drag coefficient, the
-    air and the wind shear are given at every node.
+    air and the wind's shear (du/dz, dv/dz) are given at every node.
 
     With ``K_k = (T_{k+1/2} / l_k) (I - tau_{k+1/2} tau_{k+1/2}^T)`` and
     ``D_i = df/dtau_i (I - tau_i tau_i^T) / |r_{i+1} - r_{i-1}|``, momentum row
     i (scale ``s = hbar_i / F_ref``) has ``((K_i + K_{i-1}) / hbar_i + mu c_a I - df_i/dr_i) s``
     at r_i, ``-(K_i / hbar_i + D_i) s`` at r_{i+1}, ``-(K_{i-1} / hbar_i - D_i) s``
     at r_{i-1}, ``-tau_{i+1/2} / hbar_i s`` at T_{i+1/2} and ``tau_{i-1/2} / hbar_i s``
-    at T_{i-1/2}, where ``df_i/dr_i = -c_v df/dV_rel + (df/dV_rel e_x V_w' + df/drho rho'
+    at T_{i-1/2}, where ``df_i/dr_i = -c_v df/dV_rel + (df/dV_rel (u', v', 0) + df/drho rho'
     + df/dmu mu_air') e_z^T``; constraint row k has ``+-c_k / h_k`` at r_{k+1}, r_k
     (c_k = tau_{k+1/2} plus the Kelvin-Voigt terms ``eta ((I - tau tau^T) dv / l_k + c_v tau)``)
     and ``-h_k / EA / h_k`` at T_{k+1/2}.
@@ -181,7 +181,7 @@ def jacobian(T, unit, length, v, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
         inv_tangent_len = 1.0 / length[n_seg + i]
         scale = hbar[i - 1] / force_ref_N
         for p in range(3):
-            df_dz = d_dvrel[p, 0] * shear[i] + d_drho[p] * density_gradient[i] \
+            df_dz = d_dvrel[p, 0] * shear_u[i] + d_dvrel[p, 1] * shear_v[i] + d_drho[p] * density_gradient[i] \
                 + d_dmu[p] * viscosity_gradient[i]
             for q in range(3):
                 d = 0.0
@@ -335,10 +335,12 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     above = air_state(air_function, air_parameters, ceiling_m, z, rho, mu_air, drho_dz, dmu_dz)
     if above >= 0:
         return above
-    wind_mps, shear_per_s, along, dcd_dre = np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes)
-    wind_state(wind_function, wind_rows, z, wind_mps, shear_per_s)
+    wind = np.empty((4, n_nodes))     # u, v, du/dz, dv/dz: one allocation
+    wind_u, wind_v, shear_u, shear_v = wind[0], wind[1], wind[2], wind[3]
+    along, dcd_dre = np.empty(n_nodes), np.empty(n_nodes)
+    wind_state(wind_function, wind_rows, z, wind_u, wind_v, shear_u, shear_v)
     v_rel, vn = np.empty((n_nodes, 3)), np.empty((n_nodes, 3))
-    relative_velocity(wind_mps, v_line, v_rel)
+    relative_velocity(wind_u, wind_v, v_line, v_rel)
     normal_flow(v_rel, tangent, rho, mu_air, diameter_m, along, vn, vn_mps, re)
     drag_coefficient_state(drag_function, drag_parameters, drag_factor, re, cd, dcd_dre)
     drag_force(rho, diameter_m, cd, vn, vn_mps, tangent, along, skin_friction_cf, force)
@@ -347,7 +349,7 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
     if with_jacobian:
         values = np.empty(33 * (n_seg - 1) + 7 * n_seg)          # in layout order (Grid._layout)
         jacobian(T, unit, length, v_line, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air, drho_dz,
-                 dmu_dz, shear_per_s, diameter_m, skin_friction_cf, mu, compliance_per_N, damping_time_s,
+                 dmu_dz, shear_u, shear_v, diameter_m, skin_friction_cf, mu, compliance_per_N, damping_time_s,
                  c_a, c_v, force_ref_N, hbar, h, values)
         assemble(values, put, kite_first, kite_target, kite_dir, band)
     return -1

@@ -63,7 +63,7 @@ def end_drag_derivatives(air_function, air_parameters, ceiling_m, wind_function,
     """The end node's drag f_M (one-sided tangent ``tau``; the line's air, wind and drag
     models as their ``compiled`` forms give them) differentiated: in r_M through the
     velocity v_M = c_v r_M + .. and the altitude,
-    ``df/dr_M = -c_v df/dV_rel + (df/dV_rel e_x V_w'(z) + df/drho rho'(z) + df/dmu mu_air'(z)) e_z^T``,
+    ``df/dr_M = -c_v df/dV_rel + (df/dV_rel (u'(z), v'(z), 0) + df/drho rho'(z) + df/dmu mu_air'(z)) e_z^T``,
     into ``df_dr``, and in ``tau`` into ``df_dtau`` (3, 3 each), by the loops of
     :func:`fem_tether.physics.loads.crossflow_drag` at the one point.  False if r_M is above
     the air model's ceiling."""
@@ -72,14 +72,14 @@ def end_drag_derivatives(air_function, air_parameters, ceiling_m, wind_function,
     rho, mu, drho, dmu = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
     if air_state(air_function, air_parameters, ceiling_m, z, rho, mu, drho, dmu) >= 0:
         return False
-    speed, shear = np.empty(1), np.empty(1)
-    wind_state(wind_function, wind_rows, z, speed, shear)
+    wind_u, wind_v, shear_u, shear_v = np.empty(1), np.empty(1), np.empty(1), np.empty(1)
+    wind_state(wind_function, wind_rows, z, wind_u, wind_v, shear_u, shear_v)
     v_rel, tangent, vn = np.empty((1, 3)), np.empty((1, 3)), np.empty((1, 3))
     velocity = np.empty((1, 3))
     for i in range(3):
         velocity[0, i] = v_end[i]
         tangent[0, i] = tau[i]
-    relative_velocity(speed, velocity, v_rel)
+    relative_velocity(wind_u, wind_v, velocity, v_rel)
     along, vn_mps, re, cd, dcd_dre = np.empty(1), np.empty(1), np.empty(1), np.empty(1), np.empty(1)
     normal_flow(v_rel, tangent, rho, mu, diameter_m, along, vn, vn_mps, re)
     drag_coefficient_state(drag_function, drag_parameters, drag_factor, re, cd, dcd_dre)
@@ -92,7 +92,8 @@ def end_drag_derivatives(air_function, air_parameters, ceiling_m, wind_function,
     for i in range(3):
         for j in range(3):
             df_dr[i, j] = -c_v * d_dvrel[i, j]
-        df_dr[i, 2] += d_dvrel[i, 0] * shear[0] + d_drho[i] * drho[0] + d_dmu[i] * dmu[0]
+        df_dr[i, 2] += d_dvrel[i, 0] * shear_u[0] + d_dvrel[i, 1] * shear_v[0] + d_drho[i] * drho[0] \
+            + d_dmu[i] * dmu[0]
     return True
 
 

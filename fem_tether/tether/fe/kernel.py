@@ -127,14 +127,15 @@ def residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along
 
 @numba.njit(cache=True, error_model="numpy")
 def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu_air,
-             density_gradient, viscosity_gradient, shear, mass, interior, w, h, diameter_m,
+             density_gradient, viscosity_gradient, shear_u, shear_v, mass, interior, w, h, diameter_m,
              skin_friction_cf, k_s, compliance_per_N, damping_time_s, c_a, c_v, reel_mps, band):
     """The banded Jacobian without the R row and column, the derivative of
     :func:`residual`, accumulated into ``band`` (zeroed here).
 
     Element e puts on node a's rows (a interior), node b's columns,
     ``sgn_a sgn_b T/|dr| P - w_a (sgn_b df/dtau P/|dr| + df/dr_mid)`` with
-    ``P = I - tau tau^T`` and ``df/dr_mid = -c_v/2 df/dV_rel + 1/2 df/dz e_z^T``;
+    ``P = I - tau tau^T`` and ``df/dr_mid = -c_v/2 df/dV_rel + 1/2 df/dz e_z^T``, ``df/dz``
+    through the wind's shear (du/dz, dv/dz, 0) and the air's gradients;
     node a's rows of column T_e get ``sgn_a tau_e``; row T_e gets
     ``k sgn_b c_e^T`` (c_e = tau_e plus the Kelvin-Voigt terms) and
     ``-k h_e / EA`` on its diagonal; the diagonal of node i's rows
@@ -159,7 +160,7 @@ def jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho,
                          diameter_m, skin_friction_cf, df_dvn, d_dvrel, d_dtau, d_drho, d_dmu)
         turn = e == 0 and reel_mps != 0.0
         for i in range(3):
-            df_dz = d_dvrel[i, 0] * shear[e] + d_drho[i] * density_gradient[e] \
+            df_dz = d_dvrel[i, 0] * shear_u[e] + d_dvrel[i, 1] * shear_v[e] + d_drho[i] * density_gradient[e] \
                 + d_dmu[i] * viscosity_gradient[e]
             for j in range(3):
                 d_mid[i, j] = -0.5 * c_v * d_dvrel[i, j] + (0.5 * df_dz if j == 2 else 0.0)
@@ -329,15 +330,17 @@ def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_
     midpoint above the air model's ceiling, the ISA troposphere (the outputs then incomplete)."""
     n_el = tau.shape[0]
     v_mid, dv, v_rel = np.empty((n_el, 3)), np.empty((n_el, 3)), np.empty((n_el, 3))
-    speed, shear, along, dcd_dre = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
+    wind = np.empty((4, n_el))        # u, v, du/dz, dv/dz: one allocation
+    wind_u, wind_v, shear_u, shear_v = wind[0], wind[1], wind[2], wind[3]
+    along, dcd_dre = np.empty(n_el), np.empty(n_el)
     rho, mu, drho_dz, dmu_dz = np.empty(n_el), np.empty(n_el), np.empty(n_el), np.empty(n_el)
     midpoints(r, v, reel_mps, length, tau, r_mid, v_mid, dv)
     z = r_mid[:, 2]
     above = air_state(air_function, air_parameters, ceiling_m, z, rho, mu, drho_dz, dmu_dz)
     if above >= 0:
         return above
-    wind_state(wind_function, wind_rows, z, speed, shear)
-    relative_velocity(speed, v_mid, v_rel)
+    wind_state(wind_function, wind_rows, z, wind_u, wind_v, shear_u, shear_v)
+    relative_velocity(wind_u, wind_v, v_mid, v_rel)
     normal_flow(v_rel, tau, rho, mu, diameter_m, along, vn, vn_mps, re)
     drag_coefficient_state(drag_function, drag_parameters, drag_factor, re, cd, dcd_dre)
     residual(r, dv, qdd, T, R, kite_dir, tau, length, rho, cd, vn, vn_mps, along, diameter_m,
@@ -345,7 +348,7 @@ def evaluate(r, v, qdd, T, R, kite_dir, ground_tension_N, radius_m, k_s, c_a, c_
              tension_mode, ground_tension_N, radius_m, force, res)
     if with_jacobian:
         jacobian(T, tau, length, dv, v_rel, along, vn, vn_mps, re, cd, dcd_dre, rho, mu, drho_dz, dmu_dz,
-                 shear, mass, interior, w, h, diameter_m, skin_friction_cf, k_s, compliance_per_N,
+                 shear_u, shear_v, mass, interior, w, h, diameter_m, skin_friction_cf, k_s, compliance_per_N,
                  damping_time_s, c_a, c_v, reel_mps, band)
     return -1
 
