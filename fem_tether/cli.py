@@ -16,7 +16,6 @@ import os
 import sys
 import traceback
 
-import numpy as np
 
 from fem_tether import __version__
 from fem_tether.physics import kite
@@ -699,15 +698,13 @@ def _agree(comm, code: int) -> int:
     alone may complete on rank 0 before the others have stopped (an eager
     send), and what rank 0 then reports as kept would miss a part another rank
     was still committing (measured: "1 of 12 tasks kept", 2 reused by the rerun)."""
-    shared = np.array([code], dtype="i")
     try:
         with stop.interruptible():       # mpiexec passes Ctrl-C to every rank
             stop.arrived(comm)
-            stop.wait(comm.Ibcast(shared, root=0))
+            return stop.agree(comm, code)
     except KeyboardInterrupt:
         stop.clear()
         return EXIT_INTERRUPTED
-    return int(shared[0])
 
 
 def _run(args, comm=None) -> tuple[int, BaseException | None]:
@@ -717,7 +714,7 @@ def _run(args, comm=None) -> tuple[int, BaseException | None]:
         with guard(comm):
             code = args.func(args)
             if comm is not None:
-                stop.sync(comm)          # the ranks done first wait here, stoppable, for rank 0
+                stop.finish(comm)        # the ranks done first wait here, stoppable, for rank 0
             return code, None
     except (KeyboardInterrupt, FemTetherError, OSError) as exc:
         stop.clear()

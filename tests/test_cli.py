@@ -508,3 +508,35 @@ def test_with_json_the_compile_notice_goes_to_stderr_and_stdout_holds_the_json(c
     code, out, err = run_cli(capsys, "simulate", "--length", "200", "--json")
     assert code == 0 and json.loads(out)["length_m"] == 200.0
     assert err.startswith("compiling the solver kernels (first run after install, about ")
+
+
+#: Rank 0 failing with a defect where the other rank has finished its part: after the study's last
+#: phase (its file not written) and before its second phase (planning it); code run on rank 0 first.
+RANK_ZERO_FAILURES = {
+    "writing the file": ["def broken(*a, **k):", "    raise RuntimeError('it fails')", "d.write_study = broken"],
+    "planning a phase": ["plan, calls = d.plan_phase, []", "def broken(*a, **k):", "    calls.append(1)",
+                         "    if len(calls) == 2:", "        raise RuntimeError('it fails')",
+                         "    return plan(*a, **k)", "d.plan_phase = broken"],
+}
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+@pytest.mark.parametrize("where", RANK_ZERO_FAILURES)
+def test_a_defect_on_rank_zero_ends_every_rank_with_its_error(tmp_path, where):
+    """Under ``mpiexec -n 2`` a study whose rank 0 fails with a defect while rank 1 waits for it
+    exits 1 on every rank with the traceback, within the timeout, and MPI finds nothing pending
+    at the end. Before, both hung: rank 1 left a barrier pending, which the ranks' agreement on
+    the exit code (a broadcast) was matched with; now every wait is point-to-point."""
+    job = tmp_path / "job.toml"
+    job.write_text("[study]\nsystems = ['kitegen']\nlengths_m = [600]\nwind_mps = [12, 15]\n"
+                   "[fe]\nelements = 10\ndt_s = 0.1\n[fd]\nsegments = 20\ndt_s = 0.05\n[time]\naverage_periods = 1\n")
+    code = "\n".join(["import sys", "from mpi4py import MPI", "import fem_tether.jobs.study.driver as d",
+                      "if MPI.COMM_WORLD.Get_rank() == 0:", *("    " + line for line in RANK_ZERO_FAILURES[where]),
+                      "from fem_tether.cli import main",
+                      f"sys.exit(main(['study', {str(job)!r}, '--out', {str(tmp_path / 'x.h5')!r}]))"])
+    proc = subprocess.run(["mpiexec", "-n", "2", sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stderr.count("RuntimeError: it fails") == 1
+    assert "pending" not in proc.stderr
+    assert not (tmp_path / "x.h5").exists()

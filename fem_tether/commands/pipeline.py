@@ -38,7 +38,7 @@ from fem_tether.commands.flight import warn_unflyable
 from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.core.stop import guard
-from fem_tether.jobs.handoff import finished, hand, serve, wait_until_finished
+from fem_tether.jobs.handoff import hand, serve
 from fem_tether.report.flight import Flight, Media, draw_flight, shown_flight
 from fem_tether.report.page import PAGE_NAME, write_page
 from fem_tether.jobs.sweep import FollowUp, SweepOutcome, sweep
@@ -108,15 +108,12 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
                              helper_imports_cost_us=FLIGHT_IMPORTS_COST_US)
         outcome = sweep(job, h5, comm, progress=progress, follow_up=follow_up, keep_parts=keep_parts)
         with guard(comm):
-            if outcome is None:             # the other ranks wait for rank 0 (one of them draws the flight)
+            if outcome is None:             # one of the other ranks draws the flight for rank 0
                 if comm.Get_rank() == FLIGHT_RANK:
                     serve(comm, draw_measured)
-                wait_until_finished(comm)
                 return None
-            done = _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0, started,
+            return _after_sweep(outcome, h5, out, allow_unchecked, allow_incomplete, t0, started,
                                 flight_drawer(comm))
-            finished(comm)
-            return done
 
 
 #: A flight drawn: its media (or why there are none) and the peak RSS [MiB] of the other rank

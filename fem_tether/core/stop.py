@@ -26,7 +26,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
 #: Exit codes: a user's mistake, a failed solve (or a defect), an interrupt.
@@ -147,15 +147,30 @@ def guard(comm) -> Iterator[None]:
         watcher.close()
 
 
-def sync(comm) -> None:
+def sync(comm, idle: Callable[[], object] | None = None) -> None:
     """Wait, interruptibly, until every rank of ``comm`` has come here (before a
-    blocking collective, so that a rank that stopped cannot leave it waiting)."""
-    if comm.Get_size() > 1:
-        wait(comm.Ibarrier())
+    blocking collective, so that a rank that stopped cannot leave it waiting):
+    each rank's word to rank 0, then rank 0's to each.  Point-to-point, not a
+    barrier, so that a rank stopped here cancels what it waits for instead of
+    leaving a collective pending (which MPI reports when the process ends, and
+    which the ranks' next collective would be matched with).  ``idle()`` is
+    called between the looks (rank 0 may work on while the others finish)."""
+    if comm.Get_size() == 1:
+        return
+    if comm.Get_rank() == 0:
+        for rank in range(1, comm.Get_size()):
+            _receive(comm.Irecv(bytearray(1), source=rank, tag=SYNC_TAG), idle)
+        for rank in range(1, comm.Get_size()):
+            wait(comm.Isend(bytearray(1), dest=rank, tag=SYNC_TAG))
+    else:
+        wait(comm.Isend(bytearray(1), dest=0, tag=SYNC_TAG))
+        _receive(comm.Irecv(bytearray(1), source=0, tag=SYNC_TAG), idle)
 
 
-#: The tag of a rank's word to rank 0 that it has stopped (:func:`arrived`).
-ARRIVED_TAG = 18
+#: The tags of a rank's word to rank 0 that it has stopped (:func:`arrived`), of rank 0's word
+#: to the others that it has finished (:func:`finish`), of its exit code (:func:`agree`) and of
+#: the words of :func:`sync`.
+ARRIVED_TAG, FINISHED_TAG, CODE_TAG, SYNC_TAG = 18, 19, 20, 24
 
 #: How long rank 0 waits for the other ranks' word that they have stopped [s].
 ARRIVAL_S = 5.0
@@ -184,11 +199,50 @@ def arrived(comm, within_s: float = ARRIVAL_S) -> None:
         time.sleep(POLL_S)
 
 
-def wait(request) -> None:
+def finish(comm) -> None:
+    """The ranks done with a command wait here, stoppably, for rank 0 to be done too: rank 0
+    tells every other rank.  Point-to-point, not a barrier: were rank 0 to fail while the others
+    sat in a barrier, they would stop inside it and leave it pending, and the ranks' next
+    collective would be matched with it and hang (measured: a study whose file rank 0 failed
+    to write hung every rank)."""
+    if comm.Get_rank() == 0:
+        for rank in range(1, comm.Get_size()):
+            wait(comm.Isend(bytearray(1), dest=rank, tag=FINISHED_TAG))
+    else:
+        _receive(comm.Irecv(bytearray(1), source=0, tag=FINISHED_TAG))
+
+
+def agree(comm, code: int) -> int:
+    """Rank 0's ``code`` on every rank, sent point-to-point and waited for stoppably: a rank
+    stopped inside a collective (:func:`sync`) has left it pending, and a collective here
+    would be matched with it."""
+    if comm.Get_rank() == 0:
+        for rank in range(1, comm.Get_size()):
+            wait(comm.Isend(bytearray(code.to_bytes(4, "little", signed=True)), dest=rank, tag=CODE_TAG))
+        return code
+    word = bytearray(4)
+    _receive(comm.Irecv(word, source=0, tag=CODE_TAG))
+    return int.from_bytes(word, "little", signed=True)
+
+
+def _receive(request, idle: Callable[[], object] | None = None) -> None:
+    """:func:`wait` for a receive, cancelled if this rank stops meanwhile (MPI would find it
+    pending when the process ends)."""
+    try:
+        wait(request, idle)
+    except BaseException:
+        request.Cancel()
+        request.Wait()                   # a cancelled receive completes at once
+        raise
+
+
+def wait(request, idle: Callable[[], object] | None = None) -> None:
     """Wait for the MPI ``request`` asleep (not spinning on a core another rank
-    may need) and stoppable (:func:`checkpoint`)."""
+    may need) and stoppable (:func:`checkpoint`), calling ``idle()`` between the looks."""
     while not request.Test():
         checkpoint()
+        if idle is not None:
+            idle()
         time.sleep(POLL_S)
 
 

@@ -21,9 +21,8 @@ from typing import Any
 
 from fem_tether.core.stop import checkpoint, wait
 
-#: The tags of the work, of its result and of rank 0's word that it has finished (the stop
-#: messages have a communicator of their own).
-WORK_TAG, RESULT_TAG, FINISHED_TAG = 21, 22, 23
+#: The tags of the work and of its result (the stop messages have a communicator of their own).
+WORK_TAG, RESULT_TAG = 21, 22
 
 #: How often a waiting rank looks for the message it waits for [s] (asleep in between).
 POLL_S = 0.01
@@ -78,16 +77,3 @@ def hand(comm, rank: int, work: Any) -> Callable[[], Any]:
         return value
     return result
 
-
-def finished(comm) -> None:
-    """On rank 0, its work done: tell every other rank (:func:`wait_until_finished`)."""
-    for rank in range(1, comm.Get_size()):
-        _send(comm, None, rank, FINISHED_TAG)
-
-
-def wait_until_finished(comm) -> None:
-    """On a rank other than 0: wait, stoppably and point-to-point, until rank 0 has finished
-    (:func:`finished`).  Not in a collective: were rank 0 to fail meanwhile, this rank would
-    stop with it and leave no collective pending, which the ranks' agreement on the exit code
-    (a collective) would be matched with, and hang."""
-    _receive(comm, 0, FINISHED_TAG)

@@ -8,7 +8,7 @@ assigns the tasks to the ranks by longest processing time first
 finds the kept parts, and sends both to the others, unless the work's plan
 gives them, so that planning the work is done once however many ranks run it), and on each rank, for each of its
 tasks, skips it if its part is kept and otherwise runs it (the work keeps its
-part); then it waits for the other ranks at a non-blocking barrier, during
+part); then it waits for the other ranks (:func:`fem_tether.core.stop.sync`), during
 which rank 0 may do other work.  Rank 0's progress says at once what the
 phase starts on (its tasks, those kept already) and weighs its ETA by the
 tasks' estimated costs as the assignment schedules them
@@ -24,7 +24,6 @@ object of a lower module, never a function of the caller's.
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Callable, Sequence
 from contextlib import ExitStack
 from pathlib import Path
@@ -33,7 +32,7 @@ from typing import Protocol
 from fem_tether.core.atomic import exclusive, parts_dir, remove_temporaries
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
-from fem_tether.core.stop import POLL_S, checkpoint, guard, sync
+from fem_tether.core.stop import checkpoint, guard, sync
 from fem_tether.jobs.schedule import assign, finish_times
 from fem_tether.tether.kernels import load as load_kernels
 
@@ -138,14 +137,11 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, loads_us: Seque
                 ran += 1
             if bar.due():               # rank 0's: count the parts only when the bar draws
                 bar.update(*done(work.present(tasks)))
-        request = comm.Ibarrier()
-        while not request.Test():
-            checkpoint()
-            if rank == 0:
-                if bar.due():
-                    bar.update(*done(work.present(tasks)))
-                work.while_waiting()
-            time.sleep(POLL_S)
+        def meanwhile() -> None:        # rank 0's, while the others finish their tasks
+            if bar.due():
+                bar.update(*done(work.present(tasks)))
+            work.while_waiting()
+        sync(comm, meanwhile if rank == 0 else None)
     bar.update(*done(len(tasks)))
     bar.close()
     return ran, kept
@@ -185,12 +181,5 @@ def load_kernels_by_rank(comm, solvers: Sequence[str]) -> None:
         return
     mine = solvers[rank % len(solvers)]
 
-    def wait(redraw) -> None:
-        request = comm.Ibarrier()
-        while not request.Test():
-            checkpoint()
-            redraw()
-            time.sleep(POLL_S)
-
-    load_kernels([mine], elsewhere=[s for s in solvers if s != mine], wait=wait)
+    load_kernels([mine], elsewhere=[s for s in solvers if s != mine], wait=lambda redraw: sync(comm, redraw))
     load_kernels(solvers)
