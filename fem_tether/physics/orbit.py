@@ -182,7 +182,7 @@ class Circle:
 
         At constant rate this is (1/2π) ∫₀^2π |φ(β)| dβ; composite
         Gauss–Legendre with knots at the kinks β = 0, π of |φ| (top and bottom,
-        where φ = 0).
+        where φ = 0), φ of :meth:`angles` at the nodes' times (β − β0)/ω.
         """
         _, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
         phi = self.angles((nodes - self.phase_rad) / self.rate_rad_s)[1]
