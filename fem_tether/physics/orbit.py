@@ -48,29 +48,36 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from fem_tether.physics.compiled import address, jit
-from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, PATH_SIGNATURE, functions_of, gauss_legendre_nodes
+from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, PATH_SIGNATURE, gauss_legendre_nodes, path_state
 
 
 @jit
-def _unit(theta0, k_up, k_side, k_axis, out, row, scale):
-    """``scale`` times :meth:`Circle._unit` of one β into ``out[row]``."""
+def _unit(theta0, k_up, k_side, k_axis, out, scale):
+    """``scale`` times the global components of k_axis u + k_up a + k_side b into ``out`` (3):
+    u = (sinϑ0, 0, cosϑ0), a = (−cosϑ0, 0, sinϑ0), b = (0, −1, 0)."""
     st, ct = math.sin(theta0), math.cos(theta0)
-    out[row, 0] = scale * (k_axis * st - k_up * ct)
-    out[row, 1] = scale * -k_side
-    out[row, 2] = scale * (k_axis * ct + k_up * st)
+    out[0] = scale * (k_axis * st - k_up * ct)
+    out[1] = scale * -k_side
+    out[2] = scale * (k_axis * ct + k_up * st)
 
 
 @jit
-def circle_state(parameters, breaks, coefficients, t_s, out):
-    """:meth:`Circle.state` at one time, compiled (:data:`~.trajectory.PATH_SIGNATURE`):
-    parameters (L, ϑ0, ρ, ω, β0); no breaks or coefficients."""
-    length, theta0, radius, omega, phase = parameters[0], parameters[1], parameters[2], parameters[3], parameters[4]
+def circle_state(parameters, breaks, coefficients, t_s, radius_m, out):
+    """Position, velocity, acceleration of R ê(β(t)) at one time into ``out`` (3, 3)
+    (:data:`~.trajectory.PATH_SIGNATURE`): parameters (L, ϑ0, ρ, ω, β0); no breaks or
+    coefficients.  With β = β0 + ω t (eq. 3.1),
+
+        r = R ê = R (cosρ u + sinρ (cosβ a + sinβ b)),
+        ṙ = R ω sinρ (−sinβ a + cosβ b),
+        r̈ = −R ω² sinρ (cosβ a + sinβ b)   (towards the axis).
+    """
+    theta0, radius, omega, phase = parameters[1], parameters[2], parameters[3], parameters[4]
     beta = phase + omega * t_s
     c, s = math.cos(beta), math.sin(beta)
     sr = math.sin(radius)
-    _unit(theta0, sr * math.cos(beta), sr * math.sin(beta), math.cos(radius), out, 0, length)
-    _unit(theta0, -omega * sr * s, omega * sr * c, 0.0, out, 1, length)
-    _unit(theta0, -omega ** 2 * sr * c, -omega ** 2 * sr * s, 0.0, out, 2, length)
+    _unit(theta0, sr * c, sr * s, math.cos(radius), out[0], radius_m)
+    _unit(theta0, -omega * sr * s, omega * sr * c, 0.0, out[1], radius_m)
+    _unit(theta0, -omega ** 2 * sr * c, -omega ** 2 * sr * s, 0.0, out[2], radius_m)
 
 
 @functools.cache
@@ -115,8 +122,11 @@ class Circle:
     def compiled(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
         """The circle as :data:`~.trajectory.PATH_SIGNATURE`'s functions take it: the address of
         :func:`circle_state`, its parameters and no tables."""
-        parameters = np.array([self.length_m, self.theta0_rad, self.radius_rad, self.rate_rad_s, self.phase_rad])
-        return _circle_address(), parameters, _NO_TABLE, _NO_TABLE
+        return _circle_address(), self._parameters, _NO_TABLE, _NO_TABLE
+
+    @functools.cached_property
+    def _parameters(self) -> np.ndarray:
+        return np.array([self.length_m, self.theta0_rad, self.radius_rad, self.rate_rad_s, self.phase_rad])
 
     @property
     def rate_rad_s(self):
@@ -148,52 +158,23 @@ class Circle:
         moved = replace(self, length_m=float(length_m))
         return replace(moved, phase_rad=self.angle(t_s) - moved.rate_rad_s * float(t_s))
 
-    def _unit(self, beta, k_up, k_side, k_axis):
-        """Global components of k_axis u + k_up a + k_side b, shape β.shape + (3,)
-        (k_up and k_side shaped like β, k_axis a number)."""
-        f = functions_of(beta)
-        st, ct = math.sin(self.theta0_rad), math.cos(self.theta0_rad)
-        components = [k_axis * st - k_up * ct, -k_side, k_axis * ct + k_up * st]
-        return np.array(components) if f is math else np.stack(components, axis=-1)
-
-    def _point(self, beta):
-        """ê(β) = cosρ u + sinρ (cosβ a + sinβ b)."""
-        f = functions_of(beta)
-        sr = math.sin(self.radius_rad)
-        return self._unit(beta, sr * f.cos(beta), sr * f.sin(beta), math.cos(self.radius_rad))
-
     def direction_at(self, t_s):
         """ê(β(t)): the kite's direction alone (a time step's boundary
-        condition), equal to ``state(t, 1.0)[0]``."""
-        return self._point(self.angle(t_s))
+        condition), ``state(t, 1.0)[0]``."""
+        return self.state(t_s, 1.0)[0]
 
     def state(self, t_s, radius_m=None):
-        """Position, velocity, acceleration of R ê(β(t)).
+        """Position, velocity, acceleration of R ê(β(t)) (:func:`circle_state`).
 
         R = radius_m (default L; scalar or broadcastable with t) scales the
         nominal path and is held constant in time, so the speed is V R / L.
-        Each array has shape broadcast(t, R).shape + (3,)::
-
-            r = R ê,
-            ṙ = R ω sinρ (−sinβ a + cosβ b),
-            r̈ = −R ω² sinρ (cosβ a + sinβ b)   (towards the axis).
+        Each array has shape broadcast(t, R).shape + (3,).
         """
-        beta = self.angle(t_s)
-        f = functions_of(beta)
-        c, s = f.cos(beta), f.sin(beta)
-        omega, sr = self.rate_rad_s, math.sin(self.radius_rad)
-        velocity = self._unit(beta, -omega * sr * s, omega * sr * c, 0.0)
-        acceleration = self._unit(beta, -omega ** 2 * sr * c, -omega ** 2 * sr * s, 0.0)
-        R = np.asarray(self.length_m if radius_m is None else radius_m, dtype=float)[..., None]
-        return R * self._point(beta), R * velocity, R * acceleration
+        return path_state(circle_state, self.compiled, t_s, self.length_m if radius_m is None else radius_m)
 
     def angles(self, t_s):
-        """Polar angle ϑ and azimuth φ of the kite at times t, in radians."""
-        return self._angles(self.angle(t_s))
-
-    def _angles(self, beta):
-        """ϑ = arccos ê_z and φ = atan2(ê_y, ê_x) at β."""
-        e = self._point(beta)
+        """Polar angle ϑ = arccos ê_z and azimuth φ = atan2(ê_y, ê_x) of the kite at times t, in radians."""
+        e = self.direction_at(t_s)
         return np.arccos(e[..., 2]), np.arctan2(e[..., 1], e[..., 0])
 
     def mean_abs_phi_deg(self):
@@ -201,8 +182,8 @@ class Circle:
 
         At constant rate this is (1/2π) ∫₀^2π |φ(β)| dβ; composite
         Gauss–Legendre with knots at the kinks β = 0, π of |φ| (top and bottom,
-        where φ = 0).
+        where φ = 0), φ of :meth:`angles` at the nodes' times (β − β0)/ω.
         """
         _, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
-        phi = self._angles(nodes)[1]
+        phi = self.angles((nodes - self.phase_rad) / self.rate_rad_s)[1]
         return float(np.degrees((np.abs(phi) * weights).sum() / (2.0 * np.pi)))

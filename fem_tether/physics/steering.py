@@ -47,7 +47,7 @@ import numpy as np
 
 from fem_tether.physics.compiled import caller, jit
 from fem_tether.physics.roll_schedule import RollSchedule, orbit_angle_rad
-from fem_tether.physics.trajectory import PATH_SIGNATURE
+from fem_tether.physics.trajectory import PATH_SIGNATURE, POINT_SIZE, path_points, point_geometry
 
 if TYPE_CHECKING:
     from fem_tether.physics.orbit import Circle
@@ -74,23 +74,6 @@ def cross(a, b):
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]).T
 
 
-def path_geometry(r, dr, d2r):
-    """The path's speed V_p = |r'|, tangent t = r'/V_p, normal n = (r/|r|) × t and geodesic
-    curvature κ_g = r''·n/V_p² from r, r', r'' (3-vectors, or arrays of them (..., 3)): the
-    NumPy form for many points at once (a loop's samples, :func:`min_turn_radius_m`, which a
-    prescribed run's flight check calls without compiling the steering); one point's is
-    :func:`nearest`'s."""
-    speed = np.sqrt(_dot(dr, dr))
-    tangent = dr / speed[..., None]
-    normal = cross(r / np.sqrt(_dot(r, r))[..., None], tangent)
-    return speed, tangent, normal, _dot(d2r, normal) / speed ** 2
-
-
-def _dot(a, b):
-    """a · b over the last axis."""
-    return np.einsum("...i,...i->...", a, b)
-
-
 @dataclass(frozen=True)
 class PathPoint:
     """A point of the reference path and its local geometry on the sphere."""
@@ -110,24 +93,25 @@ class PathPoint:
 
 
 _path_at = caller(PATH_SIGNATURE)
-#: What :func:`nearest` writes of a path point: σ, r (3), t (3), n (3), κ_g, V_p.
-POINT_SIZE = 12
 
 
 @jit
 def nearest(path_address, parameters, breaks, coefficients, position_m, guess_s, iterations, point):
     """The path point of :func:`nearest_point` (``iterations`` Newton steps from ``guess_s``)
-    into ``point`` (:data:`POINT_SIZE`: σ, r, t, n, κ_g, V_p), the path as its ``compiled``
-    form gives it (:data:`~fem_tether.physics.trajectory.PATH_SIGNATURE`), compiled.  False
-    if the distance has no minimum near ``guess_s`` (σ of that step into ``point[0]``)."""
+    into ``point`` (:data:`~fem_tether.physics.trajectory.POINT_SIZE`: σ, r, t, n, κ_g, V_p,
+    :func:`~fem_tether.physics.trajectory.point_geometry`), the path as its ``compiled``
+    form gives it (:data:`~fem_tether.physics.trajectory.PATH_SIGNATURE`, on its sphere of
+    radius L = ``parameters[0]``), compiled.  False if the distance has no minimum near
+    ``guess_s`` (σ of that step into ``point[0]``)."""
     state = _path_at(path_address)
     out = np.empty((3, 3))
+    radius = parameters[0]
     p = position_m
     p_norm = math.sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2])
     sigma = guess_s
     offset = np.empty(3)
     for _ in range(iterations):
-        state(parameters, breaks, coefficients, sigma, out)
+        state(parameters, breaks, coefficients, sigma, radius, out)
         r_norm = math.sqrt(out[0, 0] ** 2 + out[0, 1] ** 2 + out[0, 2] ** 2)
         for i in range(3):
             offset[i] = out[0, i] - p[i] * (r_norm / p_norm)
@@ -139,18 +123,8 @@ def nearest(path_address, parameters, breaks, coefficients, position_m, guess_s,
         limit = math.sqrt(offset[0] ** 2 + offset[1] ** 2 + offset[2] ** 2) / math.sqrt(speed2) + 1.0
         step = (offset[0] * out[1, 0] + offset[1] * out[1, 1] + offset[2] * out[1, 2]) / slope
         sigma -= min(max(step, -limit), limit)
-    state(parameters, breaks, coefficients, sigma, out)
-    speed = math.sqrt(out[1, 0] * out[1, 0] + out[1, 1] * out[1, 1] + out[1, 2] * out[1, 2])
-    r_norm = math.sqrt(out[0, 0] * out[0, 0] + out[0, 1] * out[0, 1] + out[0, 2] * out[0, 2])
-    t0, t1, t2 = out[1, 0] / speed, out[1, 1] / speed, out[1, 2] / speed
-    e0, e1, e2 = out[0, 0] / r_norm, out[0, 1] / r_norm, out[0, 2] / r_norm
-    n0, n1, n2 = e1 * t2 - e2 * t1, e2 * t0 - e0 * t2, e0 * t1 - e1 * t0
-    point[0] = sigma
-    point[1], point[2], point[3] = out[0, 0], out[0, 1], out[0, 2]
-    point[4], point[5], point[6] = t0, t1, t2
-    point[7], point[8], point[9] = n0, n1, n2
-    point[10] = (out[2, 0] * n0 + out[2, 1] * n1 + out[2, 2] * n2) / speed ** 2
-    point[11] = speed
+    state(parameters, breaks, coefficients, sigma, radius, out)
+    point_geometry(sigma, out, point)
     return True
 
 
@@ -424,6 +398,8 @@ def min_turn_radius_m(path, samples=2048):
     """R_min = 1 / max |κ_g| over one loop of the path, sampled at ``samples``
     equal steps of σ (the 190 × 95 m eight: 18.7 m, near the top and bottom
     of each lobe, 94 m at its tips; the circle: L tanρ, the geodesic radius
-    of a cone of half-angle ρ)."""
-    curvature = path_geometry(*path.state(np.linspace(0.0, path.period_s, samples, endpoint=False)))[3]
-    return 1.0 / float(np.max(np.abs(curvature)))
+    of a cone of half-angle ρ); κ_g of each sample that of :func:`path_point`
+    (:func:`~fem_tether.physics.trajectory.path_points`)."""
+    points = np.empty((samples, POINT_SIZE))
+    path_points(*path.compiled, np.linspace(0.0, path.period_s, samples, endpoint=False), points)
+    return 1.0 / float(np.max(np.abs(points[:, 10])))

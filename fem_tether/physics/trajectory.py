@@ -29,13 +29,16 @@ With this parametrisation the kite climbs through the centre of the eight
 (dw/dτ = H at τ = 0, π) and descends at its edges, as seed 000 §2.2.1.1
 advises to balance the gravity term of the refined crosswind law.
 
-All functions take NumPy arrays of times (or of τ) and broadcast; angles are
-in radians unless the name says otherwise.
+The equations are compiled functions of one τ or one time (numba, :mod:`.compiled`), the one
+implementation: :func:`eight_state` is the eight's state at one time, which the steering's
+nearest point calls by address (:data:`PATH_SIGNATURE`), and :class:`FigureEight`'s methods take
+NumPy arrays of times (or of τ) through compiled loops over them (:func:`path_states`,
+:func:`eight_table`, :func:`eight_parameters`).  Angles are in radians unless the name says
+otherwise.
 """
 
 from __future__ import annotations
 
-import bisect
 import functools
 import math
 from dataclasses import dataclass, field, replace
@@ -44,7 +47,7 @@ import numpy as np
 from numba.core import types
 from scipy.interpolate import BPoly, PPoly
 
-from fem_tether.physics.compiled import address, jit
+from fem_tether.physics.compiled import address, caller, jit
 
 #: Subintervals of [0, 2π] on which the arc length s(τ) is tabulated (by
 #: N_GAUSS-point Gauss–Legendre) and interpolated (quintic Hermite: s, g, g'
@@ -57,51 +60,35 @@ N_GAUSS = 6
 N_NEWTON = 1
 
 
-def functions_of(x):
-    """``math`` for one number, ``numpy`` for arrays: the time step asks for the
-    eight at one time, where NumPy's ufuncs cost ~10 times math's functions."""
-    return math if isinstance(x, float) else np
-
-
-def direction(theta_rad, phi_rad):
-    """Unit vector ê = e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ), shape ϑ.shape + (3,)."""
-    f = functions_of(theta_rad)
-    st = f.sin(theta_rad)
-    components = [st * f.cos(phi_rad), st * f.sin(phi_rad), f.cos(theta_rad)]
-    return np.array(components) if f is math else np.stack(components, axis=-1)
-
-
+@jit
 def local_to_global(theta_rad, phi_rad, a_theta, a_phi, a_r):
-    """Global components of a_ϑ e_ϑ + a_φ e_φ + a_r e_r, shape a_ϑ.shape + (3,).
+    """Global components (x, y, z) of a_ϑ e_ϑ + a_φ e_φ + a_r e_r at one (ϑ, φ).
 
     Local frame of seed 000 eq. 2.3: e_ϑ = (cosϑ cosφ, cosϑ sinφ, −sinϑ),
-    e_φ = (−sinφ, cosφ, 0), e_r = (sinϑ cosφ, sinϑ sinφ, cosϑ).
-    a_ϑ and a_φ carry the shape; a_r may be a scalar.
+    e_φ = (−sinφ, cosφ, 0), e_r = ê = (sinϑ cosφ, sinϑ sinφ, cosϑ).
     """
-    f = functions_of(theta_rad)
-    st, ct = f.sin(theta_rad), f.cos(theta_rad)
-    sp, cp = f.sin(phi_rad), f.cos(phi_rad)
+    st, ct = math.sin(theta_rad), math.cos(theta_rad)
+    sp, cp = math.sin(phi_rad), math.cos(phi_rad)
     horizontal = ct * a_theta + st * a_r
-    components = [cp * horizontal - sp * a_phi, sp * horizontal + cp * a_phi, ct * a_r - st * a_theta]
-    return np.array(components) if f is math else np.stack(components, axis=-1)
+    return cp * horizontal - sp * a_phi, sp * horizontal + cp * a_phi, ct * a_r - st * a_theta
 
 
+@jit
 def gerono(tau, width_m, height_m):
-    """Lemniscate of Gerono u = (W/2) sin τ, w = H sin τ cos τ with d/dτ, d²/dτ².
+    """Lemniscate of Gerono u = (W/2) sin τ, w = H sin τ cos τ with d/dτ, d²/dτ², at one τ.
 
     Returns ((u, u', u''), (w, w', w'')) in metres.
     """
-    f = functions_of(tau)
-    s, c = f.sin(tau), f.cos(tau)
+    s, c = math.sin(tau), math.cos(tau)
     s2, c2 = 2.0 * s * c, c * c - s * s
-    u = (0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s)
-    w = (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2)
-    return u, w
+    return ((0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s),
+            (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2))
 
 
+@jit
 def ellipses(tau, width_m, height_m):
     """Two elliptic lobes tangent at the centre: u = (W/2) sin τ |sin τ|,
-    w = H sin τ cos τ, with d/dτ, d²/dτ².
+    w = H sin τ cos τ, with d/dτ, d²/dτ², at one τ.
 
     Each lobe is the ellipse (u ∓ W/4)²/(W/4)² + w²/(H/2)² = 1 (u = (W/4)(1 − cos 2τ)
     on τ ∈ [0, π], mirrored on [π, 2π]), a circle of radius W/4 when H = W/2.
@@ -111,17 +98,49 @@ def ellipses(tau, width_m, height_m):
     side), where u' = 0, so the arc rate g and its derivative g' stay continuous.
     Returns ((u, u', u''), (w, w', w'')) in metres.
     """
-    f = functions_of(tau)
-    s, c = f.sin(tau), f.cos(tau)
-    side = math.copysign(1.0, s) if f is math else np.sign(s)
+    s, c = math.sin(tau), math.cos(tau)
+    side = math.copysign(1.0, s)
     s2, c2 = 2.0 * s * c, c * c - s * s
-    u = (0.5 * width_m * s * abs(s), width_m * abs(s) * c, width_m * side * c2)
-    w = (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2)
-    return u, w
+    return ((0.5 * width_m * s * abs(s), width_m * abs(s) * c, width_m * side * c2),
+            (0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2))
 
 
-#: The eight's curves by the name ``[kite] eight_shape`` takes.
-SHAPES = {"gerono": gerono, "ellipses": ellipses}
+#: The eight's curves by the name ``[kite] eight_shape`` takes, in the order of their index
+#: in an eight's geometry (:func:`eight_angles`).
+SHAPES = ("gerono", "ellipses")
+
+
+@jit
+def eight_angles(geometry, tau):
+    """(ϑ, ϑ', ϑ''), (φ, φ', φ'') of the eight at one τ, ' = d/dτ:
+
+        ϑ = ϑ0 − w/L,  φ = u / (L sinϑ0),
+
+    u, w of :func:`gerono` or :func:`ellipses`; ``geometry`` (L, ϑ0, W, H, shape: the index
+    of :data:`SHAPES`), the first five of an eight's parameters.
+    """
+    length, theta0, width, height = geometry[0], geometry[1], geometry[2], geometry[3]
+    if geometry[4] == 0.0:
+        u, w = gerono(tau, width, height)
+    else:
+        u, w = ellipses(tau, width, height)
+    radius = length * math.sin(theta0)
+    return (theta0 - w[0] / length, -w[1] / length, -w[2] / length), (u[0] / radius, u[1] / radius, u[2] / radius)
+
+
+@jit
+def sphere_arc_rate(length_m, theta, phi):
+    """Arc length per unit τ of L ê(ϑ(τ), φ(τ)) and its τ-derivative, at one τ.
+
+    g = |d(L ê)/dτ| = L √(ϑ'² + sin²ϑ φ'²),
+    g' = L² (ϑ'ϑ'' + sinϑ cosϑ ϑ' φ'² + sin²ϑ φ'φ'') / g,
+    with theta = (ϑ, ϑ', ϑ''), phi = (φ, φ', φ'').
+    """
+    th, dth, d2th = theta
+    dph, d2ph = phi[1], phi[2]
+    st = math.sin(th)
+    g = length_m * math.sqrt(dth ** 2 + (st * dph) ** 2)
+    return g, length_m ** 2 * (dth * d2th + st * math.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
 
 
 @functools.cache
@@ -142,43 +161,11 @@ def gauss_legendre_nodes(n_intervals, n_points):
     return out
 
 
-class PiecewisePolynomial:
-    """A piecewise polynomial (scipy's ``BPoly``) that evaluates one point cheaply.
-
-    Arrays go to the ``BPoly``; a single point is evaluated by Horner's rule
-    on the power-basis coefficients of its interval (``PPoly.from_bernstein_basis``,
-    held as Python floats), which costs ~1 µs where scipy's call costs ~10 µs
-    (the figure-eight is evaluated at one time every time step).  Both
-    extrapolate with the end intervals; they agree to round-off.
-    """
-
-    def __init__(self, bpoly: BPoly):
-        self.bpoly = bpoly
-        power = PPoly.from_bernstein_basis(bpoly)
-        self._breaks = power.x.tolist()
-        self._coefficients = power.c.T.tolist()
-        self.breaks = np.ascontiguousarray(power.x)
-        """the breaks x_0 < ... < x_n, as :func:`piece_value` takes them"""
-        self.coefficients = np.ascontiguousarray(power.c.T)
-        """the power-basis coefficients of each interval, highest power first (n, degree + 1)"""
-
-    def __call__(self, x):
-        if not isinstance(x, float):
-            return self.bpoly(x)
-        k = min(max(bisect.bisect_right(self._breaks, x) - 1, 0), len(self._coefficients) - 1)
-        dx = x - self._breaks[k]
-        c = self._coefficients[k]
-        value = c[0]
-        for ck in c[1:]:
-            value = value * dx + ck
-        return value
-
-
 @jit
 def piece_value(breaks, coefficients, x):
-    """:class:`PiecewisePolynomial`'s value at one x, compiled: Horner's rule on the power-basis
-    coefficients of the interval of x (the end intervals extrapolating), in the order of its
-    Python evaluation."""
+    """A piecewise polynomial's value at one x: Horner's rule on the power-basis
+    coefficients (highest power first, one row per interval, :func:`power_pieces`) of
+    the interval of x among the ``breaks``, the end intervals extrapolating."""
     n = coefficients.shape[0]
     k = min(max(np.searchsorted(breaks, x, side="right") - 1, 0), n - 1)
     dx = x - breaks[k]
@@ -188,7 +175,14 @@ def piece_value(breaks, coefficients, x):
     return value
 
 
-def quintic_hermite(x, y, dy, d2y) -> PiecewisePolynomial:
+def power_pieces(bpoly: BPoly) -> tuple[np.ndarray, np.ndarray]:
+    """The breaks and the power-basis coefficients of each interval (highest power first) of
+    ``bpoly``, as :func:`piece_value` takes them (``PPoly.from_bernstein_basis``)."""
+    power = PPoly.from_bernstein_basis(bpoly)
+    return np.ascontiguousarray(power.x), np.ascontiguousarray(power.c.T)
+
+
+def quintic_hermite(x, y, dy, d2y) -> BPoly:
     """Piecewise quintic matching y, y' and y'' at the knots x.
 
     Bernstein coefficients on [x_k, x_k+1] of width h, from p'(0) = 5(b1 − b0)/h
@@ -199,99 +193,161 @@ def quintic_hermite(x, y, dy, d2y) -> PiecewisePolynomial:
     h = np.diff(x)
     y0, hd0, hhc0 = y[:-1], h * dy[:-1], h * h * d2y[:-1]
     y1, hd1, hhc1 = y[1:], h * dy[1:], h * h * d2y[1:]
-    return PiecewisePolynomial(BPoly(np.stack([y0, y0 + hd0 / 5, y0 + 2 * hd0 / 5 + hhc0 / 20,
-                                               y1 - 2 * hd1 / 5 + hhc1 / 20, y1 - hd1 / 5, y1]), x))
+    return BPoly(np.stack([y0, y0 + hd0 / 5, y0 + 2 * hd0 / 5 + hhc0 / 20,
+                           y1 - 2 * hd1 / 5 + hhc1 / 20, y1 - hd1 / 5, y1]), x)
 
 
-def sphere_arc_rate(length_m, theta, phi):
-    """Arc length per unit τ of L ê(ϑ(τ), φ(τ)) and its τ-derivative.
+#: A path's state at one time, compiled: (parameters, breaks, coefficients, t [s], R [m], out),
+#: out (3, 3) getting r, ṙ, r̈ of R ê(t) (``state(t, R)``).  Every path's parameters begin
+#: with L, the radius of its sphere (the steering's nearest point, :mod:`.steering`, takes
+#: R = L).  Called by address (:mod:`.compiled`): by :func:`path_states`, :func:`path_points`
+#: and the steering.
+PATH_SIGNATURE = types.void(types.float64[::1], types.float64[:, ::1], types.float64[:, ::1], types.float64,
+                            types.float64, types.float64[:, ::1])
 
-    g = |d(L ê)/dτ| = L √(ϑ'² + sin²ϑ φ'²),
-    g' = L² (ϑ'ϑ'' + sinϑ cosϑ ϑ' φ'² + sin²ϑ φ'φ'') / g,
-    with theta = (ϑ, ϑ', ϑ''), phi = (φ, φ', φ'').
+_path_at = caller(PATH_SIGNATURE)
+
+
+@jit
+def path_states(path_address, parameters, breaks, coefficients, times_s, radii_m, out):
+    """The state of the path at ``path_address`` (:data:`PATH_SIGNATURE`) at each of the
+    ``times_s`` on the sphere of the ``radii_m`` (as many) into ``out`` (3, n, 3): r, ṙ, r̈."""
+    state = _path_at(path_address)
+    one = np.empty((3, 3))
+    for i in range(times_s.size):
+        state(parameters, breaks, coefficients, times_s[i], radii_m[i], one)
+        out[:, i, :] = one
+
+
+def path_state(function, compiled, t_s, radius_m) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``state(t, R)`` of a path (:class:`FigureEight`, :class:`~.orbit.Circle`) whose state at one
+    time is ``function`` (:data:`PATH_SIGNATURE`), ``compiled`` the path's compiled form (the
+    address of ``function``, parameters, breaks, coefficients): r, ṙ, r̈, each of shape
+    broadcast(t, R).shape + (3,).  One time at one radius (a time step's) is one call of
+    ``function`` (~1 µs), arrays one of the loop :func:`path_states`."""
+    if isinstance(t_s, float) and isinstance(radius_m, float):
+        one = np.empty((3, 3))
+        function(*compiled[1:], t_s, radius_m, one)
+        return one[0], one[1], one[2]
+    t, radius = np.broadcast_arrays(np.asarray(t_s, dtype=float), np.asarray(radius_m, dtype=float))
+    out = np.empty((3, *t.shape, 3))
+    path_states(*compiled, np.array(t).ravel(), np.array(radius).ravel(), out.reshape(3, -1, 3))
+    return out[0], out[1], out[2]
+
+
+#: What :func:`point_geometry` writes of a path point: σ, r (3), t (3), n (3), κ_g, V_p.
+POINT_SIZE = 12
+
+
+@jit
+def point_geometry(sigma_s, state, point):
+    """The path's point at its time σ from its state there (``state`` (3, 3): r, r', r'' on
+    its sphere) into ``point`` (:data:`POINT_SIZE`): σ, r, the tangent t = r'/V_p, the
+    left normal n = (r/|r|) × t, the geodesic curvature κ_g = r''·n/V_p² and the path
+    speed V_p = |r'|."""
+    speed = math.sqrt(state[1, 0] * state[1, 0] + state[1, 1] * state[1, 1] + state[1, 2] * state[1, 2])
+    r_norm = math.sqrt(state[0, 0] * state[0, 0] + state[0, 1] * state[0, 1] + state[0, 2] * state[0, 2])
+    t0, t1, t2 = state[1, 0] / speed, state[1, 1] / speed, state[1, 2] / speed
+    e0, e1, e2 = state[0, 0] / r_norm, state[0, 1] / r_norm, state[0, 2] / r_norm
+    n0, n1, n2 = e1 * t2 - e2 * t1, e2 * t0 - e0 * t2, e0 * t1 - e1 * t0
+    point[0] = sigma_s
+    point[1], point[2], point[3] = state[0, 0], state[0, 1], state[0, 2]
+    point[4], point[5], point[6] = t0, t1, t2
+    point[7], point[8], point[9] = n0, n1, n2
+    point[10] = (state[2, 0] * n0 + state[2, 1] * n1 + state[2, 2] * n2) / speed ** 2
+    point[11] = speed
+
+
+@jit
+def path_points(path_address, parameters, breaks, coefficients, times_s, points):
+    """The points (:func:`point_geometry`) of the path at ``path_address`` (:data:`PATH_SIGNATURE`,
+    on its sphere of radius L = ``parameters[0]``) at each of the ``times_s`` into the rows of
+    ``points`` (n, :data:`POINT_SIZE`)."""
+    state = _path_at(path_address)
+    one = np.empty((3, 3))
+    for i in range(times_s.size):
+        state(parameters, breaks, coefficients, times_s[i], parameters[0], one)
+        point_geometry(times_s[i], one, points[i])
+
+
+@jit
+def eight_parameter(parameters, breaks, coefficients, t_s):
+    """τ(t) of the eight at one time, unwrapped (2π per period), from s(τ) = V t.
+
+    First guess from the table of the inverse τ(s) (made with dτ/ds = 1/g and
+    d²τ/ds² = −g'/g³), then :data:`N_NEWTON` Newton steps on s(τ) − V t with the
+    exact slope g(τ).  ``parameters`` (L, ϑ0, W, H, shape, V, s(2π)); ``breaks`` the
+    rows of the breaks of s(τ) and of τ(s), ``coefficients`` their pieces' (those of
+    s(τ), then those of τ(s)).
     """
-    (th, dth, d2th), (_, dph, d2ph) = theta, phi
-    f = functions_of(th)
-    st = f.sin(th)
-    g = length_m * f.sqrt(dth ** 2 + (st * dph) ** 2)
-    dg = length_m ** 2 * (dth * d2th + st * f.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
-    return g, dg
-
-
-#: A path's position and its derivatives at one time, compiled (the steering's nearest point,
-#: :mod:`.steering`, calls it by address, :mod:`.compiled`): (parameters, breaks, coefficients,
-#: t [s], out), out (3, 3) getting r, ṙ, r̈ on the sphere of radius L (``state(t)``).
-PATH_SIGNATURE = types.void(types.float64[:], types.float64[:, :], types.float64[:, :], types.float64,
-                            types.float64[:, :])
-
-
-@jit
-def _shape(shape, tau, width_m, height_m):
-    """(u, u', u'', w, w', w'') of :data:`SHAPES` at one τ (0: :func:`gerono`, 1: :func:`ellipses`)."""
-    s, c = math.sin(tau), math.cos(tau)
-    s2, c2 = 2.0 * s * c, c * c - s * s
-    if shape == 0:
-        u0, u1, u2 = 0.5 * width_m * s, 0.5 * width_m * c, -0.5 * width_m * s
-    else:
-        side = math.copysign(1.0, s)
-        u0, u1, u2 = 0.5 * width_m * s * abs(s), width_m * abs(s) * c, width_m * side * c2
-    return u0, u1, u2, 0.5 * height_m * s2, height_m * c2, -2.0 * height_m * s2
-
-
-@jit
-def _eight_angles(parameters, tau):
-    """(ϑ, ϑ', ϑ'', φ, φ', φ'') at τ: :meth:`FigureEight.angle_derivatives` at one τ."""
-    length, theta0, width, height = parameters[0], parameters[1], parameters[2], parameters[3]
-    u0, u1, u2, w0, w1, w2 = _shape(int(parameters[6]), tau, width, height)
-    radius = length * math.sin(theta0)
-    return theta0 - w0 / length, -w1 / length, -w2 / length, u0 / radius, u1 / radius, u2 / radius
-
-
-@jit
-def _arc_rate(length, th, dth, d2th, dph, d2ph):
-    """(g, g') of :func:`sphere_arc_rate` at one τ."""
-    st = math.sin(th)
-    g = length * math.sqrt(dth ** 2 + (st * dph) ** 2)
-    return g, length ** 2 * (dth * d2th + st * math.cos(th) * dth * dph ** 2 + st ** 2 * dph * d2ph) / g
-
-
-@jit
-def _global(th, ph, a_theta, a_phi, a_r, out, row, scale):
-    """``scale`` times :func:`local_to_global` of one vector into ``out[row]``."""
-    st, ct = math.sin(th), math.cos(th)
-    sp, cp = math.sin(ph), math.cos(ph)
-    horizontal = ct * a_theta + st * a_r
-    out[row, 0] = scale * (cp * horizontal - sp * a_phi)
-    out[row, 1] = scale * (sp * horizontal + cp * a_phi)
-    out[row, 2] = scale * (ct * a_r - st * a_theta)
-
-
-@jit
-def eight_state(parameters, breaks, coefficients, t_s, out):
-    """:meth:`FigureEight.state` at one time, compiled (:data:`PATH_SIGNATURE`):
-    parameters (L, ϑ0, W, H, V, s(2π), shape), ``breaks`` the rows of the breaks of s(τ)
-    and of τ(s), ``coefficients`` their pieces' (those of s(τ), then those of τ(s))."""
-    length, speed, loop = parameters[0], parameters[4], parameters[5]
+    speed, loop = parameters[5], parameters[6]
     n = breaks.shape[1]
-    arc_breaks, tau_breaks = breaks[0], breaks[1]
     arc_pieces, tau_pieces = coefficients[:n - 1], coefficients[n - 1:]
     loops, arc_m = divmod(speed * t_s, loop)
-    tau = piece_value(tau_breaks, tau_pieces, arc_m)
+    tau = piece_value(breaks[1], tau_pieces, arc_m)
     for _ in range(N_NEWTON):
-        th, dth, d2th, ph, dph, d2ph = _eight_angles(parameters, tau)
-        tau = tau - (piece_value(arc_breaks, arc_pieces, tau) - arc_m) / _arc_rate(length, th, dth, d2th, dph,
-                                                                                   d2ph)[0]
-    tau = tau + 2.0 * np.pi * loops
-    th, dth, d2th, ph, dph, d2ph = _eight_angles(parameters, tau)
-    g, dg = _arc_rate(length, th, dth, d2th, dph, d2ph)
+        theta, phi = eight_angles(parameters, tau)
+        tau = tau - (piece_value(breaks[0], arc_pieces, tau) - arc_m) / sphere_arc_rate(parameters[0], theta,
+                                                                                        phi)[0]
+    return tau + 2.0 * np.pi * loops
+
+
+@jit
+def _store(out, scale, vector):
+    """``scale`` times the 3-vector ``vector`` into ``out``."""
+    for i in range(3):
+        out[i] = scale * vector[i]
+
+
+@jit
+def eight_state(parameters, breaks, coefficients, t_s, radius_m, out):
+    """Position, velocity, acceleration of R ê(ϑ(t), φ(t)) at one time into ``out`` (3, 3)
+    (:data:`PATH_SIGNATURE`; the arguments those of :func:`eight_parameter`).
+
+    R = radius_m scales the nominal path and is held constant in time, so the
+    speed is V R / L.  With τ̇ = V/g, τ̈ = −V² g'/g³ and, in the local frame
+    (e_ϑ, e_φ, e_r),
+
+        ê'  = ϑ' e_ϑ + sinϑ φ' e_φ,
+        ê'' = (ϑ'' − sinϑ cosϑ φ'²) e_ϑ + (sinϑ φ'' + 2 cosϑ ϑ'φ') e_φ
+              − (ϑ'² + sin²ϑ φ'²) e_r,
+
+    r = R ê,  ṙ = R τ̇ ê',  r̈ = R (τ̇² ê'' + τ̈ ê').
+    """
+    speed = parameters[5]
+    theta, phi = eight_angles(parameters, eight_parameter(parameters, breaks, coefficients, t_s))
+    g, dg = sphere_arc_rate(parameters[0], theta, phi)
     tau_dot = speed / g
     tau_ddot = -speed ** 2 * dg / math.pow(g, 3.0)       # as Python raises a float to 3
+    th, dth, d2th = theta
+    ph, dph, d2ph = phi
     st, ct = math.sin(th), math.cos(th)
-    _global(th, ph, 0.0, 0.0, 1.0, out, 0, length)
-    _global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0, out, 1, length)
-    _global(th, ph, tau_dot ** 2 * (d2th - st * ct * dph ** 2) + tau_ddot * dth,
-            tau_dot ** 2 * (st * d2ph + 2.0 * ct * dth * dph) + tau_ddot * st * dph,
-            -tau_dot ** 2 * (dth ** 2 + (st * dph) ** 2), out, 2, length)
+    _store(out[0], radius_m, local_to_global(th, ph, 0.0, 0.0, 1.0))
+    _store(out[1], radius_m, local_to_global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0))
+    _store(out[2], radius_m, local_to_global(th, ph, tau_dot ** 2 * (d2th - st * ct * dph ** 2) + tau_ddot * dth,
+                                             tau_dot ** 2 * (st * d2ph + 2.0 * ct * dth * dph) + tau_ddot * st * dph,
+                                             -tau_dot ** 2 * (dth ** 2 + (st * dph) ** 2)))
+
+
+@jit
+def eight_parameters(parameters, breaks, coefficients, times_s, out):
+    """:func:`eight_parameter` at each of the ``times_s`` into ``out``."""
+    for i in range(times_s.size):
+        out[i] = eight_parameter(parameters, breaks, coefficients, times_s[i])
+
+
+@jit
+def eight_table(geometry, taus, out):
+    """ϑ, ϑ', ϑ'', φ, φ', φ'' (:func:`eight_angles`) and g, g' (:func:`sphere_arc_rate`) of the
+    eight ``geometry`` at each of the ``taus`` into the rows of ``out`` (8, n)."""
+    for i in range(taus.size):
+        theta, phi = eight_angles(geometry, taus[i])
+        g, dg = sphere_arc_rate(geometry[0], theta, phi)
+        for k in range(3):
+            out[k, i] = theta[k]
+            out[3 + k, i] = phi[k]
+        out[6, i] = g
+        out[7, i] = dg
 
 
 @functools.cache
@@ -326,8 +382,8 @@ class FigureEight:
     speed_mps: float
     shape: str = "gerono"
     _loop_m: float = field(init=False, repr=False, compare=False)
-    _arc_m: PiecewisePolynomial = field(init=False, repr=False, compare=False)
-    _tau_of_arc: PiecewisePolynomial = field(init=False, repr=False, compare=False)
+    _breaks: np.ndarray = field(init=False, repr=False, compare=False)
+    _coefficients: np.ndarray = field(init=False, repr=False, compare=False)
 
     @classmethod
     def from_config(cls, kite, length_m):
@@ -350,50 +406,63 @@ class FigureEight:
         return replace(self, length_m=float(length_m))
 
     def __post_init__(self):
-        geometry = (self.length_m, self.theta0_rad, self.width_m, self.height_m, self.shape)
-        tables = _ARC_TABLES.pop(geometry, None) or self._arc_tables()
-        _ARC_TABLES[geometry] = tables            # the most recent last
+        key = (self.length_m, self.theta0_rad, self.width_m, self.height_m, self.shape)
+        tables = _ARC_TABLES.pop(key, None) or self._power_tables()
+        _ARC_TABLES[key] = tables            # the most recent last
         while len(_ARC_TABLES) > ARC_TABLES_KEPT:
             _ARC_TABLES.pop(next(iter(_ARC_TABLES)))
-        for name, value in zip(("_loop_m", "_arc_m", "_tau_of_arc"), tables):
+        for name, value in zip(("_loop_m", "_breaks", "_coefficients"), tables):
             object.__setattr__(self, name, value)
 
-    def _arc_tables(self) -> tuple:
-        """The loop length, s(tau) and tau(s) of this eight's geometry (not of its speed)."""
+    @functools.cached_property
+    def geometry(self) -> np.ndarray:
+        """(L, ϑ0, W, H, shape): the eight's size as :func:`eight_angles` takes it (shape: the
+        index of :data:`SHAPES`), the first five of its parameters."""
+        return np.array([self.length_m, self.theta0_rad, self.width_m, self.height_m, SHAPES.index(self.shape)])
+
+    def arc_tables(self) -> tuple[float, BPoly, BPoly]:
+        """The loop length s(2π), and s(τ) and τ(s) interpolated (:func:`quintic_hermite`) of
+        this eight's geometry (not of its speed): s at the knots by composite Gauss–Legendre,
+        with ds/dτ = g and d²s/dτ² = g', dτ/ds = 1/g and d²τ/ds² = −g'/g³."""
         knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
         arc_m = np.concatenate([[0.0], np.cumsum((self.arc_rate(nodes)[0] * weights).sum(1))])
         g, dg = self.arc_rate(knots)
-        return (float(arc_m[-1]), quintic_hermite(knots, arc_m, g, dg),
-                quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3))
+        return float(arc_m[-1]), quintic_hermite(knots, arc_m, g, dg), quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3)
+
+    def _power_tables(self) -> tuple[float, np.ndarray, np.ndarray]:
+        """:meth:`arc_tables` as :func:`eight_parameter` takes them: the loop length, the rows of
+        the breaks of s(τ) and of τ(s), and their pieces' coefficients, those of s(τ) first."""
+        loop_m, arc_m, tau_of_arc = self.arc_tables()
+        (arc_breaks, arc_pieces), (tau_breaks, tau_pieces) = power_pieces(arc_m), power_pieces(tau_of_arc)
+        return loop_m, np.stack([arc_breaks, tau_breaks]), np.concatenate([arc_pieces, tau_pieces])
 
     @property
     def compiled(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
         """The eight as :data:`PATH_SIGNATURE`'s functions take it: the address of
-        :func:`eight_state`, its parameters, breaks and coefficients."""
+        :func:`eight_state`, its parameters (L, ϑ0, W, H, shape, V, s(2π)), breaks and
+        coefficients (:func:`eight_parameter`)."""
         return _eight_address(), *self._compiled_tables
 
     @functools.cached_property
     def _compiled_tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        parameters = np.array([self.length_m, self.theta0_rad, self.width_m, self.height_m, self.speed_mps,
-                               self._loop_m, list(SHAPES).index(self.shape)])
-        return (parameters, np.stack([self._arc_m.breaks, self._tau_of_arc.breaks]),
-                np.concatenate([self._arc_m.coefficients, self._tau_of_arc.coefficients]))
+        return np.append(self.geometry, [self.speed_mps, self._loop_m]), self._breaks, self._coefficients
+
+    def _table(self, tau) -> np.ndarray:
+        """:func:`eight_table` at ``tau`` (any shape), shape (8,) + tau.shape."""
+        tau = np.array(tau, dtype=float)                 # a writeable copy: one compiled type
+        out = np.empty((8, tau.size))
+        eight_table(self.geometry, tau.ravel(), out)
+        return out.reshape((8, *tau.shape))
 
     def angle_derivatives(self, tau):
-        """(ϑ, ϑ', ϑ''), (φ, φ', φ'') along the eight, ' = d/dτ.
-
-        ϑ = ϑ0 − w/L,  φ = u / (L sinϑ0).
-        """
-        u, w = SHAPES[self.shape](tau, self.width_m, self.height_m)
-        L = self.length_m
-        theta = (self.theta0_rad - w[0] / L, -w[1] / L, -w[2] / L)
-        radius = L * math.sin(self.theta0_rad)
-        phi = (u[0] / radius, u[1] / radius, u[2] / radius)
-        return theta, phi
+        """(ϑ, ϑ', ϑ''), (φ, φ', φ'') along the eight at ``tau``, ' = d/dτ (:func:`eight_angles`)."""
+        table = self._table(tau)
+        return (table[0], table[1], table[2]), (table[3], table[4], table[5])
 
     def arc_rate(self, tau):
         """g(τ) = ds/dτ on the sphere of radius L and g'(τ); see :func:`sphere_arc_rate`."""
-        return sphere_arc_rate(self.length_m, *self.angle_derivatives(tau))
+        table = self._table(tau)
+        return table[6], table[7]
 
     @property
     def period_s(self):
@@ -406,20 +475,12 @@ class FigureEight:
         return self.speed_mps * np.asarray(t_s, dtype=float) / self._loop_m
 
     def parameter(self, t_s):
-        """Path parameter τ(t), unwrapped (2π per period), from s(τ) = V t.
-
-        First guess from the interpolant of the inverse τ(s), with
-        dτ/ds = 1/g and d²τ/ds² = −g'/g³, then Newton on s(τ) − V t with the
-        exact slope g(τ).
-        """
-        if isinstance(t_s, (int, float)):
-            loops, arc_m = divmod(self.speed_mps * float(t_s), self._loop_m)
-        else:
-            loops, arc_m = np.divmod(self.speed_mps * np.asarray(t_s, dtype=float), self._loop_m)
-        tau = self._tau_of_arc(arc_m)
-        for _ in range(N_NEWTON):
-            tau = tau - (self._arc_m(tau) - arc_m) / self.arc_rate(tau)[0]
-        return tau + 2.0 * np.pi * loops
+        """Path parameter τ(t), unwrapped (2π per period), from s(τ) = V t
+        (:func:`eight_parameter`)."""
+        t = np.asarray(t_s, dtype=float)
+        out = np.empty(t.size)
+        eight_parameters(*self._compiled_tables, np.ravel(t), out)
+        return out.reshape(t.shape)[()]
 
     def angles(self, t_s):
         """Polar angle ϑ and azimuth φ of the kite at times t, in radians."""
@@ -428,38 +489,17 @@ class FigureEight:
 
     def direction_at(self, t_s):
         """ê(ϑ(t), φ(t)): the kite's direction alone (a time step's boundary
-        condition), equal to ``state(t, 1.0)[0]``."""
-        return direction(*self.angles(t_s))
+        condition), ``state(t, 1.0)[0]``."""
+        return self.state(t_s, 1.0)[0]
 
     def state(self, t_s, radius_m=None):
-        """Position, velocity, acceleration of R ê(ϑ(t), φ(t)).
+        """Position, velocity, acceleration of R ê(ϑ(t), φ(t)) (:func:`eight_state`).
 
         R = radius_m (default L; scalar or broadcastable with t) scales the
         nominal path and is held constant in time, so the speed is V R / L.
-        Each array has shape broadcast(t, R).shape + (3,).  With τ̇ = V/g,
-        τ̈ = −V² g'/g³ and, in the local frame (e_ϑ, e_φ, e_r),
-
-            ê'  = ϑ' e_ϑ + sinϑ φ' e_φ,
-            ê'' = (ϑ'' − sinϑ cosϑ φ'²) e_ϑ + (sinϑ φ'' + 2 cosϑ ϑ'φ') e_φ
-                  − (ϑ'² + sin²ϑ φ'²) e_r,
-
-        r = R ê,  ṙ = R τ̇ ê',  r̈ = R (τ̇² ê'' + τ̈ ê').
+        Each array has shape broadcast(t, R).shape + (3,).
         """
-        theta, phi = self.angle_derivatives(self.parameter(t_s))
-        g, dg = sphere_arc_rate(self.length_m, theta, phi)
-        tau_dot = self.speed_mps / g
-        tau_ddot = -self.speed_mps ** 2 * dg / g ** 3
-        (th, dth, d2th), (ph, dph, d2ph) = theta, phi
-        f = functions_of(th)
-        st, ct = f.sin(th), f.cos(th)
-        velocity = local_to_global(th, ph, tau_dot * dth, tau_dot * st * dph, 0.0)
-        acceleration = local_to_global(
-            th, ph,
-            tau_dot ** 2 * (d2th - st * ct * dph ** 2) + tau_ddot * dth,
-            tau_dot ** 2 * (st * d2ph + 2.0 * ct * dth * dph) + tau_ddot * st * dph,
-            -tau_dot ** 2 * (dth ** 2 + (st * dph) ** 2))
-        R = np.asarray(self.length_m if radius_m is None else radius_m, dtype=float)[..., None]
-        return R * direction(th, ph), R * velocity, R * acceleration
+        return path_state(eight_state, self.compiled, t_s, self.length_m if radius_m is None else radius_m)
 
     def mean_abs_phi_deg(self):
         """Time average of |φ| over one loop, in degrees.
@@ -468,9 +508,9 @@ class FigureEight:
         composite Gauss–Legendre with knots at the kinks τ = 0, π of |φ|.
         """
         _, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
-        ds = self.arc_rate(nodes)[0] * weights
-        phi = self.angle_derivatives(nodes)[1][0]
-        return float(np.degrees((np.abs(phi) * ds).sum() / ds.sum()))
+        table = self._table(nodes)
+        ds = table[6] * weights
+        return float(np.degrees((np.abs(table[3]) * ds).sum() / ds.sum()))
 
 
 @dataclass(frozen=True)

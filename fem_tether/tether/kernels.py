@@ -26,7 +26,7 @@ KERNELS = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.fd.kern
 
 #: What a solver's first run compiles besides its kernels (the same for both solvers).
 SHARED = ("fem_tether.tether.protocol", "fem_tether.physics.atmosphere", "fem_tether.physics.wind",
-          "fem_tether.physics.drag_coefficient", "fem_tether.physics.loads")
+          "fem_tether.physics.drag_coefficient", "fem_tether.physics.loads", "fem_tether.physics.trajectory")
 
 #: The compiles (function x signature, numba's compile events) of each module in a
 #: solver's first run, and their CPU time [s] (numba's own functions compiled
@@ -36,6 +36,10 @@ SHARED = ("fem_tether.tether.protocol", "fem_tether.physics.atmosphere", "fem_te
 #: (``kite_dynamics``, and ``atmosphere`` and ``wind`` at the kite's altitude) compiles
 #: when a run flies the kite, not here: counted again on 2026-12-03 with their seconds
 #: (each module's own, without those compiled inside it) on the machine shared with other jobs.
+#: The prescribed end's path (``trajectory``: its arc-length tables and its state at one
+#: time, one implementation with the free kite's steering sample) compiles in every run:
+#: counted on 2026-12-03 likewise (10 in the warm-up of either solver; the flight check's
+#: turn radius adds its loop of points, 2 more, before a command loads the kernels).
 FIRST_COMPILE = {
     "fem_tether.tether.protocol": (3, 0.3),
     "fem_tether.tether.fe.kernel": (14, 6.5),
@@ -44,6 +48,7 @@ FIRST_COMPILE = {
     "fem_tether.physics.wind": (3, 0.5),
     "fem_tether.physics.drag_coefficient": (6, 0.6),
     "fem_tether.physics.loads": (10, 2.8),
+    "fem_tether.physics.trajectory": (10, 1.3),
 }
 
 #: The tiny case each solver runs once after compiling (the default physics, a few elements, one period).

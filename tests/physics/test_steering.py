@@ -385,24 +385,19 @@ def test_the_schedule_flies_eq_3_5_and_its_correction_is_the_laws_feedback():
         assert fixed.roll_rad < scheduled       # left of the path: rolled right
 
 
-def test_path_geometry_of_many_points_is_path_points_one_by_one():
-    """min_turn_radius_m evaluates the path at all its samples at once (path_geometry on arrays): each
-    point's speed, tangent, normal and curvature equal path_point's to rounding; cross is numpy's."""
-    from fem_tether.physics.steering import cross, path_geometry
-    from fem_tether.physics.trajectory import FigureEight
+def test_the_loop_of_path_points_is_path_point_one_by_one():
+    """min_turn_radius_m samples the path by the compiled loop path_points: each row is
+    path_point's (σ, r, t, n, κ_g, V_p) at that time, bitwise, on the eight and the circle."""
+    from fem_tether.physics.trajectory import POINT_SIZE, path_points
 
-    path = FigureEight(1000.0, math.radians(45.0), 190.0, 95.0, 80.0)
-    times = np.linspace(0.0, path.period_s, 37)
-    speed, tangent, normal, curvature = path_geometry(*path.state(times))
-    for k, t in enumerate(times):
-        point = path_point(path, t)
-        assert speed[k] == pytest.approx(point.path_speed_mps, rel=1e-12)
-        assert curvature[k] == pytest.approx(point.curvature_per_m, rel=1e-9, abs=1e-14)
-        assert np.allclose(tangent[k], point.tangent, rtol=0, atol=1e-12)
-        assert np.allclose(normal[k], point.normal, rtol=0, atol=1e-12)
-    a, b = np.random.default_rng(0).normal(size=(2, 5, 3))
-    assert np.allclose(cross(a, b), np.cross(a, b), rtol=0, atol=1e-15)
-    assert np.allclose(cross(a[0], b[0]), np.cross(a[0], b[0]), rtol=0, atol=1e-15)
+    for path in (FigureEight(1000.0, math.radians(45.0), 190.0, 95.0, 80.0), Circle(400.0, 1.0, 0.4, 89.7, 0.3)):
+        times = np.linspace(-path.period_s, path.period_s, 37)
+        points = np.empty((times.size, POINT_SIZE))
+        path_points(*path.compiled, times, points)
+        for row, t in zip(points, times):
+            point = path_point(path, t)
+            assert np.array_equal(row, np.concatenate([[point.parameter_s], point.position_m, point.tangent,
+                                                       point.normal, [point.curvature_per_m, point.path_speed_mps]]))
 
 
 def _numpy_nearest_point(path, p, guess_s, iterations):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_tether.config import load_config
-from fem_tether.physics.trajectory import FigureEight, Stationary, direction
+from fem_tether.physics.trajectory import FigureEight, Stationary, piece_value, power_pieces
 
 #: Roselli 2016 (seed 000) Tab. 5.2, L [m] -> mean |φ| [deg].
 TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.47, 3000: 1.28}
@@ -13,6 +13,11 @@ TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.4
 @pytest.fixture(scope="module", params=["gerono", "ellipses"])
 def eight(request):
     return load_config(overrides={"kite": {"eight_shape": request.param}}).path
+
+
+def direction(theta, phi):
+    """ê(ϑ, φ) = (sinϑ cosφ, sinϑ sinφ, cosϑ), written out here (the module's is compiled, of one point)."""
+    return np.stack([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], axis=-1)
 
 
 def one_period(eight, n=4001):
@@ -145,13 +150,18 @@ def test_direction_at_is_the_unit_state():
 def test_one_point_of_a_piecewise_polynomial_equals_the_bpoly(eight):
     """The arc length s(tau) and its inverse at 200 single points (inside, on
     the knots and just beyond both ends, as a Newton iterate may be): Horner on
-    the power basis equals scipy's Bernstein evaluation to 1e-14 of the loop
-    length (resp. of 2 pi)."""
-    for poly, ends, scale in ((eight._arc_m, (0.0, 2 * np.pi), eight._loop_m),
-                              (eight._tau_of_arc, (0.0, eight._loop_m), 2 * np.pi)):
-        points = np.concatenate([np.linspace(ends[0] - 1e-6, ends[1] + 1e-6, 190), poly.bpoly.x[::60]])
-        one_by_one = np.array([poly(float(p)) for p in points])
+    the power basis (piece_value, compiled) equals scipy's Bernstein evaluation
+    to 1e-14 of the loop length (resp. of 2 pi); the eight's own tables are these."""
+    loop_m, arc_m, tau_of_arc = eight.arc_tables()
+    for poly, ends, scale in ((arc_m, (0.0, 2 * np.pi), loop_m), (tau_of_arc, (0.0, loop_m), 2 * np.pi)):
+        breaks, coefficients = power_pieces(poly)
+        points = np.concatenate([np.linspace(ends[0] - 1e-6, ends[1] + 1e-6, 190), poly.x[::60]])
+        one_by_one = np.array([piece_value(breaks, coefficients, float(p)) for p in points])
         np.testing.assert_allclose(one_by_one, poly(points), rtol=0, atol=1e-14 * scale)
+    _, parameters, breaks, coefficients = eight.compiled
+    assert parameters[-1] == loop_m
+    assert np.array_equal(breaks, np.stack([power_pieces(arc_m)[0], power_pieces(tau_of_arc)[0]]))
+    assert np.array_equal(coefficients, np.concatenate([power_pieces(arc_m)[1], power_pieces(tau_of_arc)[1]]))
 
 
 def test_ellipses_mean_abs_phi_matches_table_5_2():
@@ -178,6 +188,6 @@ def test_ellipses_mean_abs_u_is_a_quarter_width(height_m):
 def test_ellipses_lobes_are_circles_of_radius_quarter_width():
     """H = W/2: every point of a lobe lies W/4 from its centre (u, w) = (±W/4, 0)."""
     from fem_tether.physics.trajectory import ellipses
-    tau = np.linspace(0.0, 2 * np.pi, 1001)
-    (u, _, _), (w, _, _) = ellipses(tau, 190.0, 95.0)
-    np.testing.assert_allclose(np.hypot(np.abs(u) - 47.5, w), 47.5, rtol=1e-12)
+    for tau in np.linspace(0.0, 2 * np.pi, 1001):
+        (u, _, _), (w, _, _) = ellipses(float(tau), 190.0, 95.0)
+        assert np.hypot(abs(u) - 47.5, w) == pytest.approx(47.5, rel=1e-12)

@@ -35,18 +35,22 @@ def test_the_table_of_first_compiles_has_every_module_a_run_compiles():
 def test_a_prescribed_first_run_compiles_the_table_and_not_the_kite(tmp_path):
     """On an empty numba cache, loading the FE kernels (their warm-up flies the default,
     prescribed kite) leaves every module of the table that an FE run compiles cached, so
-    the next run says nothing, and compiles none of the point-mass kite's code, which
-    the kernel calls by address (before: the kernel compiled the kite in, 4 of its
-    compiles and ~3 s), nor its steering's (the flight check's turn radius is NumPy's)."""
+    the next run says nothing: the path's (``trajectory``, the prescribed end's state at
+    each step, one implementation with the free kite's steering sample) among them.  It
+    compiles none of the point-mass kite's code, which the kernel calls by address
+    (before: the kernel compiled the kite in, 4 of its compiles and ~3 s), nor the
+    steering's or the circle's; nor does the flight check (its turn radius is the
+    path's compiled loop of points, ``trajectory.path_points``)."""
     code = ("from fem_tether.physics.compiled import cached\n"
             "from fem_tether.tether import kernels\n"
             "kernels.load(['fe'])\n"
             "modules = [*kernels.SHARED, kernels.KERNELS['fe']]\n"
+            "assert 'fem_tether.physics.trajectory' in modules\n"
             "assert all(cached(m) for m in modules), [m for m in modules if not cached(m)]\n"
             "from fem_tether.config import load_config\n"
             "from fem_tether.physics.steering import min_turn_radius_m\n"
             "min_turn_radius_m(load_config(None).path)\n"
-            "for kite in ('kite_dynamics', 'steering', 'trajectory', 'orbit'):\n"
+            "for kite in ('kite_dynamics', 'steering', 'orbit'):\n"
             "    assert not cached(f'fem_tether.physics.{kite}'), kite\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600,
                           env=_quiet_env(NUMBA_CACHE_DIR=str(tmp_path / "numba-cache")))
