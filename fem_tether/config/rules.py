@@ -28,8 +28,14 @@ if TYPE_CHECKING:
 MIN_STEPS_PER_PERIOD = {("fe", "dt_s"): 36, ("fd", "dt_s"): 72}
 
 #: Keys that name files: a relative name in a file is read relative to that file.
-FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("winch", "reel_out_table"), ("kite", "polar"),
-             ("wind", "table_csv"))
+FILE_KEYS = (("fe", "mesh"), ("resource", "csv"), ("resource", "clusters"), ("winch", "reel_out_table"),
+             ("kite", "polar"), ("wind", "table_csv"))
+
+#: The suffixes of a cluster resource's file: an awesIO ``wind_resource`` document, or the legacy CSV.
+CLUSTER_YAML, CLUSTER_CSV = (".yml", ".yaml"), (".csv",)
+
+#: The [resource] keys of the Weibull bands, which a cluster resource replaces.
+WEIBULL_KEYS = ("weibull_k", "band_bottom_m", "band_top_m", "band_width_m", "bin_width_mps", "max_speed_mps")
 
 #: Values of file keys that are not files.
 NOT_FILES = ("", "uniform", "graded")
@@ -191,6 +197,8 @@ def _read_file_key(cfg: Config, section: str, name: str) -> None:
     elif (section, name) == ("resource", "csv"):
         from fem_tether.physics.resource import read_resource_csv
         read_resource_csv(cfg.resource.csv)
+    elif (section, name) == ("resource", "clusters"):
+        _read_clusters_key(cfg.resource.clusters)
     elif (section, name) == ("winch", "reel_out_table"):
         from fem_tether.physics.reel import read_speed_table
         _check_table_direction(cfg, read_speed_table(cfg.winch.reel_out_table)[1])
@@ -202,10 +210,39 @@ def _read_file_key(cfg: Config, section: str, name: str) -> None:
         read_wind_table(cfg.wind.table_csv)
 
 
+def _read_clusters_key(path: str) -> None:
+    """A legacy cluster CSV is read whole; an awesIO document needs the awesIO reader of a higher
+    layer (:func:`fem_tether.io.awesio_clusters.read_cluster_resource`), which reads it before any
+    task of a run or sweep: here its suffix."""
+    suffix = Path(path).suffix.lower()
+    if suffix in CLUSTER_CSV:
+        from fem_tether.physics.clusters import read_clusters_csv
+        read_clusters_csv(path)
+    elif suffix not in CLUSTER_YAML:
+        raise ConfigError(f"[resource] clusters = {toml_value(path)}: expected an awesIO wind_resource "
+                          f"({', '.join(CLUSTER_YAML)}) or the legacy cluster CSV (.csv)")
+
+
+def _check_clusters_given(cfg: Config, given: dict, base: Config) -> None:
+    """A cluster resource is the whole resource: no band CSV and no Weibull key beside it."""
+    if not cfg.resource.clusters:
+        return
+    if cfg.resource.csv:
+        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)} and [resource] csv = "
+                          f"{toml_value(cfg.resource.csv)}: two resources; keep one")
+    table: dict = given["resource"] if isinstance(given.get("resource"), dict) else {}
+    for key in WEIBULL_KEYS:
+        if key in table and getattr(cfg.resource, key) != getattr(base.resource, key):
+            raise ConfigError(f"[resource] {key} = {toml_value(table[key])}: [resource] clusters = "
+                              f"{toml_value(cfg.resource.clusters)} brings its own speed bins and "
+                              "probabilities; remove the Weibull key")
+
+
 def check_given(cfg: Config, given: dict, base: Config) -> None:
     """Raise :class:`ConfigError` for a key the user changed (``given``: the tables
     of the user's file and overrides, set to other than ``base``'s value, the
     preset's or default) that ``cfg``'s path ignores."""
+    _check_clusters_given(cfg, given, base)
     kite: dict = given["kite"] if isinstance(given.get("kite"), dict) else {}
     for key, (path, meaning) in PATH_KEYS.items():
         if key in kite and cfg.kite.path != path and getattr(cfg.kite, key) != getattr(base.kite, key):

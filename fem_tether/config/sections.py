@@ -441,6 +441,8 @@ class Cycle(Section):
 class Resource(Section):
     NAME = "resource"
     csv: str = setting("", "-", "wind histograms per altitude band (CSV); '' = Weibull from the wind profile")
+    clusters: str = setting("", "-", "wind-profile clusters: an awesIO wind_resource (.yml, .yaml) or the legacy "
+                            "cluster CSV (docs/resource.md); excludes csv and the Weibull keys")
     weibull_k: float = setting(2.0, "-", "Weibull shape k of the default resource", WEIBULL_K)
     band_bottom_m: float = setting(200.0, "m", "lowest altitude of the bands", zero_to(CEILING_M))
     band_top_m: float = setting(2300.0, "m", "highest altitude of the bands", up_to(CEILING_M))

@@ -25,7 +25,7 @@ from datetime import datetime, timezone
 import numpy as np
 
 from fem_tether.io.awesio import AWESIO_VERSION, AwesioError, read_document
-from fem_tether.physics.clusters import ClusterResource
+from fem_tether.physics.clusters import ClusterResource, read_clusters_csv
 
 #: How close the probability matrix's total must be to 1 (fractions) or 100 (percent).
 TOTAL_TOLERANCE = 1e-6
@@ -117,3 +117,11 @@ def read_wind_resource(path) -> ClusterResource:
     v = np.array([s[1] for s in shapes], dtype=float)
     return ClusterResource(heights, float(document["metadata"]["reference_height_m"]), u, v, frequency, edges,
                            probability, source)
+
+
+def read_cluster_resource(path) -> ClusterResource:
+    """The cluster resource of ``[resource] clusters``: an awesIO ``wind_resource`` document
+    (``.yml``, ``.yaml``: :func:`read_wind_resource`), else the legacy CSV
+    (:func:`fem_tether.physics.clusters.read_clusters_csv`)."""
+    suffix = str(path).lower().rpartition(".")[2]
+    return read_wind_resource(path) if suffix in ("yml", "yaml") else read_clusters_csv(path)

@@ -28,6 +28,7 @@ from fem_tether.core.errors import InputError
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
+from fem_tether.io.awesio_clusters import read_cluster_resource
 from fem_tether.jobs.evaluate import LengthResult
 from fem_tether.jobs.job import Job
 from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
@@ -162,6 +163,8 @@ def _prepare_output(store: PartsStore, n_ranks: int, output: ExitStack, follow_u
     remove_temporaries(store.directory)
     if follow_up is not None:
         if follow_up.aep:
+            if store.job.config.resource.clusters:     # an awesIO document: read here, above the configuration
+                read_cluster_resource(store.job.config.resource.clusters)
             check_resource(store.job.config)
         for path in follow_up.files:
             check_writable(path)

@@ -16,7 +16,8 @@ out there; it is reported as ``unbinned_probability``.  Usage::
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -24,13 +25,15 @@ import numpy as np
 
 from fem_tether.physics import wind
 from fem_tether.config import Config
-from fem_tether.core.errors import InputError
+from fem_tether.config.settings import toml_value
+from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.physics.kite import KiteGenDesign
 from fem_tether.systems.power import Cycle, cycle_curves, operating_design, rated_power_W
 from fem_tether.core.quantities import lumped_name
 from fem_tether.performance.caveats import Caveat, as_json
 from fem_tether.performance.sizing import margin_caveat
 from fem_tether.performance.summary import spinup_caveat
+from fem_tether.physics.clusters import ClusterResource
 from fem_tether.physics.resource import Band, Resource, ResourceError
 from fem_tether.physics.resource import check_config as check_resource_config
 from fem_tether.physics.resource import from_config as resource_from_config
@@ -190,6 +193,53 @@ def aep_of_system(cfg: Config, lengths_m, drag_N, resource: Resource, cases=None
 
 
 @dataclass(frozen=True)
+class ClusterAep:
+    """AEP of one length on a cluster resource (:class:`ClusterResource`): per cluster k the
+    AEP were cluster k to blow all year,
+
+        AEP_k = 8760 h Σ_i ½ (P_k(V_i) + P_k(V_{i+1})) P(i | k)   (seed 000 eq. 5.2 per cluster),
+
+    V_i the bin edges of the wind speed at the reference height and P_k cluster k's power
+    curve against it; the site's AEP is Σ_k P(k) AEP_k = 8760 h Σ_k Σ_i P(k) P(i | k) P̄_k,i."""
+
+    aep_by_cluster_MWh: np.ndarray
+    frequency: np.ndarray
+    unbinned_probability: np.ndarray   # per cluster: P(V_ref above the last edge | k), counted as no power
+
+    @property
+    def aep_MWh(self) -> float:
+        """Σ_k P(k) AEP_k."""
+        return math.fsum(self.frequency * self.aep_by_cluster_MWh)
+
+
+def aep_on_clusters(power_at_reference_W: Callable[[int, np.ndarray], np.ndarray],
+                    resource: ClusterResource) -> ClusterAep:
+    """:class:`ClusterAep` of the power curves ``power_at_reference_W(k, V_ref)`` (cluster k's
+    power against the wind speed at the reference height, vectorised in V_ref)."""
+    edges = resource.edges_mps
+    aep_Wh = np.array([annual_energy_Wh(power_at_reference_W(k, edges), resource.probability[k])
+                       for k in range(resource.n_clusters)], dtype=float)
+    return ClusterAep(aep_Wh / 1e6, resource.frequency, resource.remainder())
+
+
+def operating_altitude_m(cfg: Config, length_m: float) -> float:
+    """z = L cosϑ0: the altitude whose wind a length's operating point takes (the band of
+    :func:`aep_of_system` holds it too)."""
+    return float(length_m * math.cos(math.radians(cfg.kite.theta0_deg)))
+
+
+def system_on_clusters(case: Config, drag_N: float, resource: ClusterResource) -> ClusterAep:
+    """:class:`ClusterAep` of the configured system of ``case`` (its length) with the tether
+    drag F_t per line ``drag_N``: cluster k's power at V_ref is the system's power at the wind
+    speed of the kite's altitude z = L cosϑ0, V_ref sqrt(u_k(z)^2 + v_k(z)^2); the turn of
+    the wind there changes the speed's direction, which a straight system has not."""
+    system, cd = configured_system(case, drag_N)
+    z_m = operating_altitude_m(case, case.tether.length_m)
+    return aep_on_clusters(lambda k, v_ref: system.electrical_power_W(resource.speed_mps(k, v_ref, z_m), cd),
+                           resource)
+
+
+@dataclass(frozen=True)
 class Lines:
     """The lengths of a sweep whose AEP one tether model counts, each with its drag F_t
     per line (lumped as ``[drag] tether_drag_lumping``) and, for a sized sweep, its own case."""
@@ -318,13 +368,23 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     )
 
 
+def refuse_clusters(cfg: Config) -> None:
+    """A :class:`ConfigError` if ``cfg`` has ``[resource] clusters``: the AEP of the band and
+    Weibull resources below does not count clusters (issue 34: cluster-resolved AEP)."""
+    if cfg.resource.clusters:
+        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: this AEP does not yet "
+                          "count wind-profile clusters; remove the key (docs/resource.md)")
+
+
 def sweep_resource(cfg: Config, wind_csv=None) -> Resource:
     """The wind resource of a configuration: the CSV ``wind_csv`` if given, else its ``[resource]``."""
+    refuse_clusters(cfg)
     return resource_from_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 
 def check_resource(cfg: Config, wind_csv=None) -> None:
     """Raise the error :func:`sweep_resource` would raise, without computing the resource."""
+    refuse_clusters(cfg)
     check_resource_config(cfg.resource, wind.from_config(cfg.wind, cfg.resource.weibull_k), wind_csv)
 
 

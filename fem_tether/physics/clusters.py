@@ -53,6 +53,7 @@ import numpy as np
 
 from fem_tether.core.inputfile import read_text
 from fem_tether.physics.resource import SUM_TOLERANCE, ResourceError
+from fem_tether.physics.wind import TableWind
 
 #: How far a shape may be from u = 1, v = 0 at the reference height (interpolated).
 SHAPE_TOLERANCE = 1e-3
@@ -142,6 +143,16 @@ class ClusterResource:
         from the wind at the reference height, counterclockwise positive (seen from above)."""
         u, v = self._at(k, z_m)
         return np.degrees(np.arctan2(v, u))
+
+    def wind(self, k: int, reference_speed_mps: float) -> TableWind:
+        """Cluster ``k``'s wind at ``reference_speed_mps`` as a wind law of the kernels
+        (:meth:`TableWind.from_components` of U_ref (u_k, v_k) at the heights: x downwind at the
+        reference height).  At the heights it is :meth:`speed_mps` and :meth:`turn_deg`;
+        between them the table interpolates speed and turn, not u and v (equal to first
+        order); below the lowest height the speed falls linearly to 0 at the ground, above
+        the highest it stays (:func:`fem_tether.physics.wind.tabulated_wind`)."""
+        return TableWind.from_components(self.heights_m, reference_speed_mps * self.u_shape[k],
+                                         reference_speed_mps * self.v_shape[k])
 
     def joint_probability(self) -> np.ndarray:
         """P(k, bin i) = P(k) P(bin i | k), clusters x speed bins."""

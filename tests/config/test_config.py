@@ -279,3 +279,52 @@ def test_a_relative_wind_table_is_read_next_to_the_case(tmp_path):
     (tmp_path / "wind.csv").write_text("height_m,speed_mps\n0,0\n50,6\n")
     (tmp_path / "case.toml").write_text('[wind]\nprofile = "table"\ntable_csv = "wind.csv"\n')
     assert load_config(tmp_path / "case.toml").wind.table_csv == str(tmp_path / "wind.csv")
+
+
+CLUSTER_CSV = """reference_height [m];100
+h [m];u1;v1
+10;0.7;0
+100;1;0
+300;1.2;-0.1
+frequency;1
+v_low [m/s];v_high [m/s];p1
+0;10;0.4
+10;20;0.6
+"""
+
+
+def test_a_cluster_resource_is_read_at_load_relative_to_the_file(tmp_path):
+    (tmp_path / "site.csv").write_text(CLUSTER_CSV)
+    (tmp_path / "case.toml").write_text('[resource]\nclusters = "site.csv"\n')
+    assert load_config(tmp_path / "case.toml").resource.clusters == str(tmp_path / "site.csv")
+
+
+@pytest.mark.parametrize("table, match", [
+    ({"csv": "bands.csv"}, r'^\[resource\] clusters = ".*site.csv" and \[resource\] csv = ".*bands.csv": two '
+                           r"resources; keep one$"),
+    ({"weibull_k": 3.0}, r'^\[resource\] weibull_k = 3.0: \[resource\] clusters = ".*site.csv" brings its own '
+                         r"speed bins and probabilities; remove the Weibull key$"),
+    ({"band_width_m": 0.0}, r"^\[resource\] band_width_m = 0.0: .*remove the Weibull key$"),
+])
+def test_a_cluster_resource_excludes_the_band_csv_and_the_weibull_keys(tmp_path, table, match):
+    (tmp_path / "site.csv").write_text(CLUSTER_CSV)
+    (tmp_path / "bands.csv").write_text("band_low_m,band_high_m,bin_low_mps,bin_high_mps,probability\n"
+                                        "0,500,0,10,1\n")
+    with pytest.raises(ConfigError, match=match):
+        load_config(overrides={"resource": {"clusters": str(tmp_path / "site.csv"),
+                                            **{k: str(tmp_path / v) if k == "csv" else v for k, v in table.items()}}})
+
+
+@pytest.mark.parametrize("name, text, match", [
+    ("site.csv", CLUSTER_CSV.replace("frequency;1", "frequency;0.5"),
+     r'^\[resource\] clusters = ".*site.csv": .*site.csv: the cluster frequencies sum to 0.5, not 1'),
+    ("site.csv", CLUSTER_CSV.replace("10;20;0.6", "10;x;0.6"),
+     r'^\[resource\] clusters = ".*site.csv": site.csv line 9: \'x\' is not a number$'),
+    ("site.txt", CLUSTER_CSV, r'^\[resource\] clusters = ".*site.txt": expected an awesIO wind_resource '
+                              r"\(.yml, .yaml\) or the legacy cluster CSV \(.csv\)$"),
+])
+def test_a_bad_cluster_file_is_one_line_at_load(tmp_path, name, text, match):
+    (tmp_path / name).write_text(text)
+    with pytest.raises(ConfigError, match=match) as error:
+        load_config(overrides={"resource": {"clusters": str(tmp_path / name)}})
+    assert "\n" not in str(error.value)

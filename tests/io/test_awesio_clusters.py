@@ -7,7 +7,7 @@ import pytest
 
 from awesio_valid import assert_valid
 from fem_tether.io.awesio import AwesioError, yaml_text
-from fem_tether.io.awesio_clusters import read_wind_resource, wind_resource_document
+from fem_tether.io.awesio_clusters import read_cluster_resource, read_wind_resource, wind_resource_document
 from fem_tether.physics.clusters import ClusterError, ClusterResource
 from fem_tether.physics.clustering import cluster_profiles
 from synthetic_profiles import HEIGHTS_M, REFERENCE_M, draw
@@ -84,3 +84,16 @@ def test_a_document_of_another_kind_is_refused(tmp_path):
     path.write_text("metadata:\n  schema: power_curves_schema.yml\n")
     with pytest.raises(AwesioError, match="an awesIO power_curves document, where one of wind_resource_schema.yml"):
         read_wind_resource(path)
+
+
+def test_the_cluster_key_reads_an_awesio_document_or_the_legacy_csv(tmp_path):
+    resource = clusters()
+    document = wind_resource_document(resource, "site", "three shapes", "a test")
+    for name in ("r.yml", "r.YAML"):
+        assert np.array_equal(read_cluster_resource(write(tmp_path / name, document)).u_shape, resource.u_shape)
+    csv = tmp_path / "r.csv"
+    csv.write_text("reference_height [m];100\nh [m];u1;v1\n10;0.7;0\n100;1;0\nfrequency;1\n"
+                   "v_low [m/s];v_high [m/s];p1\n0;10;1\n")
+    assert read_cluster_resource(csv).n_clusters == 1
+    with pytest.raises(AwesioError, match=r"r.yml"):
+        read_cluster_resource(write(tmp_path / "r.yml", {"metadata": {"schema": "wind_resource_schema.yml"}}))

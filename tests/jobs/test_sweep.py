@@ -339,8 +339,18 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
     (tmp_path / "bad.csv").write_text("not a wind resource\n")
     bad_resource = Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
                        tiny_job.config.replace(resource={"csv": str(tmp_path / "bad.csv")}), tiny_job.toml)
+    (tmp_path / "bad.yml").write_text("metadata:\n  schema: wind_resource_schema.yml\n")
+    (tmp_path / "site.csv").write_text("reference_height [m];100\nh [m];u1;v1\n10;0.7;0\n100;1;0\nfrequency;1\n"
+                                       "v_low [m/s];v_high [m/s];p1\n0;10;1\n")
+
+    def clusters(name):
+        return Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
+                   tiny_job.config.replace(resource={"clusters": str(tmp_path / name)}), tiny_job.toml)
+
     for job, files, aep, problem in ((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
-                                     (bad_resource, (), True, "bad.csv")):
+                                     (bad_resource, (), True, "bad.csv"),
+                                     (clusters("bad.yml"), (), True, r"bad.yml: not a valid awesIO wind_resource"),
+                                     (clusters("site.csv"), (), True, "does not yet count wind-profile clusters")):
         with ExitStack() as holder, pytest.raises(InputError, match=problem):
             sw.sweep(job, tmp_path / "s.h5", comm=_self_comm(), progress=False,
                      follow_up=sw.FollowUp(folder, files, holder, aep=aep))

@@ -39,6 +39,20 @@ def test_speed_and_turn_of_a_cluster_are_the_shape_times_the_reference_speed():
         r.speed_mps(0, 10.0, 400.0)
 
 
+def test_a_clusters_wind_law_is_its_shape_times_the_reference_speed():
+    """At the heights the kernels' table wind is U_ref (u_k, v_k) exactly; between them it interpolates
+    speed and turn instead of u and v: at 200 m, halfway between (1, 0) and (1.2, -0.1), the table's
+    speed is ½ (1 + hypot(1.2, 0.1)) against hypot(1.1, 0.05), 8.6e-4 more."""
+    r = resource()
+    law = r.wind(0, 10.0)
+    z = r.heights_m
+    np.testing.assert_allclose(law.speed_mps(z), r.speed_mps(0, 10.0, z), rtol=1e-15)
+    np.testing.assert_allclose(law.turn_deg(z), r.turn_deg(0, z), rtol=1e-14, atol=1e-14)
+    np.testing.assert_allclose(law.velocity_mps(z)[:, 1], 10.0 * r.v_shape[0], atol=1e-14)
+    assert law.speed_mps(200.0) == pytest.approx(5.0 * (1.0 + np.hypot(1.2, 0.1)), rel=1e-14)
+    assert law.speed_mps(200.0) / r.speed_mps(0, 10.0, 200.0) == pytest.approx(1.000857, rel=1e-6)   # +8.6e-4
+
+
 @pytest.mark.parametrize("changes, match", [
     (dict(frequency=np.array([0.7, 0.25])), "frequencies sum to 0.95, not 1"),
     (dict(u_shape=np.array([[0.7, 1.1, 1.2], [0.8, 1.0, 1.0]])), "cluster 1's shape is u = 1.1, v = 0 at the "
