@@ -158,14 +158,14 @@ def _prepare_output(store: PartsStore, n_ranks: int, output: ExitStack, follow_u
     checks and the lock of what follows (:class:`FollowUp`); the runs the result
     file holds for the job are parts again; the result file is current from the
     start (each task then updates its length)."""
+    if follow_up is not None and follow_up.aep:      # first: a refused resource leaves no folder behind
+        if store.job.config.resource.clusters:     # an awesIO document: read here, above the configuration
+            read_cluster_resource(store.job.config.resource.clusters)
+        check_resource(store.job.config)
     check_out(store.out)
     output.enter_context(exclusive(store.out))   # one writer of out and its parts, until the end
     remove_temporaries(store.directory)
     if follow_up is not None:
-        if follow_up.aep:
-            if store.job.config.resource.clusters:     # an awesIO document: read here, above the configuration
-                read_cluster_resource(store.job.config.resource.clusters)
-            check_resource(store.job.config)
         for path in follow_up.files:
             check_writable(path)
         follow_up.holder.enter_context(exclusive(follow_up.folder, directory=True,

@@ -324,7 +324,8 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
                                                                                     monkeypatch):
     """The outcome has the peak RSS of each rank (one here); a check of what follows the
     sweep (:class:`~fem_tether.jobs.sweep.FollowUp`: a bad wind resource, a user's file
-    among its files) stops the sweep before any task, with its error; a good one holds
+    among its files) stops the sweep before any task, with its error (a bad resource before any
+    folder is made); a good one holds
     the folder's lock in the caller's holder after the sweep."""
     from contextlib import ExitStack
     from fem_tether.core.atomic import exclusive
@@ -347,14 +348,16 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
         return Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
                    tiny_job.config.replace(resource={"clusters": str(tmp_path / name)}), tiny_job.toml)
 
-    for job, files, aep, problem in ((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
+    for k, (job, files, aep, problem) in enumerate(((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
                                      (bad_resource, (), True, "bad.csv"),
                                      (clusters("bad.yml"), (), True, r"bad.yml: not a valid awesIO wind_resource"),
-                                     (clusters("site.csv"), (), True, "does not yet count wind-profile clusters")):
+                                     (clusters("site.csv"), (), True, "does not yet count wind-profile clusters"))):
+        out = tmp_path / f"new{k}" / "s.h5"
         with ExitStack() as holder, pytest.raises(InputError, match=problem):
-            sw.sweep(job, tmp_path / "s.h5", comm=_self_comm(), progress=False,
+            sw.sweep(job, out, comm=_self_comm(), progress=False,
                      follow_up=sw.FollowUp(folder, files, holder, aep=aep))
-        assert not (tmp_path / "s.h5").exists() and not list(parts_dir(tmp_path / "s.h5").glob("*.h5"))
+        assert not out.exists() and not list(parts_dir(out).glob("*.h5"))
+        assert not (aep and out.parent.exists())    # a refused resource creates no folder (it left two)
     with ExitStack() as holder:
         sw.sweep(tiny_job, tmp_path / "r.h5", comm=_self_comm(), progress=False,
                  follow_up=sw.FollowUp(folder, (folder / "a.json",), holder, imports=("json",)))
