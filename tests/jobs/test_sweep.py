@@ -348,10 +348,11 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
         return Job(tiny_job.lengths_m, tiny_job.crosscheck, tiny_job.straight,
                    tiny_job.config.replace(resource={"clusters": str(tmp_path / name)}), tiny_job.toml)
 
-    for k, (job, files, aep, problem) in enumerate(((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
-                                     (bad_resource, (), True, "bad.csv"),
-                                     (clusters("bad.yml"), (), True, r"bad.yml: not a valid awesIO wind_resource"),
-                                     (clusters("site.csv"), (), True, "does not yet count wind-profile clusters"))):
+    cases = ((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
+             (bad_resource, (), True, "bad.csv"),
+             (clusters("bad.yml"), (), True, r"bad.yml: not a valid awesIO wind_resource"),
+             (clusters("site.csv"), (), True, "does not yet count wind-profile clusters"))
+    for k, (job, files, aep, problem) in enumerate(cases):
         out = tmp_path / f"new{k}" / "s.h5"
         with ExitStack() as holder, pytest.raises(InputError, match=problem):
             sw.sweep(job, out, comm=_self_comm(), progress=False,
