@@ -57,8 +57,7 @@ def _study(**keys) -> dict:
     (_study(sites=[{"name": "a", "wind": {"profil": "log"}}]), r"^\[wind\] profil: unknown key"),
     (_study(sites=[{"name": "a", "wind": {"profile": "lg"}}]), r'^\[wind\] profile = "lg": must be one of'),
     (_study(sites=[{"name": "a", "resource": {"weibull_k": -1}}]), r"^\[resource\] weibull_k = -1"),
-    # the flight a study needs: the prescribed path, a tension winch at a fixed length, a scalable wind
-    (_study() | {"kite": {"model": "point-mass"}}, r'^\[kite\] model = "point-mass": .*use \'prescribed\''),
+    # the flight a study needs: a tension winch at a fixed length, a scalable wind
     (_study() | {"winch": {"reel_out": "constant"}}, r'^\[winch\] mode = "tension", reel_out = "constant": '),
     (_study() | {"winch": {"mode": "prescribed"}, "kite": {"radius_m": 990}},
      r'^\[winch\] mode = "prescribed", reel_out = "none": '),
@@ -173,3 +172,9 @@ def test_a_surface_is_named_plainly_and_a_named_site_stays_in_its_name():
     """The study's page, figures and printed summary name a surface so (before: 'kitegen at configured')."""
     assert surface_name("kitegen", "configured") == "kitegen"
     assert surface_name("kitegen", "debilt") == "kitegen at debilt"
+
+
+def test_a_study_flies_the_point_mass_kite():
+    """[kite] model = "point-mass" is a study's too (refused before issue 33): every point flies it."""
+    job = study_from_dict(_study(systems=["kitegen"], wind_mps=[10, 14]) | {"kite": {"model": "point-mass"}})
+    assert all(job.point_config(p).kite.model == "point-mass" for p in job.points)

@@ -122,8 +122,9 @@ def point_energy(study, point: Point) -> dict:
         peaks.append(run["peak_tension_N"])
         v["drag_fe_N"][task.node], v["drag_power_fe_N"][task.node] = run["drag_fe_N"], run["drag_power_fe_N"]
         drag = run[lumped_name("drag_fe_N", lumping)]
-        v["cd_fe"][task.node] = operating_tether_cd(case, drag)
-        v["ge_fe"][task.node] = operating_ge(case, drag)
+        speed_mps = run.get("speed_fe_mps")    # a point-mass kite's own; parts before it: the case's
+        v["cd_fe"][task.node] = operating_tether_cd(case, drag, speed_mps)
+        v["ge_fe"][task.node] = operating_ge(case, drag, speed_mps)
         if task.kind == "check":
             gate = {"gate_wind_mps": float(nodes[task.node]), "crosscheck_ok": int(run["crosscheck_ok"]),
                     "rel_diff_drag": run["rel_diff_drag"], "rel_diff_shape": run["rel_diff_shape"]}
