@@ -102,8 +102,8 @@ def point_energy(study, point: Point) -> dict:
     n = nodes.size
     lumping = cfg.drag.tether_drag_lumping
     v = {name: np.full(n, math.nan) for name in
-         ("drag_fe_N", "drag_power_fe_N", "drag_straight_N", "drag_power_straight_N", "cd_fe", "cd_straight",
-          "ge_fe", "ge_straight")}
+         ("drag_fe_N", "drag_power_fe_N", "drag_straight_N", "drag_power_straight_N", "tension_fe_N",
+          "peak_tension_fe_N", "speed_fe_mps", "cd_fe", "cd_straight", "ge_fe", "ge_straight")}
     for node, case in enumerate(_straight_cases(study, point)):
         if case is not None:
             line = straight.from_config(case, with_wind=True)
@@ -122,7 +122,9 @@ def point_energy(study, point: Point) -> dict:
         peaks.append(run["peak_tension_N"])
         v["drag_fe_N"][task.node], v["drag_power_fe_N"][task.node] = run["drag_fe_N"], run["drag_power_fe_N"]
         drag = run[lumped_name("drag_fe_N", lumping)]
-        speed_mps = run.get("speed_fe_mps")    # a point-mass kite's own; parts before it: the case's
+        speed_mps = run.get("speed_fe_mps", case.kite.speed_mps)    # parts before it: prescribed, V_a
+        v["tension_fe_N"][task.node], v["peak_tension_fe_N"][task.node] = run["kite_tension_fe_N"], peaks[-1]
+        v["speed_fe_mps"][task.node] = speed_mps
         v["cd_fe"][task.node] = operating_tether_cd(case, drag, speed_mps)
         v["ge_fe"][task.node] = operating_ge(case, drag, speed_mps)
         if task.kind == "check":
