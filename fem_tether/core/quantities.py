@@ -142,6 +142,8 @@ QUANTITIES = (
              "(the strength rule's peak_tension_N is the largest over the bins)"),
     Quantity("study", "speed_fe_mps", "m/s", "kite speed of each bin's FE run that C_D,t and G_e are taken at: V_a "
              "of a prescribed path, a point-mass kite's mean apparent wind speed"),
+    Quantity("study", "winch_power_fe_W", "W", "mean mechanical power at the winch T(0) V_L of all lines of each bin's "
+             "FE run: a point-mass kite's own (its winch reels to hold the tension); 0 at a fixed length"),
     Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F / (1/2 rho A V^2) of each bin, flexible, "
              "V = speed_fe_mps, F lumped as [drag] tether_drag_lumping (F_P or F_t)"),
     Quantity("study", "cd_straight", "1", "C_D,t of each bin, straight line, lumped the same way"),

@@ -63,6 +63,7 @@ def test_interpolation_error_and_refined_maximum(kitegen):
     assert list(data["wind_mps"]) == [9, 12, 15, 18, 21, 24, 27]
     assert list(data["status"]) == ["ok"] * data["length_m"].size
     assert np.all(np.isfinite(data["interpolation_error"]))
+    assert np.all(data["winch_power_fe_W"] == 0.0)                              # a fixed length: no reeling
     assert np.all(data["interpolation_error"] < INTERPOLATION_LIMIT)     # tolerance: 0.005 of the AEP
     assert list(data["length_m"][:3]) == [600.0, 800.0, 1000.0] and list(data["refined"][:3]) == [0, 0, 0]
     refined = data["refined"] == 1
@@ -104,6 +105,7 @@ def test_a_free_kites_study_writes_the_same_bytes_on_two_ranks(tmp_path):
     assert np.all(data["peak_tension_fe_N"] > data["tension_fe_N"])
     assert np.all(data["peak_tension_N"] == np.max(data["peak_tension_fe_N"], axis=1))
     assert np.all(data["speed_fe_mps"] != data["apparent_speed_mps"])          # its own speed, not V_a
+    assert np.all(data["winch_power_fe_W"] > 0.0)                               # its winch reels to hold F
 
 
 @pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")

@@ -146,6 +146,7 @@ class Surface(Record):
     tension_fe_N: np.ndarray
     peak_tension_fe_N: np.ndarray
     speed_fe_mps: np.ndarray
+    winch_power_fe_W: np.ndarray
     cd_fe: np.ndarray
     cd_straight: np.ndarray
     ge_fe: np.ndarray

@@ -274,7 +274,8 @@ class Study:
         drags = lumped_drags_N(fe_run, case)
         return {"status": "ok", "drag_fe_N": drags["moment"], "drag_power_fe_N": drags["power"],
                 "kite_tension_fe_N": fe_run.mean("kite_tension_N"), "peak_tension_N": peak_tension_N(fe_run),
-                "speed_fe_mps": run_speed_mps(fe_run, case), **values}
+                "speed_fe_mps": run_speed_mps(fe_run, case),
+                "winch_power_fe_W": case.tether.lines * fe_run.mean("winch_power_W"), **values}
 
 
 def gate_run(case: Config) -> tuple[TetherRun, Config, dict]:
