@@ -137,8 +137,15 @@ QUANTITIES = (
              "(docs/physics.md §9)"),
     Quantity("study", "drag_straight_N", "N", "F_t per line of the straight line at each bin (eq. 4.1, with wind)"),
     Quantity("study", "drag_power_straight_N", "N", "F_P per line of the straight line at each bin (with wind)"),
-    Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F / (1/2 rho A V_a^2) of each bin, flexible, "
-             "F lumped as [drag] tether_drag_lumping (F_P or F_t)"),
+    Quantity("study", "tension_fe_N", "N", "mean tension per line at the kite of each bin's FE run"),
+    Quantity("study", "peak_tension_fe_N", "N", "largest tension per line at either end of each bin's FE run "
+             "(the strength rule's peak_tension_N is the largest over the bins)"),
+    Quantity("study", "speed_fe_mps", "m/s", "kite speed of each bin's FE run that C_D,t and G_e are taken at: V_a "
+             "of a prescribed path, a point-mass kite's mean apparent wind speed"),
+    Quantity("study", "winch_power_fe_W", "W", "mean mechanical power at the winch T(0) V_L of all lines of each bin's "
+             "FE run: a point-mass kite's own (its winch reels to hold the tension); 0 at a fixed length"),
+    Quantity("study", "cd_fe", "1", "tether drag coefficient C_D,t = lines F / (1/2 rho A V^2) of each bin, flexible, "
+             "V = speed_fe_mps, F lumped as [drag] tether_drag_lumping (F_P or F_t)"),
     Quantity("study", "cd_straight", "1", "C_D,t of each bin, straight line, lumped the same way"),
     Quantity("study", "ge_fe", "1", "G_e = L / (D_k + lines F) (eq. 5.1) at each bin, flexible"),
     Quantity("study", "ge_straight", "1", "G_e at each bin, straight line"),

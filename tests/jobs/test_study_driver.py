@@ -22,6 +22,15 @@ from fem_tether.jobs.study.energy import INTERPOLATION_LIMIT
 from fem_tether.jobs.study.result import read_study
 
 CLI = [sys.executable, "-m", "fem_tether.cli"]
+#: KiteGen's free kite at two lengths and two wind speeds (~7 s serially).
+FREE_STUDY = """[study]
+systems = ["kitegen"]
+lengths_m = [800, 1000]
+wind_mps = [10, 14]
+refine = false
+[kite]
+model = "point-mass"
+""" + STUDY_FAST
 MPIEXEC = shutil.which("mpiexec")
 
 
@@ -54,6 +63,7 @@ def test_interpolation_error_and_refined_maximum(kitegen):
     assert list(data["wind_mps"]) == [9, 12, 15, 18, 21, 24, 27]
     assert list(data["status"]) == ["ok"] * data["length_m"].size
     assert np.all(np.isfinite(data["interpolation_error"]))
+    assert np.all(data["winch_power_fe_W"] == 0.0)                              # a fixed length: no reeling
     assert np.all(data["interpolation_error"] < INTERPOLATION_LIMIT)     # tolerance: 0.005 of the AEP
     assert list(data["length_m"][:3]) == [600.0, 800.0, 1000.0] and list(data["refined"][:3]) == [0, 0, 0]
     refined = data["refined"] == 1
@@ -74,6 +84,28 @@ def test_two_ranks_write_the_same_bytes(kitegen, tmp_path):
     two = _study(job, tmp_path / "n2.h5", 2)
     assert (one["n_ranks"], two["n_ranks"], two["reused"]) == (1, 2, 0) and two["tasks"] == one["tasks"]
     assert filecmp.cmp(n1, tmp_path / "n2.h5", shallow=False)          # tolerance: none, the same bytes
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")
+def test_a_free_kites_study_writes_the_same_bytes_on_two_ranks(tmp_path):
+    """[kite] model = "point-mass": every bin flies the free kite with the winch holding
+    F / lines; ``mpiexec -n 1`` and ``-n 2`` write the same bytes; each bin's mean tension
+    at the kite is the held one within 2 % (the hold law's transient and the line's
+    weight and drag between the winch and the kite), its peak above it, and its C_D,t is
+    taken at the kite's own mean speed."""
+    job = tmp_path / "free.toml"
+    job.write_text(FREE_STUDY)
+    one, two = _study(job, tmp_path / "n1.h5", 1), _study(job, tmp_path / "n2.h5", 2)
+    assert (one["n_ranks"], two["n_ranks"]) == (1, 2) and two["tasks"] == one["tasks"]
+    assert filecmp.cmp(tmp_path / "n1.h5", tmp_path / "n2.h5", shallow=False)   # tolerance: none, the same bytes
+    data = read_study(tmp_path / "n1.h5")["surfaces"]["kitegen/configured"]
+    assert list(data["status"]) == ["ok", "ok"] and list(data["crosscheck_ok"]) == [1, 1]
+    held_N = data["tether_force_N"] / 2.0                                       # two lines
+    assert data["tension_fe_N"] == pytest.approx(held_N, rel=0.02)
+    assert np.all(data["peak_tension_fe_N"] > data["tension_fe_N"])
+    assert np.all(data["peak_tension_N"] == np.max(data["peak_tension_fe_N"], axis=1))
+    assert np.all(data["speed_fe_mps"] != data["apparent_speed_mps"])          # its own speed, not V_a
+    assert np.all(data["winch_power_fe_W"] > 0.0)                               # its winch reels to hold F
 
 
 @pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")

@@ -74,7 +74,7 @@ def _store_runs(study, cd_of_wind, failing=()) -> list[Task]:
                  else (cd_of_wind(wind_mps) / operating_tether_cd(case, 1.0),) * 2)
         drag_N = drags[0]
         values = {"status": "ok", "drag_fe_N": drags[0], "drag_power_fe_N": drags[1],
-                  "peak_tension_N": case.winch.ground_tension_N}
+                  "kite_tension_fe_N": case.winch.ground_tension_N, "peak_tension_N": case.winch.ground_tension_N}
         if task.kind == "check":
             values |= {"drag_fd_N": drag_N, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3}
         if task.node in failing:
@@ -120,6 +120,31 @@ def test_constant_cd_is_the_aep_at_that_cd(study):
     gate = study.gate(POINT)
     assert (out["gate_wind_mps"], out["crosscheck_ok"], out["rel_diff_drag"], out["rel_diff_shape"]) \
         == (WIND_MPS[gate], 1, 1e-3, 2e-3)
+
+
+def test_a_free_kites_bins_are_taken_at_its_own_speed(study):
+    """A point-mass kite's run stores its mean apparent speed (``speed_fe_mps``): the bin's
+    C_D,t = lines F_t / (1/2 rho A V^2) and G_e are taken at it, not at the operating point's
+    V_a (rel 1e-12); each bin's mean and peak tension and winch power are the run's."""
+    tasks = study.run_tasks([POINT])
+    for task in tasks:
+        case = study.case(POINT, task.node)
+        values = {"status": "ok", "drag_fe_N": 4000.0, "drag_power_fe_N": 4000.0, "speed_fe_mps": 0.9 *
+                  case.kite.speed_mps, "kite_tension_fe_N": 1.01e5 + task.node, "peak_tension_N": 1.3e5 + task.node,
+                  "winch_power_fe_W": 5e5 + task.node}
+        if task.kind == "check":
+            values |= {"drag_fd_N": 4000.0, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3}
+        study.parts.write(task.name, study.task_key(task), values)
+    out = energy.point_energy(study, POINT)
+    for task in tasks:
+        case, j = study.case(POINT, task.node), task.node
+        assert out["speed_fe_mps"][j] == 0.9 * case.kite.speed_mps
+        assert out["cd_fe"][j] == pytest.approx(operating_tether_cd(case, 4000.0) / 0.81, rel=1e-12)
+        assert out["cd_fe"][j] == pytest.approx(operating_tether_cd(case, 4000.0, 0.9 * case.kite.speed_mps),
+                                                rel=1e-12)
+        assert (out["tension_fe_N"][j], out["peak_tension_fe_N"][j], out["winch_power_fe_W"][j]) \
+            == (1.01e5 + j, 1.3e5 + j, 5e5 + j)
+    assert out["peak_tension_N"] == 1.3e5 + max(t.node for t in tasks)
 
 
 def test_cd_is_interpolated_in_the_wind_speed_and_held_beyond_the_bins(study):
@@ -176,3 +201,17 @@ def test_a_point_that_never_flies_fails(tmp_path):
     out = energy.point_energy(study, POINT)
     assert out["status"] == "failed" and out["error"] == f"{POINT.name}: no wind speed of the study makes the kite fly"
     assert math.isnan(out["aep_fe_MWh"]) and math.isnan(out["aep_straight_MWh"])
+
+
+def test_the_straight_baseline_of_a_free_kite_is_on_the_line_of_length_L(tmp_path):
+    """A free kite's bins reel from L - V_out T_avg / 2, its straight baseline does not: the
+    baseline's cases are the prescribed study's, on the line of length L at each operating point."""
+    cases = {}
+    for model in ("prescribed", "point-mass"):
+        job = study_from_dict({"study": {"systems": ["kitegen"], "lengths_m": [1000], "wind_mps": WIND_MPS},
+                               "kite": {"model": model}})
+        study = Study(job, tmp_path / f"{model}.h5")
+        study.run(Task("ops", POINT))
+        cases[model] = energy._straight_cases(study, POINT)
+    assert all(c.tether.length_m == 1000.0 for c in cases["point-mass"])
+    assert [c.replace(kite={"model": "prescribed"}) for c in cases["point-mass"]] == cases["prescribed"]

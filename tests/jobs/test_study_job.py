@@ -6,6 +6,7 @@ from fem_tether.config import ConfigError, load_config
 from fem_tether.physics.resource import weibull_resource, write_resource_csv
 from fem_tether.performance.sizing import tether_keys
 from fem_tether.jobs.study.job import Point, load_study, study_from_dict, surface_name
+from fem_tether.jobs.study.tasks import Study, Task
 
 
 def _study(**keys) -> dict:
@@ -57,8 +58,7 @@ def _study(**keys) -> dict:
     (_study(sites=[{"name": "a", "wind": {"profil": "log"}}]), r"^\[wind\] profil: unknown key"),
     (_study(sites=[{"name": "a", "wind": {"profile": "lg"}}]), r'^\[wind\] profile = "lg": must be one of'),
     (_study(sites=[{"name": "a", "resource": {"weibull_k": -1}}]), r"^\[resource\] weibull_k = -1"),
-    # the flight a study needs: the prescribed path, a tension winch at a fixed length, a scalable wind
-    (_study() | {"kite": {"model": "point-mass"}}, r'^\[kite\] model = "point-mass": .*use \'prescribed\''),
+    # the flight a study needs: a tension winch at a fixed length, a scalable wind
     (_study() | {"winch": {"reel_out": "constant"}}, r'^\[winch\] mode = "tension", reel_out = "constant": '),
     (_study() | {"winch": {"mode": "prescribed"}, "kite": {"radius_m": 990}},
      r'^\[winch\] mode = "prescribed", reel_out = "none": '),
@@ -173,3 +173,19 @@ def test_a_surface_is_named_plainly_and_a_named_site_stays_in_its_name():
     """The study's page, figures and printed summary name a surface so (before: 'kitegen at configured')."""
     assert surface_name("kitegen", "configured") == "kitegen"
     assert surface_name("kitegen", "debilt") == "kitegen at debilt"
+
+
+def test_a_study_flies_the_point_mass_kite():
+    """[kite] model = "point-mass" is a study's too (refused before issue 33): every point flies it."""
+    job = study_from_dict(_study(systems=["kitegen"], wind_mps=[10, 14]) | {"kite": {"model": "point-mass"}})
+    assert all(job.point_config(p).kite.model == "point-mass" for p in job.points)
+
+
+def test_the_kite_model_is_in_every_parts_key(tmp_path):
+    """A part of the prescribed path is not reused by the free kite's study: the seed's key
+    (the configuration's inputs) differs, and every later key contains it."""
+    keys = []
+    for model in ("prescribed", "point-mass"):
+        job = study_from_dict(_study(systems=["kitegen"], wind_mps=[10, 14]) | {"kite": {"model": model}})
+        keys.append(Study(job, tmp_path / "s.h5").task_key(Task("seed", job.points[0])))
+    assert keys[0] != keys[1]

@@ -78,14 +78,15 @@ def _node_power(system, wind_mps, cd) -> np.ndarray:
 
 
 def _straight_cases(study, point: Point) -> list:
-    """The straight line's case at each bin: its own operating point (None where the kite
-    does not fly or the rules refuse the case); the configured case with one bin."""
+    """The straight line's case at each bin: its own operating point on the line of length L,
+    whatever the bin's run reels (None where the kite does not fly or the rules refuse the
+    case); the configured case with one bin."""
     if study.configured:
         return [study.case(point, 0)]
     cases = []
     for op in study.operating_points(point, "straight"):
         try:
-            cases.append(plan.run_config(study.config(point), op) if plan.flies(op) else None)
+            cases.append(plan.operating_case(study.config(point), op) if plan.flies(op) else None)
         except InputError:
             cases.append(None)
     return cases
@@ -102,8 +103,8 @@ def point_energy(study, point: Point) -> dict:
     n = nodes.size
     lumping = cfg.drag.tether_drag_lumping
     v = {name: np.full(n, math.nan) for name in
-         ("drag_fe_N", "drag_power_fe_N", "drag_straight_N", "drag_power_straight_N", "cd_fe", "cd_straight",
-          "ge_fe", "ge_straight")}
+         ("drag_fe_N", "drag_power_fe_N", "drag_straight_N", "drag_power_straight_N", "tension_fe_N",
+          "peak_tension_fe_N", "speed_fe_mps", "winch_power_fe_W", "cd_fe", "cd_straight", "ge_fe", "ge_straight")}
     for node, case in enumerate(_straight_cases(study, point)):
         if case is not None:
             line = straight.from_config(case, with_wind=True)
@@ -122,8 +123,12 @@ def point_energy(study, point: Point) -> dict:
         peaks.append(run["peak_tension_N"])
         v["drag_fe_N"][task.node], v["drag_power_fe_N"][task.node] = run["drag_fe_N"], run["drag_power_fe_N"]
         drag = run[lumped_name("drag_fe_N", lumping)]
-        v["cd_fe"][task.node] = operating_tether_cd(case, drag)
-        v["ge_fe"][task.node] = operating_ge(case, drag)
+        speed_mps = run.get("speed_fe_mps", case.kite.speed_mps)    # parts before it: prescribed, V_a
+        v["tension_fe_N"][task.node], v["peak_tension_fe_N"][task.node] = run["kite_tension_fe_N"], peaks[-1]
+        v["speed_fe_mps"][task.node] = speed_mps
+        v["winch_power_fe_W"][task.node] = run.get("winch_power_fe_W", math.nan)    # parts before it: none
+        v["cd_fe"][task.node] = operating_tether_cd(case, drag, speed_mps)
+        v["ge_fe"][task.node] = operating_ge(case, drag, speed_mps)
         if task.kind == "check":
             gate = {"gate_wind_mps": float(nodes[task.node]), "crosscheck_ok": int(run["crosscheck_ok"]),
                     "rel_diff_drag": run["rel_diff_drag"], "rel_diff_shape": run["rel_diff_shape"]}

@@ -193,11 +193,10 @@ def _sites(value, base: Config, base_dir: Path) -> tuple[Site, ...]:
 
 
 def _check_flight(system: str, cfg: Config, site: str = "") -> None:
-    """A study flies the prescribed path with the winch holding the operating point's tension."""
+    """A study flies each bin's operating point with the winch holding its tension: the
+    prescribed path at a fixed length, or the point-mass kite with the winch holding the
+    tension by reeling (:func:`fem_tether.jobs.study.plan.run_config`)."""
     where = (f"system {system!r}: " if system else "") + (f"site {site!r}: " if site else "")
-    if cfg.kite.model != "prescribed":
-        raise ConfigError(f"[kite] model = {toml_value(cfg.kite.model)}: {where}a study flies the prescribed "
-                          "path at each bin's operating point (use 'prescribed')")
     if cfg.winch.mode != "tension" or cfg.winch.reel_out != "none":
         raise ConfigError(f"[winch] mode = {toml_value(cfg.winch.mode)}, reel_out = "
                           f"{toml_value(cfg.winch.reel_out)}: {where}a study's runs hold each bin's tension "

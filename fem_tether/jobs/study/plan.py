@@ -61,18 +61,28 @@ def wind_scale(cfg: Config, wind_mps: float) -> float:
     return cfg.wind.scale * wind_mps / here
 
 
-def run_config(cfg: Config, op: OperatingPoint, reel_out: bool = False) -> Config:
-    """The tether run of one bin: the path at V_a, the winch at F / lines, the wind at V_w;
-    with ``reel_out`` the winch pays out at V_out from L - V_out T_avg / 2, so that
-    the line's mean length over the T_avg averaged is L."""
-    case = cfg.replace(kite={"speed_mps": op.apparent_speed_mps},
+def operating_case(cfg: Config, op: OperatingPoint) -> Config:
+    """The configured case at one bin's operating point, on the line of length L: the path
+    at V_a, the winch at F / lines, the wind at V_w (the straight baseline's case)."""
+    return cfg.replace(kite={"speed_mps": op.apparent_speed_mps},
                        winch={"ground_tension_N": op.tether_force_N / cfg.tether.lines},
                        wind={"scale": wind_scale(cfg, op.wind_mps)})
-    if not reel_out or op.reel_out_mps == 0.0:
-        return case
+
+
+def run_config(cfg: Config, op: OperatingPoint, reel_out: bool = False) -> Config:
+    """The tether run of one bin: :func:`operating_case`; with ``reel_out`` the winch pays
+    out at V_out from L - V_out T_avg / 2, so that the line's mean length over the T_avg
+    averaged is L.  A point-mass kite flies free (V_a only sets the path's nominal
+    period) with the winch holding F / lines (``reel_out = "hold"``): it always reels,
+    from the same shorter start."""
+    case = operating_case(cfg, op)
+    free = cfg.kite.model == "point-mass"
+    if not (reel_out or free) or op.reel_out_mps == 0.0:
+        return case.replace(winch={"reel_out": "hold"}) if free else case
     paid_m = op.reel_out_mps * case.time.average_periods * case.path.period_s
     return case.replace(tether={"length_m": cfg.tether.length_m - paid_m / 2.0},
-                        winch={"reel_out": "constant", "reel_out_speed_mps": op.reel_out_mps})
+                        winch={"reel_out": "hold"} if free else
+                        {"reel_out": "constant", "reel_out_speed_mps": op.reel_out_mps})
 
 
 def bending(cfg: Config) -> float:

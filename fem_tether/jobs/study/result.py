@@ -143,6 +143,10 @@ class Surface(Record):
     drag_power_fe_N: np.ndarray
     drag_straight_N: np.ndarray
     drag_power_straight_N: np.ndarray
+    tension_fe_N: np.ndarray
+    peak_tension_fe_N: np.ndarray
+    speed_fe_mps: np.ndarray
+    winch_power_fe_W: np.ndarray
     cd_fe: np.ndarray
     cd_straight: np.ndarray
     ge_fe: np.ndarray

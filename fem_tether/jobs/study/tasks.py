@@ -35,7 +35,7 @@ from fem_tether.jobs.schedule import run_cost_us
 from fem_tether.performance.sizing import peak_tension_N
 from fem_tether.jobs.store import inputs_key
 from fem_tether.performance.summary import operating_tether_cd
-from fem_tether.tether.lumping import lumped_drags_N
+from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
 from fem_tether.systems.operating_point import OperatingPoint
 from fem_tether.tether.results import TetherRun
 
@@ -102,7 +102,8 @@ class Study:
         if values is None or values["status"] != "ok":
             return None
         cfg = self.config(point)
-        return operating_tether_cd(cfg, values[lumped_name("drag_fe_N", cfg.drag.tether_drag_lumping)])
+        return operating_tether_cd(cfg, values[lumped_name("drag_fe_N", cfg.drag.tether_drag_lumping)],
+                                   values.get("speed_fe_mps"))
 
     def operating_points(self, point: Point, line: str = "flexible") -> list[OperatingPoint] | None:
         """The stored operating points of a point (None if not computed yet): of the
@@ -273,7 +274,8 @@ class Study:
         drags = lumped_drags_N(fe_run, case)
         return {"status": "ok", "drag_fe_N": drags["moment"], "drag_power_fe_N": drags["power"],
                 "kite_tension_fe_N": fe_run.mean("kite_tension_N"), "peak_tension_N": peak_tension_N(fe_run),
-                **values}
+                "speed_fe_mps": run_speed_mps(fe_run, case),
+                "winch_power_fe_W": case.tether.lines * fe_run.mean("winch_power_W"), **values}
 
 
 def gate_run(case: Config) -> tuple[TetherRun, Config, dict]:
