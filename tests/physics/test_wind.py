@@ -215,6 +215,15 @@ def test_read_wind_table(tmp_path):
     ("height_m,speed_mps\n0,1\n10,2\n10,3\n", r"line 4: height 10 m is not above 10 m"),
     ("height_m,speed_mps\n-1,1\n", r"line 2: height -1 m is below the ground"),
     ("height_m,speed_mps\n0,1\n5,-2\n", r"line 3: speed -2 m/s is negative"),
+    ("height_m,speed_mps,direction\n0,1,2\n", r"line 1: expected the header 'height_m,speed_mps' or "
+                                              r"'height_m,speed_mps,direction_deg', got 'height_m,speed_mps,direction'"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2\n", r"line 3: expected three numbers, got '10,2'"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2,x\n", r"line 3: expected three numbers, got '10,2,x'"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2,361\n", r"line 3: direction 361 deg is outside \[0, 360\]"),
+    ("height_m,speed_mps,direction_deg\n0,1,-1\n", r"line 2: direction -1 deg is outside \[0, 360\]"),
+    ("height_m,speed_mps,direction_deg\n0,1,270\n10,-2,270\n", r"line 3: speed -2 m/s is negative"),
+    ("height_m,speed_mps,direction_deg\n5,1,270\n5,2,270\n", r"line 3: height 5 m is not above 5 m"),
+    ("height_m,speed_mps,direction_deg\n0,1,nan\n", r"line 2: values must be finite"),
 ])
 def test_a_malformed_wind_table_names_its_file_and_line(tmp_path, text, match):
     path = tmp_path / "wind.csv"
@@ -339,25 +348,6 @@ def test_a_measured_profile_round_trips_through_its_csv(tmp_path):
     assert profile.turn_deg(150.0) == pytest.approx(0.0, abs=1e-14)
     assert profile.velocity_mps(150.0)[1] == pytest.approx(0.0, abs=1e-14)
     assert profile.turn_deg(300.0) == pytest.approx(-20.0)        # 10 deg: clockwise of 350
-
-
-@pytest.mark.parametrize("text, match", [
-    ("height_m,speed_mps,direction\n0,1,2\n", r"line 1: expected the header 'height_m,speed_mps' or "
-                                              r"'height_m,speed_mps,direction_deg', got 'height_m,speed_mps,direction'"),
-    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2\n", r"line 3: expected three numbers, got '10,2'"),
-    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2,x\n", r"line 3: expected three numbers, got '10,2,x'"),
-    ("height_m,speed_mps,direction_deg\n0,1,270\n10,2,361\n", r"line 3: direction 361 deg is outside \[0, 360\]"),
-    ("height_m,speed_mps,direction_deg\n0,1,-1\n", r"line 2: direction -1 deg is outside \[0, 360\]"),
-    ("height_m,speed_mps,direction_deg\n0,1,270\n10,-2,270\n", r"line 3: speed -2 m/s is negative"),
-    ("height_m,speed_mps,direction_deg\n5,1,270\n5,2,270\n", r"line 3: height 5 m is not above 5 m"),
-    ("height_m,speed_mps,direction_deg\n0,1,nan\n", r"line 2: values must be finite"),
-])
-def test_a_malformed_measured_profile_names_its_file_line_and_value(tmp_path, text, match):
-    path = tmp_path / "mast.csv"
-    path.write_text(text)
-    with pytest.raises(WindTableError, match=match) as info:
-        wind.read_wind_table(path)
-    assert str(path) in str(info.value) and "\n" not in str(info.value)
 
 
 def test_the_measured_profile_of_the_configuration_is_turned_to_its_reference_height(tmp_path):
