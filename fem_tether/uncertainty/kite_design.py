@@ -79,7 +79,9 @@ INDEXED = ("aep_Wh", "aep_ground_Wh", "aep_onboard_Wh", "capacity_factor", "tota
 
 #: Table 5.6, the thesis' mean and SD over its 650 evaluations, in this model's outputs and SI units (the
 #: normalised multipliers λ as the AEP's sensitivity to the limit: λ_hmin's sign turned, raising h_min
-#: costs AEP; λ_M and λ_δout, λ_δin have no single counterpart here, Δ is per wind speed)
+#: costs AEP; λ_M and λ_δout, λ_δin have no single counterpart here, Δ is per wind speed).  V_in and V_out
+#: are Table 5.6's on the 20 m axis (docs/design.md §5.4), this model's ``cut_in_mps`` and ``cut_out_mps``
+#: at the operating altitude h: compare ours divided by (h / 20 m)^α
 REFERENCE = {
     "aep_Wh": (21.1e9, 3.6e9), "aep_ground_Wh": (15.8e9, 3.28e9), "aep_onboard_Wh": (5.3e9, 1.97e9),
     "capacity_factor": (0.80, 0.14), "total_mass_kg": (3684.0, 1705.0), "glider_mass_kg": (2884.0, 1475.0),
