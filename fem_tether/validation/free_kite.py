@@ -41,6 +41,17 @@ ENERGY_TOLERANCE = 1e-3
 TRACKING_TOLERANCE_M = 3.8
 
 
+def wind_frame_angles(position_m, wind_mps) -> tuple[float, float]:
+    """The polar angle ϑ and the azimuth φ of the kite at ``position_m`` in the frame of
+    :func:`steady_crosswind`: φ counted from the horizontal direction of the wind
+    ``wind_mps`` at the kite (not from x, which is downwind only at the reference height
+    of a veering wind)."""
+    r = np.asarray(position_m, dtype=float)
+    theta = float(np.arccos(r[2] / np.linalg.norm(r)))
+    phi = float(np.arctan2(r[1], r[0]) - np.arctan2(wind_mps[1], wind_mps[0]))
+    return theta, float(np.arctan2(np.sin(phi), np.cos(phi)))
+
+
 def crosswind_deviations(run: TetherRun, cfg) -> tuple[float, float]:
     """The largest |ratio / E − 1| of the crosswind speed ratio |W_e,⊥| / (V_w · e_r)
     and of the kite tension against the traction of :func:`steady_crosswind`
@@ -63,8 +74,8 @@ def crosswind_deviations(run: TetherRun, cfg) -> tuple[float, float]:
         apparent = wind - v
         across = np.linalg.norm(apparent - (apparent @ e_r) * e_r)
         speed.append(across / (wind @ e_r) / efficiency - 1.0)
-        state = steady_crosswind(massless, float(kite.wind.speed_mps(r[2])), float(np.arccos(e_r[2])),
-                                 float(np.arctan2(e_r[1], e_r[0])), 0.0, rho)
+        state = steady_crosswind(massless, float(kite.wind.speed_mps(r[2])), *wind_frame_angles(r, wind),
+                                 0.0, rho)
         tension.append(line["tension_N"][-1] / state.tension_N - 1.0)
     return float(np.max(np.abs(speed))), float(np.max(np.abs(tension)))
 
@@ -87,9 +98,9 @@ def lumped_kite_deviations(run: TetherRun, cfg) -> dict[str, dict[str, float]]:
     out = {}
     for lumping, drag in lumped_drags_N(run, cfg).items():
         cd = operating_tether_cd(cfg, drag, speed)
-        states = [steady_crosswind(massless, float(kite.wind.speed_mps(r[2])), float(np.arccos(r[2] / np.linalg.norm(r))),
-                                   float(np.arctan2(r[1], r[0])), 0.0, float(kite.air.density_kg_m3(np.array(r[2]))),
-                                   cd) for r in ends]
+        states = [steady_crosswind(massless, float(kite.wind.speed_mps(r[2])),
+                                   *wind_frame_angles(r, kite.wind.velocity_mps(r[2])), 0.0,
+                                   float(kite.air.density_kg_m3(np.array(r[2]))), cd) for r in ends]
         out[lumping] = {"cd": cd,
                         "speed": float(np.mean([s.kite_speed_mps for s in states])) / run.mean("kite_speed_mps") - 1,
                         "tension": float(np.mean([s.tension_N for s in states])) / run.mean("kite_tension_N") - 1}
