@@ -160,11 +160,19 @@ def point_rows(s: dict) -> list[list[str]]:
             for i in np.lexsort((s["diameter_m"], s["length_m"]))]
 
 
+def kite_note(s: dict) -> str:
+    """How surface ``s``'s runs flew the kite ([kite] model of its configuration; docs/study.md §2)."""
+    if tomllib.loads(s["config_toml"]).get("kite", {}).get("model", "prescribed") == "point-mass":
+        return ("kite: the free point-mass kite, steered, the winch holding the force F/n of each bin; C_D,t and G_e "
+                "at its own mean apparent wind speed, the AEP from the power model with them")
+    return "kite: the prescribed path at the operating point of the power model"
+
+
 def _notes(s: dict) -> list[str]:
-    """The points' status counts, the wind bins, the gate's and the interpolation's worst."""
+    """How the kite flew, the points' status counts, the wind bins, the gate's and the interpolation's worst."""
     status = list(s["status"])
     wind = s["wind_mps"]
-    notes = [f"{len(status)} points ({int(np.sum(s['refined']))} refined): {status.count('ok')} ok, "
+    notes = [kite_note(s), f"{len(status)} points ({int(np.sum(s['refined']))} refined): {status.count('ok')} ok, "
              f"{status.count('unchecked')} unchecked, {status.count('weak')} too weak for their peak tension, "
              f"{status.count('failed')} failed",
              "wind bins: " + (", ".join(f"{v:g}" for v in wind) + " m/s" if np.isfinite(wind).all()

@@ -134,6 +134,10 @@ def test_surface_section_states_failures_and_the_gate(study):
     assert f"{status.count('unchecked')} unchecked, {status.count('weak')} too weak for their peak tension, " \
            "1 failed" in text and "largest drag difference 1.20 %, 8 of 9 points passed" in text
     assert "<li>kitegen_configured_L1000_v0_fe: diverged</li>" in text
+    assert "kite: the prescribed path at the operating point of the power model" in text
+    free = s | {"config_toml": s["config_toml"].replace('model = "prescribed"', 'model = "point-mass"')}
+    assert "kite: the free point-mass kite, steered, the winch holding the force F/n of each bin" \
+        in surface_html("kitegen/configured", free, {})
     assert ">kitegen</h2>" in text and "at configured" not in text
     named = surface_html("kitegen/debilt", s, {})           # a named site stays in the heading
     assert ">kitegen at debilt</h2>" in named and "<summary>configuration of kitegen at debilt</summary>" in named
