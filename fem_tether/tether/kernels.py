@@ -92,9 +92,9 @@ def to_compile(solvers: Iterable[str]) -> dict[Function, tuple[int, float]]:
     compiles, by function: its compiles of :data:`FIRST_COMPILE` that numba's cache does not
     hold (:func:`~fem_tether.physics.compiled.missing`) and their seconds."""
     column = LOADS.index(tuple(sorted(set(solvers))))
-    return {(module, f): share for module, table in FIRST_COMPILE.items()
-            for f, share in missing(module, {f: (row[column], row[column] * row[3])
-                                             for f, row in table.items() if row[column]}).items()}
+    counts = {module: {f: (int(row[column]), row[column] * row[3]) for f, row in table.items() if row[column]}
+              for module, table in FIRST_COMPILE.items()}
+    return {(module, f): share for module, run in counts.items() for f, share in missing(module, run).items()}
 
 
 def _seconds(compiles: dict[Function, tuple[int, float]]) -> float:
