@@ -113,7 +113,8 @@ def held(module: str) -> dict[str, int]:
     (by its qualified name) compiled from its source as it is now: the entries of the
     function's index file (``<file>.<function>-<line>.pyXY.nbi``) where numba looks
     (:func:`_locator`), written by this numba for this source (its stamp, a hash
-    of its content).  Reads index files only: the module is not imported (that
+    of its content); 0 for a function whose index is of another source or numba (a
+    function compiled before).  Reads index files only: the module is not imported (that
     would compile it)."""
     spec = importlib.util.find_spec(module)
     source = spec.origin if spec else None
@@ -126,6 +127,7 @@ def held(module: str) -> dict[str, int]:
     compiles: dict[str, int] = {}
     for index in Path(locator.get_cache_path()).glob(f"{stem}*{tag}"):
         function = index.name[len(stem):-len(tag)].rpartition("-")[0]
+        compiles.setdefault(function, 0)
         try:
             with open(index, "rb") as f:
                 if pickle.load(f) != numba.__version__:
@@ -134,7 +136,7 @@ def held(module: str) -> dict[str, int]:
         except Exception:        # an index being replaced, or unreadable: numba's to rewrite
             continue
         if index_stamp == stamp:
-            compiles[function] = compiles.get(function, 0) + len(overloads)
+            compiles[function] += len(overloads)
     return compiles
 
 

@@ -19,7 +19,7 @@ from collections.abc import Callable, Iterable
 from types import ModuleType
 
 from fem_tether.core.stop import checkpoint
-from fem_tether.physics.compiled import Function, compiling, missing
+from fem_tether.physics.compiled import Function, compiling, held, missing
 from fem_tether.physics.steering import min_turn_radius_m
 
 #: The module of each solver's kernels.
@@ -90,11 +90,20 @@ def notice(seconds: float) -> str:
 def to_compile(solvers: Iterable[str]) -> dict[Function, tuple[int, float]]:
     """What a process that loads the kernels of ``solvers`` (their warm-ups, the flight check)
     compiles, by function: its compiles of :data:`FIRST_COMPILE` that numba's cache does not
-    hold (:func:`~fem_tether.physics.compiled.missing`) and their seconds."""
+    hold (:func:`~fem_tether.physics.compiled.missing`) and their seconds.  Once the kernels
+    are held, a function compiled before from another source (edited since) is not counted:
+    numba runs the kernels from its cache with the loops they called then (it checks a cache
+    against its own source file only) and compiles only the functions called from Python,
+    in a second or two; the notice would otherwise come at every run for loops that never
+    compile again."""
     column = LOADS.index(tuple(sorted(set(solvers))))
     counts = {module: {f: (int(row[column]), row[column] * row[3]) for f, row in table.items() if row[column]}
               for module, table in FIRST_COMPILE.items()}
-    return {(module, f): share for module, run in counts.items() for f, share in missing(module, run).items()}
+    cold = {(module, f): share for module, run in counts.items() for f, share in missing(module, run).items()}
+    if any(module in KERNELS.values() for module, _ in cold):
+        return cold
+    compiled_before = {(module, f) for module in counts for f in held(module)}
+    return {function: share for function, share in cold.items() if function not in compiled_before}
 
 
 def _seconds(compiles: dict[Function, tuple[int, float]]) -> float:

@@ -47,7 +47,7 @@ def test_a_function_is_held_once_compiled_and_not_after_its_source_changed(tiny,
     assert module.twice_plus_one(1.0) == 3.0 and module.twice(1) == 2
     assert held(tiny) == {"twice": 2, "twice_plus_one": 1}
     (tmp_path / f"{tiny}.py").write_text(SOURCE + "\n# edited\n")
-    assert held(tiny) == {}
+    assert held(tiny) == {"twice": 0, "twice_plus_one": 0}      # compiled before, from another source
 
 
 def test_what_a_run_would_compile_is_counted_by_function(tiny):
@@ -70,7 +70,7 @@ def test_an_index_of_another_numba_is_not_a_cache(tiny, tmp_path):
             pickle.load(f)
             rest = f.read()
         index.write_bytes(pickle.dumps("0.1.0") + rest)
-    assert held(tiny) == {}
+    assert held(tiny) == {"twice": 0}
 
 
 def test_the_compiles_are_recorded_each_with_its_own_cpu_time(tiny):

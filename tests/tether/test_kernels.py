@@ -44,6 +44,23 @@ def test_the_estimate_shares_what_the_ranks_compile_alike():
     assert kernels.estimate_s([6.0, 5.0], 9.0) == 6.0 - 2.0 + 2.0 / 2
 
 
+def test_loops_compiled_before_from_an_edited_source_count_only_while_the_kernels_compile(monkeypatch):
+    """The leaf models' loops the kernels call compile with the kernels only: while numba holds the
+    kernels it runs them from its cache, and a loop whose source was edited since never compiles
+    again (before: the notice and the warm-ups came at every run of a tree whose ``loads.py`` had
+    been edited, three notices in a run on two ranks)."""
+    fe_kernel = {f: n for f, (n, *_) in kernels.FIRST_COMPILE[kernels.KERNELS["fe"]].items()}
+    edited = {"fem_tether.physics.loads": {"drag_derivatives": 0}, kernels.KERNELS["fe"]: fe_kernel}
+    monkeypatch.setattr(kernels, "held", lambda module: edited.get(module, {}))
+    monkeypatch.setattr(kernels, "missing", lambda module, run: {
+        f: share for f, share in run.items() if edited.get(module, {}).get(f, 0) < share[0]})
+    cold = kernels.to_compile(["fe"])
+    assert ("fem_tether.physics.loads", "drag_derivatives") not in cold
+    assert ("fem_tether.physics.trajectory", "path_points") in cold      # never compiled: counted
+    del edited[kernels.KERNELS["fe"]]
+    assert ("fem_tether.physics.loads", "drag_derivatives") in kernels.to_compile(["fe"])
+
+
 def test_a_prescribed_first_run_compiles_the_table_and_not_the_kite(tmp_path):
     """On an empty numba cache, loading the FE kernels (their warm-up flies the default,
     prescribed kite) leaves every module of the table that an FE run compiles cached, so
