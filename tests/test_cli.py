@@ -504,7 +504,8 @@ def test_with_json_the_compile_notice_goes_to_stderr_and_stdout_holds_the_json(c
     from fem_tether.tether import kernels
 
     monkeypatch.setattr(kernels, "_loaded", set())
-    monkeypatch.setattr(kernels, "cached", lambda module: False)
+    monkeypatch.setattr(kernels, "missing", lambda module, run: dict(run))
+    monkeypatch.setattr(kernels, "held", lambda module: {})
     code, out, err = run_cli(capsys, "simulate", "--length", "200", "--json")
     assert code == 0 and json.loads(out)["length_m"] == 200.0
     assert err.startswith("compiling the solver kernels (first run after install, about ")

@@ -39,6 +39,7 @@ from fem_tether.jobs.job import load_job
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.core.stop import guard
 from fem_tether.jobs.handoff import hand, serve
+from fem_tether.jobs.runner import load_kernels_by_rank
 from fem_tether.report.flight import Flight, Media, draw_flight, shown_flight
 from fem_tether.report.page import PAGE_NAME, write_page
 from fem_tether.jobs.sweep import FollowUp, SweepOutcome, sweep
@@ -64,6 +65,10 @@ IDLE_COST_US = 0.75e6
 FLIGHT_RANK = 1
 FLIGHT_IMPORTS = ("fem_tether.report.animation", "fem_tether.report.cycle")
 FLIGHT_IMPORTS_COST_US = 0.5e6
+
+#: The solvers whose kernels the main job loads before it reads its job: a cross-checked job's
+#: (every preset's; one that is not cross-checked compiles the FD kernels in its first run too).
+SOLVERS = ("fe", "fd")
 
 #: The files the main job writes into its folder beside ``sweep.h5``.
 FILES = (*PLOT_FILES, "aep.json", CSV_NAME, JSON_NAME, PAGE_NAME)
@@ -94,6 +99,8 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     comm = MPI.COMM_WORLD
     t0 = time.perf_counter()
     started = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    with guard(comm):                   # before the checks, which compile the path's code: on a
+        load_kernels_by_rank(comm, SOLVERS)     # first run the notice comes before any compile
     job = load_job(job_file, system)
     warn_unflyable(job.configs.values())
     out = Path(out)

@@ -159,12 +159,12 @@ def sync(comm, idle: Callable[[], object] | None = None) -> None:
         return
     if comm.Get_rank() == 0:
         for rank in range(1, comm.Get_size()):
-            _receive(comm.Irecv(bytearray(1), source=rank, tag=SYNC_TAG), idle)
+            receive(comm.Irecv(bytearray(1), source=rank, tag=SYNC_TAG), idle)
         for rank in range(1, comm.Get_size()):
             wait(comm.Isend(bytearray(1), dest=rank, tag=SYNC_TAG))
     else:
         wait(comm.Isend(bytearray(1), dest=0, tag=SYNC_TAG))
-        _receive(comm.Irecv(bytearray(1), source=0, tag=SYNC_TAG), idle)
+        receive(comm.Irecv(bytearray(1), source=0, tag=SYNC_TAG), idle)
 
 
 #: The tags of a rank's word to rank 0 that it has stopped (:func:`arrived`), of rank 0's word
@@ -209,7 +209,7 @@ def finish(comm) -> None:
         for rank in range(1, comm.Get_size()):
             wait(comm.Isend(bytearray(1), dest=rank, tag=FINISHED_TAG))
     else:
-        _receive(comm.Irecv(bytearray(1), source=0, tag=FINISHED_TAG))
+        receive(comm.Irecv(bytearray(1), source=0, tag=FINISHED_TAG))
 
 
 def agree(comm, code: int) -> int:
@@ -221,13 +221,13 @@ def agree(comm, code: int) -> int:
             wait(comm.Isend(bytearray(code.to_bytes(4, "little", signed=True)), dest=rank, tag=CODE_TAG))
         return code
     word = bytearray(4)
-    _receive(comm.Irecv(word, source=0, tag=CODE_TAG))
+    receive(comm.Irecv(word, source=0, tag=CODE_TAG))
     return int.from_bytes(word, "little", signed=True)
 
 
-def _receive(request, idle: Callable[[], object] | None = None) -> None:
+def receive(request, idle: Callable[[], object] | None = None) -> None:
     """:func:`wait` for a receive, cancelled if this rank stops meanwhile (MPI would find it
-    pending when the process ends)."""
+    pending when the process ends): every wait of the package for a message."""
     try:
         wait(request, idle)
     except BaseException:

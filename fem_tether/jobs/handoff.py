@@ -6,7 +6,7 @@ result, or the exception it raised, which rank 0 raises as its own when it
 takes the result (the other rank's traceback added as a note), as if it had
 done the work itself.  Point-to-point, never a collective (the ranks not
 involved are elsewhere), and every wait is stoppable
-(:func:`fem_tether.core.stop.checkpoint`): a rank that stops stops the other
+(:func:`fem_tether.core.stop.receive`, :func:`~fem_tether.core.stop.wait`): a rank that stops stops the other
 (:func:`fem_tether.core.stop.guard`), so neither waits for ever.
 """
 
@@ -14,31 +14,36 @@ from __future__ import annotations
 
 import importlib
 import pickle
-import time
 import traceback
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from fem_tether.core.stop import checkpoint, wait
+from fem_tether.core.stop import receive, wait
 
 #: The tags of the work and of its result (the stop messages have a communicator of their own).
 WORK_TAG, RESULT_TAG = 21, 22
 
-#: How often a waiting rank looks for the message it waits for [s] (asleep in between).
-POLL_S = 0.01
+#: The bytes of a message's length, sent before the message.
+LENGTH_BYTES = 8
 
 
 def _receive(comm, source: int, tag: int) -> Any:
-    """The next message from ``source`` with ``tag``, waited for stoppably."""
-    while not comm.Iprobe(source=source, tag=tag):
-        checkpoint()
-        time.sleep(POLL_S)
-    return comm.recv(source=source, tag=tag)
+    """The next message from ``source`` with ``tag``: its length, then its pickled bytes,
+    each a posted receive waited for stoppably (:func:`fem_tether.core.stop.receive`; mpi4py's
+    receive of an object posted without a buffer holds 32 KiB at most, mpi4py 4.1)."""
+    length = bytearray(LENGTH_BYTES)
+    receive(comm.Irecv(length, source=source, tag=tag))
+    message = bytearray(int.from_bytes(length, "little"))
+    receive(comm.Irecv(message, source=source, tag=tag))
+    return pickle.loads(message)
 
 
 def _send(comm, message: Any, dest: int, tag: int) -> None:
-    """Send ``message`` and wait, stoppably, until it has left."""
-    wait(comm.isend(message, dest=dest, tag=tag))
+    """Send ``message`` (its length, then its pickled bytes: :func:`_receive`) and wait,
+    stoppably, until it has left."""
+    data = pickle.dumps(message, protocol=pickle.HIGHEST_PROTOCOL)
+    wait(comm.Isend(len(data).to_bytes(LENGTH_BYTES, "little"), dest=dest, tag=tag))
+    wait(comm.Isend(data, dest=dest, tag=tag))
 
 
 def _portable(exc: Exception) -> Exception:

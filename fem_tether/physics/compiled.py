@@ -27,11 +27,12 @@ The functions and loops compile when first called, not when imported, and
 are cached on disk next to their modules (numba's ``cache=True``).  A
 solver's kernel caches the loops it calls with it (numba checks a cache
 against its own source file only), but not the models' functions, which it
-calls by address: a model edited is a model compiled again.  Whether numba's
-cache holds a module's functions as its source is now is read from the
-cache's index files, without importing the module (:func:`cached`), and the
-compiles of a block are shown as they happen (:func:`compiling`, from
-numba's compile events, which fire on a cache miss only).
+calls by address: a model edited is a model compiled again.  Which compiles
+of a module's functions numba's cache holds as its source is now is read from
+the cache's index files, without importing the module (:func:`held`; what a
+run would compile of them: :func:`missing`); the compiles of a block are shown
+as they happen (:func:`compiling`, from numba's compile events, which fire on
+a cache miss only) and measured (:func:`recording`).
 """
 
 from __future__ import annotations
@@ -39,8 +40,10 @@ from __future__ import annotations
 import importlib.util
 import pickle
 import sys
-from collections.abc import Callable, Iterator
+import time
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 import numba
@@ -105,47 +108,76 @@ def _locator(source: str):
     return None
 
 
-def cached(module: str) -> bool:
-    """Whether numba's cache holds functions of ``module`` compiled from its source
-    as it is now: an index file of one of them (``<file>.<function>-<line>.pyXY.nbi``)
-    where numba looks (:func:`_locator`), written by this numba for this source
-    (its stamp, a hash of its content).  Reads index files only, until a fresh
-    one: the module is not imported (that would compile it).  With numba's
-    compiler off (``NUMBA_DISABLE_JIT``) nothing compiles: True."""
-    if getattr(numba.config, "DISABLE_JIT", False):      # numba sets its settings at import
-        return True
+def held(module: str) -> dict[str, int]:
+    """The compiles (signatures) numba's cache holds of each function of ``module``
+    (by its qualified name) compiled from its source as it is now: the entries of the
+    function's index file (``<file>.<function>-<line>.pyXY.nbi``) where numba looks
+    (:func:`_locator`), written by this numba for this source (its stamp, a hash
+    of its content); 0 for a function whose index is of another source or numba (a
+    function compiled before).  Reads index files only: the module is not imported (that
+    would compile it)."""
     spec = importlib.util.find_spec(module)
     source = spec.origin if spec else None
     locator = _locator(source) if source else None
     if source is None or locator is None:
-        return False
+        return {}
     stamp = locator.get_source_stamp()
-    tag = f"py{sys.version_info.major}{sys.version_info.minor}{getattr(sys, 'abiflags', '')}"
-    for index in Path(locator.get_cache_path()).glob(f"{Path(source).stem}.*.{tag}.nbi"):
+    tag = f".py{sys.version_info.major}{sys.version_info.minor}{getattr(sys, 'abiflags', '')}.nbi"
+    stem = Path(source).stem + "."
+    compiles: dict[str, int] = {}
+    for index in Path(locator.get_cache_path()).glob(f"{stem}*{tag}"):
+        function = index.name[len(stem):-len(tag)].rpartition("-")[0]
+        compiles.setdefault(function, 0)
         try:
             with open(index, "rb") as f:
-                if pickle.load(f) == numba.__version__ and pickle.loads(f.read())[0] == stamp:
-                    return True
+                if pickle.load(f) != numba.__version__:
+                    continue
+                index_stamp, overloads = pickle.loads(f.read())
         except Exception:        # an index being replaced, or unreadable: numba's to rewrite
             continue
-    return False
+        if index_stamp == stamp:
+            compiles[function] += len(overloads)
+    return compiles
+
+
+def missing(module: str, compiles: Mapping[str, tuple[int, float]]) -> dict[str, tuple[int, float]]:
+    """Of ``compiles`` (function of ``module`` -> the compiles a run makes of it and
+    their seconds), those numba's cache does not hold (:func:`held`), with their
+    share of the seconds: a function holding fewer compiles than the run makes
+    compiles the rest (numba keys its cache by signature, which an index does not
+    say without unpickling numba's types, so any compile held counts as one of
+    the run's).  With numba's compiler off (``NUMBA_DISABLE_JIT``) nothing compiles."""
+    if getattr(numba.config, "DISABLE_JIT", False):      # numba sets its settings at import
+        return {}
+    there = held(module)
+    lacking = {f: (n - there.get(f, 0), seconds_s) for f, (n, seconds_s) in compiles.items()}
+    return {f: (n, seconds_s * n / compiles[f][0]) for f, (n, seconds_s) in lacking.items() if n > 0}
+
+
+#: A compiled function by its module and qualified name.
+Function = tuple[str, str]
+
+
+def _function(ev) -> Function:
+    py_func = ev.data["dispatcher"].py_func
+    return py_func.__module__, py_func.__qualname__
 
 
 @contextmanager
-def compiling(expected: dict[str, tuple[int, float]], notice: str,
-              elsewhere_s: float = 0.0) -> Iterator[Callable[[], None]]:
+def compiling(expected: Mapping[Function, tuple[int, float]], notice: str, seconds_s: float,
+              elsewhere: bool = False) -> Iterator[Callable[[], None]]:
     """Show numba's compiles of the block as progress on stderr
     (:class:`~fem_tether.core.progress.Progress`): ``notice`` at once, then the
-    compiles done of ``expected`` (module -> its compiles and their seconds),
-    the ETA weighed by those seconds.  ``elsewhere_s``: the seconds other
-    processes compile meanwhile, which the block waits for at its end (one more
-    step of the count, the time they take beyond this process's).  Yields
+    compiles done of ``expected`` (function -> its compiles to come and their seconds,
+    :func:`missing`), the ETA weighed by those seconds, the block taking ``seconds_s``.
+    ``elsewhere``: other processes compile meanwhile, and the block waits for them at
+    its end (one more step of the count; they may compile some of ``expected``, numba's
+    cache being theirs too, so the count may then jump at the end).  Yields
     what redraws the progress (the elapsed time) while the block waits.  On a
     terminal the notice is a line of its own above the bar (too long to share
     its line)."""
     here_s = sum(s for _, s in expected.values())
-    total = sum(n for n, _ in expected.values()) + (elsewhere_s > 0.0)
-    seconds = max(here_s, elsewhere_s)
+    total = sum(n for n, _ in expected.values()) + elsewhere
     bar = Progress(total, notice)
     if bar.tty:
         bar.stream.write(notice + "\n")
@@ -153,7 +185,7 @@ def compiling(expected: dict[str, tuple[int, float]], notice: str,
     count, spent = 0, 0.0
 
     def redraw() -> None:
-        bar.update(min(count, total - 1), (min(spent, seconds), seconds))
+        bar.update(min(count, total - 1), (min(spent / here_s if here_s else 1.0, 1.0) * seconds_s, seconds_s))
 
     class Compiled(event.Listener):
         def on_start(self, ev) -> None:
@@ -161,15 +193,57 @@ def compiling(expected: dict[str, tuple[int, float]], notice: str,
 
         def on_end(self, ev) -> None:
             nonlocal count, spent
-            share = expected.get(ev.data["dispatcher"].py_func.__module__)
+            share = expected.get(_function(ev))
             if share is not None:
                 count, spent = count + 1, spent + share[1] / share[0]
                 redraw()
 
-    bar.start(0, (0.0, seconds))
+    bar.start(0, (0.0, seconds_s))
     try:
         with event.install_listener("numba:compile", Compiled()):
             yield redraw
-        bar.update(total, (seconds, seconds))
+        bar.update(total, (seconds_s, seconds_s))
     finally:
         bar.close()
+
+
+@dataclass
+class Compile:
+    """One compile numba made (a function for one signature): when it started and ended
+    (``time.perf_counter``) and the CPU seconds of this thread it took, its own (without the
+    compiles of the functions of ``package`` inside it, with numba's own, :func:`recording`)."""
+
+    function: Function
+    start_s: float
+    end_s: float = 0.0
+    cpu_s: float = 0.0
+
+
+@contextmanager
+def recording(package: str = "fem_tether") -> Iterator[list[Compile]]:
+    """The compiles of functions of ``package`` in the block, in the order they
+    ended: the measure of a first run (:data:`fem_tether.tether.kernels.FIRST_COMPILE`).
+    A compile of one of numba's functions (its library's overloads, compiled into
+    the function that calls them) counts as the CPU time of the compile of ``package``
+    it happens in; CPU time, not the wall clock, so that other processes on the
+    machine do not count."""
+    done: list[Compile] = []
+    open_: list[tuple[Compile | None, float, list[float]]] = []        # the compile, its CPU start, inside
+
+    class Recorder(event.Listener):
+        def on_start(self, ev) -> None:
+            function = _function(ev)
+            ours = function[0].split(".")[0] == package
+            open_.append((Compile(function, time.perf_counter()) if ours else None, time.thread_time(), [0.0]))
+
+        def on_end(self, ev) -> None:
+            compile_, cpu_start, inside = open_.pop()
+            took_s = time.thread_time() - cpu_start
+            if compile_ is not None:
+                compile_.end_s, compile_.cpu_s = time.perf_counter(), took_s - inside[0]
+                done.append(compile_)
+            if open_:
+                open_[-1][2][0] += took_s if compile_ is not None else inside[0]
+
+    with event.install_listener("numba:compile", Recorder()):
+        yield done

@@ -177,8 +177,8 @@ def crossflow_drag(v_rel, tau, rho, mu_air, diameter_m, drag_model: DragModel,
     """
     v_rel = np.array(v_rel, dtype=float, order="C", ndmin=2)
     n = v_rel.shape[0]
-    tau, rho, mu_air = (np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape))
-                        for x, shape in ((tau, (n, 3)), (rho, (n,)), (mu_air, (n,))))
+    tau, rho, mu_air = (np.array(np.broadcast_to(np.asarray(x, dtype=float), shape), order="C")   # writable:
+                        for x, shape in ((tau, (n, 3)), (rho, (n,)), (mu_air, (n,))))         # one compile
     along, vn_mps, re = np.empty(n), np.empty(n), np.empty(n)
     vn, force = np.empty((n, 3)), np.empty((n, 3))
     normal_flow(v_rel, tau, rho, mu_air, diameter_m, along, vn, vn_mps, re)

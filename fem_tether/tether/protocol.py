@@ -42,7 +42,6 @@ import time
 from dataclasses import dataclass, replace
 from typing import Protocol
 
-import numba
 import numpy as np
 
 from fem_tether.tether.case import TetherCase
@@ -50,6 +49,7 @@ from fem_tether.config import Config
 from fem_tether.tether.continuation import NotConverged
 from fem_tether.core.errors import SolverDivergedError, check_taut, newton_failure, slack_failure
 from fem_tether.tether.laps import LapRule, lap_window, spinup_end
+from fem_tether.physics.compiled import jit
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.core.progress import Progress
 from fem_tether.physics.reel import Reel, reel_from_config
@@ -67,7 +67,7 @@ def speed_jumped(before_mps: float, after_mps: float) -> bool:
     return abs(after_mps - before_mps) > RESTART_JUMP_MPS
 
 
-@numba.njit("b1(f8, f8, f8)", cache=True, error_model="numpy")
+@jit
 def expect_converged(worst: float, before: float, tol: float) -> bool:
     """Whether the Newton iterate after residuals ``before`` and then ``worst``
     (max norms) is expected within ``tol``: quadratic convergence,
@@ -82,7 +82,7 @@ def expect_converged(worst: float, before: float, tol: float) -> bool:
 CHORD_CONTRACTION = 0.1
 
 
-@numba.njit("b1(f8, f8)", cache=True, error_model="numpy")
+@jit
 def reuse_factors(worst: float, before: float) -> bool:
     """Whether the Newton iterate after residuals ``before`` and then ``worst``
     (max norms) may take its step with the factors of an earlier iterate's
@@ -94,7 +94,7 @@ def reuse_factors(worst: float, before: float) -> bool:
     return math.isfinite(before) and worst <= CHORD_CONTRACTION * before
 
 
-@numba.njit("f8(f8[:])", cache=True, error_model="numpy")
+@jit
 def max_abs(x) -> float:
     """max |x_i|, the residual's norm in the convergence test; NaN if any x_i is
     (as NumPy's ``max``)."""

@@ -4,6 +4,7 @@ import contextlib
 import html
 import io
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -20,6 +21,7 @@ from pages import check_page, embedded
 from route import TOP_TO_BOTTOM, calls_between_modules
 
 from fem_tether.cli import main
+from fem_tether.core import progress
 from fem_tether.core.atomic import OutputError
 from fem_tether.physics.resource import from_config as resource_from_config
 from fem_tether.physics.resource import write_resource_csv
@@ -397,3 +399,53 @@ def test_a_failure_after_the_sweep_stops_both_ranks_with_its_error(tmp_path, whe
     assert ("raised on MPI rank 1:" in proc.stderr) == (where == "the flight, on rank 1")
     assert not (tmp_path / "out" / "index.html").exists()
     assert not [p.name for p in (tmp_path / "out").iterdir() if p.name.startswith(".") and "tmp" in p.name]
+
+
+#: ``fem-tether run QUICK --out OUT`` with its compiles recorded and the times of its lines on stderr, as JSON
+#: on stdout's last line.
+FIRST_RUN = """
+import io, json, sys, time
+from contextlib import redirect_stdout
+from fem_tether.physics.compiled import recording
+
+lines = []
+
+class Stderr:
+    def __init__(self, stream):
+        self.stream = stream
+    def write(self, text):
+        if text.strip():
+            lines.append((time.perf_counter(), text.strip()))
+        return self.stream.write(text)
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+sys.stderr = Stderr(sys.stderr)
+with recording() as compiles, redirect_stdout(io.StringIO()):
+    from fem_tether.cli import main
+    code = main(["run", sys.argv[1], "--out", sys.argv[2]])
+print(json.dumps({"code": code, "lines": lines,
+                  "compiles": [[*c.function, c.start_s, c.end_s, c.cpu_s] for c in compiles]}))
+"""
+
+
+def test_a_first_run_says_it_compiles_before_any_compile_and_counts_each(tmp_path):
+    """On an empty numba cache the main job's notice comes before its first compile (before:
+    the flight check and the job's checks compiled the path's code, 16 s on the loaded machine,
+    in silence), its count is the run's compiles, every one of them done before its last line,
+    and its estimate is the compiles' CPU time within a factor of 1.5 (a measure of CPU, not
+    of the wall clock: other processes on the machine do not change it)."""
+    env = {k: v for k, v in os.environ.items() if k not in (progress.PROGRESS_VARIABLE, *progress.RANK_VARIABLES)}
+    done = subprocess.run([sys.executable, "-c", FIRST_RUN, str(QUICK), str(tmp_path / "out")], capture_output=True,
+                          text=True, timeout=900, env=env | {"NUMBA_CACHE_DIR": str(tmp_path / "numba-cache")})
+    assert done.returncode == 0, done.stderr[-3000:]
+    run = json.loads(done.stdout.splitlines()[-1])
+    notices = [(t, line) for t, line in run["lines"] if line.startswith("compiling the solver kernels")]
+    compiles = run["compiles"]
+    assert run["code"] == 0 and notices and compiles
+    assert notices[0][0] < min(start for *_, start, _, _ in compiles)
+    assert max(end for *_, end, _ in compiles) <= notices[-1][0]
+    estimate_s, count = re.match(r".*about (\d+) s\): 0/(\d+) ", notices[0][1]).groups()
+    assert int(count) == len(compiles), [c[:2] for c in compiles]
+    cpu_s = sum(c[-1] for c in compiles)
+    assert cpu_s / 1.5 <= int(estimate_s) <= 1.5 * cpu_s, (estimate_s, cpu_s)

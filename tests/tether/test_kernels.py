@@ -27,9 +27,38 @@ def _quiet_env(**extra) -> dict:
     return env | extra
 
 
-def test_the_table_of_first_compiles_has_every_module_a_run_compiles():
-    assert set(kernels.FIRST_COMPILE) == {*kernels.SHARED, *kernels.KERNELS.values()}
+def test_the_table_of_first_compiles_counts_each_load():
+    """Each solver's kernels are its own, and loading both compiles what either does."""
     assert kernels.notice(10.4) == "compiling the solver kernels (first run after install, about 10 s)"
+    for module, table in kernels.FIRST_COMPILE.items():
+        for function, (fe, fd, both, _) in table.items():
+            assert max(fe, fd) <= both <= fe + fd, (module, function)
+            if module in kernels.KERNELS.values():
+                assert (fe, fd)[module != kernels.KERNELS["fe"]] == both, (module, function)
+
+
+def test_the_estimate_shares_what_the_ranks_compile_alike():
+    """One process compiles everything; two compile one solver's kernels each and, sharing numba's
+    cache, what both would compile once between them."""
+    assert kernels.estimate_s([9.0], 9.0) == 9.0
+    assert kernels.estimate_s([6.0, 5.0], 9.0) == 6.0 - 2.0 + 2.0 / 2
+
+
+def test_loops_compiled_before_from_an_edited_source_count_only_while_the_kernels_compile(monkeypatch):
+    """The leaf models' loops the kernels call compile with the kernels only: while numba holds the
+    kernels it runs them from its cache, and a loop whose source was edited since never compiles
+    again (before: the notice and the warm-ups came at every run of a tree whose ``loads.py`` had
+    been edited, three notices in a run on two ranks)."""
+    fe_kernel = {f: n for f, (n, *_) in kernels.FIRST_COMPILE[kernels.KERNELS["fe"]].items()}
+    edited = {"fem_tether.physics.loads": {"drag_derivatives": 0}, kernels.KERNELS["fe"]: fe_kernel}
+    monkeypatch.setattr(kernels, "held", lambda module: edited.get(module, {}))
+    monkeypatch.setattr(kernels, "missing", lambda module, run: {
+        f: share for f, share in run.items() if edited.get(module, {}).get(f, 0) < share[0]})
+    cold = kernels.to_compile(["fe"])
+    assert ("fem_tether.physics.loads", "drag_derivatives") not in cold
+    assert ("fem_tether.physics.trajectory", "path_points") in cold      # never compiled: counted
+    del edited[kernels.KERNELS["fe"]]
+    assert ("fem_tether.physics.loads", "drag_derivatives") in kernels.to_compile(["fe"])
 
 
 def test_a_prescribed_first_run_compiles_the_table_and_not_the_kite(tmp_path):
@@ -41,17 +70,15 @@ def test_a_prescribed_first_run_compiles_the_table_and_not_the_kite(tmp_path):
     (before: the kernel compiled the kite in, 4 of its compiles and ~3 s), nor the
     steering's or the circle's; nor does the flight check (its turn radius is the
     path's compiled loop of points, ``trajectory.path_points``)."""
-    code = ("from fem_tether.physics.compiled import cached\n"
+    code = ("from fem_tether.physics.compiled import held\n"
             "from fem_tether.tether import kernels\n"
             "kernels.load(['fe'])\n"
-            "modules = [*kernels.SHARED, kernels.KERNELS['fe']]\n"
-            "assert 'fem_tether.physics.trajectory' in modules\n"
-            "assert all(cached(m) for m in modules), [m for m in modules if not cached(m)]\n"
+            "assert kernels.to_compile(['fe']) == {}, kernels.to_compile(['fe'])\n"
             "from fem_tether.config import load_config\n"
             "from fem_tether.physics.steering import min_turn_radius_m\n"
             "min_turn_radius_m(load_config(None).path)\n"
             "for kite in ('kite_dynamics', 'steering', 'orbit'):\n"
-            "    assert not cached(f'fem_tether.physics.{kite}'), kite\n")
+            "    assert not held(f'fem_tether.physics.{kite}'), kite\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600,
                           env=_quiet_env(NUMBA_CACHE_DIR=str(tmp_path / "numba-cache")))
     assert done.returncode == 0, done.stderr[-3000:]
