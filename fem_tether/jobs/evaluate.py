@@ -12,6 +12,7 @@ clusters, each cluster's runs into its own values (:data:`CLUSTER_VALUES`).
 from __future__ import annotations
 
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -165,7 +166,8 @@ def _straight_in_turned_wind(cfg: Config, wind) -> tuple[float, float]:
     the eight.  In a wind along x both are the one line of :func:`straight.from_config`; in a
     turned wind the one-way line's drag depends on the way (the wind's v adds to its motion or
     takes from it), the mean counts both halves of the eight."""
-    at = straight.line_of_config(cfg, with_wind=True)
+    # line_of_config gives a partial of straight_line_drag, whose wind a keyword gives anew
+    at: Callable[..., straight.StraightLineDrag] = straight.line_of_config(cfg, with_wind=True)
     lines = [at(cfg.tether.length_m, wind_profile=w) for w in (wind, mirrored(wind))]
     return 0.5 * (lines[0].drag_N + lines[1].drag_N), 0.5 * (lines[0].power_drag_N + lines[1].power_drag_N)
 

@@ -477,7 +477,7 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource | ClusterResource,
 
 def _every_cluster(flags: np.ndarray) -> np.ndarray:
     """Per length, whether ``flags`` holds for it (for every cluster: lengths x clusters)."""
-    return flags.reshape(flags.shape[0], -1).all(axis=1)
+    return np.asarray(flags.reshape(flags.shape[0], -1).all(axis=1))
 
 
 def refuse_clusters(cfg: Config) -> None:
