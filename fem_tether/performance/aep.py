@@ -482,11 +482,11 @@ def _every_cluster(flags: np.ndarray) -> np.ndarray:
 
 def refuse_clusters(cfg: Config) -> None:
     """A :class:`ConfigError` if ``cfg`` has ``[resource] clusters``: the AEP of the band and
-    Weibull resources below, which ``study`` and ``convert`` take, does not count clusters
-    (``run``, ``sweep`` and ``aep`` do: :func:`sweep_aep`; ``design`` takes its site from its job)."""
+    Weibull resources below, which ``study`` takes, does not count clusters (``run``, ``sweep``,
+    ``aep`` and ``convert`` do: :func:`sweep_aep`; ``design`` takes its site from its job)."""
     if cfg.resource.clusters:
-        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: study and convert do not yet "
-                          "count wind-profile clusters (run, sweep and aep do); remove the key "
+        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: study does not yet count "
+                          "wind-profile clusters (run, sweep, aep and convert do); remove the key "
                           "(docs/resource.md)")
 
 
