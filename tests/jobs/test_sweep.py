@@ -609,22 +609,26 @@ def test_a_veering_cluster_raises_the_flexible_lines_drag_as_the_quasi_steady_li
 
 @pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
 def test_mpi_a_cluster_sweeps_files_are_identical_on_one_and_two_ranks(tmp_path):
-    """The tiny job over two clusters (two lengths, three winds, FE and FD: 12 tasks) with mpiexec -n 1
-    and -n 2: every dataset and every run's series of the result file bitwise equal."""
+    """The tiny job over two clusters (two lengths, three winds, FE and FD: 12 tasks) run by `run` with
+    mpiexec -n 1 and -n 2: every dataset and every run's series of the result file bitwise equal, and
+    aep.json and summary.csv byte for byte."""
     shapes = _two_shapes()
     _cluster_csv(tmp_path / "two.csv", shapes, [0.7, 0.3], EDGES_MPS, PROBABILITY)
     _table_job(tmp_path, "two", "[400, 600]", "two.csv")
     for n in (1, 2):
-        proc = subprocess.run(["mpiexec", "-n", str(n), *CLI, "sweep", str(tmp_path / "two.toml"), "--out",
-                               str(tmp_path / f"n{n}.h5")], capture_output=True, text=True, timeout=600)
+        proc = subprocess.run(["mpiexec", "-n", str(n), *CLI, "run", str(tmp_path / "two.toml"), "--out",
+                               str(tmp_path / f"n{n}")], capture_output=True, text=True, timeout=600)
         assert proc.returncode == 0, proc.stderr
+    for name in ("aep.json", "summary.csv"):
+        assert (tmp_path / "n1" / name).read_bytes() == (tmp_path / "n2" / name).read_bytes(), name
+    assert "aep_fe_by_cluster_MWh" in (tmp_path / "n1" / "aep.json").read_text()
 
     def datasets(f):
         found = {}
         f.visititems(lambda name, node: found.__setitem__(name, node[()]) if isinstance(node, h5py.Dataset) else None)
         return found
 
-    with h5py.File(tmp_path / "n1.h5") as a, h5py.File(tmp_path / "n2.h5") as b:
+    with h5py.File(tmp_path / "n1" / "sweep.h5") as a, h5py.File(tmp_path / "n2" / "sweep.h5") as b:
         assert (a.attrs["n_ranks"], b.attrs["n_ranks"]) == (1, 2)
         one, two = datasets(a), datasets(b)
         assert one.keys() == two.keys() and "clusters/drag_fe_N" in one and "L600/c2/fd/series/drag_N" in one
