@@ -21,7 +21,9 @@ from pathlib import Path
 from fem_tether.core.atomic import atomic_outputs, atomic_path, check_folder, check_writable, exclusive
 from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import check, kind_of, read_document, yaml_text
-from fem_tether.io.awesio_results import curves_of, power_curves_document, site_of, wind_resource_document
+from fem_tether.io.awesio_clusters import wind_resource_document as clusters_document
+from fem_tether.io.awesio_results import (cluster_curves_of, cluster_power_curves_document, curves_of,
+                                          power_curves_document, site_of, wind_resource_document)
 from fem_tether.io.awesio_system import case_tables, case_toml
 
 #: The reference height of the written resource and power curves [m] (awesIO's examples' 100 m).
@@ -71,15 +73,30 @@ def results_to_awesio(sweep_file: Path, out, reference_height_m: float, allow_un
     out = check_folder(out)
     data = read_sweep(sweep_file)
     cfg = data["config"]
-    site = site_of(cfg, reference_height_m)
+    clusters = data.clusters                 # a sweep of wind-profile clusters: theirs, at their reference height
+    site = site_of(cfg, reference_height_m) if clusters is None else None
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     name = cfg.system.name
-    documents = {out / RESOURCE_NAME: wind_resource_document(site, name)}
-    for curve in curves_of(cfg, energy, site, sweep_resource(cfg)):
-        description = (f"{name} ({cfg.system.model} model), {curve.tether} tether of {curve.length_m:g} m: "
-                       f"{cfg.system.description} (fem-tether sweep {sweep_file})")
-        path = out / f"power_curves_{curve.tether}_L{length_tag(curve.length_m)}.yml"
-        documents[path] = power_curves_document(site, curve, name, description)
+
+    def described(curve) -> tuple[Path, str]:
+        return (out / f"power_curves_{curve.tether}_L{length_tag(curve.length_m)}.yml",
+                f"{name} ({cfg.system.model} model), {curve.tether} tether of {curve.length_m:g} m: "
+                f"{cfg.system.description} (fem-tether sweep {sweep_file})")
+
+    if clusters is None:
+        assert site is not None
+        documents = {out / RESOURCE_NAME: wind_resource_document(site, name)}
+        for curve in curves_of(cfg, energy, site, sweep_resource(cfg)):
+            path, description = described(curve)
+            documents[path] = power_curves_document(site, curve, name, description)
+    else:
+        reference_height_m = clusters.reference_height_m
+        documents = {out / RESOURCE_NAME: clusters_document(
+            clusters, f"{name} wind resource", f"the wind-profile clusters the sweep {sweep_file} flew",
+            f"read from {clusters.source}")}
+        for curves in cluster_curves_of(cfg, energy, clusters):
+            path, description = described(curves[0])
+            documents[path] = cluster_power_curves_document(clusters, curves, name, description)
     for path, document in documents.items():
         check(document, kind_of(document, str(path)), str(path))
         check_writable(path)

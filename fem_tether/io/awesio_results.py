@@ -135,10 +135,8 @@ def power_curves_document(site: Site, curve: Curve, name: str, description: str)
         "metadata": {
             "name": f"{name} L = {curve.length_m:g} m, {curve.tether} tether",
             "description": description,
-            "note": f"electrical cycle-mean power with the {curve.tether} tether's drag "
-                    + ("(the straight line's)" if curve.tether == "straight" else
-                       f"(the FE line's, {'cross-checked' if curve.checked else 'NOT cross-checked: --allow-unchecked'})")
-                    + f"; the wind at the operating altitude is {curve.speed_ratio:.6g} x the reference speed",
+            "note": f"electrical cycle-mean power with the {curve.tether} tether's drag {_drag_note(curve)}; "
+                    f"the wind at the operating altitude is {curve.speed_ratio:.6g} x the reference speed",
             "awesIO_version": AWESIO_VERSION, "schema": "power_curves_schema.yml", "time_created": _now(),
             "model_config": {
                 "wing_area_m2": curve.wing_area_m2, "nominal_power_w": curve.rated_power_W,
@@ -151,6 +149,56 @@ def power_curves_document(site: Site, curve: Curve, name: str, description: str)
         "power_curves": [{"profile_id": 1, "speed_ratio_at_operating_altitude": curve.speed_ratio,
                           "u_normalized": site.u_normalized, "v_normalized": [0.0] * len(site.altitudes_m),
                           "probability_weight": 1.0, "cycle_power_w": power}],
+    }
+
+
+def _drag_note(curve: Curve) -> str:
+    """Whose drag a curve takes: the straight line's, or the FE line's and whether it was cross-checked."""
+    if curve.tether == "straight":
+        return "(the straight line's)"
+    return f"(the FE line's, {'cross-checked' if curve.checked else 'NOT cross-checked: --allow-unchecked'})"
+
+
+def cluster_power_curves_document(resource: ClusterResource, curves: list[Curve], name: str,
+                                  description: str) -> dict:
+    """The awesIO ``power_curves`` document of one length's ``curves`` on a cluster resource,
+    one per cluster in the clusters' order (:func:`cluster_curves_of`): each profile the
+    cluster's shape (u, v at the resource's heights) with weight P(k), its speed ratio at the
+    operating altitude and its power against the reference speeds (the bin edges at the
+    reference height).  The model's nominal power is Σ_k P(k) P_rated,k (the capacity
+    factor's, :func:`fem_tether.performance.aep.aep_on_clusters_by_length`), its tether force
+    the largest of the clusters', cut-in the lowest reference speed with power in any cluster
+    and cut-out the lowest of the clusters' (both at the reference height)."""
+    speeds = resource.edges_mps
+    first = curves[0]
+    powers = [_numbers(c.power_W, f"the {c.tether} power curve of cluster {k + 1} at {c.length_m:g} m")
+              for k, c in enumerate(curves)]
+    producing = [speeds[np.flatnonzero(np.asarray(p) > 0.0)] for p in powers]
+    return {
+        "metadata": {
+            "name": f"{name} L = {first.length_m:g} m, {first.tether} tether, {resource.n_clusters} wind-profile "
+                    "clusters",
+            "description": description,
+            "note": f"electrical cycle-mean power with the {first.tether} tether's drag in each cluster's wind "
+                    f"{_drag_note(first)}; the wind at the operating altitude is each profile's "
+                    "speed_ratio_at_operating_altitude x the reference speed",
+            "awesIO_version": AWESIO_VERSION, "schema": "power_curves_schema.yml", "time_created": _now(),
+            "model_config": {
+                "wing_area_m2": first.wing_area_m2,
+                "nominal_power_w": math.fsum(f * c.rated_power_W for f, c in zip(resource.frequency, curves)),
+                "nominal_tether_force_n": max(c.tether_force_N for c in curves),
+                "cut_in_wind_speed_m_s": min((float(s[0]) for s in producing if s.size), default=0.0),
+                "cut_out_wind_speed_m_s": min(c.cut_out_mps / c.speed_ratio for c in curves),
+                "operating_altitude_m": first.operating_altitude_m, "tether_length_operational_m": first.length_m},
+            "wind_resource": {"n_clusters": resource.n_clusters, "reference_height_m": resource.reference_height_m,
+                              "data_source": resource.source}},
+        "altitudes_m": _numbers(resource.heights_m, "the altitudes"),
+        "reference_wind_speeds_m_s": _numbers(speeds, "the reference speeds"),
+        "power_curves": [{"profile_id": k + 1, "speed_ratio_at_operating_altitude": c.speed_ratio,
+                          "u_normalized": _numbers(resource.u_shape[k], f"cluster {k + 1}'s u"),
+                          "v_normalized": _numbers(resource.v_shape[k], f"cluster {k + 1}'s v"),
+                          "probability_weight": float(resource.frequency[k]), "cycle_power_w": powers[k]}
+                         for k, c in enumerate(curves)],
     }
 
 
@@ -202,3 +250,30 @@ def curves_of(cfg: Config, energy: SweepAep, site: Site, resource: Resource) -> 
                                 float(force), case.kite.area_m2, system.top_mps,
                                 tether == "straight" or float(length) not in energy.unchecked_m))
     return curves
+
+
+def cluster_curves_of(cfg: Config, energy: SweepAep, resource: ClusterResource) -> list[list[Curve]]:
+    """The curves of each length a cluster sweep's AEP counts (``energy``, of a sweep of ``cfg``
+    on ``resource``), straight then flexible, one per cluster: cluster k's power with its own
+    F_t at r_k times each reference speed, r_k = |(u_k, v_k)|(z) at the operating altitude
+    z = L cos(theta0), the curves the AEP sums (:func:`fem_tether.performance.aep.system_on_clusters`)."""
+    from fem_tether.performance.aep import configured_system, operating_altitude_m
+
+    lengths = []
+    for tether, lines in energy.lines.items():
+        for i, length in enumerate(lines.length_m):
+            case = lines.case(cfg, i)
+            z_m = operating_altitude_m(case, float(length))
+            drags = np.broadcast_to(np.asarray(lines.drag_N[i], dtype=float), (resource.n_clusters,))
+            curves = []
+            for k in range(resource.n_clusters):
+                system, cd = configured_system(case, float(drags[k]))
+                ratio = float(resource.speed_mps(k, 1.0, z_m))
+                points = system.power_curve(ratio * resource.edges_mps, cd)
+                force = system.limits.tether_force_N or max(p.tether_force_N for p in points)
+                curves.append(Curve(tether, float(length), z_m, ratio,
+                                    np.array([p.electrical_power_W for p in points]), system.rated_power_W(cd),
+                                    float(force), case.kite.area_m2, system.top_mps,
+                                    tether == "straight" or float(length) not in energy.unchecked_m))
+            lengths.append(curves)
+    return lengths

@@ -4,7 +4,10 @@ A job (TOML, see ``sweeps/default.toml``) is a configuration plus a
 ``[sweep]`` table: the cable lengths (required), whether the FD cross-check and
 the straight-line baseline run, and an optional base configuration file.
 Each length is split into tasks: the FE run and, with the cross-check, the FD
-run.  Everything a sweep does follows from the validated :class:`Job`.
+run.  With ``[resource] clusters`` (wind-profile clusters, docs/resource.md) each
+length also runs them once per cluster, in that cluster's wind
+(:func:`fem_tether.performance.aep.cluster_wind`).  Everything a sweep does
+follows from the validated :class:`Job`.
 """
 
 from __future__ import annotations
@@ -15,6 +18,11 @@ from pathlib import Path
 
 from fem_tether.config import (TETHER_LENGTH_M, Config, ConfigError, load_config, resolve_paths,
                                toml_and_text, toml_value)
+from fem_tether.core.errors import InputError
+from fem_tether.io.awesio_clusters import read_cluster_resource
+from fem_tether.performance.aep import check_cluster_heights, cluster_wind
+from fem_tether.physics.clusters import ClusterResource
+from fem_tether.physics.wind import TableWind
 from fem_tether.tether.crosscheck import checkable
 from fem_tether.config import catalog
 
@@ -27,16 +35,31 @@ def length_tag(length_m: float) -> str:
     return f"{float(length_m):.3f}".rstrip("0").rstrip(".")
 
 
+def wind_tag(cluster: int | None) -> str:
+    """The wind of a task in names of parts and groups: "" for the configured wind, ``c<k>``
+    for cluster k (counted from 1, as the resource files count them)."""
+    return "" if cluster is None else f"c{cluster + 1}"
+
+
 @dataclass(frozen=True)
 class Task:
-    """One solver run of one length: the unit of work, of scheduling and of storage."""
+    """One solver run of one length: the unit of work, of scheduling and of storage;
+    ``cluster``: the wind-profile cluster (from 0) whose wind it flies, None the configured wind."""
 
     length_m: float
     solver: str
+    cluster: int | None = None
 
     @property
     def name(self) -> str:
-        return f"L{length_tag(self.length_m)}_{self.solver}"
+        wind = wind_tag(self.cluster)
+        return f"L{length_tag(self.length_m)}_{wind + '_' if wind else ''}{self.solver}"
+
+    @property
+    def group(self) -> str:
+        """Its run's group within its length's group of the result file: ``fe``, ``fd``, or in a
+        cluster's wind ``c<k>/fe``, ``c<k>/fd``."""
+        return "/".join(filter(None, (wind_tag(self.cluster), self.solver)))
 
 
 @dataclass(frozen=True)
@@ -53,9 +76,41 @@ class Job:
     def solvers(self) -> tuple[str, ...]:
         return ("fe", "fd") if self.crosscheck else ("fe",)
 
+    @cached_property
+    def clusters(self) -> ClusterResource | None:
+        """The wind-profile clusters of ``[resource] clusters`` (None without), read once; a
+        :class:`ConfigError` names the key if the file is malformed or a length's operating
+        altitude lies outside its heights (:func:`~fem_tether.performance.aep.check_cluster_heights`)."""
+        path = self.config.resource.clusters
+        if not path:
+            return None
+        try:
+            resource = read_cluster_resource(path)
+        except InputError as exc:
+            raise ConfigError(f"[resource] clusters = {toml_value(path)}: {exc}") from None
+        check_cluster_heights(self.config, self.lengths_m, resource)
+        return resource
+
+    @property
+    def winds(self) -> tuple[int | None, ...]:
+        """The winds each length flies: the configured one (None), then each cluster's index."""
+        return (None,) if self.clusters is None else (None, *range(self.clusters.n_clusters))
+
+    def length_tasks(self, length_m: float) -> list[Task]:
+        """The tasks of one length, in the order of :attr:`tasks`."""
+        return [Task(float(length_m), s, k) for k in self.winds for s in self.solvers]
+
     @property
     def tasks(self) -> list[Task]:
-        return [Task(L, s) for L in self.lengths_m for s in self.solvers]
+        return [task for L in self.lengths_m for task in self.length_tasks(L)]
+
+    def wind_of(self, task: Task, cfg: Config) -> TableWind | None:
+        """The wind ``task`` flies on ``cfg`` (its length's case): None (the configured one), or its
+        cluster's (:func:`~fem_tether.performance.aep.cluster_wind`)."""
+        if task.cluster is None:
+            return None
+        assert self.clusters is not None
+        return cluster_wind(cfg, self.clusters, task.cluster)
 
     @cached_property
     def configs(self) -> dict[float, Config]:
@@ -116,6 +171,7 @@ def job_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", system
     job = Job(tuple(sorted(float(v) for v in lengths)), sweep.get("crosscheck", True),
               sweep.get("straight", True), cfg, text)
     job.configs                         # every length's case is checked now, not in the sweep
+    job.clusters                        # and the wind-profile clusters they fly
     return job
 
 

@@ -68,8 +68,18 @@ class PartsStore:
         return self.directory / f"{task.name}.h5"
 
     def inputs_key(self, length_m: float) -> str:
-        """The inputs key of the tasks of one length."""
-        return inputs_key(self.job.config_for(length_m))
+        """The inputs key of the tasks of one length in the configured wind: its configuration's
+        without ``[resource] clusters``, which changes only the clusters' runs (:meth:`task_key`)."""
+        cfg = self.job.config_for(length_m)
+        return inputs_key(cfg.replace(resource={"clusters": ""}) if cfg.resource.clusters else cfg)
+
+    def task_key(self, task: Task) -> str:
+        """The inputs key of ``task``: its length's (:meth:`inputs_key`), and for a cluster's
+        run also the wind it flies (the table's heights, speeds and turns), so that changing
+        the clusters reruns the runs whose wind changed, and only them."""
+        key = self.inputs_key(task.length_m)
+        wind = self.job.wind_of(task, self.job.config_for(task.length_m))
+        return key if wind is None else hashlib.sha256(key.encode() + wind.parameters.tobytes()).hexdigest()
 
     def sizing_path(self, length_m: float) -> Path:
         return self.directory / f"L{length_tag(length_m)}_size.json"
@@ -140,7 +150,7 @@ class PartsStore:
 
     def kept(self) -> int:
         """How many of the job's tasks have a stored successful part (reused by a rerun)."""
-        return sum(self.status(t, self.inputs_key(t.length_m)) == "ok" for t in self.job.tasks)
+        return sum(self.status(t, self.task_key(t)) == "ok" for t in self.job.tasks)
 
     def done(self) -> int:
         """How many of the job's tasks have a part, whatever its inputs or status (one
@@ -168,4 +178,4 @@ class PartsStore:
         """The modification times of a length's parts (None: not present): what
         was evaluated from them holds while they do not change."""
         return tuple(path.stat().st_mtime_ns if path.exists() else None
-                     for path in (self.path(Task(length_m, s)) for s in self.job.solvers))
+                     for path in map(self.path, self.job.length_tasks(length_m)))

@@ -28,7 +28,6 @@ from fem_tether.core.errors import InputError
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
-from fem_tether.io.awesio_clusters import read_cluster_resource
 from fem_tether.jobs.evaluate import LengthResult
 from fem_tether.jobs.job import Job
 from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
@@ -158,9 +157,8 @@ def _prepare_output(store: PartsStore, n_ranks: int, output: ExitStack, follow_u
     checks and the lock of what follows (:class:`FollowUp`); the runs the result
     file holds for the job are parts again; the result file is current from the
     start (each task then updates its length)."""
-    if follow_up is not None and follow_up.aep:      # first: a refused resource leaves no folder behind
-        if store.job.config.resource.clusters:     # an awesIO document: read here, above the configuration
-            read_cluster_resource(store.job.config.resource.clusters)
+    clusters = store.job.clusters               # first: a refused resource leaves no folder behind
+    if follow_up is not None and follow_up.aep and clusters is None:
         check_resource(store.job.config)
     check_out(store.out)
     output.enter_context(exclusive(store.out))   # one writer of out and its parts, until the end

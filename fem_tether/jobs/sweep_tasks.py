@@ -37,7 +37,7 @@ class SweepTasks:
         return task_cost(self.store.job, task)
 
     def kept(self, task: Task) -> bool:
-        return self.store.status(task, self.store.inputs_key(task.length_m)) == "ok"
+        return self.store.status(task, self.store.task_key(task)) == "ok"
 
     def run(self, task: Task) -> None:
         run_task(self.store, task)
@@ -54,7 +54,7 @@ class SweepTasks:
             self._seen = done
             job = self.store.job
             for length_m in job.lengths_m:
-                if all(self.store.path(Task(length_m, s)).exists() for s in job.solvers):
+                if all(self.store.path(task).exists() for task in job.length_tasks(length_m)):
                     evaluate_length(self.store, length_m)
         for module in self.imports:
             importlib.import_module(module)

@@ -34,6 +34,15 @@ per length with its configuration (its sized line, with ``[tether] sizing =
 "load"``, and then its sizing record ``sizing_json``) and status as attributes and subgroups
 ``fe`` and ``fd`` holding the whole run as :mod:`fem_tether.io.output` writes it
 (series, means, snapshots).
+
+A sweep of wind-profile clusters (``[resource] clusters``) also holds, in the group
+``L<length>``, one subgroup ``c<k>`` per cluster (k from 1) with its runs ``fe`` and
+``fd`` in that cluster's wind, and a root group ``clusters``: the resource the sweep
+flew (datasets ``heights_m``, ``u_shape``, ``v_shape`` (clusters x heights),
+``frequency``, ``edges_mps``, ``probability`` (clusters x bins); attributes
+``reference_height_m`` and ``source``) and each cluster's values of each length,
+lengths x clusters (:data:`fem_tether.jobs.evaluate.CLUSTER_VALUES`, each with its
+``units`` and ``description``).
 """
 
 from __future__ import annotations
@@ -42,7 +51,7 @@ import datetime as _dt
 import json
 import os
 import shutil
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -52,9 +61,10 @@ import numpy as np
 from fem_tether import __version__
 from fem_tether.config import Config
 from fem_tether.core.atomic import OutputError, atomic_path, check_folder, check_writable, parts_dir, write_json
-from fem_tether.jobs.evaluate import ROOT_DATASETS, LengthResult, evaluate_length
-from fem_tether.jobs.job import Task, length_tag
+from fem_tether.jobs.evaluate import CLUSTER_VALUES, ROOT_DATASETS, LengthResult, evaluate_length
+from fem_tether.jobs.job import length_tag
 from fem_tether.core.quantities import attributes, names
+from fem_tether.physics.clusters import ClusterError, ClusterResource
 from fem_tether.io.output import read_run_node
 from fem_tether.io.reading import Reader, ResultFileError
 from fem_tether.io.records import Record, Table, stored_column
@@ -71,7 +81,32 @@ GROUP_DESCRIPTIONS = {
           "if it failed)",
     "fd": "the FD run of this length (single-run layout, fem_tether.io.output; attributes only "
           "if it failed)",
+    "cluster": "the runs of this length in one wind-profile cluster's wind, fe and fd "
+               "(fem_tether.performance.aep.cluster_wind)",
+    "clusters": "the wind-profile clusters the sweep flew and each cluster's values, lengths x clusters",
 }
+
+#: The units and meanings of the cluster resource's datasets in the group ``clusters``.
+RESOURCE_DATASETS = {
+    "heights_m": ("m", "heights of the cluster shapes"),
+    "u_shape": ("-", "each cluster's wind component along the wind at the reference height over the speed "
+                     "there, clusters x heights"),
+    "v_shape": ("-", "each cluster's wind component 90 deg counterclockwise of the wind at the reference height "
+                     "over the speed there, clusters x heights"),
+    "frequency": ("-", "each cluster's frequency P(k)"),
+    "edges_mps": ("m/s", "edges of the speed bins at the reference height"),
+    "probability": ("-", "P(speed bin i | cluster k), clusters x bins"),
+}
+
+
+def _cluster_attributes(name: str) -> dict[str, str]:
+    """The ``units`` and ``description`` of a per-cluster dataset (lengths x clusters)."""
+    if name == "reference_speed_mps":
+        return {"units": "m/s", "description": "wind speed at the reference height U_ref of each cluster's runs, "
+                                               "at which its wind at the operating altitude L cos(theta0) is the "
+                                               "configured profile's there; lengths x clusters"}
+    stored = attributes("sweep", name)
+    return stored | {"description": f"{stored['description']}, in each cluster's wind; lengths x clusters"}
 
 
 def _dataset(f, name, data):
@@ -181,6 +216,8 @@ def _write_entries(f: h5py.File, store: PartsStore, length_m: float) -> None:
     i = store.job.lengths_m.index(length_m)
     for name, value in (result.values | {"error": result.error, "status": result.status}).items():
         f[name][i] = value
+    for name in CLUSTER_VALUES if result.clusters else ():
+        f["clusters"][name][i] = [values[name] for values in result.clusters]
     del f[_group_name(length_m)]
     _write_length(f, store, result, parts)
 
@@ -209,8 +246,22 @@ def _write_result(f: h5py.File, store: PartsStore, n_ranks: int, results) -> Non
                                    dtype=np.int8 if name == "crosscheck_ok" else float))
     for name in ("status", "error"):
         _dataset(f, name, np.array([getattr(r, name) for r, _ in results], dtype=h5py.string_dtype()))
+    if job.clusters is not None:
+        _write_clusters(f.create_group("clusters"), job.clusters, [r for r, _ in results])
     for r, parts in results:
         _write_length(f, store, r, parts)
+
+
+def _write_clusters(group: h5py.Group, resource: ClusterResource, results: list[LengthResult]) -> None:
+    """The group ``clusters``: the resource and each length's cluster values (module docstring)."""
+    group.attrs.update(reference_height_m=resource.reference_height_m, source=resource.source,
+                       description=GROUP_DESCRIPTIONS["clusters"])
+    for name, (units, description) in RESOURCE_DATASETS.items():
+        group.create_dataset(name, data=getattr(resource, name)).attrs.update(units=units, description=description)
+    for name in CLUSTER_VALUES:
+        data = np.array([[values[name] for values in r.clusters] for r in results],
+                        dtype=np.int8 if name == "crosscheck_ok" else float)
+        group.create_dataset(name, data=data).attrs.update(_cluster_attributes(name))
 
 
 def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict) -> None:
@@ -221,11 +272,13 @@ def _write_length(f: h5py.File, store: PartsStore, r: LengthResult, parts: dict)
                        description=GROUP_DESCRIPTIONS["length"])
     if store.stored_sizing(r.length_m) is not None:
         group.attrs["sizing_json"] = store.sizing_path(r.length_m).read_text()
-    for solver, path in parts.items():
+    for name, path in parts.items():           # "fe", "fd", a cluster's "c1/fe", ...
         with h5py.File(path, "r") as src:      # a failed task's part: attributes only
-            sub = group.create_group(solver)
+            sub = group.create_group(name)
             sub.attrs.update(dict(src.attrs))
-            sub.attrs["description"] = GROUP_DESCRIPTIONS[solver]
+            sub.attrs["description"] = GROUP_DESCRIPTIONS[name.rpartition("/")[2]]
+            if "/" in name:
+                sub.parent.attrs["description"] = GROUP_DESCRIPTIONS["cluster"]
             for name in src:
                 src.copy(src[name], sub, name)
 
@@ -246,10 +299,10 @@ def restore_parts(store: PartsStore) -> int:
             sizing = json.loads(group.attrs.get("sizing_json", "{}"))
             if sizing.get("inputs_key") == key and store.stored_sizing(length_m) is None:
                 write_json(store.sizing_path(length_m), sizing, allow_nan=True)
-            for solver in store.job.solvers:
-                task, run = Task(length_m, solver), group.get(solver)
-                if run is None or run.attrs.get("inputs_key") != key or run.attrs.get("status") != "ok" \
-                        or store.status(task, key) is not None:
+            for task in store.job.length_tasks(length_m):
+                run, run_key = group.get(task.group), store.task_key(task)
+                if run is None or run.attrs.get("inputs_key") != run_key or run.attrs.get("status") != "ok" \
+                        or store.status(task, run_key) is not None:
                     continue
                 with atomic_path(store.path(task)) as tmp, h5py.File(tmp, "w") as part:
                     part.attrs.update({name: value for name, value in run.attrs.items() if name != "description"})
@@ -318,6 +371,10 @@ class SweepResult(Record):
     status: np.ndarray
     error: np.ndarray
     kind: str = "sweep"
+    #: the wind-profile clusters the sweep flew (None: the configured wind only)
+    clusters: ClusterResource | None = None
+    #: each cluster's values (:data:`~fem_tether.jobs.evaluate.CLUSTER_VALUES`), lengths x clusters
+    cluster_values: dict[str, np.ndarray] = field(default_factory=dict)
 
     @property
     def system(self) -> str:
@@ -374,10 +431,27 @@ def read_sweep(path: str | Path) -> SweepResult:
             raise reader.error(f"dataset /status holds {str(sorted(unknown)[0])!r} (known: {', '.join(STATUSES)})")
         case_configs = tuple(reader.config(reader.node(f, _group_name(L))) for L in lengths)
         laps_settled = np.array([_laps_settled(f, L) for L in lengths])
+        clusters, cluster_values = _read_clusters(reader, f, lengths.size) if "clusters" in f else (None, {})
     return SweepResult(file=str(path), config=config, case_configs=case_configs, laps_settled=laps_settled,
                        job_toml=attrs["job_toml"],
                        version=attrs["fem_tether_version"], n_ranks=attrs["n_ranks"],
-                       created_utc=attrs["created_utc"], **data)
+                       created_utc=attrs["created_utc"], clusters=clusters, cluster_values=cluster_values, **data)
+
+
+def _read_clusters(reader: Reader, f: h5py.File, n_lengths: int) -> tuple[ClusterResource, dict[str, np.ndarray]]:
+    """The group ``clusters`` of a sweep of wind-profile clusters: its resource and values."""
+    group = reader.node(f, "clusters")
+    stored = {name: reader.dataset(group, name, shape=(None,) * (1 if name in ("heights_m", "frequency", "edges_mps")
+                                                                 else 2))
+              for name in RESOURCE_DATASETS}
+    try:
+        resource = ClusterResource(reference_height_m=reader.attr(group, "reference_height_m"),
+                                   source=reader.attr(group, "source", "str"), **stored)
+    except ClusterError as exc:
+        raise reader.error(f"group /clusters: {exc}") from None
+    values = {name: reader.dataset(group, name, "int" if name == "crosscheck_ok" else "float",
+                                   shape=(n_lengths, resource.n_clusters)) for name in CLUSTER_VALUES}
+    return resource, values
 
 
 def read_length_run(path: str | Path, length_m: float, solver: str = "fe") -> TetherRun:

@@ -35,6 +35,7 @@ from fem_tether.performance.sizing import margin_caveat
 from fem_tether.performance.summary import spinup_caveat
 from fem_tether.physics.clusters import ClusterResource
 from fem_tether.physics.resource import Band, Resource, ResourceError
+from fem_tether.physics.wind import TableWind
 from fem_tether.physics.resource import check_config as check_resource_config
 from fem_tether.physics.resource import from_config as resource_from_config
 
@@ -98,6 +99,8 @@ class AepByLength:
     rated_power_W: np.ndarray
     capacity_factor: np.ndarray
     unbinned_probability: np.ndarray
+    #: on a cluster resource: each length's AEP were each cluster to blow all year (lengths x clusters)
+    aep_by_cluster_MWh: np.ndarray | None = None
 
     @property
     def best_length_m(self) -> float | None:
@@ -228,15 +231,91 @@ def operating_altitude_m(cfg: Config, length_m: float) -> float:
     return float(length_m * math.cos(math.radians(cfg.kite.theta0_deg)))
 
 
-def system_on_clusters(case: Config, drag_N: float, resource: ClusterResource) -> ClusterAep:
+def _systems_on_clusters(case: Config, drag_N, resource: ClusterResource) -> tuple[ClusterAep, float]:
+    """:func:`system_on_clusters` and the rated power Σ_k P(k) P_rated,k of cluster k's C_D,t."""
+    drags = np.broadcast_to(np.asarray(drag_N, dtype=float), (resource.n_clusters,))
+    systems = [configured_system(case, float(d)) for d in drags]
+    z_m = operating_altitude_m(case, case.tether.length_m)
+    result = aep_on_clusters(lambda k, v_ref: systems[k][0].electrical_power_W(resource.speed_mps(k, v_ref, z_m),
+                                                                                systems[k][1]), resource)
+    rated_W = math.fsum(f * system.rated_power_W(cd) for f, (system, cd) in zip(resource.frequency, systems))
+    return result, rated_W
+
+
+def system_on_clusters(case: Config, drag_N, resource: ClusterResource) -> ClusterAep:
     """:class:`ClusterAep` of the configured system of ``case`` (its length) with the tether
-    drag F_t per line ``drag_N``: cluster k's power at V_ref is the system's power at the wind
+    drag F_t per line ``drag_N`` (one for all clusters, or one per cluster, each then giving
+    its cluster's C_D,t): cluster k's power at V_ref is the system's power at the wind
     speed of the kite's altitude z = L cosϑ0, V_ref sqrt(u_k(z)^2 + v_k(z)^2); the turn of
     the wind there changes the speed's direction, which a straight system has not."""
-    system, cd = configured_system(case, drag_N)
+    return _systems_on_clusters(case, drag_N, resource)[0]
+
+
+def aep_on_clusters_by_length(cfg: Config, lengths_m, drag_N, resource: ClusterResource,
+                              cases=None) -> AepByLength:
+    """:func:`system_on_clusters` per length (``drag_N``: lengths x clusters, or one per length;
+    ``cases`` as :func:`aep_of_system`'s) as an :class:`AepByLength`: the AEP Σ_k P(k) AEP_k, the
+    rated power Σ_k P(k) P_rated,k (cluster k's C_D,t), CF their ratio, the probability above the
+    last edge Σ_k P(k) (1 - Σ_i P(i | k)), the band the operating altitude z = L cosϑ0 itself,
+    and each cluster's AEP."""
+    lengths = np.atleast_1d(np.asarray(lengths_m, dtype=float))
+    drags = np.asarray(drag_N, dtype=float).reshape(lengths.size, -1)
+    results = [_systems_on_clusters(cases[i] if cases is not None else cfg.with_length(float(length)),
+                                    drags[i], resource) for i, length in enumerate(lengths)]
+    z = np.array([operating_altitude_m(cfg, float(length)) for length in lengths])
+    aep = np.array([r.aep_MWh for r, _ in results], dtype=float)
+    rated = np.array([w for _, w in results], dtype=float)
+    unbinned = math.fsum(resource.frequency * resource.remainder())
+    return AepByLength(length_m=lengths, band_low_m=z, band_high_m=z.copy(), aep_MWh=aep, rated_power_W=rated,
+                       capacity_factor=np.asarray(capacity_factor(aep * 1e6, rated), dtype=float),
+                       unbinned_probability=np.full(lengths.shape, unbinned),
+                       aep_by_cluster_MWh=np.array([r.aep_by_cluster_MWh for r, _ in results],
+                                                   dtype=float).reshape(lengths.size, resource.n_clusters))
+
+
+def reference_speed_mps(case: Config, resource: ClusterResource, k: int) -> float:
+    """U_ref of cluster ``k`` in the run of ``case``'s length: the speed at the reference height
+    at which the cluster's wind at the operating altitude z = L cosϑ0 is the configured
+    profile's there, V_cfg(z) / |(u_k, v_k)|(z), |(u_k, v_k)| interpolated as the run's wind
+    table interpolates it (:meth:`ClusterResource.wind`); so a cluster's run and the run in the
+    configured profile see the same wind speed at the kite."""
     z_m = operating_altitude_m(case, case.tether.length_m)
-    return aep_on_clusters(lambda k, v_ref: system.electrical_power_W(resource.speed_mps(k, v_ref, z_m), cd),
-                           resource)
+    configured = float(wind.from_config(case.wind, case.resource.weibull_k).speed_mps(z_m))
+    return configured / float(resource.wind(k, 1.0).speed_mps(z_m))
+
+
+def cluster_wind(case: Config, resource: ClusterResource, k: int) -> TableWind:
+    """Cluster ``k``'s wind as the run of ``case``'s length flies it: the cluster's wind at
+    :func:`reference_speed_mps` (:meth:`ClusterResource.wind`), turned so that it blows along
+    +x at the operating altitude z = L cosϑ0 (the eight, centred on +x, is flown downwind at
+    the kite's altitude; the veer turns the wind across the eight above and below it, along
+    the line)."""
+    table = resource.wind(k, reference_speed_mps(case, resource, k))
+    turn_deg = float(table.turn_deg(operating_altitude_m(case, case.tether.length_m)))
+    return TableWind(table.heights_m, table.speeds_mps, tuple(t - turn_deg for t in table.turns_deg))
+
+
+def mirrored(table: TableWind) -> TableWind:
+    """``table`` mirrored in the vertical plane of +x (the plane of symmetry of an eight centred
+    downwind): every turn negated, v -> -v.  A line sweeping the eight one way in ``table`` meets
+    the wind as it would sweeping the other way in the mirror image."""
+    return TableWind(table.heights_m, table.speeds_mps, tuple(-t + 0.0 for t in table.turns_deg))
+
+
+def check_cluster_heights(cfg: Config, lengths_m, resource: ClusterResource) -> None:
+    """A :class:`ConfigError` naming ``[resource] clusters`` if a length's operating altitude
+    z = L cosϑ0 lies outside the clusters' heights (their shapes are not known there) or a
+    cluster is still air there (no reference speed gives it the configured wind)."""
+    for length in lengths_m:
+        z_m = operating_altitude_m(cfg, float(length))
+        low, high = float(resource.heights_m[0]), float(resource.heights_m[-1])
+        problem = (f"the operating altitude {z_m:.6g} m of length {float(length):g} m (L cos theta0) is outside "
+                   f"the clusters' heights {low:g}-{high:g} m" if not low <= z_m <= high else None)
+        for k in range(resource.n_clusters):
+            if problem is None and not float(resource.wind(k, 1.0).speed_mps(z_m)) > 0.0:
+                problem = f"cluster {k + 1} has no wind at the operating altitude {z_m:.6g} m of length {float(length):g} m"
+        if problem:
+            raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: {problem}")
 
 
 @dataclass(frozen=True)
@@ -256,7 +335,10 @@ class Lines:
     def chosen(cls, lengths, drag_N, cases, mask) -> Lines:
         return cls(lengths[mask], drag_N[mask], None if cases is None else cases[mask])
 
-    def aep(self, cfg: Config, resource: Resource) -> AepByLength:
+    def aep(self, cfg: Config, resource: Resource | ClusterResource) -> AepByLength:
+        """The AEP of these lines on ``resource`` (on a cluster resource ``drag_N`` is lengths x clusters)."""
+        if isinstance(resource, ClusterResource):
+            return aep_on_clusters_by_length(cfg, self.length_m, self.drag_N, resource, self.cases)
         return aep_of_system(cfg, self.length_m, self.drag_N, resource, self.cases)
 
 
@@ -283,6 +365,8 @@ class SweepAep:
     caveats: tuple[Caveat, ...] = ()
     #: the lengths each AEP counts, with their drag and case: "straight" and "flexible" (:class:`Lines`)
     lines: Mapping[str, Lines] = dataclasses.field(default_factory=dict)
+    #: the wind-profile clusters the AEP sums over (None: the band or Weibull resource)
+    clusters: ClusterResource | None = None
 
     def as_dict(self) -> dict:
         """Per length its AEP and CF, straight and flexible, the best lengths and the
@@ -294,6 +378,11 @@ class SweepAep:
             value = float(getattr(result, name)[j[0]]) if j.size else np.nan
             return value if np.isfinite(value) else None
 
+        def by_cluster(result: AepByLength, length):
+            j = np.flatnonzero(result.length_m == length)
+            aep = result.aep_by_cluster_MWh
+            return [float(v) if np.isfinite(v) else None for v in aep[j[0]]] if j.size and aep is not None else None
+
         lengths = np.union1d(self.straight.length_m, self.flexible.length_m)
         rows = [{"length_m": float(length),
                  "aep_straight_MWh": at(self.straight, length, "aep_MWh"),
@@ -301,15 +390,26 @@ class SweepAep:
                  "aep_fe_MWh": at(self.flexible, length, "aep_MWh"),
                  "cf_fe": at(self.flexible, length, "capacity_factor"),
                  **({"aep_fixed_MWh": at(self.fixed, length, "aep_MWh")} if self.fixed else {}),
+                 **({"aep_straight_by_cluster_MWh": by_cluster(self.straight, length),
+                     "aep_fe_by_cluster_MWh": by_cluster(self.flexible, length)} if self.clusters else {}),
                  "unchecked": float(length) in self.unchecked_m} for length in lengths]
         return {"lengths": rows,
                 "best_length_straight_m": self.straight.best_length_m,
                 "best_length_fe_m": self.flexible.best_length_m,
                 "excluded_m": list(self.excluded_m), "unchecked_m": list(self.unchecked_m),
-                "pending_m": list(self.pending_m), "warnings": as_json(*self.caveats)}
+                "pending_m": list(self.pending_m), "warnings": as_json(*self.caveats),
+                **({"clusters": clusters_dict(self.clusters)} if self.clusters else {})}
 
 
-def aep_of_sweep(sweep_data: Mapping, resource: Resource,
+def clusters_dict(resource: ClusterResource) -> dict:
+    """What an AEP's JSON says of its clusters: the file, the reference height and each
+    cluster's frequency P(k) (in the order of the per-cluster AEPs)."""
+    return {"source": resource.source, "n_clusters": resource.n_clusters,
+            "reference_height_m": resource.reference_height_m,
+            "frequency": [float(f) for f in resource.frequency]}
+
+
+def aep_of_sweep(sweep_data: Mapping, resource: Resource | ClusterResource,
                  allow_unchecked: bool = False, allow_incomplete: bool = False) -> SweepAep:
     """AEP for the lengths of a sweep result (:func:`fem_tether.jobs.sweepfile.read_sweep`).
 
@@ -321,7 +421,12 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
     the AEP of the configured line (``fixed``: the sizing loop's first FE run,
     not cross-checked).  A sweep with ``pending`` lengths raises
     :class:`IncompleteSweepError` naming them, unless ``allow_incomplete``
-    (then they are listed in ``pending_m`` and gated like the others).  Its
+    (then they are listed in ``pending_m`` and gated like the others).  On a cluster resource
+    (:class:`ClusterResource`, the sweep's ``cluster_values`` holding each cluster's runs)
+    each length's AEP sums cluster x bin with each cluster's own drag
+    (:func:`aep_on_clusters_by_length`); a flexible length counts if every cluster's FE run
+    succeeded and was cross-checked (or ``allow_unchecked``), and the configured line of a
+    sized sweep flies every cluster with its one drag.  Its
     caveats: a best length at the edge of its lengths (:func:`edge_caveat`) and
     the lines whose margin is short of ``[tether] safety_factor``
     (:func:`fem_tether.performance.sizing.margin_caveat`) and the FE runs whose
@@ -338,12 +443,13 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
             "run the same sweep again to finish it, or allow an incomplete sweep "
             "(--allow-incomplete)")
     lumping = cfg.drag.tether_drag_lumping
-    drag_fe = np.asarray(sweep_data[lumped_name("drag_fe_N", lumping)], dtype=float)
-    drag_straight = np.asarray(sweep_data[lumped_name("drag_straight_N", lumping)], dtype=float)
-    checked = np.asarray(sweep_data["crosscheck_ok"]) == 1
-    has_fe = np.isfinite(drag_fe)
+    runs = sweep_data["cluster_values"] if isinstance(resource, ClusterResource) else sweep_data
+    drag_fe = np.asarray(runs[lumped_name("drag_fe_N", lumping)], dtype=float)
+    drag_straight = np.asarray(runs[lumped_name("drag_straight_N", lumping)], dtype=float)
+    checked = _every_cluster(np.asarray(runs["crosscheck_ok"]) == 1)
+    has_fe = _every_cluster(np.isfinite(drag_fe))
     keep = has_fe & (checked | allow_unchecked)
-    has_straight = np.isfinite(drag_straight)
+    has_straight = _every_cluster(np.isfinite(drag_straight))
     cases = sweep_data.get("case_configs")
     case = np.array(cases, dtype=object) if cases is not None else None
     drag_fixed = np.asarray(sweep_data.get(lumped_name("drag_fixed_N", lumping), np.full(lengths.shape, np.nan)),
@@ -360,20 +466,28 @@ def aep_of_sweep(sweep_data: Mapping, resource: Resource,
                              SPINUP_QUANTITY))
     return SweepAep(
         straight=straight, flexible=flexible,
-        fixed=aep_of_system(cfg, lengths[has_fixed], drag_fixed[has_fixed], resource) if has_fixed.any() else None,
+        fixed=Lines(lengths[has_fixed], drag_fixed[has_fixed]).aep(cfg, resource) if has_fixed.any() else None,
         excluded_m=tuple(float(v) for v in lengths[~keep & ~pending]),
         unchecked_m=tuple(float(v) for v in lengths[keep & ~checked]),
         pending_m=tuple(float(v) for v in lengths[pending]),
         caveats=tuple(c for c in caveats if c is not None), lines=lines,
+        clusters=resource if isinstance(resource, ClusterResource) else None,
     )
+
+
+def _every_cluster(flags: np.ndarray) -> np.ndarray:
+    """Per length, whether ``flags`` holds for it (for every cluster: lengths x clusters)."""
+    return np.asarray(flags.reshape(flags.shape[0], -1).all(axis=1))
 
 
 def refuse_clusters(cfg: Config) -> None:
     """A :class:`ConfigError` if ``cfg`` has ``[resource] clusters``: the AEP of the band and
-    Weibull resources below does not count clusters (issue 34: cluster-resolved AEP)."""
+    Weibull resources below, which ``study`` takes, does not count clusters (``run``, ``sweep``,
+    ``aep`` and ``convert`` do: :func:`sweep_aep`; ``design`` takes its site from its job)."""
     if cfg.resource.clusters:
-        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: this AEP does not yet "
-                          "count wind-profile clusters; remove the key (docs/resource.md)")
+        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: study does not yet count "
+                          "wind-profile clusters (run, sweep, aep and convert do); remove the key "
+                          "(docs/resource.md)")
 
 
 def sweep_resource(cfg: Config, wind_csv=None) -> Resource:
@@ -389,7 +503,12 @@ def check_resource(cfg: Config, wind_csv=None) -> None:
 
 
 def sweep_aep(data: Mapping, wind_csv=None, allow_unchecked=False, allow_incomplete=False) -> SweepAep:
-    """AEP of a sweep result with the configured (or given) wind resource."""
+    """AEP of a sweep result with the configured (or given) wind resource; a sweep of wind-profile
+    clusters (its ``clusters``, :mod:`fem_tether.jobs.sweepfile`) on them, summed cluster x bin."""
     cfg = data["config"]
-    return aep_of_sweep(data, sweep_resource(cfg, wind_csv),
+    clusters = data.get("clusters")
+    if clusters is not None and wind_csv is not None:
+        raise InputError(f"--wind {wind_csv}: the sweep flew the wind-profile clusters of [resource] clusters = "
+                         f"{toml_value(cfg.resource.clusters)}, whose AEP they give; leave out --wind")
+    return aep_of_sweep(data, clusters if clusters is not None else sweep_resource(cfg, wind_csv),
                         allow_unchecked, allow_incomplete)

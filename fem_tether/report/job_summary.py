@@ -103,9 +103,25 @@ def aep_document(data: Mapping, energy: SweepAep) -> dict:
     length's row carrying the summary's columns (F_t, G_e, d, peak tension, margin,
     cross-check) beside its AEP and capacity factors."""
     document = energy.as_dict()
-    rows = {r["length_m"]: r for r in summary_rows(data, energy)}
+    rows = {r["length_m"]: r | cluster_row(data, r["length_m"]) for r in summary_rows(data, energy)}
     document["lengths"] = [r | rows[r["length_m"]] for r in document["lengths"]]
     return document | {"straight_line": STRAIGHT_LINE}
+
+
+#: The values of each cluster that ``aep.json`` gives per length (with wind-profile clusters), by key.
+CLUSTER_KEYS = {"reference_speed_by_cluster_mps": "reference_speed_mps", "drag_fe_by_cluster_N": "drag_fe_N",
+                "drag_straight_by_cluster_N": "drag_straight_N", "crosscheck_ok_by_cluster": "crosscheck_ok"}
+
+
+def cluster_row(data: Mapping, length_m: float) -> dict:
+    """With wind-profile clusters, the length's values in each cluster's wind (:data:`CLUSTER_KEYS`;
+    the row's F_t and G_e are the configured wind's); else nothing."""
+    values = data.get("cluster_values") or {}
+    if not values:
+        return {}
+    i = int(np.flatnonzero(np.asarray(data["length_m"]) == length_m)[0])
+    return {key: [int(v) if name == "crosscheck_ok" else _finite(v) for v in values[name][i]]
+            for key, name in CLUSTER_KEYS.items()}
 
 
 def job_table(data: Mapping) -> dict:

@@ -451,7 +451,9 @@ def sweep_summary(outcome, out, cfg: Config) -> dict:
             "lengths": [
                 {"length_m": r.length_m, "status": r.status, "error": r.error,
                  **{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
-                    for k, v in r.values.items()}}
+                    for k, v in r.values.items()},
+                 **({"clusters": [{k: (None if isinstance(v, float) and not np.isfinite(v) else v)
+                                   for k, v in c.items()} for c in r.clusters]} if r.clusters else {})}
                 for r in outcome.lengths],
             "warnings": sweep_caveats(outcome, cfg)}
 
@@ -467,6 +469,10 @@ def sweep_text(outcome, out, cfg: Config) -> str:
                      f"{'ok' if v['crosscheck_ok'] else 'FAILED/not run'}, d {1e3 * v['d_m']:.3f} mm, "
                      f"margin {v['margin']:.3f}"
                      + (f"  [{r.error}]" if r.status != "ok" else ""))
+        for k, c in enumerate(r.clusters):
+            lines.append(f"    cluster {k + 1:2d} (U_ref {c['reference_speed_mps']:5.2f} m/s): F_t FE {c['drag_fe_N']:9.1f} N, "
+                         f"FD {c['drag_fd_N']:9.1f} N, straight {c['drag_straight_N']:9.1f} N, cross-check "
+                         f"{'ok' if c['crosscheck_ok'] else 'FAILED/not run'}")
     lines += caveat_lines(sweep_caveats(outcome, cfg))
     return "\n".join(lines + [m for m in (peak_memory(outcome),) if m])
 
@@ -484,6 +490,7 @@ def aep_text(result: dict) -> str:
                      f"{_number(r['cf_straight'], '11.3f', 11)}  {fe}"
                      + ("  (unchecked)" if r["unchecked"] else "")
                      + ("  (pending)" if r["length_m"] in result["pending_m"] else ""))
+    lines += cluster_lines(result)
     lines.append(best_length_text(result))
     lines += caveat_lines(result.get("warnings", ()))
     if result["excluded_m"]:
@@ -491,6 +498,25 @@ def aep_text(result: dict) -> str:
     if result["pending_m"]:
         lines.append("pending, not run yet (--allow-incomplete): " + _lengths(result["pending_m"]))
     return "\n".join(lines)
+
+
+def cluster_lines(result: dict) -> list[str]:
+    """With wind-profile clusters (``SweepAep.as_dict()``'s ``clusters``): what the AEP sums and,
+    per length and cluster, the AEP were that cluster to blow all year; else nothing."""
+    clusters = result.get("clusters")
+    if not clusters:
+        return []
+    lines = [f"AEP summed over {clusters['n_clusters']} wind-profile cluster(s) x speed bins at "
+             f"{clusters['reference_height_m']:g} m ({clusters['source']}); each cluster's run at the configured "
+             "wind speed at L cos(theta0), its AEP were it to blow all year:",
+             "    L [m]  cluster   P(k)  AEP straight [MWh]  AEP flexible [MWh]"]
+    for r in result["lengths"]:
+        straight, flexible = r["aep_straight_by_cluster_MWh"], r["aep_fe_by_cluster_MWh"]
+        for k, frequency in enumerate(clusters["frequency"]):
+            lines.append(f" {r['length_m']:8.0f}  {k + 1:7d}  {frequency:5.3f}  "
+                         f"{_number(straight[k] if straight else None, '18.0f', 18)}  "
+                         f"{_number(flexible[k] if flexible else None, '18.0f', 18)}")
+    return lines
 
 
 def summary_table(data: Mapping, energy) -> str:
@@ -509,6 +535,7 @@ def summary_table(data: Mapping, energy) -> str:
                      f"{value(r, 'aep_fe_MWh', 1e-3):9.2f}  {r['crosscheck']}")
     lines.append(STRAIGHT_NOTE)
     d = energy.as_dict()
+    lines += cluster_lines(d)
     lines.append(best_length_text(d))
     lines += caveat_lines(d["warnings"], BEST_LENGTHS)
     if energy.excluded_m:

@@ -45,14 +45,15 @@ class TetherPhysics:
         return self.linear_density_kg_m * self.gravity_mps2 * length_m
 
 
-def physics_from_config(cfg: Config) -> TetherPhysics:
-    """The physics of ``cfg``'s [tether], [air], [drag] and [wind] sections."""
+def physics_from_config(cfg: Config, wind_profile: WindProfile | None = None) -> TetherPhysics:
+    """The physics of ``cfg``'s [tether], [air], [drag] and [wind] sections; ``wind_profile``,
+    if given, in place of [wind]'s (a wind-profile cluster's, :mod:`fem_tether.physics.clusters`)."""
     tether = cfg.tether
     elastic = tether.elasticity == "elastic"
     return TetherPhysics(
         air=atmosphere.from_config(cfg.air),
         drag=drag_coefficient.from_config(cfg.drag),
-        wind=wind.from_config(cfg.wind, cfg.resource.weibull_k),
+        wind=wind_profile or wind.from_config(cfg.wind, cfg.resource.weibull_k),
         diameter_m=tether.diameter_m,
         linear_density_kg_m=tether.linear_density_kg_m,
         compliance_per_N=1.0 / tether.axial_stiffness_N if elastic else 0.0,

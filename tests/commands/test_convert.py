@@ -92,3 +92,35 @@ def test_the_round_trip_awesio_fem_tether_awesio_validates_and_keeps_the_aep(tmp
         aep_MWh = 8760.0 * np.sum(probability * 0.5 * (power[1:] + power[:-1])) / 1e6
         assert aep_MWh == pytest.approx(result.aep_MWh[0], rel=2e-3)
     assert main(["convert", str(tmp_path / "run"), "--out", str(out)]) == 0     # ours: replaced
+
+
+def test_a_cluster_sweep_converts_to_its_clusters_and_one_profile_per_cluster(tmp_path, capsys):
+    """A sweep of two wind-profile clusters -> wind_resource.yml (the clusters the sweep flew, at their
+    reference height) and one power_curves document per length and tether with a profile per cluster:
+    valid, read back to the same resource, and their AEP (Σ_k P(k) 8760 h Σ_i ½ (P_k,i + P_k,i+1) P(i | k))
+    the sweep's within 1e-12 (the same curves at the same speeds)."""
+    from fem_tether.io.awesio_clusters import read_wind_resource
+
+    (tmp_path / "site.csv").write_text(
+        "reference_height [m];100\nh [m];u1;v1;u2;v2\n10;0.7;0;0.6;0.25\n100;1;0;1;0\n400;1.2;0;1.1;-0.3\n"
+        "frequency;0.6;0.4\nv_low [m/s];v_high [m/s];p1;p2\n0;5;0.3;0.2\n5;10;0.4;0.4\n10;20;0.3;0.4\n")
+    job = tmp_path / "job.toml"
+    job.write_text(SWEEP + '[resource]\nclusters = "site.csv"\n')
+    sweep(load_job(job), tmp_path / "sweep.h5", comm=MPI.COMM_SELF, progress=False)
+    capsys.readouterr()
+    out = tmp_path / "awesio"
+    assert main(["convert", str(tmp_path / "sweep.h5"), "--out", str(out)]) == 0
+    names = sorted(p.name for p in out.glob("*.yml"))
+    assert names == ["power_curves_flexible_L400.yml", "power_curves_straight_L400.yml", "wind_resource.yml"]
+    resource = read_wind_resource(out / "wind_resource.yml")
+    data = read_sweep(tmp_path / "sweep.h5")
+    np.testing.assert_array_equal(resource.u_shape, data.clusters.u_shape)
+    np.testing.assert_array_equal(resource.probability, data.clusters.probability)
+    energy = sweep_aep(data)
+    for tether, result in (("straight", energy.straight), ("flexible", energy.flexible)):
+        document = read_document(out / f"power_curves_{tether}_L400.yml")[1]
+        assert_valid(document)
+        aep_MWh = sum(p["probability_weight"] * 8760.0 * np.sum(resource.probability[k] * 0.5 * (
+            np.array(p["cycle_power_w"][1:]) + np.array(p["cycle_power_w"][:-1])))
+            for k, p in enumerate(document["power_curves"])) / 1e6
+        assert aep_MWh == pytest.approx(result.aep_MWh[0], rel=1e-12)

@@ -65,3 +65,43 @@ def test_a_resource_with_no_awesio_form_is_refused():
         site_of(Config.from_dict({"resource": {"csv": "w.csv"}}), 100.0)
     with pytest.raises(InputError, match="--reference-height 100: the wind profile"):
         site_of(Config.from_dict({"wind": {"profile": "none"}}), 100.0)
+
+
+def test_a_cluster_sweeps_power_curves_are_valid_and_give_back_its_aep(unrun_sweep):
+    """A cluster sweep's curves, one awesIO power_curves document per length and tether with one profile per
+    cluster (its shape, P(k), r_k and power with its own F_t): valid, and Σ_k P(k) 8760 h Σ_i ½ (P_k,i +
+    P_k,i+1) P(i | k) of the written numbers is the sweep's AEP (within 1e-12: the same curve at the same
+    speeds, summed in another order)."""
+    from fem_tether.io.awesio_results import cluster_curves_of, cluster_power_curves_document
+    from fem_tether.jobs.sweepfile import read_sweep
+    from fem_tether.performance.aep import sweep_aep
+    from fem_tether.physics.clusters import ClusterResource
+
+    resource = ClusterResource(np.array([10.0, 100.0, 1000.0]), 100.0, np.array([[0.8, 1.0, 1.3], [0.9, 1.0, 1.1]]),
+                               np.array([[0.0, 0.0, 0.0], [0.1, 0.0, -0.2]]), np.array([0.7, 0.3]),
+                               np.array([0.0, 5.0, 10.0, 20.0]), np.array([[0.3, 0.4, 0.3], [0.2, 0.5, 0.3]]),
+                               "site.csv")
+    data = read_sweep(unrun_sweep)
+    data = data | {"status": np.array(["ok", "ok"]), "error": np.array(["", ""]), "clusters": resource,
+                   "cluster_values": {"drag_fe_N": np.array([[4000.0, 4100.0], [8000.0, 8100.0]]),
+                                      "drag_power_fe_N": np.array([[4100.0, 4200.0], [8200.0, 8300.0]]),
+                                      "drag_straight_N": np.array([[5000.0, 5050.0], [9000.0, 9050.0]]),
+                                      "drag_power_straight_N": np.array([[5000.0, 5050.0], [9000.0, 9050.0]]),
+                                      "crosscheck_ok": np.array([[1, 1], [1, 1]])}}
+    energy = sweep_aep(data)
+    documents = [cluster_power_curves_document(resource, curves, "s", "d")
+                 for curves in cluster_curves_of(data["config"], energy, resource)]
+    expected = [*energy.straight.aep_MWh, *energy.flexible.aep_MWh]
+    assert len(documents) == 4
+    for document, aep_MWh in zip(documents, expected, strict=True):
+        assert_valid(document)
+        profiles = document["power_curves"]
+        assert [p["probability_weight"] for p in profiles] == [0.7, 0.3]
+        assert profiles[1]["v_normalized"] == [0.1, 0.0, -0.2]
+        written = sum(p["probability_weight"] * 8760.0 * np.sum(0.5 * (np.array(p["cycle_power_w"][:-1])
+                                                                        + np.array(p["cycle_power_w"][1:]))
+                                                                 * resource.probability[k])
+                      for k, p in enumerate(profiles)) / 1e6
+        assert written == pytest.approx(aep_MWh, rel=1e-12)
+    assert documents[2]["power_curves"][0]["speed_ratio_at_operating_altitude"] == pytest.approx(
+        float(resource.speed_mps(0, 1.0, 400.0 * math.cos(math.radians(45.0)))), rel=1e-15)

@@ -351,7 +351,8 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
     cases = ((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
              (bad_resource, (), True, "bad.csv"),
              (clusters("bad.yml"), (), True, r"bad.yml: not a valid awesIO wind_resource"),
-             (clusters("site.csv"), (), True, "does not yet count wind-profile clusters"))
+             (clusters("site.csv"), (), True, r"\[resource\] clusters = .*site.csv\": the operating altitude 282.843 m "
+                                              r"of length 400 m \(L cos theta0\) is outside the clusters' heights 10-100 m"))
     for k, (job, files, aep, problem) in enumerate(cases):
         out = tmp_path / f"new{k}" / "s.h5"
         with ExitStack() as holder, pytest.raises(InputError, match=problem):
@@ -433,3 +434,203 @@ def test_a_killed_sweeps_temporaries_are_removed_by_the_next(tiny_job, tmp_path)
     sw.sweep(tiny_job, out, comm=_self_comm(), progress=False, keep_parts=True)
     assert not any(path.exists() for path in stale)
     assert not any(p.name.startswith(".") and ".tmp-" in p.name for p in [*tmp_path.iterdir(), *parts.iterdir()])
+
+
+# --- wind-profile clusters (issue 34 item 3) ---------------------------------------------------------------
+
+#: A measured profile (the configured wind of the cluster sweeps below) and the heights of their clusters.
+TABLE_HEIGHTS_M = (0.0, 10.0, 100.0, float(400.0 * np.cos(np.radians(45.0))), 600.0, 1000.0)
+TABLE_SPEEDS_MPS = (0.0, 5.0, 7.5, 9.0, 9.8, 11.0)
+
+
+def _cluster_csv(path, shapes, frequency, edges, probability, reference_height_m=100.0):
+    """The legacy cluster CSV of ``shapes`` ((u, v) per cluster at :data:`TABLE_HEIGHTS_M`), every
+    number written with repr (read back exactly); ``probability``: clusters x bins."""
+    k = len(shapes)
+    rows = [f"reference_height [m];{reference_height_m!r}", "h [m];" + ";".join(f"u{i};v{i}" for i in range(1, k + 1))]
+    rows += [";".join([repr(float(h))] + [repr(float(c[j])) for u, v in shapes for c in (u, v)])
+             for j, h in enumerate(TABLE_HEIGHTS_M)]
+    rows += ["frequency;" + ";".join(map(repr, map(float, frequency))),
+             "v_low [m/s];v_high [m/s];" + ";".join(f"p{i}" for i in range(1, k + 1))]
+    rows += [";".join(map(repr, [float(edges[i]), float(edges[i + 1]), *map(float, np.asarray(probability)[:, i])]))
+             for i in range(len(edges) - 1)]
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def _table_job(tmp_path, name, lengths="[400]", clusters=""):
+    """The tiny job in the measured profile of :data:`TABLE_SPEEDS_MPS` (``[wind] profile = "table"``),
+    with ``[resource] clusters`` if given."""
+    table = tmp_path / "wind.csv"
+    table.write_text("height_m,speed_mps\n" + "".join(f"{h!r},{v!r}\n" for h, v in zip(TABLE_HEIGHTS_M,
+                                                                                       TABLE_SPEEDS_MPS)))
+    path = tmp_path / f"{name}.toml"
+    path.write_text(TINY.replace("lengths_m = [400, 800]", f"lengths_m = {lengths}")
+                    + '[wind]\nprofile = "table"\ntable_csv = "wind.csv"\n'
+                    + (f'[resource]\nclusters = "{clusters}"\n' if clusters else ""))
+    return load_job(path)
+
+
+def _profile_shape() -> np.ndarray:
+    """The configured profile normalised at 100 m: u = V(z) / V(100 m)."""
+    return np.array(TABLE_SPEEDS_MPS) / TABLE_SPEEDS_MPS[TABLE_HEIGHTS_M.index(100.0)]
+
+
+def _energy(job, out):
+    from fem_tether.performance.aep import sweep_aep
+
+    sw.sweep(job, out, comm=_self_comm(), progress=False)
+    return sweep_aep(read_sweep(out))
+
+
+def test_one_cluster_of_the_configured_profile_gives_the_ordinary_sweeps_aep(tmp_path):
+    """One cluster whose shape is the configured (measured) profile and whose speed bins at 100 m are the
+    Weibull band's of the 400 m line seen from 100 m (edges divided by V(z)/V(100 m), z = L cos 45 deg a
+    row of the table): the cluster's run flies the configured wind to rounding (U_ref = V(z) / (u(z)) =
+    V(100 m) (1 + 2 eps)), so its FE and FD drags, and with them the AEP, are the ordinary sweep's.  Measured:
+    the drags agree to 0 (bitwise) here; the AEP then differs only by the bins' rounding, <= 1e-12
+    (test_aep's test_one_cluster_of_the_configured_profile_gives_the_weibull_band_aep derives it)."""
+    from fem_tether.performance.aep import operating_altitude_m, sweep_resource
+
+    plain = _table_job(tmp_path, "plain")
+    cfg = plain.config_for(400.0)
+    band = sweep_resource(cfg).band_for_length(400.0, np.radians(cfg.kite.theta0_deg))
+    shape = _profile_shape()
+    z = operating_altitude_m(cfg, 400.0)
+    assert z == TABLE_HEIGHTS_M[3]
+    _cluster_csv(tmp_path / "one.csv", [(shape, np.zeros_like(shape))], [1.0], band.edges_mps / shape[3],
+                 band.probability[None, :])
+    clustered = _table_job(tmp_path, "clustered", clusters="one.csv")
+    ordinary, one = _energy(plain, tmp_path / "plain.h5"), _energy(clustered, tmp_path / "one.h5")
+    data = read_sweep(tmp_path / "one.h5")
+    for name in ("drag_fe_N", "drag_fd_N", "drag_straight_N"):
+        assert data.cluster_values[name][0, 0] == pytest.approx(data[name][0], rel=1e-12), name
+    assert data.cluster_values["reference_speed_mps"][0, 0] == pytest.approx(7.5, rel=1e-15)
+    assert one.flexible.aep_MWh[0] > 0.0
+    for line in ("straight", "flexible"):
+        assert getattr(one, line).aep_MWh[0] == pytest.approx(getattr(ordinary, line).aep_MWh[0], rel=1e-12), line
+    assert one.as_dict()["lengths"][0]["aep_fe_by_cluster_MWh"] == [one.flexible.aep_MWh[0]]
+
+
+def _two_shapes():
+    """Two cluster shapes at :data:`TABLE_HEIGHTS_M`: the configured profile, and a flatter one whose
+    wind turns 40 deg clockwise from the ground to 1000 m (normalised at 100 m: u = 1, v = 0 there)."""
+    shape = _profile_shape()
+    speed = np.array([0.0, 0.8, 1.0, 1.1, 1.15, 1.2])
+    turn = np.radians([20.0, 18.0, 0.0, -8.0, -12.0, -20.0])
+    return [(shape, np.zeros_like(shape)), (speed * np.cos(turn), speed * np.sin(turn))]
+
+
+EDGES_MPS = np.array([0.0, 4.0, 8.0, 12.0, 16.0, 25.0])
+PROBABILITY = np.array([[0.1, 0.3, 0.3, 0.2, 0.1], [0.2, 0.3, 0.2, 0.1, 0.1]])
+
+
+def test_two_clusters_give_the_frequency_weighted_sum_of_their_sweeps(tmp_path):
+    """A sweep of two clusters: each length's AEP is P(1) AEP_1 + P(2) AEP_2, AEP_k that of the sweep of
+    cluster k alone (frequency 1): the same runs, the same sums; equal to the few roundings of one weighted
+    sum (1e-15 relative)."""
+    shapes = _two_shapes()
+    _cluster_csv(tmp_path / "two.csv", shapes, [0.7, 0.3], EDGES_MPS, PROBABILITY)
+    for k in range(2):
+        _cluster_csv(tmp_path / f"c{k + 1}.csv", [shapes[k]], [1.0], EDGES_MPS, PROBABILITY[k:k + 1])
+    two = _energy(_table_job(tmp_path, "two", "[400, 600]", "two.csv"), tmp_path / "two.h5")
+    alone = [_energy(_table_job(tmp_path, f"c{k + 1}", "[400, 600]", f"c{k + 1}.csv"), tmp_path / f"c{k + 1}.h5")
+             for k in range(2)]
+    for line in ("straight", "flexible"):
+        total = 0.7 * getattr(alone[0], line).aep_MWh + 0.3 * getattr(alone[1], line).aep_MWh
+        np.testing.assert_allclose(getattr(two, line).aep_MWh, total, rtol=1e-15)
+        np.testing.assert_array_equal(getattr(two, line).aep_by_cluster_MWh,
+                                      np.stack([getattr(a, line).aep_MWh for a in alone], axis=1))
+    assert two.flexible.aep_MWh[0] < two.straight.aep_MWh[0]
+    data = read_sweep(tmp_path / "two.h5")
+    assert data.clusters.n_clusters == 2 and data.cluster_values["drag_fe_N"].shape == (2, 2)
+    with h5py.File(tmp_path / "two.h5") as f:
+        assert f["clusters/drag_fe_N"].attrs["units"] == "N" and f["clusters/reference_speed_mps"].attrs["units"] == "m/s"
+        assert {"fe", "fd"} <= set(f["L600/c2"]) and "series" in f["L600/c2/fe"]
+
+
+def test_a_cluster_sweep_reuses_its_runs_and_reruns_a_changed_cluster(tmp_path):
+    """Rerunning the same cluster sweep reuses every task (restored from the result file); changing one
+    cluster's shape reruns that cluster's tasks only (the task's key holds its wind)."""
+    shapes = _two_shapes()
+    _cluster_csv(tmp_path / "two.csv", shapes, [0.7, 0.3], EDGES_MPS, PROBABILITY)
+    job = _table_job(tmp_path, "two", clusters="two.csv")
+    first = sw.sweep(job, tmp_path / "r.h5", comm=_self_comm(), progress=False)
+    again = sw.sweep(_table_job(tmp_path, "two", clusters="two.csv"), tmp_path / "r.h5", comm=_self_comm(),
+                     progress=False)
+    assert (first.tasks, first.reused, again.reused) == (6, 0, 6)
+    store = PartsStore(job, tmp_path / "r.h5")
+    keys = [store.task_key(t) for t in job.tasks]
+    assert len(set(keys)) == 3 and keys[0] == keys[1] == store.inputs_key(400.0)   # FE and FD share a wind's key
+    assert [t.name for t in job.tasks] == ["L400_fe", "L400_fd", "L400_c1_fe", "L400_c1_fd", "L400_c2_fe", "L400_c2_fd"]
+    u, v = shapes[1]
+    shapes[1] = (u * np.array([1.0, 1.0, 1.0, 1.0, 1.0, 1.1]), v)        # cluster 2 faster at 1000 m only
+    _cluster_csv(tmp_path / "two.csv", shapes, [0.6, 0.4], EDGES_MPS, PROBABILITY)
+    changed = sw.sweep(_table_job(tmp_path, "two", clusters="two.csv"), tmp_path / "r.h5", comm=_self_comm(),
+                       progress=False)
+    assert changed.reused == 4                                           # the configured wind's and cluster 1's
+    plain = sw.sweep(_table_job(tmp_path, "plain"), tmp_path / "r.h5", comm=_self_comm(), progress=False)
+    assert (plain.tasks, plain.reused) == (2, 2)                         # the same job without clusters
+
+
+def test_a_veering_cluster_raises_the_flexible_lines_drag_as_the_quasi_steady_line_predicts(tmp_path):
+    """Two clusters of the same speeds at every height, one turning (60 deg counterclockwise at 100 m to
+    -20 deg at 1000 m against the kite's altitude, 283 m, where the eight is centred downwind): the turned
+    wind's component across the line's plane, +-v_y, meets a line that sweeps both ways over an eight, so
+    its drag rises at second order.  The quasi-steady straight line predicts it: the one-way line moves
+    from 5112 N to 4621 N in the wind and to 5635 N in its mirror image, their mean (the sweep's straight
+    line in a turned wind) by +15.2 N.  The FE line's drag rises by +14.1 N, the FD line's by +14.7 N
+    (measured); within 30 % of the prediction; the flexible AEP falls."""
+    speed = _profile_shape()
+    turn = np.radians([90.0, 80.0, 60.0, 0.0, -10.0, -20.0])
+    shapes = [(speed, np.zeros_like(speed)), (speed * np.cos(turn), speed * np.sin(turn))]
+    # normalised at 100 m: turn the second shape so that it blows along x there (u = 1, v = 0)
+    u, v = shapes[1]
+    c, s = np.cos(-turn[2]), np.sin(-turn[2])
+    shapes[1] = (c * u - s * v, s * u + c * v)
+    _cluster_csv(tmp_path / "veer.csv", shapes, [0.5, 0.5], EDGES_MPS, PROBABILITY[[0, 0]])
+    job = _table_job(tmp_path, "veer", clusters="veer.csv")
+    energy = _energy(job, tmp_path / "veer.h5")
+    data = read_sweep(tmp_path / "veer.h5")
+    cfg = job.config_for(400.0)
+    winds = [job.wind_of(Task(400.0, "fe", k), cfg) for k in range(2)]
+    heights = np.array(TABLE_HEIGHTS_M)
+    assert winds[1].turn_deg(heights[3]) == pytest.approx(0.0, abs=1e-12)
+    assert winds[1].turn_deg(heights[2]) == pytest.approx(60.0, abs=1e-12)
+    np.testing.assert_allclose(winds[1].speed_mps(heights), winds[0].speed_mps(heights), rtol=1e-12)
+    predicted = np.diff(data.cluster_values["drag_straight_N"][0])[0]
+    assert predicted == pytest.approx(15.19, abs=0.01)
+    for solver in ("fe", "fd"):
+        change = np.diff(data.cluster_values[f"drag_{solver}_N"][0])[0]
+        assert 0.7 * predicted < change < 1.3 * predicted, solver
+    aep = energy.flexible.aep_by_cluster_MWh[0]
+    assert aep[1] < aep[0]
+
+
+@pytest.mark.skipif(shutil.which("mpiexec") is None, reason="mpiexec not installed")
+def test_mpi_a_cluster_sweeps_files_are_identical_on_one_and_two_ranks(tmp_path):
+    """The tiny job over two clusters (two lengths, three winds, FE and FD: 12 tasks) run by `run` with
+    mpiexec -n 1 and -n 2: every dataset and every run's series of the result file bitwise equal, and
+    aep.json and summary.csv byte for byte."""
+    shapes = _two_shapes()
+    _cluster_csv(tmp_path / "two.csv", shapes, [0.7, 0.3], EDGES_MPS, PROBABILITY)
+    _table_job(tmp_path, "two", "[400, 600]", "two.csv")
+    for n in (1, 2):
+        proc = subprocess.run(["mpiexec", "-n", str(n), *CLI, "run", str(tmp_path / "two.toml"), "--out",
+                               str(tmp_path / f"n{n}")], capture_output=True, text=True, timeout=600)
+        assert proc.returncode == 0, proc.stderr
+    for name in ("aep.json", "summary.csv"):
+        assert (tmp_path / "n1" / name).read_bytes() == (tmp_path / "n2" / name).read_bytes(), name
+    assert "aep_fe_by_cluster_MWh" in (tmp_path / "n1" / "aep.json").read_text()
+
+    def datasets(f):
+        found = {}
+        f.visititems(lambda name, node: found.__setitem__(name, node[()]) if isinstance(node, h5py.Dataset) else None)
+        return found
+
+    with h5py.File(tmp_path / "n1" / "sweep.h5") as a, h5py.File(tmp_path / "n2" / "sweep.h5") as b:
+        assert (a.attrs["n_ranks"], b.attrs["n_ranks"]) == (1, 2)
+        one, two = datasets(a), datasets(b)
+        assert one.keys() == two.keys() and "clusters/drag_fe_N" in one and "L600/c2/fd/series/drag_N" in one
+        for name in one:
+            assert np.array_equal(one[name], two[name], equal_nan=one[name].dtype.kind == "f"), name

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fem_tether.core.errors import ConfigError
+from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.performance.aep import (HOURS_PER_YEAR, AepByLength, SweepAep, aep_by_length, aep_of_system,
                                         aep_on_clusters, annual_energy_Wh, capacity_factor, check_resource,
                                         edge_caveat, operating_altitude_m, sweep_aep, sweep_resource,
@@ -245,12 +245,27 @@ def test_two_identical_clusters_give_the_aep_of_one():
 
 
 def test_the_band_aep_refuses_a_cluster_resource(tmp_path):
-    """Until the sweep counts clusters, its AEP refuses them (one line) rather than use the Weibull bands."""
+    """The band and Weibull AEP (study takes it) refuses clusters, one line naming
+    the key, rather than use the Weibull bands; run, sweep and aep count them (sweep_aep)."""
     path = tmp_path / "site.csv"
     path.write_text("reference_height [m];100\nh [m];u1;v1\n10;0.7;0\n100;1;0\nfrequency;1\n"
                     "v_low [m/s];v_high [m/s];p1\n0;10;1\n")
     cfg = load_config(overrides={"resource": {"clusters": str(path)}})
     for call in (check_resource, sweep_resource):
-        with pytest.raises(ConfigError, match=r'^\[resource\] clusters = ".*site.csv": this AEP does not yet count '
-                                              r"wind-profile clusters; remove the key \(docs/resource.md\)$"):
+        with pytest.raises(ConfigError, match=r'^\[resource\] clusters = ".*site.csv": study does not yet count '
+                                              r"wind-profile clusters \(run, sweep, aep and convert do\); remove "
+                                              r"the key \(docs/resource.md\)$"):
             call(cfg)
+
+
+def test_the_aep_of_a_cluster_sweep_refuses_another_resource(tmp_path):
+    """A sweep that flew clusters has its AEP on them: --wind (a band CSV) is one line naming both."""
+    from fem_tether.performance.aep import sweep_aep
+
+    path = tmp_path / "site.csv"
+    path.write_text("reference_height [m];100\nh [m];u1;v1\n10;0.7;0\n100;1;0\nfrequency;1\n"
+                    "v_low [m/s];v_high [m/s];p1\n0;10;1\n")
+    cfg = load_config(overrides={"resource": {"clusters": str(path)}})
+    with pytest.raises(InputError, match=r'^--wind w.csv: the sweep flew the wind-profile clusters of \[resource\] '
+                                         r'clusters = ".*site.csv", whose AEP they give; leave out --wind$'):
+        sweep_aep({"config": cfg, "clusters": _profile_cluster(load_config(), 800.0)}, "w.csv")

@@ -101,3 +101,33 @@ def test_aep_json_carries_the_summarys_columns(data):
     for row, aep, summary in zip(document["lengths"], plain["lengths"], summary_rows(data, energy), strict=True):
         assert row == aep | summary
         assert {"drag_fe_N", "drag_straight_N", "ge_fe", "ge_straight", "margin", "peak_tension_N"} <= set(row)
+
+
+def test_aep_json_of_clusters_gives_each_clusters_aep_and_values(data):
+    """With wind-profile clusters, aep.json's rows carry each cluster's AEP, U_ref, F_t and cross-check
+    (in the clusters' order) beside the configured wind's columns, and the document its clusters; the
+    AEP is P(1) AEP_1 + P(2) AEP_2."""
+    from fem_tether.physics.clusters import ClusterResource
+
+    resource = ClusterResource(np.array([10.0, 100.0, 1000.0]), 100.0, np.array([[0.8, 1.0, 1.3], [0.9, 1.0, 1.1]]),
+                               np.array([[0.0, 0.0, 0.0], [0.1, 0.0, -0.2]]), np.array([0.7, 0.3]),
+                               np.array([0.0, 5.0, 10.0, 20.0]), np.array([[0.3, 0.4, 0.3], [0.2, 0.5, 0.3]]),
+                               "site.csv")
+    values = {"reference_speed_mps": np.array([[8.5, 9.0], [8.0, 8.7]]),
+              "drag_fe_N": np.array([[4000.0, 4100.0], [8000.0, 8100.0]]),
+              "drag_power_fe_N": np.array([[4100.0, 4200.0], [8200.0, 8300.0]]),
+              "drag_straight_N": np.array([[5000.0, 5050.0], [9000.0, 9050.0]]),
+              "drag_power_straight_N": np.array([[5000.0, 5050.0], [9000.0, 9050.0]]),
+              "crosscheck_ok": np.array([[1, 1], [1, 0]])}
+    clustered = data | {"clusters": resource, "cluster_values": values}
+    energy = sweep_aep(clustered)
+    document = aep_document(clustered, energy)
+    first, second = document["lengths"]
+    assert first["reference_speed_by_cluster_mps"] == [8.5, 9.0] and first["drag_fe_by_cluster_N"] == [4000.0, 4100.0]
+    assert second["crosscheck_ok_by_cluster"] == [1, 0] and second["aep_fe_MWh"] is None   # cluster 2 failed its check
+    assert first["aep_fe_MWh"] == pytest.approx(0.7 * first["aep_fe_by_cluster_MWh"][0]
+                                                + 0.3 * first["aep_fe_by_cluster_MWh"][1], rel=1e-15)
+    assert first["drag_fe_N"] == 4000.0                      # the summary's column: the configured wind's
+    assert document["clusters"] == {"source": "site.csv", "n_clusters": 2, "reference_height_m": 100.0,
+                                    "frequency": [0.7, 0.3]}
+    assert "clusters" not in aep_document(data, sweep_aep(data))

@@ -127,6 +127,40 @@ def test_aep_text():
                          "pending, not run yet (--allow-incomplete): 800 m"]
 
 
+def test_aep_text_of_clusters_prints_each_clusters_aep_under_the_table():
+    """With wind-profile clusters: what the AEP sums, then per length and cluster P(k) and AEP_k
+    (undefined where the length is left out), above the best lengths."""
+    result = {"system": "kitegen", "model": "kitegen", "lengths": [
+        {"length_m": 400.0, "aep_straight_MWh": 6153.0, "cf_straight": 0.319, "aep_fe_MWh": 5975.0, "cf_fe": 0.31,
+         "unchecked": False, "aep_straight_by_cluster_MWh": [5792.8, 6692.7],
+         "aep_fe_by_cluster_MWh": [5595.2, 6544.9]},
+        {"length_m": 800.0, "aep_straight_MWh": 5687.0, "cf_straight": 0.295, "aep_fe_MWh": None, "cf_fe": None,
+         "unchecked": False, "aep_straight_by_cluster_MWh": [5267.0, 6316.0], "aep_fe_by_cluster_MWh": None}],
+        "best_length_straight_m": 400.0, "best_length_fe_m": 400.0, "excluded_m": [800.0], "pending_m": [],
+        "clusters": {"source": "site.csv", "n_clusters": 2, "reference_height_m": 100.0, "frequency": [0.6, 0.4]}}
+    assert aep_text(result).splitlines()[4:10] == [
+        "AEP summed over 2 wind-profile cluster(s) x speed bins at 100 m (site.csv); each cluster's run at the "
+        "configured wind speed at L cos(theta0), its AEP were it to blow all year:",
+        "    L [m]  cluster   P(k)  AEP straight [MWh]  AEP flexible [MWh]",
+        "      400        1  0.600                5793                5595",
+        "      400        2  0.400                6693                6545",
+        "      800        1  0.600                5267           undefined",
+        "      800        2  0.400                6316           undefined"]
+    assert aep_text(result).splitlines()[10] == "best length: straight 400 m, flexible 400 m"
+
+
+def test_sweep_text_and_json_of_clusters_give_each_clusters_drag():
+    outcome = _outcome()
+    cluster = {"reference_speed_mps": 8.58, "drag_fe_N": 4100.0, "drag_fd_N": 4110.0, "drag_straight_N": 5000.0,
+               "crosscheck_ok": 1, "rel_diff_drag": float("nan")}
+    outcome.lengths[0].clusters = [cluster]
+    assert sweep_text(outcome, "r.h5", _factor(1.2)).splitlines()[2] == (
+        "    cluster  1 (U_ref  8.58 m/s): F_t FE    4100.0 N, FD    4110.0 N, straight    5000.0 N, cross-check ok")
+    summary = sweep_summary(outcome, "r.h5", _factor(1.2))
+    assert summary["lengths"][0]["clusters"] == [cluster | {"rel_diff_drag": None}]
+    assert "clusters" not in summary["lengths"][1]
+
+
 def test_aep_text_prints_the_warnings_of_its_json_below_the_best_lengths():
     """The records of ``warnings`` (aep.json), each one line, under the best lengths they qualify."""
     edge = {"code": "best-length-at-edge", "quantity": "best_length_straight_m", "lengths_m": [400.0],

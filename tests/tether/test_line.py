@@ -39,3 +39,14 @@ def test_physics_of_an_elastic_line():
                                  "winch": {"mode": "prescribed"}, "kite": {"radius_m": 990.0}})
     physics = physics_from_config(cfg)
     assert physics.compliance_per_N == 1.0 / 2e7 and physics.damping_time_s == 0.5
+
+
+def test_a_given_wind_replaces_the_configured_one_and_nothing_else():
+    """A wind-profile cluster's run gives its wind (physics_from_config(cfg, wind)): the line's
+    wind is that one, every other constant the configuration's."""
+    from conftest import VEERING_WIND
+
+    cfg = load_config()
+    configured, given = physics_from_config(cfg), physics_from_config(cfg, VEERING_WIND)
+    assert given.wind is VEERING_WIND and configured.wind == wind.from_config(cfg.wind, cfg.resource.weibull_k)
+    assert dataclasses.replace(given, wind=configured.wind) == configured

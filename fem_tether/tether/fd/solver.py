@@ -566,12 +566,14 @@ class FDSolver:
         return {"segments": self.model.grid.M, "scheme": self.model.scheme}
 
 
-def simulate(cfg: Config, progress=False) -> TetherRun:
+def simulate(cfg: Config, progress=False, physics: TetherPhysics | None = None) -> TetherRun:
     """Run the configured case with the FD solver (time step ``[fd] dt_s``).
 
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch
     segment stays within ``[winch] min_element_m`` .. ``[winch] max_element_m``.
+    ``physics``: the line's physics in place of the configuration's (a wind-profile cluster's
+    wind, :func:`~fem_tether.tether.line.physics_from_config`).
     """
     winch = cfg.winch
-    solver = FDSolver(build_model(cfg), (winch.min_element_m, winch.max_element_m))
+    solver = FDSolver(build_model(cfg, physics=physics), (winch.min_element_m, winch.max_element_m))
     return protocol.simulate(solver, cfg, cfg.fd.dt_s, progress)

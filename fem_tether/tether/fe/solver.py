@@ -608,12 +608,14 @@ class FESolver:
         return {"elements": self.model.system.spaces.n_elements}
 
 
-def simulate(cfg: Config, progress=False) -> TetherRun:
+def simulate(cfg: Config, progress=False, physics: TetherPhysics | None = None) -> TetherRun:
     """Run the configured case with the FE solver (time step ``[fe] dt_s``).
 
     Reeling (``[winch] reel_out``) starts after the spin-up; the winch
     element stays within ``[winch] min_element_m`` .. ``max_element_m``.
+    ``physics``: the line's physics in place of the configuration's (a wind-profile cluster's
+    wind, :func:`~fem_tether.tether.line.physics_from_config`).
     """
     winch = cfg.winch
-    solver = FESolver(build_model(cfg), (winch.min_element_m, winch.max_element_m))
+    solver = FESolver(build_model(cfg, physics=physics), (winch.min_element_m, winch.max_element_m))
     return protocol.simulate(solver, cfg, cfg.fe.dt_s, progress)
