@@ -209,7 +209,7 @@ def eight_arc_tables(geometry, knots, nodes, weights, breaks, pieces):
     ``breaks`` (2, n + 1), their pieces (those of s(τ) first) into ``pieces`` (2n, 6), and
     returns the loop length s(2π)."""
     n = knots.size - 1
-    arc_m = breaks[1]
+    tau, arc_m = breaks[0], breaks[1]
     arc_m[0] = 0.0
     for i in range(n):
         interval = 0.0
@@ -219,13 +219,13 @@ def eight_arc_tables(geometry, knots, nodes, weights, breaks, pieces):
         arc_m[i + 1] = arc_m[i] + interval
     g, dg, rate, curvature = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
     for i in range(n + 1):
-        theta, phi = eight_angles(geometry, knots[i])
+        tau[i] = knots[i]
+        theta, phi = eight_angles(geometry, tau[i])
         g[i], dg[i] = sphere_arc_rate(geometry[0], theta, phi)
         rate[i] = 1.0 / g[i]
         curvature[i] = -dg[i] / math.pow(g[i], 3.0)
-    breaks[0] = knots
-    quintic_hermite(knots, arc_m, g, dg, pieces[:n])
-    quintic_hermite(arc_m, knots, rate, curvature, pieces[n:])
+    quintic_hermite(tau, arc_m, g, dg, pieces[:n])
+    quintic_hermite(arc_m, tau, rate, curvature, pieces[n:])
     return arc_m[n]
 
 
