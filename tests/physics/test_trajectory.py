@@ -1,11 +1,12 @@
 """Figure-eight kite path: constant speed, closure, derivatives, Tab. 5.2."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
-
-from fem_tether.config import load_config
 from scipy.interpolate import BPoly
 
+from fem_tether.config import load_config
 from fem_tether.physics.trajectory import (FigureEight, Stationary, gauss_legendre_nodes, N_GAUSS, N_INTERVALS,
                                            piece_value)
 
@@ -169,7 +170,6 @@ def test_arc_tables_equal_scipys_hermite_interpolants(eight, length_m):
     s(tau) and tau(s) at 200 single points (inside, on the knots and just beyond both ends,
     as a Newton iterate may be; piece_value, compiled) equal to 1e-14 of the loop length
     (resp. of 2 pi), on lines of 300 to 3000 m (a reeled line's eight is made at every step)."""
-    from dataclasses import replace
     eight = replace(eight, length_m=length_m)
     knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
     arc_m = np.concatenate([[0.0], np.cumsum((eight.arc_rate(nodes)[0] * weights).sum(1))])
