@@ -45,7 +45,6 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numba.core import types
-from scipy.interpolate import BPoly, PPoly
 
 from fem_tether.physics.compiled import address, caller, jit
 
@@ -164,7 +163,7 @@ def gauss_legendre_nodes(n_intervals, n_points):
 @jit
 def piece_value(breaks, coefficients, x):
     """A piecewise polynomial's value at one x: Horner's rule on the power-basis
-    coefficients (highest power first, one row per interval, :func:`power_pieces`) of
+    coefficients (highest power first, one row per interval, :func:`quintic_hermite`) of
     the interval of x among the ``breaks``, the end intervals extrapolating."""
     n = coefficients.shape[0]
     k = min(max(np.searchsorted(breaks, x, side="right") - 1, 0), n - 1)
@@ -175,26 +174,59 @@ def piece_value(breaks, coefficients, x):
     return value
 
 
-def power_pieces(bpoly: BPoly) -> tuple[np.ndarray, np.ndarray]:
-    """The breaks and the power-basis coefficients of each interval (highest power first) of
-    ``bpoly``, as :func:`piece_value` takes them (``PPoly.from_bernstein_basis``)."""
-    power = PPoly.from_bernstein_basis(bpoly)
-    return np.ascontiguousarray(power.x), np.ascontiguousarray(power.c.T)
+@jit
+def quintic_hermite(x, y, dy, d2y, pieces):
+    """Piecewise quintic matching y, y' and y'' at the knots x, into ``pieces`` (one row per
+    interval: the power-basis coefficients, highest power first, as :func:`piece_value` takes them).
 
+    On [x_k, x_k+1] of width h, p(x_k + δ) = Σ c_j δ^j with c0 = y_k, c1 = y'_k, c2 = y''_k/2
+    and c3, c4, c5 from p, p', p'' at δ = h: with the misfits A = y_k+1 − (c0 + c1 h + c2 h²),
+    B = h (y'_k+1 − y'_k − y''_k h), C = h² (y''_k+1 − y''_k),
 
-def quintic_hermite(x, y, dy, d2y) -> BPoly:
-    """Piecewise quintic matching y, y' and y'' at the knots x.
-
-    Bernstein coefficients on [x_k, x_k+1] of width h, from p'(0) = 5(b1 − b0)/h
-    and p''(0) = 20(b2 − 2b1 + b0)/h² and their mirror images at x_k+1:
-    b0 = y_k, b1 = y_k + h y'_k/5, b2 = y_k + 2h y'_k/5 + h² y''_k/20,
-    b3 = y_k+1 − 2h y'_k+1/5 + h² y''_k+1/20, b4 = y_k+1 − h y'_k+1/5, b5 = y_k+1.
+        c3 h³ = 10A − 4B + C/2,   c4 h⁴ = −15A + 7B − C,   c5 h⁵ = 6A − 3B + C/2.
     """
-    h = np.diff(x)
-    y0, hd0, hhc0 = y[:-1], h * dy[:-1], h * h * d2y[:-1]
-    y1, hd1, hhc1 = y[1:], h * dy[1:], h * h * d2y[1:]
-    return BPoly(np.stack([y0, y0 + hd0 / 5, y0 + 2 * hd0 / 5 + hhc0 / 20,
-                           y1 - 2 * hd1 / 5 + hhc1 / 20, y1 - hd1 / 5, y1]), x)
+    for k in range(x.size - 1):
+        h = x[k + 1] - x[k]
+        h2 = h * h
+        misfit = y[k + 1] - (y[k] + dy[k] * h + 0.5 * d2y[k] * h2)
+        slope = h * (dy[k + 1] - dy[k] - d2y[k] * h)
+        curve = h2 * (d2y[k + 1] - d2y[k])
+        pieces[k, 0] = (6.0 * misfit - 3.0 * slope + 0.5 * curve) / (h2 * h2 * h)
+        pieces[k, 1] = (-15.0 * misfit + 7.0 * slope - curve) / (h2 * h2)
+        pieces[k, 2] = (10.0 * misfit - 4.0 * slope + 0.5 * curve) / (h2 * h)
+        pieces[k, 3] = 0.5 * d2y[k]
+        pieces[k, 4] = dy[k]
+        pieces[k, 5] = y[k]
+
+
+@jit
+def eight_arc_tables(geometry, knots, nodes, weights, breaks, pieces):
+    """The arc-length tables of the eight ``geometry`` (:func:`eight_angles`'s), of its size and
+    not of its speed: s(τ) at the ``knots`` by composite Gauss–Legendre (``nodes``, ``weights``
+    of :func:`gauss_legendre_nodes`), and s(τ) and τ(s) interpolated (:func:`quintic_hermite`)
+    with ds/dτ = g, d²s/dτ² = g', dτ/ds = 1/g and d²τ/ds² = −g'/g³ (g, g' of
+    :func:`sphere_arc_rate`).  Writes the breaks of s(τ) and of τ(s) into the rows of
+    ``breaks`` (2, n + 1), their pieces (those of s(τ) first) into ``pieces`` (2n, 6), and
+    returns the loop length s(2π)."""
+    n = knots.size - 1
+    tau, arc_m = breaks[0], breaks[1]
+    arc_m[0] = 0.0
+    for i in range(n):
+        interval = 0.0
+        for j in range(nodes.shape[1]):
+            theta, phi = eight_angles(geometry, nodes[i, j])
+            interval += sphere_arc_rate(geometry[0], theta, phi)[0] * weights[i, j]
+        arc_m[i + 1] = arc_m[i] + interval
+    g, dg, rate, curvature = np.empty(n + 1), np.empty(n + 1), np.empty(n + 1), np.empty(n + 1)
+    for i in range(n + 1):
+        tau[i] = knots[i]
+        theta, phi = eight_angles(geometry, tau[i])
+        g[i], dg[i] = sphere_arc_rate(geometry[0], theta, phi)
+        rate[i] = 1.0 / g[i]
+        curvature[i] = -dg[i] / math.pow(g[i], 3.0)
+    quintic_hermite(tau, arc_m, g, dg, pieces[:n])
+    quintic_hermite(arc_m, tau, rate, curvature, pieces[n:])
+    return arc_m[n]
 
 
 #: A path's state at one time, compiled: (parameters, breaks, coefficients, t [s], R [m], out),
@@ -420,21 +452,14 @@ class FigureEight:
         index of :data:`SHAPES`), the first five of its parameters."""
         return np.array([self.length_m, self.theta0_rad, self.width_m, self.height_m, SHAPES.index(self.shape)])
 
-    def arc_tables(self) -> tuple[float, BPoly, BPoly]:
-        """The loop length s(2π), and s(τ) and τ(s) interpolated (:func:`quintic_hermite`) of
-        this eight's geometry (not of its speed): s at the knots by composite Gauss–Legendre,
-        with ds/dτ = g and d²s/dτ² = g', dτ/ds = 1/g and d²τ/ds² = −g'/g³."""
-        knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
-        arc_m = np.concatenate([[0.0], np.cumsum((self.arc_rate(nodes)[0] * weights).sum(1))])
-        g, dg = self.arc_rate(knots)
-        return float(arc_m[-1]), quintic_hermite(knots, arc_m, g, dg), quintic_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3)
-
     def _power_tables(self) -> tuple[float, np.ndarray, np.ndarray]:
-        """:meth:`arc_tables` as :func:`eight_parameter` takes them: the loop length, the rows of
-        the breaks of s(τ) and of τ(s), and their pieces' coefficients, those of s(τ) first."""
-        loop_m, arc_m, tau_of_arc = self.arc_tables()
-        (arc_breaks, arc_pieces), (tau_breaks, tau_pieces) = power_pieces(arc_m), power_pieces(tau_of_arc)
-        return loop_m, np.stack([arc_breaks, tau_breaks]), np.concatenate([arc_pieces, tau_pieces])
+        """The loop length, the rows of the breaks of s(τ) and of τ(s), and their pieces'
+        coefficients, those of s(τ) first, as :func:`eight_parameter` takes them
+        (:func:`eight_arc_tables`)."""
+        knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
+        breaks, pieces = np.empty((2, N_INTERVALS + 1)), np.empty((2 * N_INTERVALS, 6))
+        loop_m = eight_arc_tables(self.geometry, knots, nodes, weights, breaks, pieces)
+        return float(loop_m), breaks, pieces
 
     @property
     def compiled(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:

@@ -34,7 +34,9 @@ KERNELS = {"fe": "fem_tether.tether.fe.kernel", "fd": "fem_tether.tether.fd.kern
 #: inside one counted with it).  Measured with :func:`~fem_tether.physics.compiled.recording`
 #: on an empty ``NUMBA_CACHE_DIR``, numba 0.68.1, this machine, 2026-12-03: the counts from
 #: ``load`` of each set of solvers (50, 48 and 70 compiles), the seconds from ``fem-tether run``
-#: on one rank (70 compiles, the same, none before the notice nor after it; 19.2 s in all).
+#: on one rank (70 compiles, the same, none before the notice nor after it; 19.2 s in all); the
+#: path's arc-length tables compiled since (``eight_arc_tables`` and ``quintic_hermite`` in place of
+#: ``eight_table``: 51, 49 and 71 compiles, their seconds from ``load`` on the loaded machine).
 #: The FE kernel calls the point-mass kite's load by its address (:data:`.fe.kernel.KITE`), so
 #: the kite's code (``kite_dynamics``, and ``atmosphere`` and ``wind`` at the kite's altitude)
 #: compiles when a run flies the kite, not here.
@@ -68,9 +70,10 @@ FIRST_COMPILE: dict[str, dict[str, tuple[int, int, int, float]]] = {
         "normal_flow": (2, 1, 3, 0.17), "relative_velocity": (1, 1, 1, 0.10)},
     "fem_tether.physics.trajectory": {
         "_store": (1, 1, 1, 0.06), "eight_angles": (1, 1, 1, 0.10), "eight_parameter": (1, 1, 1, 0.17),
-        "eight_state": (1, 1, 1, 0.21), "eight_table": (1, 1, 1, 0.17), "ellipses": (1, 1, 1, 0.09),
+        "eight_state": (1, 1, 1, 0.21), "eight_arc_tables": (1, 1, 1, 0.31), "ellipses": (1, 1, 1, 0.09),
         "gerono": (1, 1, 1, 0.08), "local_to_global": (1, 1, 1, 0.06), "path_points": (1, 1, 1, 0.13),
-        "piece_value": (1, 1, 1, 0.27), "point_geometry": (1, 1, 1, 0.18), "sphere_arc_rate": (1, 1, 1, 0.16)},
+        "piece_value": (1, 1, 1, 0.27), "point_geometry": (1, 1, 1, 0.18), "quintic_hermite": (1, 1, 1, 0.16),
+        "sphere_arc_rate": (1, 1, 1, 0.16)},
 }
 
 #: The solvers whose kernels a process loads, by column of :data:`FIRST_COMPILE`.

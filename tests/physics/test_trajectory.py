@@ -1,10 +1,14 @@
 """Figure-eight kite path: constant speed, closure, derivatives, Tab. 5.2."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
+from scipy.interpolate import BPoly
 
 from fem_tether.config import load_config
-from fem_tether.physics.trajectory import FigureEight, Stationary, piece_value, power_pieces
+from fem_tether.physics.trajectory import (FigureEight, Stationary, gauss_legendre_nodes, N_GAUSS, N_INTERVALS,
+                                           piece_value)
 
 #: Roselli 2016 (seed 000) Tab. 5.2, L [m] -> mean |φ| [deg].
 TABLE_5_2 = {500: 7.52, 919: 4.16, 1343: 2.86, 1768: 2.17, 2192: 1.75, 2616: 1.47, 3000: 1.28}
@@ -147,21 +151,39 @@ def test_direction_at_is_the_unit_state():
             assert np.array_equal(end.direction_at(t), end.state(t, 1.0)[0])
 
 
-def test_one_point_of_a_piecewise_polynomial_equals_the_bpoly(eight):
-    """The arc length s(tau) and its inverse at 200 single points (inside, on
-    the knots and just beyond both ends, as a Newton iterate may be): Horner on
-    the power basis (piece_value, compiled) equals scipy's Bernstein evaluation
-    to 1e-14 of the loop length (resp. of 2 pi); the eight's own tables are these."""
-    loop_m, arc_m, tau_of_arc = eight.arc_tables()
-    for poly, ends, scale in ((arc_m, (0.0, 2 * np.pi), loop_m), (tau_of_arc, (0.0, loop_m), 2 * np.pi)):
-        breaks, coefficients = power_pieces(poly)
-        points = np.concatenate([np.linspace(ends[0] - 1e-6, ends[1] + 1e-6, 190), poly.x[::60]])
-        one_by_one = np.array([piece_value(breaks, coefficients, float(p)) for p in points])
-        np.testing.assert_allclose(one_by_one, poly(points), rtol=0, atol=1e-14 * scale)
+def bernstein_hermite(x, y, dy, d2y) -> BPoly:
+    """The quintic Hermite interpolant of y, y', y'' at the knots x in SciPy's Bernstein basis,
+    written out here: b0 = y_k, b1 = y_k + h y'_k/5, b2 = y_k + 2h y'_k/5 + h² y''_k/20 and
+    their mirror images at x_k+1."""
+    h = np.diff(x)
+    y0, hd0, hhc0 = y[:-1], h * dy[:-1], h * h * d2y[:-1]
+    y1, hd1, hhc1 = y[1:], h * dy[1:], h * h * d2y[1:]
+    return BPoly(np.stack([y0, y0 + hd0 / 5, y0 + 2 * hd0 / 5 + hhc0 / 20,
+                           y1 - 2 * hd1 / 5 + hhc1 / 20, y1 - hd1 / 5, y1]), x)
+
+
+@pytest.mark.parametrize("length_m", [300.0, 1000.0, 1000.0 + 1e-9, 3000.0])
+def test_arc_tables_equal_scipys_hermite_interpolants(eight, length_m):
+    """The eight's compiled tables (eight_arc_tables) against s(tau) tabulated here with NumPy
+    (composite Gauss-Legendre of the arc rate) and its inverse, both interpolated by SciPy's
+    Bernstein-basis quintic Hermite: the breaks and the loop length equal to 1e-15 relative,
+    s(tau) and tau(s) at 200 single points (inside, on the knots and just beyond both ends,
+    as a Newton iterate may be; piece_value, compiled) equal to 1e-14 of the loop length
+    (resp. of 2 pi), on lines of 300 to 3000 m (a reeled line's eight is made at every step)."""
+    eight = replace(eight, length_m=length_m)
+    knots, nodes, weights = gauss_legendre_nodes(N_INTERVALS, N_GAUSS)
+    arc_m = np.concatenate([[0.0], np.cumsum((eight.arc_rate(nodes)[0] * weights).sum(1))])
+    g, dg = eight.arc_rate(knots)
+    polys = (bernstein_hermite(knots, arc_m, g, dg), bernstein_hermite(arc_m, knots, 1.0 / g, -dg / g ** 3))
     _, parameters, breaks, coefficients = eight.compiled
-    assert parameters[-1] == loop_m
-    assert np.array_equal(breaks, np.stack([power_pieces(arc_m)[0], power_pieces(tau_of_arc)[0]]))
-    assert np.array_equal(coefficients, np.concatenate([power_pieces(arc_m)[1], power_pieces(tau_of_arc)[1]]))
+    assert parameters[-1] == pytest.approx(arc_m[-1], rel=1e-15)
+    np.testing.assert_allclose(breaks, np.stack([knots, arc_m]), rtol=1e-15, atol=0)
+    pieces = (coefficients[:N_INTERVALS], coefficients[N_INTERVALS:])
+    for poly, row, piece, scale in zip(polys, breaks, pieces, (arc_m[-1], 2 * np.pi)):
+        ends = poly.x[0], poly.x[-1]
+        points = np.concatenate([np.linspace(ends[0] - 1e-6, ends[1] + 1e-6, 190), poly.x[::60]])
+        one_by_one = np.array([piece_value(row, piece, float(p)) for p in points])
+        np.testing.assert_allclose(one_by_one, poly(points), rtol=0, atol=1e-14 * scale)
 
 
 def test_ellipses_mean_abs_phi_matches_table_5_2():

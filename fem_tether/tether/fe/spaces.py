@@ -64,17 +64,17 @@ class TetherSpaces:
     def with_first_length(self, h0_m: float, linear_density_kg_m: float) -> "TetherSpaces":
         """The same mesh with the first element's length changed to ``h0_m`` (reeling).
 
-        Q and the lumped mass are linear in the element lengths, so the first
-        column of Q scales by ``h0 / h_0`` and the mass is mu times Q's row sums;
-        D does not depend on the lengths.
+        Q and the lumped mass are linear in the element lengths, so Q's first
+        column (element 0's entries) scales by ``h0 / h_0`` and the mass is mu
+        times Q's row sums (each node is on an element: no row is empty); D does not
+        depend on the lengths.
         """
-        scale = np.ones(self.n_elements)
-        scale[0] = h0_m / self.h_m[0]
-        Q = (self.Q @ sparse.diags(scale)).tocsr()
+        Q = self.Q.copy()
+        Q.data[Q.indices == 0] *= h0_m / self.h_m[0]
         s = self.s_m + (h0_m - self.h_m[0])
         s[0] = 0.0
         return TetherSpaces(s_m=s, h_m=np.diff(s), D=self.D, Q=Q,
-                            mass_kg=linear_density_kg_m * np.asarray(Q.sum(axis=1)).ravel())
+                            mass_kg=linear_density_kg_m * np.add.reduceat(Q.data, Q.indptr[:-1]))
 
 
 def build_spaces(unit_nodes: np.ndarray, length_m: float, linear_density_kg_m: float) -> TetherSpaces:

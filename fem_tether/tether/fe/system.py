@@ -149,9 +149,10 @@ class TetherSystem:
 
     def _load_weights(self) -> np.ndarray:
         """Q's entries (n_el, 2): the share of element e's load on its two nodes."""
-        Q = self.spaces.Q.tocoo()
+        Q = self.spaces.Q
+        rows = np.repeat(np.arange(Q.shape[0]), np.diff(Q.indptr))
         weights = np.zeros((self.spaces.n_elements, 2))
-        weights[Q.col, Q.row - Q.col] = Q.data
+        weights[Q.indices, rows - Q.indices] = Q.data
         return weights
 
     # --- layout -----------------------------------------------------------
