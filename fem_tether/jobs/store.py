@@ -3,7 +3,7 @@
 Every finished task is written at once, atomically, to its own file in
 ``<out>.parts/`` by the rank that ran it, so nothing finished is lost when a
 sweep is interrupted.  A part records the key of the inputs it was computed
-from (:func:`inputs_key`: configuration, package version and the contents of
+from (:func:`inputs_key`: configuration, code (version and sources) and the contents of
 the files it names); re-running the same job reuses the parts whose key
 matches.  A task whose solve failed is stored too, as attributes only (its
 status and error), so the other tasks go on and the failure is reported.
@@ -30,6 +30,7 @@ from pathlib import Path
 import h5py
 
 from fem_tether import __version__
+from fem_tether.core.build import code_id
 from fem_tether.core.atomic import atomic_path, parts_dir, write_json
 from fem_tether.config import FILE_KEYS, NOT_FILES, Config
 from fem_tether.jobs.job import Job, Task, length_tag
@@ -39,9 +40,9 @@ from fem_tether.performance.sizing import Sizing, size_tether, sized_case
 
 
 def inputs_key(cfg: Config) -> str:
-    """What a task's result depends on: its configuration, the package version
-    and the contents of the files the configuration names (a mesh, a table)."""
-    digest = hashlib.sha256((cfg.to_toml() + __version__).encode())
+    """What a task's result depends on: its configuration, the code
+    (:func:`~fem_tether.core.build.code_id`) and the contents of the files the configuration names (a mesh, a table)."""
+    digest = hashlib.sha256((cfg.to_toml() + code_id()).encode())
     for section, name in FILE_KEYS:
         value = getattr(getattr(cfg, section), name)
         if value not in NOT_FILES:

@@ -26,6 +26,15 @@ def test_inputs_key_follows_the_configuration(tiny_cfg):
     assert inputs_key(tiny_cfg) != inputs_key(tiny_cfg.with_length(800.0))
 
 
+def test_inputs_key_follows_the_code_not_only_its_version(tiny_cfg, monkeypatch):
+    """A part stored by an earlier build of the same version is computed again (one lacked a
+    dataset the later build writes, and the result file could not be written)."""
+    from fem_tether.jobs import store
+    key = inputs_key(tiny_cfg)
+    monkeypatch.setattr(store, "code_id", lambda: f"{__version__}+000000000000")
+    assert inputs_key(tiny_cfg) != key
+
+
 def test_inputs_key_follows_the_contents_of_a_named_mesh(tiny_cfg, tmp_path):
     mesh = tmp_path / "m.vtu"
     write_unit_mesh(mesh, unit_nodes(8))

@@ -5,8 +5,8 @@ seeded); :func:`fem_tether.jobs.runner.distribute` spreads them over the ranks
 (:func:`fem_tether.jobs.schedule.assign`, all of one cost) and each evaluated
 sample is written at once to ``<out>.parts/sample_<i>.json`` with the key of
 its inputs (the model's name and function, the inputs, the sample count, seed
-and method, the package version).  A rerun of the same job reuses the parts
-whose key matches: a killed analysis resumes where it stopped, and the result
+and method, the code: :func:`~fem_tether.core.build.code_id`).  A rerun of the
+same job reuses the parts whose key matches: a killed analysis resumes where it stopped, and the result
 file is the same bytes for any number of ranks.  Rank 0 reads the parts,
 analyses the evaluations (:mod:`fem_tether.uncertainty.analysis`) and writes
 the HDF5 file (:mod:`fem_tether.io.sensitivity_file`).  A sample whose model
@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_tether import __version__
+from fem_tether.core.build import code_id
 from fem_tether.core.atomic import OutputError, check_folder, check_writable, parts_dir, write_json
 from fem_tether.core.errors import SolverDivergedError
 from fem_tether.core.progress import Progress
@@ -74,10 +74,11 @@ class SensitivityInterrupted(KeyboardInterrupt):
 
 
 def inputs_key(job: SensitivityJob) -> str:
-    """What a sample's outputs depend on: the model, the inputs, the sampling and the package version."""
+    """What a sample's outputs depend on: the model, the inputs, the sampling and the code
+    (:func:`~fem_tether.core.build.code_id`)."""
     model = f"{job.model.__module__}.{job.model.__qualname__}"
     return hashlib.sha256(repr((job.name, model, job.inputs, job.samples, job.seed, job.method,
-                                __version__)).encode()).hexdigest()
+                                code_id())).encode()).hexdigest()
 
 
 class Samples(JsonParts):

@@ -13,13 +13,14 @@ import json
 import os
 from pathlib import Path
 
-from fem_tether import __version__
+from fem_tether.core.build import code_id
 from fem_tether.core.atomic import parts_dir, write_json
 
 
 def key_of(*inputs: str) -> str:
-    """The key of a task's inputs (texts: configurations, speeds) and the package version."""
-    digest = hashlib.sha256(__version__.encode())
+    """The key of a task's inputs (texts: configurations, speeds) and the code
+    (:func:`~fem_tether.core.build.code_id`)."""
+    digest = hashlib.sha256(code_id().encode())
     for text in inputs:
         digest.update(b"\0" + text.encode())
     return digest.hexdigest()
