@@ -153,6 +153,20 @@ QUANTITIES = (
     Quantity("study", "power_straight_W", "W", "electrical power at each bin with its straight-line C_D,t"),
     Quantity("study", "power_edges_fe_W", "W", "electrical power at each resource bin edge, flexible C_D,t interpolated"),
     Quantity("study", "power_edges_straight_W", "W", "electrical power at each resource bin edge, straight line"),
+    # a study's surface on wind-profile clusters ([resource] clusters): K clusters, P points, N bins, E edges
+    Quantity("study-clusters", "cluster_frequency", "1", "frequency P(k) of each cluster [K]"),
+    Quantity("study-clusters", "aep_fe_cluster_MWh", "MW h", "AEP_k of each point were cluster k to blow all year, "
+             "flexible [P, K]; aep_fe_MWh = sum_k P(k) AEP_k"),
+    Quantity("study-clusters", "aep_straight_cluster_MWh", "MW h", "AEP_k of each point, straight line [P, K]"),
+    Quantity("study-clusters", "drag_fe_cluster_N", "N", "mean F_t per line of each bin's FE run in cluster k's "
+             "wind [P, K, N] (NaN: the kite does not fly)"),
+    Quantity("study-clusters", "cd_fe_cluster", "1", "C_D,t of each bin in cluster k's wind, flexible [P, K, N]"),
+    Quantity("study-clusters", "cd_straight_cluster", "1", "C_D,t of each bin in cluster k's wind, straight line "
+             "(the mean of the eight's two sweeps) [P, K, N]"),
+    Quantity("study-clusters", "power_edges_fe_cluster_W", "W", "electrical power in cluster k at each speed edge at "
+             "the reference height (edges_mps), flexible [P, K, E]"),
+    Quantity("study-clusters", "power_edges_straight_cluster_W", "W", "electrical power in cluster k at each speed "
+             "edge at the reference height, straight line [P, K, E]"),
 )
 
 _BY_PLACE = {(q.where, q.name): q for q in QUANTITIES}

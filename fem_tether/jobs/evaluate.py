@@ -155,11 +155,11 @@ def _line_values(cfg: Config, runs: dict, wind, straight_line: bool) -> dict:
         v["drag_straight_N"], v["drag_power_straight_N"] = line.drag_N, line.power_drag_N
         v["ge_straight"] = operating_ge(cfg, line.lumped_N(lumping))
     elif straight_line:
-        v["drag_straight_N"], v["drag_power_straight_N"] = _straight_in_turned_wind(cfg, wind)
+        v["drag_straight_N"], v["drag_power_straight_N"] = straight_in_turned_wind(cfg, wind)
     return v
 
 
-def _straight_in_turned_wind(cfg: Config, wind) -> tuple[float, float]:
+def straight_in_turned_wind(cfg: Config, wind) -> tuple[float, float]:
     """F_t and F_P of the straight line (seed 000 eqs. 4.1-4.3) in a wind that turns with height:
     the mean of the line sweeping crosswind in ``wind`` and in its mirror image
     (:func:`~fem_tether.performance.aep.mirrored`), i.e. of the line sweeping each way over

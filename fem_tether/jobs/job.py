@@ -41,6 +41,21 @@ def wind_tag(cluster: int | None) -> str:
     return "" if cluster is None else f"c{cluster + 1}"
 
 
+def clusters_of(cfg: Config, lengths_m) -> ClusterResource | None:
+    """The wind-profile clusters of ``cfg``'s ``[resource] clusters`` (None without); a
+    :class:`ConfigError` names the key if the file is malformed or a length's operating
+    altitude lies outside its heights (:func:`~fem_tether.performance.aep.check_cluster_heights`)."""
+    path = cfg.resource.clusters
+    if not path:
+        return None
+    try:
+        resource = read_cluster_resource(path)
+    except InputError as exc:
+        raise ConfigError(f"[resource] clusters = {toml_value(path)}: {exc}") from None
+    check_cluster_heights(cfg, lengths_m, resource)
+    return resource
+
+
 @dataclass(frozen=True)
 class Task:
     """One solver run of one length: the unit of work, of scheduling and of storage;
@@ -78,18 +93,9 @@ class Job:
 
     @cached_property
     def clusters(self) -> ClusterResource | None:
-        """The wind-profile clusters of ``[resource] clusters`` (None without), read once; a
-        :class:`ConfigError` names the key if the file is malformed or a length's operating
-        altitude lies outside its heights (:func:`~fem_tether.performance.aep.check_cluster_heights`)."""
-        path = self.config.resource.clusters
-        if not path:
-            return None
-        try:
-            resource = read_cluster_resource(path)
-        except InputError as exc:
-            raise ConfigError(f"[resource] clusters = {toml_value(path)}: {exc}") from None
-        check_cluster_heights(self.config, self.lengths_m, resource)
-        return resource
+        """The wind-profile clusters of ``[resource] clusters`` at the job's lengths, read once
+        (:func:`clusters_of`)."""
+        return clusters_of(self.config, self.lengths_m)
 
     @property
     def winds(self) -> tuple[int | None, ...]:

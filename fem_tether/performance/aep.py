@@ -482,12 +482,13 @@ def _every_cluster(flags: np.ndarray) -> np.ndarray:
 
 def refuse_clusters(cfg: Config) -> None:
     """A :class:`ConfigError` if ``cfg`` has ``[resource] clusters``: the AEP of the band and
-    Weibull resources below, which ``study`` takes, does not count clusters (``run``, ``sweep``,
-    ``aep`` and ``convert`` do: :func:`sweep_aep`; ``design`` takes its site from its job)."""
+    Weibull resources below does not count clusters (``run``, ``sweep``, ``aep`` and ``convert``
+    do: :func:`sweep_aep`; ``study`` reads them itself, :mod:`fem_tether.jobs.study.tasks`;
+    ``design`` takes its site from its job)."""
     if cfg.resource.clusters:
-        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: study does not yet count "
-                          "wind-profile clusters (run, sweep, aep and convert do); remove the key "
-                          "(docs/resource.md)")
+        raise ConfigError(f"[resource] clusters = {toml_value(cfg.resource.clusters)}: this band or Weibull "
+                          "resource does not count wind-profile clusters (run, sweep, study, aep and convert "
+                          "do); remove the key (docs/resource.md)")
 
 
 def sweep_resource(cfg: Config, wind_csv=None) -> Resource:

@@ -90,13 +90,18 @@ def power_model(s: dict) -> str:
 
 def figure_sources(s: dict) -> dict[str, str]:
     """Per figure of surface ``s``, where its numbers come from: the power model and how the
-    tether's drag enters it (per wind bin, or the configured point's at every wind speed)."""
+    tether's drag enters it (per wind bin, or the configured point's at every wind speed), and
+    on wind-profile clusters that the AEP sums them while the curves are the configured wind's."""
     binned = bool(np.isfinite(s["wind_mps"]).all())
     drag = ("$C_{D,t}$ per wind bin" if binned else "one $C_{D,t}$, the configured operating point's,"
             " at every wind speed")
+    clusters = s.get("clusters")
+    k = 0 if clusters is None else clusters["cluster_frequency"].size
+    summed = f", summed over {k} wind-profile clusters (docs/study.md §10)" if k else ""
     return {"aep": f"Roselli 2016 eq. 5.2 with the {power_model(s)} and {drag}: flexible from FE runs, "
-                   "straight from Roselli 2016 eq. 4.1",
-            "power": f"the {power_model(s)} with {drag}: flexible from FE runs, straight from Roselli 2016 eq. 4.1",
+                   f"straight from Roselli 2016 eq. 4.1{summed}",
+            "power": f"the {power_model(s)} with {drag}: flexible from FE runs, straight from Roselli 2016 eq. 4.1"
+                     + (", in the configured wind profile (each cluster's in the study file)" if k else ""),
             "ge": plots.GE_SOURCE + (", at each wind bin's operating point" if binned else
                                      ", at the configured operating point")}
 

@@ -124,6 +124,7 @@ def test_readme_units_column_reads_back_to_the_table():
 
 
 def test_study_doc_table_is_the_quantities_table():
-    """docs/study.md §9 lists the study file's datasets from the quantities table."""
+    """docs/study.md §9 lists the study file's datasets from the quantities table, §10 those of clusters."""
     text = (Path(__file__).resolve().parents[2] / "docs" / "study.md").read_text(encoding="utf-8")
-    assert _tables(text.split("## 9. The file")[1]) == [quantities.markdown_rows("study")]
+    assert _tables(text.split("## 9. The file")[1]) == [quantities.markdown_rows("study"),
+                                                        quantities.markdown_rows("study-clusters")]

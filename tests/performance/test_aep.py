@@ -245,16 +245,16 @@ def test_two_identical_clusters_give_the_aep_of_one():
 
 
 def test_the_band_aep_refuses_a_cluster_resource(tmp_path):
-    """The band and Weibull AEP (study takes it) refuses clusters, one line naming
-    the key, rather than use the Weibull bands; run, sweep and aep count them (sweep_aep)."""
+    """The band and Weibull AEP refuses clusters, one line naming the key, rather than use the
+    Weibull bands; run, sweep and aep count them (sweep_aep), study reads them itself."""
     path = tmp_path / "site.csv"
     path.write_text("reference_height [m];100\nh [m];u1;v1\n10;0.7;0\n100;1;0\nfrequency;1\n"
                     "v_low [m/s];v_high [m/s];p1\n0;10;1\n")
     cfg = load_config(overrides={"resource": {"clusters": str(path)}})
     for call in (check_resource, sweep_resource):
-        with pytest.raises(ConfigError, match=r'^\[resource\] clusters = ".*site.csv": study does not yet count '
-                                              r"wind-profile clusters \(run, sweep, aep and convert do\); remove "
-                                              r"the key \(docs/resource.md\)$"):
+        with pytest.raises(ConfigError, match=r'^\[resource\] clusters = ".*site.csv": this band or Weibull resource '
+                                              r"does not count wind-profile clusters \(run, sweep, study, aep and "
+                                              r"convert do\); remove the key \(docs/resource.md\)$"):
             call(cfg)
 
 

@@ -200,11 +200,13 @@ def surfaces(study: Study, extra: list[Point], allow_unchecked: bool) -> list[di
         lengths, diameters, aep, cf, weak = _surface_values(study, system, site, extra, allow_unchecked)
         grid, refined = _surface_points(job, system, site, extra)
         rows = [_point_row(study, p, False) for p in grid] + [_point_row(study, p, True) for p in refined]
+        clusters = study.clusters(grid[0])
         out.append({"system": system, "site": site, "config_toml": job.site(site).apply(job.config(system)).to_toml(),
                     "wind_mps": list(job.wind_mps or [math.nan]), "edges_mps": rows[0]["edges_mps"],
                     "points": rows,
                     "optimum": {case: opt.optimum(lengths, diameters, aep[case], cf[case], weak)
-                                for case in ("fe", "straight")}})
+                                for case in ("fe", "straight")},
+                    **({"cluster_frequency": clusters.frequency.tolist()} if clusters is not None else {})})
     return out
 
 

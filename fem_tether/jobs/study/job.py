@@ -12,6 +12,8 @@ configuration sections that apply to every system::
     refine = true                        # extra points about the AEP maximum
     reel_out = false                     # fly each bin's reel-out speed (ten times the cost)
     base = ""                            # a configuration file under the job's sections
+    [resource]
+    clusters = "site.csv"                # optional: fly each bin in each wind-profile cluster
     [[study.sites]]                      # default: one site, the configured [wind] and [resource]
     name = "de-bilt"
     wind = {profile = "log", season = "annual"}
@@ -22,7 +24,8 @@ configured ``[tether] material`` (:func:`fem_tether.performance.sizing.tether_ke
 without ``diameters_m`` every length flies the configured line unchanged.
 ``wind_mps = "configured"`` runs one operating point per length and
 diameter, the configured one (today's main job), and applies its drag to the
-whole power curve.
+whole power curve.  With ``[resource] clusters`` (docs/resource.md) each bin also
+flies in each cluster's wind and the AEP sums cluster x bin (docs/study.md, "Clusters").
 """
 
 from __future__ import annotations
@@ -35,7 +38,7 @@ from fem_tether.performance.aep import sweep_resource
 from fem_tether.config import (MAX_WIND_MPS, TETHER_DIAMETER_M, TETHER_LENGTH_M, Config, ConfigError,
                                load_config, resolve_paths, toml_and_text, toml_value)
 from fem_tether.config.settings import Range, from_to
-from fem_tether.jobs.job import length_tag
+from fem_tether.jobs.job import clusters_of, length_tag
 from fem_tether.physics.resource import ResourceError
 from fem_tether.performance.sizing import sized_config
 from fem_tether.config import catalog
@@ -270,8 +273,10 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
                    study.get("crosscheck", True), study.get("refine", True), study.get("reel_out", False), text)
     for point in job.points:            # every point's case is checked now, not in the study
         job.point_config(point)
-    for system, site_name in job.surfaces:   # and every length's resource band
+    for system, site_name in job.surfaces:   # and every length's resource band, or its clusters' heights
         cfg = job.site(site_name).apply(job.config(system))
+        if clusters_of(cfg, job.lengths_m[job.systems.index(system)]) is not None:
+            continue
         resource = sweep_resource(cfg)
         for length_m in job.lengths_m[job.systems.index(system)]:
             try:

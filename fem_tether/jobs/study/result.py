@@ -10,6 +10,8 @@ Layout (h5py), units and meanings in :mod:`fem_tether.core.quantities`
         length_m, diameter_m, refined, status, error, aep_fe_MWh, ...    [P] one per point
         drag_fe_N, cd_fe, ge_fe, power_fe_W, apparent_speed_mps, ...    [P, N] per point and bin
         power_edges_fe_W, power_edges_straight_W                         [P, E]
+        with [resource] clusters (``where = "study-clusters"``): cluster_frequency [K],
+        aep_fe_cluster_MWh, ... [P, K], cd_fe_cluster, ... [P, K, N], power_edges_fe_cluster_W, ... [P, K, E]
 
 Points are the grid (lengths x diameters, in the job's order) then the refined
 points.  The file holds no time or rank count, so the same job gives the same
@@ -38,8 +40,11 @@ from fem_tether.jobs.study.optimum import Optimum
 POINT = tuple(n for n in names("study") if n not in ("wind_mps", "edges_mps"))
 STRINGS = ("status", "error")
 INTEGERS = ("refined", "crosscheck_ok")
-#: The unit of every dataset of a surface.
+#: The datasets of a surface on wind-profile clusters, written only there (the quantities table's order).
+CLUSTERS = names("study-clusters")
+#: The unit of every dataset of a surface, and of those of a surface on clusters.
 UNITS = {name: quantity("study", name).unit for name in names("study")}
+CLUSTER_UNITS = {name: quantity("study-clusters", name).unit for name in CLUSTERS}
 OPTIMUM_KEYS = ("length_m", "diameter_m", "aep_MWh", "capacity_factor", "bracketed_length", "bracketed_diameter",
                 "strength_limited")
 
@@ -69,19 +74,20 @@ def check_out(out: Path) -> None:
     check_writable(check_folder(report_dir(out)) / PAGE_NAME)
 
 
-def _dataset(group, name, data):
+def _dataset(group, name, data, where="study"):
     if name in STRINGS:
         data = np.array(data, dtype=h5py.string_dtype())
     else:
         data = np.array(data, dtype=np.int8 if name in INTEGERS else float)
-    group.create_dataset(name, data=data, track_times=False).attrs.update(attributes("study", name))
+    group.create_dataset(name, data=data, track_times=False).attrs.update(attributes(where, name))
 
 
 def write_study(out: Path, job_toml: str, surfaces: list[dict]) -> None:
     """Write the result file atomically.  ``surfaces``: one dict per surface with
     ``system``, ``site``, ``config_toml``, ``wind_mps``, ``edges_mps``, ``points``
     (one dict per point with the :data:`POINT` values) and ``optimum``
-    (``"fe"``/``"straight"`` -> an :class:`~fem_tether.jobs.study.optimum.Optimum` dict or None)."""
+    (``"fe"``/``"straight"`` -> an :class:`~fem_tether.jobs.study.optimum.Optimum` dict or None);
+    on wind-profile clusters also ``cluster_frequency`` and the points' :data:`CLUSTERS` values."""
     with atomic_path(out) as tmp:
         with h5py.File(tmp, "w", track_order=False) as f:
             f.attrs.update(job_toml=job_toml, fem_tether_version=__version__,
@@ -97,6 +103,10 @@ def write_study(out: Path, job_toml: str, surfaces: list[dict]) -> None:
                 _dataset(group, "edges_mps", s["edges_mps"])
                 for name in POINT:
                     _dataset(group, name, [p[name] for p in s["points"]])
+                if "cluster_frequency" in s:
+                    _dataset(group, "cluster_frequency", s["cluster_frequency"], "study-clusters")
+                    for name in CLUSTERS[1:]:
+                        _dataset(group, name, [p[name] for p in s["points"]], "study-clusters")
 
 
 @dataclass(frozen=True)
@@ -155,6 +165,8 @@ class Surface(Record):
     power_straight_W: np.ndarray
     power_edges_fe_W: np.ndarray
     power_edges_straight_W: np.ndarray
+    #: on wind-profile clusters: :data:`CLUSTERS` by name (None without clusters)
+    clusters: dict[str, np.ndarray] | None = None
 
     @property
     def name(self) -> str:
@@ -162,8 +174,8 @@ class Surface(Record):
 
     @property
     def units(self) -> dict[str, str]:
-        """The unit of every dataset."""
-        return dict(UNITS)
+        """The unit of every dataset (with those of :attr:`clusters` if it has them)."""
+        return dict(UNITS) | (CLUSTER_UNITS if self.clusters is not None else {})
 
     def point_columns(self) -> tuple[Column, ...]:
         """The datasets of one value per point (per-bin and per-edge ones left out)."""
@@ -245,7 +257,19 @@ def _read_surface(reader: Reader, group) -> Surface:
         data[name] = reader.dataset(group, name, dtype, shape=(points,) + across)
     system, _, site = group.name.strip("/").partition("/")
     return Surface(system=system, site=site, config_toml=reader.toml(group),
-                   optimum={case: _optimum(reader, group, case) for case in ("fe", "straight")}, **data)
+                   optimum={case: _optimum(reader, group, case) for case in ("fe", "straight")},
+                   clusters=_read_clusters(reader, group, points, bins, edges), **data)
+
+
+def _read_clusters(reader: Reader, group, points: int, bins: int, edges: int) -> dict[str, np.ndarray] | None:
+    """A surface's :data:`CLUSTERS` datasets (None if it has no ``cluster_frequency``: no clusters)."""
+    if "cluster_frequency" not in group:
+        return None
+    k = reader.dataset(group, "cluster_frequency", shape=(None,)).size
+    across = {"aep": (k,), "drag": (k, bins), "cd": (k, bins), "power": (k, edges)}
+    return {"cluster_frequency": reader.dataset(group, "cluster_frequency")} | {
+        name: reader.dataset(group, name, "float", shape=(points,) + across[name.split("_")[0]])
+        for name in CLUSTERS[1:]}
 
 
 def _optimum(reader: Reader, group, case: str) -> StoredOptimum | None:

@@ -11,6 +11,12 @@ Four kinds, in four phases (each needs the parts of the one before):
   at the gated bin the FE and the FD solver compared (the FE <-> FD gate);
 * ``aep``: a point's AEP, straight and flexible (:mod:`fem_tether.jobs.study.energy`).
 
+With ``[resource] clusters`` every flying bin also has one ``fe`` run per wind-profile
+cluster k (``cluster`` k, from 0): the bin's case in cluster k's wind, scaled so that the
+kite meets the bin's wind speed at its altitude L cos theta0 and turned downwind there
+(:func:`fem_tether.performance.aep.cluster_wind` of the bin's operating case); the gate
+runs in the configured wind only.
+
 With ``wind_mps = "configured"`` a point has one bin, the configured case,
 and no ``seed`` or ``ops`` task.  A task whose case the configuration rules refuse or
 whose solve fails stores the error; the others go on.
@@ -24,7 +30,11 @@ from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from fem_tether.performance.aep import sweep_resource
+from fem_tether.jobs.job import clusters_of, wind_tag
+from fem_tether.performance.aep import cluster_wind, sweep_resource
+from fem_tether.physics.clusters import ClusterResource
+from fem_tether.physics.wind import TableWind
+from fem_tether.tether.line import physics_from_config
 from fem_tether.config import Config
 from fem_tether.tether.crosscheck import checkable, compare
 from fem_tether.core.errors import InputError, SolverDivergedError
@@ -51,15 +61,19 @@ CLOSED_FORM_COST_US = 20.0
 
 @dataclass(frozen=True)
 class Task:
-    """One unit of a study's work: ``kind`` of a point (and of one bin)."""
+    """One unit of a study's work: ``kind`` of a point (and of one bin, in one wind)."""
 
     kind: str            # "seed", "ops", "fe", "check" or "aep"
     point: Point
     node: int = -1       # the bin: index into the study's wind speeds (0: the configured one)
+    cluster: int | None = None      # the wind-profile cluster (from 0) it flies in; None: the configured wind
 
     @property
     def name(self) -> str:
-        return f"{self.point.name}_{self.kind}" if self.node < 0 else f"{self.point.name}_v{self.node}_{self.kind}"
+        if self.node < 0:
+            return f"{self.point.name}_{self.kind}"
+        wind = wind_tag(self.cluster)
+        return f"{self.point.name}_v{self.node}_{wind + '_' if wind else ''}{self.kind}"
 
 
 class Study:
@@ -71,7 +85,7 @@ class Study:
         self._configs: dict[Point, Config] = {}
         self._cases: dict[tuple[Point, int], Config | InputError] = {}
         self._runs: dict[Point, list[Task]] = {}
-        self._resources: dict[tuple[str, str], Resource] = {}
+        self._resources: dict[tuple[str, str], Resource | ClusterResource] = {}
         self._keys: dict[Task, str] = {}
 
     # -- inputs ---------------------------------------------------------------
@@ -80,12 +94,37 @@ class Study:
             self._configs[point] = self.job.point_config(point)
         return self._configs[point]
 
-    def resource(self, point: Point) -> Resource:
-        """The wind resource of a point's site (the same for every point of a surface)."""
+    def resource(self, point: Point) -> Resource | ClusterResource:
+        """The wind resource of a point's site (the same for every point of a surface): its
+        wind-profile clusters (``[resource] clusters``) or its band resource."""
         surface = (point.system, point.site)
         if surface not in self._resources:
-            self._resources[surface] = sweep_resource(self.config(point))
+            cfg = self.config(point)
+            clusters = clusters_of(cfg, self.job.lengths_m[self.job.systems.index(point.system)])
+            self._resources[surface] = clusters if clusters is not None else sweep_resource(cfg)
         return self._resources[surface]
+
+    def clusters(self, point: Point) -> ClusterResource | None:
+        """The wind-profile clusters of a point's site, None without."""
+        resource = self.resource(point)
+        return resource if isinstance(resource, ClusterResource) else None
+
+    def cluster_wind(self, point: Point, case: Config, cluster: int) -> TableWind:
+        """Cluster ``cluster``'s wind for the bin whose operating case (on the line of length L)
+        is ``case``: scaled so that the kite meets the case's wind speed at L cos theta0, turned
+        downwind there (:func:`~fem_tether.performance.aep.cluster_wind`)."""
+        clusters = self.clusters(point)
+        assert clusters is not None
+        return cluster_wind(case, clusters, cluster)
+
+    def wind(self, task: Task) -> TableWind | None:
+        """The wind a tether run flies: None (the configured one), or its cluster's at its bin."""
+        if task.cluster is None:
+            return None
+        cfg = self.config(task.point)
+        ops = self.operating_points(task.point)
+        at = cfg if self.configured or ops is None else plan.operating_case(cfg, ops[task.node])
+        return self.cluster_wind(task.point, at, task.cluster)
 
     @property
     def configured(self) -> bool:
@@ -165,7 +204,10 @@ class Study:
         if point in self._runs:
             return self._runs[point]
         gate = self.gate(point)
-        runs = [Task("check" if node == gate else "fe", point, node) for node in self.bins(point)]
+        bins = self.bins(point)
+        clusters = self.clusters(point)
+        runs = [Task("check" if node == gate else "fe", point, node) for node in bins]
+        runs += [Task("fe", point, node, k) for k in range(clusters.n_clusters if clusters else 0) for node in bins]
         if self.configured or self.operating_points(point) is not None:
             self._runs[point] = runs
         return runs
@@ -208,10 +250,13 @@ class Study:
 
     # -- running one task --------------------------------------------------------
     def run_key(self, task: Task) -> str:
+        """The key of a tether run's inputs: its case, and its cluster's wind if it flies one."""
         try:
-            return key_of(task.kind, inputs_key(self.case(task.point, task.node)))
+            case = self.case(task.point, task.node)
+            wind = self.wind(task)
         except InputError as exc:
             return key_of(task.kind, str(exc))
+        return key_of(task.kind, inputs_key(case), *(() if wind is None else (repr(wind),)))
 
     def task_key(self, task: Task) -> str:
         """The key of a task's inputs (remembered: its inputs do not change during a study)."""
@@ -267,8 +312,9 @@ class Study:
             elif task.kind == "check":
                 fe_run, case, values = gate_run(self.case(task.point, task.node))
             else:
-                case = self.case(task.point, task.node)
-                fe_run, values = simulator("fe")(case), {}
+                case, wind = self.case(task.point, task.node), self.wind(task)
+                physics = {} if wind is None else {"physics": physics_from_config(case, wind)}
+                fe_run, values = simulator("fe")(case, **physics), {}
         except Exception as exc:
             return failure(task.name, exc)
         drags = lumped_drags_N(fe_run, case)
