@@ -587,7 +587,7 @@ def finite_max(values) -> float | None:
 
 def study_summary(outcome, out, report_page=None) -> dict:
     """``fem-tether study --json``: per surface its optimum, flexible and straight,
-    the points' status counts, the gate's worst drag difference and the largest
+    the number of wind-profile clusters its AEP sums over (0: none), the points' status counts, the gate's worst drag difference and the largest
     interpolation error; the tasks, ranks and wall time per phase."""
     surfaces = []
     for s in outcome.surfaces:
@@ -598,6 +598,7 @@ def study_summary(outcome, out, report_page=None) -> dict:
             "optimum_fe": None if s["optimum"]["fe"] is None else s["optimum"]["fe"].as_dict(),
             "optimum_straight": None if s["optimum"]["straight"] is None else s["optimum"]["straight"].as_dict(),
             "points": len(points), "refined_points": sum(p["refined"] for p in points),
+            "clusters": len(s.get("cluster_frequency", ())),
             "swept": {name: len({p[f"{name}_m"] for p in points if not p["refined"]}) > 1
                       for name in ("length", "diameter")},
             "ok": status.count("ok"), "unchecked": status.count("unchecked"), "weak": status.count("weak"),
@@ -621,6 +622,8 @@ def study_text(summary: dict) -> str:
         lines += [f"{surface_name(s['system'], s['site'])}: {s['points']} points ({s['refined_points']} refined): "
                   f"{s['ok']} ok, {s['unchecked']} unchecked, {s['weak']} too weak for their peak tension, "
                   f"{s['failed']} failed",
+                  *([f"  AEP summed over {s['clusters']} wind-profile clusters, each bin flown in each "
+                     "cluster's profile"] if s["clusters"] else []),
                   "  AEP-optimal, flexible: " + _optimum_text(s["optimum_fe"], s["swept"]),
                   "  AEP-optimal, straight: " + _optimum_text(s["optimum_straight"], s["swept"])]
         fe, st = s["optimum_fe"], s["optimum_straight"]

@@ -23,6 +23,7 @@ from fem_tether.jobs.study.driver import run_study
 from fem_tether.jobs.study.job import load_study
 from fem_tether.jobs.study.result import read_study
 from fem_tether.performance.aep import sweep_resource
+from fem_tether.report.text import study_summary, study_text
 
 SURFACE = "configured/configured"
 
@@ -87,8 +88,12 @@ def test_two_clusters_give_the_frequency_weighted_sum_of_each_clusters_study(tmp
     for k in range(2):
         _cluster_csv(tmp_path / f"c{k + 1}.csv", [shapes[k]], [1.0], EDGES_MPS, PROBABILITY[k:k + 1])
         alone.append(_surface(tmp_path, f"c{k + 1}", clusters=f"c{k + 1}.csv"))
-    two = _surface(tmp_path, "two", clusters="two.csv")
+    outcome = run_study(load_study(_job_file(tmp_path, "two", clusters="two.csv")), tmp_path / "two.h5",
+                        comm=MPI.COMM_SELF, progress=False)
+    two = read_study(tmp_path / "two.h5").surfaces[SURFACE]
     assert list(two.status) == ["ok"]
+    assert "  AEP summed over 2 wind-profile clusters, each bin flown in each cluster's profile\n" \
+        in study_text(study_summary(outcome, tmp_path / "two.h5"))
     for case in ("fe", "straight"):
         each = [s[f"aep_{case}_MWh"][0] for s in alone]
         np.testing.assert_array_equal(two.clusters[f"aep_{case}_cluster_MWh"][0], each)
