@@ -141,3 +141,13 @@ def test_table_5_6_mean_capacity_factor_needs_an_ideal_curve_rated_from_5_9_mps(
     assert round(at_080, 1) == 5.9 and round(at_056, 1) == 9.6
     assert round(_ideal_capacity_factor(2.21), 2) == 0.94
     assert round((round(at_056, 1) / round(at_080, 1)) ** 3, 1) == 4.3
+
+
+def test_the_rated_power_multiplier_is_at_most_the_aep_and_table_5_6_s_is_not(sample):
+    """docs/sensitivity.md §6.5: clipping a design rated (1 + ε) P at P keeps at least 1/(1 + ε) of its
+    energy, so P · dAEP*/dP ≤ AEP* (every finished sample of ours: at most 0.88 of its AEP); Table
+    5.6's mean λ_Prated, 33.27 GWh, is 1.58 times its mean AEP, 21.1 GWh."""
+    out, _, _ = sample
+    assert 0.0 < out["aep_per_rated_power_W_Wh"] <= out["aep_Wh"]
+    reference = kite_design.REFERENCE
+    assert round(reference["aep_per_rated_power_W_Wh"][0] / reference["aep_Wh"][0], 2) == 1.58

@@ -21,14 +21,14 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from contextlib import ExitStack
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 from fem_tether.core.build import code_id
 from fem_tether.core.atomic import OutputError, check_folder, check_writable, parts_dir, write_json
-from fem_tether.core.errors import SolverDivergedError
+from fem_tether.core.errors import InputError, SolverDivergedError
 from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
 from fem_tether.io.sensitivity_file import is_sensitivity_result, write_sensitivity_hdf5
@@ -151,6 +151,21 @@ def content(job: SensitivityJob, points: np.ndarray, values: dict[str, np.ndarra
         "convergence": {name: {"counts": np.asarray(counts), "first_order": c.first_order, "total": c.total}
                         for name, c in converged.items()},
     }
+
+
+def finished_content(job: SensitivityJob, out: str | Path) -> dict:
+    """:func:`content` of the samples whose parts ``<out>.parts`` holds so far, for an analysis under way
+    or stopped (read only: nothing is written); their count in ``attrs["finished"]``, ``attrs["samples"]``
+    the job's, no convergence.  InputError where none is kept, or fewer than a degree-1 expansion needs."""
+    samples = Samples(job, Path(out))
+    kept = [(index, part) for index in range(job.samples) if (part := samples.read(index)) is not None]
+    if not kept:
+        raise InputError(f"{samples.directory}: no finished sample of this job yet")
+    indices = np.array([index for index, _ in kept], dtype=int)
+    values = {name: np.array([part["outputs"].get(name, math.nan) for _, part in kept]) for name in job.units}
+    result = content(replace(job, counts=()), samples.points[indices], values)
+    result["attrs"] |= {"finished": len(kept), "finished_indices": indices}
+    return result
 
 
 def check_out(out: Path) -> None:

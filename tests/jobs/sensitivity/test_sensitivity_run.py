@@ -12,12 +12,15 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from fem_tether.core.atomic import OutputError
+from fem_tether.core.errors import InputError
 from fem_tether.io.reading import ResultFileError
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
-from fem_tether.jobs.sensitivity.run import Samples, SensitivityJob, parts_dir, run_sensitivity
+from fem_tether.jobs.sensitivity.run import Samples, SensitivityJob, finished_content, parts_dir, run_sensitivity
+from fem_tether.uncertainty.analysis import analyse
 from fem_tether.uncertainty import cantilever as beam
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -91,6 +94,48 @@ def test_a_rerun_reuses_the_parts_and_gives_the_same_bytes(tmp_path):
     counted.__module__ = beam.design.__module__
     run_sensitivity(cantilever_job(model=counted), out, progress=False)
     assert len(calls) == 40 and out.read_bytes() == first
+
+
+def test_the_samples_finished_so_far_are_analysed_without_writing(tmp_path):
+    """An analysis under way: the parts of 30 of the 80 samples kept (one of them from other inputs,
+    left out): their statistics and indices are those of the same analysis of those samples alone,
+    the count and indices are in the attributes, and no file is written."""
+    out = tmp_path / "gsa.h5"
+    job = cantilever_job()
+    run_sensitivity(job, out, progress=False)
+    out.unlink()
+    keep = list(range(0, 62, 2))
+    for k in set(range(80)) - set(keep):
+        Samples(job, out).path(k).unlink()
+    foreign = Samples(job, out).path(keep.pop())
+    foreign.write_text(json.dumps(json.loads(foreign.read_text()) | {"key": "other inputs"}))
+    before = sorted(tmp_path.rglob("*"))
+    r = finished_content(job, out)
+    assert sorted(tmp_path.rglob("*")) == before and not out.exists()
+    assert r["attrs"]["finished"] == 30 and list(r["attrs"]["finished_indices"]) == keep
+    assert r["attrs"]["samples"] == 80 and r["convergence"] == {}
+    points = job.points()[keep]
+    designs = [beam.design(dict(zip((x.name for x in beam.UNCERTAIN), point))) for point in points]
+    values = {name: np.array([d[name] for d in designs]) for name in beam.OUTPUT_UNITS}
+    expected = analyse(beam.UNCERTAIN, points, values, beam.OUTPUT_UNITS, INDEXED)
+    for name in INDEXED:
+        assert r["statistics"][name]["mean"] == pytest.approx(expected[name].mean, rel=1e-12)
+        assert r["statistics"][name]["sd"] == pytest.approx(expected[name].sd, rel=1e-12)
+        assert r["indices"][name]["total"] == pytest.approx(expected[name].total, rel=1e-9, abs=1e-12)
+
+
+def test_no_or_too_few_finished_samples_are_one_line(tmp_path):
+    """No part yet, or fewer than a degree-1 expansion needs: one InputError line, not a traceback."""
+    out = tmp_path / "gsa.h5"
+    job = cantilever_job()
+    with pytest.raises(InputError, match="no finished sample"):
+        finished_content(job, out)
+    samples = Samples(job, out)
+    samples.directory.mkdir()
+    for k in range(5):
+        samples.run(k)
+    with pytest.raises(InputError, match="5 evaluations are too few"):
+        finished_content(job, out)
 
 
 def test_the_ranks_model_replays_the_parts_measured_times(tmp_path):
