@@ -20,7 +20,7 @@ def example(name):
 
 #: Every example, in README's order ("Python API").
 NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite", "study_assumptions",
-         "tab51_gap", "short_line_drag", "tether_lumping", "design_section_5_4", "cantilever_sensitivity")
+         "tab51_gap", "short_line_drag", "tether_lumping", "design_section_5_4", "cantilever_sensitivity", "trevisi_3mw_gap")
 
 
 def test_every_example_opens_with_its_equations_and_how_to_run_it():
@@ -336,3 +336,16 @@ def test_design_jobs_load(name, preset):
     assert job.tether == "flexible" and shipped.tether == "lumped"
     assert (job.parameters, job.objective, job.costs, job.iterations) == \
         (shipped.parameters, shipped.objective, shipped.costs, shipped.iterations)
+
+
+def test_trevisi_3mw_gap_holds_table_5_6s_mean_design_at_its_altitude():
+    """docs/sensitivity.md §6.5: Table 5.6's mean design flies at h = 463 m sin 27.4 deg = 213 m, where its
+    cut-in and cut-out on the 20 m axis (2.21, 19.32 m/s) are 3.55 and 31.01 m/s; its cut-out as a bound at
+    h_min is 30.6 m/s."""
+    gap = example("trevisi_3mw_gap")
+    p = gap.midpoints()
+    h = gap.TABLE_5_6_DESIGN["tether_length_m"] * np.sin(gap.TABLE_5_6_DESIGN["elevation_rad"])
+    assert h == pytest.approx(213.07, abs=0.01)
+    assert gap.TABLE_5_6_CUT_IN_MPS * gap.to_altitude(p, h) == pytest.approx(3.55, abs=0.005)
+    assert gap.TABLE_5_6_CUT_OUT_MPS * gap.to_altitude(p, h) == pytest.approx(31.01, abs=0.005)
+    assert gap.cut_out_bound(p)["cut_out_mps"][1] == pytest.approx(30.6, abs=0.05)
