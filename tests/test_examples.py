@@ -261,7 +261,8 @@ ARGUMENTS = {"tab51_gap": (["bogus"], "argument PART: invalid choice: 'bogus' (c
              "design_section_5_4": (["bogus"], "argument PART: invalid choice: 'bogus' (choose from 'both', "),
              "fe_run": (["out", "extra"], "unrecognized arguments: extra"),
              "sweep_aep": (["out", "extra"], "unrecognized arguments: extra"),
-             "cantilever_sensitivity": (["out", "extra"], "unrecognized arguments: extra")}
+             "cantilever_sensitivity": (["out", "extra"], "unrecognized arguments: extra"),
+             "trevisi_3mw_gap": (["bogus"], "argument part: invalid choice: 'bogus' (choose from 'statistics', ")}
 
 
 def test_the_examples_taking_arguments_are_the_listed_ones():
