@@ -12,7 +12,6 @@ clusters, each cluster's runs into its own values (:data:`CLUSTER_VALUES`).
 from __future__ import annotations
 
 import traceback
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,7 +25,7 @@ from fem_tether.jobs.job import Task
 from fem_tether.core.quantities import lumped_name, names
 from fem_tether.performance.sizing import margin, peak_tension_N
 from fem_tether.jobs.store import PartsStore
-from fem_tether.performance.aep import mirrored, reference_speed_mps
+from fem_tether.performance.aep import reference_speed_mps
 from fem_tether.tether.line import physics_from_config
 from fem_tether.performance.summary import operating_ge
 from fem_tether.tether.lumping import lumped_drags_N, run_speed_mps
@@ -155,21 +154,8 @@ def _line_values(cfg: Config, runs: dict, wind, straight_line: bool) -> dict:
         v["drag_straight_N"], v["drag_power_straight_N"] = line.drag_N, line.power_drag_N
         v["ge_straight"] = operating_ge(cfg, line.lumped_N(lumping))
     elif straight_line:
-        v["drag_straight_N"], v["drag_power_straight_N"] = straight_in_turned_wind(cfg, wind)
+        v["drag_straight_N"], v["drag_power_straight_N"] = straight.in_turned_wind(cfg, wind)
     return v
-
-
-def straight_in_turned_wind(cfg: Config, wind) -> tuple[float, float]:
-    """F_t and F_P of the straight line (seed 000 eqs. 4.1-4.3) in a wind that turns with height:
-    the mean of the line sweeping crosswind in ``wind`` and in its mirror image
-    (:func:`~fem_tether.performance.aep.mirrored`), i.e. of the line sweeping each way over
-    the eight.  In a wind along x both are the one line of :func:`straight.from_config`; in a
-    turned wind the one-way line's drag depends on the way (the wind's v adds to its motion or
-    takes from it), the mean counts both halves of the eight."""
-    # line_of_config gives a partial of straight_line_drag, whose wind a keyword gives anew
-    at: Callable[..., straight.StraightLineDrag] = straight.line_of_config(cfg, with_wind=True)
-    lines = [at(cfg.tether.length_m, wind_profile=w) for w in (wind, mirrored(wind))]
-    return 0.5 * (lines[0].drag_N + lines[1].drag_N), 0.5 * (lines[0].power_drag_N + lines[1].power_drag_N)
 
 
 def _evaluate_length(store: PartsStore, length_m: float) -> tuple[LengthResult, dict]:

@@ -295,13 +295,6 @@ def cluster_wind(case: Config, resource: ClusterResource, k: int) -> TableWind:
     return TableWind(table.heights_m, table.speeds_mps, tuple(t - turn_deg for t in table.turns_deg))
 
 
-def mirrored(table: TableWind) -> TableWind:
-    """``table`` mirrored in the vertical plane of +x (the plane of symmetry of an eight centred
-    downwind): every turn negated, v -> -v.  A line sweeping the eight one way in ``table`` meets
-    the wind as it would sweeping the other way in the mirror image."""
-    return TableWind(table.heights_m, table.speeds_mps, tuple(-t + 0.0 for t in table.turns_deg))
-
-
 def check_cluster_heights(cfg: Config, lengths_m, resource: ClusterResource) -> None:
     """A :class:`ConfigError` naming ``[resource] clusters`` if a length's operating altitude
     z = L cosϑ0 lies outside the clusters' heights (their shapes are not known there) or a

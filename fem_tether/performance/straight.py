@@ -145,3 +145,23 @@ def comparison(cfg: Config, lengths, with_wind=False, closed_form=False, rho=Non
             "altitude_top_m": length * np.cos(theta),
         })
     return rows
+
+
+def mirrored(table: wind.TableWind) -> wind.TableWind:
+    """``table`` mirrored in the vertical plane of +x (the plane of symmetry of an eight centred
+    downwind): every turn negated, v -> -v.  A line sweeping the eight one way in ``table`` meets
+    the wind as it would sweeping the other way in the mirror image."""
+    return wind.TableWind(table.heights_m, table.speeds_mps, tuple(-t + 0.0 for t in table.turns_deg))
+
+
+def in_turned_wind(cfg: Config, table: wind.TableWind) -> tuple[float, float]:
+    """F_t and F_P of the straight line (seed 000 eqs. 4.1-4.3) in a wind that turns with height:
+    the mean of the line sweeping crosswind in ``table`` and in its mirror image
+    (:func:`mirrored`), i.e. of the line sweeping each way over the eight.  In a wind along x
+    both are the one line of :func:`from_config`; in a turned wind the one-way line's drag
+    depends on the way (the wind's v adds to its motion or takes from it), the mean counts
+    both halves of the eight."""
+    # line_of_config gives a partial of straight_line_drag, whose wind a keyword gives anew
+    at: Callable[..., StraightLineDrag] = line_of_config(cfg, with_wind=True)
+    lines = [at(cfg.tether.length_m, wind_profile=w) for w in (table, mirrored(table))]
+    return 0.5 * (lines[0].drag_N + lines[1].drag_N), 0.5 * (lines[0].power_drag_N + lines[1].power_drag_N)

@@ -30,7 +30,7 @@ whose C_D,t applies at every wind speed: the main job's AEP
 With wind-profile clusters (``[resource] clusters``) each bin also flies in each
 cluster k's wind (:mod:`fem_tether.jobs.study.tasks`), giving C_D,t,k(V) by bin, and the
 straight line's in that wind (the mean of the eight's two sweeps,
-:func:`fem_tether.jobs.evaluate.straight_in_turned_wind`).  Cluster k's power at the
+:func:`fem_tether.performance.straight.in_turned_wind`).  Cluster k's power at the
 reference speed V_ref is P_model(V_k; C_D,t,k(V_k)) at the kite's wind speed
 V_k = V_ref |(u_k, v_k)|(L cos theta0), and the point's AEP is
 
@@ -47,7 +47,6 @@ import math
 
 import numpy as np
 
-from fem_tether.jobs.evaluate import straight_in_turned_wind
 from fem_tether.performance import straight
 from fem_tether.performance.aep import aep_on_band, aep_on_clusters, capacity_factor, operating_altitude_m
 from fem_tether.core.errors import InputError
@@ -130,7 +129,7 @@ def point_energy(study, point: Point) -> dict:
             v["ge_straight"][node] = operating_ge(case, line.lumped_N(lumping))
             for k in range(k_count):
                 drags = dict(zip(("moment", "power"),
-                                 straight_in_turned_wind(case, study.cluster_wind(point, case, k))))
+                                 straight.in_turned_wind(case, study.cluster_wind(point, case, k))))
                 by_cluster["cd_straight_cluster"][k, node] = operating_tether_cd(case, drags[lumping])
     errors, peaks, gate = [], [], {}
     for task in study.run_tasks([point]):
