@@ -24,6 +24,8 @@ from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LE
 from fem_tether.core.errors import ConfigError, FemTetherError
 from fem_tether.commands.flight import warn_unflyable
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
+from fem_tether.jobs.runner import load_kernels_by_rank
+from fem_tether.tether.kernels import load as load_kernels
 from fem_tether.core import stop
 from fem_tether.core.stop import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, exit_code, guard
 from fem_tether.jobs.design.job import OBJECTIVES, costs_toml
@@ -103,6 +105,21 @@ def _float_list(text):
 
 def _config(args, length_m=None):
     return load_config(args.config, {"tether": {"length_m": length_m}} if length_m else None, args.system)
+
+
+def _kernels_first(solvers, mpi: bool = False) -> None:
+    """Load the kernels of ``solvers`` before the job is read, as the main job does: reading
+    it compiles the path's code, which on a first run after an install belongs under the
+    kernels' compile notice (:func:`fem_tether.tether.kernels.load`), not before it in silence;
+    ``mpi``: on the ranks of MPI.COMM_WORLD, each compiling one solver's."""
+    if not mpi:
+        load_kernels(solvers)
+        return
+    from mpi4py import MPI
+
+    comm = MPI.COMM_WORLD
+    with guard(comm):
+        load_kernels_by_rank(comm, solvers)
 
 
 # --- commands ---------------------------------------------------------------------
@@ -193,6 +210,7 @@ def cmd_power(args):
 def cmd_simulate(args):
     from fem_tether.commands.simulation import simulate_case
 
+    _kernels_first(("fe",))
     cfg = _config(args, args.length)
     warn_unflyable([cfg])
     summary = simulate_case(cfg, args.out, args.sweep, progress=not args.json)
@@ -203,6 +221,7 @@ def cmd_simulate(args):
 def cmd_size(args):
     from fem_tether.performance.sizing import size_tether
 
+    _kernels_first(("fe",))
     cfg = _config(args, args.length)
     warn_unflyable([cfg])
     data = report.size_summary(cfg, size_tether(cfg))
@@ -213,6 +232,7 @@ def cmd_size(args):
 def cmd_crosscheck(args):
     from fem_tether.jobs.evaluate import run_crosscheck
 
+    _kernels_first(("fe", "fd"))
     cfg = _config(args, args.length)
     fd_cfg = _config(argparse.Namespace(config=args.fd_config, system=args.system), args.length) \
         if args.fd_config else None
@@ -232,6 +252,7 @@ def cmd_sweep(args):
     from fem_tether.jobs.job import load_job
     from fem_tether.jobs.sweep import sweep
 
+    _kernels_first(("fe", "fd"), mpi=True)
     job = load_job(args.job, args.system)
     warn_unflyable(job.configs.values())
     outcome = sweep(job, args.out, progress=not args.json, keep_parts=args.keep_parts)
@@ -246,6 +267,7 @@ def cmd_study(args):
     from fem_tether.jobs.study.driver import run_study
     from fem_tether.jobs.study.job import load_study
 
+    _kernels_first(("fe", "fd"), mpi=True)
     job = load_study(args.job, args.system)
     outcome = run_study(job, args.out, progress=not args.json, allow_unchecked=args.allow_unchecked)
     if outcome is None:

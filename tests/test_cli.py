@@ -13,7 +13,9 @@ import pytest
 
 from conftest import is_png
 from synthetic_profiles import draw, write_plain
+from fem_tether import cli
 from fem_tether.cli import build_parser, main
+from fem_tether.core.errors import ConfigError
 
 
 def run_cli(capsys, *argv):
@@ -541,3 +543,29 @@ def test_a_defect_on_rank_zero_ends_every_rank_with_its_error(tmp_path, where):
     assert proc.stderr.count("RuntimeError: it fails") == 1
     assert "pending" not in proc.stderr
     assert not (tmp_path / "x.h5").exists()
+
+
+@pytest.mark.parametrize("command, solvers", [(["simulate"], ("fe",)), (["size"], ("fe",)),
+                                              (["crosscheck"], ("fe", "fd")),
+                                              (["sweep", "job.toml", "--out", "s.h5"], ("fe", "fd")),
+                                              (["study", "job.toml", "--out", "s"], ("fe", "fd"))])
+def test_commands_load_the_kernels_before_they_read_the_job(monkeypatch, command, solvers):
+    """Reading a job compiles the path's code: on a first run after an install that belongs under
+    the kernels' compile notice, so the kernels load first (as the main job's do)."""
+    import fem_tether.config
+    import fem_tether.jobs.job
+    import fem_tether.jobs.study.job
+
+    order = []
+
+    def refuse(*args, **kwargs):
+        order.append("job")
+        raise ConfigError("job read")
+
+    monkeypatch.setattr(cli, "load_kernels", lambda s: order.append(("kernels", tuple(s))))
+    monkeypatch.setattr(cli, "load_kernels_by_rank", lambda comm, s: order.append(("kernels", tuple(s))))
+    for module, name in ((cli, "load_config"), (fem_tether.jobs.job, "load_job"),
+                         (fem_tether.jobs.study.job, "load_study")):
+        monkeypatch.setattr(module, name, refuse)
+    assert cli.main(command) == 2
+    assert order == [("kernels", solvers), "job"]
