@@ -107,19 +107,22 @@ def _config(args, length_m=None):
     return load_config(args.config, {"tether": {"length_m": length_m}} if length_m else None, args.system)
 
 
-def _kernels_first(solvers, mpi: bool = False) -> None:
+def _kernels_first(solvers) -> None:
     """Load the kernels of ``solvers`` before the job is read, as the main job does: reading
     it compiles the path's code, which on a first run after an install belongs under the
-    kernels' compile notice (:func:`fem_tether.tether.kernels.load`), not before it in silence;
-    ``mpi``: on the ranks of MPI.COMM_WORLD, each compiling one solver's."""
-    if not mpi:
-        load_kernels(solvers)
-        return
+    kernels' compile notice (:func:`fem_tether.tether.kernels.load`), not before it in silence."""
+    load_kernels(solvers)
+
+
+def _kernels_first_by_rank() -> None:
+    """:func:`_kernels_first` on the ranks of MPI.COMM_WORLD, for a job not yet read: the FE
+    kernels, which every job flies; on several ranks also the FD kernels, compiled on another
+    rank side by side (no wall time; the cross-check, on by default, needs them)."""
     from mpi4py import MPI
 
     comm = MPI.COMM_WORLD
     with guard(comm):
-        load_kernels_by_rank(comm, solvers)
+        load_kernels_by_rank(comm, ("fe", "fd") if comm.Get_size() > 1 else ("fe",))
 
 
 # --- commands ---------------------------------------------------------------------
@@ -252,7 +255,7 @@ def cmd_sweep(args):
     from fem_tether.jobs.job import load_job
     from fem_tether.jobs.sweep import sweep
 
-    _kernels_first(("fe", "fd"), mpi=True)
+    _kernels_first_by_rank()
     job = load_job(args.job, args.system)
     warn_unflyable(job.configs.values())
     outcome = sweep(job, args.out, progress=not args.json, keep_parts=args.keep_parts)
@@ -267,7 +270,7 @@ def cmd_study(args):
     from fem_tether.jobs.study.driver import run_study
     from fem_tether.jobs.study.job import load_study
 
-    _kernels_first(("fe", "fd"), mpi=True)
+    _kernels_first_by_rank()
     job = load_study(args.job, args.system)
     outcome = run_study(job, args.out, progress=not args.json, allow_unchecked=args.allow_unchecked)
     if outcome is None:
