@@ -65,7 +65,8 @@ def plot_cluster_curves(curves: Mapping, path, title: str) -> Path:
     from fem_tether.report.plots import plt, save_atomically
 
     frequency = np.asarray(curves["frequency"])
-    colours = plt.cm.viridis(np.linspace(0.0, 0.9, frequency.size))
+    colours = plt.cm.tab10(np.arange(frequency.size)) if frequency.size <= 10 else plt.cm.viridis(
+        np.linspace(0.0, 0.9, frequency.size))
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.4), layout="constrained")
     styles = {"flexible": "-", "straight": "--"}
     for model, ls in styles.items():
