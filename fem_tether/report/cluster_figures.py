@@ -12,6 +12,11 @@ power curve with its own C_D,t (:func:`fem_tether.performance.aep.system_on_clus
   G_e the AEP takes: at ``[kite] speed_mps``, ρ at L cos ϑ0
   (:func:`fem_tether.performance.summary.operating_ge`);
 * each cluster's AEP_k (were it to blow all year) against length, and its P(k).
+
+A study on clusters stores each point's per-cluster power at the speed edges, C_D,t per
+wind bin and AEP_k (:mod:`fem_tether.jobs.study.result`); :func:`study_cluster_curves`
+draws those at its optimum (C_D,t per bin in the middle panel: the study keeps no
+per-cluster G_e).
 """
 
 from __future__ import annotations
@@ -56,12 +61,45 @@ def cluster_curves(data: Mapping, energy: SweepAep) -> dict:
             "aep_MWh": results[model].aep_by_cluster_MWh,
             "power_W": cluster_power_W(cases[at[0]], drags[at[0]], resource, resource.edges_mps) if at.size else None,
         }
+        curves[model]["middle"] = (curves[model]["lengths_m"], curves[model]["ge"])
+    curves["middle"] = {"xlabel": "cable length L [m]", "ylabel": "global efficiency $G_e$",
+                        "title": "$G_e$ per cluster"}
+    return curves
+
+
+def study_cluster_curves(s: Mapping) -> dict:
+    """What :func:`plot_cluster_curves` draws of a study's surface ``s`` on clusters
+    (:func:`fem_tether.jobs.study.result.read_study`; its ``clusters``): at the optimum (the
+    flexible one, else the straight one) each cluster's power at the speed edges as stored, its
+    C_D,t per wind bin, and, at the optimum's diameter, its AEP_k against length."""
+    clusters = s.get("clusters")
+    if clusters is None:
+        raise ValueError("study_cluster_curves: the surface is not on wind-profile clusters")
+    best = s["optimum"]["fe"] or s["optimum"]["straight"]
+    diameter = float(best["diameter_m"]) if best else float(s["diameter_m"][0])
+    at = np.flatnonzero(s["diameter_m"] == diameter)
+    at = at[np.argsort(s["length_m"][at], kind="stable")]
+    point = (int(np.flatnonzero((s["length_m"] == best["length_m"]) & (s["diameter_m"] == diameter))[0])
+             if best else None)
+    curves: dict = {"frequency": clusters["cluster_frequency"], "reference_speed_mps": s["edges_mps"],
+                    "length_m": None if best is None else float(best["length_m"]),
+                    "middle": {"xlabel": "wind speed bin $V_w$ [m/s]", "ylabel": "$C_{D,t}$",
+                               "title": "$C_{D,t}$ per cluster and wind bin at the optimum"}}
+    for model, key in (("flexible", "fe"), ("straight", "straight")):
+        curves[model] = {
+            "lengths_m": s["length_m"][at],
+            "aep_MWh": clusters[f"aep_{key}_cluster_MWh"][at],
+            "power_W": None if point is None else clusters[f"power_edges_{key}_cluster_W"][point],
+            "middle": (s["wind_mps"], None if point is None else clusters[f"cd_{key}_cluster"][point].T),
+        }
     return curves
 
 
 def plot_cluster_curves(curves: Mapping, path, title: str) -> Path:
-    """Three panels: each cluster's power curve against V_ref at one length, its G_e and its
-    AEP_k against length; flexible solid, straight dashed, one colour per cluster."""
+    """Three panels: each cluster's power curve against V_ref at one length, its G_e against
+    length (a sweep's) or its C_D,t per wind bin (a study's: ``curves["middle"]`` labels the
+    panel, each model's ``middle`` gives x and y), and its AEP_k against length; flexible
+    solid, straight dashed, one colour per cluster."""
     from fem_tether.report.plots import plt, save_atomically
 
     frequency = np.asarray(curves["frequency"])
@@ -76,13 +114,15 @@ def plot_cluster_curves(curves: Mapping, path, title: str) -> Path:
             if c["power_W"] is not None:
                 axes[0].plot(curves["reference_speed_mps"], 1e-6 * c["power_W"][k], ls, color=colours[k], lw=1.0,
                              label=label)
-            axes[1].plot(c["lengths_m"], c["ge"][:, k], ls + "o", ms=2.5, color=colours[k], lw=1.0)
+            x, y = c["middle"]
+            if y is not None:
+                axes[1].plot(x, y[:, k], ls + "o", ms=2.5, color=colours[k], lw=1.0)
             if c["aep_MWh"] is not None:
                 axes[2].plot(c["lengths_m"], 1e-3 * c["aep_MWh"][:, k], ls + "o", ms=2.5, color=colours[k], lw=1.0)
     at = curves["length_m"]
     axes[0].set(xlabel="wind speed at the reference height $V_{ref}$ [m/s]", ylabel="electrical power [MW]",
                 title=f"power curves at L = {at:g} m" if at is not None else "power curves (no best length)")
-    axes[1].set(xlabel="cable length L [m]", ylabel="global efficiency $G_e$", title="$G_e$ per cluster")
+    axes[1].set(**curves["middle"])
     axes[2].set(xlabel="cable length L [m]", ylabel="AEP$_k$ [GWh]", title="AEP were the cluster to blow all year")
     for ax in axes:
         ax.grid(alpha=0.3)

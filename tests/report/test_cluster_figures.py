@@ -75,3 +75,40 @@ def test_a_cluster_sweeps_page_shows_the_cluster_curves_and_a_plain_one_does_not
     assert page.count("<img") == 5
     plain = read_sweep(unrun_sweep)
     assert "clusters" not in write_plots(plain, sweep_aep(plain, allow_incomplete=True), tmp_path)
+
+
+CSV = ("reference_height [m];100\nh [m];u1;v1;u2;v2\n10;0.8;0;0.9;0\n100;1;0;1;0\n1000;1.3;0;1.1;-0.2\n"
+       "frequency;0.7;0.3\nv_low [m/s];v_high [m/s];p1;p2\n0;5;0.2;0.3\n5;10;0.4;0.4\n10;20;0.3;0.3\n20;30;0.1;0\n")
+
+
+def test_a_cluster_studys_page_draws_each_clusters_stored_curves(tmp_path):
+    """A study of one point, three wind bins, two clusters: its page shows <surface>_clusters.png; the
+    power curves drawn are the stored ones, which integrate to each cluster's stored AEP_k (within 1e-12),
+    and the C_D,t drawn are the stored ones per bin."""
+    from mpi4py import MPI
+
+    from conftest import STUDY_FAST
+    from fem_tether.jobs.study.driver import run_study
+    from fem_tether.jobs.study.job import load_study
+    from fem_tether.jobs.study.result import read_study
+    from fem_tether.report.cluster_figures import study_cluster_curves
+    from fem_tether.report.study import write_report
+
+    (tmp_path / "site.csv").write_text(CSV)
+    job = tmp_path / "study.toml"
+    job.write_text('[study]\nlengths_m = [400]\nwind_mps = [9, 12, 15]\nrefine = false\n' + STUDY_FAST
+                   + '[resource]\nclusters = "site.csv"\n')
+    out = tmp_path / "study.h5"
+    run_study(load_study(job), out, comm=MPI.COMM_SELF, progress=False)
+    s = read_study(out).surfaces["configured/configured"]
+    curves = study_cluster_curves(s)
+    probability = np.array([[0.2, 0.4, 0.3, 0.1], [0.3, 0.4, 0.3, 0.0]])
+    for model, key in (("flexible", "fe"), ("straight", "straight")):
+        power = curves[model]["power_W"]
+        np.testing.assert_array_equal(power, s.clusters[f"power_edges_{key}_cluster_W"][0])
+        aep_MWh = 8760.0 * np.sum(probability * 0.5 * (power[:, 1:] + power[:, :-1]), axis=1) / 1e6
+        np.testing.assert_allclose(aep_MWh, s.clusters[f"aep_{key}_cluster_MWh"][0], rtol=1e-12)
+        np.testing.assert_array_equal(curves[model]["middle"][1], s.clusters[f"cd_{key}_cluster"][0].T)
+    page = write_report(out).read_text(encoding="utf-8")
+    assert "configured_configured_clusters.png" in page
+    assert is_png(out.parent / "study_report" / "configured_configured_clusters.png")
