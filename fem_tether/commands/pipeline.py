@@ -32,6 +32,7 @@ from pathlib import Path
 
 from fem_tether.performance.aep import SweepAep, sweep_aep
 from fem_tether.core.atomic import check_writable, exclusive, write_json
+from fem_tether.report.cluster_figures import CLUSTER_PLOT_FILE
 from fem_tether.report.figures import PLOT_FILES, write_plots
 from fem_tether.report.job_summary import CSV_NAME, JSON_NAME, aep_document, summary_document, write_summary
 from fem_tether.commands.flight import warn_unflyable
@@ -71,7 +72,7 @@ FLIGHT_IMPORTS_COST_US = 0.5e6
 SOLVERS = ("fe", "fd")
 
 #: The files the main job writes into its folder beside ``sweep.h5``.
-FILES = (*PLOT_FILES, "aep.json", CSV_NAME, JSON_NAME, PAGE_NAME)
+FILES = (*PLOT_FILES, CLUSTER_PLOT_FILE, "aep.json", CSV_NAME, JSON_NAME, PAGE_NAME)
 
 
 @dataclass(frozen=True)

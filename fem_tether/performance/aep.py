@@ -231,13 +231,31 @@ def operating_altitude_m(cfg: Config, length_m: float) -> float:
     return float(length_m * math.cos(math.radians(cfg.kite.theta0_deg)))
 
 
+def _cluster_systems(case: Config, drag_N, resource: ClusterResource) -> list[tuple[ConfiguredSystem, float]]:
+    """Each cluster's :func:`configured_system` with its drag (``drag_N``: one, or one per cluster)."""
+    drags = np.broadcast_to(np.asarray(drag_N, dtype=float), (resource.n_clusters,))
+    return [configured_system(case, float(d)) for d in drags]
+
+
+def _cluster_power(systems, case: Config, resource: ClusterResource) -> Callable[[int, np.ndarray], np.ndarray]:
+    """P_k(V_ref): cluster k's system's power at the speed of the kite's altitude z = L cosϑ0,
+    V_ref sqrt(u_k(z)^2 + v_k(z)^2)."""
+    z_m = operating_altitude_m(case, case.tether.length_m)
+    return lambda k, v_ref: systems[k][0].electrical_power_W(resource.speed_mps(k, v_ref, z_m), systems[k][1])
+
+
+def cluster_power_W(case: Config, drag_N, resource: ClusterResource, reference_speed_mps) -> np.ndarray:
+    """Each cluster's power curve P_k(V_ref) [W] at the reference speeds ``reference_speed_mps``
+    (clusters x speeds): the curves :func:`system_on_clusters` integrates."""
+    power = _cluster_power(_cluster_systems(case, drag_N, resource), case, resource)
+    speeds = np.asarray(reference_speed_mps, dtype=float)
+    return np.array([power(k, speeds) for k in range(resource.n_clusters)], dtype=float)
+
+
 def _systems_on_clusters(case: Config, drag_N, resource: ClusterResource) -> tuple[ClusterAep, float]:
     """:func:`system_on_clusters` and the rated power Σ_k P(k) P_rated,k of cluster k's C_D,t."""
-    drags = np.broadcast_to(np.asarray(drag_N, dtype=float), (resource.n_clusters,))
-    systems = [configured_system(case, float(d)) for d in drags]
-    z_m = operating_altitude_m(case, case.tether.length_m)
-    result = aep_on_clusters(lambda k, v_ref: systems[k][0].electrical_power_W(resource.speed_mps(k, v_ref, z_m),
-                                                                                systems[k][1]), resource)
+    systems = _cluster_systems(case, drag_N, resource)
+    result = aep_on_clusters(_cluster_power(systems, case, resource), resource)
     rated_W = math.fsum(f * system.rated_power_W(cd) for f, (system, cd) in zip(resource.frequency, systems))
     return result, rated_W
 

@@ -43,7 +43,8 @@ STRAIGHT = "the rigid straight line in the same wind"
 
 
 def write_plots(data: Mapping, energy: SweepAep, directory: Path) -> dict[str, Path]:
-    """F_t, G_e, power curves (shortest and longest line) and AEP against L."""
+    """F_t, G_e, power curves (shortest and longest line) and AEP against L; on wind-profile
+    clusters also each cluster's power curve, G_e and AEP (:mod:`fem_tether.report.cluster_figures`)."""
     from fem_tether.report import plots
 
     cfg = data["config"]
@@ -74,12 +75,18 @@ def write_plots(data: Mapping, energy: SweepAep, directory: Path) -> dict[str, P
         aep = {"straight": energy.straight, "flexible, configured d": energy.fixed,
                "flexible, sized d": energy.flexible}
     files["aep"] = plots.plot_aep(aep, directory / PLOT_FILES[3])
+    if energy.clusters is not None:
+        from fem_tether.report.cluster_figures import CLUSTER_PLOT_FILE, cluster_curves, plot_cluster_curves
+
+        files["clusters"] = plot_cluster_curves(
+            cluster_curves(data, energy), directory / CLUSTER_PLOT_FILE,
+            f"{cfg.system.name}: each of the {energy.clusters.n_clusters} wind-profile clusters' own F_t")
     return files
 
 
 def caption(name: str, cfg: Config, lengths_m) -> str:
     """One sentence saying what the figure ``name`` of :func:`write_plots` ("drag", "ge",
-    "power", "aep") shows for the sweep of ``cfg`` over ``lengths_m``, with the figure of
+    "power", "aep", "clusters") shows for the sweep of ``cfg`` over ``lengths_m``, with the figure of
     Roselli 2016 it compares with where that is the KiteGen model's."""
     kitegen = cfg.system.model == "kitegen"
     lumped = {"power": "F_P, the power-equivalent force", "moment": "F_t"}[cfg.drag.tether_drag_lumping]
@@ -98,6 +105,10 @@ def caption(name: str, cfg: Config, lengths_m) -> str:
         "aep": f"Annual energy production (Roselli 2016 eq. 5.2) against cable length, flexible and {STRAIGHT}, "
                f"with the {MODEL_SOURCES[cfg.system.model]}; the best length of each starred"
                + (" (as in Roselli 2016 Fig. 5.6)." if kitegen else "."),
+        "clusters": f"Each wind-profile cluster's power curve against the wind speed at the reference height at the "
+                    f"best length, its G_e (Roselli 2016 eq. 5.1) and its AEP were it to blow all year (Roselli 2016 "
+                    f"eq. 5.2) against cable length, each with the F_t of the runs in that cluster's wind: flexible "
+                    f"(solid) and {STRAIGHT} (dashed); the AEP above sums them weighted by the clusters' frequencies.",
     }
     return captions[name]
 

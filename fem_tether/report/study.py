@@ -9,6 +9,9 @@ Per surface (a system at a site), read back from the study file
   lengths at the optimum's diameter (:func:`fem_tether.report.plots.plot_bin_power`);
 * ``<system>_<site>_ge.png``: G_e of each wind bin of the same points
   (:func:`fem_tether.report.plots.plot_ge_by_wind`);
+* on wind-profile clusters, ``<system>_<site>_clusters.png``: at the optimum each cluster's
+  power at the speed edges and C_D,t per bin, and its AEP_k against length
+  (:func:`fem_tether.report.cluster_figures.study_cluster_curves`);
 
 and ``index.html``: per surface the optimum (flexible and straight), the
 points' status counts, the FE <-> FD gate's largest drag difference, the
@@ -29,6 +32,7 @@ import numpy as np
 
 from fem_tether import __version__
 from fem_tether.report import plots
+from fem_tether.report.cluster_figures import plot_cluster_curves, study_cluster_curves
 from fem_tether.core.atomic import atomic_path, generator_tag
 from fem_tether.report.page import PAGE_NAME, STYLE, image, number, table
 from fem_tether.report.text import finite_max
@@ -101,7 +105,7 @@ def figure_sources(s: dict) -> dict[str, str]:
     return {"aep": f"Roselli 2016 eq. 5.2 with the {power_model(s)} and {drag}: flexible from FE runs, "
                    f"straight from Roselli 2016 eq. 4.1{summed}",
             "power": f"the {power_model(s)} with {drag}: flexible from FE runs, straight from Roselli 2016 eq. 4.1"
-                     + (", in the configured wind profile (each cluster's in the study file)" if k else ""),
+                     + (", in the configured wind profile (each cluster's in the figure of the clusters)" if k else ""),
             "ge": plots.GE_SOURCE + (", at each wind bin's operating point" if binned else
                                      ", at the configured operating point")}
 
@@ -116,7 +120,7 @@ def write_figures(s: dict, system: str, site: str, directory: Path) -> dict[str,
     at = f"d = {1e3 * diameter:.1f} mm"
     sources = figure_sources(s)
     stem = f"{system}_{site}"
-    return {
+    figures = {
         "aep": plots.plot_aep_map(s, aep_cases(s), directory / f"{stem}_aep.png",
                                   f"{name}: annual energy production", sources["aep"]),
         "power": plots.plot_bin_power(curves, directory / f"{stem}_power.png",
@@ -124,6 +128,10 @@ def write_figures(s: dict, system: str, site: str, directory: Path) -> dict[str,
         "ge": plots.plot_ge_by_wind(curves, directory / f"{stem}_ge.png",
                                     f"{name}: global efficiency against wind speed, {at}", sources["ge"]),
     }
+    if s.get("clusters") is not None:
+        figures["clusters"] = plot_cluster_curves(study_cluster_curves(s), directory / f"{stem}_clusters.png",
+                                                  f"{name}: each wind-profile cluster's own curves, {at}")
+    return figures
 
 
 def _swept(s: dict) -> dict[str, bool]:

@@ -2,11 +2,14 @@
 and as awesIO's validator applies it), read back unchanged; documents that give their
 probabilities only as a matrix (in percent, as awesIO's examples do) read too."""
 
+import hashlib
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from awesio_valid import assert_valid
-from fem_tether.io.awesio import AwesioError, yaml_text
+from fem_tether.io.awesio import AwesioError, read_document, yaml_text
 from fem_tether.io.awesio_clusters import read_cluster_resource, read_wind_resource, wind_resource_document
 from fem_tether.physics.clusters import ClusterError, ClusterResource
 from fem_tether.physics.clustering import cluster_profiles
@@ -97,3 +100,38 @@ def test_the_cluster_key_reads_an_awesio_document_or_the_legacy_csv(tmp_path):
     assert read_cluster_resource(csv).n_clusters == 1
     with pytest.raises(AwesioError, match=r"r.yml"):
         read_cluster_resource(write(tmp_path / "r.yml", {"metadata": {"schema": "wind_resource_schema.yml"}}))
+
+
+#: awesIO 0.1.0's published ERA5 example resource, shipped in docs/data (PROVENANCE.md there).
+ERA5_EXAMPLE = Path(__file__).resolve().parents[2] / "docs" / "data" / "awesio-era5-52N-4E-wind-resource.yml"
+
+
+def test_the_published_era5_example_reads_as_its_metadata_states():
+    """The file is the one PROVENANCE.md names (SHA-256), valid against the shipped schema, and reads as
+    its metadata states it: 8 clusters at 0-500 m normalised at 100 m, 50 speed bins from 0.2286 to
+    26.90 m/s; its frequencies and speed distributions are its percent matrix summed over its 36
+    direction bins (the frequencies as read: 0.207, 0.214, 0.133, 0.120, 0.117, 0.074, 0.075, 0.060)."""
+    assert hashlib.sha256(ERA5_EXAMPLE.read_bytes()).hexdigest() in (ERA5_EXAMPLE.parent / "PROVENANCE.md").read_text()
+    document = read_document(ERA5_EXAMPLE, "wind_resource")[1]
+    assert_valid(document)
+    r = read_wind_resource(ERA5_EXAMPLE)
+    assert (r.n_clusters, r.reference_height_m, r.heights_m[0], r.heights_m[-1], r.heights_m.size) == (8, 100.0, 0.0,
+                                                                                                      500.0, 51)
+    assert r.edges_mps.size == 51 and r.edges_mps[[0, -1]] == pytest.approx([0.22862586691227782, 26.898179944032997])
+    matrix = np.array(document["probability_matrix"]["data"])
+    assert matrix.shape == (8, 50, 36) and matrix.sum() == pytest.approx(100.0, rel=1e-9)
+    np.testing.assert_allclose(r.frequency, matrix.sum(axis=(1, 2)) / matrix.sum(), rtol=1e-12)
+    assert r.frequency.round(3).tolist() == [0.207, 0.214, 0.133, 0.120, 0.117, 0.074, 0.075, 0.060]
+    np.testing.assert_allclose(r.probability.sum(axis=1), 1.0, rtol=1e-12)
+
+
+def test_a_document_of_awegroups_later_unitless_keys_is_refused_naming_the_first(tmp_path):
+    """awegroup/awesIO's own example (keys without units: metadata.reference_height, wind_speed_bins.bin_edges)
+    follows a later schema than the shipped v0.1.0: one line naming the file and the missing key."""
+    document = read_document(ERA5_EXAMPLE, "wind_resource")[1]
+    metadata = document["metadata"]
+    metadata["reference_height"] = metadata.pop("reference_height_m")
+    document["wind_speed_bins"] = {"bin_edges": document["wind_speed_bins"]["bin_edges_m_s"]}
+    with pytest.raises(AwesioError, match="'reference_height_m' is a required property") as info:
+        read_wind_resource(write(tmp_path / "awegroup.yml", document))
+    assert "\n" not in str(info.value) and "awegroup.yml" in str(info.value)
