@@ -218,6 +218,8 @@ def _write_results(h5: Path, out: Path, allow_unchecked: bool, allow_incomplete:
     energy = sweep_aep(data, allow_unchecked=allow_unchecked, allow_incomplete=allow_incomplete)
     drawn = draw(shown_flight(data, energy))
     plots = write_plots(data, energy, out)
+    if "clusters" not in plots:                   # a figure of clusters an earlier run here flew
+        (out / CLUSTER_PLOT_FILE).unlink(missing_ok=True)   # (ours: check_writable refused any other)
     flight, drew_rss_MiB = drawn()
     run = run_of(data, drew_rss_MiB)                          # the files below take milliseconds
     files = plots | {"aep_json": out / "aep.json", "summary_csv": out / CSV_NAME, "summary_json": out / JSON_NAME,

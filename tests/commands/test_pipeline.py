@@ -287,9 +287,16 @@ def test_write_run_report_writes_the_main_jobs_files_for_a_sweep_file(quick_run,
     summary.json, said on the page), its ranks are the file's."""
     import fem_tether
 
+    import matplotlib.pyplot as plt
+
+    from fem_tether.report.cluster_figures import CLUSTER_PLOT_FILE
+    from fem_tether.report.plots import save_atomically
+
     _, out = quick_run
-    report = fem_tether.write_run_report(out / "sweep.h5", tmp_path / "again")
     again = tmp_path / "again"
+    again.mkdir()
+    save_atomically(plt.figure(), again / CLUSTER_PLOT_FILE)     # an earlier run's clusters: not this sweep's
+    report = fem_tether.write_run_report(out / "sweep.h5", again)
     assert sorted(p.name for p in again.iterdir()) == sorted(["aep.json", "summary.csv", "summary.json", "index.html",
                                                               "drag_vs_length.png", "ge_vs_length.png",
                                                               "power_curves.png", "aep_vs_length.png"])
