@@ -121,7 +121,9 @@ def test_the_files_run_writes_are_those_readme_lists(tmp_path, capsys):
     job.write_text(TINY_JOB.replace("[400, 800]", "[400]"))
     out = tmp_path / "results"
     assert main(["run", str(job), "--out", str(out)]) == 0
-    assert sorted(p.name for p in out.iterdir()) == sorted(_bullets("`fem-tether run` prints the summary table"))
+    listed = _bullets("`fem-tether run` prints the summary table")
+    assert "- `cluster_curves.png` (with `[resource] clusters` only" in README      # a job without clusters
+    assert sorted(p.name for p in out.iterdir()) == sorted(set(listed) - {"cluster_curves.png"})
 
 
 def test_the_files_simulate_writes_are_those_readme_lists(tmp_path, capsys):
