@@ -316,3 +316,19 @@ def test_the_kernel_step_is_the_python_iteration():
     assert n_a == n_b
     for x, y in ((a.r, b.r), (a.v, b.v), (a.a, b.a), (a.T, b.T)):
         assert np.max(np.abs(x - y)) <= 1e-12 * np.max(np.abs(y))
+
+
+def test_a_kite_force_undefined_at_an_iterate_says_why():
+    """Where the kite's force is undefined at an iterate (here its polar, 40-41 deg, is far from
+    the kite's angle of attack), the kernel's step stops and the step fails saying why, as the
+    Python iteration's did: the polar's own message."""
+    from fem_tether.physics.kite_dynamics import Polar
+    from fem_tether.tether.continuation import NotConverged
+    solver = FDSolver(fd.build_model(free_cfg(tether={"length_m": 400.0}, fd={"segments": 8, "dt_s": 0.05})))
+    start = solver.initial_state()
+    kite = solver.model.kite
+    narrow = replace(kite.kite, aerodynamics=Polar((40.0, 41.0), (1.0, 1.0), (0.1, 0.1), source="narrow.csv"))
+    model = replace(solver.model, kite=replace(kite, kite=narrow))
+    with pytest.raises(NotConverged, match=r"the kite's force at an iterate: angle of attack .* is outside the "
+                                           r"polar narrow.csv \(40 to 41 deg\)"):
+        fd.solver._free_step(model, None, start, 0.05, protocol.Statistics())
