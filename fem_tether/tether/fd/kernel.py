@@ -16,7 +16,9 @@ the residual (:func:`residual`) and, when asked, the Jacobian's entries
 (:func:`jacobian`) assembled into the band (:func:`assemble`).
 :func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``;
 :func:`solve_step` runs the Newton iteration of one implicit time step
-(:func:`.solver._step`) in one call.  Written for the FD grid on its own: the
+(:func:`.solver._step`) in one call, and :func:`free_step` that of a line
+whose end carries the point-mass kite (:mod:`.kite`; its load called by
+address, compiled when a run first flies the kite).  Written for the FD grid on its own: the
 FE solver's kernels are not used (the FD solver is their independent
 reference); only the leaf physics is shared.
 
