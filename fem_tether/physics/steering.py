@@ -67,13 +67,6 @@ LOOP_SAMPLES = 256
 N_NEWTON_GLOBAL = 6
 
 
-def cross(a, b):
-    """a × b of two 3-vectors, or of arrays of them (..., 3) (``numpy.cross`` costs ~20 times
-    more on one pair)."""
-    (a0, a1, a2), (b0, b1, b2) = a.T, b.T
-    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]).T
-
-
 @dataclass(frozen=True)
 class PathPoint:
     """A point of the reference path and its local geometry on the sphere."""
@@ -90,6 +83,13 @@ class PathPoint:
     """Geodesic curvature κ_g = r''·n / V_p² (1/m; > 0 turning left)."""
     path_speed_mps: float
     """V_p = |r'|, the speed at which the path object flies its path."""
+
+    @property
+    def values(self) -> np.ndarray:
+        """(σ, r, t, n, κ_g, V_p) in one array (:data:`~fem_tether.physics.trajectory.POINT_SIZE`),
+        as :func:`nearest` gives a point and :func:`track` and :func:`law_roll` take it."""
+        return np.concatenate([[self.parameter_s], self.position_m, self.tangent, self.normal,
+                               [self.curvature_per_m, self.path_speed_mps]])
 
 
 _path_at = caller(PATH_SIGNATURE)
@@ -259,16 +259,17 @@ class Steering:
         """a_⊥ = V² κ_g cosη / (1 − κ_g e) + (4V²/ℓ)(η_d − η), η_d = −atan(e/ℓ).
 
         The factor 1/(1 − κ_g e) is held ≤ 2 (the kite at most half the turn
-        radius inside the turn; beyond, the nearest point is ill-defined).
+        radius inside the turn; beyond, the nearest point is ill-defined)
+        (:func:`lateral_acceleration_mps2`).
         """
-        kappa, e, eta = point.curvature_per_m, cross_track_m, heading_error_rad
-        feedforward = speed_mps ** 2 * kappa * math.cos(eta) / max(1.0 - kappa * e, 0.5)
-        return feedforward + self.feedback_acceleration(speed_mps, e, eta)
+        return lateral_acceleration_mps2(float(point.curvature_per_m), float(speed_mps), float(cross_track_m),
+                                         float(heading_error_rad), float(self.lookahead_m))
 
     def feedback_acceleration(self, speed_mps, cross_track_m, heading_error_rad):
-        """The feedback part of a_⊥: (4V²/ℓ)(η_d − η), η_d = −atan(e/ℓ), the angle wrapped to (−π, π]."""
-        wrapped = math.remainder(-math.atan(cross_track_m / self.lookahead_m) - heading_error_rad, 2.0 * math.pi)
-        return 4.0 * speed_mps ** 2 * wrapped / self.lookahead_m
+        """The feedback part of a_⊥: (4V²/ℓ)(η_d − η), η_d = −atan(e/ℓ), the angle wrapped to (−π, π]
+        (:func:`feedback_acceleration_mps2`)."""
+        return feedback_acceleration_mps2(float(speed_mps), float(cross_track_m), float(heading_error_rad),
+                                          float(self.lookahead_m))
 
     def command(self, point: PathPoint, position_m, velocity_mps, aero_force_N, lift_N) -> Command:
         """The roll ψ for a kite at ``position_m`` moving at ``velocity_mps``.
@@ -276,24 +277,134 @@ class Steering:
         ``point`` is the nearest point of the path (:func:`nearest_point`),
         ``aero_force_N`` the aerodynamic force vector F_0 at ψ = 0 (lift, drag
         and any lumped tether or turbine drag) and ``lift_N`` the lift L.
-        sinψ = (m a_⊥ − (F_0 + m g)·n_k)/L, n_k = ê_k × v/V (module docstring).
+        sinψ = (m a_⊥ − (F_0 + m g)·n_k)/L, n_k = ê_k × v/V (module docstring),
+        by the compiled :func:`law_roll`.
         """
-        if not lift_N > 0.0:
-            raise ValueError(f"lift_N must be positive to steer, got {lift_N}")
-        track = tracking(point, position_m, velocity_mps)
-        gravity = np.array([0.0, 0.0, -self.mass_kg * GRAVITY_MPS2])
-        passive = float((np.asarray(aero_force_N, dtype=float) + gravity) @ track.left)
-        speed, e, eta = track.speed_mps, track.cross_track_m, track.heading_error_rad
-        sin_ff = (self.mass_kg * speed ** 2 * point.curvature_per_m - passive) / lift_N
-        sin_roll = (self.mass_kg * self.lateral_acceleration(point, speed, e, eta) - passive) / lift_N
-        return self.limited(sin_roll, math.asin(min(max(sin_ff, -1.0), 1.0)), track)
+        out = np.empty(COMMAND_SIZE)
+        status = law_roll(point.values, np.asarray(position_m, dtype=float), np.asarray(velocity_mps, dtype=float),
+                          np.asarray(aero_force_N, dtype=float), float(lift_N), float(self.mass_kg),
+                          float(self.lookahead_m), float(self.roll_min_rad), float(self.roll_max_rad), out)
+        _raise(status, lift_N, position_m, velocity_mps)
+        return _command(out)
 
     def limited(self, sin_roll, feedforward_rad, track: Tracking) -> Command:
-        """The command of the roll whose sine is ``sin_roll``, held within the limits."""
-        low, high = math.sin(self.roll_min_rad), math.sin(self.roll_max_rad)
-        return Command(roll_rad=math.asin(min(max(sin_roll, low), high)), feedforward_rad=feedforward_rad,
-                       cross_track_m=track.cross_track_m, heading_error_rad=track.heading_error_rad,
-                       saturated=not low <= sin_roll <= high)
+        """The command of the roll whose sine is ``sin_roll``, held within the limits (:func:`limited_roll`)."""
+        roll, saturated = limited_roll(float(sin_roll), float(self.roll_min_rad), float(self.roll_max_rad))
+        return Command(roll_rad=roll, feedforward_rad=feedforward_rad, cross_track_m=track.cross_track_m,
+                       heading_error_rad=track.heading_error_rad, saturated=saturated)
+
+
+NO_LIFT, NO_SPEED = 1, 2
+"""What :func:`track` and :func:`law_roll` return where the law cannot steer (0: it can)."""
+TRACK_SIZE = 6
+"""The values of :func:`track`: V, e, η and n_k (3)."""
+COMMAND_SIZE = 5
+"""The values of :func:`law_roll`: ψ, ψ_ff, e, η and whether the limits clipped ψ (1.0) or not (0.0)."""
+
+
+def _raise(status: int, lift_N, position_m, velocity_mps) -> None:
+    """The error of :func:`track`'s or :func:`law_roll`'s ``status`` (nothing where it is 0)."""
+    if status == NO_LIFT:
+        raise ValueError(f"lift_N must be positive to steer, got {lift_N}")
+    if status == NO_SPEED:
+        p = np.asarray(position_m, dtype=float)
+        e_k = p / np.linalg.norm(p)
+        v = np.asarray(velocity_mps, dtype=float)
+        raise ValueError(f"velocity_mps={(v - (v @ e_k) * e_k).tolist()} has no speed across the tether to steer")
+
+
+def _command(out: np.ndarray) -> Command:
+    """The :class:`Command` of :func:`law_roll`'s values."""
+    roll, feedforward, e, eta, saturated = out.tolist()
+    return Command(roll_rad=roll, feedforward_rad=feedforward, cross_track_m=e, heading_error_rad=eta,
+                   saturated=bool(saturated))
+
+
+@jit
+def _wrapped_rad(angle_rad):
+    """``math.remainder(angle_rad, 2π)`` for |angle| ≤ 3π: the angle wrapped to [−π, π], exact
+    (x ∓ 2π is, for π < |x| ≤ 4π, by Sterbenz's lemma; numba has no ``math.remainder``)."""
+    turn = 2.0 * math.pi
+    if angle_rad > 0.5 * turn:
+        return angle_rad - turn
+    if angle_rad < -0.5 * turn:
+        return angle_rad + turn
+    return angle_rad
+
+
+@jit
+def feedback_acceleration_mps2(speed_mps, cross_track_m, heading_error_rad, lookahead_m):
+    """(4V²/ℓ)(η_d − η), η_d = −atan(e/ℓ), the angle wrapped to [−π, π] (the module docstring's
+    feedback; |η_d − η| ≤ 3π/2)."""
+    wrapped = _wrapped_rad(-math.atan(cross_track_m / lookahead_m) - heading_error_rad)
+    return 4.0 * speed_mps ** 2 * wrapped / lookahead_m
+
+
+@jit
+def lateral_acceleration_mps2(curvature_per_m, speed_mps, cross_track_m, heading_error_rad, lookahead_m):
+    """a_⊥ = V² κ_g cosη / max(1 − κ_g e, 1/2) + :func:`feedback_acceleration_mps2`."""
+    feedforward = speed_mps ** 2 * curvature_per_m * math.cos(heading_error_rad) \
+        / max(1.0 - curvature_per_m * cross_track_m, 0.5)
+    return feedforward + feedback_acceleration_mps2(speed_mps, cross_track_m, heading_error_rad, lookahead_m)
+
+
+@jit
+def limited_roll(sin_roll, roll_min_rad, roll_max_rad):
+    """(ψ, clipped): the roll whose sine is ``sin_roll`` held within [ψ_min, ψ_max], and whether it was."""
+    low, high = math.sin(roll_min_rad), math.sin(roll_max_rad)
+    return math.asin(min(max(sin_roll, low), high)), not low <= sin_roll <= high
+
+
+@jit
+def track(point, position_m, velocity_mps, out):
+    """V, e, η and n_k (:class:`Tracking`) of a kite at ``position_m`` moving at ``velocity_mps``
+    against the path point ``point`` (:attr:`PathPoint.values`) into ``out`` (:data:`TRACK_SIZE`):
+    v taken across the tether, ê_k = p/|p|, e = (p |r|/|p| − r)·n, η = atan2(v·n, v·t),
+    n_k = ê_k × v/V.  Returns :data:`NO_SPEED` if v has no part across the tether, else 0."""
+    p_norm = math.sqrt(position_m[0] ** 2 + position_m[1] ** 2 + position_m[2] ** 2)
+    e_k = position_m / p_norm
+    along = velocity_mps[0] * e_k[0] + velocity_mps[1] * e_k[1] + velocity_mps[2] * e_k[2]
+    v = velocity_mps - along * e_k
+    speed = math.sqrt(v[0] ** 2 + v[1] ** 2 + v[2] ** 2)
+    if not speed > 0.0:
+        return NO_SPEED
+    radius = math.sqrt(point[1] ** 2 + point[2] ** 2 + point[3] ** 2)
+    scale = radius / p_norm
+    e, v_n, v_t = 0.0, 0.0, 0.0
+    for i in range(3):
+        e += (position_m[i] * scale - point[1 + i]) * point[7 + i]
+        v_n += v[i] * point[7 + i]
+        v_t += v[i] * point[4 + i]
+    u = v / speed
+    out[0], out[1], out[2] = speed, e, math.atan2(v_n, v_t)
+    out[3] = e_k[1] * u[2] - e_k[2] * u[1]
+    out[4] = e_k[2] * u[0] - e_k[0] * u[2]
+    out[5] = e_k[0] * u[1] - e_k[1] * u[0]
+    return 0
+
+
+@jit
+def law_roll(point, position_m, velocity_mps, aero_force_N, lift_N, mass_kg, lookahead_m, roll_min_rad,
+             roll_max_rad, out):
+    """:meth:`Steering.command` compiled: sinψ = (m a_⊥ − (F_0 + m g)·n_k)/L within the limits and
+    the feed-forward's sinψ_ff = (m V² κ_g − (F_0 + m g)·n_k)/L, into ``out``
+    (:data:`COMMAND_SIZE`: ψ, ψ_ff, e, η, clipped).  Returns :data:`NO_LIFT` (L ≤ 0) or
+    :data:`NO_SPEED` (:func:`track`) where the law cannot steer, else 0."""
+    if not lift_N > 0.0:
+        return NO_LIFT
+    tracked = np.empty(TRACK_SIZE)
+    if track(point, position_m, velocity_mps, tracked) != 0:
+        return NO_SPEED
+    speed, e, eta = tracked[0], tracked[1], tracked[2]
+    passive = (aero_force_N[0] * tracked[3] + aero_force_N[1] * tracked[4]
+               + (aero_force_N[2] - mass_kg * GRAVITY_MPS2) * tracked[5])
+    curvature = point[10]
+    sin_ff = (mass_kg * speed ** 2 * curvature - passive) / lift_N
+    sin_roll = (mass_kg * lateral_acceleration_mps2(curvature, speed, e, eta, lookahead_m) - passive) / lift_N
+    roll, clipped = limited_roll(sin_roll, roll_min_rad, roll_max_rad)
+    out[0], out[1], out[2], out[3] = roll, math.asin(min(max(sin_ff, -1.0), 1.0)), e, eta
+    out[4] = 1.0 if clipped else 0.0
+    return 0
 
 
 @dataclass(frozen=True)
@@ -312,18 +423,12 @@ class Tracking:
 
 def tracking(point: PathPoint, position_m, velocity_mps) -> Tracking:
     """e, η and n_k of a kite at ``position_m`` moving at ``velocity_mps`` against
-    the path point ``point`` (module docstring; v taken across the tether)."""
-    p = np.asarray(position_m, dtype=float)
-    e_k = p / np.linalg.norm(p)
-    v = np.asarray(velocity_mps, dtype=float)
-    v = v - (v @ e_k) * e_k
-    speed = float(np.linalg.norm(v))
-    if not speed > 0.0:
-        raise ValueError(f"velocity_mps={v.tolist()} has no speed across the tether to steer")
-    radius = float(np.linalg.norm(point.position_m))
-    e = float((p * (radius / np.linalg.norm(p)) - point.position_m) @ point.normal)
-    eta = math.atan2(float(v @ point.normal), float(v @ point.tangent))
-    return Tracking(speed, e, eta, cross(e_k, v / speed))
+    the path point ``point`` (module docstring; v taken across the tether; :func:`track`)."""
+    out = np.empty(TRACK_SIZE)
+    _raise(track(point.values, np.asarray(position_m, dtype=float), np.asarray(velocity_mps, dtype=float), out),
+           0.0, position_m, velocity_mps)
+    speed, e, eta = out[:3].tolist()
+    return Tracking(speed, e, eta, out[3:])
 
 
 @dataclass(frozen=True)
@@ -362,14 +467,15 @@ class ScheduledSteering:
         """The scheduled (and, if ``corrected``, fed-back) roll; same arguments as
         :meth:`Steering.command`, whose ``aero_force_N`` only the feedback does not need."""
         if not lift_N > 0.0:
-            raise ValueError(f"lift_N must be positive to steer, got {lift_N}")
-        track = tracking(point, position_m, velocity_mps)
+            _raise(NO_LIFT, lift_N, position_m, velocity_mps)
+        tracked = tracking(point, position_m, velocity_mps)
         scheduled = float(self.schedule.roll_rad(orbit_angle_rad(self.circle, position_m)))
         sin_roll = math.sin(scheduled)
         if self.corrected:
-            feedback = self.law.feedback_acceleration(track.speed_mps, track.cross_track_m, track.heading_error_rad)
+            feedback = self.law.feedback_acceleration(tracked.speed_mps, tracked.cross_track_m,
+                                                      tracked.heading_error_rad)
             sin_roll += self.law.mass_kg * feedback / lift_N
-        return self.law.limited(sin_roll, scheduled, track)
+        return self.law.limited(sin_roll, scheduled, tracked)
 
 
 def sampled_lookahead_m(speed_mps, sample_s):

@@ -78,20 +78,29 @@ def _free_kite(run: TetherRun) -> bool:
     return "kite_speed_mps" in run.series
 
 
-def _nearest_kite_time(run: TetherRun, position_m, t) -> float:
+def _kite_positions_m(run: TetherRun) -> np.ndarray:
+    """The kite's position (its line's end node) at every snapshot of ``run`` (n, 3)."""
+    nodes = np.count_nonzero(np.isfinite(run.snapshots["s_m"]), axis=1)
+    return run.snapshots["position_m"][np.arange(nodes.size), nodes - 1]
+
+
+def _nearest_kite_time(run: TetherRun, position_m, t, kite_m=None) -> float:
     """The instant within one period of ``t`` at which ``run``'s kite (its line's
-    end, linear between snapshots) passes nearest ``position_m``."""
+    end, linear between snapshots) passes nearest ``position_m``: on each chord
+    p q between two snapshots the point ``p + w (q - p)``, ``w`` the projection
+    clipped to [0, 1], the first of the nearest.  ``kite_m``: the kite's positions
+    (:func:`_kite_positions_m`) if at hand."""
     times = run.snapshot_time_s
     near = np.flatnonzero(np.abs(times - t) <= run.period_s / 2)
-    kite = np.array([run.line(int(j))["position_m"][-1] for j in near])
-    best, best_t = np.inf, t
-    for k in range(near.size - 1):
-        p, q = kite[k], kite[k + 1]
-        w = float(np.clip((position_m - p) @ (q - p) / max(float((q - p) @ (q - p)), 1e-300), 0.0, 1.0))
-        gap = float(np.linalg.norm(p + w * (q - p) - position_m))
-        if gap < best:
-            best, best_t = gap, (1.0 - w) * times[near[k]] + w * times[near[k + 1]]
-    return float(best_t)
+    if near.size < 2:
+        return float(t)
+    kite = (_kite_positions_m(run) if kite_m is None else kite_m)[near]
+    p, chord = kite[:-1], kite[1:] - kite[:-1]
+    w = np.clip(np.einsum("ij,ij->i", position_m - p, chord)
+                / np.maximum(np.einsum("ij,ij->i", chord, chord), 1e-300), 0.0, 1.0)
+    gap = np.linalg.norm(p + w[:, None] * chord - position_m, axis=1)
+    k = int(np.argmin(gap))
+    return float((1.0 - w[k]) * times[near[k]] + w[k] * times[near[k + 1]])
 
 
 def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
@@ -104,12 +113,13 @@ def shape_difference(a: TetherRun, b: TetherRun, samples=200) -> float:
     t_end = min(a.snapshot_time_s[-1], b.snapshot_time_s[-1])
     worst, length = 0.0, a.length_m
     free = _free_kite(a) and _free_kite(b)
+    kites = (_kite_positions_m(a), _kite_positions_m(b)) if free else None
     for i, t in enumerate(a.snapshot_time_s):
         if t > t_end + 1e-9:
             break
         s_a = a.line(i)["s_m"]
         s = np.linspace(0.0, s_a[-1], samples)
-        t_b = min(_nearest_kite_time(b, a.line(i)["position_m"][-1], t), t_end) if free else t
+        t_b = min(_nearest_kite_time(b, kites[0][i], t, kites[1]), t_end) if kites is not None else t
         diff = _on_grid(a, i, s) - _line_at(b, t_b, s)
         worst = max(worst, float(np.max(np.linalg.norm(diff, axis=1))))
         length = max(length, float(s_a[-1]))

@@ -39,15 +39,18 @@ import numpy as np
 
 from fem_tether.physics.atmosphere import AirModel
 from fem_tether.core.errors import ConfigError, SolverDivergedError
-from fem_tether.physics.kite_dynamics import (AerodynamicForce, ConstantCoefficients, PointMassKite, Polar,
+from fem_tether.physics.compiled import caller, jit
+from fem_tether.physics.kite_dynamics import (KITE_LOAD_SIGNATURE, KITE_OK, AerodynamicForce, ConstantCoefficients,
+                                              PointMassKite, Polar, kite_load_address,
                                               aerodynamic_force_N, aerodynamic_load, gravity_force_N,
                                               load_forms, read_polar, steady_crosswind)
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.orbit import Circle
-from fem_tether.physics.trajectory import FigureEight
+from fem_tether.physics.trajectory import POINT_SIZE, FigureEight
 from fem_tether.physics.rate_hold import RateHold
 from fem_tether.physics.roll_schedule import RollSchedule, balance_schedule
-from fem_tether.physics.steering import (Command, ScheduledSteering, Steering, min_turn_radius_m, nearest_point,
+from fem_tether.physics.steering import (COMMAND_SIZE, N_NEWTON, Command, ScheduledSteering, Steering, law_roll,
+                                         min_turn_radius_m, nearest, nearest_point,
                                          sampled_lookahead_m)
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.physics.wind import WindProfile
@@ -177,9 +180,23 @@ class FreeKite:
         steer with: ψ = 0, and the sample's σ and errors are NaN (no path is
         tracked); the first powered sample after it finds the nearest path point
         afresh (:func:`~fem_tether.physics.steering.nearest_point` from the loop's best
-        sample, ``parameter_s`` NaN)."""
+        sample, ``parameter_s`` NaN).
+
+        The path-following law of a kite without a rate hold, from a known σ, is sampled
+        in one compiled call (:func:`steer_sample`: a sample costs a few µs, not ~0.1 ms of
+        NumPy); the other laws, and a sample that call finds undefined, take the NumPy
+        path, which raises saying why."""
         if self.depowered:
             return Steer(0.0, math.nan, Command(0.0, 0.0, math.nan, math.nan, False))
+        if self.rate_hold is None and isinstance(self.steering, Steering) and math.isfinite(parameter_s):
+            law = self.steering
+            out = np.empty(COMMAND_SIZE + 1)
+            if steer_sample(*law.path.compiled, float(parameter_s), kite_load_address(), *self.forms,
+                            np.asarray(r, dtype=float), np.asarray(v, dtype=float), np.asarray(tether, dtype=float),
+                            float(tension_N), np.asarray(line_drag_N, dtype=float) + np.zeros(3), float(law.mass_kg),
+                            float(law.lookahead_m), float(law.roll_min_rad), float(law.roll_max_rad), out):
+                roll, sigma, feedforward, e, eta, saturated = out.tolist()
+                return Steer(roll, sigma, Command(roll, feedforward, e, eta, bool(saturated)))
         try:
             point = nearest_point(self.steering.path, r, parameter_s)
             aero = aerodynamic_force_N(self.wing_at(r, v), r, v, self.wind, self.air, 0.0, tether,
@@ -337,3 +354,42 @@ def series_values(kite: FreeKite, steer: Steer, load: KiteLoad, velocity_mps) ->
         "heading_error_deg": math.degrees(steer.command.heading_error_rad),
         "path_laps": float(kite.steering.path.laps(steer.parameter_s)),
     }
+
+
+_kite_load = caller(KITE_LOAD_SIGNATURE)
+
+
+@jit
+def steer_sample(path_address, path_parameters, path_breaks, path_coefficients, parameter_s, kite_load, kite,
+                 limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_address, air_parameters, air_ceiling_m,
+                 r, v, tether, tension_N, line_drag_N, mass_kg, lookahead_m, roll_min_rad, roll_max_rad, out):
+    """:meth:`FreeKite.steer` of a kite flying the path-following law (:class:`Steering`,
+    without a rate hold) from a path point σ = ``parameter_s``, in one call: the nearest point
+    (:func:`~fem_tether.physics.steering.nearest`, :data:`~fem_tether.physics.steering.N_NEWTON`
+    steps), the aerodynamic force at ψ = 0 (:func:`~fem_tether.physics.kite_dynamics.air_load`
+    at the address ``kite_load``, the kite's ``forms``), its lift L = ½ ρ |W_e|² A C_L, and
+    the law's roll (:func:`~fem_tether.physics.steering.law_roll`) for F_0 = F_aero − T_L d/|d|
+    + ``line_drag_N``.  Into ``out``: ψ, σ and the law's ψ_ff, e, η, clipped.  False where any
+    of them is undefined (the caller's NumPy path then says why)."""
+    point = np.empty(POINT_SIZE)
+    if not nearest(path_address, path_parameters, path_breaks, path_coefficients, r, parameter_s, N_NEWTON, point):
+        return False
+    force, apparent, state, jac_roll = np.empty(3), np.empty(3), np.empty(5), np.empty(3)
+    jac_v, jac_r, jac_d = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+    if _kite_load(kite_load)(kite, limits_deg, breaks_rad, cubics, wind_address, wind_rows, air_address,
+                             air_parameters, air_ceiling_m, r, v, tether, False, 0.0, force, apparent, state, jac_v,
+                             jac_r, jac_d, jac_roll) != KITE_OK:
+        return False
+    lift_N = 0.5 * state[4] * (apparent[0] * apparent[0] + apparent[1] * apparent[1] + apparent[2] * apparent[2]) \
+        * kite[0] * state[2]
+    length = math.sqrt(tether[0] ** 2 + tether[1] ** 2 + tether[2] ** 2)
+    passive = np.empty(3)
+    for i in range(3):
+        passive[i] = force[i] + (-tension_N * tether[i] / length) + line_drag_N[i]
+    command = np.empty(COMMAND_SIZE)
+    if law_roll(point, r, v, passive, lift_N, mass_kg, lookahead_m, roll_min_rad, roll_max_rad, command) != 0:
+        return False
+    out[0], out[1] = command[0], point[0]
+    for k in range(1, COMMAND_SIZE):
+        out[1 + k] = command[k]
+    return True

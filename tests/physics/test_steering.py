@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 
 from fem_tether.physics.orbit import Circle
 from fem_tether.physics.roll_schedule import RollSchedule
-from fem_tether.physics.steering import (GRAVITY_MPS2, ScheduledSteering, Steering, cross, min_turn_radius_m, nearest_point, tracking,
+from fem_tether.physics.steering import (GRAVITY_MPS2, ScheduledSteering, Steering, min_turn_radius_m, nearest_point, tracking,
                                          parameter_rate, path_point)
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.physics.trajectory import FigureEight
@@ -48,7 +48,7 @@ class RigidTetherKite:
         e = position / np.linalg.norm(position)
         up = e - (e @ w) * w
         up /= np.linalg.norm(up)
-        return q * self.cd * w, q * self.cl, up, cross(w, up)
+        return q * self.cd * w, q * self.cl, up, np.cross(w, up)
 
 
 @dataclass(frozen=True)
@@ -446,6 +446,51 @@ def test_the_compiled_nearest_point_is_the_numpy_one(path):
             assert np.allclose(ours, theirs, rtol=1e-12, atol=1e-12 * float(np.max(np.abs(theirs)))), (ours, theirs)
         checked += 1
     assert checked > 300
-    a, b = rng.normal(size=(2, 5, 3))
-    assert np.allclose(cross(a, b), np.cross(a, b), rtol=0, atol=1e-15)
-    assert np.allclose(cross(a[0], b[0]), np.cross(a[0], b[0]), rtol=0, atol=1e-15)
+
+
+def _numpy_command(law, point, p, v, force, lift):
+    """The law's roll as its NumPy code computed it before it was compiled (the module
+    docstring's equations: v across the tether, e, η, n_k, a_⊥ and the lateral balance)."""
+    e_k = p / np.linalg.norm(p)
+    v = v - (v @ e_k) * e_k
+    speed = float(np.linalg.norm(v))
+    radius = float(np.linalg.norm(point.position_m))
+    e = float((p * (radius / np.linalg.norm(p)) - point.position_m) @ point.normal)
+    eta = math.atan2(float(v @ point.normal), float(v @ point.tangent))
+    left = np.cross(e_k, v / speed)
+    passive = float((force + np.array([0.0, 0.0, -law.mass_kg * GRAVITY_MPS2])) @ left)
+    kappa = point.curvature_per_m
+    wrapped = math.remainder(-math.atan(e / law.lookahead_m) - eta, 2.0 * math.pi)
+    lateral = speed ** 2 * kappa * math.cos(eta) / max(1.0 - kappa * e, 0.5) \
+        + 4.0 * speed ** 2 * wrapped / law.lookahead_m
+    sin_roll = (law.mass_kg * lateral - passive) / lift
+    sin_ff = (law.mass_kg * speed ** 2 * kappa - passive) / lift
+    low, high = math.sin(law.roll_min_rad), math.sin(law.roll_max_rad)
+    return (math.asin(min(max(sin_roll, low), high)), math.asin(min(max(sin_ff, -1.0), 1.0)), e, eta,
+            not low <= sin_roll <= high)
+
+
+def test_the_compiled_law_is_the_numpy_one():
+    """The law compiled (:func:`~fem_tether.physics.steering.law_roll`, one implementation for
+    :meth:`Steering.command` and the free kite's compiled sample) gives the roll, the
+    feed-forward, e, η and the saturation of its NumPy form to 1e-12, on and off the eight,
+    heading anywhere (the feedback's angle wrapped past ±π), saturated or not."""
+    path = FigureEight(1000.0, math.radians(45.0), 190.0, 95.0, 80.0)
+    law = Steering(path, 200.0, 20.0, -0.5, 0.5)
+    rng = np.random.default_rng(7)
+    saturated = 0
+    for _ in range(300):
+        point = nearest_point(path, path.state(rng.uniform(0.0, path.period_s))[0], rng.uniform(0.0, path.period_s), 0)
+        p = point.position_m + rng.normal(0.0, 8.0, 3)
+        v = rng.normal(0.0, 60.0, 3)
+        force = rng.normal(0.0, 2e4, 3)
+        lift = rng.uniform(1e4, 3e5)
+        command = law.command(point, p, v, force, lift)
+        roll, feedforward, e, eta, clipped = _numpy_command(law, point, p, v, force, lift)
+        assert command.roll_rad == pytest.approx(roll, abs=1e-12)
+        assert command.feedforward_rad == pytest.approx(feedforward, abs=1e-12)
+        assert command.cross_track_m == pytest.approx(e, abs=1e-12 * 1000.0)
+        assert command.heading_error_rad == pytest.approx(eta, abs=1e-12)
+        assert command.saturated == clipped
+        saturated += clipped
+    assert 0 < saturated < 300

@@ -81,3 +81,42 @@ def test_point_mass_kite_runs_pass_the_cross_check(length_m):
     if length_m == 500.0:
         equal_times = shape_difference(fe, replace(fd, series={}))     # no kite series: equal times
         assert equal_times > 5 * check.rel_diff["shape"]
+
+
+def _nearest_by_chords(times, kite, position_m, t, period_s):
+    """The former per-chord loop of ``_nearest_kite_time``: the first chord's nearest point."""
+    near = np.flatnonzero(np.abs(times - t) <= period_s / 2)
+    best, best_t = np.inf, t
+    for k in range(near.size - 1):
+        p, q = kite[near[k]], kite[near[k + 1]]
+        w = float(np.clip((position_m - p) @ (q - p) / max(float((q - p) @ (q - p)), 1e-300), 0.0, 1.0))
+        gap = float(np.linalg.norm(p + w * (q - p) - position_m))
+        if gap < best:
+            best, best_t = gap, (1.0 - w) * times[near[k]] + w * times[near[k + 1]]
+    return float(best_t)
+
+
+def test_the_nearest_kite_time_is_the_per_chord_search():
+    """The free kite's phase match (vectorised over the chords, with the kite's positions read
+    once per run: before, each FE snapshot read every FD snapshot of its period, 2/3 of a free
+    study's gate time) is the per-chord loop's instant, on a kite looping an eight with
+    repeated and stalled snapshots (zero chords), its line's length changing (padded snapshots)."""
+    from fem_tether.tether.crosscheck import _kite_positions_m, _nearest_kite_time
+    from fem_tether.tether.results import TetherRun
+    rng = np.random.default_rng(3)
+    times = np.arange(400) * 0.05
+    angle = 2 * np.pi * times / 6.5
+    kite = np.column_stack([400 + 0 * angle, 90 * np.sin(angle), 300 + 40 * np.sin(2 * angle)])
+    kite[100:104] = kite[100]                               # the kite at rest: chords of zero length
+    nodes = 5 + (np.arange(400) // 100)                     # 5..8 nodes: padded with NaN
+    s_m = np.full((400, 8), np.nan)
+    position = np.full((400, 8, 3), np.nan)
+    for i, n in enumerate(nodes):
+        s_m[i, :n] = np.linspace(0.0, 500.0, n)
+        position[i, :n] = np.linspace(0.0, 1.0, n)[:, None] * kite[i]
+    run = TetherRun("fd", 500.0, 6.5, times, {}, times, {"s_m": s_m, "position_m": position}, 0.0, None)
+    assert np.array_equal(_kite_positions_m(run), kite)
+    for t in rng.uniform(0.0, 20.0, 60):
+        target = kite[rng.integers(400)] + rng.normal(0.0, 5.0, 3)
+        expected = _nearest_by_chords(times, kite, target, t, 6.5)
+        assert _nearest_kite_time(run, target, t) == pytest.approx(expected, rel=1e-14, abs=1e-13)

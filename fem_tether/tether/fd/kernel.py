@@ -16,7 +16,9 @@ the residual (:func:`residual`) and, when asked, the Jacobian's entries
 (:func:`jacobian`) assembled into the band (:func:`assemble`).
 :func:`solve` is a band LU written after LAPACK's ``dgbtf2`` / ``dgbtrs``;
 :func:`solve_step` runs the Newton iteration of one implicit time step
-(:func:`.solver._step`) in one call.  Written for the FD grid on its own: the
+(:func:`.solver._step`) in one call, and :func:`free_step` that of a line
+whose end carries the point-mass kite (:mod:`.kite`; its load called by
+address, compiled when a run first flies the kite).  Written for the FD grid on its own: the
 FE solver's kernels are not used (the FD solver is their independent
 reference); only the leaf physics is shared.
 
@@ -39,12 +41,15 @@ import numpy as np
 
 from fem_tether.physics import atmosphere, drag_coefficient, wind
 from fem_tether.physics.atmosphere import air_state
+from fem_tether.physics.compiled import caller
 from fem_tether.physics.drag_coefficient import drag_coefficient_state
+from fem_tether.physics.kite_dynamics import KITE_ABOVE_AIR, KITE_LOAD_SIGNATURE, KITE_OK
 from fem_tether.physics.loads import derivative_work, drag_derivatives, drag_force, normal_flow, relative_velocity
 from fem_tether.physics.wind import wind_state
+from fem_tether.tether.fd.kite import end_drag_derivatives, kite_rows
 from fem_tether.tether.protocol import expect_converged, max_abs
 
-__all__ = ["assemble", "directions", "evaluate", "jacobian", "physics_tables", "residual", "solve",
+__all__ = ["assemble", "directions", "evaluate", "free_step", "jacobian", "physics_tables", "residual", "solve",
            "solve_step"]
 
 V, VC, M, F = "f8[:]", "f8[::1]", "f8[:, :]", "f8"    # vector, contiguous vector, matrix (any layout), float
@@ -393,8 +398,9 @@ def _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc):
                 acc[i, c] += a2 * (v_prev[i, c] - v_old[i, c])
 
 
-CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE = 0.0, 1.0, 2.0
-"""Outcomes of :func:`solve_step` (its ``status[0]``)."""
+CONVERGED, NOT_CONVERGED, LEFT_ATMOSPHERE, KITE_UNDEFINED = 0.0, 1.0, 2.0, 3.0
+"""Outcomes of :func:`solve_step` and :func:`free_step` (their ``status[0]``; the kite's
+force undefined at an iterate: :func:`free_step` only)."""
 
 
 @numba.njit(f"i8(Tuple(({M}, {M}, {M}, {V}, {F})), Tuple(({M}, {M})), {V}, {F}, {F}, {F}, {F}, {F}, {F}, i8, b1, "
@@ -460,4 +466,132 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
     status[3] = -math.inf
     for node in range(r.shape[0]):
         status[3] = max(status[3], r[node, 2])
+    return iterations
+
+
+_kite_load = caller(KITE_LOAD_SIGNATURE)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def _free_iterate(x, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T):
+    """:func:`_iterate` for a free end (:attr:`.system.Grid.free_end`): nodes 1..M and the
+    tensions from ``x = [T_{1/2}, r_1, T_{3/2}, r_2, .., T_{M-1/2}, r_M]``, ``r_0 = 0``, and the
+    velocities and accelerations of the same formulas."""
+    n_seg = T.shape[0]
+    for c in range(3):
+        r[0, c] = 0.0
+    for i in range(1, n_seg + 1):
+        T[i - 1] = x[4 * (i - 1)]
+        for c in range(3):
+            r[i, c] = x[4 * (i - 1) + 1 + c]
+    for i in range(n_seg + 1):
+        for c in range(3):
+            v[i, c] = a0 * (r[i, c] - r_old[i, c])
+            if a2:
+                v[i, c] += a2 * (r_prev[i, c] - r_old[i, c])
+            acc[i, c] = a0 * (v[i, c] - v_old[i, c])
+            if a2:
+                acc[i, c] += a2 * (v_prev[i, c] - v_old[i, c])
+
+
+@numba.njit(cache=True, error_model="numpy")
+def free_step(cur, history, h, a0, a2, force_ref_N, reel_mps, newton_tol, max_newton, physics, grid, end_put,
+              end_mass_kg, nodal, new, status, kite_load, kite, kite_limits, kite_breaks, kite_cubics,
+              kite_wind_function, kite_wind_rows, kite_air_function, kite_air_parameters, kite_ceiling_m, roll_rad,
+              kite_weight):
+    """:func:`solve_step` for a line whose end node carries the point-mass kite
+    (:mod:`.kite`, :func:`.solver._free_step`): from ``cur = (r, v, a, T)`` and the BDF2
+    history, Newton on all 4M unknowns (:attr:`.system.Grid.free_end`), each iterate the
+    line's equations (:func:`evaluate`) and the kite's rows (:func:`.kite.kite_rows`
+    of the kite's load F + m g, :func:`~fem_tether.physics.kite_dynamics.air_load` at the
+    address ``kite_load`` with the kite's arrays, roll ψ and weight ``kite_weight``, and of
+    the end node's drag derivatives :func:`.kite.end_drag_derivatives`), whose
+    derivatives go to the band entries ``end_put`` (:meth:`.system.Grid.end_put`);
+    ``end_mass_kg`` = m_k + m_M.  The iteration, its Jacobian skipped and its outcomes
+    as in :func:`solve_step`, and :data:`KITE_UNDEFINED` where the kite's force is
+    undefined at an iterate (left in ``new``).  Compiled when a run first flies the kite
+    (no signature: the main job's kernels do not include it).  Returns the number of
+    evaluated iterations."""
+    r_old, v_old, a_old, T_old = cur
+    r_prev, v_prev = history
+    r, v, acc, T = new
+    weight, line = physics[8], physics[9]
+    hbar, h_seg, upper = grid[0], grid[1], grid[6]
+    lower = grid[5]
+    n_seg = T_old.shape[0]
+    n = 4 * n_seg
+    x = np.empty(n)
+    half_h2 = 0.5 * h * h
+    for i in range(1, n_seg + 1):
+        x[4 * (i - 1)] = T_old[i - 1]
+        for c in range(3):
+            x[4 * (i - 1) + 1 + c] = r_old[i, c] + h * v_old[i, c] + half_h2 * a_old[i, c]
+    res, dx, no_direction = np.empty(n), np.empty(n), np.zeros(3)
+    band = np.empty((lower + upper + 1) * n + 1)
+    ab = band[: (lower + upper + 1) * n].reshape((lower + upper + 1, n))
+    d, tau, force, apparent, kite_state, jac_roll = (np.empty(3), np.empty(3), np.empty(3), np.empty(3),
+                                                     np.empty(5), np.empty(3))
+    jac_v, jac_r, jac_d = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+    df_dr, df_dtau, d_end, d_before = np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3)), np.empty((3, 3))
+    rows, d_tension = np.empty(3), np.empty(3)
+    half_m = 0.5 * h_seg[n_seg - 1]
+    c_a, c_v = a0 * a0, a0
+    worst = last = math.inf
+    iterations = 0
+    status[:] = NOT_CONVERGED
+    for _ in range(max_newton):
+        _free_iterate(x, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T)
+        with_jacobian = not expect_converged(worst, last, newton_tol)
+        if evaluate(r, v, acc, T, no_direction, force_ref_N, c_a, c_v, reel_mps, with_jacobian, physics, grid,
+                    nodal, res, band) >= 0:
+            status[0] = LEFT_ATMOSPHERE
+            break
+        length = nodal[1][n_seg - 1]
+        for c in range(3):
+            d[c] = r[n_seg, c] - r[n_seg - 1, c]
+            tau[c] = d[c] / length
+        outcome = _kite_load(kite_load)(kite, kite_limits, kite_breaks, kite_cubics, kite_wind_function,
+                                        kite_wind_rows, kite_air_function, kite_air_parameters, kite_ceiling_m,
+                                        r[n_seg], v[n_seg], d, False, roll_rad, force, apparent, kite_state, jac_v,
+                                        jac_r, jac_d, jac_roll)
+        if outcome == KITE_ABOVE_AIR:
+            status[0] = LEFT_ATMOSPHERE
+            break
+        if outcome != KITE_OK:
+            status[0] = KITE_UNDEFINED
+            break
+        for c in range(3):
+            force[c] = force[c] + kite_weight[c]
+        if not end_drag_derivatives(physics[0], physics[1], physics[2], physics[3], physics[4], physics[5],
+                                    physics[6], physics[7], line[3], line[4], r[n_seg], v[n_seg], tau, c_v, df_dr,
+                                    df_dtau):
+            status[0] = LEFT_ATMOSPHERE
+            break
+        kite_rows(force, jac_r, jac_v, jac_d, acc[n_seg], tau, T[n_seg - 1], length, nodal[2][n_seg], weight,
+                  end_mass_kg, half_m, force_ref_N, c_a, c_v, df_dr, df_dtau, rows, d_end, d_before, d_tension)
+        for c in range(3):
+            res[n - 3 + c] = rows[c]
+        iterations += 1
+        worst, last = max_abs(res), worst
+        if not math.isfinite(worst):
+            break
+        if worst <= newton_tol:
+            status[0] = CONVERGED
+            break
+        if not with_jacobian:
+            evaluate(r, v, acc, T, no_direction, force_ref_N, c_a, c_v, reel_mps, True, physics, grid, nodal,
+                     res, band)
+        for i in range(3):
+            for j in range(3):
+                band[end_put[3 * i + j]] = d_end[i, j]
+                band[end_put[9 + 3 * i + j]] = d_before[i, j]
+            band[end_put[18 + i]] = d_tension[i]
+        if not solve(ab, upper, res, dx):
+            break
+        for k in range(n):
+            x[k] -= dx[k]
+    status[1] = worst
+    status[2] = -math.inf
+    for node in range(r.shape[0]):
+        status[2] = max(status[2], r[node, 2])
     return iterations

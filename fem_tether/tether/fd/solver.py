@@ -66,6 +66,7 @@ from fem_tether.config import Config
 from fem_tether.core.errors import (SolverDivergedError, left_atmosphere, static_start_failure,
                                     unphysical_start)
 from fem_tether.physics.drag_coefficient import ConstantDrag
+from fem_tether.physics.kite_dynamics import kite_load_address
 from fem_tether.tether.fd import kite as kite_end
 from fem_tether.tether.fd.system import Grid, NodalLoads, TetherFD
 from fem_tether.tether import free_kite
@@ -360,16 +361,36 @@ def _step(model: FDModel, prev: State | None, cur: State, h: float, stats: Stati
 def _free_step(model: FDModel, prev: State | None, cur: State, h: float, stats: Statistics) -> State:
     """One implicit step of size h of the line with the kite at its free end
     (:mod:`.kite`), the roll of ``cur``'s steering sample held over it; then
-    the steering's sample of the new state.  Newton on all 4M unknowns in
-    Python, each iterate evaluated by the line's kernel and the kite's rows
-    (:func:`.kite.evaluate`); the Jacobian is skipped where the iterate is
-    expected to converge, as in the kernel's step (:func:`_step`).  Raises
-    :class:`NotConverged`."""
+    the steering's sample of the new state.  Newton on all 4M unknowns in one
+    kernel call (:meth:`TetherFD.free_step`: the line's equations and the
+    kite's rows, its load called by address as the FE kernel calls it).  A
+    kite whose rate is held (``[kite] rotation_rpm``: its turbines' law is
+    NumPy code) takes the same iteration in Python, each iterate evaluated by
+    the line's kernel and the kite's rows (:func:`.kite.evaluate`); in both
+    the Jacobian is skipped where the iterate is expected to converge, as in
+    the kernel's step (:func:`_step`).  Raises :class:`NotConverged`."""
     kite = model.kite
     assert kite is not None and cur.steer is not None
     t_new = cur.t + h
     a0, a2 = _coefficients(model, prev, cur, h)
     f_ref = model.force_ref_N(cur.T, model.eq.physics)
+    if kite.rate_hold is None:
+        history = (prev.r, prev.v) if a2 and prev is not None else (cur.r, cur.v)
+        r, v, acc, T, drag, iterations, failure, worst = model.eq.free_step(
+            (cur.r, cur.v, cur.a, cur.T), history, h, a0, a2, f_ref, model.reel_mps, model.newton_tol,
+            model.max_newton, kite_end.end_mass_kg(model.eq, kite),
+            (kite_load_address(), *kite.forms, cur.steer.roll_rad, kite.weight_N))
+        stats.newton_iterations += iterations
+        if failure == "kite":
+            try:
+                kite.load(r[-1], v[-1], r[-1] - r[-2], cur.steer.roll_rad)
+            except ValueError as exc:
+                raise NotConverged(worst, f"the kite's force at an iterate: {exc}") from None
+        if failure is not None:
+            raise failure if isinstance(failure, NotConverged) else NotConverged(worst)
+        new = State(t_new, r, v, acc, T, math.sqrt(r[-1] @ r[-1]), drag)
+        new.steer = _sampled(model, new, cur.steer.parameter_s)
+        return new
     g = model.grid
     x = g.pack_nodes((cur.r + h * cur.v + 0.5 * h * h * cur.a)[1:], cur.T)
     nodes, T = g.split_nodes(x)

@@ -197,7 +197,7 @@ class Grid:
         nb = self.lower + self.upper + 1
         flat = (self.upper + rows - act) * self.n + act
         self._dump = nb * self.n                               # sink for dropped entries
-        self._end_entries = (self.upper + rows - act)[n_line:], act[n_line:]   # the kite's rows (free end)
+        self._end_put = ((self.upper + rows - act) * self.n + act)[n_line:]   # the kite's rows (free end)
         flat, keep = flat[:n_line], keep[:n_line]
         self._flat = np.where(keep, flat, self._dump)
         self._band_shape = (nb, self.n)
@@ -241,7 +241,13 @@ class Grid:
         """A free end's rows (the kite's equation) into the band ``ab``
         (:meth:`band`'s, in place): their derivatives in r_M (3, 3), in
         r_{M-1} (3, 3) and in T_{M-1/2} (3,), rows by components."""
-        ab[self._end_entries] = np.concatenate([np.ravel(d_end), np.ravel(d_before), d_tension])
+        ab.reshape(-1)[self._end_put] = np.concatenate([np.ravel(d_end), np.ravel(d_before), d_tension])
+
+    @property
+    def end_put(self) -> np.ndarray:
+        """Where a free end's rows go in the band flattened (:meth:`put_end_rows`' entries,
+        in its order: r_M's 9 by rows, r_{M-1}'s 9, T_{M-1/2}'s 3), for :func:`.kernel.free_step`."""
+        return self._end_put
 
     def empty_band(self) -> np.ndarray:
         """A flattened band to assemble into: its entries and, after them, the
@@ -383,6 +389,32 @@ class TetherFD:
         elif outcome == kernel.NOT_CONVERGED:
             failure = NotConverged(worst)
         return r, v, a, T, R, self._nodal_loads(nodal), iterations, failure
+
+    def free_step(self, cur, history, h, a0, a2, force_ref_N, reel_mps, newton_tol, max_newton, end_mass_kg,
+                  kite) -> tuple:
+        """The Newton iteration of one implicit step of the line with the point-mass kite at
+        its free end by :func:`.kernel.free_step` (the arguments are its; ``cur = (r, v, a,
+        T)``; ``kite`` = the address of the kite's load,
+        :func:`~fem_tether.physics.kite_dynamics.kite_load_address`, its ``forms``, the roll ψ
+        and its weight m g).  Returns what
+        :meth:`solve_step` does without R, the failure being None, a
+        :class:`~fem_tether.tether.continuation.NotConverged`, or ``"kite"`` where the kite's
+        force is undefined at the last iterate (left in r and v: its load there says why)."""
+        kernel, g = self._kernel, self.grid
+        r, v, a, T = new = np.empty_like(cur[0]), np.empty_like(cur[0]), np.empty_like(cur[0]), np.empty(g.M)
+        nodal, status = self._nodal(), np.empty(3)
+        iterations = kernel.free_step(cur, history, h, a0, a2, float(force_ref_N), float(reel_mps),
+                                      float(newton_tol), int(max_newton), *self._kernel_args, g.end_put,
+                                      float(end_mass_kg), nodal, new, status, *kite)
+        outcome, worst, top_m = status
+        failure: NotConverged | str | None = None
+        if outcome == kernel.LEFT_ATMOSPHERE:
+            failure = NotConverged(worst, left_atmosphere(AltitudeError(top_m)))
+        elif outcome == kernel.NOT_CONVERGED:
+            failure = NotConverged(worst)
+        elif outcome == kernel.KITE_UNDEFINED:
+            failure = "kite"
+        return r, v, a, T, self._nodal_loads(nodal), iterations, failure, worst
 
     def solve(self, ab, rhs):
         """Solution of the banded system ``ab`` (:meth:`Grid.band`'s storage) for
