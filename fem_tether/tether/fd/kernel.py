@@ -377,17 +377,22 @@ def _predictor(r, v, a, T, R, h):
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc):
-    """Nodes, velocities and accelerations of the unknowns ``x`` (full layout):
-    ``r_0 = 0``, ``r_M = R e``; ``v = a0 (r - r_n) + a2 (r_{n-1} - r_n)`` and
-    ``a = a0 (v - v_n) + a2 (v_{n-1} - v_n)`` (the history's terms where a2 != 0)."""
+def _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T):
+    """Nodes, tensions, velocities and accelerations of the unknowns ``x``: the full layout
+    ``[T_{1/2}, r_1, .., r_{M-1}, T_{M-1/2}, R]`` with ``r_M = R e`` (e = ``kite_dir``), or,
+    one longer, a free end's (:attr:`.system.Grid.free_end`) ``[T_{1/2}, r_1, .., T_{M-1/2}, r_M]``;
+    ``r_0 = 0``; ``v = a0 (r - r_n) + a2 (r_{n-1} - r_n)`` and ``a = a0 (v - v_n) + a2 (v_{n-1} - v_n)``
+    (the history's terms where a2 != 0)."""
     n_seg = r.shape[0] - 1
+    free = x.shape[0] == 4 * n_seg
     for c in range(3):
         r[0, c] = 0.0
-        r[n_seg, c] = x[4 * n_seg - 3] * kite_dir[c]
+        r[n_seg, c] = x[4 * n_seg - 3 + c] if free else x[4 * n_seg - 3] * kite_dir[c]
     for i in range(1, n_seg):
         for c in range(3):
             r[i, c] = x[4 * (i - 1) + 1 + c]
+    for k in range(n_seg):
+        T[k] = x[4 * k]
     for i in range(n_seg + 1):
         for c in range(3):
             v[i, c] = a0 * (r[i, c] - r_old[i, c])
@@ -439,9 +444,7 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
     iterations = 0
     status[:] = NOT_CONVERGED
     for _ in range(max_newton):
-        _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc)
-        for k in range(n_seg):
-            T[k] = x[4 * k]
+        _iterate(x, kite_dir, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T)
         with_jacobian = not expect_converged(worst, last, newton_tol)
         if evaluate(r, v, acc, T, kite_dir, force_ref_N, a0 * a0, a0, reel_mps, with_jacobian, physics,
                     grid, nodal, res, band) >= 0:
@@ -470,28 +473,6 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
 
 
 _kite_load = caller(KITE_LOAD_SIGNATURE)
-
-
-@numba.njit(cache=True, error_model="numpy")
-def _free_iterate(x, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T):
-    """:func:`_iterate` for a free end (:attr:`.system.Grid.free_end`): nodes 1..M and the
-    tensions from ``x = [T_{1/2}, r_1, T_{3/2}, r_2, .., T_{M-1/2}, r_M]``, ``r_0 = 0``, and the
-    velocities and accelerations of the same formulas."""
-    n_seg = T.shape[0]
-    for c in range(3):
-        r[0, c] = 0.0
-    for i in range(1, n_seg + 1):
-        T[i - 1] = x[4 * (i - 1)]
-        for c in range(3):
-            r[i, c] = x[4 * (i - 1) + 1 + c]
-    for i in range(n_seg + 1):
-        for c in range(3):
-            v[i, c] = a0 * (r[i, c] - r_old[i, c])
-            if a2:
-                v[i, c] += a2 * (r_prev[i, c] - r_old[i, c])
-            acc[i, c] = a0 * (v[i, c] - v_old[i, c])
-            if a2:
-                acc[i, c] += a2 * (v_prev[i, c] - v_old[i, c])
 
 
 @numba.njit(cache=True, error_model="numpy")
@@ -540,7 +521,7 @@ def free_step(cur, history, h, a0, a2, force_ref_N, reel_mps, newton_tol, max_ne
     iterations = 0
     status[:] = NOT_CONVERGED
     for _ in range(max_newton):
-        _free_iterate(x, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T)
+        _iterate(x, no_direction, r_old, v_old, a0, a2, r_prev, v_prev, r, v, acc, T)
         with_jacobian = not expect_converged(worst, last, newton_tol)
         if evaluate(r, v, acc, T, no_direction, force_ref_N, c_a, c_v, reel_mps, with_jacobian, physics, grid,
                     nodal, res, band) >= 0:
