@@ -74,13 +74,16 @@ def run_config(cfg: Config, op: OperatingPoint, reel_out: bool = False) -> Confi
     out at V_out from L - V_out T_avg / 2, so that the line's mean length over the T_avg
     averaged is L.  A point-mass kite flies free (V_a only sets the path's nominal
     period) with the winch holding F / lines (``reel_out = "hold"``): it always reels,
-    from the same shorter start."""
+    from its release (its operating point, docs/free-kite.md §3), so its start is shorter
+    by the pay-out of its spin-up too, ``[time] spinup_periods`` laps taken as nominal
+    periods: L - V_out (T_spin + T_avg / 2)."""
     case = operating_case(cfg, op)
     free = cfg.kite.model == "point-mass"
     if not (reel_out or free) or op.reel_out_mps == 0.0:
         return case.replace(winch={"reel_out": "hold"}) if free else case
-    paid_m = op.reel_out_mps * case.time.average_periods * case.path.period_s
-    return case.replace(tether={"length_m": cfg.tether.length_m - paid_m / 2.0},
+    periods = case.time.average_periods / 2.0 + (case.time.spinup_periods if free else 0.0)
+    paid_m = op.reel_out_mps * periods * case.path.period_s
+    return case.replace(tether={"length_m": cfg.tether.length_m - paid_m},
                         winch={"reel_out": "hold"} if free else
                         {"reel_out": "constant", "reel_out_speed_mps": op.reel_out_mps})
 
