@@ -15,10 +15,13 @@ at equal times grows with the run); their lines are compared at equal phase:
 the FD line at the instant its kite is nearest the FE kite
 (:func:`_nearest_kite_time`), the phase lag being that instant's offset.
 
-On reel-out runs (the length changes) F_t and the tensions are compared along
-the run: their means over one period of the eight against the line length
+On reel-out runs (the length changes in both) F_t and the tensions are compared
+along the run: their means over one period of the eight against the line length
 (:func:`fem_tether.tether.results.period_average`), the largest relative difference
-over the lengths both runs reached.
+over the lengths both runs reached.  Where only one run's length changes (a held
+kite that cannot pull the held tension, whose winch pays out a fraction of a
+millimetre in one run and nothing in the other) the two have no length in common,
+and their means are compared.
 """
 
 from __future__ import annotations
@@ -162,7 +165,7 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: Crosscheck) -> CrossCheck:
                               f"{per_period:.1f})")
     fe_means = {key: fe.mean(key) for _, key in QUANTITIES}
     fd_means = {key: fd.mean(key) for _, key in QUANTITIES}
-    if np.ptp(fe.series["length_m"]) > 0 or np.ptp(fd.series["length_m"]) > 0:
+    if np.ptp(fe.series["length_m"]) > 0 and np.ptp(fd.series["length_m"]) > 0:
         rel = {name: _along_length(fe, fd, key) for name, key in QUANTITIES}
     else:
         rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
