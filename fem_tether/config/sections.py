@@ -391,11 +391,13 @@ class FE(Section):
 class Time(Section):
     NAME = "time"
     spinup_periods: int = setting(1, "-", "periods of the path flown before averaging (a point-mass kite: "
-                                  "its least laps of spin-up)", from_to(0, MAX_PERIODS))
+                                  "its least laps of spin-up; held by the winch, reel_out = 'hold': its laps of "
+                                  "spin-up)", from_to(0, MAX_PERIODS))
     average_periods: int = setting(2, "-", "whole periods averaged (a point-mass kite: whole laps of its own "
                                    "flight, fem_tether.tether.laps)", from_to(1, MAX_PERIODS))
     lap_tolerance: float = setting(1e-3, "-", "point-mass kite: the spin-up ends at the first lap whose means "
-                                   "differ from the next lap's by at most this (relative)", up_to(0.5))
+                                   "differ from the next lap's by at most this (relative; not a held run's, "
+                                   "reel_out = 'hold', whose laps drift as the line grows)", up_to(0.5))
     max_spinup_periods: int = setting(50, "-", "point-mass kite: laps after which the spin-up ends unsettled "
                                       "(the means then say so)", from_to(1, MAX_PERIODS))
     newton_tol: float = setting(1e-10, "-", "Newton tolerance on residuals scaled by the tension", NEWTON_TOL)

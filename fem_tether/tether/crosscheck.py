@@ -15,10 +15,13 @@ at equal times grows with the run); their lines are compared at equal phase:
 the FD line at the instant its kite is nearest the FE kite
 (:func:`_nearest_kite_time`), the phase lag being that instant's offset.
 
-On reel-out runs (the length changes) F_t and the tensions are compared along
-the run: their means over one period of the eight against the line length
+On reel-out runs (the length changes in both) F_t and the tensions are compared
+along the run: their means over one period of the eight against the line length
 (:func:`fem_tether.tether.results.period_average`), the largest relative difference
-over the lengths both runs reached.
+over the lengths both runs reached.  Where only one run's length changes (a held
+kite that cannot pull the held tension, whose winch pays out a fraction of a
+millimetre in one run and nothing in the other), or where the runs' period means
+share no length (one averaged lap each), their means are compared.
 """
 
 from __future__ import annotations
@@ -141,12 +144,18 @@ def checkable(cfg: Config) -> Config:
     return cfg.replace(output={"every": every})
 
 
-def _along_length(a: TetherRun, b: TetherRun, key: str) -> float:
-    """Largest |b/a - 1| of the period means of ``key`` against L, on a's lengths."""
-    la, ya = period_average(a, key)
-    lb, yb = period_average(b, key)
-    inside = (la >= lb.min()) & (la <= lb.max())
-    return float(np.max(np.abs(np.interp(la[inside], lb, yb) / ya[inside] - 1.0)))
+def _relative_difference(a: TetherRun, b: TetherRun, key: str) -> float:
+    """|b/a - 1| of the means of ``key``; for two runs whose lengths change, the largest
+    of the period means' against L, on a's lengths within b's (module docstring).  Runs of
+    one averaged lap each have one period mean, at lengths a fraction of a metre apart:
+    with no length in common their means are compared."""
+    if np.ptp(a.series["length_m"]) > 0 and np.ptp(b.series["length_m"]) > 0:
+        la, ya = period_average(a, key)
+        lb, yb = period_average(b, key)
+        inside = (la >= lb.min()) & (la <= lb.max())
+        if inside.any():
+            return float(np.max(np.abs(np.interp(la[inside], lb, yb) / ya[inside] - 1.0)))
+    return abs(b.mean(key) / a.mean(key) - 1.0)
 
 
 def limits_of(tolerances: dict) -> dict:
@@ -172,10 +181,7 @@ def compare(fe: TetherRun, fd: TetherRun, tolerances: Crosscheck) -> CrossCheck:
                               f"{per_period:.1f})")
     fe_means = {key: fe.mean(key) for _, key in QUANTITIES}
     fd_means = {key: fd.mean(key) for _, key in QUANTITIES}
-    if np.ptp(fe.series["length_m"]) > 0 or np.ptp(fd.series["length_m"]) > 0:
-        rel = {name: _along_length(fe, fd, key) for name, key in QUANTITIES}
-    else:
-        rel = {name: abs(fd_means[key] / fe_means[key] - 1.0) for name, key in QUANTITIES}
+    rel = {name: _relative_difference(fe, fd, key) for name, key in QUANTITIES}
     rel["shape"] = shape_difference(fe, fd)
     limits = limits_of(tolerances.to_dict())
     ok = all(rel[k] <= limits[k] for k in limits)

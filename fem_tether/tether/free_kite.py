@@ -36,12 +36,13 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
+from scipy.optimize import brentq
 
 from fem_tether.physics.atmosphere import AirModel
 from fem_tether.core.errors import ConfigError, SolverDivergedError
 from fem_tether.physics.compiled import caller, jit
 from fem_tether.physics.kite_dynamics import (KITE_LOAD_SIGNATURE, KITE_OK, AerodynamicForce, ConstantCoefficients,
-                                              PointMassKite, Polar, kite_load_address,
+                                              PointMassKite, Polar, SteadyCrosswind, kite_load_address,
                                               aerodynamic_force_N, aerodynamic_load, gravity_force_N,
                                               load_forms, read_polar, steady_crosswind)
 from fem_tether.physics.loads import G_MPS2
@@ -96,6 +97,9 @@ class FreeKite:
     air: AirModel
     start_tether_cd: float = 0.0
     """C_D,t of the line lumped at the kite for the static start's speed (:meth:`start_speed_mps`)"""
+    start_reel_mps: float = 0.0
+    """V_L of the start's steady state: a held run's operating point (``[winch] reel_out = "hold"``,
+    :func:`held_reel_mps`; the winch reels at it from the release), 0 at a fixed length"""
     gravity_mps2: float = G_MPS2
     wings: tuple[PointMassKite, PointMassKite] | None = None
     """a pumping cycle's (``[winch] reel_out = "cycle"``) powered wing and its depowered
@@ -213,27 +217,51 @@ class FreeKite:
         """The steady crosswind speed at the path's first point (the static start's
         kite speed): :func:`~fem_tether.physics.kite_dynamics.steady_crosswind` of this kite,
         massless, in the wind and air at its altitude, with the line's drag lumped
-        as :attr:`start_tether_cd`.  Only the start uses it: the spin-up periods
-        let the kite find its own speed.  A kite whose rate is held starts at the
-        circle's speed (the rate's)."""
+        as :attr:`start_tether_cd`, the line reeled out at :attr:`start_reel_mps`.
+        Only the start uses it: the spin-up lets the kite find its own speed.  A
+        kite whose rate is held starts at the circle's speed (the rate's)."""
         if self.rate_hold is not None:
             return float(self.steering.path.speed_mps) * length_m / float(self.steering.path.length_m)
-        return start_speed_mps(self.kite, self.steering.path, self.wind, self.air, self.start_tether_cd,
-                               length_m)
+        return start_state(self.kite, self.steering.path, self.wind, self.air, self.start_tether_cd, length_m,
+                           self.start_reel_mps).kite_speed_mps
 
 
-def start_speed_mps(kite: PointMassKite, path, wind: WindProfile, air: AirModel, tether_cd: float,
-                    length_m: float) -> float:
-    """:meth:`FreeKite.start_speed_mps` of ``kite`` on ``path`` with the line lumped as ``tether_cd``:
-    the steady crosswind state in the wind at the start's altitude, its azimuth counted from
-    that wind's direction (a wind turned with height, :meth:`~fem_tether.physics.wind.WindProfile.turn_deg`)."""
+def start_state(kite: PointMassKite, path, wind: WindProfile, air: AirModel, tether_cd: float, length_m: float,
+                reel_mps: float = 0.0) -> SteadyCrosswind:
+    """The steady crosswind state of ``kite``, massless, at ``path``'s first point with the line
+    lumped as ``tether_cd`` and reeled out at ``reel_mps`` (:meth:`FreeKite.start_speed_mps`):
+    in the wind at the start's altitude, its azimuth counted from that wind's direction (a wind
+    turned with height, :meth:`~fem_tether.physics.wind.WindProfile.turn_deg`)."""
     theta, phi = path.angles(0.0)
     z = length_m * math.cos(float(theta))
     massless = PointMassKite(0.0, kite.area_m2, kite.aerodynamics, kite.base_aoa_rad, kite.turbine_factor)
-    state = steady_crosswind(massless, float(wind.speed_mps(z)), float(theta),
-                             float(phi) - math.radians(float(wind.turn_deg(z))), 0.0, float(air.density_kg_m3(z)),
-                             tether_cd)
-    return state.kite_speed_mps
+    return steady_crosswind(massless, float(wind.speed_mps(z)), float(theta),
+                            float(phi) - math.radians(float(wind.turn_deg(z))), reel_mps,
+                            float(air.density_kg_m3(z)), tether_cd)
+
+
+def held_reel_mps(kite: PointMassKite, path, wind: WindProfile, air: AirModel, tether_cd: float, length_m: float,
+                  tension_N: float, max_reel_mps: float) -> float:
+    """The reel-out speed V_L at which the start's steady state (:func:`start_state`) pulls
+    ``tension_N``: the operating point of a winch holding that tension (``[winch] reel_out =
+    "hold"``), held within [0, ``max_reel_mps``] as the winch's law holds it (0 where the kite
+    pulls less than ``tension_N`` at a fixed length).  The traction falls as V_L takes the wind
+    along the line, nearly as T(0) (1 − V_L/W_r)² (seed 000 eq. 2.45), so the root lies below
+    W_r (1 − ½ √(T/T(0))), where T is about a quarter of ``tension_N``; it is solved by
+    :func:`scipy.optimize.brentq` on the state itself."""
+    def excess(reel_mps: float) -> float:
+        return start_state(kite, path, wind, air, tether_cd, length_m, reel_mps).tension_N - tension_N
+
+    fixed = excess(0.0) + tension_N
+    if not fixed > tension_N:
+        return 0.0
+    theta, phi = (float(a) for a in path.angles(0.0))
+    z = length_m * math.cos(theta)
+    radial = float(wind.speed_mps(z)) * math.sin(theta) * math.cos(phi - math.radians(float(wind.turn_deg(z))))
+    top = min(max_reel_mps, radial * (1.0 - 0.5 * math.sqrt(tension_N / fixed)))
+    if excess(top) >= 0.0:
+        return top
+    return float(brentq(excess, 0.0, top, xtol=1e-9))
 
 
 def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> FreeKite | None:
@@ -268,8 +296,10 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
                               k.rotation_rpm)
     # the line lumped as a straight rod (seed 004 eq. 3.14) with C_d,c = 1.2, the seeds' value
     start_cd = straight_tether_cd(1, 1.2, cfg.tether.diameter_m, cfg.tether.length_m, kite.area_m2)
-    start_speed = path.speed_mps if k.rotation_rpm else start_speed_mps(kite, path, wind, air, start_cd,
-                                                                        cfg.tether.length_m)
+    start_reel = held_reel_mps(kite, path, wind, air, start_cd, cfg.tether.length_m, cfg.winch.ground_tension_N,
+                               k.max_reel_out_mps) if cfg.winch.reel_out == "hold" else 0.0
+    start_speed = path.speed_mps if k.rotation_rpm else start_state(kite, path, wind, air, start_cd,
+                                                                    cfg.tether.length_m, start_reel).kite_speed_mps
     lookahead = k.lookahead_m or max(0.5 * min_turn_radius_m(path),
                                      sampled_lookahead_m(start_speed, max(cfg.fe.dt_s, cfg.fd.dt_s)))
     law = Steering(path, kite.mass_kg + end_mass_kg, lookahead, math.radians(k.roll_min_deg),
@@ -277,7 +307,7 @@ def from_config(cfg, end_mass_kg: float, wind: WindProfile, air: AirModel) -> Fr
     wings = (kite, recovery_wing(kite, cfg.cycle.reel_in_cd0)) if cfg.winch.reel_out == "cycle" else None
     hold = RateHold.for_circle(path, k.max_turbine_factor) if k.rotation_rpm else None
     steering = law if k.steering == "path" else schedule_from_config(k, law, path, wind)
-    return FreeKite(kite, steering, wind, air, start_cd, wings=wings, rate_hold=hold)
+    return FreeKite(kite, steering, wind, air, start_cd, start_reel, wings=wings, rate_hold=hold)
 
 
 def _check_orbit_keys(cfg) -> None:

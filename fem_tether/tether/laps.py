@@ -18,7 +18,11 @@ flew, detected from its own track:
   whose means all differ from the next lap's by at most ``[time]
   lap_tolerance`` of their value (:func:`settled_lap`).  A reeling winch
   starts there (the spin-up flies the line at its start length), and the
-  window starts at the first crossing after it.
+  window starts at the first crossing after it.  A winch holding the tension
+  (``[winch] reel_out = "hold"``) reels from the release, where the kite
+  starts at its operating point (docs/free-kite.md §3): its laps drift as the
+  line grows, which no tolerance could pass, so its spin-up is its ``[time]
+  spinup_periods`` laps, not judged (:attr:`LapRule.judged`).
 * **window.**  The ``[time] average_periods`` laps from there
   (:func:`lap_window`); the run flies until it has them, or until its
   spin-up has lasted ``[time] max_spinup_periods`` laps: then the window is
@@ -56,6 +60,9 @@ class LapRule:
     """lap-to-lap relative change that ends the spin-up (``[time] lap_tolerance``)"""
     max_spinup_laps: int
     """laps after which the spin-up ends unsettled (``[time] max_spinup_periods``)"""
+    judged: bool = True
+    """whether the tolerance ends the spin-up; False for a held run (``[winch] reel_out =
+    "hold"``), which reels from its release and whose spin-up is its ``spinup_laps``"""
 
     @classmethod
     def from_config(cls, cfg) -> LapRule | None:
@@ -64,7 +71,8 @@ class LapRule:
         if cfg.kite.model != "point-mass" or cfg.winch.reel_out == "cycle":
             return None
         t = cfg.time
-        return cls(t.spinup_periods, t.average_periods, t.lap_tolerance, max(t.max_spinup_periods, t.spinup_periods))
+        return cls(t.spinup_periods, t.average_periods, t.lap_tolerance, max(t.max_spinup_periods, t.spinup_periods),
+                   judged=cfg.winch.reel_out != "hold")
 
     def max_steps(self, steps_per_period: int) -> int:
         """The steps a run may fly looking for its window: :data:`MAX_PERIODS_PER_LAP`
@@ -174,6 +182,8 @@ def spinup_end(time_s, series: dict, rule: LapRule, final: bool = False) -> tupl
     while the spin-up lasts."""
     crossings = crossing_times_s(time_s, series["path_laps"])
     flown = crossings.size - 1
+    if not rule.judged:
+        return (float(crossings[rule.spinup_laps]), True) if flown >= rule.spinup_laps else None
     if flown < 1:
         return None
     means = np.array([lap_means(time_s, series[name], crossings) for name in SETTLING_SERIES])

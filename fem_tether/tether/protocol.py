@@ -158,6 +158,10 @@ class TetherSolver(Protocol):
     def compliance_per_N(self) -> float:
         """The line's axial compliance 1/EA (0: inextensible)."""
 
+    def start_reel_mps(self) -> float:
+        """The winch's speed V_L at the start: a free kite's
+        (:attr:`~fem_tether.tether.free_kite.FreeKite.start_reel_mps`), else 0."""
+
 
 def advance(solver: TetherSolver, state, h: float, stats: Statistics, depth: int = 0):
     """The state one step ``h`` later; a step whose Newton iteration fails is
@@ -188,7 +192,7 @@ def line_loads_N(cfg: Config | None, length_m: float) -> tuple[float, float]:
 
 def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods: int,
         output_every: int = 1, config: Config | None = None, progress: bool = False,
-        reel: Reel = Reel(), initial=None, laps: LapRule | None = None) -> TetherRun:
+        reel: Reel = Reel(), initial=None, laps: LapRule | None = None, start_reel_mps: float = 0.0) -> TetherRun:
     """Static start (or ``initial``), then whole periods of the end motion; the
     :class:`TetherRun` of the steps the module docstring lists.
 
@@ -197,7 +201,9 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     active ``reel`` the series carry L(t), V_L(t), the winch power T(0) V_L
     and the energy delivered.  With ``laps`` (a point-mass kite,
     :mod:`fem_tether.tether.laps`) the run flies until it has its window of whole
-    laps after a settled spin-up, the reel starting when the spin-up ends.
+    laps after a settled spin-up, the reel starting when the spin-up ends; a held
+    run's (``laps.judged`` false) reels from the start at ``start_reel_mps``, the
+    speed of its start state, from which the winch's law continues.
     """
     wall0 = time.perf_counter()
     period = solver.model.end.period_s
@@ -207,9 +213,9 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
     t0 = state.t
     average_start_s = t0 + spinup_periods * period
     spinup = window = None
-    if laps is not None and reel.active:
+    if laps is not None and laps.judged and reel.active:
         reel = replace(reel, start_s=math.inf)      # reeling starts when the spin-up ends
-    start_length, energy_J, reel_mps = solver.model.length_m, 0.0, 0.0
+    start_length, energy_J, reel_mps = solver.model.length_m, 0.0, start_reel_mps
     stats = Statistics()
     record = Recorder(limit, output_every)
     bar = Progress(n_steps, f"{solver.name.upper()} L = {start_length:g} m", enabled=progress)
@@ -292,8 +298,13 @@ def check_sane(solver: TetherSolver, result: TetherRun) -> TetherRun:
 def simulate(solver: TetherSolver, cfg: Config, dt_s: float, progress: bool = False) -> TetherRun:
     """:func:`run` as ``cfg`` configures it (``[time]`` periods, ``[output] every``,
     reeling from ``[winch]`` after the spin-up; a point-mass kite's whole laps,
-    :class:`~fem_tether.tether.laps.LapRule`), with the time step ``dt_s``."""
+    :class:`~fem_tether.tether.laps.LapRule`), with the time step ``dt_s``.  A point-mass
+    kite held by the winch (``[winch] reel_out = "hold"``) starts at its operating point,
+    the winch reeling from the release at the start state's V_L
+    (:attr:`~fem_tether.tether.free_kite.FreeKite.start_reel_mps`, docs/free-kite.md §3)."""
     t = cfg.time
-    reel = reel_from_config(cfg, start_s=t.spinup_periods * solver.model.end.period_s)
-    return run(solver, dt_s, t.spinup_periods, t.average_periods,
-               cfg.output.every, config=cfg, progress=progress, reel=reel, laps=LapRule.from_config(cfg))
+    laps = LapRule.from_config(cfg)
+    held = laps is not None and not laps.judged
+    reel = reel_from_config(cfg, start_s=0.0 if held else t.spinup_periods * solver.model.end.period_s)
+    return run(solver, dt_s, t.spinup_periods, t.average_periods, cfg.output.every, config=cfg, progress=progress,
+               reel=reel, laps=laps, start_reel_mps=solver.start_reel_mps() if held else 0.0)

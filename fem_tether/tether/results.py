@@ -220,10 +220,16 @@ def overstretched(run: TetherRun, max_strain: float) -> str:
 def period_average(run: TetherRun, name: str) -> tuple[np.ndarray, np.ndarray]:
     """Moving average of a series over one period of the path, against the
     line length at the window's centre: ``(L, mean)`` (F_t(L) along a reel-out).
+    A point-mass kite's period is its own mean lap over the averaged laps
+    (``extra["laps"]``, :mod:`fem_tether.tether.laps`), not the nominal period
+    (the path at the start speed): laps shorter than it left no window in
+    the averaged laps.
 
     Only windows after the spin-up and inside the run are kept."""
     h = run.time_s[1] - run.time_s[0]
-    n = int(round(run.period_s / h))
+    laps = run.extra.get("laps")
+    period = (run.average_end_s - run.average_start_s) / laps if laps else run.period_s
+    n = int(round(period / h))
     y = run.series[name]
     trapezoid = np.convolve(y, np.r_[0.5, np.ones(n - 1), 0.5], mode="valid") / n
     start = np.searchsorted(run.time_s, run.average_start_s - 1e-9 * run.period_s)

@@ -89,7 +89,8 @@ def test_flies():
 @pytest.mark.parametrize("reel_out", [False, True])
 def test_run_config_of_a_point_mass_kite_holds_the_bins_tension_by_reeling(reel_out):
     """A free kite's bin: the winch holds F / lines by reeling ("hold", whatever [study]
-    reel_out says), from L - V_out T_avg / 2 so that the averaged laps centre on L."""
+    reel_out says) from its release, from L - V_out (T_spin + T_avg / 2) so that the averaged
+    laps centre on L."""
     cfg = load_config(overrides={"kite": {"model": "point-mass"}}, system="kitegen").with_length(1000.0)
     for op in plan.operating_points(cfg, [10.0, 14.0]):
         run = plan.run_config(cfg, op, reel_out)
@@ -97,6 +98,22 @@ def test_run_config_of_a_point_mass_kite_holds_the_bins_tension_by_reeling(reel_
         assert (run.winch.mode, run.winch.reel_out) == ("tension", "hold")
         assert run.winch.ground_tension_N == op.tether_force_N / cfg.tether.lines
         assert _speed_at_kite_mps(run.with_length(1000.0)) == pytest.approx(op.wind_mps, rel=1e-12)  # at L
-        paid_m = op.reel_out_mps * run.time.average_periods * run.with_length(1000.0).path.period_s
+        periods = run.time.spinup_periods + run.time.average_periods / 2.0
+        paid_m = op.reel_out_mps * periods * run.with_length(1000.0).path.period_s
         assert op.reel_out_mps > 0.0
-        assert run.tether.length_m == pytest.approx(1000.0 - paid_m / 2.0, rel=1e-12)
+        assert run.tether.length_m == pytest.approx(1000.0 - paid_m, rel=1e-12)
+
+
+def test_a_free_bin_pays_out_only_what_its_kite_can_reel():
+    """Where the free kite cannot pull F / lines at a fixed length (1000 m, 8 m/s: the power
+    model's V_out 3.28 m/s, the kite's own start state 0 m/s) the bin starts at L itself, not
+    shortened by a pay-out the kite will not fly; where it can (600 m, 20 m/s), by V_out."""
+    cfg = load_config(overrides={"kite": {"model": "point-mass"}}, system="kitegen")
+    far = cfg.with_length(1000.0)
+    slow = plan.operating_points(far, [8.0])[0]
+    assert slow.reel_out_mps == pytest.approx(3.28, abs=0.01)
+    assert plan.run_config(far, slow).tether.length_m == 1000.0
+    near = cfg.with_length(600.0)
+    fast = plan.operating_points(near, [20.0])[0]
+    case = plan.operating_case(near, fast).replace(winch={"reel_out": "hold"})
+    assert plan.free_reel_mps(case, fast) == fast.reel_out_mps

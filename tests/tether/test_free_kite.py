@@ -75,3 +75,31 @@ def test_the_rate_held_force_and_its_jacobian():
         fd_v = (kite.load(r, v + dx, d, 0.1).force_N - kite.load(r, v - dx, d, 0.1).force_N) / 2e-5
         assert np.abs(load.d_position[:, j] - fd_r).max() < 1e-7 * scale
         assert np.abs(load.d_velocity[:, j] - fd_v).max() < 1e-7 * scale
+
+
+def test_a_held_kite_starts_at_its_operating_point():
+    """[winch] reel_out = "hold": the start's steady state is reeled out at the V_L that pulls the
+    held tension (1e-6), 5.43 m/s for KiteGen at 600 m in 14 m/s, and its kite speed is that state's
+    (64.22 m/s, not the 143.73 m/s of the fixed length; measured); no pull above the tension at a fixed length
+    gives V_L = 0, and the winch's limit caps it.  A kite at a fixed length starts unreeled."""
+    from fem_tether.tether.line import physics_from_config
+
+    cfg = load_config(overrides={"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}},
+                      system="kitegen").with_length(600.0)
+    at_kite = float(physics_from_config(cfg).wind.speed_mps(600.0 * math.sqrt(0.5)))
+    cfg = cfg.replace(wind={"scale": cfg.wind.scale * 14.0 / at_kite})
+
+    def kite_at(c):
+        physics = physics_from_config(c)
+        return free_kite.from_config(c, 0.5, physics.wind, physics.air)
+
+    held = kite_at(cfg)
+    state = free_kite.start_state(held.kite, held.steering.path, held.wind, held.air, held.start_tether_cd, 600.0,
+                                  held.start_reel_mps)
+    assert state.tension_N == pytest.approx(150e3, rel=1e-6)
+    assert held.start_reel_mps == pytest.approx(5.43, abs=0.01)
+    assert held.start_speed_mps(600.0) == state.kite_speed_mps == pytest.approx(64.22, abs=0.01)
+    fixed = kite_at(cfg.replace(winch={"reel_out": "none"}))
+    assert fixed.start_reel_mps == 0.0 and fixed.start_speed_mps(600.0) == pytest.approx(143.73, abs=0.01)
+    assert kite_at(cfg.replace(winch={"ground_tension_N": 800e3})).start_reel_mps == 0.0
+    assert kite_at(cfg.replace(kite={"max_reel_out_mps": 2.0})).start_reel_mps == 2.0

@@ -65,6 +65,23 @@ def test_an_unsettled_spinup_ends_at_its_limit_and_says_so():
     assert window.spread == pytest.approx(2.0 * (growth - 1.0) / (growth + 1.0), rel=1e-3)
 
 
+def test_a_held_runs_spinup_is_its_laps_unjudged():
+    """A held run reels from its release, so its laps drift with the growing line (here by 10 %
+    a lap) and no tolerance could end its spin-up: it is its ``spinup_laps``, the window the
+    laps after them."""
+    t = np.linspace(0.0, 12.0, 1201)
+    drifting = {"path_laps": t, **{name: np.exp(0.1 * t) for name in laps.SETTLING_SERIES}}
+    rule = LapRule(spinup_laps=2, average_laps=3, tolerance=1e-3, max_spinup_laps=50, judged=False)
+    assert laps.spinup_end(t[:151], {k: v[:151] for k, v in drifting.items()}, rule) is None
+    end = laps.spinup_end(t[:201], {k: v[:201] for k, v in drifting.items()}, rule)
+    assert end == (pytest.approx(2.0), True)
+    window = laps.lap_window(t, drifting, rule, end, 0.0)
+    assert (window.start_s, window.end_s, window.laps, window.spinup_laps) == (pytest.approx(2.0), pytest.approx(5.0),
+                                                                               3, 2)
+    cfg = free_kite(winch={"reel_out": "hold"})
+    assert not LapRule.from_config(cfg).judged and LapRule.from_config(free_kite()).judged
+
+
 @pytest.fixture(scope="module")
 def eight():
     return simulate(free_kite()), simulate(free_kite(average=8))

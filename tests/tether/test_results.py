@@ -85,6 +85,19 @@ def test_period_average_of_a_sine_during_a_reel_out():
     np.testing.assert_allclose(L, 400.0 + 10.0 * (1.5 + h * np.arange(n + 1)), rtol=1e-15)
 
 
+def test_period_average_of_a_free_kite_is_over_its_own_laps():
+    """A point-mass kite's averaged laps (here one lap of 0.875 s from t = 1 s) are shorter than
+    its nominal period (1 s): windows of the nominal period found none in them; its own lap's do."""
+    h = 0.125
+    t = np.arange(16) * h
+    run = series_run(t, {"drag_N": 7.0 + np.sin(2 * np.pi * t / 0.875), "length_m": 400.0 + 10.0 * t},
+                     average_start_s=1.0)
+    run.extra |= {"laps": 1, "average_end_s": 1.875}
+    L, mean = period_average(run, "drag_N")
+    assert mean.shape == (1,) and L == pytest.approx([400.0 + 10.0 * 1.375])
+    np.testing.assert_allclose(mean, 7.0, rtol=0, atol=1e-14)
+
+
 def test_recorder_allocates_the_series_of_the_whole_run_at_once():
     """Memory grows with simulated time only by the snapshots: the series arrays are
     allocated for every step at the first sample, with the kite series it has."""

@@ -574,6 +574,9 @@ class FDSolver:
     def tension_s_m(self) -> np.ndarray:
         return _segment_midpoints_m(self.model)
 
+    def start_reel_mps(self) -> float:
+        return 0.0 if self.model.kite is None else self.model.kite.start_reel_mps
+
     def kite_position_m(self, state: State) -> np.ndarray:
         return state.r[-1]
 

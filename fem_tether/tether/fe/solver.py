@@ -595,6 +595,9 @@ class FESolver:
     def tension_s_m(self) -> np.ndarray:
         return self.model.system.spaces.s_mid_m
 
+    def start_reel_mps(self) -> float:
+        return 0.0 if self.model.kite is None else self.model.kite.start_reel_mps
+
     def kite_position_m(self, state: State) -> np.ndarray:
         return state.kin.q[-1]
 
