@@ -106,11 +106,11 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     out = Path(out)
     h5 = out / "sweep.h5"
     with ExitStack() as folder_lock:
-        # before any task, on rank 0: the resource (without scipy.stats), the files after the
-        # sweep, and one run into ``out`` at a time (until they are written); rank 0 imports
-        # the plotting and scipy.stats while it waits for the other ranks' tasks
+        # before any task, on rank 0: the resource, the files after the sweep, and one run into
+        # ``out`` at a time (until they are written); rank 0 imports the plotting while it waits
+        # for the other ranks' tasks
         follow_up = FollowUp(out, tuple(out / name for name in FILES), folder_lock, aep=True,
-                             imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US,
+                             imports=("fem_tether.report.plots",), imports_cost_us=IDLE_COST_US,
                              helper=FLIGHT_RANK, helper_imports=FLIGHT_IMPORTS,
                              helper_imports_cost_us=FLIGHT_IMPORTS_COST_US)
         outcome = sweep(job, h5, comm, progress=progress, follow_up=follow_up, keep_parts=keep_parts)
