@@ -4,21 +4,25 @@ and checked for what hides what (fem_tether.report.layout.clashes)."""
 import pytest
 from matplotlib.figure import Figure
 
+from fem_tether.report import plots
 from fem_tether.report.layout import clashes, legends, texts
 
 
 @pytest.fixture
 def saved(monkeypatch):
     """The figures saved while the test runs (and written as usual), in order, each once (a figure
-    whose legend moved is saved again)."""
+    whose legend moved is saved again): through fem-tether's PNG writer
+    (:func:`fem_tether.report.plots.write_png`) or matplotlib's ``savefig``."""
     figures = []
-    save = Figure.savefig
 
-    def keep(fig, *args, **kwargs):
-        if not any(f is fig for f in figures):
-            figures.append(fig)
-        return save(fig, *args, **kwargs)
-    monkeypatch.setattr(Figure, "savefig", keep)
+    def keeping(save):
+        def keep(fig, *args, **kwargs):
+            if not any(f is fig for f in figures):
+                figures.append(fig)
+            return save(fig, *args, **kwargs)
+        return keep
+    monkeypatch.setattr(Figure, "savefig", keeping(Figure.savefig))
+    monkeypatch.setattr(plots, "write_png", keeping(plots.write_png))
     return figures
 
 

@@ -54,13 +54,17 @@ from fem_tether.jobs.sweepfile import SweepResult, read_sweep
 #: on two ranks of this machine's two cores).  Chosen by measurement on
 #: 2026-11-30: with 0.5e6 rank 0 still imported after the other rank's last
 #: task (exit at 8.4-9.5 s), with 1.3e6 it idled 3 s; with 0.75e6 the imports
-#: end before the other rank's tasks (exit at 8.4-9.1 s).
+#: end before the other rank's tasks (exit at 8.4-9.1 s).  Since issue 33 rank 0
+#: imports matplotlib alone (0.42-0.44 s of CPU in loaded 2-rank runs on 2026-12-03,
+#: against 0.50-0.66 s with scipy.stats), with the tasks' part writing and updates
+#: cheaper too; kept, as rank 0 then still waited 0.1-0.2 s for the other rank's last task.
 IDLE_COST_US = 0.75e6
 
 #: The rank that draws the flight (the animation, a pumping run's cycles) while rank 0 draws the
 #: figures, on two ranks or more, and the modules it imports before its tasks, their cost counted
 #: as its load as :data:`IDLE_COST_US` is rank 0's.  Measured on 2026-12-03 in loaded 2-rank
-#: runs: its imports 1.0-1.25 s against rank 0's 1.75-2.0 s for matplotlib and scipy.stats; with
+#: runs: its imports 1.0-1.25 s against rank 0's 1.75-2.0 s for matplotlib and scipy.stats (before
+#: issue 33 took scipy.stats out); with
 #: 0.4e6 (and the tasks' estimates without their writing) rank 0 idled 1 s before the last task;
 #: imported after the sweep, rank 0 waited 0.39 s for the flight.
 FLIGHT_RANK = 1
@@ -107,11 +111,11 @@ def main_job(job_file=None, out="results", allow_unchecked=False,
     out = Path(out)
     h5 = out / "sweep.h5"
     with ExitStack() as folder_lock:
-        # before any task, on rank 0: the resource (without scipy.stats), the files after the
-        # sweep, and one run into ``out`` at a time (until they are written); rank 0 imports
-        # the plotting and scipy.stats while it waits for the other ranks' tasks
+        # before any task, on rank 0: the resource, the files after the sweep, and one run into
+        # ``out`` at a time (until they are written); rank 0 imports the plotting while it waits
+        # for the other ranks' tasks
         follow_up = FollowUp(out, tuple(out / name for name in FILES), folder_lock, aep=True,
-                             imports=("fem_tether.report.plots", "scipy.stats"), imports_cost_us=IDLE_COST_US,
+                             imports=("fem_tether.report.plots",), imports_cost_us=IDLE_COST_US,
                              helper=FLIGHT_RANK, helper_imports=FLIGHT_IMPORTS,
                              helper_imports_cost_us=FLIGHT_IMPORTS_COST_US)
         outcome = sweep(job, h5, comm, progress=progress, follow_up=follow_up, keep_parts=keep_parts)

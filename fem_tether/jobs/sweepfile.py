@@ -136,7 +136,9 @@ def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
     which then replaces the result file; the file it replaced becomes the shadow,
     lacking this length.  A writer killed midway leaves the result file
     whole (lacking its length, which the next update writes too); a missing
-    result file is assembled whole.  On a file system without hard links the
+    result file is assembled whole.  The lengths the shadow lacks that the result file
+    holds up to date (the previous update's) are copied from it, not evaluated again (a
+    part finished since is brought in by its own task's update).  On a file system without hard links the
     old result file cannot be kept as the shadow: the next update copies the
     result file (a copy per update, still one length's solving and writing)."""
     with store.lock():
@@ -150,9 +152,13 @@ def update(store: PartsStore, length_m: float, n_ranks: int) -> None:
         if f is None:                   # a copy of the result file, lacking what it lacks
             _copy(store.out, shadow)
             f, state["shadow_lacks"] = h5py.File(shadow, "r+"), []
-        written = list(dict.fromkeys(state["shadow_lacks"] + out_lacks))
         with f:
-            for L in written:
+            lagging = [L for L in dict.fromkeys(state["shadow_lacks"]) if L not in out_lacks]
+            if lagging:
+                with h5py.File(store.out, "r") as current:
+                    for L in lagging:
+                        _copy_entries(f, current, store, L)
+            for L in dict.fromkeys(out_lacks):
                 _write_entries(f, store, L)
         previous = store.directory / ".previous.h5"
         previous.unlink(missing_ok=True)
@@ -208,6 +214,20 @@ def _copy(source: Path, target: Path) -> None:
     target.unlink(missing_ok=True)
     with atomic_path(target) as tmp:
         shutil.copyfile(source, tmp)
+
+
+def _copy_entries(f: h5py.File, current: h5py.File, store: PartsStore, length_m: float) -> None:
+    """Copy the entries of one length from the result file ``current`` (which the previous update
+    brought up to date there) into the open shadow ``f``, which lacks them: its root entries and
+    its group, as they stand, not evaluated again."""
+    i = store.job.lengths_m.index(length_m)
+    for name in ROOT_DATASETS + ("error", "status"):
+        f[name][i] = current[name][i]
+    for name in CLUSTER_VALUES if "clusters" in current else ():
+        f["clusters"][name][i] = current["clusters"][name][i]
+    group = _group_name(length_m)
+    del f[group]
+    current.copy(current[group], f, group)
 
 
 def _write_entries(f: h5py.File, store: PartsStore, length_m: float) -> None:

@@ -15,8 +15,7 @@ from io import BytesIO
 
 import numpy as np
 
-from fem_tether.core.atomic import generator_tag
-from fem_tether.report.plots import headline, plt
+from fem_tether.report.plots import headline, plt, write_png
 from fem_tether.tether.results import TetherRun
 
 #: The panels: the series, its scale to the unit shown, the axis label.
@@ -57,6 +56,6 @@ def cycle_png(run: TetherRun, title: str) -> bytes:
                                       f"the mean power from t = {run.average_start_s:.1f} s to "
                                       f"{run.average_end_s:.1f} s, {mean_kW:.1f} kW"), fontsize=10)
     buffer = BytesIO()
-    fig.savefig(buffer, format="png", dpi=100, metadata={"Software": generator_tag()})
+    write_png(fig, buffer, dpi=100)
     plt.close(fig)
     return buffer.getvalue()

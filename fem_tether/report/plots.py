@@ -12,6 +12,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.artist import Artist  # noqa: E402
+import matplotlib.image  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 import numpy as np  # noqa: E402
 
 from fem_tether.performance.aep import AepByLength  # noqa: E402
@@ -22,20 +24,37 @@ from fem_tether.physics.kite import ZONES, CharacteristicCurves, PowerCurves  # 
 from fem_tether.systems.power import SEED_GE, SEED_LENGTHS_M  # noqa: E402
 
 
+#: The resolution of the saved figures [dpi].
+SAVE_DPI = 150
+
+
 def save_atomically(fig, path) -> Path:
     """Save ``fig`` as PNG at ``path`` through a temporary file in the same
     directory, and close it; the PNG's ``Software`` text marks it as
     fem-tether's (:func:`fem_tether.core.atomic.written_by_fem_tether`).  A legend
     lying over a line or a text in the figure as saved is moved and the figure saved
-    again (:func:`fem_tether.report.layout.clear_legends`)."""
+    again (:func:`fem_tether.report.layout.clear_legends`).  The figure is laid out
+    and drawn in one draw (:func:`write_png`)."""
     try:
         with atomic_path(path) as tmp:
-            fig.savefig(tmp, format="png", dpi=150, metadata={"Software": generator_tag()})
+            write_png(fig, tmp)
             if clear_legends(fig, laid_out=True):
-                fig.savefig(tmp, format="png", dpi=150, metadata={"Software": generator_tag()})
+                write_png(fig, tmp)
         return Path(path)
     finally:
         plt.close(fig)
+
+
+def write_png(fig, target, dpi: float = SAVE_DPI) -> None:
+    """``fig`` drawn at ``dpi`` (its layout engine run in the same draw) and its pixels written as PNG
+    to ``target`` (a path or a binary file), marked as fem-tether's: the PNG ``savefig`` writes, whose
+    layout takes a draw of its own before the drawing (two draws); the figure keeps ``dpi``, so that
+    its canvas's renderer is the one the PNG was drawn with."""
+    fig.set_dpi(dpi)
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    canvas.draw()
+    matplotlib.image.imsave(target, canvas.buffer_rgba(), format="png", origin="upper", dpi=dpi,
+                            metadata={"Software": generator_tag()})
 
 
 #: Characters per line of a title's source (:func:`headline`) on a figure 7 inches wide.

@@ -282,6 +282,24 @@ def test_rank_zero_hears_every_rank_stop_or_waits_no_longer_than_its_bound():
     assert 0.2 <= time.monotonic() - started < 2.0 and all(w.cancelled for w in silent.words)
 
 
+def test_a_waiting_rank_looks_again_within_ten_milliseconds(monkeypatch):
+    """Issue 33: a rank waiting for a word looked every 50 ms, so each handover between the
+    ranks (the main job's syncs, its flight's handoff) was seen 25 ms late on average; the
+    pauses now start at 1 ms and double up to 10 ms (asleep still, idle() between looks)."""
+    class Later:
+        """A request that completes at its seventh look."""
+        looks = 0
+
+        def Test(self):
+            self.looks += 1
+            return self.looks == 7
+
+    pauses, idles = [], []
+    monkeypatch.setattr(stop.time, "sleep", pauses.append)
+    stop.wait(Later(), lambda: idles.append(1))
+    assert pauses == [0.001, 0.002, 0.004, 0.008, 0.01, 0.01] and len(idles) == 6
+
+
 def test_a_finaliser_that_fails_after_ctrl_c_prints_nothing():
     """Ctrl-C inside a library's constructor leaves a half-built object whose
     finaliser fails (llvmlite's PassBuilder, measured in CI: a traceback after

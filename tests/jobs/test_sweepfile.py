@@ -166,6 +166,39 @@ def test_update_gives_the_file_assemble_gives(tiny_job, tmp_path, fake_solvers):
         assert dict(f["L800"].attrs) == dict(g["L800"].attrs)
 
 
+def test_an_update_evaluates_only_its_own_length(tiny_job, tmp_path, fake_solvers, monkeypatch):
+    """Issue 33: an update on another rank (its own store, nothing evaluated there) evaluated
+    again the length the previous update had just written (the shadow lacked it): two lengths'
+    runs read and compared per task.  It now copies that length from the result file, which
+    the previous update brought up to date, and evaluates its own alone; the file is the one
+    assemble writes."""
+    from fem_tether.jobs import sweepfile
+
+    out = tmp_path / "r.h5"
+    assemble(PartsStore(tiny_job, out), n_ranks=2)
+    evaluated: list[float] = []
+    evaluate_length = sweepfile.evaluate_length
+    monkeypatch.setattr(sweepfile, "evaluate_length",
+                        lambda store, length_m: evaluated.append(length_m) or evaluate_length(store, length_m))
+    for task in (Task(800.0, "fe"), Task(400.0, "fe"), Task(800.0, "fd"), Task(400.0, "fd")):
+        rank = PartsStore(tiny_job, out)            # each task on another rank
+        run_task(rank, task)
+        evaluated.clear()
+        update(rank, task.length_m, n_ranks=2)
+        assert evaluated == [task.length_m]
+    fresh = PartsStore(tiny_job, tmp_path / "fresh.h5")
+    fresh.directory.symlink_to(PartsStore(tiny_job, out).directory)
+    assemble(fresh, n_ranks=2)
+    a, b = read_sweep(out), read_sweep(fresh.out)
+    assert list(a["status"]) == ["ok", "ok"]
+    for name in ("length_m", "status", "error") + ROOT_DATASETS:
+        np.testing.assert_array_equal(a[name], b[name], err_msg=name)
+    with h5py.File(out) as f, h5py.File(fresh.out) as g:
+        for length in ("L400", "L800"):
+            assert dict(f[length].attrs) == dict(g[length].attrs) and set(f[length]) == set(g[length])
+            np.testing.assert_array_equal(f[length]["fe/snapshots/tension_N"][()], g[length]["fe/snapshots/tension_N"][()])
+
+
 def test_update_without_hard_links_gives_the_same_file(tiny_job, tmp_path, fake_solvers, monkeypatch):
     """A file system without hard links: each update copies the result file instead."""
     def no_links(*args):

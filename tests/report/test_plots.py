@@ -57,6 +57,36 @@ def test_save_atomically_moves_a_legend_off_the_lines_it_would_hide(saved, tmp_p
     assert is_png(path) and saved == [fig] and unclear(saved) == {}
 
 
+def test_a_figure_is_laid_out_and_drawn_once_into_the_png_savefig_writes(monkeypatch, tmp_path):
+    """``savefig`` of a figure with a layout engine draws it twice (once to lay it out, then to
+    render it); :func:`write_png` draws it once and writes the same bytes, at the figure sizes and
+    resolutions of the main job's plots (150 dpi) and of the pumping-cycle figure (100 dpi)."""
+    from io import BytesIO
+
+    from matplotlib.figure import Figure
+
+    from fem_tether.core.atomic import generator_tag
+    from fem_tether.report.plots import write_png
+
+    draws = []
+    draw = Figure.draw
+    monkeypatch.setattr(Figure, "draw", lambda fig, renderer: draws.append(fig) or draw(fig, renderer))
+    for size, dpi in (((7.0, 4.5), 150), ((7.0, 7.0), 100)):
+        pngs = []
+        for save in (lambda fig, out: fig.savefig(out, format="png", dpi=dpi, metadata={"Software": generator_tag()}),
+                     lambda fig, out: write_png(fig, out, dpi=dpi)):
+            fig, ax = plt.subplots(figsize=size, layout="constrained")
+            ax.plot(LENGTHS_M, np.sqrt(LENGTHS_M), "o-", label="$F_t$ flexible")
+            ax.set(xlabel="cable length $L$ [m]", ylabel="drag [kN]", title="a title\nand its source")
+            ax.legend()
+            draws.clear()
+            buffer = BytesIO()
+            save(fig, buffer)
+            plt.close(fig)
+            pngs.append((buffer.getvalue(), len(draws)))
+        assert pngs[0][0] == pngs[1][0] and [n for _, n in pngs] == [2, 1]
+
+
 @pytest.fixture
 def drawn(monkeypatch):
     """The figures the plot functions draw, kept (not saved) for inspection."""
