@@ -22,6 +22,7 @@ from fem_tether.physics import kite
 from fem_tether.report import text as report
 from fem_tether.config import MAX_ELEMENTS, MAX_GRADING, MAX_WIND_MPS, TETHER_LENGTH_M, load_config, preset_summaries
 from fem_tether.core.errors import ConfigError, FemTetherError
+from fem_tether.io.awesio import LAYOUTS as AWESIO_LAYOUT_NAMES
 from fem_tether.commands.flight import warn_unflyable
 from fem_tether.core.mesh import unit_nodes, write_unit_mesh
 from fem_tether.jobs.runner import load_kernels_by_rank
@@ -33,6 +34,9 @@ from fem_tether.jobs.design.job import OBJECTIVES, costs_toml
 DESCRIPTION = ("fem-tether: drag, weight and power of the flexible tethers of airborne wind "
                "energy systems (FE model with an independent FD cross-check).")
 #: ``--json`` of a command that runs no solver: its stderr holds only a user's mistake.
+AWESIO_LAYOUTS = tuple(AWESIO_LAYOUT_NAMES)
+AWESIO_LAYOUT_HELP = ("layout of the awesIO 0.1.0 documents written: " +
+                      "; ".join(f"{k}: {v}" for k, v in AWESIO_LAYOUT_NAMES.items()) + " (default ufechner7, docs/awesio.md)")
 JSON_HELP = "print the result as JSON on stdout, which then holds the JSON alone (no table)"
 #: ``--json`` of a command that runs the solvers: the run's progress is left out, but stderr
 #: still holds what :mod:`fem_tether.tether.kernels` and the warnings before a run print.
@@ -350,7 +354,7 @@ def cmd_convert(args):
     from fem_tether.commands.convert import convert
 
     result = convert(args.source, args.out, args.reference_height, args.allow_unchecked, args.allow_incomplete,
-                     args.constraints)
+                     args.constraints, args.awesio_layout)
     print(report.json_text(result) if args.json else "\n".join(f"wrote {path}" for path in result["files"]))
     return 0
 
@@ -358,7 +362,7 @@ def cmd_convert(args):
 def cmd_resource(args):
     from fem_tether.commands.resource import build_resource, resource_text
 
-    result = build_resource(args.netcdf, args.out, args.clusters, args.reference_height, args.seed)
+    result = build_resource(args.netcdf, args.out, args.clusters, args.reference_height, args.seed, args.awesio_layout)
     print(report.json_text(result) if args.json else resource_text(result))
     return 0
 
@@ -588,6 +592,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="write the flexible curves of lengths whose cross-check failed too")
     c.add_argument("--allow-incomplete", action="store_true",
                    help="convert an unfinished sweep's finished lengths (else exit 2 naming the pending ones)")
+    c.add_argument("--awesio-layout", choices=AWESIO_LAYOUTS, default=AWESIO_LAYOUTS[0],
+                   help=AWESIO_LAYOUT_HELP + "; awegroup's for a wind_resource document only")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("resource", cmd_resource, "wind-profile clusters (Schelbergen et al. 2020: normalised profiles, "
@@ -607,6 +613,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--seed", type=_option(int, "a whole number", lambda v: 0 <= v < 2**32, "from 0 to 2^32 - 1"),
                    default=0, metavar="S", help="seed of the k-means starts (default 0; same file and seed, same "
                                                 "clusters)")
+    c.add_argument("--awesio-layout", choices=AWESIO_LAYOUTS, default=AWESIO_LAYOUTS[0], help=AWESIO_LAYOUT_HELP)
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     stored = "a result file: simulate --out's fe_L<L>.h5, a sweep's, a study's or a design's"

@@ -3,7 +3,7 @@ against it as awesIO's own validator applies it by default."""
 
 from jsonschema import Draft7Validator
 
-from fem_tether.io.awesio import kind_of, schema, schema_errors
+from fem_tether.io.awesio import kind_of, layout_of, schema, schema_errors
 
 
 def restrictive(node):
@@ -26,8 +26,11 @@ def restrictive(node):
     return node
 
 
-def assert_valid(document: dict) -> None:
-    """``document`` validates against its schema, as published and as awesIO's validator applies it."""
+def assert_valid(document: dict, layout: str | None = None) -> None:
+    """``document`` validates against its schema (of its layout, which is ``layout`` if given), as
+    published and as awesIO's validator applies it."""
     kind = kind_of(document, "document")
-    assert schema_errors(document, kind) == []
-    assert list(Draft7Validator(restrictive(schema(kind))).iter_errors(document)) == []
+    found = layout_of(document, kind, "document")
+    assert layout in (None, found), found
+    assert schema_errors(document, kind, found) == []
+    assert list(Draft7Validator(restrictive(schema(kind, found))).iter_errors(document)) == []

@@ -7,7 +7,13 @@ One command, its direction set by what it is given:
 - a main job's folder (``fem-tether run --out DIR``) or a sweep file -> the
   awesIO ``wind_resource`` document of its resource and one ``power_curves``
   document per length and tether (straight line, and the FE line where the
-  sweep has it and its cross-check passed), :mod:`fem_tether.io.awesio_results`.
+  sweep has it and its cross-check passed), :mod:`fem_tether.io.awesio_results`;
+- a ``wind_resource`` document of either layout of awesIO 0.1.0 (keys with
+  units, ufechner7/awesIO; without, awegroup/awesIO) -> the same document in
+  the layout asked for (:func:`fem_tether.io.awesio_clusters.converted`).
+
+Documents are written in the fork's layout unless ``layout`` asks for
+awegroup's, which fem-tether writes for ``wind_resource`` only.
 
 Every document is checked against its schema before it is written, and the
 files are written together through :mod:`fem_tether.core.atomic` (temporary
@@ -20,7 +26,9 @@ from pathlib import Path
 
 from fem_tether.core.atomic import atomic_outputs, atomic_path, check_folder, check_writable, exclusive
 from fem_tether.core.errors import InputError
-from fem_tether.io.awesio import check, kind_of, read_document, yaml_text
+from fem_tether.io.awesio import (DEFAULT_LAYOUT, LAYOUTS, check, kind_of, read_document,
+                                  read_layout_document, yaml_text)
+from fem_tether.io.awesio_clusters import converted, read_wind_resource
 from fem_tether.io.awesio_clusters import wind_resource_document as clusters_document
 from fem_tether.io.awesio_results import (cluster_curves_of, cluster_power_curves_document, curves_of,
                                           power_curves_document, site_of, wind_resource_document)
@@ -33,18 +41,43 @@ RESOURCE_NAME = "wind_resource.yml"
 
 
 def convert(source, out, reference_height_m: float = REFERENCE_HEIGHT_M, allow_unchecked: bool = False,
-            allow_incomplete: bool = False, constraints=None) -> dict:
+            allow_incomplete: bool = False, constraints=None, layout: str = DEFAULT_LAYOUT) -> dict:
     """Convert ``source`` (a system document, with an operational-constraints document
-    ``constraints`` if given; a main job's folder or a sweep file) into ``out`` (a TOML
-    file, or a folder of awesIO documents); what was written, by kind."""
+    ``constraints`` if given; a main job's folder or a sweep file; a wind_resource document)
+    into ``out`` (a TOML file, a folder of awesIO documents, a wind_resource document in
+    ``layout``); what was written, by kind."""
     source = Path(source)
-    if constraints is not None and (source.is_dir() or source.suffix.lower() in (".h5", ".hdf5")):
+    results = source.is_dir() or source.suffix.lower() in (".h5", ".hdf5")
+    if constraints is not None and results:
         raise InputError(f"--constraints {constraints}: read beside a system document, not with results ({source})")
+    kind = None if results else read_layout_document(source)[0]
+    if layout != DEFAULT_LAYOUT and kind != "wind_resource":
+        raise InputError(f"--awesio-layout {layout}: fem-tether writes the layout of {LAYOUTS[layout]} for "
+                         f"wind_resource documents only (convert one: fem-tether convert wind_resource.yml --out "
+                         f"FILE.yml --awesio-layout {layout})")
     if source.is_dir():
         return results_to_awesio(source / "sweep.h5", out, reference_height_m, allow_unchecked, allow_incomplete)
-    if source.suffix.lower() in (".h5", ".hdf5"):
+    if results:
         return results_to_awesio(source, out, reference_height_m, allow_unchecked, allow_incomplete)
+    if kind == "wind_resource":
+        return resource_to_layout(source, out, layout)
     return system_to_case(source, out, constraints)
+
+
+def resource_to_layout(source: Path, out, layout: str) -> dict:
+    """The wind_resource document ``source`` (either layout; read as a cluster resource
+    first, so that it is one fem-tether can fly) as the document ``out`` in ``layout``."""
+    out = check_writable(out)
+    if out.suffix.lower() not in (".yml", ".yaml"):
+        raise InputError(f"--out {out}: a wind_resource document converts to a wind_resource document, FILE.yml")
+    read_wind_resource(source)
+    _, source_layout, document = read_layout_document(source, "wind_resource")
+    document = converted(document, layout, source_layout)
+    check(document, "wind_resource", str(out), layout)
+    with atomic_path(out) as tmp:
+        tmp.write_text(yaml_text(document), encoding="utf-8")
+    return {"kind": "wind_resource", "source": str(source), "files": [str(out)], "from_layout": source_layout,
+            "layout": layout}
 
 
 def system_to_case(source: Path, out, constraints=None) -> dict:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from fem_tether.core.atomic import atomic_path, check_writable
 from fem_tether.core.errors import ConfigError
-from fem_tether.io.awesio import check, yaml_text
+from fem_tether.io.awesio import DEFAULT_LAYOUT, check, yaml_text
 from fem_tether.io.awesio_clusters import wind_resource_document
 from fem_tether.io.netcdf_profiles import read_profiles
 from fem_tether.physics.clustering import N_STARTS, cluster_profiles
@@ -24,9 +24,10 @@ CLUSTERS, REFERENCE_HEIGHT_M, SEED = 8, 100.0, 0
 
 
 def build_resource(netcdf, out, n_clusters: int = CLUSTERS, reference_height_m: float = REFERENCE_HEIGHT_M,
-                   seed: int = SEED) -> dict:
+                   seed: int = SEED, layout: str = DEFAULT_LAYOUT) -> dict:
     """Cluster the profiles of ``netcdf`` into ``n_clusters`` shapes normalised at
-    ``reference_height_m`` (k-means seeded by ``seed``) and write them to ``out`` (YAML)."""
+    ``reference_height_m`` (k-means seeded by ``seed``) and write them to ``out`` (YAML, in
+    awesIO's ``layout``)."""
     out = Path(out)
     if out.suffix.lower() not in (".yml", ".yaml"):
         raise ConfigError(f"--out {out}: the resource is an awesIO YAML document, FILE.yml or FILE.yaml")
@@ -42,8 +43,8 @@ def build_resource(netcdf, out, n_clusters: int = CLUSTERS, reference_height_m: 
             f"{profiles.dropped} incomplete profile(s) dropped")
     document = wind_resource_document(resource, f"{Path(netcdf).stem} wind-profile clusters",
                                       f"{n_clusters} wind-profile clusters of {info['profiles']} profiles of "
-                                      f"{Path(netcdf).name}", note, info["profiles"])
-    check(document, "wind_resource", str(out))
+                                      f"{Path(netcdf).name}", note, info["profiles"], layout)
+    check(document, "wind_resource", str(out), layout)
     with atomic_path(out) as tmp:
         tmp.write_text(yaml_text(document), encoding="utf-8")
     top = float(resource.heights_m[-1])

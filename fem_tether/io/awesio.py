@@ -15,6 +15,14 @@ YAML is read as YAML 1.2 reads numbers: ``1.0e9`` is a float (PyYAML, a
 YAML 1.1 parser, reads it as the string "1.0e9", which the schemas refuse;
 awesIO's own tools parse YAML 1.2).
 
+Two layouts of v0.1.0 exist, both stating ``awesIO_version: 0.1.0`` and the same
+``metadata.schema`` file name: the fork ufechner7/awesIO's, whose keys carry
+units (``reference_height_m``), the one fem-tether writes by default; and
+awegroup/awesIO's later schemas, keys without units (``reference_height``).
+A document's layout is told by its keys (:func:`layout_of`): those one
+layout's schema defines and the other's does not.  A document with keys of
+both is ambiguous and refused, naming one of each.
+
 >>> kind_of({"metadata": {"schema": "power_curves_schema.yml"}}, "x.yml")
 'power_curves'
 >>> yaml_text({"metadata": {"name": "n"}}).splitlines()[0].startswith("# fem-tether")
@@ -35,8 +43,15 @@ from fem_tether.core.inputfile import read_text
 #: The awesIO version whose schemas are shipped and whose documents are written.
 AWESIO_VERSION = "0.1.0"
 
-#: The shipped schemas (the published v0.1.0 files, unchanged).
+#: The shipped schemas (the published v0.1.0 files, unchanged): the fork's here, awegroup's in ``awegroup/``.
 SCHEMAS_DIR = Path(__file__).parent / "awesio_schemas"
+
+#: The layouts of awesIO 0.1.0, each with where its schemas come from (awesio_schemas/PROVENANCE.md).
+LAYOUTS = {"ufechner7": "ufechner7/awesIO v0.1.0, keys with units",
+           "awegroup": "awegroup/awesIO 120b741, keys without units"}
+
+#: The layout fem-tether writes unless told otherwise.
+DEFAULT_LAYOUT = "ufechner7"
 
 #: The document kinds, each checked by ``KIND_schema.yml``.
 KINDS = ("system", "wind_resource", "power_curves", "operational_constraints")
@@ -78,17 +93,78 @@ def parse_yaml(text: str, source: str) -> Any:
         raise AwesioError(f"{source}: not YAML: {' '.join(str(exc).split())}") from None
 
 
+def schema_path(kind: str, layout: str = DEFAULT_LAYOUT) -> Path:
+    """The shipped schema file of documents of ``kind`` in ``layout`` (one of :data:`LAYOUTS`)."""
+    return (SCHEMAS_DIR if layout == DEFAULT_LAYOUT else SCHEMAS_DIR / layout) / f"{kind}_schema.yml"
+
+
+def layouts_of(kind: str) -> list[str]:
+    """The layouts whose ``kind`` schema is shipped (awegroup's: ``wind_resource`` only)."""
+    return [layout for layout in LAYOUTS if schema_path(kind, layout).is_file()]
+
+
 @cache
-def schema(kind: str) -> dict:
-    """The published JSON Schema of documents of ``kind`` (one of :data:`KINDS`)."""
-    return parse_yaml((SCHEMAS_DIR / f"{kind}_schema.yml").read_text(encoding="utf-8"), kind)
+def schema(kind: str, layout: str = DEFAULT_LAYOUT) -> dict:
+    """The published JSON Schema of documents of ``kind`` (one of :data:`KINDS`) in ``layout``."""
+    return parse_yaml(schema_path(kind, layout).read_text(encoding="utf-8"), f"{kind} ({layout})")
 
 
-def schema_errors(document: Any, kind: str) -> list[str]:
-    """Where ``document`` breaks the ``kind`` schema, one ``at 'a.b.0': message`` each, in document order."""
+def _schema_keys(node: dict, prefix: str = "", required: bool = True) -> dict[str, bool]:
+    """The keys ``node`` defines, as dotted paths through objects and arrays (``clusters.id``),
+    each with whether it is required (along its whole path)."""
+    keys: dict[str, bool] = {}
+    for key, sub in node.get("properties", {}).items():
+        path, needed = f"{prefix}{key}", required and key in node.get("required", ())
+        keys[path] = needed
+        for item in (sub, sub.get("items")):
+            if isinstance(item, dict):
+                keys.update(_schema_keys(item, f"{path}.", needed))
+    return keys
+
+
+def _document_keys(node: Any, prefix: str = "") -> set[str]:
+    """The keys of ``node`` as dotted paths through mappings and lists (as :func:`_schema_keys`)."""
+    if isinstance(node, list):
+        return set().union(*(_document_keys(item, prefix) for item in node))
+    if not isinstance(node, dict):
+        return set()
+    return set().union(*({f"{prefix}{key}"} | _document_keys(sub, f"{prefix}{key}.") for key, sub in node.items()))
+
+
+@cache
+def layout_keys(kind: str, layout: str) -> tuple[str, ...]:
+    """The keys of ``layout``'s ``kind`` schema that no other layout's defines, required ones first."""
+    own = _schema_keys(schema(kind, layout))
+    others = set().union(*(_schema_keys(schema(kind, other)) for other in layouts_of(kind) if other != layout))
+    return tuple(sorted((k for k in own if k not in others), key=lambda k: (not own[k], k)))
+
+
+def layout_of(document: Any, kind: str, source: str) -> str:
+    """The layout of the ``kind`` document ``document``: the one whose own keys
+    (:func:`layout_keys`) it has; :class:`AwesioError` naming ``source`` and the keys if it
+    has keys of two layouts or of none."""
+    layouts = layouts_of(kind)
+    if len(layouts) == 1:
+        return layouts[0]
+    keys = _document_keys(document)
+    found = {layout: [k for k in layout_keys(kind, layout) if k in keys] for layout in layouts}
+    chosen = [layout for layout in layouts if found[layout]]
+    if len(chosen) == 1:
+        return chosen[0]
+    if chosen:
+        named = " and ".join(f"'{found[layout][0]}' ({LAYOUTS[layout]})" for layout in chosen)
+        raise AwesioError(f"{source}: ambiguous awesIO {kind} document: it has keys of two layouts, {named}; "
+                          "a document follows one")
+    named = " nor ".join(f"'{layout_keys(kind, layout)[0]}' ({LAYOUTS[layout]})" for layout in layouts)
+    raise AwesioError(f"{source}: awesIO {kind} document of no known layout: it has neither {named}")
+
+
+def schema_errors(document: Any, kind: str, layout: str = DEFAULT_LAYOUT) -> list[str]:
+    """Where ``document`` breaks the ``kind`` schema of ``layout``, one ``at 'a.b.0': message`` each,
+    in document order."""
     from jsonschema import Draft7Validator
 
-    errors = sorted(Draft7Validator(schema(kind)).iter_errors(document), key=lambda e: [str(p) for p in e.path])
+    errors = sorted(Draft7Validator(schema(kind, layout)).iter_errors(document), key=lambda e: [str(p) for p in e.path])
     return [f"at '{'.'.join(str(p) for p in e.path) or '(top)'}': {e.message}" for e in errors]
 
 
@@ -103,23 +179,36 @@ def kind_of(document: Any, source: str) -> str:
     return kind
 
 
-def check(document: Any, kind: str, source: str) -> None:
-    """:class:`AwesioError` naming ``source`` and the first place ``document`` breaks the ``kind`` schema."""
-    errors = schema_errors(document, kind)
+def check(document: Any, kind: str, source: str, layout: str = DEFAULT_LAYOUT) -> None:
+    """:class:`AwesioError` naming ``source`` and the first place ``document`` breaks the ``kind``
+    schema of ``layout``."""
+    errors = schema_errors(document, kind, layout)
     if errors:
         more = f" (and {len(errors) - ERRORS_SHOWN} more)" if len(errors) > ERRORS_SHOWN else ""
         raise AwesioError(f"{source}: not a valid awesIO {kind} document "
-                          f"({kind}_schema.yml, awesIO {AWESIO_VERSION}): {'; '.join(errors[:ERRORS_SHOWN])}{more}")
+                          f"({kind}_schema.yml of {LAYOUTS[layout]}): {'; '.join(errors[:ERRORS_SHOWN])}{more}")
 
 
-def read_document(path: str | Path, kind: str | None = None) -> tuple[str, dict]:
-    """The awesIO document at ``path`` and its kind, checked against its schema (and, if
-    given, to be of ``kind``); :class:`AwesioError` naming the file otherwise."""
+def read_layout_document(path: str | Path, kind: str | None = None) -> tuple[str, str, dict]:
+    """The awesIO document at ``path``, its kind and its layout (:func:`layout_of`), checked
+    against its layout's schema (and, if given, to be of ``kind``); :class:`AwesioError` naming
+    the file otherwise."""
     document = parse_yaml(read_text(path, AwesioError), str(path))
     found = kind_of(document, str(path))
     if kind is not None and found != kind:
         raise AwesioError(f"{path}: an awesIO {found} document, where one of {kind}_schema.yml is expected")
-    check(document, found, str(path))
+    layout = layout_of(document, found, str(path))
+    check(document, found, str(path), layout)
+    return found, layout, document
+
+
+def read_document(path: str | Path, kind: str | None = None) -> tuple[str, dict]:
+    """The awesIO document at ``path`` and its kind, as :func:`read_layout_document`, refused
+    unless in the layout fem-tether maps field by field (:data:`DEFAULT_LAYOUT`)."""
+    found, layout, document = read_layout_document(path, kind)
+    if layout != DEFAULT_LAYOUT:
+        raise AwesioError(f"{path}: an awesIO {found} document of {LAYOUTS[layout]}: fem-tether reads this kind "
+                          f"in the layout of {LAYOUTS[DEFAULT_LAYOUT]} only (docs/awesio.md)")
     return found, document
 
 

@@ -16,6 +16,13 @@ The document's fields and a :class:`~fem_tether.physics.clusters.ClusterResource
   example documents state theirs).  The absolute direction of the wind is
   dropped (fem-tether's wind has none); its turn with height stays in the
   shapes' v.
+
+awegroup/awesIO's layout of the document (:data:`fem_tether.io.awesio.LAYOUTS`)
+names the same fields without their units (:data:`AWEGROUP_KEYS`); it is read
+into the same resource and written on request.  Its ``metadata.time_range``
+(dates) and the fork's (years) do not map onto each other; fem-tether does
+not read either, and a conversion between the layouts (:func:`converted`)
+moves it, verbatim, into ``metadata.note``.
 """
 
 from __future__ import annotations
@@ -24,11 +31,59 @@ from datetime import datetime, timezone
 
 import numpy as np
 
-from fem_tether.io.awesio import AWESIO_VERSION, AwesioError, read_document
+from fem_tether.io.awesio import AWESIO_VERSION, DEFAULT_LAYOUT, AwesioError, read_layout_document
 from fem_tether.physics.clusters import ClusterResource, read_clusters_csv
 
 #: How close the probability matrix's total must be to 1 (fractions) or 100 (percent).
 TOTAL_TOLERANCE = 1e-6
+
+#: The keys awegroup/awesIO's wind_resource schema names without their units, by section
+#: (``clusters``: of each cluster): the fork's key -> awegroup's.
+AWEGROUP_KEYS = {
+    "metadata": {"wind_direction_bin_width_deg": "wind_direction_bin_width", "reference_height_m": "reference_height",
+                 "wind_speed_range_m_s": "wind_speed_range", "altitude_range_m": "altitude_range"},
+    "wind_speed_bins": {"bin_edges_m_s": "bin_edges", "bin_centers_m_s": "bin_centers"},
+    "wind_direction_bins": {"bin_edges_deg": "bin_edges", "bin_centers_deg": "bin_centers"},
+    "clusters": {"u_ref_mean_m_s": "u_ref_mean", "u_ref_std_m_s": "u_ref_std", "v_ref_mean_m_s": "v_ref_mean",
+                 "v_ref_std_m_s": "v_ref_std"},
+}
+
+
+def _renamed(document: dict, names: dict[str, dict[str, str]]) -> dict:
+    """``document`` with the keys of each section renamed by ``names[section]`` (order kept)."""
+    def rename(node, table):
+        return {table.get(k, k): v for k, v in node.items()} if isinstance(node, dict) else node
+
+    return {section: ([rename(item, names[section]) for item in node] if isinstance(node, list)
+                      else rename(node, names[section])) if section in names else node
+            for section, node in document.items()}
+
+
+def in_layout(document: dict, layout: str, source_layout: str = DEFAULT_LAYOUT) -> dict:
+    """The ``wind_resource`` ``document`` of ``source_layout`` in ``layout`` (its keys renamed;
+    ``metadata.time_range``, which does not map, is left as it is)."""
+    if layout == source_layout:
+        return document
+    if layout == DEFAULT_LAYOUT:
+        return _renamed(document, {section: {v: k for k, v in t.items()} for section, t in AWEGROUP_KEYS.items()})
+    return _renamed(document, AWEGROUP_KEYS)
+
+
+def converted(document: dict, layout: str, source_layout: str) -> dict:
+    """The ``wind_resource`` ``document`` of ``source_layout`` as a document of ``layout``
+    (:func:`in_layout`); a ``metadata.time_range`` that does not map (dates vs years) moves,
+    verbatim, into ``metadata.note``."""
+    document = in_layout(document, layout, source_layout)
+    metadata = dict(document["metadata"])
+    if layout != source_layout and "time_range" in metadata:
+        stated = ", ".join(f"{k}: {v}" for k, v in metadata.pop("time_range").items())
+        metadata["note"] = f"{metadata['note']} [the source's metadata.time_range, not a key of this layout: {stated}]"
+    return {**document, "metadata": metadata}
+
+
+def _key(section: str, key: str, layout: str) -> str:
+    """The dotted name of the fork's ``section.key`` in ``layout``."""
+    return f"{section}.{key if layout == DEFAULT_LAYOUT else AWEGROUP_KEYS[section][key]}"
 
 
 def _floats(values) -> list[float]:
@@ -36,8 +91,8 @@ def _floats(values) -> list[float]:
 
 
 def wind_resource_document(resource: ClusterResource, name: str, description: str, note: str,
-                           total_samples: int | None = None) -> dict:
-    """The awesIO ``wind_resource`` document of ``resource`` (one direction bin)."""
+                           total_samples: int | None = None, layout: str = DEFAULT_LAYOUT) -> dict:
+    """The awesIO ``wind_resource`` document of ``resource`` (one direction bin) in ``layout``."""
     edges = resource.edges_mps
     joint = resource.joint_probability()
     metadata = {
@@ -53,7 +108,7 @@ def wind_resource_document(resource: ClusterResource, name: str, description: st
                  "u_normalized": _floats(resource.u_shape[k]), "v_normalized": _floats(resource.v_shape[k]),
                  "wind_speed_distribution": _floats(resource.probability[k]), "wind_direction_distribution": [1.0]}
                 for k in range(resource.n_clusters)]
-    return {
+    return in_layout({
         "metadata": metadata,
         "altitudes": _floats(resource.heights_m),
         "wind_speed_bins": {"bin_edges_m_s": _floats(edges), "bin_centers_m_s": _floats(0.5 * (edges[1:] + edges[:-1]))},
@@ -63,7 +118,7 @@ def wind_resource_document(resource: ClusterResource, name: str, description: st
                                               "reference height (fractions; one direction bin)",
                                "dimensions": "cluster x wind speed bin x wind direction bin",
                                "data": [[[float(p)] for p in row] for row in joint]},
-    }
+    }, layout)
 
 
 def _from_matrix(document: dict, n_clusters: int, n_bins: int, source: str) -> tuple[np.ndarray, np.ndarray]:
@@ -86,14 +141,16 @@ def _from_matrix(document: dict, n_clusters: int, n_bins: int, source: str) -> t
 
 
 def read_wind_resource(path) -> ClusterResource:
-    """The cluster resource of the awesIO ``wind_resource`` document at ``path`` (checked
-    against its schema first); one line naming the file and the field otherwise."""
+    """The cluster resource of the awesIO ``wind_resource`` document at ``path`` in either
+    layout (checked against its layout's schema first); one line naming the file and the
+    field otherwise."""
     source = str(path)
-    _, document = read_document(path, "wind_resource")
+    _, layout, document = read_layout_document(path, "wind_resource")
+    document = in_layout(document, DEFAULT_LAYOUT, layout)
+    edges_key = _key("wind_speed_bins", "bin_edges_m_s", layout)
     bins = document.get("wind_speed_bins", {}).get("bin_edges_m_s")
     if not bins:
-        raise AwesioError(f"{source}: no wind_speed_bins.bin_edges_m_s: the clusters' speed distributions need "
-                          "their bins")
+        raise AwesioError(f"{source}: no {edges_key}: the clusters' speed distributions need their bins")
     edges = np.array(bins, dtype=float)
     clusters = document["clusters"]
     if all("frequency" in c and "wind_speed_distribution" in c for c in clusters):
@@ -101,7 +158,7 @@ def read_wind_resource(path) -> ClusterResource:
         lengths = {len(c["wind_speed_distribution"]) for c in clusters}
         if lengths != {edges.size - 1}:
             raise AwesioError(f"{source}: clusters' wind_speed_distribution of {sorted(lengths)} bins, expected "
-                              f"{edges.size - 1} (wind_speed_bins.bin_edges_m_s)")
+                              f"{edges.size - 1} ({edges_key})")
         probability = np.array([c["wind_speed_distribution"] for c in clusters], dtype=float)
     else:
         frequency, probability = _from_matrix(document, len(clusters), edges.size - 1, source)

@@ -11,8 +11,9 @@ from jsonschema import Draft7Validator
 from awesio_valid import assert_valid
 
 from fem_tether.core.atomic import written_by_fem_tether
-from fem_tether.io.awesio import (KINDS, SCHEMAS_DIR, AwesioError, check, parse_yaml, read_document, schema,
-                                  yaml_text)
+import awesio_layouts
+from fem_tether.io.awesio import (KINDS, SCHEMAS_DIR, AwesioError, check, layout_keys, layout_of, layouts_of,
+                                  parse_yaml, read_document, schema, yaml_text)
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "awesio" / "soft_kite_system.yml"
 
@@ -27,9 +28,37 @@ def test_the_shipped_schemas_are_the_published_ones_byte_for_byte():
     assert "Apache License" in (SCHEMAS_DIR / "LICENSE-src-awesio").read_text()
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_every_schema_is_a_draft_7_schema(kind):
-    Draft7Validator.check_schema(schema(kind))
+def test_awegroups_shipped_schema_is_its_published_one_byte_for_byte():
+    """PROVENANCE.md's SHA-256 of awegroup/awesIO's wind_resource schema (commit 120b741), the only kind
+    shipped in its layout."""
+    table = dict(re.findall(r"\| `awegroup/(\w+_schema\.yml)` \| `([0-9a-f]{64})` \|",
+                            (SCHEMAS_DIR / "PROVENANCE.md").read_text()))
+    assert sorted(table) == ["wind_resource_schema.yml"] == [p.name for p in (SCHEMAS_DIR / "awegroup").iterdir()]
+    assert hashlib.sha256((SCHEMAS_DIR / "awegroup" / "wind_resource_schema.yml").read_bytes()).hexdigest() == \
+        table["wind_resource_schema.yml"]
+    assert [k for k in KINDS if "awegroup" in layouts_of(k)] == ["wind_resource"]
+
+
+@pytest.mark.parametrize("kind, layout", [(k, "ufechner7") for k in KINDS] + [("wind_resource", "awegroup")])
+def test_every_schema_is_a_draft_7_schema(kind, layout):
+    Draft7Validator.check_schema(schema(kind, layout))
+
+
+def test_the_layouts_own_keys_are_the_keys_one_schema_names_and_the_other_does_not():
+    """Required ones first: the reference height is what each layout's documents must state."""
+    fork, awegroup = layout_keys("wind_resource", "ufechner7"), layout_keys("wind_resource", "awegroup")
+    assert (fork[0], awegroup[0]) == ("metadata.reference_height_m", "metadata.reference_height")
+    assert "wind_speed_bins.bin_edges_m_s" in fork and "wind_speed_bins.bin_edges" in awegroup
+    assert "metadata.time_range.start_date" in awegroup and "metadata.time_range.start_year" in fork
+    assert not set(fork) & set(awegroup) and "clusters.u_normalized" not in fork + awegroup
+
+
+def test_a_system_document_has_one_layout_and_reading_refuses_awegroups_wind_resource_where_unmapped(tmp_path):
+    assert layout_of({}, "system", "x") == "ufechner7"
+    path = tmp_path / "r.yml"
+    path.write_text(awesio_layouts.AWEGROUP)
+    with pytest.raises(AwesioError, match="of awegroup/awesIO 120b741, keys without units: fem-tether reads this"):
+        read_document(path)
 
 
 def test_yaml_reads_numbers_as_yaml_1_2():

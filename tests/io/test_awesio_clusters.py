@@ -3,13 +3,15 @@ and as awesIO's validator applies it), read back unchanged; documents that give 
 probabilities only as a matrix (in percent, as awesIO's examples do) read too."""
 
 import hashlib
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+import awesio_layouts
 from awesio_valid import assert_valid
-from fem_tether.io.awesio import AwesioError, read_document, yaml_text
+from fem_tether.io.awesio import AwesioError, parse_yaml, read_document, schema_errors, yaml_text
 from fem_tether.io.awesio_clusters import read_cluster_resource, read_wind_resource, wind_resource_document
 from fem_tether.physics.clusters import ClusterError, ClusterResource
 from fem_tether.physics.clustering import cluster_profiles
@@ -125,13 +127,76 @@ def test_the_published_era5_example_reads_as_its_metadata_states():
     np.testing.assert_allclose(r.probability.sum(axis=1), 1.0, rtol=1e-12)
 
 
-def test_a_document_of_awegroups_later_unitless_keys_is_refused_naming_the_first(tmp_path):
-    """awegroup/awesIO's own example (keys without units: metadata.reference_height, wind_speed_bins.bin_edges)
-    follows a later schema than the shipped v0.1.0: one line naming the file and the missing key."""
+def test_a_document_with_keys_of_both_layouts_is_one_line_naming_one_of_each(tmp_path):
+    """awegroup/awesIO's keys without units (metadata.reference_height, wind_speed_bins.bin_edges) among the
+    fork's with units: ambiguous, refused naming one key of each layout (before, awegroup's layout was
+    refused altogether, naming the fork's missing reference_height_m)."""
     document = read_document(ERA5_EXAMPLE, "wind_resource")[1]
     metadata = document["metadata"]
     metadata["reference_height"] = metadata.pop("reference_height_m")
     document["wind_speed_bins"] = {"bin_edges": document["wind_speed_bins"]["bin_edges_m_s"]}
-    with pytest.raises(AwesioError, match="'reference_height_m' is a required property") as info:
-        read_wind_resource(write(tmp_path / "awegroup.yml", document))
-    assert "\n" not in str(info.value) and "awegroup.yml" in str(info.value)
+    with pytest.raises(AwesioError) as info:
+        read_wind_resource(write(tmp_path / "mixed.yml", document))
+    assert str(info.value) == (
+        f"{tmp_path / 'mixed.yml'}: ambiguous awesIO wind_resource document: it has keys of two layouts, "
+        "'metadata.altitude_range_m' (ufechner7/awesIO v0.1.0, keys with units) and 'metadata.reference_height' "
+        "(awegroup/awesIO 120b741, keys without units); a document follows one")
+
+
+def test_a_document_of_neither_layout_names_the_reference_height_of_each(tmp_path):
+    document = parse_yaml(awesio_layouts.FORK, "fork")
+    del document["metadata"]["reference_height_m"], document["metadata"]["altitude_range_m"]
+    for key in ("wind_direction_bin_width_deg", "wind_speed_range_m_s", "time_range"):
+        del document["metadata"][key]
+    del document["wind_speed_bins"], document["wind_direction_bins"]
+    with pytest.raises(AwesioError, match=re.escape(
+            "of no known layout: it has neither 'metadata.reference_height_m' (ufechner7/awesIO v0.1.0, keys with "
+            "units) nor 'metadata.reference_height' (awegroup/awesIO 120b741, keys without units)")) as info:
+        read_wind_resource(write(tmp_path / "r.yml", document))
+    assert "\n" not in str(info.value)
+
+
+def test_the_same_resource_in_awegroups_layout_and_the_forks_reads_the_same(tmp_path):
+    """Hand-written twins (tests/awesio_layouts.py), each valid against its own layout's schema only, read
+    into the same resource: the numbers they state, their percent matrix summed over its direction bins."""
+    (tmp_path / "awegroup.yml").write_text(awesio_layouts.AWEGROUP)
+    (tmp_path / "fork.yml").write_text(awesio_layouts.FORK)
+    for name, layout, other in (("awegroup", "awegroup", "ufechner7"), ("fork", "ufechner7", "awegroup")):
+        document = parse_yaml((tmp_path / f"{name}.yml").read_text(), name)
+        assert_valid(document, layout)
+        assert schema_errors(document, "wind_resource", other)
+    ours, theirs = read_wind_resource(tmp_path / "fork.yml"), read_wind_resource(tmp_path / "awegroup.yml")
+    for name in ("heights_m", "u_shape", "v_shape", "frequency", "edges_mps", "probability"):
+        assert np.array_equal(getattr(theirs, name), getattr(ours, name)), name
+    assert theirs.reference_height_m == ours.reference_height_m == 100.0
+    np.testing.assert_allclose(theirs.frequency, awesio_layouts.FREQUENCY, rtol=1e-15)
+    np.testing.assert_allclose(theirs.probability, awesio_layouts.PROBABILITY, rtol=1e-15)
+    assert np.array_equal(theirs.u_shape, awesio_layouts.U_SHAPE) and np.array_equal(theirs.v_shape, awesio_layouts.V_SHAPE)
+
+
+def test_written_in_awegroups_layout_the_clusters_are_valid_there_and_read_back_unchanged(tmp_path):
+    resource = clusters()
+    document = wind_resource_document(resource, "site", "three shapes", "a test", 400, "awegroup")
+    assert_valid(document, "awegroup")
+    assert document["metadata"]["reference_height"] == REFERENCE_M and "bin_edges" in document["wind_speed_bins"]
+    back = read_wind_resource(write(tmp_path / "r.yml", document))
+    for name in ("heights_m", "u_shape", "v_shape", "frequency", "edges_mps", "probability"):
+        assert np.array_equal(getattr(back, name), getattr(resource, name)), name
+
+
+@pytest.mark.parametrize("change, match", [
+    (lambda d: d["metadata"].pop("reference_height"), "'reference_height' is a required property"),
+    (lambda d: d["metadata"].update(reference_height=-1.0), "at 'metadata.reference_height': -1.0 is less than"),
+    (lambda d: d.pop("wind_speed_bins"), "no wind_speed_bins.bin_edges: "),
+    (lambda d: d["wind_speed_bins"]["bin_edges"].pop(), r"wind_speed_distribution of \[3\] bins, expected 2 "
+                                                        r"\(wind_speed_bins.bin_edges\)"),
+])
+def test_a_wrong_awegroup_document_is_one_line_naming_its_key(tmp_path, change, match):
+    document = wind_resource_document(clusters(), "site", "d", "n", layout="awegroup")
+    for cluster in document["clusters"]:
+        cluster["wind_speed_distribution"] = cluster["wind_speed_distribution"][:3]
+    document["wind_speed_bins"] = {"bin_edges": document["wind_speed_bins"]["bin_edges"][:4]}
+    change(document)
+    with pytest.raises(AwesioError, match=match) as info:
+        read_wind_resource(write(tmp_path / "r.yml", document))
+    assert "\n" not in str(info.value) and "r.yml" in str(info.value)
