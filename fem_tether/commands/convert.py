@@ -52,9 +52,8 @@ def convert(source, out, reference_height_m: float = REFERENCE_HEIGHT_M, allow_u
         raise InputError(f"--constraints {constraints}: read beside a system document, not with results ({source})")
     kind = None if results else read_layout_document(source)[0]
     if layout != DEFAULT_LAYOUT and kind != "wind_resource":
-        raise InputError(f"--awesio-layout {layout}: fem-tether writes the layout of {LAYOUTS[layout]} for "
-                         f"wind_resource documents only (convert one: fem-tether convert wind_resource.yml --out "
-                         f"FILE.yml --awesio-layout {layout})")
+        raise InputError(f"--awesio-layout {layout}: fem-tether writes that layout ({LAYOUTS[layout]}) for "
+                         f"wind_resource documents only, not from {source} (convert its wind_resource.yml on its own)")
     if source.is_dir():
         return results_to_awesio(source / "sweep.h5", out, reference_height_m, allow_unchecked, allow_incomplete)
     if results:

@@ -8,12 +8,14 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
+import awesio_layouts
 from awesio_valid import assert_valid
 from conftest import TINY_JOB
 from fem_tether.cli import main
 from fem_tether.config import load_config
 from fem_tether.core.atomic import written_by_fem_tether
-from fem_tether.io.awesio import read_document
+from fem_tether.io.awesio import parse_yaml, read_document
+from fem_tether.io.awesio_clusters import read_wind_resource
 from fem_tether.jobs.job import load_job
 from fem_tether.jobs.sweep import sweep
 from fem_tether.jobs.sweepfile import read_sweep
@@ -124,3 +126,49 @@ def test_a_cluster_sweep_converts_to_its_clusters_and_one_profile_per_cluster(tm
             np.array(p["cycle_power_w"][1:]) + np.array(p["cycle_power_w"][:-1])))
             for k, p in enumerate(document["power_curves"])) / 1e6
         assert aep_MWh == pytest.approx(result.aep_MWh[0], rel=1e-12)
+
+
+def test_a_wind_resource_converts_between_the_layouts_and_back(tmp_path, capsys):
+    """awegroup/awesIO's layout -> the fork's (default) -> awegroup's: each valid against its own schema, the
+    same resource throughout; the source's time_range (dates), a key of neither conversion's target, kept
+    verbatim in metadata.note."""
+    source = tmp_path / "awegroup.yml"
+    source.write_text(awesio_layouts.AWEGROUP)
+    fork, back = tmp_path / "fork.yml", tmp_path / "back.yml"
+    assert main(["convert", str(source), "--out", str(fork)]) == 0
+    assert main(["convert", str(fork), "--out", str(back), "--awesio-layout", "awegroup"]) == 0
+    assert capsys.readouterr().out == f"wrote {fork}\nwrote {back}\n"
+    documents = {path: parse_yaml(path.read_text(), str(path)) for path in (source, fork, back)}
+    for path, layout in ((source, "awegroup"), (fork, "ufechner7"), (back, "awegroup")):
+        assert_valid(documents[path], layout)
+    assert "start_date: 2011-01-01, end_date: 2011-12-31]" in documents[fork]["metadata"]["note"]
+    original, returned = documents[source], documents[back]
+    assert {k: v for k, v in returned["metadata"].items() if k != "note"} == \
+        {k: v for k, v in original["metadata"].items() if k not in ("note", "time_range")}
+    assert {k: v for k, v in returned.items() if k != "metadata"} == {k: v for k, v in original.items() if k != "metadata"}
+    resources = [read_wind_resource(path) for path in (source, fork, back)]
+    for key in ("heights_m", "u_shape", "v_shape", "frequency", "edges_mps", "probability"):
+        assert all(np.array_equal(getattr(r, key), getattr(resources[0], key)) for r in resources[1:]), key
+
+
+def test_a_wrong_or_ambiguous_wind_resource_is_one_line_and_exit_2(tmp_path, capsys):
+    ambiguous = tmp_path / "both.yml"
+    ambiguous.write_text(awesio_layouts.FORK.replace("reference_height_m: 100.0", "reference_height_m: 100.0\n"
+                                                                                  "  reference_height: 100.0"))
+    unnormalised = tmp_path / "u.yml"
+    unnormalised.write_text(awesio_layouts.AWEGROUP.replace("[0.8, 1.0, 1.1]", "[0.8, 1.5, 1.1]"))
+    good = tmp_path / "good.yml"
+    good.write_text(awesio_layouts.AWEGROUP)
+    for argv, says in [
+            (["convert", str(ambiguous), "--out", str(tmp_path / "x.yml")],
+             "ambiguous awesIO wind_resource document: it has keys of two layouts, 'metadata.reference_height_m' "
+             "(ufechner7/awesIO v0.1.0, keys with units) and 'metadata.reference_height' (awegroup/awesIO 120b741"),
+            (["convert", str(unnormalised), "--out", str(tmp_path / "x.yml")], "cluster 1's shape is u = 1.5"),
+            (["convert", str(good), "--out", str(tmp_path / "x.toml")], "FILE.yml"),
+            (["convert", str(EXAMPLE), "--out", str(tmp_path / "c.toml"), "--awesio-layout", "awegroup"],
+             "--awesio-layout awegroup: fem-tether writes that layout (awegroup/awesIO 120b741, keys without units) "
+             "for wind_resource documents only")]:
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert says in err and err.count("\n") == 1, (argv, err)
+    assert not (tmp_path / "x.yml").exists()

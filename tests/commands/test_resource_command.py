@@ -55,6 +55,19 @@ def test_the_same_file_and_seed_give_the_same_document(capsys, tmp_path):
     assert documents[0] == documents[1]
 
 
+def test_awegroups_layout_on_request_holds_the_same_clusters(capsys, tmp_path):
+    """``--awesio-layout awegroup``: the document valid against awegroup/awesIO's schema (keys without units),
+    the same clusters as the default layout's from the same file and seed."""
+    east, north, _ = draw()
+    netcdf = write_plain(tmp_path / "p.nc", east, north)
+    for name, layout in (("fork.yml", "ufechner7"), ("awegroup.yml", "awegroup")):
+        assert run(capsys, "resource", netcdf, "--out", tmp_path / name, "--clusters", 3, "--awesio-layout", layout)[0] == 0
+        assert_valid(parse_yaml((tmp_path / name).read_text(), name), layout)
+    fork, awegroup = read_wind_resource(tmp_path / "fork.yml"), read_wind_resource(tmp_path / "awegroup.yml")
+    for key in ("heights_m", "u_shape", "v_shape", "frequency", "edges_mps", "probability"):
+        assert np.array_equal(getattr(fork, key), getattr(awegroup, key)), key
+
+
 def test_json_and_the_reference_height(capsys, tmp_path):
     east, north, _ = draw()
     netcdf = write_plain(tmp_path / "p.nc", east, north)
