@@ -576,12 +576,14 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("convert", cmd_convert, "awesIO (IEA Wind Task 48) documents in and out: a system document to a "
-                "case file, a main job's results to wind_resource and power_curves documents (docs/awesio.md)",
+                "case file, a main job's results to wind_resource and power_curves documents, a wind_resource document "
+                "from one layout to the other (docs/awesio.md)",
                 config=False, system=False)
-    c.add_argument("source", metavar="SOURCE", help="an awesIO system document (YAML), or a main job's folder "
-                   "(run --out DIR) or a sweep file")
-    c.add_argument("--out", required=True, metavar="FILE.toml | DIR",
-                   help="the case file (from a system document), or the folder of the awesIO documents")
+    c.add_argument("source", metavar="SOURCE", help="an awesIO system or wind_resource document (YAML), or a main "
+                   "job's folder (run --out DIR) or a sweep file")
+    c.add_argument("--out", required=True, metavar="FILE.toml | DIR | FILE.yml",
+                   help="the case file (from a system document), the folder of the awesIO documents (from results), "
+                        "or the wind_resource document (from one)")
     c.add_argument("--constraints", metavar="FILE.yml",
                    help="with a system document: its awesIO operational_constraints document (cut-in and cut-out "
                         "winds, tether force and speed limits, largest power)")
