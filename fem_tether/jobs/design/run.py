@@ -30,7 +30,7 @@ from fem_tether.core.errors import ConfigError
 from fem_tether.core.progress import Progress
 from fem_tether.costs.parameters import CURRENCY
 from fem_tether.core.stop import guard, sync
-from fem_tether.design.optimiser import Problem, Solution, consistent, start_points
+from fem_tether.design.optimiser import Solution, consistent, start_points
 from fem_tether.design.result import DesignResult, StartRecord, design_result, never_rated, record
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
@@ -52,10 +52,11 @@ class DesignInterrupted(KeyboardInterrupt):
 
 
 def inputs_key(job: DesignJob) -> str:
-    """What a start's result depends on: the job's text, its objective and prices and the package version."""
+    """What a start's result depends on: the job's text, its objective and prices, its site (the clusters'
+    numbers, not only their file's name) and the package version."""
     return hashlib.sha256((job.text + "\n" + repr(job.parameters) + repr(sorted(job.bounds.items()))
                            + repr(sorted(job.held.items())) + f"{job.seed}" + job.objective + repr(job.costs) + f"{job.iterations}"
-                           + __version__).encode()).hexdigest()
+                           + job.site_key() + __version__).encode()).hexdigest()
 
 
 def costs_section(job: DesignJob) -> dict:
@@ -77,7 +78,7 @@ class DesignStarts(JsonParts):
     def __init__(self, job: DesignJob, out: Path):
         super().__init__(inputs_key(job), parts_dir(out))
         self.job = job
-        self.problem = Problem(job.parameters, job.bounds, job.held, costs=job.costs)
+        self.problem = job.problem()
 
     def valid(self, part: dict, index: int) -> bool:
         return super().valid(part, index) and set(part.get("record", ())) == RECORD_FIELDS
