@@ -247,12 +247,10 @@ def test_a_site_of_three_clusters_converges_from_several_starts():
     """The nominal ground-gen problem at the site of the three synthetic shapes (a power law, a
     low-level jet at 250 m, a veer; tests/synthetic_profiles.py, speeds uniform in 3-20 m/s at 100 m
     in bins of 0.5 m/s): starts 0, 1 and 2 each converge (SLSQP success) feasible, though the shape
-    and the density are piecewise linear (measured: 2 designs, AEP within 1e-? ...)."""
+    and the density are piecewise linear (measured: in 159, 113 and 111 iterations, to three local
+    optima, AEP 16.34, 16.79 and 18.43 GWh at h = 200, 325 and 222 m)."""
     from synthetic_profiles import cluster_resource
 
     problem = Problem(DesignParameters(mode="ground-gen"), clusters=cluster_resource())
     solutions = [problem.solve(consistent(problem, s)) for s in start_points(problem.layout, 3, seed=0)]
-    for s in solutions:
-        print(s.success, s.feasible, s.iterations, s.message, s.evaluation.quantities["aep_Wh"][0],
-              s.evaluation.quantities["altitude_m"][0])
     assert all(s.success and s.feasible for s in solutions)
