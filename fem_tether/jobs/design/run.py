@@ -65,9 +65,23 @@ def costs_section(job: DesignJob) -> dict:
     return {"objective": job.objective, "currency": CURRENCY, "parameters": asdict(job.costs)}
 
 
+def site_section(job: DesignJob) -> dict:
+    """A site of clusters as a design's file and ``--json`` record it (``/site``): the file, the number
+    of clusters, their reference height, the lowest and highest heights and the frequencies; {} at
+    the parameters' Weibull site."""
+    c = job.clusters
+    if c is None:
+        return {}
+    return {"source": c.source, "n_clusters": c.n_clusters, "reference_height_m": float(c.reference_height_m),
+            "heights_m": [float(c.heights_m[0]), float(c.heights_m[-1])],
+            "frequency": [float(f) for f in c.frequency]}
+
+
 def design_content(outcome: DesignResult | FlexibleOutcome, job: DesignJob) -> dict:
-    """The content of a design's file and of ``design --json``: the result's, and its :func:`costs_section`."""
-    return outcome.as_dict() | {"costs": costs_section(job)}
+    """The content of a design's file and of ``design --json``: the result's, its :func:`costs_section`
+    and, at a site of clusters, its :func:`site_section`."""
+    site = site_section(job)
+    return outcome.as_dict() | {"costs": costs_section(job)} | ({"site": site} if site else {})
 
 
 class DesignStarts(JsonParts):
