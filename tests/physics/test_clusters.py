@@ -153,3 +153,5 @@ def test_the_density_at_a_height_is_the_frequency_weighted_sum_of_the_clusters_s
     assert r.density_per_mps(speeds, z) == pytest.approx(by_hand, rel=1e-15)
     assert r.reference_density_per_mps(1, np.array([2.0, 5.0, 12.0, 15.0])) == pytest.approx(
         [0.1, 0.1, 0.03, 0.0], abs=1e-15)       # 0.1 held from the edge 0 to the centre 5, linear to 0 at 15
+    one_bin = resource(edges_mps=np.array([0.0, 10.0]), probability=np.array([[1.0], [0.5]]))
+    assert one_bin.reference_density_per_mps(1, np.array([0.0, 9.0, 10.5])) == pytest.approx([0.05, 0.05, 0.0])

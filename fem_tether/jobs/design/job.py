@@ -62,6 +62,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
 from fem_tether.config.rules import CLUSTER_CSV, CLUSTER_YAML
 from fem_tether.config.settings import toml_value
 from fem_tether.config.tomlio import shipped_tomls, toml_and_text
