@@ -102,3 +102,15 @@ def write_dowa(path, east, north, heights=HEIGHTS_M):
         _variable(f, "wspeed", speed[:, :, None, None], ["time", "height", "y", "x"])
         _variable(f, "wdir", whence[:, :, None, None], ["time", "height", "y", "x"])
     return path
+
+
+def cluster_resource(width_mps=0.5):
+    """The three shapes as a cluster resource (frequencies 0.5, 0.3, 0.2), each cluster's speed at
+    100 m uniform in 3-20 m/s (as drawn) in bins of ``width_mps`` from 0 to 25 m/s."""
+    from fem_tether.physics.clusters import ClusterResource
+
+    edges = np.arange(0.0, 25.0 + 1e-9, width_mps)
+    histogram = np.where((edges[:-1] >= 3.0) & (edges[1:] <= 20.0), 1.0, 0.0)
+    return ClusterResource(HEIGHTS_M, REFERENCE_M, np.array([u for u, _ in shapes()]),
+                           np.array([v for _, v in shapes()]), np.array([0.5, 0.3, 0.2]), edges,
+                           np.tile(histogram / histogram.sum(), (3, 1)), "synthetic shapes")

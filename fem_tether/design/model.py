@@ -12,6 +12,18 @@ weight's balance (eq. 3.74, :func:`weight_balance_N`) and the cycle power
 8760 h ∫ P f dV over [V_in, V_out], less the energy of one take-off a day
 (§5.1.3).  The rated power bounds the cycle's power at each wind speed.
 
+A site of wind-profile clusters (``clusters``, a
+:class:`~fem_tether.physics.clusters.ClusterResource`; docs/design.md, "A site of
+clusters") replaces the Weibull density at h (eqs. 3.91–3.92) by the density of
+the wind speed at h that the clusters give, f_h(V) = Σ_k P(k) f_k(V/s_k(h))/s_k(h)
+(:meth:`~fem_tether.physics.clusters.ClusterResource.density_per_mps`: f_k the
+cluster's speed histogram at its reference height made continuous, s_k(h) its
+shape's magnitude at h); the AEP is the same trapezoid of P f_h on the design's
+grid, so it is Σ_k P(k) ∫ P(U s_k(h)) f_k(U) dU, the sum over clusters and bins
+of P(k) P(i | k) P(U_i s_k(h)) with the power curve known between its nodes.
+The air's density stays eq. 3.90; the clusters' turn with height (veer) does not
+enter this point model, whose kite meets one wind at one altitude.
+
 Two readings are parameters (:class:`~fem_tether.design.parameters.DesignParameters`):
 
 - ``mass_balance``: "exact" (default) solves eq. 3.74 without expansion,
@@ -60,6 +72,7 @@ from fem_tether.costs.parameters import CostParameters
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import MIN_OPERATING_RANGE_MPS, Layout, force_scale_N
 from fem_tether.physics.atmosphere import exponential_density_kg_m3
+from fem_tether.physics.clusters import ClusterResource
 from fem_tether.physics.loads import G_MPS2
 from fem_tether.physics.material import tether_mass_per_length_kg_m
 from fem_tether.physics.resource import weibull_density_per_mps
@@ -189,9 +202,10 @@ def site(parameters: DesignParameters, altitude_m):
 
 def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor=None,
              kite_carries_tether: bool = False, line_at_kite: LineAtKite | None = None,
-             costs: CostParameters | None = None) -> Evaluation:
+             costs: CostParameters | None = None, clusters: ClusterResource | None = None) -> Evaluation:
     """The designs of the normalised vectors ``z`` (B, dimension), real or complex, priced at ``costs``
-    (``None``: the nominal prices).
+    (``None``: the nominal prices), at the site of ``parameters`` (Weibull, eqs. 3.91–3.92) or of
+    ``clusters`` (module docstring; ``weibull_scale_mps`` is then NaN).
 
     ``tether_drag_factor`` (n,) multiplies the straight tether's C_d,t (eq. 3.14)
     at each wind speed of the grid: the flexible tether's measured C_d,t over
@@ -279,7 +293,10 @@ def evaluate(layout: Layout, parameters: DesignParameters, z, tether_drag_factor
     mechanical = cycle_power_W(p_gr + (1.0 - induction) * p_ob, p_r, g_out, g_in)
     onboard_cycle = cycle_power_W(onboard_electric, 0.0, g_out, g_in)
 
-    density = weibull_density_per_mps(wind, scale, p.weibull_shape)
+    if clusters is None:
+        density = weibull_density_per_mps(wind, scale, p.weibull_shape)
+    else:
+        density, scale = clusters.density_per_mps(wind, altitude), np.full_like(real_part(scale), np.nan)
     aep_Wh = HOURS_PER_YEAR * trapezoid(power * density, wind)
     aep_onboard_Wh = HOURS_PER_YEAR * trapezoid(onboard_cycle * density, wind)
     takeoff_Wh = p.takeoffs_per_year * climb.energy_J[:, 0] / 3600.0

@@ -28,6 +28,7 @@ from fem_tether.costs.parameters import CostParameters
 from fem_tether.design.model import Evaluation, LineAtKite, evaluate
 from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.variables import START_RANGES, Layout
+from fem_tether.physics.clusters import ClusterResource
 from fem_tether.systems.unified_system import UnifiedSystem, optimal_cycle
 
 #: the complex step h
@@ -179,16 +180,17 @@ def most_violated(evaluation: Evaluation) -> tuple[str, float]:
 
 class Problem:
     """The design problem of ``parameters`` (bounds and held variables as :meth:`Layout.build` takes
-    them) at the prices ``costs`` (``None``: nominal), with cached exact derivatives."""
+    them) at the prices ``costs`` (``None``: nominal), at the site of ``clusters`` (``None``: the
+    parameters' Weibull site), with cached exact derivatives."""
 
     def __init__(self, parameters: DesignParameters, bounds: dict | None = None, held: dict | None = None,
                  tether_drag_factor=None, kite_carries_tether: bool = False, line_at_kite: LineAtKite | None = None,
-                 costs: CostParameters | None = None):
+                 costs: CostParameters | None = None, clusters: ClusterResource | None = None):
         self.parameters, self.bounds, self.held = parameters, dict(bounds or {}), dict(held or {})
         self.costs = CostParameters() if costs is None else costs
         self.layout = Layout.build(parameters, self.bounds, self.held, self.costs)
         self.options = dict(tether_drag_factor=tether_drag_factor, kite_carries_tether=kite_carries_tether,
-                            line_at_kite=line_at_kite, costs=self.costs)
+                            line_at_kite=line_at_kite, costs=self.costs, clusters=clusters)
         self._key = None
         self.evaluations = 0
 

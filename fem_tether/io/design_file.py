@@ -18,6 +18,9 @@ and the unit also as the attribute ``unit``)::
     /costs            attrs: objective ("aep", "profit" or "lcoe"), currency ("EUR (2019)"); a result
                       written before the cost model has none
       parameters      attrs: the CostParameters the design was priced with (each with its unit)
+    /site             with [design] clusters (a site of wind-profile clusters, docs/design.md): attrs
+                      source, n_clusters, reference_height_m, heights_m (the lowest and the highest),
+                      frequency; a design at the parameters' Weibull site has none
     /flexible         with [design] tether = "flexible" (fem_tether.jobs.design.loop): attrs status,
                       error, checked (the FE <-> FD gate), tolerance, iterations (the cap), fe_runs,
                       fd_runs; the flexible design in the layout above (parameters ... active), and
@@ -96,6 +99,8 @@ def write_design_hdf5(path, result: dict, job_toml: str) -> Path:
         _write_design(f, result)
         if "costs" in result:
             _write_costs(f.create_group("costs"), result["costs"])
+        if "site" in result:
+            _attrs(f.create_group("site"), result["site"])
         if "flexible" in result:
             _write_flexible(f.create_group("flexible"), result["flexible"])
     return target
@@ -169,7 +174,8 @@ class DesignFile(Record):
     them (``curves`` as arrays, one entry per wind speed of the design's grid), the job
     that made it, the objective, currency and cost parameters (``costs``: empty in a file
     written before the cost model) and, with ``[design] tether = "flexible"``, the flexible
-    loop's content (``flexible``, else empty).  The file holds no time of writing."""
+    loop's content (``flexible``, else empty); ``site``: a site of clusters' source and numbers
+    (empty at the parameters' Weibull site).  The file holds no time of writing."""
 
     file: str
     version: str
@@ -187,6 +193,7 @@ class DesignFile(Record):
     best_start: int | None
     flexible: dict = field(default_factory=dict)
     costs: dict = field(default_factory=dict)
+    site: dict = field(default_factory=dict)
     kind: str = "design"
     created_utc: None = None
 
@@ -219,10 +226,10 @@ class DesignFile(Record):
 
     def as_dict(self) -> dict:
         """The content as :meth:`DesignResult.as_dict` gives it, with ``job_toml`` (and ``costs``,
-        ``flexible``)."""
+        ``site``, ``flexible``)."""
         content = {name: getattr(self, name) for name in SECTIONS} | {"job_toml": self.job_toml}
         content["curves"] = {k: v.tolist() for k, v in self.curves.items()}
-        return (content | ({"costs": self.costs} if self.costs else {})
+        return (content | ({"costs": self.costs} if self.costs else {}) | ({"site": self.site} if self.site else {})
                 | ({"flexible": self.flexible} if self.flexible else {}))
 
 
@@ -241,11 +248,13 @@ def read_design_hdf5(path) -> DesignFile:
             content = _read_design(f)
             flexible = _read_flexible(f["flexible"]) if "flexible" in f else {}
             costs = _read_costs(f["costs"]) if "costs" in f else {}
+            site = _read_attrs(f["site"]) if "site" in f else {}
             job_toml, version = reader.attr(f, "job_toml", "str"), reader.attr(f, "fem_tether_version", "str")
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             raise reader.error(f"{type(exc).__name__}: {' '.join(str(exc).split())}") from None
     content["curves"] = {k: np.asarray(v) for k, v in content["curves"].items()}
-    return DesignFile(str(path), version, job_toml, flexible=flexible, costs=costs, **content)
+    site = {k: v.tolist() if isinstance(v, np.ndarray) else v for k, v in site.items()}
+    return DesignFile(str(path), version, job_toml, flexible=flexible, costs=costs, site=site, **content)
 
 
 def _read_columns(group) -> dict:

@@ -51,6 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fem_tether.core.arrays import interpolate, real_part
 from fem_tether.core.inputfile import read_text
 from fem_tether.physics.resource import SUM_TOLERANCE, ResourceError
 from fem_tether.physics.wind import TableWind
@@ -153,6 +154,37 @@ class ClusterResource:
         the highest it stays (:func:`fem_tether.physics.wind.tabulated_wind`)."""
         return TableWind.from_components(self.heights_m, reference_speed_mps * self.u_shape[k],
                                          reference_speed_mps * self.v_shape[k])
+
+    def speed_ratio(self, k: int, z_m):
+        """s_k(z) = sqrt(u_k(z)^2 + v_k(z)^2), the wind speed at ``z_m`` over the speed at the
+        reference height, with u_k and v_k linear between the heights and held beyond the lowest and
+        the highest (as :meth:`wind` above the highest); complex-safe (the design optimiser's
+        derivatives, :mod:`fem_tether.design.model`).  At the heights, :meth:`speed_mps` at U_ref = 1."""
+        u = interpolate(z_m, self.heights_m, self.u_shape[k])
+        v = interpolate(z_m, self.heights_m, self.v_shape[k])
+        return np.sqrt(u * u + v * v)
+
+    def reference_density_per_mps(self, k: int, speed_mps):
+        """f_k(U), a continuous density of cluster ``k``'s speed at the reference height: the
+        histogram's P(bin i | k)/(e_{i+1} − e_i) at the bins' centres, linear between them, held to
+        the first and last edges and 0 outside them (complex-safe).  Its integral is the histogram's
+        sum for bins of one width (the trapezoid over the centres plus the two held half bins)."""
+        e = self.edges_mps
+        centres, density = 0.5 * (e[1:] + e[:-1]), self.probability[k] / np.diff(e)
+        if centres.size == 1:
+            centres, density = e, np.repeat(density, 2)
+        inside = (real_part(speed_mps) >= e[0]) & (real_part(speed_mps) <= e[-1])
+        return np.where(inside, interpolate(speed_mps, centres, density), 0.0)
+
+    def density_per_mps(self, speed_mps, z_m):
+        """f_z(V) = sum_k P(k) f_k(V/s_k(z))/s_k(z): the density of the wind speed V at ``z_m``
+        (:meth:`reference_density_per_mps` seen through each cluster's :meth:`speed_ratio`;
+        complex-safe).  The speed at z of cluster k is U s_k(z), U its speed at the reference height."""
+        total = 0.0
+        for k in range(self.n_clusters):
+            ratio = self.speed_ratio(k, z_m)
+            total = total + self.frequency[k] * self.reference_density_per_mps(k, speed_mps / ratio) / ratio
+        return total
 
     def joint_probability(self) -> np.ndarray:
         """P(k, bin i) = P(k) P(bin i | k), clusters x speed bins."""

@@ -78,7 +78,8 @@ def _altitude(r: dict) -> str:
 def plot_power(r: dict, path) -> Path:
     """The cycle power, ground- and on-board-generated stacked, with P_rated; the Weibull
     density at the operating altitude (seed 004 eq. 3.92) on the right axis, the
-    stored density at the design's wind speeds as points on it."""
+    stored density at the design's wind speeds as points on it (a site of clusters:
+    those points, joined)."""
     c, o, p = _curves(r), r["outputs"], r["parameters"]
     wind = c["wind_mps"]
     ground, onboard = 1e-6 * c["ground_cycle_power_W"], 1e-6 * c["onboard_cycle_power_W"]
@@ -88,11 +89,16 @@ def plot_power(r: dict, path) -> Path:
     ax.plot(wind, 1e-6 * c["power_W"], "k-", marker="o", ms=3.5, lw=1.5, label="total (cycle mean)")
     ax.axhline(1e-6 * p["rated_power_W"], color="0.3", ls="--", lw=1.0, label="$P_{rated}$")
     density = ax.twinx()
-    speeds = np.linspace(0.0, 1.05 * wind.max(), 200)
-    density.plot(speeds, weibull_density_per_mps(speeds, o["weibull_scale_mps"], p["weibull_shape"]),
-                 color="tab:green", lw=1.0)
-    density.plot(wind, c["probability_density_per_mps"], ".", color="tab:green",
-                 label=f"Weibull density at h (A = {o['weibull_scale_mps']:.2f} m/s, k = {p['weibull_shape']:g})")
+    if o["weibull_scale_mps"] is None:      # a site of clusters (docs/design.md): its density on the grid
+        density.plot(wind, c["probability_density_per_mps"], ".-", color="tab:green", lw=1.0,
+                     label="density at h of the clusters' wind")
+    else:
+        speeds = np.linspace(0.0, 1.05 * wind.max(), 200)
+        density.plot(speeds, weibull_density_per_mps(speeds, o["weibull_scale_mps"], p["weibull_shape"]),
+                     color="tab:green", lw=1.0)
+        density.plot(wind, c["probability_density_per_mps"], ".", color="tab:green",
+                     label=f"Weibull density at h (A = {o['weibull_scale_mps']:.2f} m/s, "
+                           f"k = {p['weibull_shape']:g})")
     density.set_ylabel("probability density [s/m]", color="tab:green")
     density.set_ylim(bottom=0.0)
     ax.set_xlim(left=0.0)

@@ -124,6 +124,22 @@ def _starts(members: list[dict]) -> str:
     return f"start{'s' if len(members) > 1 else ''} {', '.join(str(s['index']) for s in members)}"
 
 
+def site_lines(result: dict) -> list[str]:
+    """The line naming a site of clusters (none at the parameters' Weibull site), and one more where
+    the design flies above the clusters' highest height (their shapes held from there)."""
+    site = result.get("site")
+    if not site:
+        return []
+    low, high = site["heights_m"]
+    lines = [f"site: {site['n_clusters']} wind-profile cluster(s) of {site['source']}, speeds at "
+             f"{site['reference_height_m']:g} m, shapes at {low:g}-{high:g} m (not the Weibull of the parameters)"]
+    altitude = result["outputs"].get("altitude_m") if result["best_start"] is not None else None
+    if altitude is not None and altitude > high:
+        lines.append(f"note: the operating altitude {altitude:.1f} m is above the clusters' highest height "
+                     f"{high:g} m: their shapes are held constant from there")
+    return lines
+
+
 def design_text(result: dict, path=None) -> str:
     """The printed summary of a design result."""
     p = result["parameters"]
@@ -135,6 +151,7 @@ def design_text(result: dict, path=None) -> str:
             + (f"; maximises the {OBJECTIVE_NAMES[objective]}" if objective in ("aep", "profit") else
                f"; minimises the {OBJECTIVE_NAMES[objective]}" if objective else "")
             + f"; {good} of {len(starts)} starts converged feasible"]
+    head += site_lines(result)
     if result["best_start"] is None:
         return "\n".join(head + [no_design(starts)])
     net = [s["net_aep_Wh"] for s in starts if s["success"] and s["feasible"]]

@@ -93,3 +93,17 @@ def test_a_priced_design_reads_back_with_its_costs_currency_and_units(tmp_path):
 def test_a_design_written_before_the_cost_model_reads_with_no_costs(tmp_path):
     r = read_design_hdf5(write_design_hdf5(tmp_path / "d.h5", content(), "[design]\n"))
     assert r.costs == {} and "costs" not in r.as_dict()
+
+
+def test_a_design_at_a_site_of_clusters_reads_back_with_its_site(tmp_path):
+    """A design of ``[design] clusters`` writes ``/site`` (the file, the clusters, their heights and
+    frequencies) and reads it back as written, with its units; one at the Weibull site has none."""
+    site = {"source": "site/clusters.yaml", "n_clusters": 2, "reference_height_m": 100.0,
+            "heights_m": [10.0, 600.0], "frequency": [0.6, 0.4]}
+    written = content() | {"site": site}
+    path = write_design_hdf5(tmp_path / "d.h5", written, "[design]\nclusters = \"site/clusters.yaml\"\n")
+    back = read_design_hdf5(path)
+    assert back.site == site and back.as_dict()["site"] == site
+    with h5py.File(path) as f:
+        assert json.loads(f["site"].attrs["units"])["heights_m"] == "m"
+    assert read_design_hdf5(write_design_hdf5(tmp_path / "w.h5", content(), "")).site == {}

@@ -203,3 +203,16 @@ def test_the_costs_figure_reads_clear(design, saved, tmp_path):
     assert unclear(saved) == {}
     costs = saved[-1]
     assert "2.40 years" in words(costs) and "480.0 k€ (32.2 %)" in words(costs)
+
+
+def test_a_cluster_site_draws_its_density_on_the_grid(design, saved, tmp_path):
+    """A design at a site of clusters has no Weibull scale (none): the power figure draws the
+    stored density at the design's wind speeds, joined, and still reads clear."""
+    r = read_design_hdf5(design[1])
+    r = {**r, "outputs": {**r["outputs"], "weibull_scale_mps": None}}
+    write_figures(r, tmp_path)
+    power = saved[list(FIGURE_FILES).index("power")]
+    (line,) = power.axes[1].lines
+    assert np.array_equal(line.get_ydata(), r["curves"]["probability_density_per_mps"])
+    assert "clusters" in line.get_label()
+    assert unclear(saved) == {}

@@ -94,3 +94,17 @@ def test_a_design_without_aep_sensitivities_says_so_instead_of_an_empty_table():
     lines = design_text(content).splitlines()
     assert "net AEP per relative change of a parameter: not computed (the objective is not the AEP)" in lines
     assert not any(line.startswith("net AEP per relative change of a parameter (p dAEP/dp") for line in lines)
+
+
+def test_a_site_of_clusters_is_named_and_an_altitude_above_its_heights_noted():
+    from fem_tether.report.design_text import site_lines
+
+    site = {"source": "clusters.yaml", "n_clusters": 4, "reference_height_m": 100.0, "heights_m": [10.0, 600.0],
+            "frequency": [0.25] * 4}
+    within = {"site": site, "best_start": 0, "outputs": {"altitude_m": 273.2}}
+    assert site_lines(within) == ["site: 4 wind-profile cluster(s) of clusters.yaml, speeds at 100 m, shapes at "
+                                  "10-600 m (not the Weibull of the parameters)"]
+    above = site_lines(within | {"outputs": {"altitude_m": 812.5}})
+    assert len(above) == 2 and above[1] == ("note: the operating altitude 812.5 m is above the clusters' highest "
+                                            "height 600 m: their shapes are held constant from there")
+    assert site_lines({"best_start": 0, "outputs": {"altitude_m": 200.0}}) == []

@@ -12,6 +12,9 @@ A design job is a TOML file (or a shipped preset, :data:`PRESETS`)::
                                 # the loop (fem_tether.jobs.design.loop, docs/design-flexible.md)
     objective = "aep"           # what the design maximises: "aep" (Trevisi ch. 5), "profit" (eq. 7.1) or
                                 # minimises: "lcoe" (eq. 6.17); `fem-tether design --objective` overrides it
+    clusters = "site.yaml"      # optional: the site's wind-profile clusters (an awesIO wind_resource or the
+                                # legacy CSV, relative to this file; docs/design.md "A site of clusters")
+                                # in place of the Weibull distribution of [design.parameters]
 
     [design.parameters]         # any field of fem_tether.design.parameters.DesignParameters
     rated_power_W = 3e6
@@ -39,7 +42,10 @@ Every key is checked: an unknown table, key or variable, a value of the
 wrong type or out of range, bounds no design can meet (an altitude, a wind
 range or a wing area they cannot reach: :func:`fem_tether.design.variables.unreachable`)
 is one :class:`~fem_tether.core.errors.ConfigError` line naming it (exit 2
-from the command line), before any optimisation; so is a ``[costs]`` key
+from the command line), before any optimisation; so is a ``clusters`` file
+that is missing or malformed, of another suffix, whose lowest height is above
+``min_altitude_m`` (the lowest a design may fly), or beside
+``weibull_scale_mps`` or ``weibull_shape`` (two sites); so is a ``[costs]`` key
 that is unknown, not a number, a negative price, a life ≤ 0 or a discount
 rate and years no capital recovery factor can be formed from.
 """
@@ -47,6 +53,7 @@ rate and years no capital recovery factor can be formed from.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 import math
 import tomllib
@@ -54,15 +61,24 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from fem_tether.config.rules import CLUSTER_CSV, CLUSTER_YAML
+from fem_tether.config.settings import toml_value
 from fem_tether.config.tomlio import shipped_tomls, toml_and_text
-from fem_tether.core.errors import ConfigError
+from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.costs.parameters import COSTS, CURRENCY, FIXED_COSTS, CostParameters
-from fem_tether.design.optimiser import MAX_ITERATIONS, starts_for
+from fem_tether.design.optimiser import MAX_ITERATIONS, Problem, starts_for
 from fem_tether.design.parameters import CHOICES, DesignParameters
 from fem_tether.design.variables import PER_WIND, SCALARS, Layout, unreachable
+from fem_tether.io.awesio_clusters import read_cluster_resource
 from fem_tether.jobs.design.flexible import FlexibleSettings, flexible_settings
+from fem_tether.physics.clusters import ClusterResource
 
-KEYS = ("preset", "starts", "seed", "iterations", "tether", "objective", "parameters", "bounds", "held", "flexible")
+KEYS = ("preset", "starts", "seed", "iterations", "tether", "objective", "clusters", "parameters", "bounds", "held",
+        "flexible")
+#: the parameters of the Weibull distribution, which a cluster site replaces
+WEIBULL_PARAMETERS = ("weibull_scale_mps", "weibull_shape")
 #: the tables of a design job
 TABLES = ("design", "costs")
 #: what a design optimises: the net AEP (Trevisi ch. 5), the annual profit (eq. 7.1) or the LCOE (eq. 6.17)
@@ -95,9 +111,25 @@ class DesignJob:
     objective: str = "aep"
     costs: CostParameters = CostParameters()
     iterations: int = MAX_ITERATIONS
+    clusters: ClusterResource | None = None
 
     def layout(self) -> Layout:
         return Layout.build(self.parameters, self.bounds, self.held, self.costs)
+
+    def problem(self, **options) -> Problem:
+        """The job's design problem at its site, with ``options`` (the flexible loop's drag factors and
+        line) as :class:`~fem_tether.design.optimiser.Problem` takes them."""
+        return Problem(self.parameters, self.bounds, self.held, costs=self.costs, clusters=self.clusters, **options)
+
+    def site_key(self) -> str:
+        """What the job's site is made of, for the parts' keys: the clusters' numbers (a changed file of
+        the same name is another site), "" for the parameters' Weibull site."""
+        c = self.clusters
+        if c is None:
+            return ""
+        arrays = (c.heights_m, c.u_shape, c.v_shape, c.frequency, c.edges_mps, c.probability)
+        return hashlib.sha256(b"".join(np.ascontiguousarray(a, dtype=float).tobytes() for a in arrays)
+                              + repr(c.reference_height_m).encode()).hexdigest()
 
 
 def preset_names() -> list[str]:
@@ -110,9 +142,10 @@ def load_design_job(path: str | Path | None = None, preset: str | None = None,
     ``objective`` (the command line's ``--objective``) replaces the job's ``[design] objective``."""
     if (path is None) == (preset is None):
         raise ConfigError("give a design job file or --preset NAME (one of them)")
+    folder = Path(".")
     if path is not None:
         tables, text = toml_and_text(path)
-        name = str(path)
+        name, folder = str(path), Path(path).parent
     else:
         tables, text, name = _preset(preset), PRESETS.get(str(preset), ""), f"preset {preset}"
     design, costs = tables.get("design"), tables.get("costs", {})
@@ -133,7 +166,7 @@ def load_design_job(path: str | Path | None = None, preset: str | None = None,
     if objective is not None:
         design = {**design, "objective": objective}
         text += f"\n# then the command line's --objective {objective}\n"
-    return _job(design, costs, text, name)
+    return _job(design, costs, text, name, folder)
 
 
 def _preset(name) -> dict:
@@ -142,7 +175,7 @@ def _preset(name) -> dict:
     return tomllib.loads(PRESETS[name])
 
 
-def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
+def _job(design: dict, costs: dict, text: str, name: str, folder: Path = Path(".")) -> DesignJob:
     for key in design:
         if key not in KEYS:
             raise ConfigError(f"[design] {key}: unknown key (one of {', '.join(KEYS)})")
@@ -178,8 +211,35 @@ def _job(design: dict, costs: dict, text: str, name: str) -> DesignJob:
     if "flexible" in design and tether != "flexible":
         raise ConfigError(f"[design.flexible]: only with [design] tether = \"flexible\" (this job's is {tether!r})")
     flexible = flexible_settings(design.get("flexible", {}), parameters)
+    clusters = None if "clusters" not in design else _clusters(design["clusters"], folder, design, parameters)
     return DesignJob(parameters, bounds, held, starts, seed, tether, text, name, flexible, objective, prices,
-                     iterations)
+                     iterations, clusters)
+
+
+def _clusters(value, folder: Path, design: dict, parameters: DesignParameters) -> ClusterResource:
+    """``[design] clusters``, read relative to the job's folder and checked: one line naming the key."""
+    key = f"[design] clusters = {toml_value(value)}"
+    if not isinstance(value, str) or not value:
+        raise ConfigError(f"{key}: must be a file name (an awesIO wind_resource or the legacy cluster CSV)")
+    path = folder / value
+    if path.suffix.lower() not in (*CLUSTER_YAML, *CLUSTER_CSV):
+        raise ConfigError(f"{key}: expected an awesIO wind_resource ({', '.join(CLUSTER_YAML)}) or the legacy "
+                          "cluster CSV (.csv)")
+    given = design.get("parameters", {})
+    both = [k for k in WEIBULL_PARAMETERS if k in given]
+    if both:
+        raise ConfigError(f"{key} and [design.parameters] {', '.join(both)}: two sites (the clusters bring their "
+                          "own speed distributions); keep one")
+    try:
+        resource = read_cluster_resource(path)
+    except InputError as exc:
+        raise ConfigError(f"{key}: {exc}") from None
+    lowest = float(resource.heights_m[0])
+    if lowest > parameters.min_altitude_m:
+        raise ConfigError(f"{key}: its heights start at {lowest:g} m, above [design.parameters] min_altitude_m = "
+                          f"{parameters.min_altitude_m:g} m, the lowest a design may fly (the heights must reach "
+                          "down to it)")
+    return resource
 
 
 def _table(design: dict, key: str) -> dict:

@@ -262,7 +262,7 @@ def attribution(job: DesignJob, lumped: DesignResult, flexible: DesignResult, fl
     ``flexible_measured_cd``: with the FE line's C_D,t over eq. 3.14's as the factor in place of
     F_FE / F_straight (the difference: the wind across the straight line and its air's density along
     it, which the factor leaves out) and the FE line."""
-    lumped_problem = Problem(job.parameters, job.bounds, job.held, costs=job.costs)
+    lumped_problem = job.problem()
     z_lumped, z_flexible = normalised(lumped_problem, lumped), normalised(flexible_problem, flexible)
     known = np.asarray(bins["status"]) == "ok"
     wind = np.asarray(bins["wind_mps"])
@@ -451,8 +451,7 @@ def _round(job: DesignJob, current: DesignResult, runs: BinRuns, k: int, state: 
     factor = factors(job, m)
     bins = bin_record(job, current, m, factor, state.line)
     line = state.line = measured_line(bins)
-    problem = Problem(job.parameters, job.bounds, job.held, tether_drag_factor=factor, line_at_kite=line,
-                      costs=job.costs)
+    problem = job.problem(tether_drag_factor=factor, line_at_kite=line)
     solution = problem.solve(normalised(problem, current), job.iterations)
     result = design_result(problem, [solution], [record(current.best or 0, solution, job.parameters)], job.seed)
     if not result.found:

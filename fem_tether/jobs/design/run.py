@@ -30,7 +30,7 @@ from fem_tether.core.errors import ConfigError
 from fem_tether.core.progress import Progress
 from fem_tether.costs.parameters import CURRENCY
 from fem_tether.core.stop import guard, sync
-from fem_tether.design.optimiser import Problem, Solution, consistent, start_points
+from fem_tether.design.optimiser import Solution, consistent, start_points
 from fem_tether.design.result import DesignResult, StartRecord, design_result, never_rated, record
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
@@ -52,10 +52,11 @@ class DesignInterrupted(KeyboardInterrupt):
 
 
 def inputs_key(job: DesignJob) -> str:
-    """What a start's result depends on: the job's text, its objective and prices and the package version."""
+    """What a start's result depends on: the job's text, its objective and prices, its site (the clusters'
+    numbers, not only their file's name) and the package version."""
     return hashlib.sha256((job.text + "\n" + repr(job.parameters) + repr(sorted(job.bounds.items()))
                            + repr(sorted(job.held.items())) + f"{job.seed}" + job.objective + repr(job.costs) + f"{job.iterations}"
-                           + __version__).encode()).hexdigest()
+                           + job.site_key() + __version__).encode()).hexdigest()
 
 
 def costs_section(job: DesignJob) -> dict:
@@ -64,9 +65,23 @@ def costs_section(job: DesignJob) -> dict:
     return {"objective": job.objective, "currency": CURRENCY, "parameters": asdict(job.costs)}
 
 
+def site_section(job: DesignJob) -> dict:
+    """A site of clusters as a design's file and ``--json`` record it (``/site``): the file, the number
+    of clusters, their reference height, the lowest and highest heights and the frequencies; {} at
+    the parameters' Weibull site."""
+    c = job.clusters
+    if c is None:
+        return {}
+    return {"source": c.source, "n_clusters": c.n_clusters, "reference_height_m": float(c.reference_height_m),
+            "heights_m": [float(c.heights_m[0]), float(c.heights_m[-1])],
+            "frequency": [float(f) for f in c.frequency]}
+
+
 def design_content(outcome: DesignResult | FlexibleOutcome, job: DesignJob) -> dict:
-    """The content of a design's file and of ``design --json``: the result's, and its :func:`costs_section`."""
-    return outcome.as_dict() | {"costs": costs_section(job)}
+    """The content of a design's file and of ``design --json``: the result's, its :func:`costs_section`
+    and, at a site of clusters, its :func:`site_section`."""
+    site = site_section(job)
+    return outcome.as_dict() | {"costs": costs_section(job)} | ({"site": site} if site else {})
 
 
 class DesignStarts(JsonParts):
@@ -77,7 +92,7 @@ class DesignStarts(JsonParts):
     def __init__(self, job: DesignJob, out: Path):
         super().__init__(inputs_key(job), parts_dir(out))
         self.job = job
-        self.problem = Problem(job.parameters, job.bounds, job.held, costs=job.costs)
+        self.problem = job.problem()
 
     def valid(self, part: dict, index: int) -> bool:
         return super().valid(part, index) and set(part.get("record", ())) == RECORD_FIELDS

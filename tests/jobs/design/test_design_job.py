@@ -100,3 +100,67 @@ def test_config_costs_takes_no_configuration(capsys):
     assert main(["config", "--costs", "--system", "ke-yoyo"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "takes no configuration file or --system" in err
+
+
+SITE_CSV = """reference_height [m];100
+h [m];u1;v1;u2;v2
+10;0.71;0.02;0.80;-0.01
+100;1;0;1;0
+{top};1.21;-0.08;1.05;0.01
+frequency;0.6;0.4
+v_low [m/s];v_high [m/s];p1;p2
+0;5;0.2;0.3
+5;10;0.5;0.4
+10;30;0.3;0.3
+"""
+
+
+def test_clusters_are_read_relative_to_the_job_file_and_their_numbers_key_the_starts(tmp_path, monkeypatch):
+    """``[design] clusters`` is the file beside the job (whatever the working folder); the job's
+    problem is at that site; a changed file of the same name changes the starts' key."""
+    from fem_tether.jobs.design.run import inputs_key
+
+    folder = tmp_path / "site"
+    folder.mkdir()
+    (folder / "clusters.csv").write_text(SITE_CSV.format(top=300), encoding="utf-8")
+    (folder / "job.toml").write_text(JOB + 'clusters = "clusters.csv"\n', encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    job = load_design_job(folder / "job.toml")
+    assert job.clusters is not None and job.clusters.n_clusters == 2
+    assert job.problem().options["clusters"] is job.clusters
+    assert load_design_job(preset="trevisi-3mw").problem().options["clusters"] is None
+    key = inputs_key(job)
+    (folder / "clusters.csv").write_text(SITE_CSV.format(top=310), encoding="utf-8")
+    assert inputs_key(load_design_job(folder / "job.toml")) != key
+
+
+@pytest.mark.parametrize("text, files, message", [
+    (JOB + 'clusters = "none.csv"\n', {}, '[design] clusters = "none.csv": '),
+    (JOB + 'clusters = "site.txt"\n', {"site.txt": SITE_CSV.format(top=300)},
+     '[design] clusters = "site.txt": expected an awesIO wind_resource (.yml, .yaml) or the legacy cluster CSV (.csv)'),
+    (JOB + 'clusters = 3\n', {}, "[design] clusters = 3: must be a file name"),
+    (JOB + 'clusters = "site.csv"\n', {"site.csv": SITE_CSV.format(top=300).replace("10;0.71", "250;0.71")},
+     '[design] clusters = "site.csv": '),
+    (JOB + 'clusters = "site.csv"\n', {"site.csv": SITE_CSV.format(top=300).replace("reference_height [m];100",
+                                                                                   "reference_height [m];220")
+                                       .replace("10;0.71;0.02;0.80;-0.01", "210;0.99;0;0.99;0")
+                                       .replace("100;1;0;1;0", "220;1;0;1;0")},
+     '[design] clusters = "site.csv": its heights start at 210 m, above [design.parameters] min_altitude_m = 200 m'),
+    (JOB + 'clusters = "site.yaml"\n', {"site.yaml": "metadata: {schema: wind_resource_schema.yml}\n"},
+     '[design] clusters = "site.yaml": '),
+    (JOB + 'clusters = "site.csv"\n[design.parameters]\nweibull_scale_mps = 8.0\n',
+     {"site.csv": SITE_CSV.format(top=300)},
+     '[design] clusters = "site.csv" and [design.parameters] weibull_scale_mps: two sites'),
+])
+def test_a_bad_cluster_site_is_one_line_naming_the_key_and_exit_2(tmp_path, capsys, text, files, message):
+    """A missing file, another suffix, not a string, a malformed CSV (heights not ascending), heights
+    that start above min_altitude_m, an invalid awesIO document, a Weibull key beside the clusters:
+    one line on stderr naming ``[design] clusters``, exit 2, no file."""
+    for name, content in files.items():
+        (tmp_path / name).write_text(content, encoding="utf-8")
+    path, out = tmp_path / "job.toml", tmp_path / "d.h5"
+    path.write_text(text, encoding="utf-8")
+    assert main(["design", str(path), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert message in err and "\n" not in err and "Traceback" not in err
+    assert not out.exists()

@@ -143,3 +143,18 @@ def test_a_rated_power_the_design_never_reaches_is_named(tmp_path, capsys):
                           "reaches at most ")
     assert "cut-out bound 9 m/s): the wing cannot reach its rated power" in err and err.count("\n") == 1
     assert not out.exists()
+
+
+def test_a_design_at_a_site_of_clusters_says_so_in_its_json_and_its_file(tmp_path, capsys):
+    """``[design] clusters`` end to end through the command: ``--json`` and the design file carry the
+    site (its file, its clusters' count and frequencies), and one start converges there."""
+    (tmp_path / "site.csv").write_text(
+        "reference_height [m];100\nh [m];u1;v1;u2;v2\n10;0.71;0.02;0.80;-0.01\n100;1;0;1;0\n3000;1.21;-0.08;1.05;0.01\n"
+        "frequency;0.6;0.4\nv_low [m/s];v_high [m/s];p1;p2\n0;5;0.2;0.3\n5;10;0.5;0.4\n10;30;0.3;0.3\n", encoding="utf-8")
+    job = tmp_path / "job.toml"
+    job.write_text(JOB.replace("starts = 2", 'starts = 1\nclusters = "site.csv"'), encoding="utf-8")
+    out = tmp_path / "d.h5"
+    assert main(["design", str(job), "--out", str(out), "--json"]) == 0
+    site = json.loads(capsys.readouterr().out)["site"]
+    assert site["n_clusters"] == 2 and site["frequency"] == [0.6, 0.4] and site["source"].endswith("site.csv")
+    assert read_design_hdf5(out).site["n_clusters"] == 2
