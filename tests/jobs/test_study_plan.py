@@ -104,6 +104,16 @@ def test_run_config_of_a_point_mass_kite_holds_the_bins_tension_by_reeling(reel_
         assert run.tether.length_m == pytest.approx(1000.0 - paid_m, rel=1e-12)
 
 
+def test_a_free_bins_fe_run_damps_as_its_peak_tension_needs():
+    """A free bin's FE run flies generalised-alpha's rho_inf at most 0.5 (the default 0.8's
+    peak tension did not converge in the step, :data:`plan.FREE_RHO_INF`); a smaller one the
+    user chose is kept; a prescribed bin's case keeps the configured 0.8."""
+    for model, rho, flown in (("point-mass", 0.8, 0.5), ("point-mass", 0.2, 0.2), ("prescribed", 0.8, 0.8)):
+        cfg = load_config(overrides={"kite": {"model": model}, "fe": {"rho_inf": rho}},
+                          system="kitegen").with_length(1000.0)
+        assert all(plan.run_config(cfg, op).fe.rho_inf == flown for op in plan.operating_points(cfg, [10.0, 14.0]))
+
+
 def test_a_free_bin_pays_out_only_what_its_kite_can_reel():
     """Where the free kite cannot pull F / lines at a fixed length (1000 m, 8 m/s: the power
     model's V_out 3.28 m/s, the kite's own start state 0 m/s) the bin starts at L itself, not
