@@ -362,6 +362,10 @@ class Winch(Section):
     reel_out_table: str = setting("", "-", "reel_out = 'table': CSV time_s,speed_mps from the start of reeling")
     reel_out_stop_m: float = setting(0.0, "m", "stop reeling and the run at this length (0: run the periods)",
                                      ZeroOr(TETHER_LENGTH_M))
+    hold_time_s: float = setting(0.1, "s", "reel_out = 'hold' and 'cycle': the time constant tau in which the "
+                                 "winch's law takes out a tension error (a step of h takes min(h / tau, 1) of "
+                                 "its Newton correction); a free kite's tension peaks depend on it",
+                                 from_to(1e-3, 60.0))
     min_element_m: float = setting(2.0, "m", "reeling: the winch element (FE) or segment (FD) merges with its "
                                    "neighbour below this", from_to(MIN_ELEMENT_M, MAX_LENGTH_M))
     max_element_m: float = setting(100.0, "m", "reeling: the winch element (FE) or segment (FD) splits above "

@@ -124,6 +124,8 @@ QUANTITIES = (
     Quantity("study", "gate_wind_mps", "m/s", "wind speed of the gated bin (the most bent line)"),
     Quantity("study", "rel_diff_drag", "1", "|F_t,FD / F_t,FE - 1| at the gated bin"),
     Quantity("study", "rel_diff_shape", "1", "largest distance between the FE and FD lines / L at the gated bin"),
+    Quantity("study", "rel_diff_peak", "1", "|peak T_FD / peak T_FE - 1| at the gated bin (the gate passes only "
+             "within [crosscheck] tension_rel)"),
     Quantity("study", "interpolation_error", "1", "|AEP(every other bin) - AEP| / AEP: bound of the error of "
              "interpolating C_D,t between bins"),
     Quantity("study", "peak_tension_N", "N", "largest tension at either end of the line over every bin's FE run"),

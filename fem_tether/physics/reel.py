@@ -21,13 +21,18 @@ Modes (``[winch] reel_out``):
   law closed on the measured ground tension T_0, a sampled integral
   controller that holds T_0 at ``ground_tension_N`` (the seed's condition of
   zones B-D by feedback).  With the traction law's T ~ C (W_r - V_L)^2,
-  dT/dV_L = -2 T / (W_r - V_L), and each step takes half of the Newton
-  correction::
+  dT/dV_L = -2 T / (W_r - V_L), and a step of h takes h / tau of the Newton
+  correction (all of it where h >= tau), tau = ``[winch] hold_time_s``::
 
-      V_L <- V_L + 1/2 (T_0 - T_set) (W_r - V_L) / (2 T_0),
+      V_L <- V_L + min(h / tau, 1) (T_0 - T_set) (W_r - V_L) / (2 T_0),
 
   W_r = V_w(z_k) sin(theta) cos(phi) at the kite's position, held within
-  [0, max_reel_out_mps];
+  [0, max_reel_out_mps].  The law is the winch's, so its rate is per second,
+  not per step: dV_L/dt = (T_0 - T_set) (W_r - V_L) / (2 T_0 tau) as h -> 0.
+  A free kite's peak tensions depend on tau (a slower winch lets the eight's
+  pull through): KiteGen 600 m, 12 mm, 20 m/s, FE 40 elements, the integrator's
+  rho_inf = 0, peak 187.5 kN with tau = 0.1 s and 161.8 kN with 0.025 s at
+  h = 0.0125 s (docs/free-kite.md §4);
 * ``"cycle"`` (a point-mass kite): pumping cycles of ``[cycle]``.  Traction
   with ``"hold"`` until the line has paid out ``stroke_m`` from its start
   length L_0, then the recovery: V_L = -``reel_in_mps`` (the solvers fly the
@@ -124,10 +129,11 @@ class Reel:
         return previous_mps < 0.0 and length_m > start_length_m + self.TURN_TOL_M
 
     def speed_mps(self, t_s: float, kite_position_m, ground_tension_N: float = 0.0,
-                  previous_mps: float = 0.0, length_m: float = 0.0, start_length_m: float = 0.0) -> float:
-        """V_L at time ``t_s`` (0 before ``start_s``) with the kite at ``kite_position_m``
-        (``"hold"`` and ``"cycle"``: the winch's tension ``ground_tension_N`` and the
-        speed of the step before, ``previous_mps``; ``"cycle"``: the line's length
+                  previous_mps: float = 0.0, length_m: float = 0.0, start_length_m: float = 0.0,
+                  *, h_s: float) -> float:
+        """V_L over the step of ``h_s`` from time ``t_s`` (0 before ``start_s``) with the kite at
+        ``kite_position_m`` (``"hold"`` and ``"cycle"``: the winch's tension ``ground_tension_N``
+        and the speed of the step before, ``previous_mps``; ``"cycle"``: the line's length
         and the run's start length, :meth:`recovering`)."""
         if self.mode == "none" or t_s < self.start_s:
             return 0.0
@@ -142,9 +148,10 @@ class Reel:
                 return -self.reel_in_mps
             # traction: "hold" from rest after a recovery
             return self.law.holding_mps(np.asarray(kite_position_m, dtype=float), ground_tension_N,
-                                        max(previous_mps, 0.0))
+                                        max(previous_mps, 0.0), h_s)
         if self.mode == "hold":
-            return self.law.holding_mps(np.asarray(kite_position_m, dtype=float), ground_tension_N, previous_mps)
+            return self.law.holding_mps(np.asarray(kite_position_m, dtype=float), ground_tension_N, previous_mps,
+                                        h_s)
         return self.law.reel_out_mps(np.asarray(kite_position_m, dtype=float))
 
     def next_length(self, length_m: float, speed_mps: float, h_s: float, start_length_m: float = 0.0) -> float:
@@ -179,9 +186,8 @@ class TractionLaw:
     max_reel_out_mps: float
     held_tension_N: float = 0.0
     """``"hold"``: the winch tension T_set per line ([winch] ground_tension_N)"""
-
-    #: The share of the Newton correction each step of ``"hold"`` takes.
-    HOLD_GAIN = 0.5
+    hold_time_s: float = 0.1
+    """``"hold"``: the time tau in which the law takes out a tension error ([winch] hold_time_s)"""
 
     def radial_wind_mps(self, kite_position_m) -> float:
         """W_r = V_w(z_k) . e_r: the wind along the line at the kite (V_w sin(theta) cos(phi)
@@ -196,11 +202,12 @@ class TractionLaw:
         v_l = self.radial_wind_mps(kite_position_m) - np.sqrt(self.nominal_force_N / c)
         return float(np.clip(v_l, 0.0, self.max_reel_out_mps))
 
-    def holding_mps(self, kite_position_m, ground_tension_N: float, previous_mps: float) -> float:
-        """``"hold"``: V_L + 1/2 (T_0 - T_set) (W_r - V_L) / (2 T_0) (module docstring),
-        T_set the lines' nominal force per line (``nominal_force_N / lines``)."""
+    def holding_mps(self, kite_position_m, ground_tension_N: float, previous_mps: float, h_s: float) -> float:
+        """``"hold"`` over a step of ``h_s``: V_L + min(h / tau, 1) (T_0 - T_set) (W_r - V_L) / (2 T_0)
+        (module docstring), T_set the lines' nominal force per line (``nominal_force_N / lines``)."""
         slip = max(self.radial_wind_mps(kite_position_m) - previous_mps, 0.0)
-        step = self.HOLD_GAIN * (ground_tension_N - self.held_tension_N) * slip / (2.0 * max(ground_tension_N, 1.0))
+        gain = min(h_s / self.hold_time_s, 1.0)
+        step = gain * (ground_tension_N - self.held_tension_N) * slip / (2.0 * max(ground_tension_N, 1.0))
         return float(np.clip(previous_mps + step, 0.0, self.max_reel_out_mps))
 
 
@@ -219,6 +226,6 @@ def reel_from_config(cfg: Config, start_s: float = 0.0) -> Reel:
     k = cfg.kite
     law = TractionLaw(atmosphere.from_config(cfg.air), wind.from_config(cfg.wind, cfg.resource.weibull_k),
                       k.area_m2, k.cl, k.efficiency, cfg.tether.lines * w.ground_tension_N, k.max_reel_out_mps,
-                      w.ground_tension_N)
+                      w.ground_tension_N, w.hold_time_s)
     return Reel(w.reel_out, start_s, w.reel_out_stop_m, w.reel_out_speed_mps, table, law,
                 cfg.cycle.stroke_m, cfg.cycle.reel_in_mps)

@@ -605,6 +605,7 @@ def study_summary(outcome, out, report_page=None) -> dict:
             "failed": status.count("failed"),
             "errors": [p["error"] for p in points if p["status"] == "failed"],
             "max_gate_rel_diff_drag": finite_max([p["rel_diff_drag"] for p in points]),
+            "max_gate_rel_diff_peak": finite_max([p["rel_diff_peak"] for p in points]),
             "max_interpolation_error": finite_max([p["interpolation_error"] for p in points])})
     return {"file": str(out), "report": str(report_page) if report_page else None, "surfaces": surfaces,
             "tasks": outcome.tasks, "ran": outcome.ran, "reused": outcome.tasks - outcome.ran,
@@ -632,7 +633,8 @@ def study_text(summary: dict) -> str:
                          f"d {1e3 * (fe['diameter_m'] - st['diameter_m']):+.1f} mm, AEP "
                          f"{fe['aep_MWh'] - st['aep_MWh']:+.0f} MWh ({100 * (fe['aep_MWh'] / st['aep_MWh'] - 1):+.1f} %)")
         if s["max_gate_rel_diff_drag"] is not None:
-            lines.append(f"  FE <-> FD gate: largest drag difference {100 * s['max_gate_rel_diff_drag']:.2f} %")
+            lines.append(f"  FE <-> FD gate: largest drag difference {100 * s['max_gate_rel_diff_drag']:.2f} %, "
+                         f"peak tension difference {100 * s['max_gate_rel_diff_peak']:.2f} %")
         if s["max_interpolation_error"] is not None:
             lines.append(f"  C_D,t interpolation between bins: AEP error at most "
                          f"{100 * s['max_interpolation_error']:.2f} %"

@@ -223,7 +223,7 @@ def run(solver: TetherSolver, dt_s: float, spinup_periods: int, average_periods:
         if i:
             length = solver.model.length_m
             reel_mps, was_reeling = reel.speed_mps(state.t, solver.kite_position_m(state), float(state.T[0]),
-                                                   reel_mps, length, start_length), reel_mps
+                                                   reel_mps, length, start_length, h_s=h), reel_mps
             if reel_mps or was_reeling:
                 target = reel.next_length(length, reel_mps, h, start_length)
                 if target != length + h * reel_mps:     # a stroke's or the stop's last step: the speed that ends there

@@ -92,14 +92,18 @@ def test_a_free_kites_study_writes_the_same_bytes_on_two_ranks(tmp_path):
     F / lines; ``mpiexec -n 1`` and ``-n 2`` write the same bytes; each bin's mean tension
     at the kite is the held one within 2 % (the hold law's transient and the line's
     weight and drag between the winch and the kite), its peak above it, and its C_D,t is
-    taken at the kite's own mean speed."""
+    taken at the kite's own mean speed.  The gate passes only where the FE and FD peak
+    tensions agree too: at these coarse steps (FE 0.1 s, FD 0.05 s) the 800 m gate's differ
+    by 0.3 %, the 1000 m one's by 5.1 % (measured), so that point stays unchecked."""
     job = tmp_path / "free.toml"
     job.write_text(FREE_STUDY)
     one, two = _study(job, tmp_path / "n1.h5", 1), _study(job, tmp_path / "n2.h5", 2)
     assert (one["n_ranks"], two["n_ranks"]) == (1, 2) and two["tasks"] == one["tasks"]
     assert filecmp.cmp(tmp_path / "n1.h5", tmp_path / "n2.h5", shallow=False)   # tolerance: none, the same bytes
     data = read_study(tmp_path / "n1.h5")["surfaces"]["kitegen/configured"]
-    assert list(data["status"]) == ["ok", "ok"] and list(data["crosscheck_ok"]) == [1, 1]
+    assert np.all(data["rel_diff_drag"] <= 0.02)
+    assert list(data["crosscheck_ok"]) == [int(p <= 0.02) for p in data["rel_diff_peak"]] == [1, 0]
+    assert list(data["status"]) == ["ok", "unchecked"]
     held_N = data["tether_force_N"] / 2.0                                       # two lines
     assert data["tension_fe_N"] == pytest.approx(held_N, rel=0.02)
     assert np.all(data["peak_tension_fe_N"] > data["tension_fe_N"])

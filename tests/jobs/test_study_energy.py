@@ -76,7 +76,8 @@ def _store_runs(study, cd_of_wind, failing=()) -> list[Task]:
         values = {"status": "ok", "drag_fe_N": drags[0], "drag_power_fe_N": drags[1],
                   "kite_tension_fe_N": case.winch.ground_tension_N, "peak_tension_N": case.winch.ground_tension_N}
         if task.kind == "check":
-            values |= {"drag_fd_N": drag_N, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3}
+            values |= {"drag_fd_N": drag_N, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3,
+                       "rel_diff_peak": 3e-3}
         if task.node in failing:
             values = {"status": "failed", "error": f"{task.name}: time step did not converge"}
         study.parts.write(task.name, study.task_key(task), values)
@@ -118,8 +119,8 @@ def test_constant_cd_is_the_aep_at_that_cd(study):
     assert out["aep_fe_MWh"] == pytest.approx(aep, rel=1e-12) and out["cf_fe"] == pytest.approx(cf, rel=1e-12)
     assert out["interpolation_error"] < 1e-12
     gate = study.gate(POINT)
-    assert (out["gate_wind_mps"], out["crosscheck_ok"], out["rel_diff_drag"], out["rel_diff_shape"]) \
-        == (WIND_MPS[gate], 1, 1e-3, 2e-3)
+    assert (out["gate_wind_mps"], out["crosscheck_ok"], out["rel_diff_drag"], out["rel_diff_shape"],
+            out["rel_diff_peak"]) == (WIND_MPS[gate], 1, 1e-3, 2e-3, 3e-3)
 
 
 def test_a_free_kites_bins_are_taken_at_its_own_speed(study):
@@ -133,7 +134,8 @@ def test_a_free_kites_bins_are_taken_at_its_own_speed(study):
                   case.kite.speed_mps, "kite_tension_fe_N": 1.01e5 + task.node, "peak_tension_N": 1.3e5 + task.node,
                   "winch_power_fe_W": 5e5 + task.node}
         if task.kind == "check":
-            values |= {"drag_fd_N": 4000.0, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3}
+            values |= {"drag_fd_N": 4000.0, "crosscheck_ok": True, "rel_diff_drag": 1e-3, "rel_diff_shape": 2e-3,
+                       "rel_diff_peak": 3e-3}
         study.parts.write(task.name, study.task_key(task), values)
     out = energy.point_energy(study, POINT)
     for task in tasks:

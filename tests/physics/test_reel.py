@@ -29,28 +29,50 @@ def test_speed_is_held_within_bounds_and_starts_after_spin_up():
                                  "reference_scale_mps": 40.0}})
     reel = reel_from_config(cfg, start_s=5.0)
     top = np.array([700.0, 0.0, 700.0])
-    assert reel.speed_mps(4.9, top) == 0.0
-    assert reel.speed_mps(5.0, top) == pytest.approx(13.5)       # capped at max_reel_out_mps
+    assert reel.speed_mps(4.9, top, h_s=0.05) == 0.0
+    assert reel.speed_mps(5.0, top, h_s=0.05) == pytest.approx(13.5)       # capped at max_reel_out_mps
     assert reel.law.reel_out_mps(np.array([1.0, 0.0, 0.0])) == 0.0   # no wind at the ground
-    assert Reel().speed_mps(100.0, top) == 0.0 and not Reel().active
+    assert Reel().speed_mps(100.0, top, h_s=0.05) == 0.0 and not Reel().active
     stop = Reel("constant", 0.0, 800.0, 10.0)
     assert not stop.stopped(799.0, 500.0) and stop.stopped(800.0, 500.0)
     assert Reel("constant", 0.0, 300.0, -10.0).stopped(300.0, 500.0)
 
 
-def test_hold_steps_the_reel_speed_by_half_the_newton_correction():
-    """V_L <- V_L + 1/2 (T_0 - T_set)(W_r - V_L)/(2 T_0): faster above the set tension,
-    slower below, unchanged at it, within [0, max_reel_out_mps]."""
+def test_hold_steps_the_reel_speed_by_h_over_tau_of_the_newton_correction():
+    """V_L <- V_L + min(h / tau, 1) (T_0 - T_set)(W_r - V_L)/(2 T_0), tau = [winch] hold_time_s
+    (0.1 s): faster above the set tension, slower below, unchanged at it, within
+    [0, max_reel_out_mps]; all of the correction for h >= tau."""
     cfg = load_config(overrides={"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}})
     reel = reel_from_config(cfg)
     law = reel.law
     p = np.array([700.0, 0.0, 700.0])
     w_r = law.radial_wind_mps(p)
-    assert reel.speed_mps(10.0, p, 150e3, 2.0) == pytest.approx(2.0)
-    assert reel.speed_mps(10.0, p, 300e3, 2.0) == pytest.approx(2.0 + 0.5 * 150e3 * (w_r - 2.0) / 600e3)
-    assert reel.speed_mps(10.0, p, 100e3, 0.1) == 0.0
+    newton = 150e3 * (w_r - 2.0) / 600e3
+    assert reel.speed_mps(10.0, p, 150e3, 2.0, h_s=0.05) == pytest.approx(2.0)
+    assert reel.speed_mps(10.0, p, 300e3, 2.0, h_s=0.05) == pytest.approx(2.0 + 0.5 * newton, rel=1e-15)
+    assert reel.speed_mps(10.0, p, 300e3, 2.0, h_s=0.02) == pytest.approx(2.0 + 0.2 * newton, rel=1e-15)
+    assert reel.speed_mps(10.0, p, 300e3, 2.0, h_s=0.5) == pytest.approx(2.0 + newton, rel=1e-15)
+    assert reel.speed_mps(10.0, p, 100e3, 0.1, h_s=0.05) == 0.0
     capped = reel_from_config(cfg.replace(kite={"max_reel_out_mps": 2.5}))
-    assert capped.speed_mps(10.0, p, 1e9, 2.0) == 2.5
+    assert capped.speed_mps(10.0, p, 1e9, 2.0, h_s=0.05) == 2.5
+
+
+@pytest.mark.parametrize("steps", [1, 2, 8])
+def test_the_hold_is_the_winchs_law_in_time_not_per_step(steps):
+    """The law is the winch's, whatever the solver's step: over 0.05 s at a held tension error
+    and slip, n steps of 0.05/n s change V_L as one step does, within 2 % (the law's
+    rate (T_0 - T_set)(W_r - V_L)/(2 T_0 tau) per second).  A law that took a fixed share
+    of the correction per step (the former 1/2) reeled n times as fast at n times the steps,
+    and the free kite's tension peaks changed with the step (docs/free-kite.md §4)."""
+    cfg = load_config(overrides={"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}})
+    reel = reel_from_config(cfg)
+    p = np.array([700.0, 0.0, 700.0])
+    w_r = reel.law.radial_wind_mps(p)
+    speed = 2.0
+    for _ in range(steps):
+        speed = reel.speed_mps(10.0, p, 160e3, speed, h_s=0.05 / steps)
+    rate = 10e3 * (w_r - 2.0) / (2.0 * 160e3 * cfg.winch.hold_time_s)
+    assert speed - 2.0 == pytest.approx(rate * 0.05, rel=0.02)      # the slip shrinks 1.5 % over it
 
 
 def test_hold_needs_a_point_mass_kite():

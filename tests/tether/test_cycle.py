@@ -65,10 +65,10 @@ def test_reel_turns_at_the_stroke_and_at_the_start_length(cfg):
     previous speed's sign carries the phase), clamped lengths at both turns."""
     reel = reel_from_config(cfg)
     p, L0 = np.array([700.0, 0.0, 700.0]), 1000.0
-    assert reel.speed_mps(10.0, p, 150e3, 2.0, 1030.0, L0) == pytest.approx(2.0)
-    assert reel.speed_mps(10.0, p, 150e3, 2.0, 1060.0, L0) == -17.5
-    assert reel.speed_mps(10.0, p, 3e3, -17.5, 1030.0, L0) == -17.5
-    assert reel.speed_mps(10.0, p, 3e3, -17.5, 1000.0, L0) == 0.0          # hold from rest: T_0 below set
+    assert reel.speed_mps(10.0, p, 150e3, 2.0, 1030.0, L0, h_s=0.05) == pytest.approx(2.0)
+    assert reel.speed_mps(10.0, p, 150e3, 2.0, 1060.0, L0, h_s=0.05) == -17.5
+    assert reel.speed_mps(10.0, p, 3e3, -17.5, 1030.0, L0, h_s=0.05) == -17.5
+    assert reel.speed_mps(10.0, p, 3e3, -17.5, 1000.0, L0, h_s=0.05) == 0.0          # hold from rest: T_0 below set
     assert reel.next_length(1059.0, 2.0, 1.0, L0) == 1060.0
     assert reel.next_length(1010.0, -17.5, 1.0, L0) == 1000.0
 

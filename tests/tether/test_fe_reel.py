@@ -84,7 +84,7 @@ def test_speed_table_and_config_errors(tmp_path):
     good = tmp_path / "ok.csv"
     good.write_text("time_s,speed_mps\n0,1\n10,2\n")
     t, v = read_speed_table(good)
-    assert Reel("table", 5.0, table=(t, v)).speed_mps(10.0, None) == pytest.approx(1.5)
+    assert Reel("table", 5.0, table=(t, v)).speed_mps(10.0, None, h_s=0.05) == pytest.approx(1.5)
     for text, match in [("t,v\n0,1\n", "line 1"), ("time_s,speed_mps\n0,1\n0,2\n", "line 3"),
                         ("time_s,speed_mps\n1,1\n", "start at time_s = 0"),
                         ("time_s,speed_mps\n0,x\n", "line 2")]:

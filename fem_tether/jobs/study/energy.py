@@ -155,9 +155,10 @@ def point_energy(study, point: Point) -> dict:
         v["ge_fe"][task.node] = operating_ge(case, drag, speed_mps)
         if task.kind == "check":
             gate = {"gate_wind_mps": float(nodes[task.node]), "crosscheck_ok": int(run["crosscheck_ok"]),
-                    "rel_diff_drag": run["rel_diff_drag"], "rel_diff_shape": run["rel_diff_shape"]}
+                    "rel_diff_drag": run["rel_diff_drag"], "rel_diff_shape": run["rel_diff_shape"],
+                    "rel_diff_peak": run["rel_diff_peak"]}
     out: dict = {"gate_wind_mps": math.nan, "crosscheck_ok": 0, "rel_diff_drag": math.nan,
-                 "rel_diff_shape": math.nan, **gate}
+                 "rel_diff_shape": math.nan, "rel_diff_peak": math.nan, **gate}
     if clusters is None:
         out |= _band_energy(study, point, system, nodes, v, bool(errors))
     else:

@@ -142,6 +142,7 @@ class Surface(Record):
     gate_wind_mps: np.ndarray
     rel_diff_drag: np.ndarray
     rel_diff_shape: np.ndarray
+    rel_diff_peak: np.ndarray
     interpolation_error: np.ndarray
     peak_tension_N: np.ndarray
     margin: np.ndarray

@@ -327,13 +327,21 @@ class Study:
 def gate_run(case: Config) -> tuple[TetherRun, Config, dict]:
     """The FE <-> FD gate on ``case``: both solvers on its checkable variant
     (:func:`fem_tether.tether.crosscheck.checkable`), compared; the FE run, the case
-    it ran and the comparison's values (the FD drag, ok, the drag and shape differences)."""
+    it ran and the comparison's values (the FD drag and peak tension, ok, the drag, shape
+    and peak differences).  The strength rule takes the peak tension (docs/study.md §5), so the
+    gate compares it too: |T_peak,FD / T_peak,FE - 1| within ``[crosscheck] tension_rel``,
+    or the point is not checked (a free kite's peak, unlike its means, changed with the
+    step while the winch's law did, docs/free-kite.md §4)."""
     case = checkable(case)
     fe_run = simulator("fe")(case)
     fd_run = simulator("fd")(case)
     check = compare(fe_run, fd_run, case.crosscheck)
-    return fe_run, case, {"drag_fd_N": fd_run.mean("drag_N"), "crosscheck_ok": bool(check.ok),
-                          "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"]}
+    peak_fd_N = peak_tension_N(fd_run)
+    rel_peak = abs(peak_fd_N / peak_tension_N(fe_run) - 1.0)
+    return fe_run, case, {"drag_fd_N": fd_run.mean("drag_N"), "peak_tension_fd_N": peak_fd_N,
+                          "crosscheck_ok": bool(check.ok) and rel_peak <= case.crosscheck.tension_rel,
+                          "rel_diff_drag": check.rel_diff["drag"], "rel_diff_shape": check.rel_diff["shape"],
+                          "rel_diff_peak": rel_peak}
 
 
 def failure(name: str, exc: Exception) -> dict:
