@@ -350,7 +350,7 @@ def test_outcome_carries_each_ranks_peak_memory_and_a_failed_check_stops_the_swe
 
     cases = ((tiny_job, (folder / "mine.txt",), False, "fem-tether did not write it"),
              (bad_resource, (), True, "bad.csv"),
-             (clusters("bad.yml"), (), True, r"bad.yml: not a valid awesIO wind_resource"),
+             (clusters("bad.yml"), (), True, r"bad.yml: awesIO wind_resource document of no known layout"),
              (clusters("site.csv"), (), True, r"\[resource\] clusters = .*site.csv\": the operating altitude 282.843 m "
                                               r"of length 400 m \(L cos theta0\) is outside the clusters' heights 10-100 m"))
     for k, (job, files, aep, problem) in enumerate(cases):
