@@ -497,8 +497,7 @@ def free_step(cur, history, h, a0, a2, force_ref_N, reel_mps, newton_tol, max_ne
     r_prev, v_prev = history
     r, v, acc, T = new
     weight, line = physics[8], physics[9]
-    hbar, h_seg, upper = grid[0], grid[1], grid[6]
-    lower = grid[5]
+    h_seg, lower, upper = grid[1], grid[5], grid[6]
     n_seg = T_old.shape[0]
     n = 4 * n_seg
     x = np.empty(n)
