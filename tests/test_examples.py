@@ -236,7 +236,7 @@ def test_short_line_drag_table_of_study_md_is_the_example_s():
     assert shown == pytest.approx(computed, abs=0.0051)
 
 
-@pytest.mark.parametrize("name", ["study_kitegen", "study_ke_yoyo", "study_trevisi_gg"])
+@pytest.mark.parametrize("name", ["study_kitegen", "study_ke_yoyo", "study_trevisi_gg", "study_scaling"])
 def test_study_jobs_load(name):
     """The study jobs of docs/study.md §8 are valid jobs (every point's case and band checked)."""
     from fem_tether.jobs.study.job import load_study
