@@ -5,8 +5,10 @@ holds the quantities of the fork's, in another structure and without units in
 the keys: the fork's arrays ``reference_wind_speeds_m_s`` and, per profile,
 ``cycle_power_w`` become one entry per reference speed,
 ``wind_speed_data[i] = {wind_speed: v_i, performance: {power:
-{average_cycle_power: P_i}}}``, and each profile's shape moves into a
-``wind_profile`` object.  The document is made from the fork's
+{average_cycle_power: P_i}}}``, and each profile's shape and its speed ratio
+at the operating altitude move into a ``wind_profile`` object (an open object
+in awegroup's schema; the fork's key at the profile's level would make the
+document one of both layouts, :func:`fem_tether.io.awesio.layout_of`).  The document is made from the fork's
 (:mod:`fem_tether.io.awesio_results`, which computes every number) by
 :func:`in_awegroup_layout`, so the two layouts state the same curve.
 
@@ -32,8 +34,8 @@ METADATA_KEYS = {
 def _profile(profile: dict, speeds: list[float]) -> dict:
     """One profile of the fork's document in awegroup's layout: its power per reference speed."""
     return {"profile_id": profile["profile_id"], "probability_weight": profile["probability_weight"],
-            "speed_ratio_at_operating_altitude": profile["speed_ratio_at_operating_altitude"],
-            "wind_profile": {"u_normalized": profile["u_normalized"], "v_normalized": profile["v_normalized"]},
+            "wind_profile": {"u_normalized": profile["u_normalized"], "v_normalized": profile["v_normalized"],
+                             "speed_ratio_at_operating_altitude": profile["speed_ratio_at_operating_altitude"]},
             "wind_speed_data": [{"wind_speed": v, "performance": {"power": {"average_cycle_power": p}}}
                                 for v, p in zip(speeds, profile["cycle_power_w"], strict=True)]}
 
