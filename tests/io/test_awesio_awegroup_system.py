@@ -103,7 +103,9 @@ def _with(document, path, value):
     ("components.ground_station.generators.0.rated_power", 1e5,
      "components.ground_station.generators[0].rated_power x 0.001 = 100.0 cannot be mapped: the case reaches"),
     ("components.kites.0.wing.structure.projected_surface_area", 500.0,
-     "the case it maps to is refused: [system] model = 'kitegen': [kite] speed_mps = 80 m/s"),
+     "[kite] speed_mps = 80 m/s, efficiency = 28: the KiteGen cut-in wind"),
+    ("components.kites.0.wing.structure.projected_surface_area", 400.0,
+     "(awegroup's layout states no aerodynamics: [kite] cl, efficiency and speed_mps are KiteGen's"),
 ])
 def test_what_cannot_be_mapped_is_one_line_naming_awegroups_field(document, path, value, says):
     with pytest.raises(AwesioError) as err:
