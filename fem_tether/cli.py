@@ -595,7 +595,8 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--allow-incomplete", action="store_true",
                    help="convert an unfinished sweep's finished lengths (else exit 2 naming the pending ones)")
     c.add_argument("--awesio-layout", choices=AWESIO_LAYOUTS, default=AWESIO_LAYOUTS[0],
-                   help=AWESIO_LAYOUT_HELP + "; awegroup's for a wind_resource document only")
+                   help=AWESIO_LAYOUT_HELP + "; of the documents written from results or a wind_resource "
+                                             "document (a system document of either layout is read)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("resource", cmd_resource, "wind-profile clusters (Schelbergen et al. 2020: normalised profiles, "

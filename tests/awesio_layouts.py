@@ -77,3 +77,72 @@ FREQUENCY = np.array([0.5, 0.5])
 PROBABILITY = np.array([[0.3, 0.5, 0.2], [0.2, 0.4, 0.4]])
 U_SHAPE = np.array([[0.8, 1.0, 1.1], [0.7, 1.0, 1.2]])
 V_SHAPE = np.array([[0.0, 0.0, 0.05], [0.1, 0.0, -0.1]])
+
+#: A system in awegroup/awesIO's layout (its schema of 8841a62: lists of kites and tethers, joints, keys
+#: without units, powers in W), written by hand to the schema: KiteGen's 120 m2 wing and limits (the case's
+#: aerodynamics, which the layout does not state, are fem-tether's defaults, KiteGen's), on one 20 mm line.
+AWEGROUP_SYSTEM = """\
+metadata:
+  name: kitegen-120
+  description: 120 m2 wing on one 20 mm Dyneema tether, pumping ground-gen, 3 MW generator
+  note: Written for fem-tether's tests in awegroup/awesIO's layout; numbers chosen, not measured.
+  awesIO_version: 0.1.0
+  schema: system_schema.yml
+assembly:
+  connectivity_matrix:
+  - [K1, T1]
+  - [T2, G1]
+components:
+  kites:
+  - name: kitegen-120
+    type: soft_kite_kcu
+    version: 1.0
+    joints:
+      kcu_joint: {id: K1}
+    wing:
+      name: kitegen-120 wing
+      type: LEI_soft_kite
+      version: 1.0
+      structure: {projected_surface_area: 120.0, span: 20.0, aspect_ratio: 3.3, mass: 150.0, flattening_factor: 0.85}
+    bridle:
+      name: kitegen-120 bridle
+      type: LEI_soft_kite_bridle
+      version: 1.0
+      structure: {mass: 10.0}
+    control_system:
+      name: kitegen-120 KCU
+      type: kite_control_unit
+      version: 1.0
+      structure: {mass: 20.0, frontal_area: 0.5}
+      actuators: {max_steering_line_speed: 0.5, max_depower_line_speed: 0.2}
+  tethers:
+  - name: kitegen-120 tether
+    type: non_conductive_tether
+    version: 1.0
+    joints:
+      upper_tether_joint: {id: T1}
+      lower_tether_joint: {id: T2}
+    structure:
+      length: 1000.0
+      diameter: 0.02
+      density: 970.0
+      max_tether_force: 300000.0
+      conductive: false
+      material: {type: dyneema, youngs_modulus: 1.0e11}
+  ground_station:
+    name: kitegen-120 station
+    type: pumping_ground_gen_station
+    version: 1.0
+    joints:
+      drum_joint: {id: G1}
+    structure: {mass: 20000.0}
+    drums:
+    - {type: electric_winch, max_tether_speed: 13.5, max_tether_force: 300000.0, max_winch_acceleration: 4.0,
+       drum_diameter: 1.0}
+    generators:
+    - {type: permanent_magnet_synchronous, rated_power: 3.0e6, max_power: 4.5e6, efficiency: 0.92}
+    gearboxes:
+    - {type: planetary, gear_ratio: 8.0, efficiency: 0.97}
+    storages:
+    - {type: battery_bank, capacity: 1.0e6, efficiency: 0.9}
+"""

@@ -34,3 +34,26 @@ def assert_valid(document: dict, layout: str | None = None) -> None:
     assert layout in (None, found), found
     assert schema_errors(document, kind, found) == []
     assert list(Draft7Validator(restrictive(schema(kind, found))).iter_errors(document)) == []
+
+
+def schema_fields(node, root, prefix="", indexed=False):
+    """Every field a document of the schema ``root`` can hold: dotted paths through
+    ``properties``, ``$ref``s to its definitions and the ``allOf`` branches' ``then``; with
+    ``indexed``, through the items of arrays of objects too, as ``list[0]``."""
+    if "$ref" in node:
+        node = root["definitions"][node["$ref"].removeprefix("#/definitions/")]
+    branches = [node] + [b["then"] for b in node.get("allOf", []) if "then" in b]
+    merged = {}
+    for branch in branches:
+        for name, sub in branch.get("properties", {}).items():
+            merged.setdefault(name, []).append(sub)
+    found = set()
+    for name, subs in merged.items():
+        path = f"{prefix}.{name}" if prefix else name
+        deeper = set().union(*(schema_fields(sub, root, path, indexed) for sub in subs))
+        if indexed:
+            items = [sub["items"] for sub in subs if isinstance(sub.get("items"), dict)
+                     and ("$ref" in sub["items"] or "properties" in sub["items"])]
+            deeper |= set().union(*(schema_fields(item, root, f"{path}[0]", indexed) for item in items))
+        found |= deeper or {path}
+    return found

@@ -2,8 +2,9 @@
 
 One command, its direction set by what it is given:
 
-- an awesIO ``system`` document (YAML) -> a case file (TOML) whose every key
-  names the field it came from (:mod:`fem_tether.io.awesio_system`);
+- an awesIO ``system`` document (YAML) of either layout -> a case file (TOML)
+  whose every key names the field it came from (:mod:`fem_tether.io.awesio_system`,
+  awegroup's layout through :mod:`fem_tether.io.awesio_awegroup_system`);
 - a main job's folder (``fem-tether run --out DIR``) or a sweep file -> the
   awesIO ``wind_resource`` document of its resource and one ``power_curves``
   document per length and tether (straight line, and the FE line where the
@@ -13,7 +14,8 @@ One command, its direction set by what it is given:
   the layout asked for (:func:`fem_tether.io.awesio_clusters.converted`).
 
 Documents are written in the fork's layout unless ``layout`` asks for
-awegroup's, which fem-tether writes for ``wind_resource`` only.
+awegroup's (a results folder's ``power_curves`` through
+:mod:`fem_tether.io.awesio_awegroup_curves`); a case file has no layout.
 
 Every document is checked against its schema before it is written, and the
 files are written together through :mod:`fem_tether.core.atomic` (temporary
@@ -28,7 +30,9 @@ from fem_tether.core.atomic import atomic_outputs, atomic_path, check_folder, ch
 from fem_tether.core.errors import InputError
 from fem_tether.io.awesio import (DEFAULT_LAYOUT, LAYOUTS, check, kind_of, read_document,
                                   read_layout_document, yaml_text)
-from fem_tether.io.awesio_clusters import converted, read_wind_resource
+from fem_tether.io.awesio_awegroup_curves import in_awegroup_layout
+from fem_tether.io.awesio_awegroup_system import case_tables_awegroup
+from fem_tether.io.awesio_clusters import converted, in_layout, read_wind_resource
 from fem_tether.io.awesio_clusters import wind_resource_document as clusters_document
 from fem_tether.io.awesio_results import (cluster_curves_of, cluster_power_curves_document, curves_of,
                                           power_curves_document, site_of, wind_resource_document)
@@ -51,13 +55,15 @@ def convert(source, out, reference_height_m: float = REFERENCE_HEIGHT_M, allow_u
     if constraints is not None and results:
         raise InputError(f"--constraints {constraints}: read beside a system document, not with results ({source})")
     kind = None if results else read_layout_document(source)[0]
-    if layout != DEFAULT_LAYOUT and kind != "wind_resource":
-        raise InputError(f"--awesio-layout {layout}: fem-tether writes that layout ({LAYOUTS[layout]}) for "
-                         f"wind_resource documents only, not from {source} (convert its wind_resource.yml on its own)")
+    if layout != DEFAULT_LAYOUT and kind not in (None, "wind_resource"):
+        raise InputError(f"--awesio-layout {layout}: a {kind} document converts to a case file (TOML), which has no "
+                         f"awesIO layout ({LAYOUTS[layout]} applies to the awesIO documents written from results or "
+                         "a wind_resource document); a system document's own layout is told by its keys")
     if source.is_dir():
-        return results_to_awesio(source / "sweep.h5", out, reference_height_m, allow_unchecked, allow_incomplete)
+        return results_to_awesio(source / "sweep.h5", out, reference_height_m, allow_unchecked, allow_incomplete,
+                                 layout)
     if results:
-        return results_to_awesio(source, out, reference_height_m, allow_unchecked, allow_incomplete)
+        return results_to_awesio(source, out, reference_height_m, allow_unchecked, allow_incomplete, layout)
     if kind == "wind_resource":
         return resource_to_layout(source, out, layout)
     return system_to_case(source, out, constraints)
@@ -80,24 +86,26 @@ def resource_to_layout(source: Path, out, layout: str) -> dict:
 
 
 def system_to_case(source: Path, out, constraints=None) -> dict:
-    """The system document ``source`` (and the operational constraints ``constraints``, if
-    given) as the case file ``out``."""
+    """The system document ``source`` of either layout (and the operational constraints
+    ``constraints``, the fork's layout, if given) as the case file ``out``."""
     out = check_writable(out)
     if out.suffix.lower() != ".toml":
         raise InputError(f"--out {out}: a system document converts to a case file, FILE.toml")
-    _, document = read_document(source, "system")
+    _, layout, document = read_layout_document(source, "system")
     limits = None if constraints is None else read_document(constraints, "operational_constraints")[1]
-    case = case_tables(document, str(source), limits, str(constraints))
+    tables = case_tables if layout == DEFAULT_LAYOUT else case_tables_awegroup
+    case = tables(document, str(source), limits, str(constraints))
     sources = str(source) if constraints is None else f"{source} and {constraints}"
     with atomic_path(out) as tmp:
         tmp.write_text(case_toml(case, sources, document), encoding="utf-8")
-    return {"kind": "case", "source": str(source), "files": [str(out)],
+    return {"kind": "case", "source": str(source), "files": [str(out)], "from_layout": layout,
             "keys": [f"[{section}] {key}" for section, key in case.sources]}
 
 
 def results_to_awesio(sweep_file: Path, out, reference_height_m: float, allow_unchecked: bool,
-                      allow_incomplete: bool) -> dict:
-    """The resource and power curves of the sweep in ``sweep_file`` as awesIO documents in the folder ``out``."""
+                      allow_incomplete: bool, layout: str = DEFAULT_LAYOUT) -> dict:
+    """The resource and power curves of the sweep in ``sweep_file`` as awesIO documents in
+    ``layout`` in the folder ``out``."""
     from fem_tether.jobs.job import length_tag
     from fem_tether.jobs.sweepfile import read_sweep
     from fem_tether.performance.aep import sweep_aep, sweep_resource
@@ -129,12 +137,15 @@ def results_to_awesio(sweep_file: Path, out, reference_height_m: float, allow_un
         for curves in cluster_curves_of(cfg, energy, clusters):
             path, description = described(curves[0])
             documents[path] = cluster_power_curves_document(clusters, curves, name, description)
+    if layout != DEFAULT_LAYOUT:
+        documents = {path: in_layout(d, layout) if kind_of(d, str(path)) == "wind_resource" else in_awegroup_layout(d)
+                     for path, d in documents.items()}
     for path, document in documents.items():
-        check(document, kind_of(document, str(path)), str(path))
+        check(document, kind_of(document, str(path)), str(path), layout)
         check_writable(path)
     with exclusive(out, directory=True, outputs=list(documents)), atomic_outputs(files=list(documents)) as temporaries:
         for tmp, document in zip(temporaries, documents.values()):
             tmp.write_text(yaml_text(document), encoding="utf-8")
-    return {"kind": "awesio", "source": str(sweep_file), "files": [str(p) for p in documents],
+    return {"kind": "awesio", "source": str(sweep_file), "files": [str(p) for p in documents], "layout": layout,
             "reference_height_m": reference_height_m,
             "lengths_m": {tether: [float(v) for v in lines.length_m] for tether, lines in energy.lines.items()}}

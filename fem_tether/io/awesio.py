@@ -18,7 +18,9 @@ awesIO's own tools parse YAML 1.2).
 Two layouts of v0.1.0 exist, both stating ``awesIO_version: 0.1.0`` and the same
 ``metadata.schema`` file name: the fork ufechner7/awesIO's, whose keys carry
 units (``reference_height_m``), the one fem-tether writes by default; and
-awegroup/awesIO's later schemas, keys without units (``reference_height``).
+awegroup/awesIO's later schemas, keys without units (``reference_height``) and,
+for ``power_curves`` and ``system``, another structure (lists of kites and
+tethers; a curve's points as a list of wind speeds, each with its power).
 A document's layout is told by its keys (:func:`layout_of`): those one
 layout's schema defines and the other's does not.  A document with keys of
 both is ambiguous and refused, naming one of each.
@@ -48,7 +50,7 @@ SCHEMAS_DIR = Path(__file__).parent / "awesio_schemas"
 
 #: The layouts of awesIO 0.1.0, each with where its schemas come from (awesio_schemas/PROVENANCE.md).
 LAYOUTS = {"ufechner7": "ufechner7/awesIO v0.1.0, keys with units",
-           "awegroup": "awegroup/awesIO 120b741, keys without units"}
+           "awegroup": "awegroup/awesIO 120b741 and 8841a62, keys without units"}
 
 #: The layout fem-tether writes unless told otherwise.
 DEFAULT_LAYOUT = "ufechner7"
@@ -99,7 +101,8 @@ def schema_path(kind: str, layout: str = DEFAULT_LAYOUT) -> Path:
 
 
 def layouts_of(kind: str) -> list[str]:
-    """The layouts whose ``kind`` schema is shipped (awegroup's: ``wind_resource`` only)."""
+    """The layouts whose ``kind`` schema is shipped (awegroup's: ``wind_resource``, ``power_curves``
+    and ``system``)."""
     return [layout for layout in LAYOUTS if schema_path(kind, layout).is_file()]
 
 

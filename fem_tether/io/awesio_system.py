@@ -201,6 +201,11 @@ CUT_IN_MPS = 4.0
 REVIEW = ("[kite] speed_mps (from the cut-in wind), theta0_deg and the eight's size (eight_width_m, eight_height_m); "
           "[cycle] stroke_m; [air], [wind] and [resource] (the site)")
 
+#: What a case from a system document without the wing's aerodynamics (awegroup/awesIO's layout
+#: leaves them out of the system schema) takes from the defaults besides :data:`REVIEW`.
+REVIEW_AERODYNAMICS = ("[kite] cl and efficiency (and with them speed_mps), [cycle] reel_in_cd0 (the document "
+                       "states no aerodynamics: these are KiteGen's); ")
+
 
 def leaves(document: Any, prefix: str = "") -> Iterator[tuple[str, Any]]:
     """Each leaf of a nested mapping as (dotted path, value); a list is a leaf."""
@@ -227,6 +232,7 @@ class MappedCase:
 
     tables: dict[str, dict[str, Any]]
     sources: dict[tuple[str, str], str]
+    review: str = REVIEW
 
     def config(self) -> Config:
         return Config.from_dict(self.tables)
@@ -234,12 +240,15 @@ class MappedCase:
 
 class _Filling:
     """A case being filled from the system ``document`` read from ``source`` and, if given,
-    an operational-constraints document (``constraints``, read from ``constraints_source``)."""
+    an operational-constraints document (``constraints``, read from ``constraints_source``);
+    ``aerodynamics``: whether the document's layout states the wing's coefficients."""
 
-    def __init__(self, document: dict, source: str, constraints: dict | None, constraints_source: str):
+    def __init__(self, document: dict, source: str, constraints: dict | None, constraints_source: str,
+                 aerodynamics: bool = True):
         self.document, self.source = document, source
         self.constraints, self.constraints_source = constraints or {}, constraints_source
-        self.case = MappedCase({}, {})
+        self.aerodynamics = aerodynamics
+        self.case = MappedCase({}, {}, REVIEW if aerodynamics else REVIEW_AERODYNAMICS + REVIEW)
 
     def get(self, path: str) -> Any:
         return _get(self.document, path)
@@ -256,9 +265,9 @@ class _Filling:
         return float(value)
 
     def least(self, paths: list[str], constraint: str, what: str) -> tuple[float, str]:
-        """The least of the system's ``paths`` (each needed) and the ``constraint``, if
-        given, with the fields it is the least of."""
-        values = {p: self.need(p, what) for p in paths}
+        """The least of the system's ``paths`` given (one at least: the first is needed) and
+        the ``constraint``, if given, with the fields it is the least of."""
+        values = {p: float(self.get(p)) for p in paths if self.get(p) is not None} or {paths[0]: self.need(paths[0], what)}
         stated = self.constraint(constraint)
         if stated is not None:
             values[f"{constraint} ({self.constraints_source})"] = stated
@@ -304,6 +313,10 @@ def _wing(f: _Filling) -> None:
     area_path = next((f"{W}.structure.{k}" for k in ("projected_surface_area_m2", "wing_area_m2")
                       if f.get(f"{W}.structure.{k}") is not None), f"{W}.structure.projected_surface_area_m2")
     area = f.need(area_path, "the wing's area ([kite] area_m2)")
+    f.put("kite", "area_m2", area, area_path)
+    if not f.aerodynamics:
+        _default_aerodynamics(f)
+        return
     cl = f.need(f"{AERO}.lift_coefficient_reel_out", "the wing's C_L ([kite] cl)")
     cd = f.need(f"{AERO}.drag_coefficient_reel_out", "the wing's C_D ([kite] efficiency = C_L/C_D)")
     kcu_cd, kcu_area = f.get(f"{K}.aerodynamics.drag_coefficient"), f.get(f"{K}.structure.frontal_area_m2")
@@ -312,7 +325,6 @@ def _wing(f: _Filling) -> None:
         raise f.refuse(f"{given} alone", "the control unit's drag is its coefficient times its frontal area; "
                                          "give both")
     efficiency = cl / (cd + (0.0 if kcu_cd is None else float(kcu_cd) * float(kcu_area) / area))
-    f.put("kite", "area_m2", area, area_path)
     f.put("kite", "cl", cl, f"{AERO}.lift_coefficient_reel_out")
     f.put("kite", "efficiency", efficiency,
           f"C_L / (C_D + C_D,kcu A_kcu / A): {AERO}.lift_coefficient_reel_out, drag_coefficient_reel_out"
@@ -325,6 +337,19 @@ def _wing(f: _Filling) -> None:
     reel_in_cd = f.get(f"{AERO}.drag_coefficient_reel_in")
     if reel_in_cd is not None:
         f.put("cycle", "reel_in_cd0", float(reel_in_cd), f"{AERO}.drag_coefficient_reel_in")
+
+
+def _default_aerodynamics(f: _Filling) -> None:
+    """A document without the wing's coefficients: [kite] cl and efficiency stay the defaults
+    (the case file's header says so); a cut-in wind from the constraints still sets the design
+    kite speed V_k = E x the cut-in wind (Roselli eq. 2.55) with the default E."""
+    cut_in = f.constraint(f"{WIND}.cut_in_wind_speed_m_s")
+    if cut_in is not None:
+        efficiency = Config.from_dict({}).kite.efficiency
+        f.put("kite", "speed_mps", cut_in * efficiency,
+              f"the design crosswind speed V_k = E x the cut-in wind (Roselli eq. 2.55): E the default "
+              f"{efficiency:g} (the document states no aerodynamics), {WIND}.cut_in_wind_speed_m_s "
+              f"({f.constraints_source}), read as the wind at the kite")
 
 
 def _station(f: _Filling) -> None:
@@ -371,15 +396,16 @@ def _tether(f: _Filling) -> None:
 
 
 def case_tables(document: dict, source: str, constraints: dict | None = None,
-                constraints_source: str = "") -> MappedCase:
+                constraints_source: str = "", aerodynamics: bool = True) -> MappedCase:
     """The case of the valid system ``document`` (read from ``source``) and, if given, the
     valid operational-constraints document ``constraints``: every mapped field converted,
     each unmappable one refused (:meth:`Fields.check`), then the case checked as any
-    configuration is and against the stated powers (:func:`check_powers`)."""
+    configuration is and against the stated powers (:func:`check_powers`).  ``aerodynamics``
+    False: the document's layout states no coefficients of the wing, which stay the defaults."""
     SYSTEM.check(document, source)
     if constraints is not None:
         CONSTRAINTS.check(constraints, constraints_source)
-    filling = _Filling(document, source, constraints, constraints_source)
+    filling = _Filling(document, source, constraints, constraints_source, aerodynamics)
     for part in (_system, _wing, _station, _tether):
         part(filling)
     try:
@@ -424,7 +450,7 @@ def case_toml(case: MappedCase, sources: str, document: dict) -> str:
              *([f"# note: {note}"] if note else []),
              "# Each key below comes from the documents (its field in the comment; docs/awesio.md has the mapping).",
              "# Every other key is fem-tether's default (seed 000's KiteGen, 'fem-tether config' prints them);",
-             f"# the documents do not give them, review: {REVIEW}."]
+             f"# the documents do not give them, review: {case.review}."]
     for section, values in case.tables.items():
         lines += ["", f"[{section}]"]
         lines += [f"{key} = {toml_value(value)}  # {case.sources[section, key]}" for key, value in values.items()]

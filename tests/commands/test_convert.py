@@ -166,9 +166,82 @@ def test_a_wrong_or_ambiguous_wind_resource_is_one_line_and_exit_2(tmp_path, cap
             (["convert", str(unnormalised), "--out", str(tmp_path / "x.yml")], "cluster 1's shape is u = 1.5"),
             (["convert", str(good), "--out", str(tmp_path / "x.toml")], "FILE.yml"),
             (["convert", str(EXAMPLE), "--out", str(tmp_path / "c.toml"), "--awesio-layout", "awegroup"],
-             "--awesio-layout awegroup: fem-tether writes that layout (awegroup/awesIO 120b741, keys without units) "
-             "for wind_resource documents only")]:
+             "--awesio-layout awegroup: a system document converts to a case file (TOML), which has no awesIO "
+             "layout")]:
         assert main(argv) == 2
         err = capsys.readouterr().err
         assert says in err and err.count("\n") == 1, (argv, err)
     assert not (tmp_path / "x.yml").exists()
+
+
+def _run(capsys, argv):
+    """``main(argv)``'s exit code (argparse's refusals included) and what it printed."""
+    try:
+        code = main([str(a) for a in argv])
+    except SystemExit as exc:
+        code = exc.code
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_an_awegroup_system_document_becomes_a_case_file(tmp_path, capsys):
+    """Its keys as the fork-layout reading gives them, each named by awegroup's field
+    (tests/io/test_awesio_awegroup_system.py checks the numbers)."""
+    source, out = tmp_path / "system.yml", tmp_path / "case.toml"
+    source.write_text(awesio_layouts.AWEGROUP_SYSTEM)
+    assert _run(capsys, ["convert", source, "--out", out]) == (0, f"wrote {out}\n", "")
+    cfg = load_config(out)
+    assert (cfg.system.name, cfg.kite.area_m2, cfg.tether.length_m, cfg.tether.lines) == ("kitegen-120", 120.0,
+                                                                                            1000.0, 1)
+    assert "# components.tethers[0].structure.length" in out.read_text()
+
+
+def test_an_ambiguous_or_unknown_system_document_or_a_bad_layout_is_one_line_and_exit_2(tmp_path, capsys):
+    both = tmp_path / "both.yml"
+    both.write_text(EXAMPLE.read_text().replace("assembly:\n", "assembly:\n  connectivity_matrix: [[K1, T1]]\n"))
+    neither = tmp_path / "neither.yml"
+    neither.write_text("metadata: {name: n, description: d, note: x, awesIO_version: 0.1.0, schema: system_schema.yml}\n")
+    for argv, says in [
+            (["convert", both, "--out", tmp_path / "c.toml"], "ambiguous awesIO system document: it has keys of two "
+                                                              "layouts, 'assembly.airborne_type'"),
+            (["convert", neither, "--out", tmp_path / "c.toml"], "awesIO system document of no known layout"),
+            (["convert", EXAMPLE, "--out", tmp_path / "c.toml", "--awesio-layout", "theirs"],
+             "argument --awesio-layout: invalid choice: 'theirs'"),
+            (["resource", tmp_path / "x.nc", "--out", tmp_path / "r.yml", "--awesio-layout", "theirs"],
+             "argument --awesio-layout: invalid choice: 'theirs'")]:
+        code, _, err = _run(capsys, argv)
+        assert code == 2 and says in err and err.count("\n") == 1, (argv, err)
+    assert not (tmp_path / "c.toml").exists()
+
+
+def test_the_round_trip_awegroup_fem_tether_awegroup_validates_and_states_the_forks_curves(tmp_path, capsys):
+    """awegroup's system.yml -> case.toml -> a sweep -> wind_resource.yml and power_curves_*.yml in
+    awegroup's layout (--awesio-layout awegroup): every document valid against awegroup's schemas; the
+    same sweep converted in the fork's layout states the same resource and the same power, point for
+    point (one computation, two layouts)."""
+    source, case = tmp_path / "system.yml", tmp_path / "case.toml"
+    source.write_text(awesio_layouts.AWEGROUP_SYSTEM)
+    assert main(["convert", str(source), "--out", str(case)]) == 0
+    job = tmp_path / "job.toml"
+    job.write_text(SWEEP + "".join(line for line in case.read_text().splitlines(keepends=True)
+                                   if not line.startswith("#")))
+    sweep(load_job(job), tmp_path / "run" / "sweep.h5", comm=MPI.COMM_SELF, progress=False)
+    capsys.readouterr()
+    theirs, ours = tmp_path / "theirs", tmp_path / "ours"
+    assert main(["convert", str(tmp_path / "run"), "--out", str(theirs), "--awesio-layout", "awegroup"]) == 0
+    assert main(["convert", str(tmp_path / "run"), "--out", str(ours)]) == 0
+    names = sorted(p.name for p in theirs.glob("*.yml"))
+    assert names == sorted(p.name for p in ours.glob("*.yml")) == [
+        "power_curves_flexible_L400.yml", "power_curves_straight_L400.yml", "wind_resource.yml"]
+    for name in names:
+        awegroup = parse_yaml((theirs / name).read_text(), name)
+        assert_valid(awegroup, "awegroup")
+        fork = read_document(ours / name)[1]
+        if name.startswith("power_curves"):
+            points = awegroup["power_curves"][0]["wind_speed_data"]
+            assert [p["performance"]["power"]["average_cycle_power"] for p in points] == \
+                fork["power_curves"][0]["cycle_power_w"]
+            assert [p["wind_speed"] for p in points] == fork["reference_wind_speeds_m_s"]
+    for key in ("heights_m", "u_shape", "v_shape", "frequency", "edges_mps", "probability"):
+        assert np.array_equal(getattr(read_wind_resource(theirs / "wind_resource.yml"), key),
+                              getattr(read_wind_resource(ours / "wind_resource.yml"), key)), key

@@ -28,18 +28,23 @@ def test_the_shipped_schemas_are_the_published_ones_byte_for_byte():
     assert "Apache License" in (SCHEMAS_DIR / "LICENSE-src-awesio").read_text()
 
 
-def test_awegroups_shipped_schema_is_its_published_one_byte_for_byte():
-    """PROVENANCE.md's SHA-256 of awegroup/awesIO's wind_resource schema (commit 120b741), the only kind
-    shipped in its layout."""
+#: The kinds shipped in awegroup/awesIO's layout (PROVENANCE.md: wind_resource and power_curves of 120b741,
+#: system of 8841a62).
+AWEGROUP_KINDS = ["system", "wind_resource", "power_curves"]
+
+
+def test_awegroups_shipped_schemas_are_as_recorded_byte_for_byte():
+    """PROVENANCE.md's SHA-256 of awegroup/awesIO's schemas, the kinds shipped in its layout."""
     table = dict(re.findall(r"\| `awegroup/(\w+_schema\.yml)` \| `([0-9a-f]{64})` \|",
                             (SCHEMAS_DIR / "PROVENANCE.md").read_text()))
-    assert sorted(table) == ["wind_resource_schema.yml"] == [p.name for p in (SCHEMAS_DIR / "awegroup").iterdir()]
-    assert hashlib.sha256((SCHEMAS_DIR / "awegroup" / "wind_resource_schema.yml").read_bytes()).hexdigest() == \
-        table["wind_resource_schema.yml"]
-    assert [k for k in KINDS if "awegroup" in layouts_of(k)] == ["wind_resource"]
+    assert sorted(table) == sorted(f"{k}_schema.yml" for k in AWEGROUP_KINDS) == \
+        sorted(p.name for p in (SCHEMAS_DIR / "awegroup").iterdir())
+    for name, digest in table.items():
+        assert hashlib.sha256((SCHEMAS_DIR / "awegroup" / name).read_bytes()).hexdigest() == digest, name
+    assert [k for k in KINDS if "awegroup" in layouts_of(k)] == AWEGROUP_KINDS
 
 
-@pytest.mark.parametrize("kind, layout", [(k, "ufechner7") for k in KINDS] + [("wind_resource", "awegroup")])
+@pytest.mark.parametrize("kind, layout", [(k, "ufechner7") for k in KINDS] + [(k, "awegroup") for k in AWEGROUP_KINDS])
 def test_every_schema_is_a_draft_7_schema(kind, layout):
     Draft7Validator.check_schema(schema(kind, layout))
 
@@ -53,11 +58,35 @@ def test_the_layouts_own_keys_are_the_keys_one_schema_names_and_the_other_does_n
     assert not set(fork) & set(awegroup) and "clusters.u_normalized" not in fork + awegroup
 
 
-def test_a_system_document_has_one_layout_and_reading_refuses_awegroups_wind_resource_where_unmapped(tmp_path):
-    assert layout_of({}, "system", "x") == "ufechner7"
+def test_the_system_and_power_curves_layouts_are_told_by_their_structure():
+    """Computed from the schemas: awegroup's lists of kites and tethers, the fork's single wing and tether;
+    awegroup's altitudes and wind_speed_data, the fork's altitudes_m and cycle_power_w."""
+    fork, awegroup = layout_keys("system", "ufechner7"), layout_keys("system", "awegroup")
+    assert set(awegroup) == {"assembly.connectivity_matrix", "components.kites", "components.tethers"}
+    assert "components.wing" in fork and "components.tether" in fork and "assembly.generation_type" in fork
+    fork, awegroup = layout_keys("power_curves", "ufechner7"), layout_keys("power_curves", "awegroup")
+    assert "altitudes_m" in fork and "power_curves.cycle_power_w" in fork
+    assert "altitudes" in awegroup and "power_curves.wind_speed_data.performance" in awegroup
+    assert not set(fork) & set(awegroup)
+
+
+def test_a_system_document_of_both_layouts_or_neither_is_one_line():
+    _, document = read_document(EXAMPLE)
+    assert layout_of(document, "system", "x") == "ufechner7"
+    assert layout_of(parse_yaml(awesio_layouts.AWEGROUP_SYSTEM, "a"), "system", "a") == "awegroup"
+    with pytest.raises(AwesioError, match="x: ambiguous awesIO system document: it has keys of two layouts, "
+                                          "'assembly.airborne_type' .* and 'assembly.connectivity_matrix'"):
+        layout_of({**document, "assembly": {**document["assembly"], "connectivity_matrix": []}}, "system", "x")
+    with pytest.raises(AwesioError, match="x: awesIO system document of no known layout: it has neither "
+                                          "'assembly.airborne_type' .* nor 'assembly.connectivity_matrix'"):
+        layout_of({}, "system", "x")
+
+
+def test_reading_in_the_forks_layout_only_refuses_awegroups_documents(tmp_path):
     path = tmp_path / "r.yml"
     path.write_text(awesio_layouts.AWEGROUP)
-    with pytest.raises(AwesioError, match="of awegroup/awesIO 120b741, keys without units: fem-tether reads this"):
+    with pytest.raises(AwesioError, match="of awegroup/awesIO 120b741 and 8841a62, keys without units: fem-tether "
+                                          "reads this"):
         read_document(path)
 
 

@@ -140,7 +140,7 @@ def test_a_document_with_keys_of_both_layouts_is_one_line_naming_one_of_each(tmp
     assert str(info.value) == (
         f"{tmp_path / 'mixed.yml'}: ambiguous awesIO wind_resource document: it has keys of two layouts, "
         "'metadata.altitude_range_m' (ufechner7/awesIO v0.1.0, keys with units) and 'metadata.reference_height' "
-        "(awegroup/awesIO 120b741, keys without units); a document follows one")
+        "(awegroup/awesIO 120b741 and 8841a62, keys without units); a document follows one")
 
 
 def test_a_document_of_neither_layout_names_the_reference_height_of_each(tmp_path):
@@ -151,7 +151,7 @@ def test_a_document_of_neither_layout_names_the_reference_height_of_each(tmp_pat
     del document["wind_speed_bins"], document["wind_direction_bins"]
     with pytest.raises(AwesioError, match=re.escape(
             "of no known layout: it has neither 'metadata.reference_height_m' (ufechner7/awesIO v0.1.0, keys with "
-            "units) nor 'metadata.reference_height' (awegroup/awesIO 120b741, keys without units)")) as info:
+            "units) nor 'metadata.reference_height' (awegroup/awesIO 120b741 and 8841a62, keys without units)")) as info:
         read_wind_resource(write(tmp_path / "r.yml", document))
     assert "\n" not in str(info.value)
 

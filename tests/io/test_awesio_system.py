@@ -12,6 +12,7 @@ import pytest
 from fem_tether.config import Config
 from fem_tether.io.awesio import AwesioError, read_document, schema
 from fem_tether.io.awesio_system import CONSTRAINTS, SYSTEM, case_tables, case_toml
+from awesio_valid import schema_fields
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "awesio"
 EXAMPLE = EXAMPLES / "soft_kite_system.yml"
@@ -26,24 +27,6 @@ def document():
 @pytest.fixture
 def limits():
     return read_document(LIMITS, "operational_constraints")[1]
-
-
-def schema_fields(node, root, prefix=""):
-    """Every field a document of the schema ``root`` can hold: dotted paths through
-    ``properties``, ``$ref``s to its definitions and the ``allOf`` branches' ``then``."""
-    if "$ref" in node:
-        node = root["definitions"][node["$ref"].removeprefix("#/definitions/")]
-    branches = [node] + [b["then"] for b in node.get("allOf", []) if "then" in b]
-    merged = {}
-    for branch in branches:
-        for name, sub in branch.get("properties", {}).items():
-            merged.setdefault(name, []).append(sub)
-    found = set()
-    for name, subs in merged.items():
-        path = f"{prefix}.{name}" if prefix else name
-        deeper = set().union(*(schema_fields(sub, root, path) for sub in subs))
-        found |= deeper or {path}
-    return found
 
 
 @pytest.mark.parametrize("kind, fields", [("system", SYSTEM), ("operational_constraints", CONSTRAINTS)])
