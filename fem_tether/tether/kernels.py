@@ -84,8 +84,8 @@ LOADS = (("fe",), ("fd",), ("fd", "fe"))
 #: before its kernels; any other compiles it after its kernels, by when the cache holds it.  On
 #: two ranks the one compiling the FD kernels, the lighter (:data:`FIRST_COMPILE`): before, both
 #: ranks came to the shared code at the end of their compiles at once, and compiled some of it
-#: twice (the path's state and the drag coefficient's loop, 1.6 s of rank 0's 19.1 s of compile
-#: CPU on the loaded machine, 2026-12-03).
+#: twice (the path's state, the drag coefficient's loops: 4-7 compiles, 1.6-2.6 s of CPU, 4-6 % of
+#: the compiles', in three runs on the loaded machine, 2026-12-03); now 72 compiles, none twice.
 SHARED_FIRST = "fd"
 
 #: The tiny case each solver runs once after compiling (the default physics, a few elements, one period).
