@@ -5,6 +5,7 @@ import os
 import subprocess
 import sys
 import time
+from types import SimpleNamespace
 
 from conftest import default_sigint
 
@@ -122,3 +123,44 @@ def test_load_kernels_imports_only_the_asked_solvers_kernels():
             "load_kernels(['fe', 'fd'])\n"
             "assert 'fem_tether.tether.fe.kernel' in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_the_fd_process_compiles_the_shared_code_before_its_kernels_any_other_after(monkeypatch):
+    """On two ranks the one loading the FD kernels compiles what both solvers' runs share (the leaf
+    models' and the path's compiled forms) first, the FE one last, when the cache holds it: before,
+    both came to it at the end of their kernels at once and compiled some of it twice."""
+    order: list[str] = []
+
+    class Solver:
+        @staticmethod
+        def simulate(cfg):
+            order.append("simulate")
+
+    monkeypatch.setattr(kernels, "_warm_up_shared", lambda: order.append("shared"))
+    monkeypatch.setattr(kernels, "importlib", SimpleNamespace(import_module=lambda name: order.append(name) or Solver))
+    monkeypatch.setattr(kernels, "_loaded", set())
+    monkeypatch.setattr(kernels, "checkpoint", lambda: None)
+    kernels._import(["fd"], warm_up=True)
+    assert order == ["shared", kernels.KERNELS["fd"], "fem_tether.tether.fd.solver", "simulate"]
+    order.clear()
+    kernels._import(["fe"], warm_up=True)
+    assert order == [kernels.KERNELS["fe"], "fem_tether.tether.fe.solver", "simulate", "shared"]
+    order.clear()
+    kernels._import(["fe"])
+    assert order == [kernels.KERNELS["fe"]]
+
+
+def test_the_shared_code_compiles_the_paths_table_without_the_kernels(tmp_path):
+    """What the FD rank compiles first (``_warm_up_shared``) holds every compile of the path's
+    code a run makes (:data:`~fem_tether.tether.kernels.FIRST_COMPILE`'s ``trajectory`` row) and
+    none of either solver's kernels."""
+    code = ("from fem_tether.physics.compiled import held\n"
+            "from fem_tether.tether import kernels\n"
+            "kernels._warm_up_shared()\n"
+            "path = held('fem_tether.physics.trajectory')\n"
+            "want = kernels.FIRST_COMPILE['fem_tether.physics.trajectory']\n"
+            "assert all(path.get(f, 0) >= n for f, (n, *_) in want.items()), path\n"
+            "assert not any(held(m) for m in kernels.KERNELS.values())\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600,
+                          env=_quiet_env(NUMBA_CACHE_DIR=str(tmp_path / "numba-cache")))
+    assert done.returncode == 0, done.stderr[-3000:]
