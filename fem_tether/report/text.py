@@ -368,7 +368,17 @@ def bench_text(result: dict) -> str:
         lines += ["", *bench_design_lines(result["design"])]
     if "free_kite" in result:
         lines += ["", *bench_free_kite_lines(result["free_kite"])]
+    if "first_run" in result:
+        lines += ["", bench_first_run_line(result["first_run"])]
     return "\n".join(lines)
+
+
+def bench_first_run_line(section: dict) -> str:
+    """The first-run section of ``fem-tether bench``: the compiles of a first run against the
+    notice's estimate."""
+    return (f"first run: {section['case']}: {section['compiles']} compiles (the notice counts "
+            f"{section['expected']}), {section['cpu_s']:.1f} s CPU ({section['wall_s']:.1f} s wall); the notice "
+            f"says about {section['estimate_s']:.0f} s: measured / said {section['measured_over_estimate']:.2f}")
 
 
 def bench_free_kite_lines(section: dict) -> list[str]:

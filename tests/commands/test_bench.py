@@ -77,3 +77,20 @@ def test_the_free_kite_section_times_both_kites_per_solver():
     lines = bench_free_kite_lines(section)
     assert lines[0].startswith("free kite: default case") and len(lines) == 3
     assert "FE 10 elements" in lines[1] and "FD 10 segments" in lines[2] and "ms/step" in lines[2]
+
+
+def test_the_first_run_section_counts_the_compiles_the_notice_promises():
+    """On an empty cache of its own the first-run section records as many compiles as the
+    notice counts (:data:`fem_tether.tether.kernels.FIRST_COMPILE`, both solvers), their CPU
+    and wall seconds, and measured / said; printed in one line (report.text)."""
+    from fem_tether.report.text import bench_first_run_line
+    from fem_tether.tether import kernels
+
+    section = bench.first_run()
+    table = kernels.FIRST_COMPILE
+    assert section["compiles"] == section["expected"] == sum(row[2] for t in table.values() for row in t.values())
+    assert section["estimate_s"] == pytest.approx(sum(row[2] * row[3] for t in table.values() for row in t.values()))
+    assert 0 < section["cpu_s"] <= section["wall_s"] * 1.05
+    assert section["measured_over_estimate"] == pytest.approx(section["cpu_s"] / section["estimate_s"])
+    line = bench_first_run_line(section)
+    assert line.startswith("first run: both solvers' kernels") and "measured / said" in line
