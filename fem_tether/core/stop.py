@@ -4,11 +4,12 @@ A rank that is interrupted (Ctrl-C, or a signal to that rank alone) or fails
 tells every other rank, over a communicator of its own, its exit code and the
 one line to print.  Each rank's watcher thread polls for that message and
 interrupts its main thread, which raises :class:`KeyboardInterrupt` wherever
-it is (between two bytecodes; a compiled kernel call finishes first).  Every
-collective the package calls waits first in an interruptible loop
-(:func:`sync`), so no rank waits for one that stopped.  The CLI then prints
-one line on rank 0 and every rank exits with the same code
-(:func:`exit_code`).
+it is (between two bytecodes; a compiled kernel call finishes first).  The
+package calls no blocking collective: the ranks wait for each other and
+exchange values point to point, in an interruptible loop (:func:`sync`,
+:func:`share`, :func:`collect`, :func:`exchange`), so no rank waits for one
+that stopped.  The CLI then prints one line on rank 0 and every rank exits
+with the same code (:func:`exit_code`).
 
 Ctrl-C is remembered until the command has stopped, and the long loops ask
 for it (:func:`checkpoint`): Python drops a ``KeyboardInterrupt`` raised
@@ -22,12 +23,16 @@ Without MPI (one process) :func:`guard` does nothing.
 from __future__ import annotations
 
 import _thread
+import pickle
 import signal
 import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import TypeVar, cast
+
+T = TypeVar("T")
 
 #: Exit codes: a user's mistake, a failed solve (or a defect), an interrupt.
 EXIT_USAGE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 1, 130
@@ -175,9 +180,61 @@ def sync(comm, idle: Callable[[], object] | None = None) -> None:
 
 
 #: The tags of a rank's word to rank 0 that it has stopped (:func:`arrived`), of rank 0's word
-#: to the others that it has finished (:func:`finish`), of its exit code (:func:`agree`) and of
-#: the words of :func:`sync`.
-ARRIVED_TAG, FINISHED_TAG, CODE_TAG, SYNC_TAG = 18, 19, 20, 24
+#: to the others that it has finished (:func:`finish`), of its exit code (:func:`agree`), of
+#: the words of :func:`sync` and of the values :func:`share` and :func:`collect` carry.
+ARRIVED_TAG, FINISHED_TAG, CODE_TAG, SYNC_TAG, VALUE_TAG = 18, 19, 20, 24, 25
+
+
+def share(comm, value: T | None) -> T:
+    """Rank 0's ``value`` on every rank of ``comm`` (a broadcast; the other ranks' ``value``,
+    ``None``, is not read), sent point to point and
+    waited for stoppably (:func:`_send`, :func:`_receive`): the package's broadcasts.  A
+    blocking collective after :func:`sync` was not enough: a rank interrupted once its
+    sync had ended left the others inside the collective, which no stop ends (measured:
+    a study's ranks hung in ``allreduce`` when Ctrl-C came to rank 1 as it left the sync
+    of its phase's end, 2 of 9 runs, and at the first run with another process on the
+    machine)."""
+    if comm.Get_size() == 1:
+        return cast(T, value)
+    if comm.Get_rank() == 0:
+        payload = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        for rank in range(1, comm.Get_size()):
+            _send(comm, payload, rank)
+        return cast(T, value)
+    return pickle.loads(_receive(comm, 0))
+
+
+def collect(comm, value: T) -> list[T] | None:
+    """Every rank's ``value`` on rank 0, in rank order (a gather; ``None`` on the other
+    ranks), sent point to point and waited for stoppably as :func:`share`'s."""
+    if comm.Get_size() == 1:
+        return [value]
+    if comm.Get_rank() != 0:
+        _send(comm, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL), 0)
+        return None
+    return [value, *(pickle.loads(_receive(comm, rank)) for rank in range(1, comm.Get_size()))]
+
+
+def exchange(comm, value: T) -> list[T]:
+    """Every rank's ``value`` on every rank, in rank order (an allgather): :func:`collect`
+    on rank 0, then :func:`share`."""
+    return share(comm, collect(comm, value))
+
+
+def _send(comm, payload: bytes, rank: int) -> None:
+    """``payload`` to ``rank``: its length, then its bytes (:data:`VALUE_TAG`; messages of one
+    tag between two ranks arrive in the order they were sent)."""
+    wait(comm.Isend(bytearray(len(payload).to_bytes(8, "little")), dest=rank, tag=VALUE_TAG))
+    wait(comm.Isend(payload, dest=rank, tag=VALUE_TAG))
+
+
+def _receive(comm, rank: int) -> bytes:
+    """The bytes :func:`_send` sends from ``rank``, each wait cancelled if this rank stops."""
+    size = bytearray(8)
+    receive(comm.Irecv(size, source=rank, tag=VALUE_TAG))
+    payload = bytearray(int.from_bytes(size, "little"))
+    receive(comm.Irecv(payload, source=rank, tag=VALUE_TAG))
+    return bytes(payload)
 
 #: How long rank 0 waits for the other ranks' word that they have stopped [s].
 ARRIVAL_S = 5.0

@@ -32,7 +32,7 @@ from typing import Protocol
 from fem_tether.core.atomic import exclusive, parts_dir, remove_temporaries
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
-from fem_tether.core.stop import checkpoint, guard, sync
+from fem_tether.core.stop import checkpoint, guard, share, sync
 from fem_tether.jobs.schedule import assign, finish_times
 from fem_tether.tether.kernels import load as load_kernels
 
@@ -115,8 +115,7 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, loads_us: Seque
     already.  Ctrl-C and errors propagate (the caller says what is kept)."""
     rank, size = comm.Get_rank(), comm.Get_size()
     if costs is None:                               # a resumed job: the rest balanced
-        costs = comm.bcast([0.0 if work.kept(t) else work.cost_us(t) for t in tasks] if rank == 0 else None,
-                           root=0)
+        costs = share(comm, [0.0 if work.kept(t) else work.cost_us(t) for t in tasks] if rank == 0 else None)
     owners = assign(list(costs), size, loads_us)
     finished = finish_times(list(costs), owners)
 
@@ -164,8 +163,7 @@ def claim_output(comm, out: Path, check: Callable[[Path], object], output: ExitS
 
 def raise_on_every_rank(comm, problem: InputError | None) -> None:
     """Raise rank 0's ``problem`` (found preparing the output, before any task) on every rank."""
-    sync(comm)
-    problem = comm.bcast(problem, root=0)
+    problem = share(comm, problem)
     if problem:
         raise problem
 

@@ -27,7 +27,7 @@ from fem_tether.core.atomic import check_writable, exclusive, remove_temporaries
 from fem_tether.core.errors import InputError
 from fem_tether.core.memory import peak_rss_MiB
 from fem_tether.core.progress import Progress
-from fem_tether.core.stop import guard, sync
+from fem_tether.core.stop import collect, guard
 from fem_tether.jobs.evaluate import LengthResult
 from fem_tether.jobs.job import Job
 from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
@@ -136,13 +136,12 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
                 importlib.import_module(module)
         tasks = SweepTasks(store, size, follow_up.imports if follow_up else ())
         _, kept = distribute(comm, tasks, job.tasks, bar, follow_up.loads_us(size) if follow_up else ())
-        sync(comm)
-        reused = comm.reduce(kept, root=0)
-        if rank != 0:
-            comm.gather(peak_rss_MiB(), root=0)
+        reused = collect(comm, kept)
+        if reused is None:
+            collect(comm, peak_rss_MiB())
             return None
         results = assemble(store, size)
-        outcome = SweepOutcome(results, len(job.tasks), reused, size, tuple(comm.gather(peak_rss_MiB(), root=0)))
+        outcome = SweepOutcome(results, len(job.tasks), sum(reused), size, tuple(collect(comm, peak_rss_MiB()) or ()))
         if not keep_parts:
             remove_parts(store)
         return outcome

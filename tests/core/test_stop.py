@@ -3,6 +3,7 @@ ends every rank with one line and one exit code; Ctrl-C while the libraries
 load is one line too.  Each case starts ``mpiexec`` as a user would and
 fails, rather than hangs, if a rank is left running."""
 
+import json
 import os
 import re
 import shutil
@@ -333,3 +334,79 @@ def test_a_finaliser_that_fails_after_ctrl_c_prints_nothing():
                           preexec_fn=default_sigint)
     before, after = done.stderr.split("--\n")
     assert done.returncode == 0 and "AttributeError" in before and after == "", done.stderr
+
+
+#: ``stop.share``, ``collect`` and ``exchange`` on every rank of ``mpiexec``, each rank's results
+#: as JSON in a file of its own in the folder ``argv[1]`` (the ranks' stdout lines may interleave).
+EXCHANGES = """
+import json, sys
+from pathlib import Path
+import numpy as np
+from mpi4py import MPI
+from fem_tether.core import stop
+
+comm = MPI.COMM_WORLD
+rank = comm.Get_rank()
+big = np.full(300_000, float(rank))                  # 2.4 MB: past any eager limit
+shared = stop.share(comm, {"from": rank, "array": big} if rank == 0 else None)
+collected = stop.collect(comm, (rank, big))
+every = stop.exchange(comm, rank ** 2)
+Path(sys.argv[1], f"{rank}.json").write_text(json.dumps({
+    "rank": rank, "shared": [shared["from"], float(shared["array"].sum())],
+    "collected": None if collected is None else [[r, float(a.sum())] for r, a in collected], "every": every}))
+"""
+
+
+@needs_mpi
+def test_values_go_to_every_rank_point_to_point(tmp_path):
+    """stop.share is a broadcast of rank 0's value, collect a gather on rank 0 (None elsewhere),
+    exchange an allgather, in rank order, on three ranks, arrays past MPI's eager limit too."""
+    done = subprocess.run([MPIEXEC, "-n", "3", sys.executable, "-c", EXCHANGES, str(tmp_path)], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    results = [json.loads((tmp_path / f"{rank}.json").read_text()) for rank in range(3)]
+    for r in results:
+        assert r["shared"] == [0, 0.0] and r["every"] == [0, 1, 4]
+        assert r["collected"] == ([[0, 0.0], [1, 300_000.0], [2, 600_000.0]] if r["rank"] == 0 else None)
+
+
+#: Every rank passes a sync; then rank ``STOPPER`` is interrupted (the Ctrl-C that came as it left
+#: the sync) while the others go on to ``stop.<FUNCTION>``; each rank writes its exit code in the folder
+#: ``argv[3]``.
+STOPPED_AFTER_SYNC = """
+import sys
+from pathlib import Path
+from mpi4py import MPI
+from fem_tether.core import stop
+
+function, stopper = getattr(stop, sys.argv[1]), int(sys.argv[2])
+comm = MPI.COMM_WORLD
+code = 0
+stop.defer_interrupts()
+try:
+    with stop.guard(comm):
+        stop.sync(comm)
+        if comm.Get_rank() == stopper:
+            raise KeyboardInterrupt
+        function(comm, comm.Get_rank())
+        stop.finish(comm)                            # as the CLI's ranks end a command
+except KeyboardInterrupt as exc:
+    code = stop.exit_code(exc)[0]
+    stop.clear()
+with stop.interruptible():
+    stop.arrived(comm)
+Path(sys.argv[3], str(comm.Get_rank())).write_text(str(code))
+"""
+
+
+@needs_mpi
+@pytest.mark.parametrize("function, stopper", [("share", 0), ("collect", 1), ("exchange", 1), ("exchange", 2)])
+def test_a_rank_stopped_after_its_sync_stops_the_ranks_waiting_for_its_value(tmp_path, function, stopper):
+    """The race a study hung in (2 of 9 runs, at once under load): rank 1 interrupted just after
+    the sync at its phase's end left rank 0 in ``comm.allreduce``, which no stop ends.  The
+    ranks now exchange values point to point, stoppably: rank ``stopper`` stopped where the
+    interrupt came, every other rank waiting for its value stops too, each with code 130."""
+    done = subprocess.run([MPIEXEC, "-n", "3", sys.executable, "-c", STOPPED_AFTER_SYNC, function, str(stopper),
+                           str(tmp_path)], capture_output=True, text=True, timeout=STOP_WITHIN_S)
+    codes = [(tmp_path / str(rank)).read_text() if (tmp_path / str(rank)).exists() else None for rank in range(3)]
+    assert codes == ["130"] * 3, done.stdout + done.stderr

@@ -52,7 +52,7 @@ from fem_tether.config import Config
 from fem_tether.core.errors import InputError
 from fem_tether.core.progress import Progress
 from fem_tether.core.quantities import lumped_name
-from fem_tether.core.stop import sync
+from fem_tether.core.stop import share, sync
 from fem_tether.design.flown import flown
 from fem_tether.design.model import LineAtKite
 from fem_tether.design.optimiser import Problem, Solution
@@ -386,8 +386,7 @@ def run_flexible(comm, job: DesignJob, out: Path, lumped: DesignResult | None,
     t0 = time.perf_counter()
     settings = job.flexible
     state = FlexibleDesign("not converged", settings.tolerance, settings.iterations)
-    sync(comm)
-    current = comm.bcast(lumped if rank == 0 and lumped is not None and lumped.found else None, root=0)
+    current = share(comm, lumped if rank == 0 and lumped is not None and lumped.found else None)
     if current is None:
         state.status, state.error = "failed", "no start converged to a feasible lumped design to begin the loop from"
         return FlexibleOutcome(lumped, state) if rank == 0 and lumped is not None else None
@@ -408,8 +407,7 @@ def run_flexible(comm, job: DesignJob, out: Path, lumped: DesignResult | None,
             decision, problem, factor, bins = _round(job, current, runs, k, state)
             timing["optimiser_s"] += time.perf_counter() - t1
             _say(progress, f"flexible tether, round {k}: {len(cases)} bins; {decision['say']}")
-        sync(comm)
-        decision = comm.bcast(decision, root=0)
+        decision = share(comm, decision)
         failed = decision["failed"]
         if decision["next"] is not None:
             current = decision["next"]

@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import TypeVar
 
 from fem_tether.core.progress import Progress
-from fem_tether.core.stop import guard, sync
+from fem_tether.core.stop import exchange, guard, share
 from fem_tether.jobs import scaling
 from fem_tether.jobs.runner import claim_output, distribute, load_kernels_by_rank
 
@@ -73,16 +73,13 @@ def _phase(comm, study: Study, label: str, tasks: list[Task], costs: list[float]
         bar.close()
         raise StudyInterrupted(study.parts.directory) from None
     outcome.tasks += len(tasks)
-    sync(comm)
-    outcome.ran += comm.allreduce(ran)
+    outcome.ran += sum(exchange(comm, ran))
     outcome.phase_s[label] = outcome.phase_s.get(label, 0.0) + time.perf_counter() - t0
 
 
 def planned(comm, plan: Callable[[], T]) -> T:
     """``plan()`` made on rank 0 and sent to every rank (the others wait, stoppably, asleep)."""
-    made = plan() if comm.Get_rank() == 0 else None
-    sync(comm)
-    return comm.bcast(made, root=0)
+    return share(comm, plan() if comm.Get_rank() == 0 else None)
 
 
 def plan_phase(comm, study: Study, tasks_of: Callable[[Study, list[Point]], list[Task]],
@@ -97,8 +94,7 @@ def plan_phase(comm, study: Study, tasks_of: Callable[[Study, list[Point]], list
     costs = [[0.0 if study.kept(t) else study.cost_us(t) for t in tasks] for tasks in mine]
     spent_s = time.perf_counter() - t0
     if size > 1:
-        sync(comm)
-        every = comm.allgather((mine, costs, study.prepared(points[rank::size]), spent_s))
+        every = exchange(comm, (mine, costs, study.prepared(points[rank::size]), spent_s))
         for _, _, prepared, _ in every:
             study.adopt(prepared)
         mine = [every[i % size][0][i // size] for i in range(len(points))]
