@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.physics.loads import G_MPS2
+from fem_tether.physics.reel import HELD_REEL_OUT
 from fem_tether.core.quantities import CELL_FIELDS, KITE_SERIES, SERIES
 
 from fem_tether.config.sections import CEILING_M
@@ -243,6 +244,12 @@ def check_given(cfg: Config, given: dict, base: Config) -> None:
     of the user's file and overrides, set to other than ``base``'s value, the
     preset's or default) that ``cfg``'s path ignores."""
     _check_clusters_given(cfg, given, base)
+    fe: dict = given["fe"] if isinstance(given.get("fe"), dict) else {}
+    if ("rho_inf" in fe and cfg.kite.model == "point-mass" and cfg.winch.reel_out in HELD_REEL_OUT
+            and cfg.fe.scheme == "generalized-alpha" and cfg.fe.rho_inf != base.fe.rho_inf):
+        raise ConfigError(f"[fe] rho_inf = {toml_value(fe['rho_inf'])}: a point-mass kite held by the winch "
+                          f"([winch] reel_out = {toml_value(cfg.winch.reel_out)}) flies [fe] rho_inf_held "
+                          f"(now {cfg.fe.rho_inf_held:g}, docs/free-kite.md §4); set that instead")
     kite: dict = given["kite"] if isinstance(given.get("kite"), dict) else {}
     for key, (path, meaning) in PATH_KEYS.items():
         if key in kite and cfg.kite.path != path and getattr(cfg.kite, key) != getattr(base.kite, key):

@@ -386,6 +386,10 @@ class FE(Section):
                           one_of("generalized-alpha", "hht", "newmark"))
     rho_inf: float = setting(0.8, "-", "generalized-alpha spectral radius at infinity",
                              between(0.0, 1.0, (True, True)))
+    rho_inf_held: float = setting(0.0, "-", "generalized-alpha spectral radius at infinity of a point-mass kite "
+                                  "held by the winch ([winch] reel_out = 'hold' or 'cycle'; 0.8 let its peak "
+                                  "tensions grow as the step was refined, docs/free-kite.md §4)",
+                                  between(0.0, 1.0, (True, True)))
     hht_alpha: float = setting(-0.1, "-", "HHT alpha", between(-1.0 / 3.0, 0.0, (True, True)))
     beta: float = setting(0.25, "-", "Newmark beta", from_to(0.25, 1.0))
     gamma: float = setting(0.5, "-", "Newmark gamma", from_to(0.5, 1.0))

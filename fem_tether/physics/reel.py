@@ -66,6 +66,12 @@ if TYPE_CHECKING:
     from fem_tether.config import Config
 
 
+#: The reel-out modes in which the winch holds the tension a point-mass kite pulls (its traction
+#: phases): such a kite's FE run flies ``[fe] rho_inf_held``
+#: (:func:`fem_tether.tether.fe.integrator.scheme_from_config`).
+HELD_REEL_OUT = ("hold", "cycle")
+
+
 class SpeedTableError(InputError):
     """A reel-out speed table is malformed; the message names the line."""
 

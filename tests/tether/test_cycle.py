@@ -39,6 +39,14 @@ def fe_run(cfg):
 
 
 @pytest.fixture(scope="module")
+def fe_run_fine(cfg):
+    """The FE run at the FD reference's step (0.025 s)."""
+    from fem_tether.tether.fe.solver import simulate
+
+    return simulate(cfg.replace(fe={"dt_s": cfg.fd.dt_s}))
+
+
+@pytest.fixture(scope="module")
 def fd_run(cfg):
     from fem_tether.tether.fd import simulate
 
@@ -175,31 +183,60 @@ def test_cycle_power_against_the_quasi_steady_kitegen_cycle(fe_run, cfg):
     assert free_W == pytest.approx(float(quasi.power_W), rel=0.15)
 
 
-def test_fe_and_fd_agree_on_the_winch_energy_of_each_phase(fe_run, fd_run, cfg):
-    """Check 4: one cycle, FE (dt 0.05 s, 20 elements) against the FD reference (dt 0.025 s,
-    20 segments): E_out and E_in within 2 % (measured 0.08 % and 0.6 %)."""
-    fe, fd = summary.cycle_summary(fe_run, cfg), summary.cycle_summary(fd_run, cfg)
-    for key in ("cycle_energy_out_J", "cycle_energy_in_J"):
-        print(f"\n{key}: FE {fe[key]:.0f} J, FD {fd[key]:.0f} J ({fe[key] / fd[key] - 1:+.2%})")
-        assert fe[key] == pytest.approx(fd[key], rel=0.02)
+def test_fe_and_fd_agree_on_the_winch_energy_of_each_phase(fe_run, fe_run_fine, fd_run, cfg):
+    """Check 4: one cycle, FE (20 elements, generalised-alpha's rho_inf_held = 0) against the FD
+    reference (dt 0.025 s, 20 segments): at the FD's step E_out and E_in within 2 % (measured
+    -0.03 % and +1.2 %; at 0.0125 s both +0.02 % and +0.9 %), and E_out at the FE's default
+    0.05 s too (-0.11 %; E_in there -2.7 %: the recovery's 120 kJ is 1.3 % of the cycle's
+    winch energy, and its step error is the line's high modes damped, falling with the step).
+    With rho_inf = 0.8 (before) the FE at 0.05 s agreed within 0.04 % on E_in, but the line
+    went slack at 0.025 and 0.0125 s: the agreement was two unconverged numbers meeting."""
+    fd = summary.cycle_summary(fd_run, cfg)
+    for run, keys in ((fe_run_fine, ("cycle_energy_out_J", "cycle_energy_in_J")), (fe_run, ("cycle_energy_out_J",))):
+        fe = summary.cycle_summary(run, cfg)
+        for key in keys:
+            print(f"\n{key}: FE {fe[key]:.0f} J, FD {fd[key]:.0f} J ({fe[key] / fd[key] - 1:+.2%})")
+            assert fe[key] == pytest.approx(fd[key], rel=0.02)
 
 
-def test_energy_balance_over_the_cycle(fe_run, cfg):
-    """Check 5 (FE, dt 0.05 s): W_aero = E_winch + E_diss + ΔK + ΔU within 1e-3 of the
-    phase's |W_aero| over the traction and over the recovery, each without the step of
-    its turn (measured 4.7e-4, 7.1e-4).  The two turns of the winch add their restarts:
-    V_L jumps by ~19 m/s and the velocities are made consistent with the new speed at
-    once, an impulse whose kinetic energy (½ (m_k + μ L) ΔV_L² ≈ 23 kJ per line at the
-    return to traction) no term of the balance holds, and the first steps after a
-    restart carry the scheme's start error: over the whole cycle 2.2e-3 at dt 0.05 s,
-    1.1e-3 at 0.025 s (docs/free-kite.md, "Pumping cycles"); held within 2.5e-3 here."""
-    traction, recovery = _phases(fe_run)
+def _balances(run, cfg) -> dict:
+    """The energy balance over the first cycle's traction and recovery, each without the step of
+    its turn, and over the whole cycle."""
+    traction, recovery = _phases(run)
     start, end = traction[0] - 1, recovery[-1]
-    phases = {"traction": energy_balance(fe_run, cfg, slice(start, recovery[0] - 1)),
-              "recovery": energy_balance(fe_run, cfg, slice(recovery[0] + 1, end)),
-              "cycle": energy_balance(fe_run, cfg, slice(start, end + 1))}
+    phases = {"traction": energy_balance(run, cfg, slice(start, recovery[0] - 1)),
+              "recovery": energy_balance(run, cfg, slice(recovery[0] + 1, end)),
+              "cycle": energy_balance(run, cfg, slice(start, end + 1))}
     for name, b in phases.items():
         print(f"\n{name}: W_aero {b.aero_work_J / 1e6:.3f} MJ, residual {b.residual_J / 1e3:.2f} kJ "
               f"({b.relative_residual:.2e})")
-    assert phases["traction"].relative_residual < 1e-3 and phases["recovery"].relative_residual < 1e-3
-    assert phases["cycle"].relative_residual < 2.5e-3
+    return {name: b.relative_residual for name, b in phases.items()}
+
+
+def test_energy_balance_over_the_cycle(cfg):
+    """Check 5, the balance's bookkeeping (FE, dt 0.05 s, with the nearly conservative
+    rho_inf_held = 0.8): W_aero = E_winch + E_diss + ΔK + ΔU within 1e-3 of the phase's
+    |W_aero| over the traction and over the recovery, each without the step of its turn
+    (measured 4.9e-4, 7.7e-4).  The two turns of the winch add their restarts: V_L jumps by
+    ~19 m/s and the velocities are made consistent with the new speed at once, an impulse
+    whose kinetic energy (½ (m_k + μ L) ΔV_L² ≈ 23 kJ per line at the return to traction) no
+    term of the balance holds, and the first steps after a restart carry the scheme's start
+    error: over the whole cycle 2.2e-3 at dt 0.05 s (docs/free-kite.md, "Pumping cycles");
+    held within 2.5e-3 here."""
+    from fem_tether.tether.fe.solver import simulate
+
+    conservative = cfg.replace(fe={"rho_inf_held": 0.8})
+    residual = _balances(simulate(conservative), conservative)
+    assert residual["traction"] < 1e-3 and residual["recovery"] < 1e-3
+    assert residual["cycle"] < 2.5e-3
+
+
+def test_the_default_schemes_energy_residual_falls_with_the_step(fe_run, fe_run_fine, cfg):
+    """Check 5 at the default rho_inf_held = 0: generalised-alpha damps the line's highest
+    modes in a step, energy no term of the balance holds; that residual is the
+    discretisation's: it falls as the step halves (measured traction 6.4e-3 -> 3.3e-4,
+    recovery 1.0e-2 -> 5.2e-3, cycle 8.1e-3 -> 1.4e-3 from 0.05 to 0.025 s; 2.9e-5, 3.0e-3
+    and 4.6e-4 at 0.0125 s), and at 0.025 s the cycle's is within 2.5e-3 as above."""
+    coarse, fine = _balances(fe_run, cfg), _balances(fe_run_fine, cfg)
+    assert all(fine[name] < coarse[name] / 1.5 for name in coarse), (coarse, fine)
+    assert fine["cycle"] < 2.5e-3

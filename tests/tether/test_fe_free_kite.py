@@ -146,12 +146,12 @@ def test_reels_out_with_a_free_kite():
 def _held_in_strong_wind(dt_s: float):
     """KiteGen's wing held at 150 kN per line by the winch (``reel_out = "hold"``) on a 450 m
     line in 20 m/s at the kite's altitude (10 elements, one lap of spin-up, two averaged),
-    generalised-alpha's rho_inf = 0 as a study's free bin (docs/free-kite.md §4: with the
-    default 0.8 the fine step's oscillation grows with the winch's hold; here T_0 151.76 kN
-    at h = 0.025 s against 151.31 kN with 0, measured)."""
+    generalised-alpha's ``rho_inf_held`` = 0, every held kite's (docs/free-kite.md §4: with
+    0.8 the fine step's oscillation grows with the winch's hold; here T_0 151.76 kN at
+    h = 0.025 s against 151.31 kN with 0, measured)."""
     from fem_tether.tether.line import physics_from_config
 
-    cfg = load_config(overrides=_overrides(KITEGEN, fe={"elements": 10, "dt_s": dt_s, "rho_inf": 0.0},
+    cfg = load_config(overrides=_overrides(KITEGEN, fe={"elements": 10, "dt_s": dt_s},
                                            winch={"reel_out": "hold"},
                                            time={"spinup_periods": 1, "average_periods": 2}))
     cfg = cfg.with_length(450.0)

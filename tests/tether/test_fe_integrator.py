@@ -47,3 +47,24 @@ def test_second_order_accuracy(scheme):
     rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     print(scheme.name, errors, rates)
     assert np.all(rates > 1.8)
+
+
+def test_a_held_point_mass_kite_flies_rho_inf_held_and_refuses_rho_inf():
+    """generalised-alpha's rho_inf_held (default 0) for a point-mass kite the winch holds ('hold',
+    'cycle': with 0.8 its peak tension grew as the step was refined, docs/free-kite.md §4), the
+    configured rho_inf (default 0.8) otherwise; setting rho_inf for a held kite, which would not
+    fly it, is refused in one line naming the key to set."""
+    from fem_tether.config import load_config
+    from fem_tether.core.errors import ConfigError
+    from fem_tether.tether.fe.integrator import scheme_from_config
+
+    cfg = load_config(None, {"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}})
+    assert scheme_from_config(cfg.fe, held_kite=True) == Scheme.generalized_alpha(0.0)
+    assert scheme_from_config(cfg.fe) == Scheme.generalized_alpha(0.8)
+    held = load_config(None, {"kite": {"model": "point-mass"}, "winch": {"reel_out": "cycle"},
+                              "fe": {"rho_inf_held": 0.5}})
+    assert scheme_from_config(held.fe, held_kite=True) == Scheme.generalized_alpha(0.5)
+    with pytest.raises(ConfigError, match=r"^\[fe\] rho_inf = 0.5: a point-mass kite held by the winch .* "
+                                          r"flies \[fe\] rho_inf_held \(now 0, .*\); set that instead$"):
+        load_config(None, {"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}, "fe": {"rho_inf": 0.5}})
+    assert load_config(None, {"kite": {"model": "point-mass"}, "fe": {"rho_inf": 0.5}}).fe.rho_inf == 0.5

@@ -71,16 +71,6 @@ def operating_case(cfg: Config, op: OperatingPoint) -> Config:
                        wind={"scale": wind_scale(cfg, op.wind_mps)})
 
 
-#: The generalised-alpha rho_inf a free bin's FE run flies (its high frequencies damped in
-#: one step): with the default 0.8 a held free kite's peak tension did not converge in the
-#: step (KiteGen 600 m, 12 mm, 20 m/s: 187.2, 188.6, 254.7 kN at h = 0.05, 0.025, 0.0125 s;
-#: KE-yoyo 1300 m, 24 mm, 12 m/s: 551.0, 595.3, 706.1 kN), nor with 0.5 at KE-yoyo's 6 m/s bin
-#: (146.8, 164.2, 194.6 kN; its FD reference 131.1 kN); with 0 every measured bin did, within
-#: 2.1 % at 0.05 s of its value at 0.0125 s and within 1.7 % of the FD reference at 0.025 s
-#: (docs/free-kite.md §4).
-FREE_RHO_INF = 0.0
-
-
 def run_config(cfg: Config, op: OperatingPoint, reel_out: bool = False) -> Config:
     """The tether run of one bin: :func:`operating_case`; with ``reel_out`` the winch pays
     out at V_out from L - V_out T_avg / 2, so that the line's mean length over the T_avg
@@ -88,11 +78,11 @@ def run_config(cfg: Config, op: OperatingPoint, reel_out: bool = False) -> Confi
     period) with the winch holding F / lines (``reel_out = "hold"``) from its release
     (its operating point, docs/free-kite.md §3), so its start is shorter by the pay-out
     of its spin-up too, ``[time] spinup_periods`` laps taken as nominal periods:
-    L - V (T_spin + T_avg / 2), V = :func:`free_reel_mps`; its FE run flies ``[fe] rho_inf`` =
-    :data:`FREE_RHO_INF`."""
+    L - V (T_spin + T_avg / 2), V = :func:`free_reel_mps`; its FE run flies ``[fe] rho_inf_held``
+    (0 by default: :func:`~fem_tether.tether.fe.integrator.scheme_from_config`)."""
     case = operating_case(cfg, op)
     if cfg.kite.model == "point-mass":
-        case = case.replace(winch={"reel_out": "hold"}, fe={"rho_inf": FREE_RHO_INF})
+        case = case.replace(winch={"reel_out": "hold"})
         periods = case.time.spinup_periods + case.time.average_periods / 2.0
         paid_m = free_reel_mps(case, op) * periods * case.path.period_s
         return case.replace(tether={"length_m": cfg.tether.length_m - paid_m})
