@@ -384,6 +384,20 @@ def track(point, position_m, velocity_mps, out):
 
 
 @jit
+def law_force(aero_force_N, apparent_mps, density_kg_m3, area_m2, cl, tension_N, tether, line_drag_N, out):
+    """What the law balances on a kite at the line's end (:meth:`Steering.command`'s ``aero_force_N``
+    and ``lift_N``): F_0 = F_aero − T_L d/|d| + D_line into ``out``, the aerodynamic force
+    with the line's pull along its last element ``tether`` (its sideways part, the sag and the
+    line's own inertia, the law balances like any other force) and the drag of the line's share
+    at the kite's node; returns the lift L = ½ ρ |W_e|² A C_L.  One implementation for the
+    compiled sample of a free kite and its NumPy path (:meth:`~fem_tether.tether.free_kite.FreeKite.steer`)."""
+    length = math.sqrt(tether[0] ** 2 + tether[1] ** 2 + tether[2] ** 2)
+    for i in range(3):
+        out[i] = aero_force_N[i] - tension_N * tether[i] / length + line_drag_N[i]
+    return 0.5 * density_kg_m3 * (apparent_mps[0] ** 2 + apparent_mps[1] ** 2 + apparent_mps[2] ** 2) * area_m2 * cl
+
+
+@jit
 def law_roll(point, position_m, velocity_mps, aero_force_N, lift_N, mass_kg, lookahead_m, roll_min_rad,
              roll_max_rad, out):
     """:meth:`Steering.command` compiled: sinψ = (m a_⊥ − (F_0 + m g)·n_k)/L within the limits and

@@ -50,9 +50,8 @@ from fem_tether.physics.orbit import Circle
 from fem_tether.physics.trajectory import POINT_SIZE, FigureEight
 from fem_tether.physics.rate_hold import RateHold
 from fem_tether.physics.roll_schedule import RollSchedule, balance_schedule
-from fem_tether.physics.steering import (COMMAND_SIZE, N_NEWTON, Command, ScheduledSteering, Steering, law_roll,
-                                         min_turn_radius_m, nearest, nearest_point,
-                                         sampled_lookahead_m)
+from fem_tether.physics.steering import (COMMAND_SIZE, N_NEWTON, Command, ScheduledSteering, Steering, law_force,
+                                         law_roll, min_turn_radius_m, nearest, nearest_point, sampled_lookahead_m)
 from fem_tether.systems.tether_drag import straight_tether_cd
 from fem_tether.physics.wind import WindProfile
 
@@ -205,9 +204,11 @@ class FreeKite:
             point = nearest_point(self.steering.path, r, parameter_s)
             aero = aerodynamic_force_N(self.wing_at(r, v), r, v, self.wind, self.air, 0.0, tether,
                                        self.forms if self.rate_hold is None else None)
-            lift_N = 0.5 * aero.density_kg_m3 * float(aero.apparent_wind_mps @ aero.apparent_wind_mps) * self.kite.area_m2 * aero.cl
-            pull = -tension_N * np.asarray(tether, dtype=float) / float(np.linalg.norm(tether))
-            command = self.steering.command(point, r, v, aero.force_N + pull + line_drag_N, lift_N)
+            passive = np.empty(3)
+            lift_N = law_force(aero.force_N, aero.apparent_wind_mps, aero.density_kg_m3, self.kite.area_m2, aero.cl,
+                               float(tension_N), np.asarray(tether, dtype=float),
+                               np.asarray(line_drag_N, dtype=float) + np.zeros(3), passive)
+            command = self.steering.command(point, r, v, passive, lift_N)
         except ValueError as exc:
             raise SolverDivergedError(f"the point-mass kite lost its path at t = {t_s:.4f} s, at "
                                       f"{np.round(np.asarray(r, dtype=float), 1).tolist()} m: {exc}") from None
@@ -397,9 +398,9 @@ def steer_sample(path_address, path_parameters, path_breaks, path_coefficients, 
     without a rate hold) from a path point σ = ``parameter_s``, in one call: the nearest point
     (:func:`~fem_tether.physics.steering.nearest`, :data:`~fem_tether.physics.steering.N_NEWTON`
     steps), the aerodynamic force at ψ = 0 (:func:`~fem_tether.physics.kite_dynamics.air_load`
-    at the address ``kite_load``, the kite's ``forms``), its lift L = ½ ρ |W_e|² A C_L, and
-    the law's roll (:func:`~fem_tether.physics.steering.law_roll`) for F_0 = F_aero − T_L d/|d|
-    + ``line_drag_N``.  Into ``out``: ψ, σ and the law's ψ_ff, e, η, clipped.  False where any
+    at the address ``kite_load``, the kite's ``forms``), the law's F_0 = F_aero − T_L d/|d| +
+    ``line_drag_N`` and lift L = ½ ρ |W_e|² A C_L (:func:`~fem_tether.physics.steering.law_force`)
+    and its roll (:func:`~fem_tether.physics.steering.law_roll`).  Into ``out``: ψ, σ and the law's ψ_ff, e, η, clipped.  False where any
     of them is undefined (the caller's NumPy path then says why)."""
     point = np.empty(POINT_SIZE)
     if not nearest(path_address, path_parameters, path_breaks, path_coefficients, r, parameter_s, N_NEWTON, point):
@@ -410,12 +411,8 @@ def steer_sample(path_address, path_parameters, path_breaks, path_coefficients, 
                              air_parameters, air_ceiling_m, r, v, tether, False, 0.0, force, apparent, state, jac_v,
                              jac_r, jac_d, jac_roll) != KITE_OK:
         return False
-    lift_N = 0.5 * state[4] * (apparent[0] * apparent[0] + apparent[1] * apparent[1] + apparent[2] * apparent[2]) \
-        * kite[0] * state[2]
-    length = math.sqrt(tether[0] ** 2 + tether[1] ** 2 + tether[2] ** 2)
     passive = np.empty(3)
-    for i in range(3):
-        passive[i] = force[i] + (-tension_N * tether[i] / length) + line_drag_N[i]
+    lift_N = law_force(force, apparent, state[4], kite[0], state[2], tension_N, tether, line_drag_N, passive)
     command = np.empty(COMMAND_SIZE)
     if law_roll(point, r, v, passive, lift_N, mass_kg, lookahead_m, roll_min_rad, roll_max_rad, command) != 0:
         return False

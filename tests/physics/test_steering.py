@@ -494,3 +494,16 @@ def test_the_compiled_law_is_the_numpy_one():
         assert command.saturated == clipped
         saturated += clipped
     assert 0 < saturated < 300
+
+
+def test_the_laws_force_and_lift_from_the_kites_loads():
+    """law_force: F_0 = F_aero − T_L d/|d| + D_line (the pull along the last element, whatever
+    its length) and L = ½ ρ |W_e|² A C_L, against the equations written out."""
+    from fem_tether.physics.steering import law_force
+
+    aero, apparent, drag = np.array([1.0e5, -2.0e4, 3.0e4]), np.array([60.0, -10.0, 5.0]), np.array([10.0, 20.0, -5.0])
+    tether = np.array([3.0, 0.0, 4.0])
+    out = np.empty(3)
+    lift_N = law_force(aero, apparent, 1.1, 120.0, 0.9, 1.5e5, tether, drag, out)
+    assert out == pytest.approx(aero - 1.5e5 * np.array([0.6, 0.0, 0.8]) + drag, rel=1e-15)
+    assert lift_N == pytest.approx(0.5 * 1.1 * (60.0 ** 2 + 10.0 ** 2 + 5.0 ** 2) * 120.0 * 0.9, rel=1e-15)
