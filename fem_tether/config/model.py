@@ -27,6 +27,7 @@ from typing import Any
 from fem_tether.core.errors import ConfigError
 from fem_tether.config import catalog
 from fem_tether.physics.orbit import Circle
+from fem_tether.physics.reel import HELD_REEL_OUT
 from fem_tether.physics.trajectory import FigureEight
 
 from fem_tether.config import rules
@@ -60,6 +61,12 @@ class Config:
 
     def __post_init__(self) -> None:
         rules.check(self)
+
+    @property
+    def held_kite(self) -> bool:
+        """A point-mass kite the winch holds (``[winch] reel_out`` in
+        :data:`~fem_tether.physics.reel.HELD_REEL_OUT`): its FE run flies ``[fe] rho_inf_held``."""
+        return self.kite.model == "point-mass" and self.winch.reel_out in HELD_REEL_OUT
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Config:
@@ -138,16 +145,18 @@ def merged(base: dict[str, Any], over: dict[str, Any]) -> dict[str, Any]:
 
 
 def load_config(path: str | Path | None = None, overrides: dict | None = None,
-                system: str | None = None) -> Config:
+                system: str | None = None, held: bool = False) -> Config:
     """Defaults, then the preset of ``system`` (:mod:`fem_tether.config.catalog`),
     then the TOML file at ``path``, then ``overrides``.  File names in the
     file are relative to the file, and must exist and read; a key the user
-    sets (in the file or ``overrides``) that the case ignores is an error."""
+    sets (in the file or ``overrides``) that the case ignores is an error.
+    ``held``: the job holds a point-mass kite by its winch whatever ``[winch]
+    reel_out`` says (a study's bins)."""
     preset = catalog.config_tables(system) if system is not None else {}
     given = resolve_paths(read_toml(path), Path(path).parent) if path is not None else {}
     given = merged(given, overrides or {})
     cfg = Config.from_dict(merged(preset, given))
-    rules.check_given(cfg, given, Config.from_dict(preset))
+    rules.check_given(cfg, given, Config.from_dict(preset), held)
     rules.check_files(cfg)
     return cfg
 

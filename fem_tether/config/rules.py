@@ -12,7 +12,6 @@ from typing import TYPE_CHECKING
 
 from fem_tether.core.errors import ConfigError, InputError
 from fem_tether.physics.loads import G_MPS2
-from fem_tether.physics.reel import HELD_REEL_OUT
 from fem_tether.core.quantities import CELL_FIELDS, KITE_SERIES, SERIES
 
 from fem_tether.config.sections import CEILING_M
@@ -239,16 +238,20 @@ def _check_clusters_given(cfg: Config, given: dict, base: Config) -> None:
                               "probabilities; remove the Weibull key")
 
 
-def check_given(cfg: Config, given: dict, base: Config) -> None:
+def check_given(cfg: Config, given: dict, base: Config, held: bool = False) -> None:
     """Raise :class:`ConfigError` for a key the user changed (``given``: the tables
     of the user's file and overrides, set to other than ``base``'s value, the
-    preset's or default) that ``cfg``'s path ignores."""
+    preset's or default) that ``cfg``'s path ignores; ``held``: the job holds a
+    point-mass kite by its winch whatever ``[winch] reel_out`` says (a study's bins)."""
     _check_clusters_given(cfg, given, base)
     fe: dict = given["fe"] if isinstance(given.get("fe"), dict) else {}
-    if ("rho_inf" in fe and cfg.kite.model == "point-mass" and cfg.winch.reel_out in HELD_REEL_OUT
-            and cfg.fe.scheme == "generalized-alpha" and cfg.fe.rho_inf != base.fe.rho_inf):
+    held_kite = cfg.held_kite or (held and cfg.kite.model == "point-mass")
+    if ("rho_inf" in fe and held_kite and cfg.fe.scheme == "generalized-alpha"
+            and cfg.fe.rho_inf != base.fe.rho_inf):
+        by = (f"[winch] reel_out = {toml_value(cfg.winch.reel_out)}" if cfg.held_kite
+              else "in every bin of a study or a design's loop")
         raise ConfigError(f"[fe] rho_inf = {toml_value(fe['rho_inf'])}: a point-mass kite held by the winch "
-                          f"([winch] reel_out = {toml_value(cfg.winch.reel_out)}) flies [fe] rho_inf_held "
+                          f"({by}) flies [fe] rho_inf_held "
                           f"(now {cfg.fe.rho_inf_held:g}, docs/free-kite.md §4); set that instead")
     kite: dict = given["kite"] if isinstance(given.get("kite"), dict) else {}
     for key, (path, meaning) in PATH_KEYS.items():

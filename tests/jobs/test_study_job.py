@@ -68,6 +68,10 @@ def _study(**keys) -> dict:
     (_study(systems=["ke-yoyo"]) | {"wind": {"profile": "none"}}, r"^\[wind\] profile = \"none\": system 'ke-yoyo'"),
     (_study() | {"sweep": {"lengths_m": [1000]}}, r"^\[sweep\]: a study job spans lengths with \[study\]"),
     (_study() | {"fe": {"elementz": 10}}, r"^\[fe\] elementz: unknown key"),
+    # a study holds every point-mass kite by its winch: its bins fly [fe] rho_inf_held, never rho_inf
+    (_study() | {"kite": {"model": "point-mass"}, "fe": {"rho_inf": 0.5}},
+     r"^\[fe\] rho_inf = 0.5: a point-mass kite held by the winch \(in every bin of a study or a design's loop\) "
+     r"flies \[fe\] rho_inf_held \(now 0, .*\); set that instead$"),
     # a length whose kite altitude L cos(theta0) is in no band of the resource: refused now, not in its AEP
     (_study(lengths_m=[1000, 200]), r"^\[study\] lengths_m = 200\.0: .*altitude 141 m is in no band"),
     (_study(sites=[{"name": "a", "resource": {"band_bottom_m": 800}}]),

@@ -64,6 +64,7 @@ def test_a_held_point_mass_kite_flies_rho_inf_held_and_refuses_rho_inf():
     held = load_config(None, {"kite": {"model": "point-mass"}, "winch": {"reel_out": "cycle"},
                               "fe": {"rho_inf_held": 0.5}})
     assert scheme_from_config(held.fe, held_kite=True) == Scheme.generalized_alpha(0.5)
+    assert held.held_kite and cfg.held_kite and not load_config(None, {"kite": {"model": "point-mass"}}).held_kite
     with pytest.raises(ConfigError, match=r"^\[fe\] rho_inf = 0.5: a point-mass kite held by the winch .* "
                                           r"flies \[fe\] rho_inf_held \(now 0, .*\); set that instead$"):
         load_config(None, {"kite": {"model": "point-mass"}, "winch": {"reel_out": "hold"}, "fe": {"rho_inf": 0.5}})

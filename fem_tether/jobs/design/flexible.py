@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fem_tether.config import Config, catalog
+from fem_tether.config import Config, catalog, rules
 from fem_tether.core.errors import ConfigError
 from fem_tether.core.quantities import lumped_name
 from fem_tether.design.parameters import DesignParameters
@@ -96,10 +96,10 @@ def flexible_settings(table, parameters: DesignParameters) -> FlexibleSettings:
         for key in values:
             if key in DESIGN_KEYS.get(name, ()):
                 raise ConfigError(f"[design.flexible.{name}] {key}: set by the design, not by the job")
-        try:
-            base.replace(**{name: values})
-        except ConfigError as exc:
-            raise ConfigError(f"[design.flexible] {exc}") from None
+    try:
+        rules.check_given(base.replace(**sections), sections, base, held=True)
+    except ConfigError as exc:
+        raise ConfigError(f"[design.flexible] {exc}") from None
     return FlexibleSettings(int(iterations), float(tolerance), sections)
 
 

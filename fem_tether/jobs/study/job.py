@@ -242,7 +242,8 @@ def study_from_dict(data: dict, base_dir: Path = Path("."), text: str = "", syst
         if name and name not in catalog.names():
             raise _error("systems", name, f"unknown system (known: {', '.join(catalog.names())})")
     overrides = resolve_paths(data, base_dir)
-    configs = tuple(load_config(base_dir / base if base else None, overrides, name or None) for name in systems)
+    configs = tuple(load_config(base_dir / base if base else None, overrides, name or None, held=True)
+                    for name in systems)
     sites = _sites(study.get("sites"), configs[0], base_dir)
     for name, cfg in zip(systems, configs):
         for site in sites:              # a site's wind may be one a study cannot scale

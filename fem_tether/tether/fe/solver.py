@@ -29,7 +29,6 @@ from scipy.optimize import brentq
 
 from fem_tether.tether.case import EndMotion, TetherCase, case_fields, end_at_length
 from fem_tether.physics.catenary import Catenary
-from fem_tether.physics.reel import HELD_REEL_OUT
 from fem_tether.config import Config
 from fem_tether.physics.atmosphere import AltitudeError
 from fem_tether.core.errors import (SolverDivergedError, left_atmosphere, static_start_failure,
@@ -86,8 +85,7 @@ def build_model(cfg: Config, end: EndMotion | None = None,
     if kite is not None and end is None:
         case["end"] = replace(cfg.path, speed_mps=kite.start_speed_mps(case["length_m"]))
     system = TetherSystem(spaces, physics, case["tension_mode"])
-    held = kite is not None and cfg.winch.reel_out in HELD_REEL_OUT
-    return FEModel(system=system, scheme=scheme_from_config(cfg.fe, held), kite=kite, **case)
+    return FEModel(system=system, scheme=scheme_from_config(cfg.fe, cfg.held_kite), kite=kite, **case)
 
 
 def _winch_chord_m(model: FEModel, e0, weight_N_m: float) -> float | None:

@@ -90,6 +90,9 @@ def test_the_lines_configuration_is_the_designs():
     ('[design.flexible.fe]\nelements = 1', "[design.flexible] [fe] elements = 1"),
     ('[design.flexible.tether]\nlength_m = 5', "[design.flexible.tether] length_m: set by the design"),
     ('[design.flexible.cable]\nx = 1', "[design.flexible] [cable]: unknown section"),
+    ('[design.flexible.kite]\nmodel = "point-mass"\n[design.flexible.fe]\nrho_inf = 0.5',
+     "[design.flexible] [fe] rho_inf = 0.5: a point-mass kite held by the winch (in every bin of a study or a "
+     "design's loop) flies [fe] rho_inf_held"),
 ])
 def test_bad_flexible_tables_are_one_line_errors(tmp_path, table, message):
     path = tmp_path / "job.toml"
