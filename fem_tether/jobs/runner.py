@@ -112,7 +112,8 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, loads_us: Seque
     finds kept cost nothing, so that a resumed job spreads what is left), then wait until
     every rank has run its share;
     ``(ran, kept)``: how many of this rank's tasks ran and how many were kept
-    already.  Ctrl-C and errors propagate (the caller says what is kept)."""
+    already.  Ctrl-C and errors propagate, the bar's line ended (the caller says what is kept:
+    :class:`Interrupted`)."""
     rank, size = comm.Get_rank(), comm.Get_size()
     if costs is None:                               # a resumed job: the rest balanced
         costs = share(comm, [0.0 if work.kept(t) else work.cost_us(t) for t in tasks] if rank == 0 else None)
@@ -124,26 +125,44 @@ def distribute(comm, work: Work, tasks: Sequence, bar: Progress, loads_us: Seque
         return count, (finished[count], finished[-1])
 
     ran = kept = 0
-    with guard(comm):
-        if bar.enabled:                 # rank 0's: what the phase starts on
-            bar.start(*done(work.present(tasks)))
-        for i in owners[rank]:
-            checkpoint()
-            if work.kept(tasks[i]):
-                kept += 1
-            else:
-                work.run(tasks[i])
-                ran += 1
-            if bar.due():               # rank 0's: count the parts only when the bar draws
-                bar.update(*done(work.present(tasks)))
-        def meanwhile() -> None:        # rank 0's, while the others finish their tasks
-            if bar.due():
-                bar.update(*done(work.present(tasks)))
-            work.while_waiting()
-        sync(comm, meanwhile if rank == 0 else None)
-    bar.update(*done(len(tasks)))
-    bar.close()
-    return ran, kept
+    try:
+        with guard(comm):
+            if bar.enabled:                 # rank 0's: what the phase starts on
+                bar.start(*done(work.present(tasks)))
+            for i in owners[rank]:
+                checkpoint()
+                if work.kept(tasks[i]):
+                    kept += 1
+                else:
+                    work.run(tasks[i])
+                    ran += 1
+                if bar.due():               # rank 0's: count the parts only when the bar draws
+                    bar.update(*done(work.present(tasks)))
+            def meanwhile() -> None:        # rank 0's, while the others finish their tasks
+                if bar.due():
+                    bar.update(*done(work.present(tasks)))
+                work.while_waiting()
+            sync(comm, meanwhile if rank == 0 else None)
+        bar.update(*done(len(tasks)))
+        return ran, kept
+    finally:
+        bar.close()
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during a job's tasks; the message says what is kept (``what``: "samples", "starts", …)
+    in ``directory`` and how to resume."""
+
+    def __init__(self, what: str, directory: Path):
+        super().__init__(f"finished {what} kept in {directory}; run the same command to resume")
+
+
+def phase_bar(comm, count: int, label: str, progress: bool) -> Progress:
+    """Rank 0's progress over a phase of ``count`` tasks, "label (N ranks)"; silent on the other
+    ranks, without ``progress`` and without tasks."""
+    size = comm.Get_size()
+    return Progress(count, f"{label} ({size} rank{'s' if size > 1 else ''})",
+                    enabled=progress and comm.Get_rank() == 0 and count > 0)
 
 
 def claim_output(comm, out: Path, check: Callable[[Path], object], output: ExitStack) -> None:

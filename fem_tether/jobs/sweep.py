@@ -26,11 +26,10 @@ from pathlib import Path
 from fem_tether.core.atomic import check_writable, exclusive, remove_temporaries
 from fem_tether.core.errors import InputError
 from fem_tether.core.memory import peak_rss_MiB
-from fem_tether.core.progress import Progress
 from fem_tether.core.stop import collect, guard
 from fem_tether.jobs.evaluate import LengthResult
 from fem_tether.jobs.job import Job
-from fem_tether.jobs.runner import distribute, load_kernels_by_rank, raise_on_every_rank
+from fem_tether.jobs.runner import distribute, load_kernels_by_rank, phase_bar, raise_on_every_rank
 from fem_tether.jobs.store import PartsStore
 from fem_tether.jobs.sweep_tasks import SweepTasks
 from fem_tether.jobs.sweepfile import assemble, check_out, remove_parts, restore_parts
@@ -127,8 +126,7 @@ def _sweep(job: Job, out: Path, comm, output: ExitStack, progress: bool,
         except InputError as exc:
             problem = exc
     raise_on_every_rank(comm, problem)
-    bar = Progress(len(job.tasks), f"sweep ({size} rank{'s' if size > 1 else ''})",
-                   enabled=progress and rank == 0)
+    bar = phase_bar(comm, len(job.tasks), "sweep", progress)
     try:                                # from here on Ctrl-C says what is kept
         load_kernels_by_rank(comm, job.solvers)
         if follow_up is not None and rank == follow_up.helper:

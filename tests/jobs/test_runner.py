@@ -92,6 +92,37 @@ def test_a_rerun_starts_its_progress_at_the_kept_tasks(monkeypatch):
     assert stream.getvalue().splitlines()[0] == "sweep (1 rank): 3/6 (50 %), 0.0 s elapsed, ETA ?"
 
 
+class Stopped(Work):
+    """Ctrl-C at the second task this rank runs."""
+
+    def run(self, task):
+        if self.ran:
+            raise KeyboardInterrupt
+        super().run(task)
+
+
+def test_an_interrupt_ends_the_bars_line_and_says_what_is_kept(monkeypatch, tmp_path):
+    """distribute ends its bar's line on any exit (a terminal's bar otherwise stays open under the
+    message); :class:`runner.Interrupted` says what is kept where and how to resume."""
+    monkeypatch.setenv(progress.PROGRESS_VARIABLE, "bar")
+    stream = io.StringIO()
+    bar = Progress(6, "t", stream=stream)
+    with pytest.raises(KeyboardInterrupt):
+        distribute(_self_comm(), Stopped(), list(range(6)), bar)
+    assert stream.getvalue().endswith("\n")
+    assert str(runner.Interrupted("samples", tmp_path)) == (f"finished samples kept in {tmp_path}; "
+                                                            "run the same command to resume")
+
+
+def test_a_phase_bar_names_the_ranks_and_shows_on_rank_0_only(monkeypatch):
+    monkeypatch.setenv(progress.PROGRESS_VARIABLE, "lines")
+    assert runner.phase_bar(_Ranks(0, 2), 5, "design starts", True).label == "design starts (2 ranks)"
+    assert runner.phase_bar(_self_comm(), 5, "sweep", True).label == "sweep (1 rank)"
+    assert runner.phase_bar(_Ranks(0, 2), 5, "sweep", True).enabled
+    assert not any(runner.phase_bar(comm, n, "x", show).enabled
+                   for comm, n, show in ((_Ranks(1, 2), 5, True), (_Ranks(0, 2), 0, True), (_Ranks(0, 2), 5, False)))
+
+
 class _Ranks:
     def __init__(self, rank: int, size: int):
         self.rank, self.size = rank, size

@@ -50,7 +50,6 @@ import numpy as np
 
 from fem_tether.config import Config
 from fem_tether.core.errors import InputError
-from fem_tether.core.progress import Progress
 from fem_tether.core.quantities import lumped_name
 from fem_tether.core.stop import share, sync
 from fem_tether.design.flown import flown
@@ -61,7 +60,7 @@ from fem_tether.design.variables import PER_WIND
 from fem_tether.jobs.design.flexible import base_config, bin_points, drag_factor, filled, line_config, measure
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.evaluate import simulator
-from fem_tether.jobs.runner import distribute, load_kernels_by_rank
+from fem_tether.jobs.runner import distribute, load_kernels_by_rank, phase_bar
 from fem_tether.jobs.schedule import run_cost_us
 from fem_tether.jobs.store import inputs_key
 from fem_tether.jobs.study import plan
@@ -363,10 +362,7 @@ def _phase(comm, runs: BinRuns, label: str, progress: bool) -> float:
     """Run every task of ``runs`` over the ranks; the phase's wall time."""
     t0 = time.perf_counter()
     tasks = list(runs.cases)
-    size = comm.Get_size()
-    bar = Progress(len(tasks), f"{label} ({size} rank{'s' if size > 1 else ''})",
-                   enabled=progress and comm.Get_rank() == 0 and bool(tasks))
-    distribute(comm, runs, tasks, bar)
+    distribute(comm, runs, tasks, phase_bar(comm, len(tasks), label, progress))
     sync(comm)
     return time.perf_counter() - t0
 

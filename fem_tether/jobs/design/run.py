@@ -27,7 +27,6 @@ import numpy as np
 from fem_tether import __version__
 from fem_tether.core.atomic import PAGE_NAME, OutputError, check_folder, check_writable, parts_dir, write_json
 from fem_tether.core.errors import ConfigError
-from fem_tether.core.progress import Progress
 from fem_tether.costs.parameters import CURRENCY
 from fem_tether.core.stop import guard, sync
 from fem_tether.design.optimiser import Solution, consistent, start_points
@@ -35,19 +34,12 @@ from fem_tether.design.result import DesignResult, StartRecord, design_result, n
 from fem_tether.io.design_file import is_design_result, write_design_hdf5
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.design.loop import FlexibleOutcome, run_flexible
-from fem_tether.jobs.runner import JsonParts, claim_output, distribute, raise_on_every_rank
+from fem_tether.jobs.runner import Interrupted, JsonParts, claim_output, distribute, phase_bar, raise_on_every_rank
 from fem_tether.jobs.study.result import report_dir
 
 
 #: what a part's record holds (a part of another layout is from other inputs)
 RECORD_FIELDS = {f.name for f in fields(StartRecord)}
-
-
-class DesignInterrupted(KeyboardInterrupt):
-    """Ctrl-C during a design job; the message says what is kept and how to resume."""
-
-    def __init__(self, directory: Path):
-        super().__init__(f"finished starts kept in {directory}; run the same command to resume")
 
 
 
@@ -143,14 +135,10 @@ def run_design(job: DesignJob, out: str | Path, comm=None,
     with guard(comm), ExitStack() as output:
         claim_output(comm, out, check_out, output)
         starts = DesignStarts(job, out)
-        size = comm.Get_size()
-        bar = Progress(job.starts, f"design starts ({size} rank{'s' if size > 1 else ''})",
-                       enabled=progress and comm.Get_rank() == 0)
         try:
-            distribute(comm, starts, list(range(job.starts)), bar)
+            distribute(comm, starts, list(range(job.starts)), phase_bar(comm, job.starts, "design starts", progress))
         except KeyboardInterrupt:
-            bar.close()
-            raise DesignInterrupted(starts.directory) from None
+            raise Interrupted("starts", starts.directory) from None
         sync(comm)
         result = design_result(starts.problem, *starts.solutions(), job.seed) if comm.Get_rank() == 0 else None
         why = never_rated(result) if result is not None else ""
@@ -160,7 +148,7 @@ def run_design(job: DesignJob, out: str | Path, comm=None,
             try:
                 outcome = run_flexible(comm, job, out, result, progress)
             except KeyboardInterrupt:
-                raise DesignInterrupted(starts.directory) from None
+                raise Interrupted("starts", starts.directory) from None
         if outcome is None:
             return None
         if result is not None and result.found:

@@ -29,11 +29,10 @@ import numpy as np
 from fem_tether.core.build import code_id
 from fem_tether.core.atomic import OutputError, check_folder, check_writable, parts_dir, write_json
 from fem_tether.core.errors import InputError, SolverDivergedError
-from fem_tether.core.progress import Progress
 from fem_tether.core.stop import guard, sync
 from fem_tether.io.sensitivity_file import is_sensitivity_result, write_sensitivity_hdf5
 from fem_tether.jobs import scaling
-from fem_tether.jobs.runner import JsonParts, claim_output, distribute
+from fem_tether.jobs.runner import Interrupted, JsonParts, claim_output, distribute, phase_bar
 from fem_tether.uncertainty.analysis import MAX_DEGREE, RESAMPLES, analyse, convergence
 from fem_tether.uncertainty.inputs import Input, sample
 
@@ -64,13 +63,6 @@ class SensitivityJob:
     def points(self) -> np.ndarray:
         return sample(self.inputs, self.samples, self.seed, self.method)
 
-
-
-class SensitivityInterrupted(KeyboardInterrupt):
-    """Ctrl-C during the samples; the message says what is kept and how to resume."""
-
-    def __init__(self, directory: Path):
-        super().__init__(f"finished samples kept in {directory}; run the same command to resume")
 
 
 def inputs_key(job: SensitivityJob) -> str:
@@ -187,14 +179,11 @@ def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: b
     with guard(comm), ExitStack() as output:
         claim_output(comm, out, check_out, output)
         samples = Samples(job, out)
-        size = comm.Get_size()
-        bar = Progress(job.samples, f"sensitivity samples ({size} rank{'s' if size > 1 else ''})",
-                       enabled=progress and comm.Get_rank() == 0)
         try:
-            distribute(comm, samples, list(range(job.samples)), bar)
+            distribute(comm, samples, list(range(job.samples)),
+                       phase_bar(comm, job.samples, "sensitivity samples", progress))
         except KeyboardInterrupt:
-            bar.close()
-            raise SensitivityInterrupted(samples.directory) from None
+            raise Interrupted("samples", samples.directory) from None
         sync(comm)
         if comm.Get_rank() != 0:
             return None

@@ -25,10 +25,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TypeVar
 
-from fem_tether.core.progress import Progress
 from fem_tether.core.stop import exchange, guard, share
 from fem_tether.jobs import scaling
-from fem_tether.jobs.runner import claim_output, distribute, load_kernels_by_rank
+from fem_tether.jobs.runner import Interrupted, claim_output, distribute, load_kernels_by_rank, phase_bar
 
 from fem_tether.jobs.study import optimum as opt
 from fem_tether.jobs.study.job import Point, StudyJob
@@ -54,24 +53,14 @@ class StudyOutcome:
     plan_s: float = 0.0
 
 
-class StudyInterrupted(KeyboardInterrupt):
-    """Ctrl-C during a study; the message says what is kept and how to resume."""
-
-    def __init__(self, directory: Path):
-        super().__init__(f"finished tasks kept in {directory}; run the same command to resume")
-
-
 def _phase(comm, study: Study, label: str, tasks: list[Task], costs: list[float], outcome: StudyOutcome,
            progress: bool, stage: str) -> None:
-    rank, size = comm.Get_rank(), comm.Get_size()
     t0 = time.perf_counter()
-    bar = Progress(len(tasks), f"study {stage}{label} ({size} rank{'s' if size > 1 else ''})",
-                   enabled=progress and rank == 0 and bool(tasks))
     try:
-        ran, _ = distribute(comm, study, tasks, bar, costs=costs)
+        ran, _ = distribute(comm, study, tasks, phase_bar(comm, len(tasks), f"study {stage}{label}", progress),
+                            costs=costs)
     except KeyboardInterrupt:
-        bar.close()
-        raise StudyInterrupted(study.parts.directory) from None
+        raise Interrupted("tasks", study.parts.directory) from None
     outcome.tasks += len(tasks)
     outcome.ran += sum(exchange(comm, ran))
     outcome.phase_s[label] = outcome.phase_s.get(label, 0.0) + time.perf_counter() - t0
@@ -235,10 +224,10 @@ def _run_study(job: StudyJob, out: Path, comm, output: ExitStack, progress: bool
             return None
         outcome.surfaces = surfaces(study, extra, allow_unchecked)
         write_study(out, job.toml, outcome.surfaces)
-    except StudyInterrupted:
+    except Interrupted:
         raise
     except KeyboardInterrupt:           # between phases: the parts are kept all the same
-        raise StudyInterrupted(study.parts.directory) from None
+        raise Interrupted("tasks", study.parts.directory) from None
     outcome.wall_s = time.perf_counter() - t0
     outcome.model_s = scaling_model(study, extra, outcome.wall_s - sum(outcome.phase_s.values()), outcome.plan_s)
     return outcome
