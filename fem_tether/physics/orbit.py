@@ -48,7 +48,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from fem_tether.physics.compiled import address, jit
-from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, PATH_SIGNATURE, gauss_legendre_nodes, path_state
+from fem_tether.physics.trajectory import N_GAUSS, N_INTERVALS, PATH_SIGNATURE, SpherePath, gauss_legendre_nodes
 
 
 @jit
@@ -89,7 +89,7 @@ _NO_TABLE = np.empty((0, 0))
 
 
 @dataclass(frozen=True)
-class Circle:
+class Circle(SpherePath):
     """Circle of cone half-angle ρ about the axis at polar angle ϑ0, on the
     sphere of radius L, flown at constant speed V (module docstring)."""
 
@@ -98,6 +98,7 @@ class Circle:
     radius_rad: float
     speed_mps: float
     phase_rad: float = 0.0
+    STATE = staticmethod(circle_state)
 
     @classmethod
     def from_config(cls, kite, length_m):
@@ -157,20 +158,6 @@ class Circle:
         line is then ∫ V/(L(t) sinρ) dt, the kite's speed staying V R/L."""
         moved = replace(self, length_m=float(length_m))
         return replace(moved, phase_rad=self.angle(t_s) - moved.rate_rad_s * float(t_s))
-
-    def direction_at(self, t_s):
-        """ê(β(t)): the kite's direction alone (a time step's boundary
-        condition), ``state(t, 1.0)[0]``."""
-        return self.state(t_s, 1.0)[0]
-
-    def state(self, t_s, radius_m=None):
-        """Position, velocity, acceleration of R ê(β(t)) (:func:`circle_state`).
-
-        R = radius_m (default L; scalar or broadcastable with t) scales the
-        nominal path and is held constant in time, so the speed is V R / L.
-        Each array has shape broadcast(t, R).shape + (3,).
-        """
-        return path_state(circle_state, self.compiled, t_s, self.length_m if radius_m is None else radius_m)
 
     def angles(self, t_s):
         """Polar angle ϑ = arccos ê_z and azimuth φ = atan2(ê_y, ê_x) of the kite at times t, in radians."""

@@ -267,6 +267,26 @@ def path_state(function, compiled, t_s, radius_m) -> tuple[np.ndarray, np.ndarra
     return out[0], out[1], out[2]
 
 
+class SpherePath:
+    """The state of a path flown on the sphere of its line, the kite at R ê(t): what
+    :class:`FigureEight` and :class:`~.orbit.Circle` share.  Each gives its line's ``length_m``,
+    its ``compiled`` form and ``STATE``, its state at one time (:data:`PATH_SIGNATURE`)."""
+
+    def direction_at(self, t_s):
+        """ê(t): the kite's direction alone (a time step's boundary condition),
+        ``state(t, 1.0)[0]``."""
+        return self.state(t_s, 1.0)[0]
+
+    def state(self, t_s, radius_m=None):
+        """Position, velocity, acceleration of R ê(t) (the path's ``STATE``, :func:`path_state`).
+
+        R = radius_m (default L; scalar or broadcastable with t) scales the
+        nominal path and is held constant in time, so the speed is V R / L.
+        Each array has shape broadcast(t, R).shape + (3,).
+        """
+        return path_state(self.STATE, self.compiled, t_s, self.length_m if radius_m is None else radius_m)
+
+
 #: What :func:`point_geometry` writes of a path point: σ, r (3), t (3), n (3), κ_g, V_p.
 POINT_SIZE = 12
 
@@ -394,7 +414,7 @@ ARC_TABLES_KEPT = 64
 
 
 @dataclass(frozen=True)
-class FigureEight:
+class FigureEight(SpherePath):
     """Figure-eight on the sphere of radius L flown at constant speed V.
 
     This is seed 000 §4.2's eight ("width ≈ 190 m around ϑ = 45°, φ = 0, at
@@ -416,6 +436,7 @@ class FigureEight:
     _loop_m: float = field(init=False, repr=False, compare=False)
     _breaks: np.ndarray = field(init=False, repr=False, compare=False)
     _coefficients: np.ndarray = field(init=False, repr=False, compare=False)
+    STATE = staticmethod(eight_state)
 
     @classmethod
     def from_config(cls, kite, length_m):
@@ -511,20 +532,6 @@ class FigureEight:
         """Polar angle ϑ and azimuth φ of the kite at times t, in radians."""
         theta, phi = self.angle_derivatives(self.parameter(t_s))
         return theta[0], phi[0]
-
-    def direction_at(self, t_s):
-        """ê(ϑ(t), φ(t)): the kite's direction alone (a time step's boundary
-        condition), ``state(t, 1.0)[0]``."""
-        return self.state(t_s, 1.0)[0]
-
-    def state(self, t_s, radius_m=None):
-        """Position, velocity, acceleration of R ê(ϑ(t), φ(t)) (:func:`eight_state`).
-
-        R = radius_m (default L; scalar or broadcastable with t) scales the
-        nominal path and is held constant in time, so the speed is V R / L.
-        Each array has shape broadcast(t, R).shape + (3,).
-        """
-        return path_state(eight_state, self.compiled, t_s, self.length_m if radius_m is None else radius_m)
 
     def mean_abs_phi_deg(self):
         """Time average of |φ| over one loop, in degrees.
