@@ -361,18 +361,20 @@ def evaluate(r, v, a, T, kite_dir, force_ref_N, c_a, c_v, reel_mps, with_jacobia
 
 
 @numba.njit(cache=True, error_model="numpy")
-def _predictor(r, v, a, T, R, h):
+def _predictor(r, v, a, T, R, h, free):
     """The unknowns in the full layout (module docstring of :mod:`.system`): the interior
-    nodes predicted at ``r + h v + h^2/2 a``, the tensions T and the kite distance R."""
+    nodes predicted at ``r + h v + h^2/2 a``, the tensions T and the kite distance R; with
+    ``free``, a free end's layout (:attr:`.system.Grid.free_end`): the end node predicted too, no R."""
     n_seg = T.shape[0]
-    x = np.empty(4 * n_seg - 2)
+    x = np.empty(4 * n_seg if free else 4 * n_seg - 2)
     half_h2 = 0.5 * h * h
-    for i in range(1, n_seg):
+    for i in range(1, n_seg + 1 if free else n_seg):
         x[4 * (i - 1)] = T[i - 1]
         for c in range(3):
             x[4 * (i - 1) + 1 + c] = r[i, c] + h * v[i, c] + half_h2 * a[i, c]
-    x[4 * n_seg - 4] = T[n_seg - 1]
-    x[4 * n_seg - 3] = R
+    if not free:
+        x[4 * n_seg - 4] = T[n_seg - 1]
+        x[4 * n_seg - 3] = R
     return x
 
 
@@ -435,7 +437,7 @@ def solve_step(cur, history, kite_dir, h, a0, a2, force_ref_N, reel_mps, newton_
     lower, upper = grid[5], grid[6]
     n_seg = T_old.shape[0]
     n = 4 * n_seg - 3
-    x = _predictor(r_old, v_old, a_old, T_old, R_old, h)
+    x = _predictor(r_old, v_old, a_old, T_old, R_old, h, False)
     active = x[1:] if tension_mode else x[:n]
     res, dx = np.empty(n), np.empty(n)
     band = np.empty((lower + upper + 1) * n + 1)
@@ -500,12 +502,7 @@ def free_step(cur, history, h, a0, a2, force_ref_N, reel_mps, newton_tol, max_ne
     h_seg, lower, upper = grid[1], grid[5], grid[6]
     n_seg = T_old.shape[0]
     n = 4 * n_seg
-    x = np.empty(n)
-    half_h2 = 0.5 * h * h
-    for i in range(1, n_seg + 1):
-        x[4 * (i - 1)] = T_old[i - 1]
-        for c in range(3):
-            x[4 * (i - 1) + 1 + c] = r_old[i, c] + h * v_old[i, c] + half_h2 * a_old[i, c]
+    x = _predictor(r_old, v_old, a_old, T_old, 0.0, h, True)
     res, dx, no_direction = np.empty(n), np.empty(n), np.zeros(3)
     band = np.empty((lower + upper + 1) * n + 1)
     ab = band[: (lower + upper + 1) * n].reshape((lower + upper + 1, n))
