@@ -72,11 +72,17 @@ def assign(costs: list[float], n_ranks: int, loads: Sequence[float] = ()) -> lis
 def finish_times(costs: list[float], owners: list[list[int]]) -> list[float]:
     """When each number of tasks is done, in the costs' unit, if every rank runs its
     tasks (``owners``, :func:`assign`'s) one after the other from time 0: the k-th
-    entry is when k tasks are done (the 0th is 0, the last the longest rank's load)."""
+    entry is when k tasks are done (the 0th is 0, the last the longest rank's load).
+    A task of cost 0 (a resumed job's kept one, whose part is there before the phase
+    starts) is done at 0, not where its rank reaches it: :func:`assign` puts those
+    last, and counted there the ETA of a job resumed with most of its tasks kept
+    took the work left for what was done (measured: a sensitivity analysis resumed at
+    305 of 650 samples on 2 ranks printed ETA 4092 s after 7 more in 722 s, at which
+    rate the 338 left need about 35 000 s)."""
     ends = []
     for owned in owners:
         at = 0.0
         for i in owned:
             at += costs[i]
-            ends.append(at)
+            ends.append(at if costs[i] > 0.0 else 0.0)
     return [0.0, *sorted(ends)]

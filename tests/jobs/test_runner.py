@@ -92,6 +92,31 @@ def test_a_rerun_starts_its_progress_at_the_kept_tasks(monkeypatch):
     assert stream.getvalue().splitlines()[0] == "sweep (1 rank): 3/6 (50 %), 0.0 s elapsed, ETA ?"
 
 
+
+class Resumed(Costly):
+    """Ten tasks of cost 1, the first seven kept (a resumed job); running a task takes 1 s."""
+
+    def __init__(self, clock):
+        super().__init__(clock)
+        self.parts = set(range(7))
+
+    def cost_us(self, task):
+        return 1.0
+
+
+def test_a_resumed_phase_weighs_its_eta_by_the_tasks_left(monkeypatch):
+    """After one of the three tasks left (1 s), two are left: 2 s (before, the kept tasks
+    counted as done where their rank reached them, last, and the ETA said "?" to the end)."""
+    clock = [0.0]
+    monkeypatch.setattr(progress.time, "perf_counter", lambda: clock[0])
+    monkeypatch.setattr(progress, "LINE_EVERY_S", 0.5)
+    monkeypatch.setenv(progress.PROGRESS_VARIABLE, "lines")
+    log = io.StringIO()
+    distribute(_self_comm(), Resumed(clock), list(range(10)), Progress(10, "samples (1 rank)", stream=log))
+    assert log.getvalue().splitlines()[:3] == ["samples (1 rank): 7/10 (70 %), 0.0 s elapsed, ETA ?",
+                                               "samples (1 rank): 8/10 (80 %), 1.0 s elapsed, ETA 2.0 s",
+                                               "samples (1 rank): 9/10 (90 %), 2.0 s elapsed, ETA 1.0 s"]
+
 class Stopped(Work):
     """Ctrl-C at the second task this rank runs."""
 

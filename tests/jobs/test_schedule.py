@@ -43,3 +43,13 @@ def test_finish_times_follow_the_ranks_running_their_tasks_in_order():
     owners = assign(costs, 2)
     assert owners == [[0, 3], [1, 2]]
     assert finish_times(costs, owners) == [0.0, 5.0, 8.0, 8.0, 9.0]
+
+
+def test_finish_times_count_the_kept_tasks_done_at_the_start():
+    """A resumed job: tasks 0 and 3 kept (cost 0), assigned last, to rank 1 after the 3 and the 1.
+    Two tasks are done at 0 (not at rank 1's load, 4): with them kept, the ETA weighs all 5 units
+    as left (before, it read 4 of 5 as done at the start)."""
+    costs = [0.0, 5.0, 3.0, 0.0, 1.0]
+    owners = assign(costs, 2)
+    assert owners == [[1], [2, 4, 0, 3]]
+    assert finish_times(costs, owners) == [0.0, 0.0, 0.0, 3.0, 4.0, 5.0]
