@@ -70,13 +70,19 @@ class Costly(Work):
         super().run(task)
 
 
-def test_the_progress_says_at_once_what_a_phase_starts_on_and_weighs_its_eta_by_the_costs(monkeypatch):
-    """The costliest task runs first: after it (8 s) the eight left take 8 s more, not
-    the 64 s that counting tasks gives (8 s per task)."""
+@pytest.fixture
+def clock(monkeypatch):
+    """The progress's clock, [seconds], advanced by the tasks; a line every 0.5 s of it."""
     clock = [0.0]
     monkeypatch.setattr(progress.time, "perf_counter", lambda: clock[0])
     monkeypatch.setattr(progress, "LINE_EVERY_S", 0.5)
     monkeypatch.setenv(progress.PROGRESS_VARIABLE, "lines")
+    return clock
+
+
+def test_the_progress_says_at_once_what_a_phase_starts_on_and_weighs_its_eta_by_the_costs(clock):
+    """The costliest task runs first: after it (8 s) the eight left take 8 s more, not
+    the 64 s that counting tasks gives (8 s per task)."""
     log = io.StringIO()
     distribute(_self_comm(), Costly(clock), list(range(9)), Progress(9, "study tether runs (1 rank)", stream=log))
     lines = log.getvalue().splitlines()
@@ -104,13 +110,9 @@ class Resumed(Costly):
         return 1.0
 
 
-def test_a_resumed_phase_weighs_its_eta_by_the_tasks_left(monkeypatch):
+def test_a_resumed_phase_weighs_its_eta_by_the_tasks_left(clock):
     """After one of the three tasks left (1 s), two are left: 2 s (before, the kept tasks
     counted as done where their rank reached them, last, and the ETA said "?" to the end)."""
-    clock = [0.0]
-    monkeypatch.setattr(progress.time, "perf_counter", lambda: clock[0])
-    monkeypatch.setattr(progress, "LINE_EVERY_S", 0.5)
-    monkeypatch.setenv(progress.PROGRESS_VARIABLE, "lines")
     log = io.StringIO()
     distribute(_self_comm(), Resumed(clock), list(range(10)), Progress(10, "samples (1 rank)", stream=log))
     assert log.getvalue().splitlines()[:3] == ["samples (1 rank): 7/10 (70 %), 0.0 s elapsed, ETA ?",
