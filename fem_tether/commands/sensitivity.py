@@ -15,7 +15,7 @@ from pathlib import Path
 
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
-from fem_tether.jobs.sensitivity.run import Samples, run_sensitivity
+from fem_tether.jobs.sensitivity.run import Samples, check_result, run_sensitivity
 from fem_tether.report import text as report
 from fem_tether.report.sensitivity import check_report, write_sensitivity_report
 from fem_tether.report.sensitivity_text import sensitivity_text
@@ -34,6 +34,7 @@ def summary(r: dict) -> dict:
 
 def cmd_sensitivity(args) -> int:
     job = load_sensitivity_job(args.job, args.preset, args.samples)
+    check_result(Path(args.out))            # someone else's file refused before the report's folder is made
     check_report(args.out)
     if run_sensitivity(job, args.out, progress=not args.json) is None:
         return 0

@@ -24,11 +24,12 @@ those of Table 4.4 and the gradients of Table 4.5.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 import numpy as np
 
-from fem_tether.core.errors import SolverDivergedError
+from fem_tether.core.errors import InputError, SolverDivergedError
 from fem_tether.uncertainty.inputs import Gaussian, Input, Uniform
 from fem_tether.uncertainty.local import Optimum, ParametricProblem, kkt_gradients, normalised_multipliers, optimise
 
@@ -120,11 +121,23 @@ def closed_form(p: Mapping[str, np.ndarray | float]) -> dict[str, np.ndarray]:
             "aspect_ratio_multiplier_kg": np.where(bound, 0.0, m / 2), "thickness_at_bound": bound}
 
 
+def parameters(sampled: Mapping[str, float]) -> dict[str, float]:
+    """Table 4.1's parameters with ``sampled`` ones set; an InputError naming one that is not a finite
+    number > 0, or an aspect-ratio limit below 1 (no b and t with t/b and b/t both within it)."""
+    p = NOMINAL | {k: float(v) for k, v in sampled.items()}
+    for name, value in p.items():
+        if not (math.isfinite(value) and value > 0.0):
+            raise InputError(f"{name} = {value!r}: must be a finite number > 0")
+    if p["max_aspect_ratio"] < 1.0:
+        raise InputError(f"max_aspect_ratio = {p['max_aspect_ratio']!r}: must be >= 1")
+    return p
+
+
 def design(sampled: Mapping[str, float]) -> dict[str, float]:
-    """The model of the global analysis: the optimum at Table 4.1's parameters with ``sampled`` ones
-    set; Table 4.4's outputs (the multipliers normalised, kg per unit relative change of the limit)
-    and Table 4.5's gradients p · dy*/dp (KKT route), named ``<output>_per_<parameter>``."""
-    p = NOMINAL | dict(sampled)
+    """The model of the global analysis: the optimum at :func:`parameters`; Table 4.4's outputs (the
+    multipliers normalised, kg per unit relative change of the limit) and Table 4.5's gradients
+    p · dy*/dp (KKT route), named ``<output>_per_<parameter>``."""
+    p = parameters(sampled)
     best = optimum(p)
     multipliers = normalised_multipliers(PROBLEM, best, p)
     out = outputs(best.z, p) | {f"{family}_multiplier_kg": value for family, value in multipliers.items()}

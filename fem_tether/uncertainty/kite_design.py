@@ -126,14 +126,19 @@ def multistart(problem: Problem, n_max: int, attempts: int = ATTEMPTS, max_itera
     return converged[k], tried, len(converged)
 
 
+def parameters(sampled: Mapping[str, float]) -> DesignParameters:
+    """The nominal :class:`~fem_tether.design.parameters.DesignParameters` with ``sampled`` ones set;
+    a ValueError naming one out of its range (an efficiency above 1, an area not > 0)."""
+    changes: dict[str, Any] = {k: float(v) for k, v in sampled.items()}
+    return dataclasses.replace(DesignParameters(), **changes)
+
+
 def design(sampled: Mapping[str, float]) -> dict[str, float]:
     """The model of the global analysis: the best of N_max converged designs (:func:`multistart`,
-    N_max by :func:`~fem_tether.design.optimiser.starts_for`) at the nominal parameters with
-    ``sampled`` ones set; its :data:`OUTPUT_UNITS`."""
-    changes: dict[str, Any] = {k: float(v) for k, v in sampled.items()}
-    parameters = dataclasses.replace(DesignParameters(), **changes)
-    problem = Problem(parameters)
-    solution, tried, converged = multistart(problem, starts_for(parameters.cl_max))
+    N_max by :func:`~fem_tether.design.optimiser.starts_for`) at :func:`parameters`; its
+    :data:`OUTPUT_UNITS`."""
+    problem = Problem(parameters(sampled))
+    solution, tried, converged = multistart(problem, starts_for(problem.parameters.cl_max))
     out = design_outputs(problem, solution)
     out |= {f"aep_per_{name}_Wh": value for name, value in sensitivities_Wh(problem, solution).items()}
     out |= {"starts_tried": float(tried), "starts_converged": float(converged)}

@@ -18,15 +18,21 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+from fem_tether.design.parameters import DesignParameters
 from fem_tether.uncertainty import kite_design
 from fem_tether.uncertainty.kite_design import INDEXED, OUTPUT_UNITS
 
-__all__ = ["INDEXED", "OUTPUT_UNITS", "UNCERTAIN", "WING_AREA_M2", "design"]
+__all__ = ["INDEXED", "OUTPUT_UNITS", "UNCERTAIN", "WING_AREA_M2", "design", "parameters"]
 
 #: the wing area of §5.9 [m²]
 WING_AREA_M2 = 30.0
 #: Table 5.4's parameters but the wing area, each uniform
 UNCERTAIN = tuple(x for x in kite_design.UNCERTAIN if x.name != "wing_area_m2")
+
+
+def parameters(sampled: Mapping[str, float]) -> DesignParameters:
+    """:func:`fem_tether.uncertainty.kite_design.parameters` with the wing area :data:`WING_AREA_M2`."""
+    return kite_design.parameters({**sampled, "wing_area_m2": WING_AREA_M2})
 
 
 def design(sampled: Mapping[str, float]) -> dict[str, float]:

@@ -16,9 +16,9 @@ from __future__ import annotations
 import math
 
 from fem_tether.uncertainty.kite_design import (INDEXED, OUTPUT_UNITS, THESIS, UNCERTAIN as DESIGN,
-                                                WIND_RESOURCE, design)
+                                                WIND_RESOURCE, design, parameters)
 
-__all__ = ["INDEXED", "OUTPUT_UNITS", "REFERENCE", "REFERENCE_SOURCE", "UNCERTAIN", "design"]
+__all__ = ["INDEXED", "OUTPUT_UNITS", "REFERENCE", "REFERENCE_SOURCE", "UNCERTAIN", "design", "parameters"]
 
 #: Table 5.4's sixteen parameters and Table 5.7's three, each uniform
 UNCERTAIN = DESIGN + WIND_RESOURCE

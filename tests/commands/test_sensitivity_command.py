@@ -110,6 +110,12 @@ def test_bad_options_exit_2_with_one_line_and_write_nothing(job, tmp_path, capsy
     ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\nsample = 20\n', "[sensitivity] sample: unknown key"),
     ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[design]\n', "unknown table [design]"),
     ('[sensitivity\n', "invalid TOML"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.young_modulus_Pa]\nsd = 50e9\n',
+     "[sensitivity.inputs.young_modulus_Pa] Gaussian mean 7e+10, sd 5e+10: sample 4 leaves the model's range: "
+     "young_modulus_Pa = -993714052"),
+    ('[sensitivity]\nmodel = "cantilever"\nsamples = 20\n[sensitivity.inputs.max_aspect_ratio]\nlow = 0.5\n',
+     "[sensitivity.inputs.max_aspect_ratio] uniform low 0.5, high 4.5: sample 2 leaves the model's range: "
+     "max_aspect_ratio = 0.846"),
 ])
 def test_a_bad_job_exits_2_with_one_line_and_writes_nothing(tmp_path, capsys, text, message):
     job = tmp_path / "job.toml"
@@ -129,6 +135,14 @@ def test_a_users_report_page_is_refused_before_any_evaluation(job, tmp_path, cap
     assert "fem-tether did not write it" in capsys.readouterr().err
     assert page.read_text() == "<html>mine</html>" and not out.exists()
     assert not (tmp_path / "beam.h5.parts").exists()
+
+
+def test_a_users_file_at_out_is_refused_before_any_folder_is_made(job, tmp_path, capsys):
+    out = tmp_path / "beam.h5"
+    out.write_text("precious\n")
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 2
+    assert "beam.h5: it exists and is not a fem-tether sensitivity result" in capsys.readouterr().err
+    assert out.read_text() == "precious\n" and sorted(p.name for p in tmp_path.iterdir()) == ["beam.h5", "job.toml"]
 
 
 @pytest.mark.skipif(MPIEXEC is None, reason="mpiexec not installed")

@@ -27,22 +27,19 @@ in a temporary folder that is removed after it.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
 
 from fem_tether.core.errors import SolverDivergedError
 from fem_tether.design.optimiser import Problem, starts_for
-from fem_tether.design.parameters import DesignParameters
 from fem_tether.design.result import design_result, record
 from fem_tether.jobs.design.flexible import FlexibleSettings
 from fem_tether.jobs.design.job import DesignJob
 from fem_tether.jobs.design.loop import run_flexible
 from fem_tether.uncertainty import kite_design
-from fem_tether.uncertainty.kite_design import QUANTITIES, VARIABLES, multistart
+from fem_tether.uncertainty.kite_design import QUANTITIES, VARIABLES, multistart, parameters
 
 #: Table 5.4's parameters that set the tether
 TETHER_INPUTS = ("tether_safety_factor", "cd_perp", "line_voltage_V", "min_altitude_m")
@@ -65,12 +62,11 @@ def design(sampled: Mapping[str, float]) -> dict[str, float]:
     no design."""
     from mpi4py import MPI
 
-    changes: dict[str, Any] = {k: float(v) for k, v in sampled.items()}
-    parameters = dataclasses.replace(DesignParameters(), **changes)
-    problem = Problem(parameters)
-    solution, tried, converged = multistart(problem, starts_for(parameters.cl_max))
-    lumped = design_result(problem, [solution], [record(0, solution, parameters)], seed=0)
-    job = DesignJob(parameters, {}, {}, starts=tried, seed=0, tether="flexible", text="",
+    chosen = parameters(sampled)
+    problem = Problem(chosen)
+    solution, tried, converged = multistart(problem, starts_for(chosen.cl_max))
+    lumped = design_result(problem, [solution], [record(0, solution, chosen)], seed=0)
+    job = DesignJob(chosen, {}, {}, starts=tried, seed=0, tether="flexible", text="",
                     name="sensitivity sample", flexible=FlexibleSettings())
     with tempfile.TemporaryDirectory(prefix="fem-tether-sample-") as folder:
         outcome = run_flexible(MPI.COMM_SELF, job, Path(folder) / "sample.h5", lumped, progress=False,

@@ -21,7 +21,9 @@ A sensitivity job is a TOML file (or a shipped preset, :data:`PRESETS`)::
 The inputs not named keep the model's distributions and sources.  Every key
 is checked: an unknown table, key, model, input or output, a value of the
 wrong type or out of range (low ≥ high, sd ≤ 0, fewer samples than a
-degree-1 expansion needs, a count above the samples) is one
+degree-1 expansion needs, a count above the samples), or a distribution that
+draws a sample the model refuses (its ``parameters``: an efficiency above 1,
+an area not > 0; every sample is checked) is one
 :class:`~fem_tether.core.errors.ConfigError` line naming it (exit 2 from the
 command line), before any evaluation.
 """
@@ -86,9 +88,32 @@ def load_sensitivity_job(path: str | Path | None = None, preset: str | None = No
     method = table.get("method", "lhs")
     if method not in METHODS:
         raise ConfigError(f"[sensitivity] method = {method!r}: must be one of {', '.join(METHODS)}")
-    return SensitivityJob(table["model"], chosen.design, inputs, dict(chosen.OUTPUT_UNITS), tuple(chosen.INDEXED),
-                          count, seed=_integer(table, "seed", 0, 2**63 - 1, default=0), method=method, counts=counts,
-                          surface=_surface(table.get("surface", {}), chosen, inputs), text=text)
+    job = SensitivityJob(table["model"], chosen.design, inputs, dict(chosen.OUTPUT_UNITS), tuple(chosen.INDEXED),
+                         count, seed=_integer(table, "seed", 0, 2**63 - 1, default=0), method=method, counts=counts,
+                         surface=_surface(table.get("surface", {}), chosen, inputs), text=text)
+    _check_samples(chosen, job)
+    return job
+
+
+def _check_samples(chosen: Model, job: SensitivityJob) -> None:
+    """Every sample of ``job`` is one the model accepts (``chosen.parameters``), or a ConfigError naming
+    the first refused one's input (the input that the model refuses alone, at the sample's value, the
+    others nominal), its distribution and the model's reason."""
+    for k, point in enumerate(job.points()):
+        sampled = {x.name: float(v) for x, v in zip(job.inputs, point)}
+        try:
+            chosen.parameters(sampled)
+        except ValueError as exc:
+            for x in job.inputs:
+                try:
+                    chosen.parameters({x.name: sampled[x.name]})
+                except ValueError as alone:
+                    d = x.distribution
+                    drawn = ", ".join(f"{key} {getattr(d, key):g}" for key in DISTRIBUTION_KEYS[type(d)])
+                    raise ConfigError(f"[sensitivity.inputs.{x.name}] {KIND_NAMES[type(d)]} {drawn}: sample {k} "
+                                      f"leaves the model's range: {alone}") from None
+            raise ConfigError(f"[sensitivity.inputs] sample {k} ({', '.join(f'{n} = {v:g}' for n, v in sampled.items())})"
+                              f": the model refuses it: {exc}") from None
 
 
 def _integer(table: dict, key: str, low: int, high: int, why: str = "", default: int | None = None) -> int:

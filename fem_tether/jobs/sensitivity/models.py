@@ -6,8 +6,12 @@ A model is a module with
   each with its distribution and its source), the job's defaults;
 * ``OUTPUT_UNITS``: the outputs recorded for every sample, name -> unit;
 * ``INDEXED``: the outputs that get a polynomial-chaos expansion and Sobol' indices;
-* ``design(sampled) -> outputs``: one evaluation (one optimisation) at the model's
-  nominal parameters with the ``sampled`` ones set; a
+* ``parameters(sampled)``: the model's parameters, its nominal ones with the ``sampled``
+  ones set, checked: a ValueError (an InputError is one) naming a parameter out of the
+  model's range (an efficiency above 1, an area not > 0); the job checks every sample
+  with it before any evaluation;
+* ``design(sampled) -> outputs``: one evaluation (one optimisation) at
+  ``parameters(sampled)``; a
   :class:`~fem_tether.core.errors.SolverDivergedError` where it finds no design.
 
 A model is registered by one line of :data:`MODELS`; its module is imported
@@ -42,6 +46,7 @@ class Model(Protocol):
     UNCERTAIN: tuple[Input, ...]
     OUTPUT_UNITS: Mapping[str, str]
     INDEXED: tuple[str, ...]
+    parameters: Callable[[Mapping[str, float]], object]
     design: Callable[[Mapping[str, float]], dict[str, float]]
 
 

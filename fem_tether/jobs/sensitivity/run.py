@@ -160,11 +160,17 @@ def finished_content(job: SensitivityJob, out: str | Path) -> dict:
     return result
 
 
-def check_out(out: Path) -> None:
-    """Before an analysis: ``out`` and its parts can be written and ``out`` is not someone else's file."""
+def check_result(out: Path) -> None:
+    """``out`` is absent or a fem-tether sensitivity result (an OutputError for someone else's file;
+    nothing is created, so a command refused here leaves no folder behind)."""
     if out.exists() and not is_sensitivity_result(out):
         raise OutputError(f"cannot write {out}: it exists and is not a fem-tether sensitivity result "
                           "(move it away or choose another file)")
+
+
+def check_out(out: Path) -> None:
+    """Before an analysis: ``out`` and its parts can be written and ``out`` is not someone else's file."""
+    check_result(out)
     check_writable(out)
     check_folder(parts_dir(out))
 

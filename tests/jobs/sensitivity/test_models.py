@@ -21,7 +21,18 @@ def test_every_model_exposes_inputs_with_sources_outputs_indexed_and_design(name
     assert m.UNCERTAIN and all(isinstance(x, Input) and x.source for x in m.UNCERTAIN)
     assert len({x.name for x in m.UNCERTAIN}) == len(m.UNCERTAIN)
     assert m.INDEXED and set(m.INDEXED) <= set(m.OUTPUT_UNITS)
-    assert callable(m.design)
+    assert callable(m.design) and callable(m.parameters)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_model_checks_its_parameters(name):
+    """Its inputs' means are accepted; its first input far out of range is refused, a ValueError naming it
+    (the job checks every sample with it before any evaluation)."""
+    m = model(name)
+    m.parameters({x.name: x.distribution.mean for x in m.UNCERTAIN})
+    first = m.UNCERTAIN[0].name
+    with pytest.raises(ValueError, match=f"^{first} = -1e\\+30: must be"):
+        m.parameters({first: -1e30})
 
 
 def test_the_cantilever_indexes_table_4_4s_varying_outputs():

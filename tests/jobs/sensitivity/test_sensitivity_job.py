@@ -119,6 +119,25 @@ def test_a_bad_job_is_one_line_naming_the_key(tmp_path, text, message):
     assert message in str(raised.value) and "\n" not in str(raised.value)
 
 
+@pytest.mark.parametrize("model, table, message", [
+    ("trevisi-3mw", "[sensitivity.inputs.eta_t]\nhigh = 1.5\n",
+     "[sensitivity.inputs.eta_t] uniform low 0.7, high 1.5: sample 0 leaves the model's range: eta_t = 1.045910"),
+    ("trevisi-3mw-wind", "[sensitivity.inputs.weibull_shape]\nlow = -1.0\n",
+     "[sensitivity.inputs.weibull_shape] uniform low -1, high 3: sample 4 leaves the model's range: "
+     "weibull_shape = -0.826083"),
+    ("trevisi-profit", "[sensitivity.inputs.tether_safety_factor]\nlow = 0.5\n",
+     "[sensitivity.inputs.tether_safety_factor] uniform low 0.5, high 2: sample 2 leaves the model's range: "
+     "tether_safety_factor = 0.667235"),
+])
+def test_a_range_that_draws_a_sample_the_model_refuses_is_one_line_before_any_evaluation(tmp_path, model, table,
+                                                                                        message):
+    path = tmp_path / "job.toml"
+    path.write_text(f"[sensitivity]\nmodel = \"{model}\"\nsamples = 60\n{table}")
+    with pytest.raises(ConfigError) as raised:
+        load_sensitivity_job(path)
+    assert str(raised.value).startswith(message) and "\n" not in str(raised.value)
+
+
 @pytest.mark.parametrize("path, preset, samples, message", [
     (None, None, None, "give a sensitivity job file or --preset NAME (one of them)"),
     ("job.toml", "cantilever", None, "give a sensitivity job file or --preset NAME (one of them)"),
