@@ -17,7 +17,10 @@ examples/trevisi_3mw_gap.py PART [--parts FOLDER] [--starts N]``, JSON on stdout
   that our design does not impose (:data:`READINGS`), alone and together, and with one diagnostic
   that is no reading of the text (``shear-twice``: the Weibull scale raised by (h_min/20 m)^α);
 * ``samples``: the same readings on the finished samples of ``FOLDER`` whose indices are given
-  (``--indices``), each re-optimised with and without the reading from the same starts.
+  (``--indices``), each re-optimised with and without the reading from the same starts;
+* ``figure``: the finished samples of ``FOLDER`` drawn against Table 5.6 (``--figure PATH``, default
+  ``trevisi_3mw_gap.png``; docs/figures/sensitivity-3mw-gap.png): each sample's AEP over
+  A_kite · C_L,max, and the histograms of the AEP, r and d, Table 5.6's mean ± SD beside.
 
 A reading's effect is AEP(reading) − AEP(ours), both the best of the same ``--starts`` converged
 starts (seed 0, as the analysis; the analysis takes 10, 15 where C_L,max > 3).
@@ -33,6 +36,7 @@ from dataclasses import replace
 import numpy as np
 
 from fem_tether.cli import Parser
+from fem_tether.core.atomic import check_writable
 from fem_tether.core.errors import InputError
 from fem_tether.design.optimiser import Problem
 from fem_tether.design.parameters import TABLE_5_4, DesignParameters
@@ -152,6 +156,53 @@ def statistics(folder: str) -> dict:
             "aep_by_area_times_cl_max_m2": bins}
 
 
+#: the histograms of :func:`figure`: output, its label, the factor to the label's unit, decimals shown
+HISTOGRAMS = (("aep_Wh", "AEP [GWh]", 1e-9, 1), ("tether_length_m", "tether length r [m]", 1.0, 0),
+              ("tether_diameter_m", "tether diameter d [mm]", 1e3, 1))
+
+
+def figure(x: dict, y: dict, path) -> None:
+    """The samples (inputs ``x``, outputs ``y``: name -> values) against Table 5.6, written to ``path``
+    (PNG, replaced only if fem-tether wrote it): the AEP of each over A_kite · C_L,max, coloured by
+    C_d0, and the histograms of :data:`HISTOGRAMS`, Table 5.6's mean ± SD as a band."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fem_tether.report.plots import save_atomically
+
+    check_writable(path)
+    lift = x["wing_area_m2"] * x["cl_max"]
+    fig, axes = plt.subplots(2, 2, figsize=(11.0, 8.0), constrained_layout=True)
+    ax = axes[0, 0]
+    mean, sd = REFERENCE["aep_Wh"]
+    ax.axhspan((mean - sd) / 1e9, (mean + sd) / 1e9, color="0.85", label="Table 5.6: mean ± SD")
+    ax.axhline(mean / 1e9, color="0.4", lw=1.0)
+    dots = ax.scatter(lift, y["aep_Wh"] / 1e9, c=x["cd0"], s=12, cmap="viridis", label="our samples")
+    fig.colorbar(dots, ax=ax, label="$C_{d0}$ [-]")
+    ax.set(xlabel="$A_{kite} \\cdot C_{L,max}$ [m²]", ylabel="AEP [GWh]",
+           title=f"AEP of each design ({len(lift)} samples)")
+    ax.legend(loc="lower right")
+    for ax, (name, label, factor, digits) in zip(axes.flat[1:], HISTOGRAMS):
+        values = y[name] * factor
+        mean, sd = (v * factor for v in REFERENCE[name])
+        ax.axvspan(mean - sd, mean + sd, color="0.85", label="Table 5.6: mean ± SD")
+        ax.axvline(mean, color="0.4", lw=1.0)
+        ax.hist(values, bins=25, color="C0", alpha=0.8,
+                label=f"ours: {np.mean(values):.{digits}f} ± {np.std(values, ddof=1):.{digits}f}")
+        ax.set(xlabel=label, ylabel="samples", title=label.split(" [")[0])
+        ax.legend(loc="best")
+    fig.suptitle("Our 3 MW global analysis (trevisi-3mw) against Trevisi's Table 5.6 (650 samples)")
+    save_atomically(fig, path)
+
+
+def drawn(folder: str, path: str) -> dict:
+    """:func:`figure` of the samples finished in ``folder``; what it drew."""
+    r = finished_content(load_sensitivity_job(preset="trevisi-3mw"), folder.removesuffix(".parts"))
+    figure({k: v["values"] for k, v in r["inputs"].items()}, {k: v["values"] for k, v in r["outputs"].items()}, path)
+    return {"figure": path, "finished": r["attrs"]["finished"]}
+
+
 def held(starts: int) -> dict:
     """Ours at Table 5.4's midpoints, free and with Table 5.6's mean design held."""
     p = midpoints()
@@ -184,16 +235,18 @@ def samples(folder: str, indices: list[int], starts: int, chosen=tuple(READINGS)
 
 def main() -> None:
     parser = Parser(description=__doc__.split("\n")[0])
-    parser.add_argument("part", nargs="?", default="statistics", choices=("statistics", "held", "readings", "samples"))
+    parser.add_argument("part", nargs="?", default="statistics",
+                        choices=("statistics", "held", "readings", "samples", "figure"))
     parser.add_argument("--parts", default=PARTS, help="the analysis' parts folder (read only)")
     parser.add_argument("--starts", type=int, default=10, help="converged starts per design (the analysis': 10)")
     parser.add_argument("--indices", type=int, nargs="*", default=[], help="samples for PART samples")
+    parser.add_argument("--figure", default="trevisi_3mw_gap.png", help="the PNG of PART figure")
     parser.add_argument("--readings", nargs="*", choices=tuple(READINGS), default=tuple(READINGS),
                         help="the readings for PART readings and samples (default: every one)")
     args = parser.parse_args()
-    if args.part == "statistics":
+    if args.part in ("statistics", "figure"):
         try:
-            result = statistics(args.parts)
+            result = statistics(args.parts) if args.part == "statistics" else drawn(args.parts, args.figure)
         except InputError as exc:
             parser.exit(2, f"{parser.prog}: {exc}\n")
     elif args.part == "held":

@@ -339,6 +339,26 @@ def test_design_jobs_load(name, preset):
         (shipped.parameters, shipped.objective, shipped.costs, shipped.iterations)
 
 
+def test_trevisi_3mw_gap_draws_the_samples_against_table_5_6_and_keeps_a_users_file(tmp_path):
+    """The figure of docs/sensitivity.md §6.5 from any samples (here 40 drawn at random): a PNG marked as
+    fem-tether's; a user's file at its path is refused and kept."""
+    from fem_tether.core.atomic import OutputError, written_by_fem_tether
+
+    gap = example("trevisi_3mw_gap")
+    rng = np.random.default_rng(0)
+    x = {"wing_area_m2": rng.uniform(15, 100, 40), "cl_max": rng.uniform(1.5, 3.5, 40), "cd0": rng.uniform(0.01, 0.1, 40)}
+    y = {"aep_Wh": rng.uniform(2e9, 23e9, 40), "tether_length_m": rng.uniform(300, 1500, 40),
+         "tether_diameter_m": rng.uniform(0.01, 0.04, 40)}
+    gap.figure(x, y, tmp_path / "gap.png")
+    assert written_by_fem_tether(tmp_path / "gap.png")
+    gap.figure(x, y, tmp_path / "gap.png")                    # its own figure is replaced
+    mine = tmp_path / "mine.png"
+    mine.write_bytes(b"mine")
+    with pytest.raises(OutputError):
+        gap.figure(x, y, mine)
+    assert mine.read_bytes() == b"mine"
+
+
 def test_trevisi_3mw_gap_holds_table_5_6s_mean_design_at_its_altitude():
     """docs/sensitivity.md §6.5: Table 5.6's mean design flies at h = 463 m sin 27.4 deg = 213 m, where its
     cut-in and cut-out on the 20 m axis (2.21, 19.32 m/s) are 3.55 and 31.01 m/s; its cut-out as a bound at
