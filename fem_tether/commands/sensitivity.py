@@ -1,7 +1,9 @@
 """``fem-tether sensitivity``: a global sensitivity analysis from a job file or a shipped preset.
 
 Loads the job (:func:`fem_tether.jobs.sensitivity.job.load_sensitivity_job`: every key checked
-before any evaluation), checks that the report's files can be written, evaluates the samples
+before any evaluation); with ``--finished`` prints the analysis of the samples finished so far
+(:func:`fem_tether.jobs.sensitivity.run.finished_content`: read only, nothing evaluated or written,
+for an analysis under way or stopped) and stops; else checks that the report's files can be written, evaluates the samples
 over the MPI ranks (:func:`fem_tether.jobs.sensitivity.run.run_sensitivity`: resumable, the same
 bytes for any rank count), then on rank 0 writes the report (:mod:`fem_tether.report.sensitivity`,
 ``<out stem>_report/``) and prints the summary (:mod:`fem_tether.report.sensitivity_text`) or
@@ -15,7 +17,7 @@ from pathlib import Path
 
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
-from fem_tether.jobs.sensitivity.run import Samples, check_result, run_sensitivity
+from fem_tether.jobs.sensitivity.run import Samples, check_result, finished_content, run_sensitivity
 from fem_tether.report import text as report
 from fem_tether.report.sensitivity import check_report, write_sensitivity_report
 from fem_tether.report.sensitivity_text import sensitivity_text
@@ -34,6 +36,12 @@ def summary(r: dict) -> dict:
 
 def cmd_sensitivity(args) -> int:
     job = load_sensitivity_job(args.job, args.preset, args.samples)
+    if args.finished:
+        r, parts = finished_content(job, args.out), Samples(job, Path(args.out)).directory
+        print(report.json_text(summary(r) | {"parts": str(parts)}) if args.json
+              else f"{sensitivity_text(r)}\n\nfrom the parts in {parts} (an analysis under way or stopped; "
+                   "nothing written)")
+        return 0
     check_result(Path(args.out))            # someone else's file refused before the report's folder is made
     check_report(args.out)
     if run_sensitivity(job, args.out, progress=not args.json) is None:

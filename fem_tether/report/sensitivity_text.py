@@ -48,7 +48,8 @@ def ranking(r: dict, output: str) -> list[int]:
 def head(r: dict) -> list[str]:
     a = r["attrs"]
     failed = f"{a['failed']} failed (NaN outputs, left out of the statistics)" if a["failed"] else "none failed"
-    return [f"global sensitivity of the model {a['model']!r}: {a['samples']} samples ({a['method']}, seed "
+    count = f"{a['finished']} of {a['samples']} samples finished so far" if "finished" in a else f"{a['samples']} samples"
+    return [f"global sensitivity of the model {a['model']!r}: {count} ({a['method']}, seed "
             f"{a['seed']}) of {len(a['inputs'])} inputs, one evaluation each; {failed}",
             f"errors: bootstrap SD over {a['resamples']} resamples; expansions of degree <= {a['max_degree']} "
             "chosen by their leave-one-out error"]

@@ -30,11 +30,13 @@ STRAIGHT_NOTE = "straight: the rigid straight line in the same wind ('fem-tether
 
 
 def json_safe(data):
-    """``data`` with every NaN or infinite number (in dicts, lists and tuples)
-    replaced by None: JSON has no NaN, and null is the value of an undefined
-    quantity in every document fem-tether writes."""
+    """``data`` with every NaN or infinite number (in dicts, lists, tuples and
+    NumPy arrays, those as lists) replaced by None: JSON has no NaN, and null is
+    the value of an undefined quantity in every document fem-tether writes."""
     if isinstance(data, dict):
         return {k: json_safe(v) for k, v in data.items()}
+    if isinstance(data, (np.ndarray, np.generic)):
+        return json_safe(data.tolist())
     if isinstance(data, (list, tuple)):
         return [json_safe(v) for v in data]
     if isinstance(data, float) and not math.isfinite(data):

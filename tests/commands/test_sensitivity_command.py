@@ -137,6 +137,32 @@ def test_a_users_report_page_is_refused_before_any_evaluation(job, tmp_path, cap
     assert not (tmp_path / "beam.h5.parts").exists()
 
 
+def test_finished_prints_the_samples_finished_so_far_and_writes_nothing(job, tmp_path, capsys):
+    """An analysis stopped with 25 of its 40 samples: ``--finished`` analyses those 25 (read only)."""
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0
+    out.unlink()
+    shutil.rmtree(tmp_path / "beam_report")
+    for part in sorted((tmp_path / "beam.h5.parts").glob("sample_*.json"))[25:]:
+        part.unlink()
+    before = sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*"))
+    capsys.readouterr()
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--finished"]) == 0
+    text = capsys.readouterr().out
+    assert "global sensitivity of the model 'cantilever': 25 of 40 samples finished so far" in text
+    assert "mass_kg (degree" in text and text.rstrip().endswith("(an analysis under way or stopped; nothing written)")
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--finished", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert r["attrs"]["finished"] == 25 and r["parts"] == str(tmp_path / "beam.h5.parts")
+    assert sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*")) == before
+
+
+def test_finished_without_parts_is_one_line(job, tmp_path, capsys):
+    assert cli.main(["sensitivity", str(job), "--out", str(tmp_path / "beam.h5"), "--finished"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "beam.h5.parts: no finished sample of this job yet" in err
+
+
 def test_a_users_file_at_out_is_refused_before_any_folder_is_made(job, tmp_path, capsys):
     out = tmp_path / "beam.h5"
     out.write_text("precious\n")

@@ -29,6 +29,12 @@ def test_json_text_writes_undefined_numbers_as_null_never_nan():
     assert json.loads(text) == {"a": None, "b": [None, [None, 2.0]], "c": {"d": None}}
 
 
+def test_json_text_writes_numpy_arrays_and_scalars_as_lists_and_numbers():
+    """(Was: a TypeError for an array, as the sensitivity analysis' finished samples carry.)"""
+    text = json_text({"a": np.array([1, 2]), "b": np.array([[0.5, np.nan]]), "c": np.int64(3), "d": np.float32(0.5)})
+    assert json.loads(text) == {"a": [1, 2], "b": [[0.5, None]], "c": 3, "d": 0.5}
+
+
 def _check(drag_fd_N):
     means = {"drag_N": 1000.0, "ground_tension_N": 150000.0, "kite_tension_N": 151000.0}
     fd = means | {"drag_N": drag_fd_N}

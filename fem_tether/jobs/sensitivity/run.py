@@ -152,7 +152,10 @@ def finished_content(job: SensitivityJob, out: str | Path) -> dict:
     samples = Samples(job, Path(out))
     kept = [(index, part) for index in range(job.samples) if (part := samples.read(index)) is not None]
     if not kept:
-        raise InputError(f"{samples.directory}: no finished sample of this job yet")
+        others = samples.present(range(job.samples))
+        raise InputError(f"{samples.directory}: no finished sample of this job yet" + (
+            f" ({others} parts of other inputs or other code: a part is read only by the code and the job "
+            "that wrote it)" if others else ""))
     indices = np.array([index for index, _ in kept], dtype=int)
     values = {name: np.array([part["outputs"].get(name, math.nan) for _, part in kept]) for name in job.units}
     result = content(replace(job, counts=()), samples.points[indices], values)
