@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from fem_tether.core.progress import launch_rank
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
 from fem_tether.jobs.sensitivity.run import Samples, check_result, finished_content, run_sensitivity
@@ -38,9 +39,10 @@ def cmd_sensitivity(args) -> int:
     job = load_sensitivity_job(args.job, args.preset, args.samples)
     if args.finished:
         r, parts = finished_content(job, args.out), Samples(job, Path(args.out)).directory
-        print(report.json_text(summary(r) | {"parts": str(parts)}) if args.json
-              else f"{sensitivity_text(r)}\n\nfrom the parts in {parts} (an analysis under way or stopped; "
-                   "nothing written)")
+        if launch_rank() == 0:              # once under mpiexec
+            print(report.json_text(summary(r) | {"parts": str(parts)}) if args.json
+                  else f"{sensitivity_text(r)}\n\nfrom the parts in {parts} (an analysis under way or stopped; "
+                       "nothing written)")
         return 0
     check_result(Path(args.out))            # someone else's file refused before the report's folder is made
     check_report(args.out)
