@@ -562,9 +562,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="result file; the figures and the report page go to FILE_report/")
     c.add_argument("--samples", type=_option(int, "a whole number", lambda v: v >= 2, "at least 2"), metavar="N",
                    help="evaluations instead of the job's samples (its convergence counts above N left out)")
-    c.add_argument("--finished", action="store_true",
+    g = c.add_mutually_exclusive_group()
+    g.add_argument("--finished", action="store_true",
                    help="print the analysis of the samples finished so far in FILE.h5's parts (an analysis under "
                         "way or stopped; read only: nothing evaluated or written)")
+    g.add_argument("--restart", action="store_true",
+                   help="remove the parts of another job or other code from FILE.h5's parts and run this job "
+                        "(else they are refused: hours of an unfinished analysis)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False, system=False)

@@ -90,6 +90,16 @@ class JsonParts:
     def present(self, indices) -> int:
         return sum(self.path(i).exists() for i in indices)
 
+    def foreign(self) -> list[Path]:
+        """The parts in :attr:`directory` that are not this job's: another job's, other code's, or
+        unreadable (a run would replace or ignore them)."""
+        found = []
+        for path in sorted(self.directory.glob(f"{self.PREFIX}_*.json")):
+            index = path.stem.removeprefix(f"{self.PREFIX}_")
+            if not (index.isdigit() and self.path(int(index)) == path and self.read(int(index)) is not None):
+                found.append(path)
+        return found
+
     def while_waiting(self) -> None:
         pass
 

@@ -163,6 +163,30 @@ def test_finished_without_parts_is_one_line(job, tmp_path, capsys):
     assert err.count("\n") == 1 and "beam.h5.parts: no finished sample of this job yet" in err
 
 
+def test_parts_of_another_job_exit_2_and_restart_replaces_them(job, tmp_path, capsys):
+    """The 40-sample analysis' parts where the job runs with --samples 25 (other samples): one line
+    naming them and --restart, exit 2, nothing changed; with --restart the 25-sample analysis."""
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0
+    before = sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*"))
+    capsys.readouterr()
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--samples", "25"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "beam.h5.parts: 40 parts of another job or other code" in err
+    assert err.rstrip().endswith("pass --restart to remove them")
+    assert sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*")) == before
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--samples", "25", "--restart"]) == 0
+    assert read_sensitivity_hdf5(out)["attrs"]["samples"] == 25
+    assert len(list((tmp_path / "beam.h5.parts").iterdir())) == 25
+
+
+def test_restart_with_finished_is_a_usage_error(job, tmp_path, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        cli.main(["sensitivity", str(job), "--out", str(tmp_path / "beam.h5"), "--finished", "--restart"])
+    assert stopped.value.code == 2
+    assert "argument --restart: not allowed with argument --finished" in capsys.readouterr().err
+
+
 def test_a_users_file_at_out_is_refused_before_any_folder_is_made(job, tmp_path, capsys):
     out = tmp_path / "beam.h5"
     out.write_text("precious\n")

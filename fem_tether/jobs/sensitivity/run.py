@@ -178,16 +178,38 @@ def check_out(out: Path) -> None:
     check_folder(parts_dir(out))
 
 
-def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: bool = True) -> dict | None:
+def check_parts(samples: Samples) -> None:
+    """The parts' folder holds no part of another job or other code, which the run would replace:
+    the samples of an unfinished analysis are hours of work (an OutputError saying what to do)."""
+    foreign = samples.foreign()
+    if foreign:
+        raise OutputError(
+            f"{samples.directory}: {len(foreign)} parts of another job or other code ({foreign[0].name} …), "
+            "which this run would replace: finish that analysis with its job and code (docs/sensitivity.md §4), "
+            "move the folder away, or pass --restart to remove them")
+
+
+def run_sensitivity(job: SensitivityJob, out: str | Path, comm=None, progress: bool = True,
+                    restart: bool = False) -> dict | None:
     """Evaluate ``job``'s samples over the ranks of ``comm`` (MPI.COMM_WORLD by default), analyse them
-    and write ``out``; the file's content on rank 0, None on the others."""
+    and write ``out``; the file's content on rank 0, None on the others.  Parts of another job or
+    other code in ``out``'s parts are refused (:func:`check_parts`), or with ``restart`` removed."""
     if comm is None:
         from mpi4py import MPI
         comm = MPI.COMM_WORLD
     out = Path(out)
+    samples = Samples(job, out)
+
+    def check(path: Path) -> None:
+        check_out(path)
+        if not restart:
+            check_parts(samples)
+
     with guard(comm), ExitStack() as output:
-        claim_output(comm, out, check_out, output)
-        samples = Samples(job, out)
+        claim_output(comm, out, check, output)
+        if restart and comm.Get_rank() == 0:          # rank 0 holds the output; the others wait for its costs
+            for path in samples.foreign():
+                path.unlink()
         try:
             distribute(comm, samples, list(range(job.samples)),
                        phase_bar(comm, job.samples, "sensitivity samples", progress))

@@ -1,6 +1,7 @@
 """A sensitivity analysis over MPI ranks (fem_tether.jobs.sensitivity.run) and its file
 (fem_tether.io.sensitivity_file): the cantilever's samples, the same bytes on one and two ranks,
-parts reused on a rerun, a killed run resumed to the same bytes, a foreign file refused."""
+parts reused on a rerun, a killed run resumed to the same bytes, a foreign file refused, parts of
+another job refused (removed with restart)."""
 
 import filecmp
 import json
@@ -53,6 +54,17 @@ def cantilever_job(samples=80, model=beam.design):
     return SensitivityJob("cantilever", model, beam.UNCERTAIN, beam.OUTPUT_UNITS, INDEXED, samples, counts=(40, 80))
 
 
+def counting_design(calls: list):
+    """The cantilever's model (the same inputs key) appending to ``calls`` at each evaluation."""
+    def counted(sampled):
+        calls.append(1)
+        return beam.design(sampled)
+
+    counted.__qualname__ = beam.design.__qualname__
+    counted.__module__ = beam.design.__module__
+    return counted
+
+
 def test_the_file_holds_every_sample_with_units_and_the_analysis(tmp_path):
     """Every sample's four inputs and six outputs with units, in the model's order; the statistics,
     indices and expansions as computed; the inputs in Table 4.3's order with their distributions;
@@ -84,16 +96,32 @@ def test_a_rerun_reuses_the_parts_and_gives_the_same_bytes(tmp_path):
     first = out.read_bytes()
     for path in sorted(parts_dir(out).glob("sample_*.json"))[::2]:
         path.unlink()
-    calls = []
-
-    def counted(sampled):
-        calls.append(1)
-        return beam.design(sampled)
-
-    counted.__qualname__ = beam.design.__qualname__
-    counted.__module__ = beam.design.__module__
+    calls: list[int] = []
+    counted = counting_design(calls)
     run_sensitivity(cantilever_job(model=counted), out, progress=False)
     assert len(calls) == 40 and out.read_bytes() == first
+
+
+def test_parts_of_another_job_are_refused_and_with_restart_removed(tmp_path):
+    """(Was: replaced one by one as the new job's samples ran, the old analysis lost without a word.)
+    A 20-sample job's parts where the 80-sample job runs: one OutputError line naming them and
+    --restart, nothing evaluated or changed; with restart they are removed and the file is the bytes
+    of a run into an empty folder."""
+    out = tmp_path / "gsa.h5"
+    run_sensitivity(cantilever_job(samples=20), out, progress=False)
+    before = {path: path.read_bytes() for path in sorted(tmp_path.rglob("*")) if path.is_file()}
+    calls: list[int] = []
+    counted = counting_design(calls)
+    with pytest.raises(OutputError, match=r"gsa\.h5\.parts: 20 parts of another job or other code "
+                                          r"\(sample_00000\.json …\).*pass --restart to remove them"):
+        run_sensitivity(cantilever_job(model=counted), out, progress=False)
+    assert not calls and {path: path.read_bytes() for path in sorted(tmp_path.rglob("*")) if path.is_file()} == before
+    run_sensitivity(cantilever_job(model=counted), out, progress=False, restart=True)
+    assert len(calls) == 80
+    clean = tmp_path / "clean" / "gsa.h5"
+    run_sensitivity(cantilever_job(), clean, progress=False)
+    assert out.read_bytes() == clean.read_bytes()
+    assert sorted(p.name for p in parts_dir(out).iterdir()) == sorted(p.name for p in parts_dir(clean).iterdir())
 
 
 def test_the_samples_finished_so_far_are_analysed_without_writing(tmp_path):
