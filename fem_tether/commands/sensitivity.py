@@ -5,7 +5,8 @@ before any evaluation); with ``--finished`` prints the analysis of the samples f
 (:func:`fem_tether.jobs.sensitivity.run.finished_content`: read only, nothing evaluated or written,
 for an analysis under way or stopped) and stops; else checks that the report's files can be written, evaluates the samples
 over the MPI ranks (:func:`fem_tether.jobs.sensitivity.run.run_sensitivity`: resumable, the same
-bytes for any rank count; parts of another job or other code refused, or with ``--restart`` removed), then on rank 0 writes the report (:mod:`fem_tether.report.sensitivity`,
+bytes for any rank count; parts of another job or other code refused, or with ``--restart``
+removed), then on rank 0 writes the report (:mod:`fem_tether.report.sensitivity`,
 ``<out stem>_report/``) and prints the summary (:mod:`fem_tether.report.sensitivity_text`) or
 its JSON: the file's content without the per-sample values and the expansions' coefficients
 (both in the file).
