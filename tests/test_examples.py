@@ -20,7 +20,8 @@ def example(name):
 
 #: Every example, in README's order ("Python API").
 NAMES = ("straight_line", "fe_run", "reel_out", "crosscheck", "sweep_aep", "tower_vs_kite", "study_assumptions",
-         "tab51_gap", "short_line_drag", "tether_lumping", "design_section_5_4", "cantilever_sensitivity", "trevisi_3mw_gap")
+         "tab51_gap", "short_line_drag", "tether_lumping", "design_section_5_4", "cantilever_sensitivity", "trevisi_3mw_gap",
+         "trevisi_wing_and_wind")
 
 
 def test_every_example_opens_with_its_equations_and_how_to_run_it():
@@ -262,7 +263,8 @@ ARGUMENTS = {"tab51_gap": (["bogus"], "argument PART: invalid choice: 'bogus' (c
              "fe_run": (["out", "extra"], "unrecognized arguments: extra"),
              "sweep_aep": (["out", "extra"], "unrecognized arguments: extra"),
              "cantilever_sensitivity": (["out", "extra"], "unrecognized arguments: extra"),
-             "trevisi_3mw_gap": (["bogus"], "argument part: invalid choice: 'bogus' (choose from 'statistics', ")}
+             "trevisi_3mw_gap": (["bogus"], "argument part: invalid choice: 'bogus' (choose from 'statistics', "),
+             "trevisi_wing_and_wind": (["bogus"], "argument part: invalid choice: 'bogus' (choose from 'wing', ")}
 
 
 def test_the_examples_taking_arguments_are_the_listed_ones():
@@ -370,3 +372,74 @@ def test_trevisi_3mw_gap_holds_table_5_6s_mean_design_at_its_altitude():
     assert gap.TABLE_5_6_CUT_IN_MPS * gap.to_altitude(p, h) == pytest.approx(3.55, abs=0.005)
     assert gap.TABLE_5_6_CUT_OUT_MPS * gap.to_altitude(p, h) == pytest.approx(31.01, abs=0.005)
     assert gap.cut_out_bound(p)["cut_out_mps"][1] == pytest.approx(30.6, abs=0.05)
+
+
+def _analysis(inputs: dict, outputs: dict, indexed: tuple) -> dict:
+    """An analysis of samples as :func:`fem_tether.jobs.sensitivity.run.finished_content` returns it:
+    each indexed output's total index 0.5 on its first input, 0.1 on the others (bootstrap SD 0.01)."""
+    names = list(inputs)
+    total = np.array([0.5] + [0.1] * (len(names) - 1))
+    return {"attrs": {"finished": len(next(iter(inputs.values()))), "failed": 0, "inputs": names},
+            "inputs": {k: {"values": v} for k, v in inputs.items()},
+            "outputs": {k: {"values": v} for k, v in outputs.items()},
+            "statistics": {k: {"mean": float(np.mean(v)), "sd": float(np.std(v, ddof=1)), "mean_error": 0.0}
+                           for k, v in outputs.items()},
+            "indices": {k: {"degree": 1, "loo_error": 0.01, "total": total, "total_error": np.full(len(names), 0.01)}
+                        for k in indexed}}
+
+
+def test_trevisi_wing_reads_the_plateau_and_the_aspect_ratio_at_one_percent(tmp_path):
+    """§5.9's readings of docs/sensitivity.md §6.3 on samples whose answers are known: AR = 10 + 500 δ
+    is 15 at δ = 1 % (the quadratic fit exact), the AEP's bin means are the AEP's at the bins' C_L,max
+    (AEP linear in C_L,max), λ_CL / AEP per bin; the figure is fem-tether's and a user's file is kept."""
+    from fem_tether.core.atomic import OutputError, written_by_fem_tether
+
+    wing = example("trevisi_wing_and_wind")
+    cl = np.linspace(1.0, 4.0, 61)
+    share = np.resize(np.linspace(0.01, 0.1, 13), 61)
+    aep = 4e9 * cl
+    r = _analysis({"cl_max": cl, "max_deflection_share": share},
+                  {"aep_Wh": aep, "aep_per_cl_max_Wh": 0.5 * aep, "aspect_ratio": 10.0 + 500.0 * share,
+                   "capacity_factor": aep / (3e6 * 8766.0)},
+                  ("aep_Wh", "capacity_factor", "aspect_ratio"))
+    out = wing.wing(r)
+    assert out["aspect_ratio_over_deflection"]["at_1_percent"] == pytest.approx(15.0, abs=1e-9)
+    assert out["aspect_ratio_over_deflection"]["at_10_percent"] == pytest.approx(60.0, abs=1e-9)
+    assert out["aspect_ratio_over_deflection"]["mean_sd_at_most_2_percent"][0] == pytest.approx(16.875, abs=1e-9)  # δ 1, 1.75 %
+    bins = out["by_cl_max"]
+    assert list(bins) == ["1-1.5", "1.5-2", "2-2.5", "2.5-3", "3-3.5", "3.5-4"]
+    assert sum(b["samples"] for b in bins.values()) == 61 and bins["3.5-4"]["samples"] == 11   # 4 in the last
+    assert bins["1-1.5"]["aep_GWh"] == pytest.approx(4.0 * 1.225, rel=1e-12)
+    assert all(b["lambda_cl_over_aep"] == pytest.approx(0.5) for b in bins.values())
+    assert list(out["indices"]["aep_Wh"]["total"]) == ["cl_max", "max_deflection_share"]
+    wing.wing_figure(*wing.values(r), tmp_path / "wing.png")
+    assert written_by_fem_tether(tmp_path / "wing.png")
+    mine = tmp_path / "mine.png"
+    mine.write_bytes(b"mine")
+    with pytest.raises(OutputError):
+        wing.wing_figure(*wing.values(r), mine)
+    assert mine.read_bytes() == b"mine"
+
+
+def test_trevisi_wind_reads_the_cut_out_on_the_20_m_axis_and_the_wind_inputs_share(tmp_path):
+    """§5.10's readings of docs/sensitivity.md §6.2: V_out,20 = V_out / (h / 20 m)^α with each sample's α
+    (h = 80 m, α 0.5: half), λ_Prated's correlation with A (1 where proportional), the wind inputs'
+    share of a design output's variance the sum of their total indices; the figure is fem-tether's."""
+    from fem_tether.core.atomic import written_by_fem_tether
+
+    wind = example("trevisi_wing_and_wind")
+    n = 30
+    a = np.linspace(6.0, 15.0, n)
+    inputs = {"weibull_scale_mps": a, "shear_alpha": np.full(n, 0.5), "weibull_shape": np.full(n, 2.0),
+              "wing_area_m2": np.linspace(15.0, 100.0, n), "cl_max": np.linspace(1.0, 4.0, n)}
+    outputs = {name: np.linspace(1.0, 2.0, n) * wind.REFERENCE[name][0] for name in wind.REFERENCE}
+    outputs |= {"altitude_m": np.full(n, 80.0), "cut_out_mps": np.full(n, 40.0), "aep_per_rated_power_W_Wh": 2e9 * a}
+    r = _analysis(inputs, outputs, ("aep_Wh", "capacity_factor", *wind.DESIGN_OUTPUTS))
+    out = wind.wind(r)
+    assert out["cut_out_20m_mps"][0] == pytest.approx(20.0, rel=1e-12)
+    assert out["pearson_lambda_prated_weibull_scale"] == pytest.approx(1.0, rel=1e-12)
+    assert out["by_weibull_scale"]["12-15"]["samples"] == 10
+    assert out["wind_inputs_total_index_sum"] == {name: pytest.approx(0.7) for name in wind.DESIGN_OUTPUTS}
+    assert out["outputs"]["aep_Wh"]["thesis"] == (20.39e9, 4.33e9)
+    wind.wind_figure(*wind.values(r), tmp_path / "wind.png")
+    assert written_by_fem_tether(tmp_path / "wind.png")
