@@ -565,10 +565,13 @@ def build_parser() -> argparse.ArgumentParser:
     g = c.add_mutually_exclusive_group()
     g.add_argument("--finished", action="store_true",
                    help="print the analysis of the samples finished so far in FILE.h5's parts (an analysis under "
-                        "way or stopped; read only: nothing evaluated or written)")
+                        "way or stopped: nothing evaluated, nothing written but --report's page)")
     g.add_argument("--restart", action="store_true",
                    help="remove the parts of another job or other code from FILE.h5's parts and run this job "
                         "(else they are refused: hours of an unfinished analysis)")
+    c.add_argument("--report", action="store_true",
+                   help="with --finished: also draw the report page of the samples finished so far into "
+                        "FILE_report/ (the finished analysis' report replaces it)")
     c.add_argument("--json", action="store_true", help=JSON_HELP)
 
     c = command("aep", cmd_aep, "annual energy vs cable length from a sweep result", config=False, system=False)

@@ -2,8 +2,9 @@
 
 Loads the job (:func:`fem_tether.jobs.sensitivity.job.load_sensitivity_job`: every key checked
 before any evaluation); with ``--finished`` prints the analysis of the samples finished so far
-(:func:`fem_tether.jobs.sensitivity.run.finished_content`: read only, nothing evaluated or written,
-for an analysis under way or stopped) and stops; else checks that the report's files can be written, evaluates the samples
+(:func:`fem_tether.jobs.sensitivity.run.finished_content`: read only, nothing evaluated, for an
+analysis under way or stopped; with ``--report`` also its report page,
+:func:`fem_tether.report.sensitivity.write_finished_report`, else nothing written) and stops; else checks that the report's files can be written, evaluates the samples
 over the MPI ranks (:func:`fem_tether.jobs.sensitivity.run.run_sensitivity`: resumable, the same
 bytes for any rank count; parts of another job or other code refused, or with ``--restart``
 removed), then on rank 0 writes the report (:mod:`fem_tether.report.sensitivity`,
@@ -16,12 +17,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from fem_tether.core.errors import InputError
 from fem_tether.core.progress import launch_rank
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
 from fem_tether.jobs.sensitivity.run import Samples, check_result, finished_content, run_sensitivity
 from fem_tether.report import text as report
-from fem_tether.report.sensitivity import check_report, write_sensitivity_report
+from fem_tether.report.sensitivity import check_report, write_finished_report, write_sensitivity_report
 from fem_tether.report.sensitivity_text import sensitivity_text
 
 #: what ``--json`` leaves out of each input's and each expansion's entry (in the file)
@@ -37,13 +39,17 @@ def summary(r: dict) -> dict:
 
 
 def cmd_sensitivity(args) -> int:
+    if args.report and not args.finished:
+        raise InputError("--report: only with --finished (a whole analysis writes its report to FILE_report/)")
     job = load_sensitivity_job(args.job, args.preset, args.samples)
     if args.finished:
         r, parts = finished_content(job, args.out), Samples(job, Path(args.out)).directory
         if launch_rank() == 0:              # once under mpiexec
-            print(report.json_text(summary(r) | {"parts": str(parts)}) if args.json
-                  else f"{sensitivity_text(r)}\n\nfrom the parts in {parts} (an analysis under way or stopped; "
-                       "nothing written)")
+            page = write_finished_report(args.out, r) if args.report else None
+            written = f"report: {page}" if page else "nothing written"
+            print(report.json_text(summary(r) | {"parts": str(parts)} | ({"report": str(page)} if page else {}))
+                  if args.json else f"{sensitivity_text(r)}\n\nfrom the parts in {parts} (an analysis under way "
+                                    f"or stopped; {written})")
         return 0
     check_result(Path(args.out))            # someone else's file refused before the report's folder is made
     check_report(args.out)

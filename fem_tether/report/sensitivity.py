@@ -31,7 +31,8 @@ from pathlib import Path
 import numpy as np
 
 from fem_tether import __version__
-from fem_tether.core.atomic import PAGE_NAME, atomic_path, check_folder, check_writable, generator_tag
+from fem_tether.core.atomic import (PAGE_NAME, OutputError, atomic_path, check_folder, check_writable, generator_tag,
+                                    parts_dir)
 from fem_tether.io.sensitivity_file import read_sensitivity_hdf5
 from fem_tether.jobs.study.result import report_dir
 from fem_tether.report.page import STYLE, image, table
@@ -278,6 +279,15 @@ def index_rows(r: dict, output: str) -> list[list[str]]:
              with_error(e["first_order"][k], e["first_order_error"][k])] for k in ranking(r, output)]
 
 
+def source(out: Path, r: dict) -> str:
+    """What the page of ``out``'s analysis ``r`` is drawn from: the result file, or the samples an
+    analysis under way has finished (:func:`write_finished_report`)."""
+    if "finished" in r["attrs"]:
+        return (f"the {r['attrs']['finished']} samples finished so far in {parts_dir(out).name} (an analysis "
+                f"under way or stopped: {out.name} not written yet; its report replaces this page)")
+    return f"result file {out.name}"
+
+
 def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
     """The page's HTML (``figures``: the PNGs, by name)."""
     names, inputs = r["attrs"]["inputs"], r["inputs"]
@@ -290,7 +300,7 @@ def render(out: Path, r: dict, figures: dict[str, Path]) -> str:
         "<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
         f"<meta name=\"generator\" content=\"{generator_tag()}\">",
         f"<title>fem-tether sensitivity: {html.escape(out.name)}</title><style>{STYLE}</style></head><body>",
-        f"<h1>fem-tether sensitivity</h1><p>result file {html.escape(out.name)}; page by fem-tether "
+        f"<h1>fem-tether sensitivity</h1><p>{html.escape(source(out, r))}; page by fem-tether "
         f"{html.escape(__version__)}</p>",
         *(f"<p>{html.escape(line)}</p>" for line in head(r)),
         "<h2>Inputs</h2>",
@@ -327,7 +337,23 @@ def write_sensitivity_report(out) -> Path:
     file ``out`` in ``<out stem>_report/``; returns the page's path.  Every target is checked
     before any is written."""
     out = Path(out)
-    r = read_sensitivity_hdf5(out)
+    return write_report(out, read_sensitivity_hdf5(out))
+
+
+def write_finished_report(out, r: dict) -> Path:
+    """:func:`write_sensitivity_report` of an analysis under way or stopped: ``r`` is the analysis of
+    the samples finished so far in ``out``'s parts
+    (:func:`fem_tether.jobs.sensitivity.run.finished_content`), drawn into the folder the finished
+    analysis' report will replace; an OutputError where ``out`` is written (its report is there)."""
+    out = Path(out)
+    if out.exists():
+        raise OutputError(f"{out} is written, the analysis finished: its report is {report_paths(out)[-1]} "
+                          "(--report draws an analysis under way)")
+    return write_report(out, r)
+
+
+def write_report(out: Path, r: dict) -> Path:
+    """The figures and page of the analysis ``r`` of the sensitivity file ``out``."""
     check_report(out)
     figures = {name: FIGURES[name](r, report_dir(out) / FIGURE_FILES[name]) for name in drawable(r)}
     page = report_paths(out)[-1]

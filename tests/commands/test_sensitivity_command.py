@@ -157,6 +157,47 @@ def test_finished_prints_the_samples_finished_so_far_and_writes_nothing(job, tmp
     assert sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*")) == before
 
 
+def test_finished_report_draws_the_samples_finished_so_far(job, tmp_path, capsys):
+    """``--finished --report``: the page and figures of the 25 of 40 samples finished, in the folder the
+    whole analysis' report replaces when it finishes (no convergence figure: no counts fitted)."""
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0
+    out.unlink()
+    shutil.rmtree(tmp_path / "beam_report")
+    for part in sorted((tmp_path / "beam.h5.parts").glob("sample_*.json"))[25:]:
+        part.unlink()
+    capsys.readouterr()
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--finished", "--report"]) == 0
+    page = report_paths(out)[-1]
+    assert capsys.readouterr().out.rstrip().endswith(f"(an analysis under way or stopped; report: {page})")
+    text = page.read_text()
+    assert "25 of 40 samples finished so far" in text
+    assert "the 25 samples finished so far in beam.h5.parts (an analysis under way or stopped" in text
+    drawn = sorted(p.name for p in page.parent.iterdir())
+    assert drawn == sorted(["index.html", *(f for name, f in FIGURE_FILES.items() if name != "convergence")])
+    assert all(written_by_fem_tether(p) for p in page.parent.iterdir()) and not out.exists()
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--finished", "--report", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["report"] == str(page)
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0      # the whole analysis' report replaces it
+    assert "result file beam.h5" in page.read_text() and (page.parent / FIGURE_FILES["convergence"]).is_file()
+
+
+def test_finished_report_of_a_finished_analysis_or_without_finished_is_one_line(job, tmp_path, capsys):
+    """A written result file's report is there already: --finished --report refused, the page kept;
+    --report without --finished is a usage error; both one line, exit 2."""
+    out = tmp_path / "beam.h5"
+    assert cli.main(["sensitivity", str(job), "--out", str(out)]) == 0
+    before = sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*"))
+    capsys.readouterr()
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--finished", "--report"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "beam.h5 is written, the analysis finished: its report is" in err
+    assert cli.main(["sensitivity", str(job), "--out", str(out), "--report"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--report: only with --finished" in err
+    assert sorted((p.name, p.stat().st_mtime_ns) for p in tmp_path.rglob("*")) == before
+
+
 def test_finished_without_parts_is_one_line(job, tmp_path, capsys):
     assert cli.main(["sensitivity", str(job), "--out", str(tmp_path / "beam.h5"), "--finished"]) == 2
     err = capsys.readouterr().err
