@@ -17,7 +17,8 @@ docs/data/sensitivity/README.md).  Parts (``python examples/trevisi_wing_and_win
 
 * ``wing``: per C_L,max bin (:data:`CL_EDGES`) the samples' mean AEP and λ_CL, a quadratic fit of
   AR over δ and its value at δ = 1 %, the mean AR of the samples with δ ≤ 2 %, the total indices;
-* ``wind``: the statistics beside Table 5.8, V_out,20, λ_Prated per A bin (:data:`A_EDGES`), the
+* ``wind``: the statistics beside Table 5.8, V_out,20 (of all samples and of those whose cut-out is at
+  its upper bound at h, whose V_out,20 varies with α and h alone), λ_Prated per A bin (:data:`A_EDGES`), the
   wind inputs' share of each design output's variance (the sum of their total indices), the indices;
 * ``wing-figure``, ``wind-figure``: those as a PNG (``--figure``).
 
@@ -31,6 +32,7 @@ import numpy as np
 from fem_tether.cli import Parser
 from fem_tether.core.atomic import check_writable
 from fem_tether.core.errors import InputError
+from fem_tether.design.variables import SCALARS
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
 from fem_tether.jobs.sensitivity.run import finished_content
 from fem_tether.uncertainty.kite_wind import REFERENCE
@@ -111,12 +113,15 @@ def wind(r: dict) -> dict:
     rows = {name: {"mean": s["mean"], "sd": s["sd"], "mean_error": s["mean_error"], "thesis": REFERENCE[name]}
             for name, s in r["statistics"].items() if name in REFERENCE}
     lam = y["aep_per_rated_power_W_Wh"]
+    at_bound = y["cut_out_mps"] >= SCALARS["cut_out_mps"][1] * (1 - 1e-9)
     wind_share = {}
     for output in DESIGN_OUTPUTS:
         i = r["indices"][output]
         wind_share[output] = float(sum(i["total"][names.index(n)] for n in WIND_INPUTS))
     return {"finished": r["attrs"]["finished"], "failed": r["attrs"]["failed"], "outputs": rows,
             "cut_out_20m_mps": mean_sd(cut_out_20m(x, y)),
+            "cut_out_20m_mps_at_bound": mean_sd(cut_out_20m(x, y)[at_bound]) if at_bound.sum() > 1 else None,
+            "share_cut_out_at_bound": float(np.mean(at_bound)),
             "by_weibull_scale": binned(x["weibull_scale_mps"], {"lambda_prated_GWh": lam / 1e9,
                                                                "aep_GWh": y["aep_Wh"] / 1e9,
                                                                "capacity_factor": y["capacity_factor"]}, A_EDGES),

@@ -436,7 +436,7 @@ def test_trevisi_wind_reads_the_cut_out_on_the_20_m_axis_and_the_wind_inputs_sha
     outputs |= {"altitude_m": np.full(n, 80.0), "cut_out_mps": np.full(n, 40.0), "aep_per_rated_power_W_Wh": 2e9 * a}
     r = _analysis(inputs, outputs, ("aep_Wh", "capacity_factor", *wind.DESIGN_OUTPUTS))
     out = wind.wind(r)
-    assert out["cut_out_20m_mps"][0] == pytest.approx(20.0, rel=1e-12)
+    assert out["cut_out_20m_mps"][0] == pytest.approx(20.0, rel=1e-12) and out["share_cut_out_at_bound"] == 1.0
     assert out["pearson_lambda_prated_weibull_scale"] == pytest.approx(1.0, rel=1e-12)
     assert out["by_weibull_scale"]["12-15"]["samples"] == 10
     assert out["wind_inputs_total_index_sum"] == {name: pytest.approx(0.7) for name in wind.DESIGN_OUTPUTS}
