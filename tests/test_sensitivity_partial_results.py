@@ -1,19 +1,17 @@
 """The shipped partial analyses of §5.9 and §5.10 (docs/data/sensitivity): each part is its preset's
 sample at its index, and docs/sensitivity.md §6.2-6.3's numbers are those parts' analysis
-(:func:`fem_tether.jobs.sensitivity.run.content` of the parts, as ``--finished`` analyses them, by
+(:func:`fem_tether.jobs.sensitivity.run.parts_content` of the parts, as ``--finished`` analyses them, by
 examples/trevisi_wing_and_wind.py)."""
 
 import importlib.util
 import json
 import math
-from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from fem_tether.jobs.sensitivity.job import load_sensitivity_job
-from fem_tether.jobs.sensitivity.run import content
+from fem_tether.jobs.sensitivity.run import parts_content
 from fem_tether.uncertainty.inputs import sample
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -40,13 +38,7 @@ def analyses() -> dict:
     """Each analysis of its shipped parts, as ``--finished`` makes it, and the example's reading of it."""
     example, out = _example(), {}
     for part, (preset, folder, _, _) in ANALYSES.items():
-        job = load_sensitivity_job(preset=preset)
-        parts = _parts(folder)
-        indices = np.array([p["index"] for p in parts])
-        points = sample(job.inputs, job.samples, job.seed, job.method)[indices]
-        values = {name: np.array([p["outputs"].get(name, math.nan) for p in parts]) for name in job.units}
-        r = content(replace(job, counts=()), points, values)
-        r["attrs"] |= {"finished": len(parts), "finished_indices": indices}
+        r = parts_content(load_sensitivity_job(preset=preset), [(p["index"], p) for p in _parts(folder)])
         out[part] = getattr(example, part)(r)
     return out
 

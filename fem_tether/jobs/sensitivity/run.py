@@ -156,9 +156,16 @@ def finished_content(job: SensitivityJob, out: str | Path) -> dict:
         raise InputError(f"{samples.directory}: no finished sample of this job yet" + (
             f" ({others} parts of other inputs or other code: a part is read only by the code and the job "
             "that wrote it)" if others else ""))
+    return parts_content(job, kept)
+
+
+def parts_content(job: SensitivityJob, kept: list[tuple[int, dict]]) -> dict:
+    """:func:`content` of the samples ``kept`` (index, part) of ``job``, no convergence; their count in
+    ``attrs["finished"]``, their indices in ``attrs["finished_indices"]``."""
     indices = np.array([index for index, _ in kept], dtype=int)
     values = {name: np.array([part["outputs"].get(name, math.nan) for _, part in kept]) for name in job.units}
-    result = content(replace(job, counts=()), samples.points[indices], values)
+    points = job.points()[indices]
+    result = content(replace(job, counts=()), points, values)
     result["attrs"] |= {"finished": len(kept), "finished_indices": indices}
     return result
 
